@@ -1,0 +1,255 @@
+//! The pinhole camera: an orthonormal basis from eye, view and up, and
+//! raster position to primary ray.
+
+use core::fmt;
+
+use glam::Vec3;
+
+use crate::ray::Ray;
+use crate::real::{S, Scalar, Vector};
+
+/// Why a [`PinholeCamera`] could not be built.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+#[non_exhaustive]
+pub enum CameraError {
+    /// The eye position has a NaN or infinite component.
+    NonFiniteEye,
+    /// The view direction is zero or has a NaN or infinite component.
+    InvalidViewDir,
+    /// The up vector is zero or has a NaN or infinite component.
+    InvalidUp,
+    /// The up vector is parallel to the view direction (within rounding), so
+    /// it does not say which way is up.
+    UpParallelToView,
+    /// The focal length is not positive and finite.
+    InvalidFocalLength,
+    /// The vertical field of view is not in the open interval `(0, pi)`.
+    InvalidFieldOfView,
+    /// The image width or height is zero.
+    EmptyImage,
+}
+
+impl fmt::Display for CameraError {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        f.write_str(match self {
+            Self::NonFiniteEye => "camera eye position is not finite",
+            Self::InvalidViewDir => "camera view direction is zero or not finite",
+            Self::InvalidUp => "camera up vector is zero or not finite",
+            Self::UpParallelToView => "camera up vector is parallel to the view direction",
+            Self::InvalidFocalLength => "camera focal length is not positive and finite",
+            Self::InvalidFieldOfView => "camera vertical field of view is not in (0, pi)",
+            Self::EmptyImage => "camera image width or height is zero",
+        })
+    }
+}
+
+impl core::error::Error for CameraError {}
+
+/// A pinhole camera: turns raster positions into primary rays.
+///
+/// Conventions: right-handed world. Raster coordinates have `(0, 0)` at the
+/// image's top-left corner, `x` to the right and `y` down, in pixels; pixel
+/// `(i, j)` covers `[i, i+1] x [j, j+1]` and has its centre at
+/// `(i + 0.5, j + 0.5)`. The image plane is `focal_length` pixels in front of
+/// the eye along the normalised view direction, centred on it. The basis is
+/// `forward = normalize(view_dir)`, `right = normalize(forward x up)` (so
+/// the up vector need not be unit or orthogonal to the view; only its
+/// component orthogonal to the view is used) and `true_up = right x forward`.
+/// Width and height may differ; pixels are square.
+///
+/// Rays start at the eye and have unit-length directions (to a few ulps).
+///
+/// ```
+/// use rayhit::{PinholeCamera, glam::Vec3};
+/// // 3x3 image, 90 degree vertical field of view: focal length 1.5 pixels.
+/// let cam = PinholeCamera::new(Vec3::ZERO, -Vec3::Z, Vec3::Y, 1.5, 3, 3).unwrap();
+/// // The centre pixel looks straight along the view direction.
+/// assert_eq!(cam.pixel_ray(1, 1).dir, -Vec3::Z);
+/// // The top-left corner of the image is up and to the left: (-1.5, 1.5, -1.5) normalised.
+/// let corner = cam.ray(0.0, 0.0).dir;
+/// assert!((corner - Vec3::new(-1.0, 1.0, -1.0).normalize()).length() < 1e-6);
+/// ```
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct PinholeCamera<V = Vec3>
+where
+    V: Vector,
+{
+    eye: V,
+    forward: V,
+    right: V,
+    up: V,
+    focal_length: S<V>,
+    width: u32,
+    height: u32,
+}
+
+impl<V: Vector> PinholeCamera<V> {
+    /// A camera at `eye` looking along `view_dir`, with `up` giving the
+    /// upward direction, `focal_length` in pixels and an image of
+    /// `width x height` pixels.
+    ///
+    /// # Errors
+    ///
+    /// One [`CameraError`] variant per bad input: non-finite `eye`, zero or
+    /// non-finite `view_dir` or `up`, `up` parallel to `view_dir`, focal
+    /// length not positive and finite, zero width or height.
+    ///
+    /// "Parallel" is decided against the rounding error: with both vectors
+    /// normalised, `|forward x up|` is the sine of the angle between them.
+    /// Each normalised component carries a relative error of at most
+    /// `gamma(4)` (sum of squares, square root, reciprocal, product), so each
+    /// cross product component `f_j u_k - f_k u_j` is within
+    /// `gamma(10) (|f_j u_k| + |f_k u_j|)` of the exact one; those magnitudes
+    /// form a vector of length at most `sqrt(2)`, and the length itself adds
+    /// three roundings. So when the vectors are exactly parallel the computed
+    /// sine is at most `sqrt(2) gamma(10) (1 + gamma(3)) < gamma(16)` (about
+    /// `1e-6` in `f32`). A sine at or below that cannot be told from zero,
+    /// and the basis it would give is noise.
+    pub fn new(
+        eye: V,
+        view_dir: V,
+        up: V,
+        focal_length: S<V>,
+        width: u32,
+        height: u32,
+    ) -> Result<Self, CameraError> {
+        if !eye.is_finite() {
+            return Err(CameraError::NonFiniteEye);
+        }
+        let forward = view_dir.normalize_or_zero();
+        if !view_dir.is_finite() || forward == V::ZERO {
+            return Err(CameraError::InvalidViewDir);
+        }
+        let up_unit = up.normalize_or_zero();
+        if !up.is_finite() || up_unit == V::ZERO {
+            return Err(CameraError::InvalidUp);
+        }
+        let side = forward.cross(up_unit);
+        if !(side.length() > S::<V>::gamma_n(16)) {
+            return Err(CameraError::UpParallelToView);
+        }
+        if !(focal_length > S::<V>::ZERO && focal_length.is_finite()) {
+            return Err(CameraError::InvalidFocalLength);
+        }
+        if width == 0 || height == 0 {
+            return Err(CameraError::EmptyImage);
+        }
+        let right = side.normalize_or_zero();
+        let up = right.cross(forward).normalize_or_zero();
+        Ok(Self {
+            eye,
+            forward,
+            right,
+            up,
+            focal_length,
+            width,
+            height,
+        })
+    }
+
+    /// A camera with a vertical field of view `fov_y` in radians, in
+    /// `(0, pi)`: the focal length is `(height / 2) / tan(fov_y / 2)` pixels.
+    ///
+    /// # Errors
+    ///
+    /// As [`PinholeCamera::new`], and [`CameraError::InvalidFieldOfView`]
+    /// for `fov_y` outside `(0, pi)` or NaN.
+    ///
+    /// ```
+    /// use rayhit::{PinholeCamera, glam::Vec3};
+    /// let cam = PinholeCamera::from_fov(Vec3::ZERO, -Vec3::Z, Vec3::Y, 90f32.to_radians(), 640, 480).unwrap();
+    /// assert!((cam.focal_length() - 240.0).abs() < 1e-3);
+    /// ```
+    pub fn from_fov(
+        eye: V,
+        view_dir: V,
+        up: V,
+        fov_y: S<V>,
+        width: u32,
+        height: u32,
+    ) -> Result<Self, CameraError> {
+        if !(fov_y > S::<V>::ZERO && fov_y < S::<V>::PI) {
+            return Err(CameraError::InvalidFieldOfView);
+        }
+        let half_height = S::<V>::from_u32(height) * S::<V>::HALF;
+        let focal = half_height / (fov_y * S::<V>::HALF).tan();
+        Self::new(eye, view_dir, up, focal, width, height)
+    }
+
+    /// The ray through raster position `(x, y)` (continuous, in pixels, from
+    /// the top-left corner, `y` down), starting at the eye, with a
+    /// unit-length direction.
+    ///
+    /// `dir = normalize(focal * forward + (x - width/2) * right +
+    /// (height/2 - y) * true_up)`. Positions outside the image give rays
+    /// outside the field of view; a NaN or infinite position gives a ray with
+    /// a non-finite direction, which every kernel rejects.
+    #[inline]
+    #[must_use]
+    pub fn ray(&self, x: S<V>, y: S<V>) -> Ray<V> {
+        let half = S::<V>::HALF;
+        let dx = x - S::<V>::from_u32(self.width) * half;
+        let dy = S::<V>::from_u32(self.height) * half - y;
+        let dir = self.forward * self.focal_length + self.right * dx + self.up * dy;
+        // normalize_or_zero would hide a NaN position as a zero direction;
+        // divide by the length instead so that it stays visible.
+        Ray::new(self.eye, dir * (S::<V>::ONE / dir.length()))
+    }
+
+    /// The ray through the centre of pixel `(i, j)`: `ray(i + 0.5, j + 0.5)`.
+    #[inline]
+    #[must_use]
+    pub fn pixel_ray(&self, i: u32, j: u32) -> Ray<V> {
+        let half = S::<V>::HALF;
+        self.ray(S::<V>::from_u32(i) + half, S::<V>::from_u32(j) + half)
+    }
+
+    /// The eye position: where every ray starts.
+    #[inline]
+    #[must_use]
+    pub fn eye(&self) -> V {
+        self.eye
+    }
+
+    /// The unit view direction.
+    #[inline]
+    #[must_use]
+    pub fn forward(&self) -> V {
+        self.forward
+    }
+
+    /// The unit vector pointing right in the image (`forward x up`).
+    #[inline]
+    #[must_use]
+    pub fn right(&self) -> V {
+        self.right
+    }
+
+    /// The unit vector pointing up in the image, orthogonal to `forward`.
+    #[inline]
+    #[must_use]
+    pub fn up(&self) -> V {
+        self.up
+    }
+
+    /// The focal length in pixels.
+    #[inline]
+    #[must_use]
+    pub fn focal_length(&self) -> S<V> {
+        self.focal_length
+    }
+
+    /// The image width in pixels.
+    #[inline]
+    #[must_use]
+    pub fn width(&self) -> u32 {
+        self.width
+    }
+
+    /// The image height in pixels.
+    #[inline]
+    #[must_use]
+    pub fn height(&self) -> u32 {
+        self.height
+    }
+}

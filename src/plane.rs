@@ -1,0 +1,144 @@
+//! Planes and the ray/plane test.
+
+use glam::Vec3;
+
+use crate::ray::{Ray, t_max_ok};
+use crate::real::{S, Scalar, Vector, bound_up};
+
+/// The plane of points `p` with `(p - point) . normal = 0`.
+///
+/// `normal` need not be unit length and its sign does not matter to
+/// [`ray_plane`]; a zero or non-finite `normal` or `point` makes a plane that
+/// nothing hits.
+///
+/// ```
+/// use rayhit::{Plane, glam::Vec3};
+/// // z = 2, written two ways.
+/// let a = Plane::new(Vec3::new(5.0, -1.0, 2.0), Vec3::Z);
+/// let b = Plane::from_coefficients(0.0, 0.0, 1.0, -2.0);
+/// assert_eq!(b.point, Vec3::new(0.0, 0.0, 2.0));
+/// assert_eq!(a.normal, b.normal);
+/// ```
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct Plane<V = Vec3> {
+    /// Any point on the plane.
+    pub point: V,
+    /// A normal; any nonzero length.
+    pub normal: V,
+}
+
+impl<V: Vector> Plane<V> {
+    /// The plane through `point` with normal `normal`. Nothing is checked.
+    #[inline]
+    #[must_use]
+    pub const fn new(point: V, normal: V) -> Self {
+        Self { point, normal }
+    }
+
+    /// The plane `A*x + B*y + C*z + D = 0`: normal `(A, B, C)`.
+    ///
+    /// The stored point lies on the axis of the normal's largest component
+    /// `k`, at coordinate `-D / n_k`, the other two coordinates zero; the only
+    /// rounding is that one division, so the stored plane is the exact one
+    /// moved by at most half an ulp of `D / n_k` along axis `k`. (The textbook
+    /// point `-D * n / |n|^2` takes several roundings.) A zero normal gives a
+    /// non-finite point, and so a plane nothing hits.
+    #[inline]
+    #[must_use]
+    pub fn from_coefficients(a: S<V>, b: S<V>, c: S<V>, d: S<V>) -> Self {
+        let normal = V::new(a, b, c);
+        let z = S::<V>::ZERO;
+        let (aa, ab, ac) = (a.abs(), b.abs(), c.abs());
+        let point = if aa >= ab && aa >= ac {
+            V::new(-d / a, z, z)
+        } else if ab >= ac {
+            V::new(z, -d / b, z)
+        } else {
+            V::new(z, z, -d / c)
+        };
+        Self { point, normal }
+    }
+}
+
+/// Where `ray` crosses `plane`: `Some(t)` with `0 < t <= t_max`, else `None`.
+///
+/// `t = ((point - origin) . normal) / (dir . normal)`, in units of `ray.dir`.
+/// Returns `None` for a ray parallel to the plane (`dir . normal == 0`, a ray
+/// lying in the plane included), for a crossing at `t <= 0` (the ray's own
+/// starting surface) or beyond `t_max`, for a `t` too large to represent,
+/// and for any NaN or infinite input (then `t` is NaN, infinite or zero and
+/// fails the range test). Never panics; never returns NaN.
+///
+/// Accuracy: `|t - t_exact| <= `[`ray_plane_t_error`]`(ray, plane, t)`, the
+/// bound derived there; away from cancellation (the origin far from the
+/// plane relative to its distance from `point`) that is a few ulps of `t`.
+///
+/// ```
+/// use rayhit::{Plane, Ray, ray_plane, glam::Vec3};
+/// let floor = Plane::new(Vec3::ZERO, Vec3::Y);
+/// let ray = Ray::new(Vec3::new(0.0, 3.0, 0.0), Vec3::new(1.0, -2.0, 0.0));
+/// // y = 3 - 2t reaches 0 at t = 1.5, at x = 1.5.
+/// assert_eq!(ray_plane(&ray, &floor, f32::INFINITY), Some(1.5));
+/// assert_eq!(ray_plane(&ray, &floor, 1.0), None);
+/// // Parallel, and pointing away: no hit.
+/// assert_eq!(ray_plane(&Ray::new(Vec3::Y, Vec3::X), &floor, 10.0), None);
+/// assert_eq!(ray_plane(&Ray::new(Vec3::Y, Vec3::Y), &floor, 10.0), None);
+/// ```
+#[inline]
+#[must_use]
+pub fn ray_plane<V: Vector>(ray: &Ray<V>, plane: &Plane<V>, t_max: S<V>) -> Option<S<V>> {
+    let denom = ray.dir.dot(plane.normal);
+    let numer = (plane.point - ray.origin).dot(plane.normal);
+    let t = numer / denom;
+    // Every comparison is false for NaN; `t` is infinite when the crossing
+    // overflows or an input is infinite, and zero when `denom` is.
+    (t > S::<V>::ZERO && t <= t_max && t.is_finite() && t_max_ok(t_max)).then_some(t)
+}
+
+/// A bound on `|t - t_exact|` for a `t` that [`ray_plane`] returned, where
+/// `t_exact` is the crossing computed exactly from the same inputs.
+///
+/// Derivation (`u` the unit roundoff, `gamma(n) = n*u/(1 - n*u)`). Write
+/// `w = point - origin`, `N = w . n` and `D = dir . n` exactly.
+/// - `fl(w)` is one rounding per component, and a 3-term dot product adds at
+///   most three more to each term, so `|fl(N) - N| <= gamma(4) sum|w_i n_i|
+///   =: a`; likewise `|fl(D) - D| <= gamma(3) sum|dir_i n_i| =: b`.
+/// - With `q = fl(N)/fl(D)`: `q - N/D = (e_N D - N e_D) / (fl(D) D)`, so
+///   `|q - t_exact| <= (a + |t_exact| b) / |fl(D)|`; the division's own
+///   rounding adds `|t - q| <= gamma(1) |t|`.
+/// - `|t_exact| <= |t| + err` turns this into
+///   `err (1 - x) <= R := (a + |t| b) / |fl(D)| + gamma(1) |t|` with
+///   `x = b / |fl(D)|`. For `x <= 1/2`, `1/(1 - x) <= 1 + 2x`, so
+///   `err <= R (1 + 2x)`. For `x > 1/2` the denominator's sign is barely
+///   known and the bound is infinite.
+///
+/// The bound is evaluated in floating point on non-negative terms, with at
+/// most 9 roundings along any path, and made an upper bound by the factor
+/// `1 + gamma(10)` (see the crate's `bound_up`).
+///
+/// ```
+/// use rayhit::{Plane, Ray, ray_plane, ray_plane_t_error, glam::Vec3};
+/// let plane = Plane::new(Vec3::new(0.0, 0.0, 10.0), Vec3::Z);
+/// let ray = Ray::new(Vec3::ZERO, Vec3::new(0.3, 0.1, 3.0));
+/// let t = ray_plane(&ray, &plane, f32::INFINITY).unwrap();
+/// let err = ray_plane_t_error(&ray, &plane, t);
+/// let exact = 10.0f64 / 3.0; // 10 and 3 are exact in f32
+/// assert!((f64::from(t) - exact).abs() <= f64::from(err));
+/// assert!(err < 8.0 * f32::EPSILON * t); // a few ulps of t here
+/// ```
+#[inline]
+#[must_use]
+pub fn ray_plane_t_error<V: Vector>(ray: &Ray<V>, plane: &Plane<V>, t: S<V>) -> S<V> {
+    let n = plane.normal.abs();
+    let w = (plane.point - ray.origin).abs();
+    let denom = ray.dir.dot(plane.normal).abs();
+    let a = S::<V>::gamma_n(4) * w.dot(n);
+    let b = S::<V>::gamma_n(3) * ray.dir.abs().dot(n);
+    let t = t.abs();
+    let x = b / denom;
+    if !(x <= S::<V>::HALF) {
+        return S::<V>::INFINITY;
+    }
+    let r = (a + t * b) / denom + S::<V>::gamma_n(1) * t;
+    bound_up(r * (S::<V>::ONE + S::<V>::TWO * x), 9)
+}

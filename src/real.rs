@@ -1,0 +1,455 @@
+//! The two precisions behind one source.
+//!
+//! Every kernel in the crate is written once, generically over [`Vector`]
+//! (implemented by [`glam::Vec3`] and [`glam::DVec3`]) and its [`Scalar`]
+//! (`f32` and `f64`). Each error bound is derived in terms of the unit
+//! roundoff `u` of the scalar type (`2^-24` for `f32`, `2^-53` for `f64`), so
+//! the same derivation serves both precisions and neither is a copy of the
+//! other. Both traits are sealed: the crate's guarantees are proven for IEEE
+//! binary32 and binary64 with round-to-nearest-even, and for nothing else.
+
+use core::fmt::Debug;
+use core::ops::{Add, Div, Index, Mul, Neg, Sub};
+
+use glam::{DVec3, Vec3};
+
+mod sealed {
+    pub trait Sealed {}
+    impl Sealed for f32 {}
+    impl Sealed for f64 {}
+    impl Sealed for glam::Vec3 {}
+    impl Sealed for glam::DVec3 {}
+}
+
+/// A floating-point scalar the kernels run in: `f32` or `f64`.
+///
+/// Sealed; it exists so that one generic source gives both precisions. The
+/// methods are the handful of operations the kernels need, each with IEEE 754
+/// round-to-nearest semantics.
+pub trait Scalar:
+    sealed::Sealed
+    + Copy
+    + PartialOrd
+    + Debug
+    + Default
+    + Send
+    + Sync
+    + 'static
+    + Add<Output = Self>
+    + Sub<Output = Self>
+    + Mul<Output = Self>
+    + Div<Output = Self>
+    + Neg<Output = Self>
+{
+    /// `0`.
+    const ZERO: Self;
+    /// `1`.
+    const ONE: Self;
+    /// `0.5`.
+    const HALF: Self;
+    /// `2`.
+    const TWO: Self;
+    /// Positive infinity.
+    const INFINITY: Self;
+    /// Pi, rounded to nearest.
+    const PI: Self;
+    /// The largest finite value.
+    const MAX: Self;
+    /// The smallest positive normal value (`2^-126` for `f32`, `2^-1022` for
+    /// `f64`).
+    const MIN_POSITIVE: Self;
+    /// The smallest positive subnormal value (`2^-149` for `f32`, `2^-1074`
+    /// for `f64`): the spacing of the floats below the normal range, and so
+    /// the largest absolute error of one rounding there is half of it.
+    const TINY: Self;
+    /// The unit roundoff `u`: half the distance from 1 to the next float
+    /// (`2^-24` for `f32`, `2^-53` for `f64`). One correctly rounded
+    /// operation whose result is normal has relative error at most `u`.
+    const UNIT_ROUNDOFF: Self;
+
+    /// The bound `gamma(n) = n*u / (1 - n*u)` on the relative error of `n`
+    /// chained roundings, rounded up so that it is a true upper bound.
+    ///
+    /// The classical result (Higham, "Accuracy and Stability of Numerical
+    /// Algorithms", lemma 3.1): if `|d_i| <= u` then
+    /// `prod (1 + d_i)^(+-1)` over `n` factors lies in `1 +- gamma(n)` when
+    /// `n*u < 1`. pbrt-v4 uses the same function. `n*u` and `1 - n*u` are
+    /// exact for the small `n` the crate uses, the quotient is rounded once,
+    /// and the result is stepped up one ulp to cover that rounding.
+    #[must_use]
+    fn gamma_n(n: u32) -> Self;
+
+    /// Converts a small integer exactly (`n < 2^24`).
+    #[must_use]
+    fn from_u32(n: u32) -> Self;
+
+    /// Absolute value.
+    #[must_use]
+    fn abs(self) -> Self;
+    /// True unless the value is infinite or NaN.
+    #[must_use]
+    fn is_finite(self) -> bool;
+    /// The next float towards `+inf` (`inf` stays `inf`, NaN stays NaN).
+    #[must_use]
+    fn next_up(self) -> Self;
+    /// The next float towards `-inf`.
+    #[must_use]
+    fn next_down(self) -> Self;
+    /// Tangent, from `std` or from `libm`.
+    #[must_use]
+    fn tan(self) -> Self;
+    /// Square root, from `std` or from `libm`.
+    #[must_use]
+    fn sqrt(self) -> Self;
+
+    /// `a*b - c*d` with its sign exact: the result is positive, negative or
+    /// zero exactly when the real number `a*b - c*d` is, for finite inputs.
+    ///
+    /// The watertight triangle test calls this only when the plain
+    /// `fl(fl(a*b) - fl(c*d))` came out zero, the one case where its sign
+    /// may be wrong (rounding is monotone, so a nonzero plain result already
+    /// has the right sign). `f32` recomputes in `f64`, where the products of
+    /// two `f32` are exact and cannot overflow or underflow, and keeps a
+    /// nonzero result nonzero when narrowing back. `f64` splits each product
+    /// into its rounded value and exact error with a fused multiply-add; the
+    /// sign is exact as long as the products are above `2^-969` in
+    /// magnitude or exactly zero (below that the error terms themselves
+    /// underflow).
+    #[must_use]
+    fn diff_of_products_exact_sign(a: Self, b: Self, c: Self, d: Self) -> Self;
+}
+
+/// A 3-component vector the kernels run on: [`glam::Vec3`] or
+/// [`glam::DVec3`].
+///
+/// Sealed; see [`Scalar`]. The operations are glam's own, so a kernel written
+/// against this trait compiles to the same code as one written against
+/// `Vec3` directly.
+pub trait Vector:
+    sealed::Sealed
+    + Copy
+    + PartialEq
+    + Debug
+    + Default
+    + Send
+    + Sync
+    + 'static
+    + Add<Output = Self>
+    + Sub<Output = Self>
+    + Neg<Output = Self>
+    + Mul<Output = Self>
+    + Mul<<Self as Vector>::Scalar, Output = Self>
+    + Index<usize, Output = <Self as Vector>::Scalar>
+{
+    /// The component type.
+    type Scalar: Scalar;
+
+    /// All zeros.
+    const ZERO: Self;
+
+    /// A vector from its components.
+    #[must_use]
+    fn new(x: Self::Scalar, y: Self::Scalar, z: Self::Scalar) -> Self;
+    /// All three components equal to `v`.
+    #[must_use]
+    fn splat(v: Self::Scalar) -> Self;
+    /// The `x` component.
+    #[must_use]
+    fn x(self) -> Self::Scalar;
+    /// The `y` component.
+    #[must_use]
+    fn y(self) -> Self::Scalar;
+    /// The `z` component.
+    #[must_use]
+    fn z(self) -> Self::Scalar;
+    /// Dot product.
+    #[must_use]
+    fn dot(self, rhs: Self) -> Self::Scalar;
+    /// Cross product (right-handed).
+    #[must_use]
+    fn cross(self, rhs: Self) -> Self;
+    /// Component-wise absolute value.
+    #[must_use]
+    fn abs(self) -> Self;
+    /// True when every component is finite.
+    #[must_use]
+    fn is_finite(self) -> bool;
+    /// Euclidean length.
+    #[must_use]
+    fn length(self) -> Self::Scalar;
+    /// `self / |self|`, or zero when the length is zero or not finite.
+    #[must_use]
+    fn normalize_or_zero(self) -> Self;
+}
+
+/// The scalar type of the vector type `V`.
+pub(crate) type S<V> = <V as Vector>::Scalar;
+
+macro_rules! impl_scalar {
+    ($f:ident, $libm_tan:ident, $libm_sqrt:ident) => {
+        impl Scalar for $f {
+            const ZERO: Self = 0.0;
+            const ONE: Self = 1.0;
+            const HALF: Self = 0.5;
+            const TWO: Self = 2.0;
+            const INFINITY: Self = $f::INFINITY;
+            const PI: Self = core::$f::consts::PI;
+            const MAX: Self = $f::MAX;
+            const MIN_POSITIVE: Self = $f::MIN_POSITIVE;
+            const TINY: Self = $f::from_bits(1);
+            const UNIT_ROUNDOFF: Self = $f::EPSILON * 0.5;
+
+            #[inline]
+            fn gamma_n(n: u32) -> Self {
+                let nu = n as $f * Self::UNIT_ROUNDOFF;
+                (nu / (1.0 - nu)).next_up()
+            }
+            #[inline]
+            fn from_u32(n: u32) -> Self {
+                n as $f
+            }
+            #[inline]
+            fn abs(self) -> Self {
+                $f::abs(self)
+            }
+            #[inline]
+            fn is_finite(self) -> bool {
+                $f::is_finite(self)
+            }
+            #[inline]
+            fn next_up(self) -> Self {
+                $f::next_up(self)
+            }
+            #[inline]
+            fn next_down(self) -> Self {
+                $f::next_down(self)
+            }
+            #[inline]
+            fn tan(self) -> Self {
+                #[cfg(feature = "std")]
+                {
+                    $f::tan(self)
+                }
+                #[cfg(not(feature = "std"))]
+                {
+                    libm::$libm_tan(self)
+                }
+            }
+            #[inline]
+            fn sqrt(self) -> Self {
+                #[cfg(feature = "std")]
+                {
+                    $f::sqrt(self)
+                }
+                #[cfg(not(feature = "std"))]
+                {
+                    libm::$libm_sqrt(self)
+                }
+            }
+            #[inline]
+            fn diff_of_products_exact_sign(a: Self, b: Self, c: Self, d: Self) -> Self {
+                exact_sign::$f(a, b, c, d)
+            }
+        }
+    };
+}
+
+impl_scalar!(f32, tanf, sqrtf);
+impl_scalar!(f64, tan, sqrt);
+
+/// The sign-exact `a*b - c*d` for each precision (see
+/// [`Scalar::diff_of_products_exact_sign`]).
+mod exact_sign {
+    /// In `f64` the two products of `f32` values are exact (24 + 24 bits fit
+    /// in 53, and exponents from `2^-298` to `2^256` are in range), and a
+    /// rounded difference of two floats is zero only when they are equal, so
+    /// the `f64` result has the exact sign. Narrowing to `f32` may flush a
+    /// tiny nonzero value to zero; it is then replaced by the smallest
+    /// subnormal of the same sign, so that the sign survives.
+    #[inline]
+    pub(super) fn f32(a: f32, b: f32, c: f32, d: f32) -> f32 {
+        let wide = f64::from(a) * f64::from(b) - f64::from(c) * f64::from(d);
+        let narrow = wide as f32;
+        if narrow == 0.0 && wide != 0.0 {
+            let tiny = f32::from_bits(1);
+            if wide > 0.0 { tiny } else { -tiny }
+        } else {
+            narrow
+        }
+    }
+
+    /// `a*b = p + e` exactly, with `p = fl(a*b)` and `e = fma(a, b, -p)`, as
+    /// long as `e` does not underflow. The rounded difference `fl(p - q)` is
+    /// zero only when `p == q`; then `a*b - c*d = e_ab - e_cd` exactly, and
+    /// `fl(e_ab - e_cd)` has its sign.
+    #[inline]
+    pub(super) fn f64(a: f64, b: f64, c: f64, d: f64) -> f64 {
+        let p = a * b;
+        let q = c * d;
+        let diff = p - q;
+        if diff != 0.0 {
+            return diff;
+        }
+        fma(a, b, -p) - fma(c, d, -q)
+    }
+
+    #[inline]
+    fn fma(a: f64, b: f64, c: f64) -> f64 {
+        #[cfg(feature = "std")]
+        {
+            a.mul_add(b, c)
+        }
+        #[cfg(not(feature = "std"))]
+        {
+            libm::fma(a, b, c)
+        }
+    }
+}
+
+macro_rules! impl_vector {
+    ($V:ty, $f:ty) => {
+        impl Vector for $V {
+            type Scalar = $f;
+            const ZERO: Self = <$V>::ZERO;
+
+            #[inline]
+            fn new(x: $f, y: $f, z: $f) -> Self {
+                <$V>::new(x, y, z)
+            }
+            #[inline]
+            fn splat(v: $f) -> Self {
+                <$V>::splat(v)
+            }
+            #[inline]
+            fn x(self) -> $f {
+                self.x
+            }
+            #[inline]
+            fn y(self) -> $f {
+                self.y
+            }
+            #[inline]
+            fn z(self) -> $f {
+                self.z
+            }
+            #[inline]
+            fn dot(self, rhs: Self) -> $f {
+                <$V>::dot(self, rhs)
+            }
+            #[inline]
+            fn cross(self, rhs: Self) -> Self {
+                <$V>::cross(self, rhs)
+            }
+            #[inline]
+            fn abs(self) -> Self {
+                <$V>::abs(self)
+            }
+            #[inline]
+            fn is_finite(self) -> bool {
+                <$V>::is_finite(self)
+            }
+            #[inline]
+            fn length(self) -> $f {
+                <$V>::length(self)
+            }
+            #[inline]
+            fn normalize_or_zero(self) -> Self {
+                <$V>::normalize_or_zero(self)
+            }
+        }
+    };
+}
+
+impl_vector!(Vec3, f32);
+impl_vector!(DVec3, f64);
+
+/// Makes an error bound that was evaluated in floating point an upper bound
+/// of the same expression evaluated exactly.
+///
+/// `value` must be a sum of products of non-negative numbers (the shape of
+/// every bound in the crate), evaluated with at most `roundings` roundings
+/// along any path from an input to the result. Each rounding of a
+/// non-negative quantity can only shrink it by a factor `1 - u`, so the
+/// computed value is at least `exact * (1 - u)^roundings`. Multiplying by
+/// `c >= 1 + gamma(roundings + 1) >= (1 - u)^-(roundings + 1)` (Bernoulli)
+/// and rounding once more gives at least `exact`. `c` is itself rounded up.
+#[inline(always)]
+pub(crate) fn bound_up<F: Scalar>(value: F, roundings: u32) -> F {
+    value * (F::ONE + F::gamma_n(roundings + 1)).next_up()
+}
+
+/// `t` unless it is below `lo` or NaN, else `lo`.
+///
+/// Written as a comparison so that the NaN case is explicit rather than left
+/// to `f32::max`, and so that it compiles to one `maxss` on x86.
+#[inline(always)]
+pub(crate) fn at_least<F: Scalar>(t: F, lo: F) -> F {
+    if t > lo { t } else { lo }
+}
+
+/// `t` unless it is above `hi` or NaN, else `hi`.
+#[inline(always)]
+pub(crate) fn at_most<F: Scalar>(t: F, hi: F) -> F {
+    if t < hi { t } else { hi }
+}
+
+/// The larger of two values known not to be NaN.
+#[inline(always)]
+pub(crate) fn max2<F: Scalar>(a: F, b: F) -> F {
+    if a > b { a } else { b }
+}
+
+/// The smaller of two values known not to be NaN.
+#[inline(always)]
+pub(crate) fn min2<F: Scalar>(a: F, b: F) -> F {
+    if a < b { a } else { b }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn gamma_is_an_upper_bound() {
+        // n*u/(1 - n*u) for n = 3 in f32: 3*2^-24 / (1 - 3*2^-24), which is
+        // 1.788139...e-7 to ten digits; the rounded-up value may exceed it by
+        // one ulp and no more.
+        let g = f32::gamma_n(3);
+        let exact = 3.0f64 * 2f64.powi(-24) / (1.0 - 3.0 * 2f64.powi(-24));
+        assert!(f64::from(g) >= exact);
+        assert!(f64::from(g.next_down()) < exact);
+        let g = f64::gamma_n(3);
+        assert!(g > 3.0 * 2f64.powi(-53));
+        assert!(g < 3.0001 * 2f64.powi(-53));
+    }
+
+    #[test]
+    fn exact_sign_f32_sees_what_f32_cannot() {
+        // 1.1 * 1.1 and 1.21 round to nearby f32 values whose products in
+        // f32 tie; only the exact products tell them apart.
+        let a = 1.0f32 + f32::EPSILON;
+        let c = 1.0f32 + 2.0 * f32::EPSILON;
+        let d = 1.0f32;
+        // a*a = 1 + 2e + e^2 exactly, c*d = 1 + 2e: a*a - c*d = e^2 > 0,
+        // but in f32 both products round to 1 + 2e and the difference is 0.
+        assert_eq!(a * a - c * d, 0.0);
+        assert!(f32::diff_of_products_exact_sign(a, a, c, d) > 0.0);
+        assert!(f32::diff_of_products_exact_sign(c, d, a, a) < 0.0);
+        // A difference too small for f32 keeps its sign.
+        let tiny = f32::from_bits(1);
+        assert!(f32::diff_of_products_exact_sign(tiny, tiny, 0.0, 0.0) > 0.0);
+        assert!(f32::diff_of_products_exact_sign(0.0, 0.0, tiny, tiny) < 0.0);
+        assert_eq!(f32::diff_of_products_exact_sign(2.0, 3.0, 6.0, 1.0), 0.0);
+    }
+
+    #[test]
+    fn exact_sign_f64_sees_what_f64_cannot() {
+        let e = f64::EPSILON;
+        let a = 1.0 + e;
+        let c = 1.0 + 2.0 * e;
+        assert_eq!(a * a - c, 0.0);
+        assert!(f64::diff_of_products_exact_sign(a, a, c, 1.0) > 0.0);
+        assert!(f64::diff_of_products_exact_sign(c, 1.0, a, a) < 0.0);
+        assert_eq!(f64::diff_of_products_exact_sign(2.0, 3.0, 6.0, 1.0), 0.0);
+    }
+}

@@ -1,0 +1,610 @@
+//! Triangles: the watertight test (closed, and a one-hit-per-crossing
+//! variant for meshes) and Moller-Trumbore.
+
+use glam::Vec3;
+
+use crate::ray::{Ray, t_max_ok};
+use crate::real::{S, Scalar, Vector, bound_up, max2, min2};
+
+/// The triangle with corners `a`, `b`, `c`.
+///
+/// The winding `a -> b -> c` defines the geometric normal
+/// `(b - a) x (c - a)` (right-handed: counter-clockwise seen from the side it
+/// points to) and so which side of a hit is [`Side::Front`]. The tests are
+/// two-sided and report the side. A triangle whose corners are collinear or
+/// coincide (zero area), or that has a NaN or infinite coordinate, is hit by
+/// nothing.
+///
+/// ```
+/// use rayhit::{Triangle, glam::Vec3};
+/// let t = Triangle::new(Vec3::ZERO, Vec3::X, Vec3::Y);
+/// assert_eq!(t.normal(), Vec3::Z);
+/// ```
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct Triangle<V = Vec3> {
+    /// First corner; barycentric weight `1 - u - v`.
+    pub a: V,
+    /// Second corner; barycentric weight `u`.
+    pub b: V,
+    /// Third corner; barycentric weight `v`.
+    pub c: V,
+}
+
+impl<V: Vector> Triangle<V> {
+    /// The triangle `a, b, c`. Nothing is checked.
+    #[inline]
+    #[must_use]
+    pub const fn new(a: V, b: V, c: V) -> Self {
+        Self { a, b, c }
+    }
+
+    /// The geometric normal `(b - a) x (c - a)`, not normalised (its length
+    /// is twice the area), rounded.
+    #[inline]
+    #[must_use]
+    pub fn normal(&self) -> V {
+        (self.b - self.a).cross(self.c - self.a)
+    }
+
+    /// The same triangle with the opposite winding (`a, c, b`): the normal
+    /// flips, `u` and `v` swap, and front and back swap.
+    #[inline]
+    #[must_use]
+    pub fn flipped(&self) -> Self {
+        Self {
+            a: self.a,
+            b: self.c,
+            c: self.b,
+        }
+    }
+}
+
+/// Which side of a triangle a ray arrived from.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+pub enum Side {
+    /// Against the geometric normal (`dir . normal < 0`): the side the normal
+    /// points to, where the winding looks counter-clockwise.
+    Front,
+    /// Along the geometric normal (`dir . normal > 0`).
+    Back,
+}
+
+/// A ray/triangle hit.
+///
+/// The hit point is `(1 - u - v) * a + u * b + v * c = origin + t * dir`;
+/// `t` is in units of the ray's `dir`, `0 < t <= t_max`; `u` and `v` are each
+/// in `[0, 1]` (their sum can exceed 1 by a rounding).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct TriangleHit<F = f32> {
+    /// Distance along the ray, in units of `dir`.
+    pub t: F,
+    /// Barycentric weight of corner `b`.
+    pub u: F,
+    /// Barycentric weight of corner `c`.
+    pub v: F,
+    /// The side the ray arrived from.
+    pub side: Side,
+}
+
+/// The per-ray part of the watertight test: which axis the ray mostly runs
+/// along, and the shear that maps its direction to `+z`.
+#[derive(Clone, Copy, Debug)]
+struct Shear<F> {
+    /// The axis of the direction's largest magnitude component; `kx, ky`
+    /// follow it cyclically, so the permutation keeps the handedness.
+    kz: usize,
+    /// `-d_x / d_z` and `-d_y / d_z` in the permuted frame: `|s_x|, |s_y| <= 1`.
+    sx: F,
+    sy: F,
+    /// `1 / d_z`.
+    sz: F,
+    /// `d_z` itself, for the side of a hit.
+    dz: F,
+}
+
+impl<F: Scalar> Shear<F> {
+    #[inline(always)]
+    fn new<V: Vector<Scalar = F>>(dir: V) -> Self {
+        let a = dir.abs();
+        let kz = if a.x() > a.y() {
+            if a.x() > a.z() { 0 } else { 2 }
+        } else if a.y() > a.z() {
+            1
+        } else {
+            2
+        };
+        let (dx, dy, dz) = permute(dir, kz);
+        Self {
+            kz,
+            sx: -dx / dz,
+            sy: -dy / dz,
+            sz: F::ONE / dz,
+            dz,
+        }
+    }
+}
+
+/// `(v[kx], v[ky], v[kz])` with `kx = kz + 1`, `ky = kz + 2` (mod 3).
+#[inline(always)]
+fn permute<V: Vector>(v: V, kz: usize) -> (S<V>, S<V>, S<V>) {
+    match kz {
+        0 => (v.y(), v.z(), v.x()),
+        1 => (v.z(), v.x(), v.y()),
+        _ => (v.x(), v.y(), v.z()),
+    }
+}
+
+/// The triangle in the ray's frame: translated to the ray origin, permuted,
+/// and sheared in `x, y`; the ray is the `+z` axis.
+#[derive(Clone, Copy, Debug)]
+struct Frame<F> {
+    /// Sheared `x` and `y` of the three corners.
+    x: [F; 3],
+    y: [F; 3],
+    /// Translated, permuted, unsheared coordinates (for the error bounds).
+    px: [F; 3],
+    py: [F; 3],
+    pz: [F; 3],
+    /// Edge functions: `e[i]` is the 2-D cross product of the two corners
+    /// other than `i` (in order `i+1, i+2`), with its sign exact.
+    e: [F; 3],
+}
+
+impl<F: Scalar> Frame<F> {
+    #[inline(always)]
+    fn new<V: Vector<Scalar = F>>(origin: V, tri: &Triangle<V>, shear: &Shear<F>) -> Self {
+        let mut f = Frame {
+            x: [F::ZERO; 3],
+            y: [F::ZERO; 3],
+            px: [F::ZERO; 3],
+            py: [F::ZERO; 3],
+            pz: [F::ZERO; 3],
+            e: [F::ZERO; 3],
+        };
+        for (i, p) in [tri.a, tri.b, tri.c].into_iter().enumerate() {
+            // Translate, permute, shear.
+            let (px, py, pz) = permute(p - origin, shear.kz);
+            f.px[i] = px;
+            f.py[i] = py;
+            f.pz[i] = pz;
+            f.x[i] = px + shear.sx * pz;
+            f.y[i] = py + shear.sy * pz;
+        }
+        // Edge functions. Rounding is monotone, so fl(fl(ab) - fl(cd)) has
+        // the sign of ab - cd or is zero; only a zero needs the exact
+        // recomputation (Woop, Benthin and Wald, JCGT 2013, section 3).
+        for i in 0..3 {
+            let (j, k) = ((i + 1) % 3, (i + 2) % 3);
+            let e = f.x[j] * f.y[k] - f.y[j] * f.x[k];
+            f.e[i] = if e == F::ZERO {
+                F::diff_of_products_exact_sign(f.x[j], f.y[k], f.y[j], f.x[k])
+            } else {
+                e
+            };
+        }
+        f
+    }
+
+    /// The one-hit tie-break for edge `i` (from corner `i+1` to `i+2`) when
+    /// its edge function is exactly zero: the sign the edge function takes
+    /// once the ray is moved by an infinitesimal `(eps1, eps2)` with
+    /// `0 < eps2 << eps1`. Some(true) positive, Some(false) negative, None
+    /// for an edge of zero length in the sheared plane.
+    ///
+    /// For the edge `P -> Q` and a point `X`, the edge function is
+    /// `(P - X) x (Q - X) = P x Q - X_x D_y + X_y D_x` with `D = Q - P`. With
+    /// `P x Q = 0` and `X = (eps1, eps2)` its sign is that of `-D_y`, or of
+    /// `D_x` when `D_y = 0`. Only comparisons are needed, so it is exact.
+    #[inline(always)]
+    fn tie_break(&self, i: usize) -> Option<bool> {
+        let (j, k) = ((i + 1) % 3, (i + 2) % 3);
+        let (py, qy) = (self.y[j], self.y[k]);
+        let (px, qx) = (self.x[j], self.x[k]);
+        if py != qy {
+            Some(py > qy)
+        } else if px != qx {
+            Some(qx > px)
+        } else {
+            None
+        }
+    }
+}
+
+/// Which edge rule the watertight core applies to an edge function of
+/// exactly zero.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+enum EdgeRule {
+    /// Zero counts as inside: edges and corners belong to every triangle
+    /// that has them.
+    Closed,
+    /// Zero is decided by the symbolic perturbation in `Frame::tie_break`:
+    /// each edge or corner point belongs to exactly one triangle of a
+    /// consistently wound mesh.
+    OneHit,
+}
+
+/// The watertight test shared by [`ray_triangle`] and
+/// [`ray_triangle_one_hit`].
+#[inline(always)]
+fn watertight<V: Vector>(
+    ray: &Ray<V>,
+    tri: &Triangle<V>,
+    t_max: S<V>,
+    rule: EdgeRule,
+) -> Option<TriangleHit<S<V>>> {
+    let zero = S::<V>::ZERO;
+    if !(ray.is_valid() && t_max_ok(t_max)) {
+        return None;
+    }
+    let shear = Shear::new(ray.dir);
+    let f = Frame::new(ray.origin, tri, &shear);
+    let [e0, e1, e2] = f.e;
+
+    // Inside test in the sheared plane.
+    let inside = match rule {
+        EdgeRule::Closed => {
+            let any_neg = (e0 < zero) | (e1 < zero) | (e2 < zero);
+            let any_pos = (e0 > zero) | (e1 > zero) | (e2 > zero);
+            // NaN edge functions (overflow) fail both tests below instead.
+            !(any_neg & any_pos)
+        }
+        EdgeRule::OneHit => {
+            let sign = |i: usize, e: S<V>| {
+                if e > zero {
+                    Some(true)
+                } else if e < zero {
+                    Some(false)
+                } else if e == zero {
+                    f.tie_break(i)
+                } else {
+                    None
+                }
+            };
+            match (sign(0, e0), sign(1, e1), sign(2, e2)) {
+                (Some(a), Some(b), Some(c)) => a == b && b == c,
+                _ => false,
+            }
+        }
+    };
+    if !inside {
+        return None;
+    }
+    let det = e0 + e1 + e2;
+
+    // Distance: interpolate the scaled z with the edge functions, and compare
+    // against t_max * det before paying for the division.
+    let z = [f.pz[0] * shear.sz, f.pz[1] * shear.sz, f.pz[2] * shear.sz];
+    let t_scaled = e0 * z[0] + e1 * z[1] + e2 * z[2];
+    let in_range = if det > zero {
+        t_scaled > zero && t_scaled <= t_max * det
+    } else if det < zero {
+        t_scaled < zero && t_scaled >= t_max * det
+    } else {
+        false // zero area in the sheared plane, or NaN
+    };
+    if !in_range {
+        return None;
+    }
+
+    // t > 0 decided conservatively: the scaled distance must exceed its own
+    // rounding error bound, so that the exact one has the same sign.
+    let bounds = ErrorBounds::new(&f, &z);
+    if !(t_scaled.abs() > bounds.t_scaled) {
+        return None;
+    }
+
+    let inv_det = S::<V>::ONE / det;
+    let t = t_scaled * inv_det;
+    if !(t > zero && t <= t_max && t.is_finite()) {
+        return None;
+    }
+    // Each e_i / det is in [0, 1] exactly (all e_i share det's sign, and
+    // |det| >= |e_i|); the rounded reciprocal can push it one ulp past 1.
+    let one = S::<V>::ONE;
+    let u = min2(e1 * inv_det, one);
+    let v = min2(e2 * inv_det, one);
+    if !(u.is_finite() && v.is_finite()) {
+        return None;
+    }
+    // In the frame before the z scaling (orientation preserving: a cyclic
+    // permutation and a shear), the ray runs along +z with speed d_z and
+    // det is the z component of the normal; dir . normal = d_z * det.
+    let side = if (det > zero) != (shear.dz > zero) {
+        Side::Front
+    } else {
+        Side::Back
+    };
+    Some(TriangleHit { t, u, v, side })
+}
+
+/// Rounding error bounds of the watertight test, all absolute, in terms of
+/// the computed quantities.
+///
+/// Notation: `u` the unit roundoff, `gamma(n) = n*u/(1 - n*u)`; `P` the exact
+/// translated, permuted corners and `p` their computed values (one rounding
+/// each); `X, Y, Z` the exact sheared and scaled coordinates, `x, y, z` the
+/// computed ones; `E_i`, `e_i` the exact and computed edge functions. The
+/// derivation follows pbrt-v4's (`IntersectTriangle`, and Pharr, Jakob and
+/// Humphreys, "Physically Based Rendering", 4th ed., section 6.8.4) with two
+/// changes: the shear error is measured with the unscaled `z`, so that it
+/// holds for a direction of any length, and second-order terms are kept.
+#[derive(Clone, Copy, Debug)]
+struct ErrorBounds<F> {
+    /// Bound on `|t_scaled - sum E_i Z_i|`.
+    t_scaled: F,
+    /// Bound on `|det - sum E_i|`.
+    det: F,
+}
+
+impl<F: Scalar> ErrorBounds<F> {
+    #[inline(always)]
+    fn new(f: &Frame<F>, z: &[F; 3]) -> Self {
+        let max3 = |v: &[F; 3]| max2(v[0].abs(), max2(v[1].abs(), v[2].abs()));
+        let (mx, my, mz) = (max3(&f.x), max3(&f.y), max3(z));
+        let (mpx, mpy, mpz) = (max3(&f.px), max3(&f.py), max3(&f.pz));
+        let me = max3(&f.e);
+        // Shear: x = fl(p_x + fl(s_x * p_z)) with s_x = fl(-d_x/d_z) and
+        // |s_x| <= 1. The p_x term carries two roundings (translation, sum),
+        // the s_x p_z term four (translation, s_x, product, sum), so
+        // |x - X| <= gamma(2)|P_x| + gamma(4)|P_z|, and with
+        // |P| <= |p| / (1 - u): |x - X| <= gamma(5) (|p_x| + |p_z|).
+        let dx = F::gamma_n(5) * (mpx + mpz);
+        let dy = F::gamma_n(5) * (mpy + mpz);
+        // Scale: z = fl(p_z * fl(1/d_z)) = Z (1 + theta_3), so
+        // |z - Z| <= gamma(3)|Z| <= gamma(4)|z|.
+        let dz = F::gamma_n(4) * mz;
+        // Edge function e_0 = fl(fl(x1 y2) - fl(y1 x2)) (or the exact-sign
+        // recomputation, which is closer): rounding adds gamma(2)(|x1 y2| +
+        // |y1 x2|) <= 2 gamma(2) mx my, and x1 y2 - X1 Y2 =
+        // x1 (y2 - Y2) + (x1 - X1) Y2 adds mx dy + dx (my + dy), twice.
+        let de = F::TWO * (F::gamma_n(2) * mx * my + mx * dy + my * dx + dx * dy);
+        // t_scaled = fl(sum e_i z_i): rounding adds gamma(3) sum |e_i z_i|;
+        // replacing e, z by E, Z adds sum |e_i| dz + de (|z_i| + dz).
+        let three = F::from_u32(3);
+        let dt = three * (F::gamma_n(3) * me * mz + me * dz + de * (mz + dz));
+        // det = fl(fl(e0 + e1) + e2): gamma(2) sum |e_i| plus 3 de.
+        let ddet = three * (F::gamma_n(2) * me + de);
+        // Both are sums of products of non-negative computed values; along
+        // any path dt takes at most 10 roundings (dx 2, de 6, then 4) and
+        // ddet at most 8, which `bound_up` turns back into upper bounds.
+        Self {
+            t_scaled: bound_up(dt, 10),
+            det: bound_up(ddet, 8),
+        }
+    }
+}
+
+/// The watertight ray/triangle test (closed: edges and corners hit).
+///
+/// Woop, Benthin and Wald, "Watertight Ray/Triangle Intersection", JCGT
+/// 2(1), 2013, as in pbrt-v4: translate the corners to the ray origin,
+/// permute the axes so that the ray runs mostly along `z`, shear so that it
+/// runs exactly along `z`, and decide inside/outside with three 2-D edge
+/// functions; an edge function that rounds to exactly zero is recomputed
+/// with its sign exact (in `f64` for `f32`).
+///
+/// Conventions: two-sided (the [`Side`] is reported); `t` in units of
+/// `ray.dir` with `0 < t <= t_max`; barycentrics as in [`TriangleHit`];
+/// the triangle is closed, so a ray through an edge or corner hits.
+///
+/// Guarantees:
+/// - **Watertight.** The signs of the edge functions are exact for the
+///   rounded corners in the ray's frame, and two triangles that share an
+///   edge (bit-identical corners) compute that edge's function as exact
+///   negatives. So a ray that crosses a shared edge or corner of a mesh
+///   (locally a proper surface, seen from one side) hits at least one of the
+///   triangles around it: no ray leaks through.
+/// - **`t > 0` decided conservatively**: the reported `t` is positive, and
+///   its scaled numerator exceeds its own rounding error bound, so the exact
+///   crossing lies in front of the origin whenever the ray is not within
+///   rounding of parallel to the triangle.
+/// - `t` is within [`ray_triangle_t_error`] of the exact crossing.
+/// - Zero-area (in the ray's frame) and non-finite triangles, invalid rays
+///   and NaN or negative `t_max` give `None`; never panics, never NaN.
+/// - Precondition for all of the above: coordinates relative to the ray
+///   origin small enough that the edge-function products do not overflow
+///   (`|coordinate| < 2^63` in `f32`, `2^511` in `f64`).
+///
+/// ```
+/// use rayhit::{Ray, Side, Triangle, ray_triangle, glam::Vec3};
+/// let tri = Triangle::new(Vec3::ZERO, Vec3::new(2.0, 0.0, 0.0), Vec3::new(0.0, 2.0, 0.0));
+/// let ray = Ray::new(Vec3::new(0.5, 0.25, 4.0), Vec3::new(0.0, 0.0, -2.0));
+/// let hit = ray_triangle(&ray, &tri, f32::INFINITY).unwrap();
+/// assert_eq!((hit.t, hit.u, hit.v, hit.side), (2.0, 0.25, 0.125, Side::Front));
+/// // On the edge from b to c: closed, so a hit.
+/// let edge = Ray::new(Vec3::new(1.0, 1.0, 4.0), Vec3::new(0.0, 0.0, -1.0));
+/// assert!(ray_triangle(&edge, &tri, f32::INFINITY).is_some());
+/// ```
+#[inline]
+#[must_use]
+pub fn ray_triangle<V: Vector>(
+    ray: &Ray<V>,
+    tri: &Triangle<V>,
+    t_max: S<V>,
+) -> Option<TriangleHit<S<V>>> {
+    watertight(ray, tri, t_max, EdgeRule::Closed)
+}
+
+/// The watertight test with exactly one hit per crossing of a mesh: each
+/// point of a shared edge or corner belongs to exactly one of the triangles
+/// around it.
+///
+/// Same test and guarantees as [`ray_triangle`], except for an edge function
+/// of exactly zero (the ray crosses the edge's line in the sheared plane).
+/// Instead of counting as inside, it is decided as if the ray were moved by
+/// an infinitesimal `(eps1, eps2)`, `0 < eps2 << eps1`, in its sheared plane
+/// (simulation of simplicity, Edelsbrunner and Mucke, 1990; the rasteriser's
+/// top-left rule is the same idea in screen space). The moved ray lies on no
+/// edge line, so every triangle's answer is the exact answer for the same
+/// moved ray.
+///
+/// What that gives: where a consistently wound mesh is, around the crossing
+/// point, a surface seen from one side (every interior edge shared by two
+/// triangles with bit-identical corners, and opposite directions), the ray
+/// hits exactly one triangle, so counting crossings gives the right parity
+/// for inside/outside tests and CSG. For a closed mesh the count is even
+/// for every ray line (up to the `t` range), even grazing a silhouette.
+///
+/// What it gives up: a point on the mesh's open boundary, or on the edge of
+/// a lone triangle, belongs to a triangle only if the perturbed ray is
+/// inside it, so about half of the boundary points hit nothing. Use
+/// [`ray_triangle`] for a lone triangle.
+///
+/// ```
+/// use rayhit::{Ray, Triangle, ray_triangle_one_hit, glam::Vec3};
+/// // Two triangles of the unit square, sharing the diagonal from (1,0) to (0,1).
+/// let (p00, p10, p01, p11) = (Vec3::ZERO, Vec3::X, Vec3::Y, Vec3::new(1.0, 1.0, 0.0));
+/// let mesh = [Triangle::new(p00, p10, p01), Triangle::new(p10, p11, p01)];
+/// // Straight down through the middle of the shared diagonal.
+/// let ray = Ray::new(Vec3::new(0.5, 0.5, 1.0), Vec3::new(0.0, 0.0, -1.0));
+/// let hits = mesh.iter().filter(|t| ray_triangle_one_hit(&ray, t, 10.0).is_some()).count();
+/// assert_eq!(hits, 1);
+/// ```
+#[inline]
+#[must_use]
+pub fn ray_triangle_one_hit<V: Vector>(
+    ray: &Ray<V>,
+    tri: &Triangle<V>,
+    t_max: S<V>,
+) -> Option<TriangleHit<S<V>>> {
+    watertight(ray, tri, t_max, EdgeRule::OneHit)
+}
+
+/// A bound on `|t - t_exact|` for a hit `t` that [`ray_triangle`] (or
+/// [`ray_triangle_one_hit`]) returned, `t_exact` being the exact crossing of
+/// the ray's line with the triangle's plane for the same inputs.
+///
+/// With `T`, `D` the exact scaled numerator and determinant, `ts`, `det` the
+/// computed ones, and `dT`, `dD` their error bounds (derived in the test):
+/// with `q = ts/det`, `|q - T/D| <= (dT + |t_exact| dD) / |det|`; solving with
+/// `|t_exact| <= |q| + err` gives `err (1 - x) <= (dT + |q| dD) / |det|` for
+/// `x = dD/|det|`, and `1/(1 - x) <= 1 + 2x` for `x <= 1/2`. The final
+/// multiplication by the rounded `1/det` adds `gamma(2) |q|`, and
+/// `|q| <= |t| (1 + gamma(3))`. If `x > 1/2` the ray is within rounding of
+/// parallel to the plane and the bound is infinite; it is infinite also
+/// when the inputs are not valid.
+///
+/// The bound is loose where the shear is: the sheared coordinates carry an
+/// error proportional to the distance along the ray, so for a triangle far
+/// from the origin compared with its size the bound is hundreds of ulps
+/// while the actual error is usually a few.
+///
+/// ```
+/// use rayhit::{Ray, Triangle, ray_triangle, ray_triangle_t_error, glam::Vec3};
+/// let cz = 3.1f32;
+/// let tri = Triangle::new(Vec3::new(0.0, 0.0, 3.0), Vec3::new(1.0, 0.0, 3.0), Vec3::new(0.0, 1.0, cz));
+/// let (dy, dz) = (0.2f32, 1.0f32);
+/// let ray = Ray::new(Vec3::ZERO, Vec3::new(0.1, dy, dz));
+/// let hit = ray_triangle(&ray, &tri, f32::INFINITY).unwrap();
+/// let err = ray_triangle_t_error(&ray, &tri, hit.t);
+/// // The plane is z - 3 = (cz - 3) y, so t = 3 / (dz - (cz - 3) dy); f64
+/// // evaluates that to far better than f32's error bound.
+/// let exact = 3.0 / (f64::from(dz) - (f64::from(cz) - 3.0) * f64::from(dy));
+/// assert!((f64::from(hit.t) - exact).abs() <= f64::from(err));
+/// assert!(err < 1e-3 * hit.t);
+/// ```
+#[must_use]
+pub fn ray_triangle_t_error<V: Vector>(ray: &Ray<V>, tri: &Triangle<V>, t: S<V>) -> S<V> {
+    let inf = S::<V>::INFINITY;
+    if !ray.is_valid() {
+        return inf;
+    }
+    let shear = Shear::new(ray.dir);
+    let f = Frame::new(ray.origin, tri, &shear);
+    let z = [f.pz[0] * shear.sz, f.pz[1] * shear.sz, f.pz[2] * shear.sz];
+    let b = ErrorBounds::new(&f, &z);
+    let det = (f.e[0] + f.e[1] + f.e[2]).abs();
+    let x = b.det / det;
+    if !(x <= S::<V>::HALF && t.is_finite()) {
+        return inf;
+    }
+    let one = S::<V>::ONE;
+    let q = t.abs() * (one + S::<V>::gamma_n(3));
+    let err = (b.t_scaled + q * b.det) / det * (one + S::<V>::TWO * x) + S::<V>::gamma_n(2) * q;
+    // At most 6 roundings along any path (q 1, q dD 2, sum 3, division 4,
+    // product with 1 + 2x 5, final sum 6).
+    bound_up(err, 6)
+}
+
+/// Moller-Trumbore ray/triangle test: the fast path.
+///
+/// Moller and Trumbore, "Fast, Minimum Storage Ray/Triangle Intersection",
+/// JGT 1997: solve `origin + t dir = a + u (b - a) + v (c - a)` by Cramer's
+/// rule with the determinant `det = (b - a) . (dir x (c - a))`.
+///
+/// Same signature, conventions and invalid-input behaviour as
+/// [`ray_triangle`]. **Not watertight**: `u`, `v` and `u + v <= 1` are
+/// tested on rounded values computed differently for each triangle, so a
+/// ray through a shared edge can miss both triangles. It agrees with
+/// [`ray_triangle`] away from edges.
+///
+/// The determinant test is relative, not an absolute epsilon: the ray is
+/// treated as parallel to the triangle when `|det|` is not larger than its
+/// own rounding error bound (a sum of products of the magnitudes that make
+/// it up), i.e. when the sign of `det` is not known. That test does not
+/// change when the scene or the direction is scaled.
+///
+/// ```
+/// use rayhit::{Ray, Side, Triangle, ray_triangle_mt, glam::Vec3};
+/// let tri = Triangle::new(Vec3::ZERO, Vec3::new(2.0, 0.0, 0.0), Vec3::new(0.0, 2.0, 0.0));
+/// let ray = Ray::new(Vec3::new(0.5, 0.25, -4.0), Vec3::new(0.0, 0.0, 2.0));
+/// let hit = ray_triangle_mt(&ray, &tri, f32::INFINITY).unwrap();
+/// assert_eq!((hit.t, hit.u, hit.v, hit.side), (2.0, 0.25, 0.125, Side::Back));
+/// ```
+#[inline]
+#[must_use]
+pub fn ray_triangle_mt<V: Vector>(
+    ray: &Ray<V>,
+    tri: &Triangle<V>,
+    t_max: S<V>,
+) -> Option<TriangleHit<S<V>>> {
+    let zero = S::<V>::ZERO;
+    let one = S::<V>::ONE;
+    if !(ray.is_valid() && t_max_ok(t_max)) {
+        return None;
+    }
+    let d = ray.dir;
+    let e1 = tri.b - tri.a;
+    let e2 = tri.c - tri.a;
+    // p = d x e2, written out to keep the two products of each component
+    // for the determinant's error bound.
+    let (m1, m2) = (d.y() * e2.z(), d.z() * e2.y());
+    let (m3, m4) = (d.z() * e2.x(), d.x() * e2.z());
+    let (m5, m6) = (d.x() * e2.y(), d.y() * e2.x());
+    let p = V::new(m1 - m2, m3 - m4, m5 - m6);
+    let det = e1.dot(p);
+    // Each monomial e1_i d_j e2_k of det carries at most 7 roundings (two
+    // edge subtractions, a product, a difference, a product, two sums), so
+    // |det - det_exact| <= gamma(7) sum_i |e1_i| (|d_j e2_k| + |d_k e2_j|).
+    // The sum is evaluated from the computed e1 and products m, which are
+    // rounded versions of the exact ones (at most 6 roundings along any
+    // path, with the sum's own), and `bound_up` makes it an upper bound.
+    let mag = V::new(
+        m1.abs() + m2.abs(),
+        m3.abs() + m4.abs(),
+        m5.abs() + m6.abs(),
+    );
+    let det_bound = bound_up(S::<V>::gamma_n(7) * e1.abs().dot(mag), 7);
+    if !(det.abs() > det_bound) {
+        return None;
+    }
+    let inv_det = one / det;
+    let s = ray.origin - tri.a;
+    let u = s.dot(p) * inv_det;
+    if !(u >= zero && u <= one) {
+        return None;
+    }
+    let q = s.cross(e1);
+    let v = d.dot(q) * inv_det;
+    if !(v >= zero && u + v <= one) {
+        return None;
+    }
+    let t = e2.dot(q) * inv_det;
+    if !(t > zero && t <= t_max && t.is_finite()) {
+        return None;
+    }
+    // det = e1 . (d x e2) = -d . ((b - a) x (c - a)): positive when the ray
+    // runs against the normal.
+    let side = if det > zero { Side::Front } else { Side::Back };
+    Some(TriangleHit { t, u, v, side })
+}
