@@ -60,7 +60,7 @@
 //! | --- | --- |
 //! | [`ray_aabb`], [`ray_aabb_prepared`] | no false miss, ever (axis-parallel rays, rays in a face plane, zero-thickness boxes, `-0.0` and tiny direction components included); false hits only within a few ulps (a factor `1 + 16u`) of the boundary |
 //! | [`ray_aabb_naive`] | reference: faces as planes; agrees with the slab test away from edges |
-//! | [`ray_triangle`] | watertight: no ray passes between two triangles sharing an edge; `t > 0` decided conservatively; `t` within [`ray_triangle_t_error`] |
+//! | [`ray_triangle`] | watertight: no ray passes between two triangles sharing an edge; `t > 0` decided conservatively; `t`, `u`, `v` within [`ray_triangle_error_bounds`] |
 //! | [`ray_triangle_one_hit`] | as [`ray_triangle`], and exactly one hit per crossing of a consistently wound mesh |
 //! | [`ray_triangle_mt`] | fast path; agrees with [`ray_triangle`] away from edges; **not** watertight |
 //! | [`ray_plane`] | `t` within [`ray_plane_t_error`] (a few ulps without cancellation) |
@@ -72,6 +72,9 @@
 //! - `libm`: float math from the `libm` crate, for `no_std` targets
 //!   (`default-features = false, features = ["libm"]`). One of the two must
 //!   be on.
+//! - `proptest`: the public `strategies` module, the generators the
+//!   crate's property tests use (aimed rays, boxes, triangles, planes), for
+//!   testing your own kernels against this crate's.
 
 #![no_std]
 #![cfg_attr(docsrs, feature(doc_cfg))]
@@ -92,6 +95,9 @@ mod camera;
 mod plane;
 mod ray;
 mod real;
+#[cfg(feature = "proptest")]
+#[cfg_attr(docsrs, doc(cfg(feature = "proptest")))]
+pub mod strategies;
 mod triangle;
 
 pub use aabb::{Aabb, PreparedRay, ray_aabb, ray_aabb_naive, ray_aabb_prepared};
@@ -100,6 +106,6 @@ pub use plane::{Plane, ray_plane, ray_plane_t_error};
 pub use ray::Ray;
 pub use real::{Scalar, Vector};
 pub use triangle::{
-    Side, Triangle, TriangleHit, ray_triangle, ray_triangle_mt, ray_triangle_one_hit,
-    ray_triangle_t_error,
+    Side, Triangle, TriangleHit, TriangleHitError, ray_triangle, ray_triangle_error_bounds,
+    ray_triangle_mt, ray_triangle_one_hit,
 };

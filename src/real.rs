@@ -82,6 +82,12 @@ pub trait Scalar:
     /// Converts a small integer exactly (`n < 2^24`).
     #[must_use]
     fn from_u32(n: u32) -> Self;
+    /// Converts from `f64`, rounding to nearest (exact for `f64` itself).
+    #[must_use]
+    fn from_f64(x: f64) -> Self;
+    /// Converts to `f64`, exactly.
+    #[must_use]
+    fn to_f64(self) -> f64;
 
     /// Absolute value.
     #[must_use]
@@ -207,6 +213,14 @@ macro_rules! impl_scalar {
             #[inline]
             fn from_u32(n: u32) -> Self {
                 n as $f
+            }
+            #[inline]
+            fn from_f64(x: f64) -> Self {
+                x as $f
+            }
+            #[inline]
+            fn to_f64(self) -> f64 {
+                self as f64
             }
             #[inline]
             fn abs(self) -> Self {
@@ -376,6 +390,40 @@ impl_vector!(DVec3, f64);
 #[inline(always)]
 pub(crate) fn bound_up<F: Scalar>(value: F, roundings: u32) -> F {
     value * (F::ONE + F::gamma_n(roundings + 1)).next_up()
+}
+
+/// Arithmetic rounded outward, for error bounds with differences and
+/// quotients in them (where [`bound_up`]'s counting argument does not
+/// apply). `fl(x)` is within half an ulp of `x`, so stepping it one ulp
+/// up (down) gives a float at least (at most) `x`, infinities included.
+pub(crate) mod outward {
+    use super::Scalar;
+
+    /// At least `a + b`.
+    #[inline(always)]
+    pub(crate) fn add_up<F: Scalar>(a: F, b: F) -> F {
+        (a + b).next_up()
+    }
+    /// At most `a - b`.
+    #[inline(always)]
+    pub(crate) fn sub_down<F: Scalar>(a: F, b: F) -> F {
+        (a - b).next_down()
+    }
+    /// At least `a * b`.
+    #[inline(always)]
+    pub(crate) fn mul_up<F: Scalar>(a: F, b: F) -> F {
+        (a * b).next_up()
+    }
+    /// At most `a * b`.
+    #[inline(always)]
+    pub(crate) fn mul_down<F: Scalar>(a: F, b: F) -> F {
+        (a * b).next_down()
+    }
+    /// At least `a / b`.
+    #[inline(always)]
+    pub(crate) fn div_up<F: Scalar>(a: F, b: F) -> F {
+        (a / b).next_up()
+    }
 }
 
 /// `t` unless it is below `lo` or NaN, else `lo`.

@@ -286,16 +286,22 @@ fn watertight<V: Vector>(
         return None;
     }
 
-    // t > 0 decided conservatively: the scaled distance must exceed its own
-    // rounding error bound, so that the exact one has the same sign.
-    let bounds = ErrorBounds::new(&f, &z);
-    if !(t_scaled.abs() > bounds.t_scaled) {
-        return None;
-    }
-
     let inv_det = S::<V>::ONE / det;
     let t = t_scaled * inv_det;
     if !(t > zero && t <= t_max && t.is_finite()) {
+        return None;
+    }
+    // t > 0 decided conservatively, by either of two sufficient tests: the
+    // scaled distance exceeds its rounding error bound (pbrt-v4's test; the
+    // exact numerator then has the sign of det), or, where the determinant is
+    // well conditioned, t exceeds its own error bound (the exact t is then
+    // positive). The first is cheap and settles almost every hit; the second
+    // keeps hits on small triangles far from the origin, for which the first
+    // is too pessimistic.
+    let bounds = ErrorBounds::new(&f, &z, &shear);
+    let sure = t_scaled.abs() > bounds.t_scaled
+        || HitCondition::new(&bounds, det).is_some_and(|c| t > c.t_error(&bounds, &z, t));
+    if !sure {
         return None;
     }
     // Each e_i / det is in [0, 1] exactly (all e_i share det's sign, and
@@ -317,60 +323,158 @@ fn watertight<V: Vector>(
     Some(TriangleHit { t, u, v, side })
 }
 
-/// Rounding error bounds of the watertight test, all absolute, in terms of
-/// the computed quantities.
+/// Rounding error bounds of the watertight test's intermediate values, all
+/// absolute, in terms of the computed quantities.
 ///
 /// Notation: `u` the unit roundoff, `gamma(n) = n*u/(1 - n*u)`; `P` the exact
 /// translated, permuted corners and `p` their computed values (one rounding
 /// each); `X, Y, Z` the exact sheared and scaled coordinates, `x, y, z` the
 /// computed ones; `E_i`, `e_i` the exact and computed edge functions. The
-/// derivation follows pbrt-v4's (`IntersectTriangle`, and Pharr, Jakob and
-/// Humphreys, "Physically Based Rendering", 4th ed., section 6.8.4) with two
-/// changes: the shear error is measured with the unscaled `z`, so that it
-/// holds for a direction of any length, and second-order terms are kept.
+/// structure follows pbrt-v4 (`IntersectTriangle`; Pharr, Jakob and
+/// Humphreys, "Physically Based Rendering", 4th ed., section 6.8.4), with
+/// the shear error measured by the actual shear factor and the result, so
+/// that it holds for a direction of any length, vanishes for an
+/// axis-parallel ray and stays small where the shear cancels the
+/// translation; second-order terms are kept.
 #[derive(Clone, Copy, Debug)]
 struct ErrorBounds<F> {
+    /// Bound on `|e_i - E_i|`.
+    e: F,
+    /// Bound on `|z_i - Z_i|`.
+    z: F,
     /// Bound on `|t_scaled - sum E_i Z_i|`.
     t_scaled: F,
-    /// Bound on `|det - sum E_i|`.
-    det: F,
+    /// `max |z_i|`.
+    max_z: F,
 }
 
 impl<F: Scalar> ErrorBounds<F> {
     #[inline(always)]
-    fn new(f: &Frame<F>, z: &[F; 3]) -> Self {
+    fn new(f: &Frame<F>, z: &[F; 3], shear: &Shear<F>) -> Self {
         let max3 = |v: &[F; 3]| max2(v[0].abs(), max2(v[1].abs(), v[2].abs()));
         let (mx, my, mz) = (max3(&f.x), max3(&f.y), max3(z));
         let (mpx, mpy, mpz) = (max3(&f.px), max3(&f.py), max3(&f.pz));
         let me = max3(&f.e);
-        // Shear: x = fl(p_x + fl(s_x * p_z)) with s_x = fl(-d_x/d_z) and
-        // |s_x| <= 1. The p_x term carries two roundings (translation, sum),
-        // the s_x p_z term four (translation, s_x, product, sum), so
-        // |x - X| <= gamma(2)|P_x| + gamma(4)|P_z|, and with
-        // |P| <= |p| / (1 - u): |x - X| <= gamma(5) (|p_x| + |p_z|).
-        let dx = F::gamma_n(5) * (mpx + mpz);
-        let dy = F::gamma_n(5) * (mpy + mpz);
-        // Scale: z = fl(p_z * fl(1/d_z)) = Z (1 + theta_3), so
-        // |z - Z| <= gamma(3)|Z| <= gamma(4)|z|.
-        let dz = F::gamma_n(4) * mz;
+        // Shear: with p = P(1 + d1) (translation), s_x = S_x (1 + d3),
+        // m = fl(s_x p_z) = S_x P_z (1 + theta_3) and x = fl(p_x + m) =
+        // (p_x + m)(1 + d5):
+        //   x - X = P_x d1 + S_x P_z theta_3 + (p_x + m) d5,
+        // so |x - X| <= u|P_x| + gamma(3)|S_x P_z| + u|x|/(1 - u)
+        //            <= gamma(1)(|p_x| + |x|) + gamma(4)|s_x p_z|
+        // (|P_x| <= |p_x|/(1 - u), |S_x P_z| <= |m|/(1 - gamma(3))). The last
+        // rounding is relative to the result, which is small exactly when
+        // the shear cancels the translation. (3 roundings to evaluate.)
+        let dx = bound_up(
+            F::gamma_n(1) * (mpx + mx) + F::gamma_n(4) * shear.sx.abs() * mpz,
+            3,
+        );
+        let dy = bound_up(
+            F::gamma_n(1) * (mpy + my) + F::gamma_n(4) * shear.sy.abs() * mpz,
+            3,
+        );
+        // Scale: z = fl(p_z fl(1/d_z)) = Z (1 + theta_3), so
+        // |z - Z| <= gamma(3)|Z| <= gamma(4)|z|. (1 rounding.)
+        let dz = bound_up(F::gamma_n(4) * mz, 1);
         // Edge function e_0 = fl(fl(x1 y2) - fl(y1 x2)) (or the exact-sign
         // recomputation, which is closer): rounding adds gamma(2)(|x1 y2| +
         // |y1 x2|) <= 2 gamma(2) mx my, and x1 y2 - X1 Y2 =
         // x1 (y2 - Y2) + (x1 - X1) Y2 adds mx dy + dx (my + dy), twice.
-        let de = F::TWO * (F::gamma_n(2) * mx * my + mx * dy + my * dx + dx * dy);
+        // (At most 5 roundings on a path from dx, dy.)
+        let two = F::TWO;
+        let de = bound_up(
+            two * (F::gamma_n(2) * mx * my + mx * dy + my * dx + dx * dy),
+            5,
+        );
         // t_scaled = fl(sum e_i z_i): rounding adds gamma(3) sum |e_i z_i|;
         // replacing e, z by E, Z adds sum |e_i| dz + de (|z_i| + dz).
+        // (At most 5 roundings on a path from de, dz.)
         let three = F::from_u32(3);
-        let dt = three * (F::gamma_n(3) * me * mz + me * dz + de * (mz + dz));
-        // det = fl(fl(e0 + e1) + e2): gamma(2) sum |e_i| plus 3 de.
-        let ddet = three * (F::gamma_n(2) * me + de);
-        // Both are sums of products of non-negative computed values; along
-        // any path dt takes at most 10 roundings (dx 2, de 6, then 4) and
-        // ddet at most 8, which `bound_up` turns back into upper bounds.
+        let dt = bound_up(
+            three * (F::gamma_n(3) * me * mz + me * dz + de * (mz + dz)),
+            5,
+        );
         Self {
-            t_scaled: bound_up(dt, 10),
-            det: bound_up(ddet, 8),
+            e: de,
+            z: dz,
+            t_scaled: dt,
+            max_z: mz,
         }
+    }
+}
+
+/// The conditioning of a hit: lower and upper bounds of `|sum E_i|` (the
+/// exact determinant) from the computed one. Exists only when the lower
+/// bound is positive, i.e. when the exact determinant is known to have the
+/// computed one's sign.
+#[derive(Clone, Copy, Debug)]
+struct HitCondition<F> {
+    /// `<= |sum E_i|`, and `> 0`.
+    lower: F,
+    /// `>= |sum E_i|`.
+    upper: F,
+}
+
+impl<F: Scalar> HitCondition<F> {
+    /// `det = fl(fl(e0 + e1) + e2)` with all `e_i` of one sign, so
+    /// `|sum e_i| / (1 + gamma(2)) <= |det| <= |sum e_i| (1 + gamma(2))`, and
+    /// `|sum E_i - sum e_i| <= 3 de`. Outward rounding throughout; `4 de`
+    /// (exact) stands in for `3 de` to absorb the rounding of the product.
+    #[inline(always)]
+    fn new(b: &ErrorBounds<F>, det: F) -> Option<Self> {
+        use crate::real::outward::{add_up, mul_down, mul_up, sub_down};
+        let g = F::gamma_n(4);
+        let sum_lo = mul_down(det.abs(), F::ONE - g);
+        let sum_hi = mul_up(det.abs(), F::ONE + g);
+        let four_de = F::from_u32(4) * b.e;
+        let lower = sub_down(sum_lo, four_de);
+        (lower > F::ZERO).then(|| Self {
+            lower,
+            upper: add_up(sum_hi, four_de),
+        })
+    }
+
+    /// A bound on `|t - t_exact|` for the reported `t`.
+    ///
+    /// Write `t(e, z) = sum e_i z_i / sum e_i`; the exact crossing is
+    /// `t(E, Z)`, and the reported `t` comes from `t(e, z)` by rounding.
+    /// - Rounding: `t = fl(fl(sum e_i z_i) fl(1/det))` is `t(e, z)` times
+    ///   `(1 + eta)`, `|eta| <= gamma(4)`, plus `gamma(3) sum|e_i z_i| / |sum e_i|
+    ///   <= gamma(3) max|z|` (the `e_i` share a sign); `|t(e, z)| <= max|z|`
+    ///   (a convex combination), so `|t - t(e, z)| <= gamma(8) max|z|`.
+    /// - Edge functions: for any `c`, `t(e, z) - c = sum e_i (z_i - c) /
+    ///   sum e_i`. With `c = t(E, z)`, `sum E_i (z_i - c) = 0`, so
+    ///   `t(e, z) - t(E, z) = sum (e_i - E_i)(z_i - c) / sum e_i`, and with
+    ///   `S = sum |z_i - t(e, z)|`: `|t(e, z) - t(E, z)| <= de S / (|sum e| - 3 de)`.
+    ///   (The sensitivity is to the spread of the `z_i`, not their size.)
+    /// - Coordinates: `t(E, z) - t(E, Z) = sum E_i (z_i - Z_i) / sum E_i`,
+    ///   at most `dz sum|E_i| / |sum E_i| <= dz (|sum e| + 3 de) / (|sum e| - 3 de)`.
+    #[inline(always)]
+    fn t_error(&self, b: &ErrorBounds<F>, z: &[F; 3], t: F) -> F {
+        use crate::real::outward::{add_up, div_up, mul_up};
+        let rounding = mul_up(F::gamma_n(8), b.max_z);
+        let spread = |zi: F| (zi - t).abs().next_up();
+        let s = add_up(add_up(spread(z[0]), spread(z[1])), spread(z[2]));
+        let s = add_up(s, mul_up(F::from_u32(3), rounding));
+        let edges = div_up(mul_up(b.e, s), self.lower);
+        let coords = div_up(mul_up(b.z, self.upper), self.lower);
+        add_up(add_up(rounding, edges), coords)
+    }
+
+    /// A bound on `|w - w_exact|` for a reported barycentric `w = min(e_i /
+    /// det, 1)` (rounded; `w_exact = E_i / sum E_i`).
+    ///
+    /// Rounding: `w = (e_i / sum e_i)(1 + eta)`, `|eta| <= gamma(4)`, and
+    /// clamping to 1 only moves it towards `e_i / sum e_i <= 1`; so the
+    /// rounding error is at most `gamma(5) w`. Edge functions: `e_i/sum e -
+    /// E_i/sum E = ((e_i - E_i) - w' sum (e_j - E_j)) / sum E` with
+    /// `w' = e_i / sum e`, at most `de (1 + 3 w') / (|sum e| - 3 de)`.
+    #[inline(always)]
+    fn barycentric_error(&self, b: &ErrorBounds<F>, w: F) -> F {
+        use crate::real::outward::{add_up, div_up, mul_up};
+        let rounding = mul_up(F::gamma_n(5), w);
+        let w_plain = add_up(w, rounding);
+        let factor = add_up(F::ONE, mul_up(F::from_u32(3), w_plain));
+        add_up(rounding, div_up(mul_up(b.e, factor), self.lower))
     }
 }
 
@@ -398,7 +502,8 @@ impl<F: Scalar> ErrorBounds<F> {
 ///   its scaled numerator exceeds its own rounding error bound, so the exact
 ///   crossing lies in front of the origin whenever the ray is not within
 ///   rounding of parallel to the triangle.
-/// - `t` is within [`ray_triangle_t_error`] of the exact crossing.
+/// - `t`, `u` and `v` are within [`ray_triangle_error_bounds`] of the
+///   exact crossing.
 /// - Zero-area (in the ray's frame) and non-finite triangles, invalid rays
 ///   and NaN or negative `t_max` give `None`; never panics, never NaN.
 /// - Precondition for all of the above: coordinates relative to the ray
@@ -470,60 +575,78 @@ pub fn ray_triangle_one_hit<V: Vector>(
     watertight(ray, tri, t_max, EdgeRule::OneHit)
 }
 
-/// A bound on `|t - t_exact|` for a hit `t` that [`ray_triangle`] (or
-/// [`ray_triangle_one_hit`]) returned, `t_exact` being the exact crossing of
-/// the ray's line with the triangle's plane for the same inputs.
+/// Bounds on the errors of a watertight hit: `|t - t_exact|`,
+/// `|u - u_exact|`, `|v - v_exact|`, where the exact values are those of the
+/// crossing of the ray's line with the triangle's plane, computed exactly
+/// from the same inputs. See [`ray_triangle_error_bounds`].
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct TriangleHitError<F = f32> {
+    /// Bound on the error of `t`.
+    pub t: F,
+    /// Bound on the error of `u`.
+    pub u: F,
+    /// Bound on the error of `v`.
+    pub v: F,
+}
+
+/// Bounds on the errors of a hit that [`ray_triangle`] or
+/// [`ray_triangle_one_hit`] returned for the same ray and triangle.
 ///
-/// With `T`, `D` the exact scaled numerator and determinant, `ts`, `det` the
-/// computed ones, and `dT`, `dD` their error bounds (derived in the test):
-/// with `q = ts/det`, `|q - T/D| <= (dT + |t_exact| dD) / |det|`; solving with
-/// `|t_exact| <= |q| + err` gives `err (1 - x) <= (dT + |q| dD) / |det|` for
-/// `x = dD/|det|`, and `1/(1 - x) <= 1 + 2x` for `x <= 1/2`. The final
-/// multiplication by the rounded `1/det` adds `gamma(2) |q|`, and
-/// `|q| <= |t| (1 + gamma(3))`. If `x > 1/2` the ray is within rounding of
-/// parallel to the plane and the bound is infinite; it is infinite also
-/// when the inputs are not valid.
-///
-/// The bound is loose where the shear is: the sheared coordinates carry an
-/// error proportional to the distance along the ray, so for a triangle far
-/// from the origin compared with its size the bound is hundreds of ulps
-/// while the actual error is usually a few.
+/// The derivation is in the source, step by step: the rounding of the
+/// sheared coordinates and edge functions (as in pbrt-v4), then the
+/// sensitivity of `t = sum e_i z_i / sum e_i` and of `e_i / sum e_i` to
+/// them. The `t` bound grows with the spread of the corners' distances along
+/// the ray, not with the distance itself, so it stays within a few ulps of
+/// `t` for a triangle facing the ray, however far away. Every bound is
+/// infinite when the exact determinant's sign is not known: the ray is within
+/// rounding of parallel to the triangle, or the triangle is so thin, seen
+/// from the ray, that rounding its corners could flip it (a sliver far
+/// away); likewise for invalid input.
 ///
 /// ```
-/// use rayhit::{Ray, Triangle, ray_triangle, ray_triangle_t_error, glam::Vec3};
+/// use rayhit::{Ray, Triangle, ray_triangle, ray_triangle_error_bounds, glam::Vec3};
 /// let cz = 3.1f32;
 /// let tri = Triangle::new(Vec3::new(0.0, 0.0, 3.0), Vec3::new(1.0, 0.0, 3.0), Vec3::new(0.0, 1.0, cz));
 /// let (dy, dz) = (0.2f32, 1.0f32);
 /// let ray = Ray::new(Vec3::ZERO, Vec3::new(0.1, dy, dz));
 /// let hit = ray_triangle(&ray, &tri, f32::INFINITY).unwrap();
-/// let err = ray_triangle_t_error(&ray, &tri, hit.t);
+/// let err = ray_triangle_error_bounds(&ray, &tri, &hit);
 /// // The plane is z - 3 = (cz - 3) y, so t = 3 / (dz - (cz - 3) dy); f64
-/// // evaluates that to far better than f32's error bound.
+/// // evaluates that far more accurately than the f32 bound.
 /// let exact = 3.0 / (f64::from(dz) - (f64::from(cz) - 3.0) * f64::from(dy));
-/// assert!((f64::from(hit.t) - exact).abs() <= f64::from(err));
-/// assert!(err < 1e-3 * hit.t);
+/// assert!((f64::from(hit.t) - exact).abs() <= f64::from(err.t));
+/// assert!(err.t < 1e-5 * hit.t);
 /// ```
 #[must_use]
-pub fn ray_triangle_t_error<V: Vector>(ray: &Ray<V>, tri: &Triangle<V>, t: S<V>) -> S<V> {
+pub fn ray_triangle_error_bounds<V: Vector>(
+    ray: &Ray<V>,
+    tri: &Triangle<V>,
+    hit: &TriangleHit<S<V>>,
+) -> TriangleHitError<S<V>> {
     let inf = S::<V>::INFINITY;
-    if !ray.is_valid() {
-        return inf;
+    let unbounded = TriangleHitError {
+        t: inf,
+        u: inf,
+        v: inf,
+    };
+    if !(ray.is_valid() && hit.t.is_finite() && hit.u.is_finite() && hit.v.is_finite()) {
+        return unbounded;
     }
     let shear = Shear::new(ray.dir);
     let f = Frame::new(ray.origin, tri, &shear);
     let z = [f.pz[0] * shear.sz, f.pz[1] * shear.sz, f.pz[2] * shear.sz];
-    let b = ErrorBounds::new(&f, &z);
-    let det = (f.e[0] + f.e[1] + f.e[2]).abs();
-    let x = b.det / det;
-    if !(x <= S::<V>::HALF && t.is_finite()) {
-        return inf;
+    let b = ErrorBounds::new(&f, &z, &shear);
+    let det = f.e[0] + f.e[1] + f.e[2];
+    let zero = S::<V>::ZERO;
+    let same_sign = f.e.iter().all(|&e| e >= zero) || f.e.iter().all(|&e| e <= zero);
+    match HitCondition::new(&b, det) {
+        Some(c) if same_sign => TriangleHitError {
+            t: c.t_error(&b, &z, hit.t),
+            u: c.barycentric_error(&b, hit.u),
+            v: c.barycentric_error(&b, hit.v),
+        },
+        _ => unbounded,
     }
-    let one = S::<V>::ONE;
-    let q = t.abs() * (one + S::<V>::gamma_n(3));
-    let err = (b.t_scaled + q * b.det) / det * (one + S::<V>::TWO * x) + S::<V>::gamma_n(2) * q;
-    // At most 6 roundings along any path (q 1, q dD 2, sum 3, division 4,
-    // product with 1 + 2x 5, final sum 6).
-    bound_up(err, 6)
 }
 
 /// Moller-Trumbore ray/triangle test: the fast path.

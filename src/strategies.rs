@@ -1,0 +1,285 @@
+//! `proptest` strategies for rays and shapes, built to land near boundaries.
+//!
+//! Enabled by the `proptest` feature. These are the generators the crate's
+//! own property tests use; downstream renderers can use them to test their
+//! own kernels against this crate's. Every strategy is generic over the
+//! precision (`Vec3` or `DVec3`): values are drawn in `f64` and rounded once
+//! to the target precision.
+//!
+//! Rays are *aimed*: a strategy picks a target point (inside a shape, on its
+//! boundary, or just outside) and then an origin behind it, so hits and
+//! misses are both common and many rays pass through edges, corners and
+//! faces, where kernels go wrong. A target on a boundary is rounded like any
+//! other point, so "on an edge" means within an ulp or so of it.
+//!
+//! Ranges, and why:
+//! - coordinates: shape centres in `[-64, 64]^3`, sizes from `2^-4` to
+//!   `2^4`: a few orders of magnitude of scale and of distance from the
+//!   origin, all well inside the range where no kernel overflows;
+//! - directions: random orientation, length `2^k` for `k` in `[-6, 6]`
+//!   (powers of two, so scaling tests stay exact), with one case in eight
+//!   axis-parallel and one in eight with a zero (`+0.0` or `-0.0`)
+//!   component, because those are the slab test's special cases;
+//! - origins: the target minus `s * dir` with `s` from `2^-4` to `2^6`;
+//! - `t_max`: infinite half the time, else uniform in `[0, 128]`.
+//!
+//! ```
+//! use proptest::prelude::*;
+//! use rayhit::{Aabb, Ray, ray_aabb, glam::Vec3, strategies};
+//!
+//! proptest!(|((aabb, ray) in strategies::aabb_and_ray::<Vec3>())| {
+//!     if let Some((enter, exit)) = ray_aabb(&ray, &aabb, f32::INFINITY) {
+//!         prop_assert!(0.0 <= enter && enter <= exit);
+//!     }
+//! });
+//! ```
+
+use proptest::prelude::*;
+
+use crate::real::{S, Scalar, Vector};
+use crate::{Aabb, Plane, Ray, Triangle};
+
+/// A value uniform in `[-scale, scale]`, rounded to the precision of `V`.
+pub fn coordinate<V: Vector>(scale: f64) -> impl Strategy<Value = S<V>> + Clone {
+    (-scale..=scale).prop_map(S::<V>::from_f64)
+}
+
+/// A point with each coordinate uniform in `[-scale, scale]`.
+pub fn point<V: Vector>(scale: f64) -> impl Strategy<Value = V> + Clone {
+    (
+        coordinate::<V>(scale),
+        coordinate::<V>(scale),
+        coordinate::<V>(scale),
+    )
+        .prop_map(|(x, y, z)| V::new(x, y, z))
+}
+
+/// `2^k` for `k` uniform in `[lo, hi]`: an exact scale factor.
+pub fn power_of_two(lo: i32, hi: i32) -> impl Strategy<Value = f64> + Clone {
+    (lo..=hi).prop_map(|k| 2f64.powi(k))
+}
+
+/// A nonzero direction: random orientation (6 in 8), axis-parallel (1 in 8,
+/// the other components `+0.0` or `-0.0`), or random with one component
+/// `+0.0` or `-0.0` (1 in 8); length `2^k` times a factor in `[0.2, 1]` for
+/// the random ones, `k` in `[-6, 6]`.
+pub fn direction<V: Vector>() -> impl Strategy<Value = V> + Clone {
+    let cube = (-1.0..=1.0f64, -1.0..=1.0f64, -1.0..=1.0f64)
+        .prop_filter("direction too short", |(x, y, z)| {
+            x * x + y * y + z * z > 0.04
+        });
+    let signed_zero = prop_oneof![Just(0.0f64), Just(-0.0f64)];
+    let general = (cube.clone(), power_of_two(-6, 6))
+        .prop_map(|((x, y, z), s)| V::new(cv::<V>(x * s), cv::<V>(y * s), cv::<V>(z * s)));
+    let axis = (
+        0..3usize,
+        prop::bool::ANY,
+        signed_zero.clone(),
+        signed_zero.clone(),
+        power_of_two(-6, 6),
+    )
+        .prop_map(|(k, neg, z1, z2, s)| {
+            let mut c = [z1, z2, 0.0];
+            c.rotate_right(k + 1);
+            c[k] = if neg { -s } else { s };
+            V::new(cv::<V>(c[0]), cv::<V>(c[1]), cv::<V>(c[2]))
+        });
+    let flat = (cube, 0..3usize, signed_zero, power_of_two(-6, 6))
+        .prop_filter("direction too short", |((x, y, z), k, _, _)| {
+            let c = [*x, *y, *z];
+            let (a, b) = (c[(k + 1) % 3], c[(k + 2) % 3]);
+            a * a + b * b > 0.04
+        })
+        .prop_map(|((x, y, z), k, zero, s)| {
+            let mut c = [x * s, y * s, z * s];
+            c[k] = zero;
+            V::new(cv::<V>(c[0]), cv::<V>(c[1]), cv::<V>(c[2]))
+        });
+    prop_oneof![6 => general, 1 => axis, 1 => flat]
+}
+
+fn cv<V: Vector>(x: f64) -> S<V> {
+    S::<V>::from_f64(x)
+}
+
+/// A ray aimed at `target`: direction from [`direction`], origin
+/// `target - s * dir` with `s` uniform in `[2^-4, 2^6]` (rounded), so the
+/// ray passes within rounding of `target` near `t = s`.
+pub fn ray_through<V: Vector>(target: V) -> impl Strategy<Value = Ray<V>> + Clone {
+    (direction::<V>(), 0.0625..=64.0f64)
+        .prop_map(move |(dir, s)| Ray::new(target - dir * cv::<V>(s), dir))
+}
+
+/// `t_max`: `+inf` half the time, else uniform in `[0, 128]`.
+pub fn t_max<V: Vector>() -> impl Strategy<Value = S<V>> + Clone {
+    prop_oneof![Just(S::<V>::INFINITY), (0.0..=128.0f64).prop_map(cv::<V>)]
+}
+
+/// A valid box: centre in `[-64, 64]^3`, half extent per axis `2^k` with
+/// `k` uniform in `[-4, 4]`, or zero thickness on an axis one time in eight.
+pub fn aabb<V: Vector>() -> impl Strategy<Value = Aabb<V>> + Clone {
+    let half = prop_oneof![7 => (-4.0..=4.0f64).prop_map(|k| 2f64.powf(k)), 1 => Just(0.0)];
+    (point::<V>(64.0), half.clone(), half.clone(), half).prop_map(|(c, hx, hy, hz)| {
+        let h = V::new(cv::<V>(hx), cv::<V>(hy), cv::<V>(hz));
+        // Round min down and max up by construction: c - h and c + h are
+        // rounded, but min <= max holds because h >= 0.
+        Aabb::new(c - h, c + h)
+    })
+}
+
+/// A target for a ray at `b`: a point in the box grown by half its size on
+/// each side (so about a third of the time inside), on a face, on an edge,
+/// or at a corner (one time in four each for the last three together).
+pub fn aabb_target<V: Vector>(b: Aabb<V>) -> impl Strategy<Value = V> + Clone {
+    // A coordinate per axis as a fraction of the way from min to max.
+    let lerp = move |f: [f64; 3]| {
+        let c = |k: usize| {
+            let (lo, hi) = (b.min[k].to_f64(), b.max[k].to_f64());
+            cv::<V>(lo + (hi - lo) * f[k])
+        };
+        V::new(c(0), c(1), c(2))
+    };
+    let frac = -0.5..=1.5f64;
+    let inner = (frac.clone(), frac.clone(), frac).prop_map(move |(x, y, z)| lerp([x, y, z]));
+    let side = prop_oneof![Just(0.0f64), Just(1.0f64)];
+    // Fix 1, 2 or 3 coordinates to a side: a face, an edge, a corner.
+    let on_boundary = (
+        1..=3usize,
+        0..3usize,
+        side.clone(),
+        side.clone(),
+        side,
+        0.0..=1.0f64,
+        0.0..=1.0f64,
+    )
+        .prop_map(move |(fixed, k, s0, s1, s2, f1, f2)| {
+            let mut f = [f1, f2, 0.5];
+            f.rotate_right(k);
+            let sides = [s0, s1, s2];
+            for i in 0..fixed {
+                f[(k + i) % 3] = sides[i];
+            }
+            lerp(f)
+        });
+    prop_oneof![3 => inner, 1 => on_boundary]
+}
+
+/// A box and a ray aimed at it by [`aabb_target`] and [`ray_through`].
+pub fn aabb_and_ray<V: Vector>() -> impl Strategy<Value = (Aabb<V>, Ray<V>)> + Clone {
+    aabb::<V>().prop_flat_map(|b| (Just(b), aabb_target(b).prop_flat_map(ray_through)))
+}
+
+/// A non-degenerate triangle: centre in `[-64, 64]^3`, corners at offsets of
+/// length `2^k`, `k` uniform in `[-3, 3]`, in random directions; one time in
+/// eight a long thin one (the third corner within 1% of the first edge).
+pub fn triangle<V: Vector>() -> impl Strategy<Value = Triangle<V>> + Clone {
+    let offset = (direction::<V>(), power_of_two(-3, 3)).prop_map(|(d, s)| {
+        let len = d.length().to_f64();
+        d * cv::<V>(s / len)
+    });
+    let general = (
+        point::<V>(64.0),
+        offset.clone(),
+        offset.clone(),
+        offset.clone(),
+    )
+        .prop_map(|(c, a, b, d)| Triangle::new(c + a, c + b, c + d));
+    let thin = (
+        point::<V>(64.0),
+        offset.clone(),
+        offset,
+        0.0..=1.0f64,
+        -0.01..=0.01f64,
+    )
+        .prop_map(|(c, a, b, along, across)| {
+            let (pa, pb) = (c + a, c + b);
+            let e = pb - pa;
+            let side = e.cross(V::new(cv::<V>(0.6), cv::<V>(0.8), cv::<V>(0.0)));
+            let side = if side.length().to_f64() > 0.0 {
+                side
+            } else {
+                e.cross(V::new(cv::<V>(0.0), cv::<V>(0.6), cv::<V>(0.8)))
+            };
+            let scale = e.length().to_f64() / side.length().to_f64();
+            Triangle::new(
+                pa,
+                pb,
+                pa + e * cv::<V>(along) + side * cv::<V>(across * scale),
+            )
+        });
+    prop_oneof![7 => general, 1 => thin].prop_filter("degenerate triangle", |t| {
+        let n = t.normal();
+        n.is_finite() && n.length().to_f64() > 0.0
+    })
+}
+
+/// A target for a ray at `t`: a point `a + u (b - a) + v (c - a)` with `u, v`
+/// in `[-0.25, 1]` (inside about a third of the time), on an edge, or at a
+/// corner (one time in four together). Evaluated in `f64` and rounded once.
+pub fn triangle_target<V: Vector>(t: Triangle<V>) -> impl Strategy<Value = V> + Clone {
+    let at = move |u: f64, v: f64| {
+        let c = |k: usize| {
+            let (a, b, c) = (t.a[k].to_f64(), t.b[k].to_f64(), t.c[k].to_f64());
+            cv::<V>(a + u * (b - a) + v * (c - a))
+        };
+        V::new(c(0), c(1), c(2))
+    };
+    let inner = (-0.25..=1.0f64, -0.25..=1.0f64).prop_map(move |(u, v)| at(u, v));
+    let edge = (0..3usize, 0.0..=1.0f64).prop_map(move |(e, s)| match e {
+        0 => at(s, 0.0),
+        1 => at(0.0, s),
+        _ => at(s, 1.0 - s),
+    });
+    let corner = (0..3usize).prop_map(move |k| match k {
+        0 => at(0.0, 0.0),
+        1 => at(1.0, 0.0),
+        _ => at(0.0, 1.0),
+    });
+    prop_oneof![6 => inner, 1 => edge, 1 => corner]
+}
+
+/// A triangle and a ray aimed at it by [`triangle_target`] and
+/// [`ray_through`].
+pub fn triangle_and_ray<V: Vector>() -> impl Strategy<Value = (Triangle<V>, Ray<V>)> + Clone {
+    triangle::<V>().prop_flat_map(|t| (Just(t), triangle_target(t).prop_flat_map(ray_through)))
+}
+
+/// A plane: a point in `[-64, 64]^3` and a normal from [`direction`].
+pub fn plane<V: Vector>() -> impl Strategy<Value = Plane<V>> + Clone {
+    (point::<V>(64.0), direction::<V>()).prop_map(|(p, n)| Plane::new(p, n))
+}
+
+/// A plane and a ray aimed at a point of it within 64 of its `point`, the
+/// point computed in `f64` and rounded.
+pub fn plane_and_ray<V: Vector>() -> impl Strategy<Value = (Plane<V>, Ray<V>)> + Clone {
+    (plane::<V>(), -64.0..=64.0f64, -64.0..=64.0f64).prop_flat_map(|(pl, s, t)| {
+        let n = [
+            pl.normal.x().to_f64(),
+            pl.normal.y().to_f64(),
+            pl.normal.z().to_f64(),
+        ];
+        // Two tangents: n x (axis of n's smallest component), and n x that.
+        let k = (0..3)
+            .min_by(|&i, &j| n[i].abs().total_cmp(&n[j].abs()))
+            .unwrap_or(0);
+        let mut axis = [0.0; 3];
+        axis[k] = 1.0;
+        let t1 = unit(cross(n, axis));
+        let t2 = unit(cross(n, t1));
+        let c = |i: usize| cv::<V>(pl.point[i].to_f64() + s * t1[i] + t * t2[i]);
+        (Just(pl), ray_through(V::new(c(0), c(1), c(2))))
+    })
+}
+
+fn cross(a: [f64; 3], b: [f64; 3]) -> [f64; 3] {
+    [
+        a[1] * b[2] - a[2] * b[1],
+        a[2] * b[0] - a[0] * b[2],
+        a[0] * b[1] - a[1] * b[0],
+    ]
+}
+
+fn unit(a: [f64; 3]) -> [f64; 3] {
+    let l = (a[0] * a[0] + a[1] * a[1] + a[2] * a[2]).sqrt();
+    [a[0] / l, a[1] / l, a[2] / l]
+}

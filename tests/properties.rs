@@ -1,0 +1,650 @@
+//! Property tests: every kernel against the exact oracle, in both
+//! precisions, on rays aimed at chosen points (see `rayhit::strategies`).
+//!
+//! Bounds in these tests are evaluated exactly (as big rationals), so the
+//! test adds no rounding of its own; each is derived in a comment.
+
+mod support;
+
+use proptest::prelude::*;
+use rayhit::glam::{DVec3, Vec3};
+use rayhit::strategies as strat;
+use rayhit::{
+    Aabb, Plane, PreparedRay, Ray, Scalar, Side, Triangle, Vector, ray_aabb, ray_aabb_naive,
+    ray_aabb_prepared, ray_plane, ray_plane_t_error, ray_triangle, ray_triangle_error_bounds,
+    ray_triangle_mt,
+};
+use support::{R, r, rv};
+
+type S<V> = <V as Vector>::Scalar;
+
+/// Cases per property and precision. The README says how to run more
+/// (`PROPTEST_CASES=100000 cargo test --release --test properties`).
+fn config() -> ProptestConfig {
+    ProptestConfig {
+        cases: 2048,
+        ..ProptestConfig::default()
+    }
+}
+
+/// `gamma(n) = n u / (1 - n u)`, exactly.
+fn gamma<F: Scalar>(n: i64) -> R {
+    let nu = R::from_integer(n.into()) * r(F::UNIT_ROUNDOFF);
+    &nu / (R::from_integer(1.into()) - &nu)
+}
+
+fn abs(x: &R) -> R {
+    num_traits::Signed::abs(x)
+}
+
+// ---------------------------------------------------------------- plane
+
+fn check_plane<V: Vector>(plane: Plane<V>, ray: Ray<V>, t_max: S<V>) -> Result<(), TestCaseError> {
+    let got = ray_plane(&ray, &plane, t_max);
+    let exact = support::plane_t(&ray, &plane);
+    if let Some(t) = got {
+        prop_assert!(
+            t > S::<V>::ZERO && t <= t_max && t.is_finite(),
+            "t = {t:?} out of range"
+        );
+        let exact = exact
+            .as_ref()
+            .expect("a hit on a plane the ray is parallel to");
+        let err = ray_plane_t_error(&ray, &plane, t);
+        prop_assert!(
+            support::close(t, exact, err),
+            "t = {t:?}, exact {}, bound {err:?}",
+            support::to_f64(exact)
+        );
+
+        // The hit point lies on the plane within its bound. With p* the
+        // exact crossing, p = fl(o + fl(t d)) has |p_j - p*_j| <=
+        // |t - t*| |d_j| + gamma(2) (|o_j| + |t d_j|) (two roundings), so
+        // |(p - point) . n| <= sum_j |n_j| (err |d_j| + gamma(2)(|o_j| + |t d_j|)).
+        let p = rv(ray.at(t));
+        let (o, d, n) = (rv(ray.origin), rv(ray.dir), rv(plane.normal));
+        let residual = abs(&support::dot(&support::sub(&p, &rv(plane.point)), &n));
+        let (tr, er, g2) = (r(t), r(err), gamma::<S<V>>(2));
+        let bound: R = (0..3)
+            .map(|j| abs(&n[j]) * (&er * abs(&d[j]) + &g2 * (abs(&o[j]) + &tr * abs(&d[j]))))
+            .sum();
+        prop_assert!(
+            residual <= bound,
+            "hit point off the plane by {} > {}",
+            support::to_f64(&residual),
+            support::to_f64(&bound)
+        );
+    } else if let Some(exact) = exact {
+        // A miss where exact arithmetic hits is allowed only within the
+        // error bound of 0 or t_max (the range tests run on rounded t).
+        let limit = support::limit(t_max);
+        if exact > R::from_integer(0.into()) && limit.as_ref().is_none_or(|m| &exact <= m) {
+            let t = S::<V>::from_f64(support::to_f64(&exact));
+            let err = r(ray_plane_t_error(&ray, &plane, t).next_up());
+            let near_zero = exact <= err;
+            let near_max = limit.as_ref().is_some_and(|m| m - &exact <= err);
+            let overflow = !t.is_finite();
+            prop_assert!(
+                near_zero || near_max || overflow,
+                "false miss at t = {}",
+                support::to_f64(&exact)
+            );
+        }
+    }
+    Ok(())
+}
+
+// ---------------------------------------------------------------- boxes
+
+fn check_box<V: Vector>(aabb: Aabb<V>, ray: Ray<V>, t_max: S<V>) -> Result<(), TestCaseError> {
+    let zero = S::<V>::ZERO;
+    let slab = ray_aabb(&ray, &aabb, t_max);
+    let prepared = ray_aabb_prepared(&PreparedRay::new(&ray), &aabb, t_max);
+    prop_assert_eq!(slab, prepared, "prepared and unprepared differ");
+    let naive = ray_aabb_naive(&ray, &aabb, t_max);
+    let raw = support::box_raw(&ray, &aabb, t_max);
+    let exact = raw.clone().filter(|(e, x)| e <= x);
+    let u = r(S::<V>::UNIT_ROUNDOFF);
+
+    for (name, res) in [("slab", slab), ("naive", naive)] {
+        if let Some((e, x)) = res {
+            prop_assert!(
+                zero <= e && e <= x && x <= t_max && e.is_finite(),
+                "{name}: bad interval ({e:?}, {x:?})"
+            );
+        }
+    }
+    // The slab test never misses what exact arithmetic hits.
+    prop_assert!(
+        exact.is_none() || slab.is_some(),
+        "slab false miss, exact {:?}",
+        exact
+            .as_ref()
+            .map(|(e, x)| (support::to_f64(e), support::to_f64(x)))
+    );
+    // ... and hits whenever the naive test does.
+    prop_assert!(naive.is_none() || slab.is_some(), "naive hits, slab misses");
+
+    if let Some((e, x)) = slab {
+        match &exact {
+            Some((ee, xx)) => {
+                // Entry: three roundings per axis distance, and max/min are
+                // exact, so |enter - E| <= gamma(3) E. Exit: at least the
+                // exact exit (the widening), and at most W-widened (1 + 10u)
+                // times three roundings plus the slack: below X (1 + 16u) + 2 tiny.
+                prop_assert!(
+                    abs(&(r(e) - ee)) <= gamma::<S<V>>(3) * ee,
+                    "enter {e:?} vs exact {}",
+                    support::to_f64(ee)
+                );
+                prop_assert!(
+                    &r(x) >= xx,
+                    "exit {x:?} below exact {}",
+                    support::to_f64(xx)
+                );
+                let cap = xx * (R::from_integer(1.into()) + R::from_integer(16.into()) * &u)
+                    + r(S::<V>::TINY) * R::from_integer(2.into());
+                prop_assert!(
+                    r(x) <= cap,
+                    "exit {x:?} widened beyond the bound, exact {}",
+                    support::to_f64(xx)
+                );
+                if e > zero {
+                    entry_point_on_surface(&ray, &aabb, e)?;
+                }
+            }
+            None => {
+                // A false hit: the exact entry exceeds the exact exit by less
+                // than the documented band.
+                let (ee, xx) = raw
+                    .as_ref()
+                    .expect("a false hit through an axis the ray does not move along");
+                let cap = xx * (R::from_integer(1.into()) + R::from_integer(16.into()) * &u)
+                    + r(S::<V>::TINY) * R::from_integer(2.into());
+                prop_assert!(
+                    ee <= &cap,
+                    "false hit beyond the band: enter {} exit {}",
+                    support::to_f64(ee),
+                    support::to_f64(xx)
+                );
+            }
+        }
+    }
+
+    // Away from the boundary band the slab and naive tests agree on
+    // hit/miss, and the naive distances are within their two roundings.
+    // Band: the slab test can be wrong by 16u relative (its false-hit band),
+    // the naive face test by gamma(4) relative (see `ray_aabb_naive`); 32u
+    // covers both.
+    if let Some((ee, xx)) = &raw {
+        let scale = if abs(ee) > abs(xx) { abs(ee) } else { abs(xx) };
+        let clear = abs(&(xx - ee)) > R::from_integer(32.into()) * &u * scale;
+        if clear {
+            prop_assert_eq!(
+                slab.is_some(),
+                naive.is_some(),
+                "slab and naive disagree away from edges"
+            );
+            if let (Some((e, x)), Some((ee, xx))) = (naive, &exact) {
+                prop_assert!(abs(&(r(e) - ee)) <= gamma::<S<V>>(2) * ee, "naive enter");
+                prop_assert!(abs(&(r(x) - xx)) <= gamma::<S<V>>(2) * xx, "naive exit");
+            }
+        }
+    } else {
+        prop_assert!(
+            slab.is_none() && naive.is_none(),
+            "hit through an axis the ray does not move along"
+        );
+    }
+    Ok(())
+}
+
+/// The point `ray.at(enter)` lies on the box surface within its bound.
+///
+/// With E the exact entry, `|enter - E| <= gamma(3) E`, and the point
+/// `p = fl(o + fl(enter d))` is within `gamma(2)(|o_j| + |enter d_j|)` of
+/// `o + enter d`; so `|p_j - p*_j| <= gamma(2)|o_j| + gamma(6) enter |d_j|`
+/// (using `gamma(3)/(1 - gamma(3)) + gamma(2) <= gamma(6)`), where
+/// `p* = o + E d` is on the surface: inside the box, and on the entry face.
+fn entry_point_on_surface<V: Vector>(
+    ray: &Ray<V>,
+    aabb: &Aabb<V>,
+    enter: S<V>,
+) -> Result<(), TestCaseError> {
+    let (p, o, d) = (rv(ray.at(enter)), rv(ray.origin), rv(ray.dir));
+    let (lo, hi) = (rv(aabb.min), rv(aabb.max));
+    let (g2, g6, e) = (gamma::<S<V>>(2), gamma::<S<V>>(6), r(enter));
+    let mut on_face = false;
+    for j in 0..3 {
+        let b = &g2 * abs(&o[j]) + &g6 * &e * abs(&d[j]);
+        prop_assert!(
+            &lo[j] - &b <= p[j] && p[j] <= &hi[j] + &b,
+            "entry point outside the box on axis {j}"
+        );
+        on_face |= abs(&(&p[j] - &lo[j])) <= b || abs(&(&p[j] - &hi[j])) <= b;
+    }
+    prop_assert!(on_face, "entry point on no face");
+    Ok(())
+}
+
+// ------------------------------------------------------------- triangles
+
+/// `(|o_j| + ...)`-style rational helpers for the triangle point check.
+fn check_triangle<V: Vector>(
+    tri: Triangle<V>,
+    ray: Ray<V>,
+    t_max: S<V>,
+) -> Result<(), TestCaseError> {
+    let zero = S::<V>::ZERO;
+    let one = S::<V>::ONE;
+    let wt = ray_triangle(&ray, &tri, t_max);
+    let mt = ray_triangle_mt(&ray, &tri, t_max);
+    for (name, hit) in [("watertight", wt), ("mt", mt)] {
+        if let Some(h) = hit {
+            prop_assert!(
+                h.t > zero && h.t <= t_max && h.t.is_finite(),
+                "{name}: t = {:?}",
+                h.t
+            );
+            prop_assert!(
+                zero <= h.u && h.u <= one && zero <= h.v && h.v <= one,
+                "{name}: barycentrics {:?}",
+                (h.u, h.v)
+            );
+        }
+    }
+    let exact = support::triangle(&ray, &tri);
+    if let Some(h) = wt {
+        let err = ray_triangle_error_bounds(&ray, &tri, &h);
+        let t_exact = exact
+            .t
+            .as_ref()
+            .expect("a hit on a triangle the ray is parallel to");
+        let (u_exact, v_exact) = exact.uv.as_ref().expect("parallel");
+        prop_assert!(
+            support::close(h.t, t_exact, err.t),
+            "t {:?} exact {} bound {:?}",
+            h.t,
+            support::to_f64(t_exact),
+            err.t
+        );
+        prop_assert!(
+            support::close(h.u, u_exact, err.u),
+            "u {:?} exact {} bound {:?}",
+            h.u,
+            support::to_f64(u_exact),
+            err.u
+        );
+        prop_assert!(
+            support::close(h.v, v_exact, err.v),
+            "v {:?} exact {} bound {:?}",
+            h.v,
+            support::to_f64(v_exact),
+            err.v
+        );
+
+        // The barycentric point equals ray.at(t) within the bound: both are
+        // within their errors of the exact crossing p*. Exactly from the
+        // reported u, v: |p_bary_j - p*_j| <= err_u |b_j - a_j| + err_v |c_j - a_j|.
+        // ray.at(t) adds |t - t*| |d_j| and its own two roundings,
+        // gamma(2) (|o_j| + |t d_j|).
+        let (a, b, c) = (rv(tri.a), rv(tri.b), rv(tri.c));
+        let (o, d, p) = (rv(ray.origin), rv(ray.dir), rv(ray.at(h.t)));
+        let (u, v, t) = (r(h.u), r(h.v), r(h.t));
+        let g2 = gamma::<S<V>>(2);
+        for j in 0..3 {
+            let bary = &a[j] + &u * (&b[j] - &a[j]) + &v * (&c[j] - &a[j]);
+            let bound = r(err.u) * abs(&(&b[j] - &a[j]))
+                + r(err.v) * abs(&(&c[j] - &a[j]))
+                + r(err.t) * abs(&d[j])
+                + &g2 * (abs(&o[j]) + &t * abs(&d[j]));
+            prop_assert!(
+                abs(&(&bary - &p[j])) <= bound,
+                "barycentric point and ray.at(t) differ on axis {j}"
+            );
+        }
+
+        // Side: the sign of dir . normal, exactly.
+        let n = support::cross(&support::sub(&b, &a), &support::sub(&c, &a));
+        let dn = support::dot(&d, &n);
+        let side = if dn < R::from_integer(0.into()) {
+            Side::Front
+        } else {
+            Side::Back
+        };
+        prop_assert_eq!(h.side, side);
+    }
+
+    // Outside the rounding band, the watertight test agrees with exact
+    // arithmetic, and Moller-Trumbore agrees with both. The band is the
+    // error bound of the barycentrics (the same bound the hit reports),
+    // evaluated at the exact crossing; the edge weight w = 1 - u - v gets
+    // err_u + err_v. For MT, a separate bound (below) is added.
+    if let (Some(te), Some((ue, ve))) = (&exact.t, &exact.uv) {
+        let as_s = |x: &R| S::<V>::from_f64(support::to_f64(x));
+        let probe = rayhit::TriangleHit {
+            t: as_s(te),
+            u: as_s(ue),
+            v: as_s(ve),
+            side: Side::Front,
+        };
+        let err = ray_triangle_error_bounds(&ray, &tri, &probe);
+        let mte = mt_bounds(&ray, &tri, ue, ve);
+        if err.u.is_finite() && err.v.is_finite() && err.t.is_finite() {
+            let (eu, ev, et) = (r(err.u) + &mte.0, r(err.v) + &mte.1, r(err.t) + &mte.2);
+            let we = &eu + &ev;
+            let w = R::from_integer(1.into()) - ue - ve;
+            let inside = ue > &eu && ve > &ev && w > we;
+            let outside = ue < &-eu.clone() || ve < &-ev.clone() || w < -we;
+            let limit = support::limit(t_max);
+            let t_clear =
+                te > &et && limit.as_ref().is_none_or(|m| &(m - te) > &et) || te < &-et.clone();
+            if (inside || outside) && t_clear {
+                let expect = inside && te > &R::from_integer(0.into());
+                let expect = expect && limit.as_ref().is_none_or(|m| te <= m);
+                prop_assert_eq!(
+                    wt.is_some(),
+                    expect,
+                    "watertight disagrees with exact arithmetic away from edges"
+                );
+                prop_assert_eq!(
+                    mt.is_some(),
+                    expect,
+                    "Moller-Trumbore disagrees away from edges"
+                );
+                if let (Some(a), Some(b)) = (wt, mt) {
+                    prop_assert_eq!(a.side, b.side);
+                }
+            }
+        }
+    }
+    Ok(())
+}
+
+/// Error bounds of Moller-Trumbore's `u`, `v` and `t`, for the agreement band.
+///
+/// MT computes `u = (s . p)/det`, `v = (d . q)/det`, `t = (e2 . q)/det` with
+/// `s = o - a`, `p = d x e2`, `q = s x e1`, `e1 = b - a`, `e2 = c - a`. Each
+/// numerator and `det` is a sum of triple products whose monomials carry at
+/// most 7 roundings (two subtractions, a product, a difference, a product,
+/// two sums), so each is within `gamma(7)` times the sum of the monomials'
+/// magnitudes `M`. A quotient `N/D` computed as `fl(N) fl(1/det)` is then
+/// within `(dN + |q| dD)/(|D| - dD) + gamma(2)|q|`, which is what this
+/// returns (with `q` the exact quotient), or a huge value when `dD >= |D|`.
+fn mt_bounds<V: Vector>(ray: &Ray<V>, tri: &Triangle<V>, u: &R, v: &R) -> (R, R, R) {
+    let (o, d) = (rv(ray.origin), rv(ray.dir));
+    let (a, b, c) = (rv(tri.a), rv(tri.b), rv(tri.c));
+    let (e1, e2, s) = (
+        support::sub(&b, &a),
+        support::sub(&c, &a),
+        support::sub(&o, &a),
+    );
+    let mag = |x: &[R; 3], y: &[R; 3], z: &[R; 3]| -> R {
+        // sum_i |x_i| (|y_j z_k| + |y_k z_j|): the monomials of x . (y x z).
+        (0..3)
+            .map(|i| {
+                let (j, k) = ((i + 1) % 3, (i + 2) % 3);
+                abs(&x[i]) * (abs(&(&y[j] * &z[k])) + abs(&(&y[k] * &z[j])))
+            })
+            .sum()
+    };
+    let g7 = gamma::<S<V>>(7);
+    let det = support::dot(&e1, &support::cross(&d, &e2));
+    let d_det = &g7 * mag(&e1, &d, &e2);
+    let big = R::from_integer(num_bigint::BigInt::from(1u64 << 62));
+    if abs(&det) <= d_det {
+        return (big.clone(), big.clone(), big);
+    }
+    let q = support::cross(&s, &e1);
+    let t = support::dot(&e2, &q) / &det;
+    let g2 = gamma::<S<V>>(2);
+    let quotient = |dn: R, q: &R| (dn + abs(q) * &d_det) / (abs(&det) - &d_det) + &g2 * abs(q);
+    (
+        quotient(&g7 * mag(&s, &d, &e2), u),
+        quotient(&g7 * mag(&d, &s, &e1), v),
+        quotient(&g7 * mag(&e2, &s, &e1), &t),
+    )
+}
+
+// ------------------------------------------------------- metamorphic
+
+/// Scaling `dir` by `2^k` scales every `t` by `2^-k` exactly and changes
+/// nothing else: every kernel uses `dir` only through quantities that scale
+/// exactly (within the ranges the strategies draw, nothing under- or
+/// overflows).
+fn check_direction_scaling<V: Vector>(
+    aabb: Aabb<V>,
+    tri: Triangle<V>,
+    plane: Plane<V>,
+    ray: Ray<V>,
+    k: i32,
+) -> Result<(), TestCaseError> {
+    let s = S::<V>::from_f64(2f64.powi(k));
+    let scaled = Ray::new(ray.origin, ray.dir * s);
+    let inf = S::<V>::INFINITY;
+    let div = |t: S<V>| t / s;
+    prop_assert_eq!(
+        ray_aabb(&scaled, &aabb, inf),
+        ray_aabb(&ray, &aabb, inf).map(|(e, x)| (div(e), div(x)))
+    );
+    prop_assert_eq!(
+        ray_aabb_naive(&scaled, &aabb, inf),
+        ray_aabb_naive(&ray, &aabb, inf).map(|(e, x)| (div(e), div(x)))
+    );
+    prop_assert_eq!(
+        ray_plane(&scaled, &plane, inf),
+        ray_plane(&ray, &plane, inf).map(div)
+    );
+    for kernel in [
+        ray_triangle::<V>,
+        ray_triangle_mt::<V>,
+        rayhit::ray_triangle_one_hit::<V>,
+    ] {
+        let a = kernel(&scaled, &tri, inf);
+        let b = kernel(&ray, &tri, inf).map(|h| rayhit::TriangleHit { t: div(h.t), ..h });
+        prop_assert_eq!(a, b);
+    }
+    Ok(())
+}
+
+/// Mirroring an axis (negating one coordinate of every input) gives the same
+/// answers bit for bit: negation is exact and every rounding is symmetric.
+/// The box's min and max swap on that axis; a triangle's side flips (the
+/// mirror reverses orientation). The one-hit variant is left out: its
+/// tie-break is deliberately not mirror-symmetric.
+fn check_mirror<V: Vector>(
+    aabb: Aabb<V>,
+    tri: Triangle<V>,
+    plane: Plane<V>,
+    ray: Ray<V>,
+    axis: usize,
+) -> Result<(), TestCaseError> {
+    let m = |v: V| {
+        let mut c = [v.x(), v.y(), v.z()];
+        c[axis] = -c[axis];
+        V::new(c[0], c[1], c[2])
+    };
+    let mray = Ray::new(m(ray.origin), m(ray.dir));
+    let (mut lo, mut hi) = (m(aabb.min), m(aabb.max));
+    let (mut l, mut h) = ([lo.x(), lo.y(), lo.z()], [hi.x(), hi.y(), hi.z()]);
+    core::mem::swap(&mut l[axis], &mut h[axis]);
+    (lo, hi) = (V::new(l[0], l[1], l[2]), V::new(h[0], h[1], h[2]));
+    let inf = S::<V>::INFINITY;
+    prop_assert_eq!(
+        ray_aabb(&mray, &Aabb::new(lo, hi), inf),
+        ray_aabb(&ray, &aabb, inf)
+    );
+    prop_assert_eq!(
+        ray_aabb_naive(&mray, &Aabb::new(lo, hi), inf),
+        ray_aabb_naive(&ray, &aabb, inf)
+    );
+    prop_assert_eq!(
+        ray_plane(&mray, &Plane::new(m(plane.point), m(plane.normal)), inf),
+        ray_plane(&ray, &plane, inf)
+    );
+    let mtri = Triangle::new(m(tri.a), m(tri.b), m(tri.c));
+    for kernel in [ray_triangle::<V>, ray_triangle_mt::<V>] {
+        let flip = |h: rayhit::TriangleHit<S<V>>| rayhit::TriangleHit {
+            side: if h.side == Side::Front {
+                Side::Back
+            } else {
+                Side::Front
+            },
+            ..h
+        };
+        prop_assert_eq!(kernel(&mray, &mtri, inf), kernel(&ray, &tri, inf).map(flip));
+    }
+    Ok(())
+}
+
+/// Reversing the winding: the watertight decision uses only the exact signs
+/// of the edge functions, which all flip, so hit or miss is unchanged (up to
+/// the t tests, which compare a sum evaluated in another order: excluded
+/// within the t bound of 0); u and v swap and the side flips, each value
+/// within its error bound of the exact one.
+fn check_winding<V: Vector>(tri: Triangle<V>, ray: Ray<V>) -> Result<(), TestCaseError> {
+    let inf = S::<V>::INFINITY;
+    let a = ray_triangle(&ray, &tri, inf);
+    let b = ray_triangle(&ray, &tri.flipped(), inf);
+    match (a, b) {
+        (Some(a), Some(b)) => {
+            prop_assert_ne!(a.side, b.side);
+            let ea = ray_triangle_error_bounds(&ray, &tri, &a);
+            prop_assert!((a.t - b.t).abs() <= ea.t + ea.t, "t moved beyond its bound");
+            prop_assert!((a.u - b.v).abs() <= ea.u + ea.u && (a.v - b.u).abs() <= ea.v + ea.v);
+        }
+        (None, None) => {}
+        (Some(h), None) | (None, Some(h)) => {
+            // Only the conservative t > 0 test may differ.
+            let err = ray_triangle_error_bounds(&ray, &tri, &h);
+            prop_assert!(
+                h.t <= err.t + err.t,
+                "winding changed the answer away from t = 0"
+            );
+        }
+    }
+    Ok(())
+}
+
+/// Translating ray and shapes by the same vector: exact when every
+/// coordinate lies on a grid coarse enough that the sums are exact, so the
+/// answers must not change at all. Inputs are snapped to multiples of
+/// `2^-8` within `[-2^8, 2^8]` and translated by multiples of `2^-4` within
+/// `[-2^10, 2^10]`: every sum needs at most 8 + 11 = 19 bits, which `f32`
+/// holds exactly.
+fn check_translation<V: Vector>(
+    aabb: Aabb<V>,
+    tri: Triangle<V>,
+    ray: Ray<V>,
+    shift: [i32; 3],
+) -> Result<(), TestCaseError> {
+    let snap = |v: V| {
+        let g = |x: S<V>| S::<V>::from_f64((x.to_f64() * 256.0).round() / 256.0);
+        V::new(g(v.x()), g(v.y()), g(v.z()))
+    };
+    let t = V::new(
+        S::<V>::from_f64(f64::from(shift[0]) / 16.0),
+        S::<V>::from_f64(f64::from(shift[1]) / 16.0),
+        S::<V>::from_f64(f64::from(shift[2]) / 16.0),
+    );
+    let ray = Ray::new(snap(ray.origin), snap(ray.dir));
+    if !ray.is_valid() {
+        return Ok(());
+    }
+    let moved = Ray::new(ray.origin + t, ray.dir);
+    let (lo, hi) = (snap(aabb.min), snap(aabb.max));
+    let tri = Triangle::new(snap(tri.a), snap(tri.b), snap(tri.c));
+    let inf = S::<V>::INFINITY;
+    prop_assert_eq!(
+        ray_aabb(&moved, &Aabb::new(lo + t, hi + t), inf),
+        ray_aabb(&ray, &Aabb::new(lo, hi), inf)
+    );
+    let mtri = Triangle::new(tri.a + t, tri.b + t, tri.c + t);
+    for kernel in [
+        ray_triangle::<V>,
+        ray_triangle_mt::<V>,
+        rayhit::ray_triangle_one_hit::<V>,
+    ] {
+        prop_assert_eq!(kernel(&moved, &mtri, inf), kernel(&ray, &tri, inf));
+    }
+    Ok(())
+}
+
+proptest! {
+    #![proptest_config(config())]
+
+    #[test]
+    fn plane_f32((plane, ray) in strat::plane_and_ray::<Vec3>(), t_max in strat::t_max::<Vec3>()) {
+        check_plane(plane, ray, t_max)?;
+    }
+
+    #[test]
+    fn plane_f64((plane, ray) in strat::plane_and_ray::<DVec3>(), t_max in strat::t_max::<DVec3>()) {
+        check_plane(plane, ray, t_max)?;
+    }
+
+    #[test]
+    fn box_f32((aabb, ray) in strat::aabb_and_ray::<Vec3>(), t_max in strat::t_max::<Vec3>()) {
+        check_box(aabb, ray, t_max)?;
+    }
+
+    #[test]
+    fn box_f64((aabb, ray) in strat::aabb_and_ray::<DVec3>(), t_max in strat::t_max::<DVec3>()) {
+        check_box(aabb, ray, t_max)?;
+    }
+
+    #[test]
+    fn triangle_f32((tri, ray) in strat::triangle_and_ray::<Vec3>(), t_max in strat::t_max::<Vec3>()) {
+        check_triangle(tri, ray, t_max)?;
+    }
+
+    #[test]
+    fn triangle_f64((tri, ray) in strat::triangle_and_ray::<DVec3>(), t_max in strat::t_max::<DVec3>()) {
+        check_triangle(tri, ray, t_max)?;
+    }
+
+    #[test]
+    fn direction_scaling_f32(aabb in strat::aabb::<Vec3>(), (tri, ray) in strat::triangle_and_ray::<Vec3>(), plane in strat::plane::<Vec3>(), k in -8i32..=8) {
+        check_direction_scaling(aabb, tri, plane, ray, k)?;
+    }
+
+    #[test]
+    fn direction_scaling_f64(aabb in strat::aabb::<DVec3>(), (tri, ray) in strat::triangle_and_ray::<DVec3>(), plane in strat::plane::<DVec3>(), k in -8i32..=8) {
+        check_direction_scaling(aabb, tri, plane, ray, k)?;
+    }
+
+    #[test]
+    fn mirror_f32((aabb, ray) in strat::aabb_and_ray::<Vec3>(), tri in strat::triangle::<Vec3>(), plane in strat::plane::<Vec3>(), axis in 0..3usize) {
+        check_mirror(aabb, tri, plane, ray, axis)?;
+    }
+
+    #[test]
+    fn mirror_f64((aabb, ray) in strat::aabb_and_ray::<DVec3>(), tri in strat::triangle::<DVec3>(), plane in strat::plane::<DVec3>(), axis in 0..3usize) {
+        check_mirror(aabb, tri, plane, ray, axis)?;
+    }
+
+    #[test]
+    fn mirror_triangle_f32((tri, ray) in strat::triangle_and_ray::<Vec3>(), aabb in strat::aabb::<Vec3>(), plane in strat::plane::<Vec3>(), axis in 0..3usize) {
+        check_mirror(aabb, tri, plane, ray, axis)?;
+    }
+
+    #[test]
+    fn winding_f32((tri, ray) in strat::triangle_and_ray::<Vec3>()) {
+        check_winding(tri, ray)?;
+    }
+
+    #[test]
+    fn winding_f64((tri, ray) in strat::triangle_and_ray::<DVec3>()) {
+        check_winding(tri, ray)?;
+    }
+
+    #[test]
+    fn translation_f32((tri, ray) in strat::triangle_and_ray::<Vec3>(), aabb in strat::aabb::<Vec3>(), shift in prop::array::uniform3(-16384i32..=16384)) {
+        check_translation(aabb, tri, ray, shift)?;
+    }
+
+    #[test]
+    fn translation_f64((tri, ray) in strat::triangle_and_ray::<DVec3>(), aabb in strat::aabb::<DVec3>(), shift in prop::array::uniform3(-16384i32..=16384)) {
+        check_translation(aabb, tri, ray, shift)?;
+    }
+}
