@@ -6,6 +6,7 @@
 
 mod support;
 
+use num_traits::Signed as _;
 use proptest::prelude::*;
 use rayhit::glam::{DVec3, Vec3};
 use rayhit::strategies as strat;
@@ -229,12 +230,14 @@ fn entry_point_on_surface<V: Vector>(
 
 // ------------------------------------------------------------- triangles
 
-/// `(|o_j| + ...)`-style rational helpers for the triangle point check.
+/// Checks the triangle kernels against the oracle. Returns whether the
+/// watertight test hit with unbounded error bounds (a sliver seen nearly
+/// edge-on from afar; see `ray_triangle_error_bounds`), for the rate test.
 fn check_triangle<V: Vector>(
     tri: Triangle<V>,
     ray: Ray<V>,
     t_max: S<V>,
-) -> Result<(), TestCaseError> {
+) -> Result<bool, TestCaseError> {
     let zero = S::<V>::ZERO;
     let one = S::<V>::ONE;
     let wt = ray_triangle(&ray, &tri, t_max);
@@ -254,29 +257,31 @@ fn check_triangle<V: Vector>(
         }
     }
     let exact = support::triangle(&ray, &tri);
+    let mut unbounded = false;
     if let Some(h) = wt {
         let err = ray_triangle_error_bounds(&ray, &tri, &h);
+        unbounded = !err.t.is_finite();
         let t_exact = exact
             .t
             .as_ref()
             .expect("a hit on a triangle the ray is parallel to");
         let (u_exact, v_exact) = exact.uv.as_ref().expect("parallel");
         prop_assert!(
-            support::close(h.t, t_exact, err.t),
+            unbounded || support::close(h.t, t_exact, err.t),
             "t {:?} exact {} bound {:?}",
             h.t,
             support::to_f64(t_exact),
             err.t
         );
         prop_assert!(
-            support::close(h.u, u_exact, err.u),
+            unbounded || support::close(h.u, u_exact, err.u),
             "u {:?} exact {} bound {:?}",
             h.u,
             support::to_f64(u_exact),
             err.u
         );
         prop_assert!(
-            support::close(h.v, v_exact, err.v),
+            unbounded || support::close(h.v, v_exact, err.v),
             "v {:?} exact {} bound {:?}",
             h.v,
             support::to_f64(v_exact),
@@ -289,19 +294,22 @@ fn check_triangle<V: Vector>(
         // ray.at(t) adds |t - t*| |d_j| and its own two roundings,
         // gamma(2) (|o_j| + |t d_j|).
         let (a, b, c) = (rv(tri.a), rv(tri.b), rv(tri.c));
-        let (o, d, p) = (rv(ray.origin), rv(ray.dir), rv(ray.at(h.t)));
-        let (u, v, t) = (r(h.u), r(h.v), r(h.t));
-        let g2 = gamma::<S<V>>(2);
-        for j in 0..3 {
-            let bary = &a[j] + &u * (&b[j] - &a[j]) + &v * (&c[j] - &a[j]);
-            let bound = r(err.u) * abs(&(&b[j] - &a[j]))
-                + r(err.v) * abs(&(&c[j] - &a[j]))
-                + r(err.t) * abs(&d[j])
-                + &g2 * (abs(&o[j]) + &t * abs(&d[j]));
-            prop_assert!(
-                abs(&(&bary - &p[j])) <= bound,
-                "barycentric point and ray.at(t) differ on axis {j}"
-            );
+        let d = rv(ray.dir);
+        if !unbounded {
+            let (o, p) = (rv(ray.origin), rv(ray.at(h.t)));
+            let (u, v, t) = (r(h.u), r(h.v), r(h.t));
+            let g2 = gamma::<S<V>>(2);
+            for j in 0..3 {
+                let bary = &a[j] + &u * (&b[j] - &a[j]) + &v * (&c[j] - &a[j]);
+                let bound = r(err.u) * abs(&(&b[j] - &a[j]))
+                    + r(err.v) * abs(&(&c[j] - &a[j]))
+                    + r(err.t) * abs(&d[j])
+                    + &g2 * (abs(&o[j]) + &t * abs(&d[j]));
+                prop_assert!(
+                    abs(&(&bary - &p[j])) <= bound,
+                    "barycentric point and ray.at(t) differ on axis {j}"
+                );
+            }
         }
 
         // Side: the sign of dir . normal, exactly.
@@ -338,7 +346,7 @@ fn check_triangle<V: Vector>(
             let outside = ue < &-eu.clone() || ve < &-ev.clone() || w < -we;
             let limit = support::limit(t_max);
             let t_clear =
-                te > &et && limit.as_ref().is_none_or(|m| &(m - te) > &et) || te < &-et.clone();
+                te > &et && limit.as_ref().is_none_or(|m| (m - te) > et) || te < &-et.clone();
             if (inside || outside) && t_clear {
                 let expect = inside && te > &R::from_integer(0.into());
                 let expect = expect && limit.as_ref().is_none_or(|m| te <= m);
@@ -358,7 +366,47 @@ fn check_triangle<V: Vector>(
             }
         }
     }
-    Ok(())
+    Ok(unbounded)
+}
+
+/// Unbounded hits must be rare: they are the price of a sliver seen nearly
+/// edge-on from far away, not of ordinary hits. On the strategy's mix (one
+/// triangle in eight a sliver) fewer than 1 hit in 200 may be unbounded.
+fn unbounded_rate<V: Vector>() -> Result<(), String> {
+    use proptest::test_runner::TestRunner;
+    use std::cell::Cell;
+    let (hits, unbounded) = (Cell::new(0u32), Cell::new(0u32));
+    let mut runner = TestRunner::new(config());
+    runner
+        .run(
+            &(strat::triangle_and_ray::<V>(), strat::t_max::<V>()),
+            |((tri, ray), t_max)| {
+                if ray_triangle(&ray, &tri, t_max).is_some() {
+                    hits.set(hits.get() + 1);
+                }
+                if check_triangle(tri, ray, t_max)? {
+                    unbounded.set(unbounded.get() + 1);
+                }
+                Ok(())
+            },
+        )
+        .map_err(|e| e.to_string())?;
+    let (h, n) = (hits.get(), unbounded.get());
+    if n * 200 < h.max(1) || n == 0 {
+        Ok(())
+    } else {
+        Err(format!("{n} of {h} hits have unbounded errors"))
+    }
+}
+
+#[test]
+fn unbounded_hits_are_rare_f32() {
+    unbounded_rate::<Vec3>().unwrap();
+}
+
+#[test]
+fn unbounded_hits_are_rare_f64() {
+    unbounded_rate::<DVec3>().unwrap();
 }
 
 /// Error bounds of Moller-Trumbore's `u`, `v` and `t`, for the agreement band.
