@@ -6,7 +6,6 @@
 
 mod support;
 
-use num_traits::Signed as _;
 use proptest::prelude::*;
 use rayhit::glam::{DVec3, Vec3};
 use rayhit::strategies as strat;
