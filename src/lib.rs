@@ -102,10 +102,10 @@ mod triangle;
 
 pub use aabb::{Aabb, PreparedRay, ray_aabb, ray_aabb_naive, ray_aabb_prepared};
 pub use camera::{CameraError, PinholeCamera};
-pub use plane::{Plane, ray_plane, ray_plane_t_error};
-pub use ray::Ray;
+pub use plane::{Plane, ray_plane, ray_plane_hit_point, ray_plane_t_error};
+pub use ray::{Ray, offset_ray_origin};
 pub use real::{Scalar, Vector};
 pub use triangle::{
     Side, Triangle, TriangleHit, TriangleHitError, ray_triangle, ray_triangle_error_bounds,
-    ray_triangle_mt, ray_triangle_one_hit,
+    ray_triangle_mt, ray_triangle_one_hit, triangle_hit_point,
 };

@@ -142,3 +142,32 @@ pub fn ray_plane_t_error<V: Vector>(ray: &Ray<V>, plane: &Plane<V>, t: S<V>) -> 
     let r = (a + t * b) / denom + S::<V>::gamma_n(1) * t;
     bound_up(r * (S::<V>::ONE + S::<V>::TWO * x), 9)
 }
+
+/// The hit point `ray.at(t)` for a `t` from [`ray_plane`], and a
+/// per-component bound on its distance from the exact crossing (which lies
+/// on the plane): `|p_j - p*_j| <= |t - t*| |d_j| + gamma(2) (|o_j| + |t d_j|)`,
+/// the first term from [`ray_plane_t_error`], the second from the two
+/// roundings of `o + t d`. Feed both to
+/// [`offset_ray_origin`](crate::offset_ray_origin) to spawn a ray from the
+/// plane (the plane's normal is exact: pass a zero normal error).
+///
+/// ```
+/// use rayhit::{Plane, Ray, ray_plane, ray_plane_hit_point, glam::Vec3};
+/// let plane = Plane::new(Vec3::new(0.0, 0.0, 2.0), Vec3::Z);
+/// let ray = Ray::new(Vec3::ZERO, Vec3::new(0.25, 0.5, 1.0));
+/// let t = ray_plane(&ray, &plane, f32::INFINITY).unwrap();
+/// let (p, err) = ray_plane_hit_point(&ray, &plane, t);
+/// assert_eq!(p, Vec3::new(0.5, 1.0, 2.0));
+/// assert!(err.z < 16.0 * f32::EPSILON); // a few ulps of z = 2
+/// ```
+#[must_use]
+pub fn ray_plane_hit_point<V: Vector>(ray: &Ray<V>, plane: &Plane<V>, t: S<V>) -> (V, V) {
+    let p = ray.at(t);
+    let err_t = ray_plane_t_error(ray, plane, t);
+    let g2 = S::<V>::gamma_n(2);
+    let d = ray.dir.abs();
+    let td = d * t.abs();
+    // At most 3 roundings along any path (product, sum, product).
+    let e = |j: usize| bound_up(err_t * d[j] + g2 * (ray.origin[j].abs() + td[j]), 3);
+    (p, V::new(e(0), e(1), e(2)))
+}

@@ -59,3 +59,109 @@ impl<V: Vector> Ray<V> {
 pub(crate) fn t_max_ok<F: Scalar>(t_max: F) -> bool {
     t_max >= F::ZERO
 }
+
+/// Moves a point computed on a surface to where a ray leaving it along `dir`
+/// cannot meet that surface again: the origin for a shadow or bounce ray.
+///
+/// Inputs: the computed `point` and a per-component bound `point_error`
+/// such that some point `q` of the exact surface has
+/// `|point_i - q_i| <= point_error_i`; the surface's `normal` (any length)
+/// and a per-component bound `normal_error` on its difference from the
+/// exact plane's normal `N` (zero when the normal is exact, as for a
+/// [`Plane`](crate::Plane)); and the new ray's `dir`. The functions
+/// [`ray_plane_hit_point`](crate::ray_plane_hit_point),
+/// [`triangle_hit_point`](crate::triangle_hit_point) and
+/// [`Triangle::normal_with_error`](crate::Triangle::normal_with_error) give
+/// these.
+///
+/// Returns `point + s * lambda * normal`, each component rounded away from
+/// `point`, with `s` the sign of `dir . normal`. Guarantee: the returned
+/// origin lies strictly on the side of the exact plane (through `q`, normal
+/// `N`) that `dir` points into, so the new ray's exact crossing with that
+/// plane is behind it (`t < 0`), and the watertight test, which decides
+/// `t > 0` conservatively, does not report it.
+///
+/// Derivation: `|(point - q) . N| <= A = sum point_error_i (|n_i| + eta_i)`.
+/// Moving by `lambda * n` changes `(x - q) . N` by `lambda n . N >=
+/// lambda (|n|^2 - sum |n_i| eta_i)`; rounding each moved component away
+/// from `point` adds, in the components whose sign agrees with `N_i`, only
+/// more, and in the others (where `|n_i| <= eta_i`) takes back at most two
+/// ulps of `|point_i| + lambda |n_i|`, below `4u` of it. So
+/// `lambda = (A + 4u sum |point_i| eta_i) / (|n|^2 - (1 + 4u) sum |n_i| eta_i)`
+/// suffices; it is evaluated with outward rounding, and pbrt-v4's
+/// `OffsetRayOrigin` (the same idea with an exact normal) is the special case
+/// `eta = 0`.
+///
+/// Preconditions: `dir` is not within rounding of parallel to the surface
+/// (`|dir . normal| > sum |dir_i| eta_i`, so that `s` is the side exact
+/// arithmetic would pick), and the normal is known well enough that the
+/// denominator above is positive. Otherwise, and for non-finite input, the
+/// point is returned unchanged. Never panics.
+///
+/// ```
+/// use rayhit::{Plane, Ray, offset_ray_origin, ray_plane, ray_plane_hit_point, glam::Vec3};
+/// let floor = Plane::new(Vec3::ZERO, Vec3::Y);
+/// let ray = Ray::new(Vec3::new(0.1, 3.0, 0.2), Vec3::new(0.3, -1.0, 0.7));
+/// let t = ray_plane(&ray, &floor, f32::INFINITY).unwrap();
+/// let (p, err) = ray_plane_hit_point(&ray, &floor, t);
+/// // Bounce up and away: the new origin is strictly above the floor.
+/// let bounce = Vec3::new(0.3, 1.0, 0.7);
+/// let origin = offset_ray_origin(p, err, floor.normal, Vec3::ZERO, bounce);
+/// assert!(origin.y > 0.0);
+/// assert_eq!(ray_plane(&Ray::new(origin, bounce), &floor, f32::INFINITY), None);
+/// ```
+#[must_use]
+pub fn offset_ray_origin<V: Vector>(
+    point: V,
+    point_error: V,
+    normal: V,
+    normal_error: V,
+    dir: V,
+) -> V {
+    use crate::real::outward::{add_down, add_up, div_up, mul_down, mul_up, sub_down};
+    let all_finite = point.is_finite()
+        && point_error.is_finite()
+        && normal.is_finite()
+        && normal_error.is_finite()
+        && dir.is_finite();
+    if !all_finite {
+        return point;
+    }
+    let zero = S::<V>::ZERO;
+    let (n, eta) = (normal.abs(), normal_error.abs());
+    let four_u = S::<V>::from_u32(4) * S::<V>::UNIT_ROUNDOFF;
+    let mut a = zero; // sum point_error_i (|n_i| + eta_i)
+    let mut slack = zero; // 4u sum |point_i| eta_i
+    let mut n2 = zero; // |n|^2, rounded down
+    let mut cross = zero; // sum |n_i| eta_i, rounded up
+    for i in 0..3 {
+        a = add_up(a, mul_up(point_error[i].abs(), add_up(n[i], eta[i])));
+        slack = add_up(slack, mul_up(four_u, mul_up(point[i].abs(), eta[i])));
+        n2 = add_down(n2, mul_down(n[i], n[i]));
+        cross = add_up(cross, mul_up(n[i], eta[i]));
+    }
+    let denom = sub_down(n2, mul_up(add_up(S::<V>::ONE, four_u), cross));
+    if !(denom > zero) {
+        return point;
+    }
+    let lambda = div_up(add_up(a, slack), denom);
+    let side = if dir.dot(normal) < zero {
+        -S::<V>::ONE
+    } else {
+        S::<V>::ONE
+    };
+    let step = lambda * side;
+    let moved = |i: usize| {
+        let off = step * normal[i];
+        let p = point[i] + off;
+        // Round away from the point so the move is at least `off`.
+        if off > zero {
+            p.next_up()
+        } else if off < zero {
+            p.next_down()
+        } else {
+            point[i]
+        }
+    };
+    V::new(moved(0), moved(1), moved(2))
+}

@@ -404,6 +404,11 @@ pub(crate) mod outward {
     pub(crate) fn add_up<F: Scalar>(a: F, b: F) -> F {
         (a + b).next_up()
     }
+    /// At most `a + b`.
+    #[inline(always)]
+    pub(crate) fn add_down<F: Scalar>(a: F, b: F) -> F {
+        (a + b).next_down()
+    }
     /// At most `a - b`.
     #[inline(always)]
     pub(crate) fn sub_down<F: Scalar>(a: F, b: F) -> F {

@@ -46,6 +46,31 @@ impl<V: Vector> Triangle<V> {
         (self.b - self.a).cross(self.c - self.a)
     }
 
+    /// The geometric normal [`Triangle::normal`] and a per-component bound on
+    /// its difference from the exact `(b - a) x (c - a)`.
+    ///
+    /// Each monomial `e1_j e2_k` of a component carries four roundings (two
+    /// edge subtractions, the product, the difference), so the error is at
+    /// most `gamma(4) (|e1_j e2_k| + |e1_k e2_j|)`, and `gamma(6)` with the
+    /// computed edges; evaluating that adds three roundings. For a sliver
+    /// triangle the bound can be as large as the normal itself: its
+    /// direction is then not known, and [`offset_ray_origin`](crate::offset_ray_origin)
+    /// offsets accordingly.
+    #[inline]
+    #[must_use]
+    pub fn normal_with_error(&self) -> (V, V) {
+        let (e1, e2) = (self.b - self.a, self.c - self.a);
+        let g6 = S::<V>::gamma_n(6);
+        let m = |j: usize, k: usize| (e1[j] * e2[k]).abs() + (e1[k] * e2[j]).abs();
+        let err = V::new(m(1, 2), m(2, 0), m(0, 1)) * g6;
+        let err = V::new(
+            bound_up(err.x(), 3),
+            bound_up(err.y(), 3),
+            bound_up(err.z(), 3),
+        );
+        (e1.cross(e2), err)
+    }
+
     /// The same triangle with the opposite winding (`a, c, b`): the normal
     /// flips, `u` and `v` swap, and front and back swap.
     #[inline]
@@ -573,6 +598,39 @@ pub fn ray_triangle_one_hit<V: Vector>(
     t_max: S<V>,
 ) -> Option<TriangleHit<S<V>>> {
     watertight(ray, tri, t_max, EdgeRule::OneHit)
+}
+
+/// The point of a hit from its barycentrics, `a + u (b - a) + v (c - a)`,
+/// and a per-component bound on its distance from a point of the exact
+/// triangle's plane.
+///
+/// For any reals `u, v`, `q = a + u (b - a) + v (c - a)` lies exactly in the
+/// plane; the computed point differs from `q` only by rounding: the edges
+/// (one each), the products and the two sums, at most
+/// `gamma(5) (|a_j| + |u e1_j| + |v e2_j|)` with the computed edges, plus
+/// four roundings to evaluate that. This is the error that matters for
+/// spawning a ray off the surface (with [`offset_ray_origin`](crate::offset_ray_origin)
+/// and [`Triangle::normal_with_error`]); where on the triangle the point
+/// lies is the barycentrics' business ([`ray_triangle_error_bounds`]).
+///
+/// ```
+/// use rayhit::{Ray, Triangle, ray_triangle, triangle_hit_point, glam::Vec3};
+/// let tri = Triangle::new(Vec3::ZERO, Vec3::new(4.0, 0.0, 0.0), Vec3::new(0.0, 4.0, 0.0));
+/// let ray = Ray::new(Vec3::new(1.0, 2.0, 5.0), -Vec3::Z);
+/// let hit = ray_triangle(&ray, &tri, f32::INFINITY).unwrap();
+/// let (p, err) = triangle_hit_point(&tri, &hit);
+/// assert_eq!(p, Vec3::new(1.0, 2.0, 0.0));
+/// assert!(err.z == 0.0 && err.x < 1e-5);
+/// ```
+#[must_use]
+pub fn triangle_hit_point<V: Vector>(tri: &Triangle<V>, hit: &TriangleHit<S<V>>) -> (V, V) {
+    let (e1, e2) = (tri.b - tri.a, tri.c - tri.a);
+    let (ue, ve) = (e1 * hit.u, e2 * hit.v);
+    let p = tri.a + (ue + ve);
+    let g5 = S::<V>::gamma_n(5);
+    let err = (tri.a.abs() + ue.abs() + ve.abs()) * g5;
+    let e = |j: usize| bound_up(err[j], 4);
+    (p, V::new(e(0), e(1), e(2)))
 }
 
 /// Bounds on the errors of a watertight hit: `|t - t_exact|`,
