@@ -202,7 +202,10 @@ pub fn ray_aabb_prepared<V: Vector>(
     // Widen the exit by the rounding bound so that no box that exact
     // arithmetic hits is missed (see `exit_widening`).
     let limit = exit * exit_widening::<S<V>>() + exit_slack::<S<V>>();
-    if okx & oky & okz & (enter <= limit) & t_max_ok(t_max) {
+    // `enter` is infinite only for an axis the ray never enters (its
+    // direction component is zero, or so small that every distance
+    // overflows): a miss even when `limit` is infinite too.
+    if okx & oky & okz & (enter <= limit) & (enter < S::<V>::INFINITY) & t_max_ok(t_max) {
         let exit = at_most(limit, t_max);
         Some((at_most(enter, exit), exit))
     } else {
@@ -225,7 +228,9 @@ pub fn ray_aabb_prepared<V: Vector>(
 ///   `-0.0` direction components and components so small that their
 ///   reciprocal overflows. The reported `exit` is at least the exact exit
 ///   (clipped to `t_max`). Precondition: no difference `min - o`, `max - o`
-///   overflows and no exact distance exceeds `MAX / 2`.
+///   overflows, and the exact entry and exit distances are below `MAX / 2`
+///   (with a direction component below `1/MAX`, an entry far beyond the
+///   range can otherwise come out as a hit at a huge finite `t`).
 /// - **False hits only at the boundary.** A `Some` for a box exact
 ///   arithmetic misses means the exact entry exceeds the exact exit (or
 ///   `t_max`) by less than a factor `1 + 16u` plus two subnormals (`u` the

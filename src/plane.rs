@@ -63,15 +63,20 @@ impl<V: Vector> Plane<V> {
 /// Where `ray` crosses `plane`: `Some(t)` with `0 < t <= t_max`, else `None`.
 ///
 /// `t = ((point - origin) . normal) / (dir . normal)`, in units of `ray.dir`.
-/// Returns `None` for a ray parallel to the plane (`dir . normal == 0`, a ray
-/// lying in the plane included), for a crossing at `t <= 0` (the ray's own
-/// starting surface) or beyond `t_max`, for a `t` too large to represent,
-/// and for any NaN or infinite input (then `t` is NaN, infinite or zero and
-/// fails the range test). Never panics; never returns NaN.
+/// Returns `None` for a ray parallel to the plane (a ray lying in the plane
+/// included) and for one within rounding of parallel: `|dir . normal|` not
+/// above twice its own rounding error bound `gamma(3) sum |dir_i normal_i|`
+/// (an angle below about `4e-7` radians in `f32`, `7e-16` in `f64`), where
+/// not even the side the plane is on is certain. Also `None` for a crossing
+/// at `t <= 0` (the ray's own starting surface) or beyond `t_max`, for a `t`
+/// too large to represent, and for any NaN or infinite input (then `t` is
+/// NaN or infinite and fails the range test). Never panics; never returns
+/// NaN.
 ///
 /// Accuracy: `|t - t_exact| <= `[`ray_plane_t_error`]`(ray, plane, t)`, the
-/// bound derived there; away from cancellation (the origin far from the
-/// plane relative to its distance from `point`) that is a few ulps of `t`.
+/// bound derived there, which is finite for every `t` this returns; away
+/// from cancellation (the origin far from the plane relative to its
+/// distance from `point`) it is a few ulps of `t`.
 ///
 /// ```
 /// use rayhit::{Plane, Ray, ray_plane, glam::Vec3};
@@ -88,10 +93,17 @@ impl<V: Vector> Plane<V> {
 #[must_use]
 pub fn ray_plane<V: Vector>(ray: &Ray<V>, plane: &Plane<V>, t_max: S<V>) -> Option<S<V>> {
     let denom = ray.dir.dot(plane.normal);
+    // Parallel within rounding: the computed `dir . normal` is within twice
+    // its own error bound (`gamma(3) sum |d_i n_i|`, see
+    // `ray_plane_t_error`) of zero, so not even its sign is certain.
+    let resolution = S::<V>::TWO * S::<V>::gamma_n(3) * ray.dir.abs().dot(plane.normal.abs());
+    if !(denom.abs() > resolution) {
+        return None;
+    }
     let numer = (plane.point - ray.origin).dot(plane.normal);
     let t = numer / denom;
     // Every comparison is false for NaN; `t` is infinite when the crossing
-    // overflows or an input is infinite, and zero when `denom` is.
+    // overflows or an input is infinite.
     (t > S::<V>::ZERO && t <= t_max && t.is_finite() && t_max_ok(t_max)).then_some(t)
 }
 

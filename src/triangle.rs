@@ -316,15 +316,21 @@ fn watertight<V: Vector>(
     if !(t > zero && t <= t_max && t.is_finite()) {
         return None;
     }
-    // t > 0 decided conservatively, by either of two sufficient tests: the
-    // scaled distance exceeds its rounding error bound (pbrt-v4's test; the
-    // exact numerator then has the sign of det), or, where the determinant is
-    // well conditioned, t exceeds its own error bound (the exact t is then
-    // positive). The first is cheap and settles almost every hit; the second
-    // keeps hits on small triangles far from the origin, for which the first
-    // is too pessimistic.
+    // t > 0 decided conservatively, by any of three sufficient tests, in
+    // order of cost:
+    // - every corner lies in front of the origin in exact arithmetic
+    //   (z_i > dz): any crossing of the triangle is a convex combination of
+    //   them, so it is in front too, however thin the triangle looks from
+    //   the ray (this keeps small triangles far away, where the next two are
+    //   too pessimistic, and a crack would open if they were the only ones);
+    // - the scaled distance exceeds its rounding error bound (pbrt-v4's
+    //   test): the exact numerator has the sign of det;
+    // - where the determinant is well conditioned, t exceeds its own error
+    //   bound: the exact crossing is at t > 0.
     let bounds = ErrorBounds::new(&f, &z, &shear);
-    let sure = t_scaled.abs() > bounds.t_scaled
+    let ahead = z[0] > bounds.z && z[1] > bounds.z && z[2] > bounds.z;
+    let sure = ahead
+        || t_scaled.abs() > bounds.t_scaled
         || HitCondition::new(&bounds, det).is_some_and(|c| t > c.t_error(&bounds, &z, t));
     if !sure {
         return None;
@@ -513,8 +519,12 @@ impl<F: Scalar> HitCondition<F> {
 /// with its sign exact (in `f64` for `f32`).
 ///
 /// Conventions: two-sided (the [`Side`] is reported); `t` in units of
-/// `ray.dir` with `0 < t <= t_max`; barycentrics as in [`TriangleHit`];
-/// the triangle is closed, so a ray through an edge or corner hits.
+/// `ray.dir` with `0 < t <= t_max`; barycentrics as in [`TriangleHit`].
+/// The triangle is closed in the ray's frame: an edge function of exactly
+/// zero counts as inside. (A ray that exact arithmetic puts exactly on the
+/// edge of a lone triangle can still miss it: translating and shearing the
+/// corners rounds them by a few ulps, and the test is exact for the rounded
+/// corners. Where two triangles share the edge, one of them is hit.)
 ///
 /// Guarantees:
 /// - **Watertight.** The signs of the edge functions are exact for the
@@ -524,9 +534,11 @@ impl<F: Scalar> HitCondition<F> {
 ///   (locally a proper surface, seen from one side) hits at least one of the
 ///   triangles around it: no ray leaks through.
 /// - **`t > 0` decided conservatively**: the reported `t` is positive, and
-///   its scaled numerator exceeds its own rounding error bound, so the exact
-///   crossing lies in front of the origin whenever the ray is not within
-///   rounding of parallel to the triangle.
+///   the hit is in front of the origin in exact arithmetic by one of three
+///   tests: all three corners are in front (so is any crossing), or the
+///   scaled numerator exceeds its rounding error bound (pbrt-v4's test), or
+///   `t` exceeds its error bound. A ray spawned from the triangle with
+///   [`offset_ray_origin`](crate::offset_ray_origin) does not hit it again.
 /// - `t`, `u` and `v` are within [`ray_triangle_error_bounds`] of the
 ///   exact crossing.
 /// - Zero-area (in the ray's frame) and non-finite triangles, invalid rays

@@ -119,6 +119,76 @@ pub fn box_raw<V: Vector>(ray: &Ray<V>, b: &Aabb<V>, t_max: V::Scalar) -> Option
     Some((enter, exit.expect("a valid ray moves along some axis")))
 }
 
+/// How far (in space, along one axis) a ray passes from a box that it
+/// misses, or how deep it goes into one it hits, exactly: the gap between
+/// entry and exit in `t` times the speed along the axis that sets the entry
+/// (at the exit time the ray is that far outside along it) or the exit
+/// (likewise at the entry time), whichever is smaller. `t = 0` and `t_max`
+/// count as limits with no axis, and contribute only through the other side.
+/// `None` when an axis the ray does not move along excludes it.
+pub fn box_gap<V: Vector>(ray: &Ray<V>, b: &Aabb<V>, t_max: V::Scalar) -> Option<R> {
+    let (o, d, lo, hi) = (rv(ray.origin), rv(ray.dir), rv(b.min), rv(b.max));
+    let mut enter = (R::zero(), None);
+    let mut exit: (Option<R>, Option<usize>) = (limit(t_max), None);
+    for k in 0..3 {
+        if d[k].is_zero() {
+            if o[k] < lo[k] || o[k] > hi[k] {
+                return None;
+            }
+            continue;
+        }
+        let t0 = (&lo[k] - &o[k]) / &d[k];
+        let t1 = (&hi[k] - &o[k]) / &d[k];
+        let (near, far) = if t0 <= t1 { (t0, t1) } else { (t1, t0) };
+        if near > enter.0 {
+            enter = (near, Some(k));
+        }
+        if exit.0.as_ref().is_none_or(|x| &far < x) {
+            exit = (Some(far), Some(k));
+        }
+    }
+    let gap = (&enter.0 - exit.0.expect("a valid ray moves along some axis")).abs();
+    let speeds: Vec<R> = [enter.1, exit.1]
+        .into_iter()
+        .flatten()
+        .map(|k| d[k].abs())
+        .collect();
+    let speed = speeds.into_iter().min()?;
+    Some(gap * speed)
+}
+
+/// How unambiguous the faces that set the entry and the exit are: the gap
+/// between the exact entry and the next largest lower limit (another axis's
+/// near distance, or 0), and likewise between the exit and the next
+/// smallest upper limit. Near an edge one of them is small and a kernel may
+/// take either face. `None` as for `box_raw`.
+pub fn box_face_margins<V: Vector>(ray: &Ray<V>, b: &Aabb<V>, t_max: V::Scalar) -> Option<(R, R)> {
+    let (o, d, lo, hi) = (rv(ray.origin), rv(ray.dir), rv(b.min), rv(b.max));
+    let mut nears = vec![R::zero()];
+    let mut fars: Vec<R> = limit(t_max).into_iter().collect();
+    for k in 0..3 {
+        if d[k].is_zero() {
+            if o[k] < lo[k] || o[k] > hi[k] {
+                return None;
+            }
+            continue;
+        }
+        let t0 = (&lo[k] - &o[k]) / &d[k];
+        let t1 = (&hi[k] - &o[k]) / &d[k];
+        let (near, far) = if t0 <= t1 { (t0, t1) } else { (t1, t0) };
+        nears.push(near);
+        fars.push(far);
+    }
+    nears.sort();
+    fars.sort();
+    let gap = |v: &[R], i: usize, j: usize| {
+        v.get(j)
+            .map_or_else(|| R::from_integer(1_000_000.into()), |x| (x - &v[i]).abs())
+    };
+    let n = nears.len();
+    Some((gap(&nears, n - 1, n - 2), gap(&fars, 0, 1)))
+}
+
 /// Exact interval `[enter, exit]` of `t` in `[0, t_max]` with the ray inside
 /// the closed box, or `None` when it is empty.
 pub fn box_interval<V: Vector>(ray: &Ray<V>, b: &Aabb<V>, t_max: V::Scalar) -> Option<(R, R)> {
@@ -202,4 +272,81 @@ pub fn dyadic(m: i64, e: i32) -> R {
     } else {
         m / num_traits::pow(two, (-e) as usize)
     }
+}
+
+/// A small PCG-XSH-RR generator (O'Neill, 2014) with a fixed seed, so that
+/// every oracle run sees the same cases.
+#[derive(Clone, Debug)]
+pub struct Pcg32 {
+    state: u64,
+}
+
+impl Pcg32 {
+    const MUL: u64 = 6364136223846793005;
+    const INC: u64 = 1442695040888963407;
+
+    pub fn new(seed: u64) -> Self {
+        let mut rng = Self { state: 0 };
+        rng.next_u32();
+        rng.state = rng.state.wrapping_add(seed);
+        rng.next_u32();
+        rng
+    }
+
+    pub fn next_u32(&mut self) -> u32 {
+        let old = self.state;
+        self.state = old.wrapping_mul(Self::MUL).wrapping_add(Self::INC);
+        let xorshifted = (((old >> 18) ^ old) >> 27) as u32;
+        xorshifted.rotate_right((old >> 59) as u32)
+    }
+
+    /// Uniform in `[0, 1)`, 53 random bits.
+    pub fn unit(&mut self) -> f64 {
+        let hi = u64::from(self.next_u32()) << 21;
+        let lo = u64::from(self.next_u32()) >> 11;
+        (hi ^ lo) as f64 / (1u64 << 53) as f64
+    }
+
+    /// Uniform in `[lo, hi)`.
+    pub fn range(&mut self, lo: f64, hi: f64) -> f64 {
+        lo + (hi - lo) * self.unit()
+    }
+
+    /// `2^x` for `x` uniform in `[lo, hi)`: log-uniform magnitudes.
+    pub fn log2_range(&mut self, lo: f64, hi: f64) -> f64 {
+        self.range(lo, hi).exp2()
+    }
+
+    /// Uniform integer in `[0, n)`.
+    pub fn below(&mut self, n: u32) -> u32 {
+        ((u64::from(self.next_u32()) * u64::from(n)) >> 32) as u32
+    }
+
+    /// True with probability `1/n`.
+    pub fn one_in(&mut self, n: u32) -> bool {
+        self.below(n) == 0
+    }
+
+    /// A point uniform in the unit ball's cube shell, as a direction: not
+    /// too short, random orientation.
+    pub fn direction(&mut self) -> [f64; 3] {
+        loop {
+            let v = [
+                self.range(-1.0, 1.0),
+                self.range(-1.0, 1.0),
+                self.range(-1.0, 1.0),
+            ];
+            let l2 = v[0] * v[0] + v[1] * v[1] + v[2] * v[2];
+            if l2 > 0.04 && l2 <= 1.0 {
+                let l = l2.sqrt();
+                return [v[0] / l, v[1] / l, v[2] / l];
+            }
+        }
+    }
+}
+
+/// The spacing of floats of precision `F` at magnitude `m` (one ulp), as f64.
+pub fn ulp<F: Scalar>(m: f64) -> f64 {
+    let x = F::from_f64(m.abs());
+    (x.next_up().to_f64() - x.to_f64()).max(F::TINY.to_f64())
 }
