@@ -52,19 +52,70 @@
 //!
 //! # Numerical guarantees
 //!
-//! "Exact" below means the answer real arithmetic gives on the same
-//! floating-point inputs. Preconditions: no intermediate overflows (the
-//! kernels' docs give the ranges) and round-to-nearest, which is Rust's.
+//! "Exact" means what real arithmetic says about the same floating-point
+//! inputs: every finite float is a rational number, and the crate's test
+//! suite decides each question exactly with big rationals and holds every
+//! kernel to the claims below (`tests/oracle.rs`, `tests/properties.rs`).
+//! `u` is the unit roundoff of the precision in use.
 //!
-//! | kernel | guarantee |
-//! | --- | --- |
-//! | [`ray_aabb`], [`ray_aabb_prepared`] | no false miss, ever (axis-parallel rays, rays in a face plane, zero-thickness boxes, `-0.0` and tiny direction components included); false hits only within a few ulps (a factor `1 + 16u`) of the boundary |
-//! | [`ray_aabb_naive`] | reference: faces as planes; agrees with the slab test away from edges |
-//! | [`ray_triangle`] | watertight: no ray passes between two triangles sharing an edge; `t > 0` decided conservatively; `t`, `u`, `v` within [`ray_triangle_error_bounds`] |
-//! | [`ray_triangle_one_hit`] | as [`ray_triangle`], and exactly one hit per crossing of a consistently wound mesh |
-//! | [`ray_triangle_mt`] | fast path; agrees with [`ray_triangle`] away from edges; **not** watertight |
-//! | [`ray_plane`] | `t` within [`ray_plane_t_error`] (a few ulps without cancellation) |
-//! | [`PinholeCamera`] | unit directions to a few ulps; the centre pixel of an odd-sized image looks along the view direction |
+//! Preconditions shared by all of them: round-to-nearest arithmetic (Rust's
+//! only mode), and no intermediate overflow. For the box test, no difference
+//! between a box coordinate and the origin overflows and the exact entry and
+//! exit are below `MAX / 2`; for the triangle tests, coordinates relative to
+//! the ray origin below `2^63` (`f32`) or `2^511` (`f64`), so that the edge
+//! functions' products do not overflow, and, for the `f64` exact-sign
+//! fallback, those products above `2^-969` or zero.
+//!
+//! - **Slab test** ([`ray_aabb`], [`ray_aabb_prepared`]). No false miss: if
+//!   the closed box meets the ray on `[0, t_max]` exactly, the test reports
+//!   it, for every input including axis-parallel rays, rays lying in a face
+//!   plane, zero-thickness boxes, `-0.0` direction components and components
+//!   so small that their reciprocal overflows. The reported exit is at least
+//!   the exact exit. False hits only within a factor `1 + 16u` (plus two
+//!   subnormals) of the boundary: the ray passes within a few ulps of an
+//!   edge.
+//! - **Naive box test** ([`ray_aabb_naive`]). The reference: agrees with the
+//!   slab test on hit or miss wherever the exact interval is not within
+//!   `32u` (relative) of empty, with distances within two roundings; never
+//!   hits where the slab test misses.
+//! - **Watertight triangle test** ([`ray_triangle`]). A ray through an edge
+//!   or corner shared by triangles of a mesh (bit-identical corners,
+//!   consistent winding, locally a surface seen from one side) hits at least
+//!   one of them. Every reported hit has `t > 0` and lies in front of the
+//!   origin in exact arithmetic (all corners in front, or the numerator or
+//!   `t` above its error bound). `t`, `u`, `v` are within
+//!   [`ray_triangle_error_bounds`], which is finite unless the exact
+//!   determinant's sign is unknown (a ray within rounding of parallel, or a
+//!   sliver seen edge-on).
+//! - **One-hit variant** ([`ray_triangle_one_hit`]). The same, and exactly
+//!   one hit where the ray crosses such a mesh at a shared edge or corner; a
+//!   closed mesh is crossed an odd number of times by a ray from strictly
+//!   inside. A lone triangle's edges and corners hit only on one side of a
+//!   fixed tie-break.
+//! - **Moller-Trumbore** ([`ray_triangle_mt`]). Agrees with the watertight
+//!   test away from edges; not watertight (rays through shared edges can
+//!   miss both triangles, and do, at a measurable rate); rejects rays whose
+//!   determinant is within its own rounding error bound.
+//! - **Plane** ([`ray_plane`]). `t` within [`ray_plane_t_error`], always
+//!   finite for a reported hit; rays within rounding of parallel (the sign
+//!   of `dir . normal` not certain) are not reported.
+//! - **Spawned rays** ([`offset_ray_origin`]). The offset origin lies
+//!   strictly on the far side of the exact plane of the surface it leaves,
+//!   given bounds on the hit point's and the normal's errors
+//!   ([`triangle_hit_point`], [`Triangle::normal_with_error`],
+//!   [`ray_plane_hit_point`]); a ray spawned from it in a direction not
+//!   within rounding of tangent does not hit that surface again.
+//! - **Camera** ([`PinholeCamera`]). Unit directions within `gamma(6)`; the
+//!   centre pixel of an odd-sized image looks along the view direction to a
+//!   few ulps; agrees with glam's view and projection matrices.
+//! - **Exact metamorphic identities**, bit for bit: scaling the direction or
+//!   all positions by a power of two scales every `t` accordingly; mirroring
+//!   an axis and translating on a coarse grid change nothing; reversing a
+//!   triangle's winding swaps `u` and `v` and the side.
+//!
+//! Invalid input (NaN, infinities, zero direction, inverted box, zero-area
+//! triangle, NaN or negative `t_max`) gives `None` or a [`CameraError`]:
+//! never a panic, never a NaN or negative `t`.
 //!
 //! # Features
 //!
