@@ -44,11 +44,25 @@
 //!
 //! Every type and function is generic over the vector type: [`glam::Vec3`]
 //! (`f32`, the default type parameter, so `Ray` means `Ray<Vec3>`) or
-//! [`glam::DVec3`] (`f64`). The kernels are written once, against the sealed
-//! [`Vector`] and [`Scalar`] traits, and each error bound is derived in
-//! terms of the unit roundoff `u` of the precision in use (`2^-24` for `f32`,
-//! `2^-53` for `f64`), with `gamma(n) = n*u / (1 - n*u)` ([`Scalar::gamma_n`])
-//! bounding `n` chained roundings.
+//! [`glam::DVec3`] (`f64`). The `f64` types also have glam-style names:
+//! [`DRay`], [`DAabb`], [`DPreparedRay`], [`DPlane`], [`DTriangle`],
+//! [`DTriangleHit`], [`DTriangleHitError`], [`DPinholeCamera`]. Functions
+//! need no second name: `ray_triangle(&ray, &tri, f64::INFINITY)` takes a
+//! `DRay` and a `DTriangle`.
+//!
+//! The kernels are written once, against the sealed [`Vector`] and
+//! [`Scalar`] traits, and each error bound is derived in terms of the unit
+//! roundoff `u` of the precision in use (`2^-24` for `f32`, `2^-53` for
+//! `f64`), with `gamma(n) = n*u / (1 - n*u)` ([`Scalar::gamma_n`]) bounding
+//! `n` chained roundings; so every guarantee below holds in both precisions,
+//! each with its own `u`, and the test suite checks both.
+//!
+//! ```
+//! use rayhit::{DRay, DTriangle, ray_triangle, glam::DVec3};
+//! let tri = DTriangle::new(DVec3::ZERO, DVec3::X, DVec3::Y);
+//! let ray = DRay::new(DVec3::new(0.25, 0.25, 1e9), -DVec3::Z);
+//! assert_eq!(ray_triangle(&ray, &tri, f64::INFINITY).unwrap().t, 1e9);
+//! ```
 //!
 //! # Numerical guarantees
 //!
@@ -123,6 +137,9 @@
 //! - `libm`: float math from the `libm` crate, for `no_std` targets
 //!   (`default-features = false, features = ["libm"]`). One of the two must
 //!   be on.
+//! - `approx`: `approx`'s `AbsDiffEq`, `RelativeEq` and `UlpsEq` for the
+//!   public types and triangle hits (see the `approx` module for what each
+//!   comparison means).
 //! - `proptest`: the public `strategies` module, the generators the
 //!   crate's property tests use (aimed rays, boxes, triangles, planes), for
 //!   testing your own kernels against this crate's.
@@ -142,6 +159,9 @@ compile_error!(
 pub use glam;
 
 mod aabb;
+#[cfg(feature = "approx")]
+#[cfg_attr(docsrs, doc(cfg(feature = "approx")))]
+pub mod approx;
 mod camera;
 mod plane;
 mod ray;
@@ -156,6 +176,29 @@ pub use camera::{CameraError, PinholeCamera};
 pub use plane::{Plane, ray_plane, ray_plane_hit_point, ray_plane_t_error};
 pub use ray::{Ray, offset_ray_origin};
 pub use real::{Scalar, Vector};
+/// `f64` names, glam-style (see the crate docs, "Precision").
+mod f64_names {
+    use glam::DVec3;
+
+    /// [`Ray`](crate::Ray) in `f64`.
+    pub type DRay = crate::Ray<DVec3>;
+    /// [`Aabb`](crate::Aabb) in `f64`.
+    pub type DAabb = crate::Aabb<DVec3>;
+    /// [`PreparedRay`](crate::PreparedRay) in `f64`.
+    pub type DPreparedRay = crate::PreparedRay<DVec3>;
+    /// [`Plane`](crate::Plane) in `f64`.
+    pub type DPlane = crate::Plane<DVec3>;
+    /// [`Triangle`](crate::Triangle) in `f64`.
+    pub type DTriangle = crate::Triangle<DVec3>;
+    /// [`TriangleHit`](crate::TriangleHit) in `f64`.
+    pub type DTriangleHit = crate::TriangleHit<f64>;
+    /// [`TriangleHitError`](crate::TriangleHitError) in `f64`.
+    pub type DTriangleHitError = crate::TriangleHitError<f64>;
+    /// [`PinholeCamera`](crate::PinholeCamera) in `f64`.
+    pub type DPinholeCamera = crate::PinholeCamera<DVec3>;
+}
+pub use f64_names::*;
+
 pub use triangle::{
     Side, Triangle, TriangleHit, TriangleHitError, ray_triangle, ray_triangle_error_bounds,
     ray_triangle_mt, ray_triangle_one_hit, triangle_hit_point,
