@@ -6,6 +6,8 @@
 //! slow, obviously right, and the reference every other test is held to.
 #![allow(dead_code)]
 
+pub mod generators;
+
 use std::cmp::Ordering;
 
 use num_bigint::BigInt;
