@@ -9,7 +9,7 @@ use proptest::prelude::*;
 use rayhit::glam::{DMat4, DVec3, DVec4, Vec3};
 use rayhit::strategies as strat;
 use rayhit::{CameraError, PinholeCamera, Scalar, Vector};
-use support::{R, r, rv};
+use support::{R, gamma, rv};
 
 type S<V> = <V as Vector>::Scalar;
 
@@ -18,11 +18,6 @@ fn config() -> ProptestConfig {
         cases: 1024,
         ..ProptestConfig::default()
     }
-}
-
-fn gamma<F: Scalar>(n: i64) -> R {
-    let nu = R::from_integer(n.into()) * r(F::UNIT_ROUNDOFF);
-    &nu / (R::from_integer(1.into()) - &nu)
 }
 
 fn one() -> R {

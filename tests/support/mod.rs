@@ -352,3 +352,59 @@ pub fn ulp<F: Scalar>(m: f64) -> f64 {
     let x = F::from_f64(m.abs());
     (x.next_up().to_f64() - x.to_f64()).max(F::TINY.to_f64())
 }
+
+/// `gamma(n) = n u / (1 - n u)` for precision `F`, exactly.
+pub fn gamma<F: Scalar>(n: i64) -> R {
+    let nu = R::from_integer(n.into()) * r(F::UNIT_ROUNDOFF);
+    &nu / (R::from_integer(1.into()) - &nu)
+}
+
+fn abs(x: &R) -> R {
+    x.abs()
+}
+
+/// Error bounds of Moller-Trumbore's `u`, `v` and `t`, for the agreement band.
+///
+/// MT computes `u = (s . p)/det`, `v = (d . q)/det`, `t = (e2 . q)/det` with
+/// `s = o - a`, `p = d x e2`, `q = s x e1`, `e1 = b - a`, `e2 = c - a`. Each
+/// numerator and `det` is a sum of triple products whose monomials carry at
+/// most 7 roundings (two subtractions, a product, a difference, a product,
+/// two sums), so each is within `gamma(7)` times the sum of the monomials'
+/// magnitudes `M`. A quotient `N/D` computed as `fl(N) fl(1/det)` is then
+/// within `(dN + |q| dD)/(|D| - dD) + gamma(2)|q|`, which is what this
+/// returns (with `q` the exact quotient), or a huge value when `dD >= |D|`.
+pub fn mt_bounds<V: Vector>(ray: &Ray<V>, tri: &Triangle<V>, u: &R, v: &R) -> (R, R, R) {
+    let (o, d) = (rv(ray.origin), rv(ray.dir));
+    let (a, b, c) = (rv(tri.a), rv(tri.b), rv(tri.c));
+    let (e1, e2, s) = (
+        sub(&b, &a),
+        sub(&c, &a),
+        sub(&o, &a),
+    );
+    let mag = |x: &[R; 3], y: &[R; 3], z: &[R; 3]| -> R {
+        // sum_i |x_i| (|y_j z_k| + |y_k z_j|): the monomials of x . (y x z).
+        (0..3)
+            .map(|i| {
+                let (j, k) = ((i + 1) % 3, (i + 2) % 3);
+                abs(&x[i]) * (abs(&(&y[j] * &z[k])) + abs(&(&y[k] * &z[j])))
+            })
+            .sum()
+    };
+    let g7 = gamma::<V::Scalar>(7);
+    let det = dot(&e1, &cross(&d, &e2));
+    let d_det = &g7 * mag(&e1, &d, &e2);
+    let big = R::from_integer(num_bigint::BigInt::from(1u64 << 62));
+    if abs(&det) <= d_det {
+        return (big.clone(), big.clone(), big);
+    }
+    let q = cross(&s, &e1);
+    let t = dot(&e2, &q) / &det;
+    let g2 = gamma::<V::Scalar>(2);
+    let quotient = |dn: R, q: &R| (dn + abs(q) * &d_det) / (abs(&det) - &d_det) + &g2 * abs(q);
+    (
+        quotient(&g7 * mag(&s, &d, &e2), u),
+        quotient(&g7 * mag(&d, &s, &e1), v),
+        quotient(&g7 * mag(&e2, &s, &e1), &t),
+    )
+}
+
