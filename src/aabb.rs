@@ -235,10 +235,16 @@ pub fn ray_aabb_prepared<V: Vector>(
 ///   arithmetic misses means the exact entry exceeds the exact exit (or
 ///   `t_max`) by less than a factor `1 + 16u` plus two subnormals (`u` the
 ///   unit roundoff, so a few ulps): the ray passes within a few ulps of an
-///   edge or corner.
-/// - `enter` is within three roundings of the exact entry (it is not a lower
-///   bound; to cull against a closest hit so far, pass that as `t_max`,
-///   which the test honours conservatively).
+///   edge or corner; and the reported exit is at most that factor above the
+///   exact one. Both hold when every nonzero direction component has a
+///   finite reciprocal (`|d_i| >= 1/MAX`). A smaller component's reciprocal
+///   overflows, its exit distance comes out infinite, and the reported exit
+///   can be far too large; a false hit then passes the box at a distance of
+///   at most `t |d_i| < t / MAX` along that axis.
+/// - `enter` is within three roundings of the exact entry when no
+///   reciprocal overflows (else it can be far below it); it is not a lower
+///   bound. To cull against a closest hit so far, pass that as `t_max`,
+///   which the test honours conservatively.
 /// - Invalid input (NaN or infinite coordinates, zero direction, inverted
 ///   box, NaN or negative `t_max`) gives `None`. Never panics.
 ///

@@ -376,11 +376,7 @@ fn abs(x: &R) -> R {
 pub fn mt_bounds<V: Vector>(ray: &Ray<V>, tri: &Triangle<V>, u: &R, v: &R) -> (R, R, R) {
     let (o, d) = (rv(ray.origin), rv(ray.dir));
     let (a, b, c) = (rv(tri.a), rv(tri.b), rv(tri.c));
-    let (e1, e2, s) = (
-        sub(&b, &a),
-        sub(&c, &a),
-        sub(&o, &a),
-    );
+    let (e1, e2, s) = (sub(&b, &a), sub(&c, &a), sub(&o, &a));
     let mag = |x: &[R; 3], y: &[R; 3], z: &[R; 3]| -> R {
         // sum_i |x_i| (|y_j z_k| + |y_k z_j|): the monomials of x . (y x z).
         (0..3)
@@ -408,3 +404,11 @@ pub fn mt_bounds<V: Vector>(ray: &Ray<V>, tri: &Triangle<V>, u: &R, v: &R) -> (R
     )
 }
 
+/// True when some nonzero direction component is so small that its
+/// reciprocal overflows (`|d_i| < 1/MAX`): the slab test's exit is then only
+/// an upper bound, not within its relative band (see `ray_aabb`).
+pub fn reciprocal_overflows<V: Vector>(dir: V) -> bool {
+    [dir.x(), dir.y(), dir.z()]
+        .into_iter()
+        .any(|d| d != V::Scalar::ZERO && !(V::Scalar::ONE / d).is_finite())
+}

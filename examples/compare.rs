@@ -1,0 +1,145 @@
+//! Holding your own ray/triangle function against `rayhit`.
+//!
+//! `cargo run --release --example compare`
+//!
+//! `their_ray_triangle` below stands for a renderer's own kernel: a textbook
+//! Moller-Trumbore with an absolute epsilon and back faces dropped, the way
+//! it is often written. It is compared twice:
+//! 1. against the reference corpus (`tests/data/triangle_f32.txt`), whose
+//!    answers were decided in exact arithmetic: on the cases marked `clear`
+//!    (outside the rounding band) any disagreement on hit or miss is a bug
+//!    of theirs, and `t` is compared with the exact value;
+//! 2. against `rayhit::ray_triangle` on generated cases (the crate's
+//!    `proptest` strategies, fixed seed), with `rayhit`'s documented error
+//!    bound telling how far apart the two `t` may honestly be.
+//!
+//! Replace `their_ray_triangle` with your own function to get the same table
+//! for it.
+
+use proptest::strategy::{Strategy, ValueTree};
+use proptest::test_runner::{Config, TestRng, TestRunner};
+use rayhit::glam::Vec3;
+use rayhit::{Ray, Triangle, ray_triangle, ray_triangle_error_bounds, strategies};
+
+/// The kernel under test: Moller-Trumbore with `EPSILON = 1e-7`, one-sided.
+fn their_ray_triangle(o: Vec3, d: Vec3, a: Vec3, b: Vec3, c: Vec3) -> Option<f32> {
+    const EPSILON: f32 = 1e-7;
+    let (e1, e2) = (b - a, c - a);
+    let p = d.cross(e2);
+    let det = e1.dot(p);
+    if det < EPSILON {
+        return None; // parallel, or a back face
+    }
+    let s = o - a;
+    let u = s.dot(p) / det;
+    if !(0.0..=1.0).contains(&u) {
+        return None;
+    }
+    let q = s.cross(e1);
+    let v = d.dot(q) / det;
+    if v < 0.0 || u + v > 1.0 {
+        return None;
+    }
+    let t = e2.dot(q) / det;
+    (t > EPSILON).then_some(t)
+}
+
+/// One row of the table.
+#[derive(Default)]
+struct Row {
+    cases: usize,
+    agree: usize,
+    false_hits: usize,
+    false_misses: usize,
+    worst_ulps: f32,
+}
+
+impl Row {
+    fn add(&mut self, theirs: Option<f32>, reference: Option<f32>) {
+        self.cases += 1;
+        match (theirs, reference) {
+            (Some(a), Some(b)) => {
+                self.agree += 1;
+                let ulp = b.abs().next_up() - b.abs();
+                self.worst_ulps = self.worst_ulps.max((a - b).abs() / ulp);
+            }
+            (None, None) => self.agree += 1,
+            (Some(_), None) => self.false_hits += 1,
+            (None, Some(_)) => self.false_misses += 1,
+        }
+    }
+
+    fn print(&self, name: &str) {
+        println!(
+            "{name:<34} {:>6} {:>7.2}% {:>10} {:>12} {:>14.1}",
+            self.cases,
+            100.0 * self.agree as f64 / self.cases.max(1) as f64,
+            self.false_hits,
+            self.false_misses,
+            self.worst_ulps
+        );
+    }
+}
+
+fn bits(s: &str) -> f32 {
+    f32::from_bits(u32::from_str_radix(s, 16).expect("an f32 bit pattern in hex"))
+}
+
+fn main() {
+    println!(
+        "{:<34} {:>6} {:>8} {:>10} {:>12} {:>14}",
+        "reference", "cases", "agree", "false hits", "false misses", "worst t (ulps)"
+    );
+
+    // 1. The corpus: exact answers. Only front faces count, as the kernel
+    // under test drops back faces (a renderer comparing a two-sided kernel
+    // would drop this filter).
+    let path = concat!(env!("CARGO_MANIFEST_DIR"), "/tests/data/triangle_f32.txt");
+    let text = std::fs::read_to_string(path).expect("the corpus (tests/data)");
+    let (mut clear, mut edge) = (Row::default(), Row::default());
+    for line in text.lines().filter(|l| !l.starts_with('#')) {
+        let parts: Vec<&str> = line.split(" | ").collect();
+        let f: Vec<f32> = parts[0].split_whitespace().map(bits).collect();
+        let v = |i: usize| Vec3::new(f[i], f[i + 1], f[i + 2]);
+        let (o, d, a, b, c, t_max) = (v(0), v(3), v(6), v(9), v(12), f[15]);
+        let answer: Vec<&str> = parts[1].split_whitespace().collect();
+        let exact = (answer[0] == "hit" && answer[4] == "front").then(|| bits(answer[1]));
+        let theirs = their_ray_triangle(o, d, a, b, c).filter(|t| *t <= t_max);
+        if answer[0] == "hit" && answer[4] == "back" {
+            continue;
+        }
+        if parts[2].trim() == "clear" {
+            &mut clear
+        } else {
+            &mut edge
+        }
+        .add(theirs, exact);
+    }
+    clear.print("corpus, clear cases (exact)");
+    edge.print("corpus, edge cases (exact)");
+
+    // 2. Generated cases against rayhit, front faces only; a disagreement
+    // on t counts only beyond rayhit's own error bound.
+    let mut runner = TestRunner::new_with_rng(
+        Config::default(),
+        TestRng::deterministic_rng(Default::default()),
+    );
+    let strategy = strategies::triangle_and_ray::<Vec3>();
+    let (mut row, mut beyond_bound) = (Row::default(), 0usize);
+    for _ in 0..20_000 {
+        let (tri, ray): (Triangle, Ray) = strategy.new_tree(&mut runner).expect("a case").current();
+        let reference =
+            ray_triangle(&ray, &tri, f32::INFINITY).filter(|h| h.side == rayhit::Side::Front);
+        let theirs = their_ray_triangle(ray.origin, ray.dir, tri.a, tri.b, tri.c);
+        if let (Some(t), Some(h)) = (theirs, reference) {
+            if (t - h.t).abs() > ray_triangle_error_bounds(&ray, &tri, &h).t {
+                beyond_bound += 1;
+            }
+        }
+        row.add(theirs, reference.map(|h| h.t));
+    }
+    row.print("rayhit::ray_triangle, generated");
+    println!(
+        "\n{beyond_bound} generated hits differ from rayhit's t by more than rayhit's error bound."
+    );
+}

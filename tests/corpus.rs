@@ -1,0 +1,579 @@
+//! The reference corpus: checked-in inputs (exact bit patterns, in hex) with
+//! the exactly decided answers, one file per kernel and precision under
+//! `tests/data/`. Every current answer is held to it:
+//!
+//! - hit or miss must match the exact answer wherever the case is marked
+//!   `clear` (outside the documented rounding band); the slab test must hit
+//!   every exact hit, `clear` or not;
+//! - every reported distance must be within its documented bound of the
+//!   exact one (stored rounded to nearest, so half an ulp is added):
+//!   the slab entry within `gamma(3)` of it and the exit at least the exact
+//!   exit and at most `1 + 16u` times it; the naive test's within `gamma(2)`
+//!   where its faces are unambiguous; the watertight test's `t`, `u`, `v`
+//!   within `ray_triangle_error_bounds`; the plane's `t` within
+//!   `ray_plane_t_error`.
+//!
+//! Regenerate only for a deliberate change of guarantee (see README):
+//! `RAYHIT_REGENERATE_CORPUS=1 cargo test --release --test corpus`.
+
+mod support;
+
+use std::fmt::Write as _;
+use std::path::PathBuf;
+
+use num_traits::Signed;
+use rayhit::glam::{DVec3, Vec3};
+use rayhit::{
+    Aabb, Plane, Ray, Scalar, Side, Triangle, TriangleHit, Vector, ray_aabb, ray_aabb_naive,
+    ray_plane, ray_plane_t_error, ray_triangle, ray_triangle_error_bounds, ray_triangle_mt,
+    ray_triangle_one_hit,
+};
+use support::generators::*;
+use support::{Pcg32, R, gamma, r, rv};
+
+type S<V> = <V as Vector>::Scalar;
+
+/// Cases per kernel and precision.
+const CASES: usize = 2048;
+
+fn regenerate() -> bool {
+    std::env::var_os("RAYHIT_REGENERATE_CORPUS").is_some()
+}
+
+fn path(kernel: &str, precision: &str) -> PathBuf {
+    PathBuf::from(env!("CARGO_MANIFEST_DIR"))
+        .join("tests/data")
+        .join(format!("{kernel}_{precision}.txt"))
+}
+
+fn precision<V: Vector>() -> &'static str {
+    if S::<V>::UNIT_ROUNDOFF.to_f64() > 1e-10 {
+        "f32"
+    } else {
+        "f64"
+    }
+}
+
+// ----------------------------------------------------------- bit patterns
+
+/// A float as its IEEE bit pattern in hex (8 digits for f32, 16 for f64),
+/// and back: exact both ways, NaN payloads and `-0.0` included.
+fn hex<F: Scalar>(x: F) -> String {
+    if F::UNIT_ROUNDOFF.to_f64() > 1e-10 {
+        format!("{:08x}", (x.to_f64() as f32).to_bits())
+    } else {
+        format!("{:016x}", x.to_f64().to_bits())
+    }
+}
+
+fn unhex<F: Scalar>(s: &str) -> F {
+    if s.len() == 8 {
+        F::from_f64(f64::from(f32::from_bits(
+            u32::from_str_radix(s, 16).expect("hex"),
+        )))
+    } else {
+        F::from_f64(f64::from_bits(u64::from_str_radix(s, 16).expect("hex")))
+    }
+}
+
+fn hex_v<V: Vector>(v: V) -> String {
+    format!("{} {} {}", hex(v.x()), hex(v.y()), hex(v.z()))
+}
+
+/// Reads floats from whitespace-separated hex fields.
+struct Fields<'a>(std::str::SplitWhitespace<'a>);
+
+impl Fields<'_> {
+    fn f<F: Scalar>(&mut self) -> F {
+        unhex(self.0.next().expect("a field"))
+    }
+    fn v<V: Vector>(&mut self) -> V {
+        V::new(self.f(), self.f(), self.f())
+    }
+    fn word(&mut self) -> &str {
+        self.0.next().expect("a word")
+    }
+}
+
+/// The float of precision `F` nearest to an exact value.
+fn nearest<F: Scalar>(x: &R) -> F {
+    let c = F::from_f64(support::to_f64(x));
+    [c.next_down(), c, c.next_up()]
+        .into_iter()
+        .filter(|y| y.is_finite())
+        .min_by(|a, b| (r(*a) - x).abs().cmp(&(r(*b) - x).abs()))
+        .unwrap_or(c)
+}
+
+/// One ulp of `x` (the gap to the next float up), exactly.
+fn ulp<F: Scalar>(x: F) -> R {
+    let a = x.abs();
+    r(a.next_up()) - r(a)
+}
+
+// ------------------------------------------------------------------ files
+
+fn write(kernel: &str, precision: &str, header: &str, lines: &[String]) {
+    let mut text = String::new();
+    writeln!(text, "# rayhit reference corpus: {kernel}, {precision}").unwrap();
+    writeln!(
+        text,
+        "# Generated from the exact oracle; regenerate only for a deliberate change of"
+    )
+    .unwrap();
+    writeln!(
+        text,
+        "# guarantee: RAYHIT_REGENERATE_CORPUS=1 cargo test --release --test corpus"
+    )
+    .unwrap();
+    writeln!(
+        text,
+        "# Every float is its IEEE bit pattern in hex. Fields:"
+    )
+    .unwrap();
+    writeln!(text, "# {header}").unwrap();
+    for line in lines {
+        writeln!(text, "{line}").unwrap();
+    }
+    let p = path(kernel, precision);
+    std::fs::create_dir_all(p.parent().unwrap()).unwrap();
+    std::fs::write(&p, text).unwrap();
+}
+
+fn read(kernel: &str, precision: &str) -> Vec<String> {
+    let p = path(kernel, precision);
+    let text = std::fs::read_to_string(&p).unwrap_or_else(|e| {
+        panic!("{}: {e}; generate it with RAYHIT_REGENERATE_CORPUS=1 cargo test --release --test corpus", p.display())
+    });
+    text.lines()
+        .filter(|l| !l.starts_with('#') && !l.trim().is_empty())
+        .map(String::from)
+        .collect()
+}
+
+/// Draws `CASES` cases round-robin from the generators.
+fn draw<C>(generators: &[Generator<C>]) -> Vec<C> {
+    let mut rngs: Vec<Pcg32> = generators
+        .iter()
+        .map(|(_, seed, _)| Pcg32::new(seed * 1000 + 7))
+        .collect();
+    (0..CASES)
+        .map(|i| {
+            let k = i % generators.len();
+            (generators[k].2)(&mut rngs[k])
+        })
+        .collect()
+}
+
+/// Collects failures so that one run reports all of them.
+#[derive(Default)]
+struct Failures(Vec<String>);
+
+impl Failures {
+    fn check(&mut self, ok: bool, line: usize, what: impl FnOnce() -> String) {
+        if !ok {
+            self.0.push(format!("case {line}: {}", what()));
+        }
+    }
+    fn assert_none(self, file: &str) {
+        assert!(
+            self.0.is_empty(),
+            "{file}: {} failures:\n{}",
+            self.0.len(),
+            self.0
+                .iter()
+                .take(20)
+                .cloned()
+                .collect::<Vec<_>>()
+                .join("\n")
+        );
+    }
+}
+
+// ------------------------------------------------------------------ boxes
+
+const BOX_HEADER: &str = "origin dir min max t_max | exact answer: miss, or hit ENTER EXIT (rounded to nearest) | band: clear (hit/miss must match) or edge";
+
+fn box_line<V: Vector>((b, ray, t_max): &BoxCase<V>) -> Option<String> {
+    if !(ray.is_valid() && b.is_valid()) {
+        return None;
+    }
+    let raw = support::box_raw(ray, b, *t_max);
+    // The precondition of the slab test's guarantees (see the oracle suite).
+    let half_max = r(S::<V>::MAX) / R::from_integer(2.into());
+    if raw
+        .as_ref()
+        .is_some_and(|(e, x)| e > &half_max || x > &half_max)
+    {
+        return None;
+    }
+    let answer = match support::box_interval(ray, b, *t_max) {
+        Some((e, x)) => format!(
+            "hit {} {}",
+            hex(nearest::<S<V>>(&e)),
+            hex(nearest::<S<V>>(&x))
+        ),
+        None => "miss".into(),
+    };
+    // Clear: the exact interval is more than 32u (relative) from empty, or
+    // an axis the ray does not move along rules it out; and no nonzero
+    // direction component is subnormal, where the bands are not relative
+    // (reciprocals overflow, products underflow).
+    let subnormal = [ray.dir.x(), ray.dir.y(), ray.dir.z()]
+        .into_iter()
+        .any(|d| d != S::<V>::ZERO && d.abs() < S::<V>::MIN_POSITIVE);
+    let clear = !subnormal
+        && match &raw {
+            None => true,
+            Some((e, x)) => {
+                // Relative band 32u, and an absolute one: an underflowing
+                // product errs by up to half a subnormal, which in t is that
+                // over the smallest moving direction component (4 subnormals
+                // cover the slab test's slack and the naive test's products).
+                let scale = if e.abs() > x.abs() { e.abs() } else { x.abs() };
+                let dmin = [ray.dir.x(), ray.dir.y(), ray.dir.z()]
+                    .into_iter()
+                    .filter(|d| *d != S::<V>::ZERO)
+                    .map(|d| r(d.abs()))
+                    .min()
+                    .expect("a valid ray moves");
+                let absolute = r(S::<V>::TINY) * R::from_integer(4.into()) / dmin;
+                (x - e).abs()
+                    > R::from_integer(32.into()) * r(S::<V>::UNIT_ROUNDOFF) * scale + absolute
+            }
+        };
+    let band = if clear { "clear" } else { "edge" };
+    Some(format!(
+        "{} {} {} {} {} | {answer} | {band}",
+        hex_v(ray.origin),
+        hex_v(ray.dir),
+        hex_v(b.min),
+        hex_v(b.max),
+        hex(*t_max)
+    ))
+}
+
+fn check_boxes<V: Vector>(lines: &[String]) -> Failures {
+    let mut fail = Failures::default();
+    let u = r(S::<V>::UNIT_ROUNDOFF);
+    for (i, line) in lines.iter().enumerate() {
+        let parts: Vec<&str> = line.split(" | ").collect();
+        let mut f = Fields(parts[0].split_whitespace());
+        let ray = Ray::new(f.v::<V>(), f.v::<V>());
+        let b = Aabb::new(f.v::<V>(), f.v::<V>());
+        let t_max: S<V> = f.f();
+        let mut ans = Fields(parts[1].split_whitespace());
+        let exact = match ans.word() {
+            "hit" => Some((ans.f::<S<V>>(), ans.f::<S<V>>())),
+            _ => None,
+        };
+        let clear = parts[2].trim() == "clear";
+        let slab = ray_aabb(&ray, &b, t_max);
+        let naive = ray_aabb_naive(&ray, &b, t_max);
+        fail.check(exact.is_none() || slab.is_some(), i, || {
+            format!("slab false miss: {line}")
+        });
+        if clear {
+            fail.check(slab.is_some() == exact.is_some(), i, || {
+                format!("slab hit/miss: {slab:?} vs {exact:?}")
+            });
+            fail.check(naive.is_some() == exact.is_some(), i, || {
+                format!("naive hit/miss: {naive:?} vs {exact:?}")
+            });
+        }
+        if let (Some((e, x)), Some((ee, xx))) = (slab, exact) {
+            // Entry within gamma(3) of the exact entry, which is within half
+            // an ulp of the stored one; exit at least the exact exit and at
+            // most (1 + 16u) times it plus two subnormals.
+            let half = |y: S<V>| ulp(y) / R::from_integer(2.into());
+            let entry_ok =
+                (r(e) - r(ee)).abs() <= gamma::<S<V>>(3) * (r(ee).abs() + half(ee)) + half(ee);
+            let banded = !support::reciprocal_overflows(ray.dir);
+            fail.check(!banded || entry_ok, i, || {
+                format!("slab entry {e:?} vs exact {ee:?}")
+            });
+            fail.check(r(x) >= r(xx) - half(xx), i, || {
+                format!("slab exit {x:?} below exact {xx:?}")
+            });
+            let cap = (r(xx) + half(xx))
+                * (R::from_integer(1.into()) + R::from_integer(16.into()) * &u)
+                + r(S::<V>::TINY) * R::from_integer(2.into());
+            fail.check(!banded || r(x) <= cap, i, || {
+                format!("slab exit {x:?} widened beyond the band, exact {xx:?}")
+            });
+        }
+    }
+    fail
+}
+
+// -------------------------------------------------------------- triangles
+
+const TRI_HEADER: &str = "origin dir a b c t_max | exact answer: miss, or hit T U V front|back (rounded to nearest) | band: clear or edge";
+
+fn tri_line<V: Vector>((tri, ray, t_max): &TriCase<V>) -> Option<String> {
+    let n = tri.normal();
+    if !(ray.is_valid() && n.is_finite() && n != V::ZERO) {
+        return None;
+    }
+    let ex = support::triangle(ray, tri);
+    let limit = support::limit(*t_max);
+    let answer = if ex.hits(&limit) {
+        let (t, (u, v)) = (ex.t.clone().unwrap(), ex.uv.clone().unwrap());
+        let (a, b, c) = (rv(tri.a), rv(tri.b), rv(tri.c));
+        let nn = support::cross(&support::sub(&b, &a), &support::sub(&c, &a));
+        let side = if support::dot(&rv(ray.dir), &nn).is_negative() {
+            "front"
+        } else {
+            "back"
+        };
+        format!(
+            "hit {} {} {} {side}",
+            hex(nearest::<S<V>>(&t)),
+            hex(nearest::<S<V>>(&u)),
+            hex(nearest::<S<V>>(&v))
+        )
+    } else {
+        "miss".into()
+    };
+    // Clear: the exact crossing is farther from every edge (in barycentric
+    // terms) and from t = 0 and t_max than the watertight test's error
+    // bounds plus Moller-Trumbore's, evaluated there (as in the property
+    // tests). A parallel ray with no crossing at all is clear.
+    let clear = match (&ex.t, &ex.uv) {
+        (Some(te), Some((ue, ve))) => {
+            let as_s = |x: &R| S::<V>::from_f64(support::to_f64(x));
+            let probe = TriangleHit {
+                t: as_s(te),
+                u: as_s(ue),
+                v: as_s(ve),
+                side: Side::Front,
+            };
+            let err = ray_triangle_error_bounds(ray, tri, &probe);
+            if err.t.is_finite() && err.u.is_finite() && err.v.is_finite() {
+                let mte = support::mt_bounds(ray, tri, ue, ve);
+                let (eu, ev, et) = (r(err.u) + &mte.0, r(err.v) + &mte.1, r(err.t) + &mte.2);
+                let we = &eu + &ev;
+                let w = R::from_integer(1.into()) - ue - ve;
+                let inside = ue > &eu && ve > &ev && w > we;
+                let outside = ue < &-eu.clone() || ve < &-ev.clone() || w < -we;
+                let t_clear =
+                    (te > &et && limit.as_ref().is_none_or(|m| (m - te) > et)) || te < &-et;
+                (inside || outside) && t_clear
+            } else {
+                false
+            }
+        }
+        _ => !ex.line_hits(),
+    };
+    let band = if clear { "clear" } else { "edge" };
+    Some(format!(
+        "{} {} {} {} {} {} | {answer} | {band}",
+        hex_v(ray.origin),
+        hex_v(ray.dir),
+        hex_v(tri.a),
+        hex_v(tri.b),
+        hex_v(tri.c),
+        hex(*t_max)
+    ))
+}
+
+fn check_triangles<V: Vector>(lines: &[String]) -> Failures {
+    let mut fail = Failures::default();
+    for (i, line) in lines.iter().enumerate() {
+        let parts: Vec<&str> = line.split(" | ").collect();
+        let mut f = Fields(parts[0].split_whitespace());
+        let ray = Ray::new(f.v::<V>(), f.v::<V>());
+        let tri = Triangle::new(f.v::<V>(), f.v::<V>(), f.v::<V>());
+        let t_max: S<V> = f.f();
+        let mut ans = Fields(parts[1].split_whitespace());
+        let exact = match ans.word() {
+            "hit" => {
+                let (t, u, v) = (ans.f::<S<V>>(), ans.f::<S<V>>(), ans.f::<S<V>>());
+                let side = if ans.word() == "front" {
+                    Side::Front
+                } else {
+                    Side::Back
+                };
+                Some((t, u, v, side))
+            }
+            _ => None,
+        };
+        let clear = parts[2].trim() == "clear";
+        let wt = ray_triangle(&ray, &tri, t_max);
+        if clear {
+            let mt = ray_triangle_mt(&ray, &tri, t_max);
+            let one = ray_triangle_one_hit(&ray, &tri, t_max);
+            for (name, got) in [
+                ("watertight", wt.is_some()),
+                ("Moller-Trumbore", mt.is_some()),
+                ("one-hit", one.is_some()),
+            ] {
+                fail.check(got == exact.is_some(), i, || {
+                    format!("{name} hit/miss {got} vs exact {exact:?}")
+                });
+            }
+        }
+        if let (Some(h), Some((t, u, v, side))) = (wt, exact) {
+            let err = ray_triangle_error_bounds(&ray, &tri, &h);
+            let within = |got: S<V>, want: S<V>, bound: S<V>| {
+                !bound.is_finite()
+                    || (r(got) - r(want)).abs() <= r(bound) + ulp(want) / R::from_integer(2.into())
+            };
+            fail.check(within(h.t, t, err.t), i, || {
+                format!("t {:?} vs exact {t:?}, bound {:?}", h.t, err.t)
+            });
+            fail.check(within(h.u, u, err.u), i, || {
+                format!("u {:?} vs exact {u:?}, bound {:?}", h.u, err.u)
+            });
+            fail.check(within(h.v, v, err.v), i, || {
+                format!("v {:?} vs exact {v:?}, bound {:?}", h.v, err.v)
+            });
+            fail.check(h.side == side, i, || {
+                format!("side {:?} vs exact {side:?}", h.side)
+            });
+        }
+    }
+    fail
+}
+
+// ----------------------------------------------------------------- planes
+
+const PLANE_HEADER: &str = "origin dir point normal t_max | exact answer: miss, or hit T (rounded to nearest) | band: clear or edge";
+
+fn plane_line<V: Vector>((plane, ray, t_max): &(Plane<V>, Ray<V>, S<V>)) -> Option<String> {
+    if !ray.is_valid() {
+        return None;
+    }
+    let exact = support::plane_hit(ray, plane, *t_max);
+    let answer = match &exact {
+        Some(t) => format!("hit {}", hex(nearest::<S<V>>(t))),
+        None => "miss".into(),
+    };
+    // Clear: not within rounding of parallel (|d.n| > 4 gamma(3) sum|d_i n_i|,
+    // twice the kernel's own threshold), and the crossing farther than its
+    // error bound from 0 and t_max.
+    let (d, n) = (rv(ray.dir), rv(plane.normal));
+    let mag: R = (0..3).map(|k| (&d[k] * &n[k]).abs()).sum();
+    let resolved = support::dot(&d, &n).abs() > R::from_integer(4.into()) * gamma::<S<V>>(3) * mag;
+    let clear = resolved
+        && support::plane_t(ray, plane).is_none_or(|t| {
+            let err =
+                r(ray_plane_t_error(ray, plane, S::<V>::from_f64(support::to_f64(&t))).next_up());
+            let limit = support::limit(*t_max);
+            t.abs() > err && limit.is_none_or(|m| (m - &t).abs() > err)
+        });
+    let band = if clear { "clear" } else { "edge" };
+    Some(format!(
+        "{} {} {} {} {} | {answer} | {band}",
+        hex_v(ray.origin),
+        hex_v(ray.dir),
+        hex_v(plane.point),
+        hex_v(plane.normal),
+        hex(*t_max)
+    ))
+}
+
+fn check_planes<V: Vector>(lines: &[String]) -> Failures {
+    let mut fail = Failures::default();
+    for (i, line) in lines.iter().enumerate() {
+        let parts: Vec<&str> = line.split(" | ").collect();
+        let mut f = Fields(parts[0].split_whitespace());
+        let ray = Ray::new(f.v::<V>(), f.v::<V>());
+        let plane = Plane::new(f.v::<V>(), f.v::<V>());
+        let t_max: S<V> = f.f();
+        let mut ans = Fields(parts[1].split_whitespace());
+        let exact: Option<S<V>> = match ans.word() {
+            "hit" => Some(ans.f()),
+            _ => None,
+        };
+        let got = ray_plane(&ray, &plane, t_max);
+        if parts[2].trim() == "clear" {
+            fail.check(got.is_some() == exact.is_some(), i, || {
+                format!("hit/miss {got:?} vs exact {exact:?}")
+            });
+        }
+        if let (Some(t), Some(te)) = (got, exact) {
+            let err = ray_plane_t_error(&ray, &plane, t);
+            let ok = (r(t) - r(te)).abs() <= r(err) + ulp(te) / R::from_integer(2.into());
+            fail.check(ok, i, || format!("t {t:?} vs exact {te:?}, bound {err:?}"));
+        }
+    }
+    fail
+}
+
+// ------------------------------------------------------------------ tests
+
+fn corpus<V: Vector>() {
+    let p = precision::<V>();
+    if regenerate() {
+        let boxes: Vec<String> = draw(&box_generators::<V>())
+            .iter()
+            .filter_map(box_line)
+            .collect();
+        write("box", p, BOX_HEADER, &boxes);
+        let tris: Vec<String> = draw(&triangle_generators::<V>())
+            .iter()
+            .filter_map(tri_line)
+            .collect();
+        write("triangle", p, TRI_HEADER, &tris);
+        let planes: Vec<String> =
+            draw::<(Plane<V>, Ray<V>, S<V>)>(&[("plane", 21, gen_plane::<V>)])
+                .iter()
+                .filter_map(plane_line)
+                .collect();
+        write("plane", p, PLANE_HEADER, &planes);
+    }
+    let files = [
+        ("box", check_boxes::<V> as fn(&[String]) -> Failures),
+        ("triangle", check_triangles::<V>),
+        ("plane", check_planes::<V>),
+    ];
+    for (kernel, check) in files {
+        let lines = read(kernel, p);
+        assert!(
+            lines.len() > CASES / 2,
+            "{kernel}_{p}: only {} cases",
+            lines.len()
+        );
+        check(&lines).assert_none(&format!("{kernel}_{p}.txt"));
+    }
+}
+
+#[test]
+fn corpus_f32() {
+    corpus::<Vec3>();
+}
+
+#[test]
+fn corpus_f64() {
+    corpus::<DVec3>();
+}
+
+/// The hex encoding is exact both ways, `-0.0` and NaN payloads included.
+#[test]
+fn hex_round_trips() {
+    for x in [
+        0.0f32,
+        -0.0,
+        1.0,
+        f32::MIN_POSITIVE,
+        f32::from_bits(1),
+        f32::MAX,
+        -3.5e-20,
+    ] {
+        assert_eq!(unhex::<f32>(&hex(x)).to_bits(), x.to_bits());
+    }
+    for x in [
+        0.0f64,
+        -0.0,
+        1.0,
+        f64::MIN_POSITIVE,
+        f64::from_bits(1),
+        f64::MAX,
+        1e300,
+    ] {
+        assert_eq!(unhex::<f64>(&hex(x)).to_bits(), x.to_bits());
+    }
+    assert_eq!(hex(-0.0f32), "80000000");
+    assert_eq!(hex(1.0f64), "3ff0000000000000");
+}
