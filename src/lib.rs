@@ -203,3 +203,8 @@ pub use triangle::{
     Side, Triangle, TriangleHit, TriangleHitError, ray_triangle, ray_triangle_error_bounds,
     ray_triangle_mt, ray_triangle_one_hit, triangle_hit_point,
 };
+
+/// The README's code blocks, compiled and run as doc tests.
+#[cfg(doctest)]
+#[doc = include_str!("../README.md")]
+struct ReadmeDoctests;
