@@ -111,6 +111,22 @@ pub struct Hit {
     pub shading: Vec3,
 }
 
+impl Hit {
+    /// A ray leaving the surface along `dir`, from the hit point moved off
+    /// the surface by the crate's bound (`offset_ray_origin`), so that it
+    /// cannot hit the surface it leaves.
+    pub fn leave(&self, dir: Vec3) -> Ray {
+        let origin = offset_ray_origin(
+            self.point,
+            self.point_error,
+            self.normal,
+            self.normal_error,
+            dir,
+        );
+        Ray::new(origin, dir)
+    }
+}
+
 /// A small deterministic random number generator (SplitMix64), seeded per
 /// pixel so that a render is the same whatever the thread schedule.
 #[derive(Clone, Debug)]
@@ -228,18 +244,6 @@ impl Scene {
         let flip = |n: Vec3| if n.dot(ray.dir) > 0.0 { -n } else { n };
         let geometric = flip(hit.normal.normalize());
         let shading = flip(hit.shading);
-        // A ray leaving the surface: from an origin moved off the surface by
-        // the crate's bound, so that it cannot hit the surface it left.
-        let leave = |dir: Vec3| {
-            let origin = offset_ray_origin(
-                hit.point,
-                hit.point_error,
-                hit.normal,
-                hit.normal_error,
-                dir,
-            );
-            Ray::new(origin, dir)
-        };
         let mut light = Vec3::ZERO;
 
         // The sun: a random point of its disc, for soft shadows.
@@ -249,7 +253,7 @@ impl Scene {
         let cos = shading.dot(to_sun);
         if cos > 0.0 && geometric.dot(to_sun) > 0.0 {
             *rays += 1;
-            if !self.occluded(&leave(to_sun), f32::INFINITY) {
+            if !self.occluded(&hit.leave(to_sun), f32::INFINITY) {
                 light += SUN * cos;
             }
         }
@@ -261,7 +265,7 @@ impl Scene {
         let dir = t1 * x + t2 * y + shading * (1.0 - x * x - y * y).max(0.0).sqrt();
         if dir.dot(geometric) > 0.0 {
             *rays += 1;
-            if !self.occluded(&leave(dir), OCCLUSION_RANGE) {
+            if !self.occluded(&hit.leave(dir), OCCLUSION_RANGE) {
                 light += SKY_LIGHT;
             }
         }
@@ -272,7 +276,7 @@ impl Scene {
             if dir.dot(geometric) <= 0.0 {
                 dir = ray.dir.reflect(geometric);
             }
-            let reflected = self.radiance(&leave(dir), depth + 1, rng, rays);
+            let reflected = self.radiance(&hit.leave(dir), depth + 1, rng, rays);
             colour = colour.lerp(reflected * material.albedo, material.mirror);
         }
         colour
