@@ -37,7 +37,7 @@ use crate::scene::{Shape, demo_scene, leak_scene, render, to_srgb8};
 const USAGE: &str = "\
 usage: render [--scene demo|leak] [--width N] [--height N] [--samples N] [--out FILE]
 
-  --scene    demo (default): the scene with every kernel in it
+  --scene    demo (default): ground, boxes and meshes in soft sunlight
              leak: the watertightness experiment, both triangle kernels
   --width    image width in pixels (default 640; at least 4)
   --height   image height in pixels (default 360; at least 4)

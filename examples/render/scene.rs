@@ -6,8 +6,8 @@
 //! Every geometric question goes to a kernel of `rayhit`: primary rays from
 //! `PinholeCamera`, the ground from `ray_plane`, the boxes from the prepared
 //! slab test and a `ray_plane` on the face it reports, the meshes from the
-//! slab test on their bounding boxes and then `ray_triangle` (or
-//! `ray_triangle_mt`). Every ray that leaves a surface (towards the sun,
+//! slab test on their bounding boxes and BVH nodes and then `ray_triangle`
+//! (or `ray_triangle_mt`). Every ray that leaves a surface (towards the sun,
 //! towards the sky, or reflected) starts from `offset_ray_origin`, fed with
 //! the hit point's error bound and the normal's, so it cannot hit the
 //! surface it left.
@@ -76,7 +76,8 @@ pub struct Object {
 
 /// Light from the sun, per unit of `cos(angle)` to the surface normal.
 pub const SUN: Vec3 = Vec3::new(2.1, 1.95, 1.7);
-/// Light from the whole unoccluded sky on a surface facing up.
+/// Light from the sky on a surface that sees it unobstructed (the sky is
+/// uniform here, so orientation does not matter; obstruction does).
 pub const SKY_LIGHT: Vec3 = Vec3::new(0.40, 0.48, 0.62);
 /// How far an ambient-occlusion ray looks for something in the way.
 const OCCLUSION_RANGE: f32 = 2.5;
