@@ -39,11 +39,14 @@ usage: render [--scene demo|leak] [--width N] [--height N] [--samples N] [--out 
 
   --scene    demo (default): ground, boxes and meshes in soft sunlight
              leak: the watertightness experiment, both triangle kernels
-  --width    image width in pixels (default 640; at least 4)
-  --height   image height in pixels (default 360; at least 4)
+  --width    image width in pixels (default 640; 4 to 16384)
+  --height   image height in pixels (default 360; 4 to 16384)
   --samples  rays per pixel in the demo scene (default 16; the leak scene
              traces exactly one ray through each pixel centre)
   --out      the PNG to write (default render.png)";
+
+/// The largest width or height accepted.
+const MAX_SIZE: u32 = 16384;
 
 /// The command line.
 #[derive(Debug)]
@@ -68,10 +71,10 @@ fn parse(mut args: impl Iterator<Item = String>) -> Result<Option<Options>, Stri
             return Ok(None);
         }
         let value = args.next().ok_or_else(|| format!("{flag} needs a value"))?;
-        let number = |min: u32| match value.parse::<u32>() {
-            Ok(n) if n >= min => Ok(n),
+        let number = |min: u32, max: u32| match value.parse::<u32>() {
+            Ok(n) if (min..=max).contains(&n) => Ok(n),
             _ => Err(format!(
-                "{flag} wants a whole number of at least {min}, not {value:?}"
+                "{flag} wants a whole number from {min} to {max}, not {value:?}"
             )),
         };
         match flag.as_str() {
@@ -82,9 +85,9 @@ fn parse(mut args: impl Iterator<Item = String>) -> Result<Option<Options>, Stri
                     _ => return Err(format!("unknown scene {value:?}: demo or leak")),
                 }
             }
-            "--width" => options.width = number(4)?,
-            "--height" => options.height = number(4)?,
-            "--samples" => options.samples = number(1)?,
+            "--width" => options.width = number(4, MAX_SIZE)?,
+            "--height" => options.height = number(4, MAX_SIZE)?,
+            "--samples" => options.samples = number(1, 1 << 16)?,
             "--out" => options.out = value,
             _ => return Err(format!("unknown flag {flag:?}")),
         }
@@ -99,8 +102,14 @@ fn progress_bar(rows: u32) -> ProgressBar {
     ProgressBar::new(u64::from(rows)).with_style(style)
 }
 
-fn write_png(path: &str, width: u32, height: u32, rgb: &[u8]) -> Result<(), Box<dyn Error>> {
-    let mut encoder = png::Encoder::new(BufWriter::new(File::create(path)?), width, height);
+/// Creates the output file (before the render, so that a bad path fails
+/// at once).
+fn create(path: &str) -> Result<File, String> {
+    File::create(path).map_err(|e| format!("cannot write {path}: {e}"))
+}
+
+fn write_png(file: File, width: u32, height: u32, rgb: &[u8]) -> Result<(), Box<dyn Error>> {
+    let mut encoder = png::Encoder::new(BufWriter::new(file), width, height);
     encoder.set_color(png::ColorType::Rgb);
     encoder.set_depth(png::BitDepth::Eight);
     encoder.set_compression(png::Compression::High);
@@ -119,6 +128,7 @@ fn report_speed(rays: u64, seconds: f64) {
 }
 
 fn run_demo(options: &Options) -> Result<(), Box<dyn Error>> {
+    let file = create(&options.out)?;
     let scene = demo_scene(options.width, options.height);
     let objects: Vec<String> = scene
         .objects
@@ -135,7 +145,7 @@ fn run_demo(options: &Options) -> Result<(), Box<dyn Error>> {
     let seconds = start.elapsed().as_secs_f64();
     bar.finish_and_clear();
     let rgb: Vec<u8> = image.pixels.iter().flat_map(|&c| to_srgb8(c)).collect();
-    write_png(&options.out, image.width, image.height, &rgb)?;
+    write_png(file, image.width, image.height, &rgb)?;
     println!(
         "rendered {}x{} at {} samples per pixel into {}",
         image.width, image.height, options.samples, options.out
@@ -145,6 +155,7 @@ fn run_demo(options: &Options) -> Result<(), Box<dyn Error>> {
 }
 
 fn run_leak(options: &Options) -> Result<(), Box<dyn Error>> {
+    let file = create(&options.out)?;
     let scene = leak_scene(options.width, options.height);
     let (width, height) = (options.width, options.height);
     let bar = progress_bar(2 * height);
@@ -167,7 +178,7 @@ fn run_leak(options: &Options) -> Result<(), Box<dyn Error>> {
         }
     }
     let total_width = 2 * width + gap as u32;
-    write_png(&options.out, total_width, height, &rgb)?;
+    write_png(file, total_width, height, &rgb)?;
 
     println!(
         "closed mesh of {} triangles; {} pixel-centre rays enter it exactly through a shared vertex",
