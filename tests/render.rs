@@ -1,0 +1,352 @@
+//! The `render` example, run small through its own code (the example's
+//! `mesh.rs` and `scene.rs` are included here by path): each check is
+//! decided from the scene's geometry by the test, not from the picture it
+//! is checking.
+//!
+//! The demo scene: the centre pixel sees the sphere placed there, a pixel
+//! aimed above everything sees the sky, and a ground point in a box's
+//! shadow is darker than one in the open. The leak scene: every counted ray
+//! really passes exactly through an interior vertex of the closed mesh, the
+//! watertight kernel stops every one of them there, and Moller-Trumbore
+//! lets some through (or the scene would prove nothing).
+
+// The example's modules, compiled into this test; it does not use all of
+// them.
+#[allow(dead_code)]
+#[path = "../examples/render/mesh.rs"]
+mod mesh;
+#[allow(dead_code)]
+#[path = "../examples/render/scene.rs"]
+mod scene;
+
+use std::collections::{HashMap, HashSet};
+
+use mesh::{Kernel, Mesh, icosphere, signed_volume, torus};
+use rayhit::glam::Vec3;
+use rayhit::{Aabb, PinholeCamera, PreparedRay, Ray, Side, ray_aabb, ray_plane};
+use scene::{FAR, NEAR, Scene, Shape, demo_scene, leak_scene, render, sky};
+
+const WIDTH: u32 = 64;
+const HEIGHT: u32 = 36;
+
+/// The pixel whose square contains the image of `p`, by the camera model
+/// (raster `(0, 0)` top-left, `y` down, pixel centres at `+0.5`).
+fn project(camera: &PinholeCamera, p: Vec3) -> (u32, u32) {
+    let d = p - camera.eye();
+    let depth = d.dot(camera.forward());
+    assert!(depth > 0.0, "{p} is behind the camera");
+    let f = camera.focal_length();
+    let x = camera.width() as f32 / 2.0 + f * d.dot(camera.right()) / depth;
+    let y = camera.height() as f32 / 2.0 - f * d.dot(camera.up()) / depth;
+    assert!(
+        x >= 0.0 && y >= 0.0 && x < camera.width() as f32 && y < camera.height() as f32,
+        "{p} is outside the image"
+    );
+    (x as u32, y as u32)
+}
+
+fn object(scene: &Scene, name: &str) -> usize {
+    scene
+        .objects
+        .iter()
+        .position(|o| o.name == name)
+        .unwrap_or_else(|| panic!("no object {name:?}"))
+}
+
+/// A box around each object except the ground plane.
+fn bounds(scene: &Scene) -> Vec<Aabb> {
+    scene
+        .objects
+        .iter()
+        .filter_map(|o| match &o.shape {
+            Shape::Plane(_) => None,
+            Shape::Box(b) => Some(*b),
+            Shape::Mesh(bvh) => {
+                let p = &bvh.mesh.positions;
+                let lo = p.iter().fold(Vec3::INFINITY, |a, &b| a.min(b));
+                let hi = p.iter().fold(Vec3::NEG_INFINITY, |a, &b| a.max(b));
+                Some(Aabb::new(lo, hi))
+            }
+        })
+        .collect()
+}
+
+/// The centre and four edge directions of the sun's disc.
+fn sun_directions(scene: &Scene) -> Vec<Vec3> {
+    let (s1, s2) = scene.sun.any_orthonormal_pair();
+    let r = scene.sun_radius;
+    [Vec3::ZERO, s1 * r, -s1 * r, s2 * r, -s2 * r]
+        .iter()
+        .map(|&o| (scene.sun + o).normalize())
+        .collect()
+}
+
+/// Rec. 709 luminance.
+fn luminance(c: Vec3) -> f32 {
+    c.dot(Vec3::new(0.2126, 0.7152, 0.0722))
+}
+
+#[test]
+fn the_centre_pixel_sees_the_sphere_placed_there() {
+    let scene = demo_scene(WIDTH, HEIGHT);
+    let (image, rays) = render(&scene, 1, &|| {});
+    assert!(rays >= u64::from(WIDTH * HEIGHT));
+    let sphere = object(&scene, "icosphere");
+    let (i, j) = (WIDTH / 2, HEIGHT / 2);
+    // The sphere of radius 1 at (0, 1, 0), which the icosphere approximates
+    // to within 2% of the radius: the centre ray passes well inside it.
+    let ray = scene.camera.pixel_ray(i, j);
+    let to_centre = Vec3::new(0.0, 1.0, 0.0) - ray.origin;
+    let miss_distance = (to_centre - ray.dir * to_centre.dot(ray.dir)).length();
+    assert!(
+        miss_distance < 0.5,
+        "the centre ray passes {miss_distance} from the centre"
+    );
+    let k = (j * WIDTH + i) as usize;
+    assert_eq!(image.seen[k], Some(sphere));
+    // The sphere is red; its light, sun and sky, is near white.
+    let c = image.pixels[k];
+    assert!(
+        c.x > 1.5 * c.y && c.x > 1.5 * c.z,
+        "centre pixel {c} is not red"
+    );
+}
+
+#[test]
+fn a_pixel_aimed_above_everything_sees_the_sky() {
+    let scene = demo_scene(WIDTH, HEIGHT);
+    let (image, _) = render(&scene, 1, &|| {});
+    let ray = scene.camera.pixel_ray(0, 0);
+    // Upwards, so it cannot meet the ground, and clear of every object's box.
+    assert!(ray.dir.y > 0.0);
+    for b in bounds(&scene) {
+        assert_eq!(ray_aabb(&ray, &b, f32::INFINITY), None);
+    }
+    assert_eq!(image.seen[0], None);
+    assert_eq!(image.pixels[0], sky(ray.dir));
+    assert!(image.pixels[0].z > image.pixels[0].x, "the sky is blue");
+}
+
+#[test]
+fn the_shadow_of_a_box_is_darker_than_open_ground() {
+    let scene = demo_scene(WIDTH, HEIGHT);
+    let (image, _) = render(&scene, 1, &|| {});
+    let ground = object(&scene, "ground");
+    let Shape::Plane(plane) = scene.objects[ground].shape else {
+        panic!("the ground is a plane")
+    };
+    let Shape::Box(blue) = scene.objects[object(&scene, "blue box")].shape else {
+        panic!("the blue box is a box")
+    };
+    let boxes = bounds(&scene);
+    // The light reaching the ground point a pixel's centre ray sees (the
+    // pixel colour over the ground's albedo there, channel by channel), after checking that the
+    // pixel sees the ground and that every direction of the sun's disc is
+    // blocked by the blue box (`shadow`) or by nothing (open ground).
+    let irradiance = |p: Vec3, shadow: bool| {
+        let (i, j) = project(&scene.camera, p);
+        let ray = scene.camera.pixel_ray(i, j);
+        let t = ray_plane(&ray, &plane, f32::INFINITY).expect("the ray meets the ground");
+        let q = ray.at(t);
+        for dir in sun_directions(&scene) {
+            let to_sun = Ray::new(q, dir);
+            if shadow {
+                assert!(ray_aabb(&to_sun, &blue, f32::INFINITY).is_some());
+            } else {
+                assert!(
+                    boxes
+                        .iter()
+                        .all(|b| ray_aabb(&to_sun, b, f32::INFINITY).is_none())
+                );
+            }
+        }
+        let k = (j * WIDTH + i) as usize;
+        assert_eq!(image.seen[k], Some(ground));
+        let albedo = scene.objects[ground].material.albedo_at(q);
+        luminance(image.pixels[k] / albedo)
+    };
+    // Straight below the centre of the box's top, seen from the sun: deep
+    // in its shadow. And a point in front of everything, towards the sun.
+    let top = Vec3::new(
+        (blue.min.x + blue.max.x) / 2.0,
+        blue.max.y,
+        (blue.min.z + blue.max.z) / 2.0,
+    );
+    let shadowed = irradiance(top - scene.sun * (top.y / scene.sun.y), true);
+    let lit = irradiance(Vec3::new(-0.5, 0.0, 2.5), false);
+    // In the open the sun alone gives SUN * cos(angle) (the angle varies
+    // over the sun's disc by far less than 10%); in the shadow only the
+    // sky's light remains, at most SKY_LIGHT.
+    let sun = luminance(scene::SUN) * scene.sun.y;
+    assert!(
+        lit >= sun * 0.9,
+        "open ground gets {lit}, the sun alone gives {sun}"
+    );
+    assert!(
+        shadowed <= luminance(scene::SKY_LIGHT) * 1.01,
+        "shadowed ground gets {shadowed}"
+    );
+    assert!(shadowed < 0.5 * lit);
+}
+
+#[test]
+fn more_samples_keep_the_centre_rays_and_add_jittered_ones() {
+    let scene = demo_scene(WIDTH, HEIGHT);
+    let (one, rays_one) = render(&scene, 1, &|| {});
+    let (four, rays_four) = render(&scene, 4, &|| {});
+    // The first sample of every pixel is still its centre ray.
+    assert_eq!(one.seen, four.seen);
+    assert!(rays_four > 3 * rays_one);
+    assert_ne!(one.pixels, four.pixels);
+    // The sky pixel averages nearby directions of the sky.
+    let d = four.pixels[0] - one.pixels[0];
+    assert!(d.abs().max_element() < 0.05, "{d}");
+}
+
+#[test]
+fn rays_leaving_the_ground_or_a_box_never_hit_it_again() {
+    let scene = demo_scene(WIDTH, HEIGHT);
+    let (mut checked, mut unoffset_hits) = (0, 0);
+    for j in 0..HEIGHT {
+        for i in 0..WIDTH {
+            let ray = scene.camera.pixel_ray(i, j);
+            let Some(hit) = scene.intersect(&ray, f32::INFINITY) else {
+                continue;
+            };
+            // The ground and the boxes are convex: a ray leaving one on
+            // the side the ray came from cannot meet it again. (The meshes
+            // are left to the crate's own tests.)
+            let shape = &scene.objects[hit.object].shape;
+            let hits_again = |r: &Ray| match shape {
+                Shape::Plane(plane) => ray_plane(r, plane, f32::INFINITY).is_some(),
+                Shape::Box(b) => ray_aabb(r, b, f32::INFINITY).is_some(),
+                Shape::Mesh(_) => unreachable!(),
+            };
+            if let Shape::Mesh(_) = shape {
+                continue;
+            }
+            let n = hit.normal.normalize();
+            let n = if n.dot(ray.dir) > 0.0 { -n } else { n };
+            let (t1, t2) = n.any_orthonormal_pair();
+            // Towards the sun, along the normal, and grazing.
+            let mut dirs = vec![scene.sun, n];
+            for k in [0.5, 0.05, 1e-3] {
+                dirs.extend([t1, -t1, t2, -t2].map(|t| (t + n * k).normalize()));
+            }
+            for dir in dirs.into_iter().filter(|d| d.dot(n) > 0.0) {
+                assert!(!hits_again(&hit.leave(dir)), "pixel ({i}, {j}), {dir}");
+                unoffset_hits += u32::from(hits_again(&Ray::new(hit.point, dir)));
+                checked += 1;
+            }
+        }
+    }
+    assert!(checked > 10_000);
+    // Without the offset, some of them do: the check can fail.
+    assert!(unoffset_hits > 0, "{unoffset_hits} of {checked}");
+}
+
+/// True when every directed edge of the mesh has exactly one twin running
+/// the other way: closed, and wound consistently.
+fn closed_and_consistent(mesh: &Mesh) -> bool {
+    let mut edges: HashMap<(u32, u32), u32> = HashMap::new();
+    for &[a, b, c] in &mesh.indices {
+        for e in [(a, b), (b, c), (c, a)] {
+            *edges.entry(e).or_default() += 1;
+        }
+    }
+    edges
+        .iter()
+        .all(|(&(a, b), &n)| n == 1 && edges.get(&(b, a)) == Some(&1))
+}
+
+#[test]
+fn the_meshes_are_closed_and_wound_outwards() {
+    let scene = leak_scene(16, 12);
+    for mesh in [
+        icosphere(Vec3::ZERO, 1.0, 2),
+        torus(1.0, 0.3, 12, 8),
+        scene.mesh.mesh.clone(),
+    ] {
+        assert!(closed_and_consistent(&mesh));
+        assert!(signed_volume(&mesh) > 0.0);
+    }
+    // And the check can fail: one triangle turned over.
+    let mut broken = icosphere(Vec3::ZERO, 1.0, 1);
+    broken.indices[0].swap(1, 2);
+    assert!(!closed_and_consistent(&broken));
+}
+
+#[test]
+fn the_watertight_kernel_leaks_no_ray_and_moller_trumbore_does() {
+    let scene = leak_scene(64, 48);
+    let mesh = &scene.mesh.mesh;
+    assert!(closed_and_consistent(mesh));
+    let vertices: HashMap<[u32; 3], u32> = mesh
+        .positions
+        .iter()
+        .enumerate()
+        .map(|(k, p)| (p.to_array().map(f32::to_bits), k as u32))
+        .collect();
+    let mut triangles_at = vec![0u32; mesh.positions.len()];
+    for tri in &mesh.indices {
+        for &k in tri {
+            triangles_at[k as usize] += 1;
+        }
+    }
+    // Every counted ray passes exactly through a vertex of the mesh (its
+    // point at t = NEAR, computed in f64 where the product is exact) with a
+    // full fan of six triangles around it, all facing the ray: it crosses
+    // into the solid there.
+    let mut counted = HashSet::new();
+    for j in 0..48 {
+        for i in 0..64 {
+            if !scene.must_enter(i, j) {
+                continue;
+            }
+            let ray = scene.camera.pixel_ray(i, j);
+            assert_eq!(ray.origin, Vec3::ZERO);
+            let at_near = ray.dir.as_dvec3() * f64::from(NEAR);
+            let vertex = at_near.as_vec3();
+            assert_eq!(vertex.as_dvec3(), at_near, "NEAR * dir is exact");
+            let k = vertices[&vertex.to_array().map(f32::to_bits)];
+            assert_eq!(triangles_at[k as usize], 6);
+            for tri in mesh.indices.iter().filter(|t| t.contains(&k)) {
+                let [a, b, c] = tri.map(|v| mesh.positions[v as usize].as_dvec3());
+                assert!((b - a).cross(c - a).dot(ray.dir.as_dvec3()) < 0.0);
+            }
+            counted.insert((i, j));
+        }
+    }
+    // The middle half of the image, less the border of the tile.
+    assert_eq!(counted.len(), 31 * 23);
+
+    let reports = Kernel::ALL.map(|kernel| scene.run(kernel, &|| {}));
+    let [watertight, moller_trumbore] = &reports;
+    for r in &reports {
+        assert_eq!(r.entering as usize, counted.len());
+        assert!(r.escaped <= r.leaked && r.leaked <= r.entering);
+    }
+    assert_eq!(watertight.leaked, 0);
+    assert!(
+        moller_trumbore.leaked > 0,
+        "the scene should catch Moller-Trumbore out"
+    );
+
+    // The watertight kernel stops each ray where it enters: at t = NEAR.
+    for &(i, j) in &counted {
+        let ray = scene.camera.pixel_ray(i, j);
+        let (hit, _) = scene
+            .mesh
+            .intersect(
+                &ray,
+                &PreparedRay::new(&ray),
+                f32::INFINITY,
+                Kernel::Watertight,
+                false,
+            )
+            .expect("a hit");
+        assert_eq!(hit.side, Side::Front);
+        assert!((hit.t - NEAR).abs() < 1e-5 * NEAR, "t = {}", hit.t);
+        assert!(hit.t < FAR);
+    }
+}
