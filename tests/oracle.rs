@@ -20,6 +20,11 @@
 
 mod support;
 
+/// The demo's mesh builders (one icosphere for both).
+#[path = "../examples/render/mesh.rs"]
+#[allow(dead_code)]
+mod demo_mesh;
+
 use std::fmt;
 
 use num_traits::{Signed, Zero};
@@ -523,72 +528,25 @@ fn octahedron(rng: &mut Pcg32) -> Mesh {
     Mesh::new(vertices, triangles, true, true, &[false; 6])
 }
 
-/// An icosahedron subdivided once (80 triangles), each vertex pushed in or
-/// out by up to 10%, placed at random: closed, wound outwards, and not
-/// quite convex.
+/// An icosahedron subdivided once (80 triangles; the demo's icosphere),
+/// each vertex pushed in or out by up to 10%, placed at random: closed,
+/// wound outwards, and not quite convex.
 fn icosphere(rng: &mut Pcg32) -> Mesh {
-    use std::collections::BTreeMap;
-    let p = (1.0 + 5f64.sqrt()) / 2.0;
-    let mut verts: Vec<[f64; 3]> = vec![
-        [-1.0, p, 0.0],
-        [1.0, p, 0.0],
-        [-1.0, -p, 0.0],
-        [1.0, -p, 0.0],
-        [0.0, -1.0, p],
-        [0.0, 1.0, p],
-        [0.0, -1.0, -p],
-        [0.0, 1.0, -p],
-        [p, 0.0, -1.0],
-        [p, 0.0, 1.0],
-        [-p, 0.0, -1.0],
-        [-p, 0.0, 1.0],
-    ];
-    let faces: [[usize; 3]; 20] = [
-        [0, 11, 5],
-        [0, 5, 1],
-        [0, 1, 7],
-        [0, 7, 10],
-        [0, 10, 11],
-        [1, 5, 9],
-        [5, 11, 4],
-        [11, 10, 2],
-        [10, 7, 6],
-        [7, 1, 8],
-        [3, 9, 4],
-        [3, 4, 2],
-        [3, 2, 6],
-        [3, 6, 8],
-        [3, 8, 9],
-        [4, 9, 5],
-        [2, 4, 11],
-        [6, 2, 10],
-        [8, 6, 7],
-        [9, 8, 1],
-    ];
-    let mut mid: BTreeMap<(usize, usize), usize> = BTreeMap::new();
-    let mut midpoint = |a: usize, b: usize, verts: &mut Vec<[f64; 3]>| {
-        *mid.entry((a.min(b), a.max(b))).or_insert_with(|| {
-            verts.push([0, 1, 2].map(|k| (verts[a][k] + verts[b][k]) / 2.0));
-            verts.len() - 1
-        })
-    };
-    let mut triangles = Vec::new();
-    for [a, b, c] in faces {
-        let (ab, bc, ca) = (
-            midpoint(a, b, &mut verts),
-            midpoint(b, c, &mut verts),
-            midpoint(c, a, &mut verts),
-        );
-        triangles.extend([[a, ab, ca], [b, bc, ab], [c, ca, bc], [ab, bc, ca]]);
-    }
+    let sphere = demo_mesh::icosphere(Vec3::ZERO, 1.0, 1);
     let place = placement(rng);
-    let vertices: Vec<_> = verts
+    let vertices: Vec<_> = sphere
+        .positions
         .iter()
         .map(|q| {
-            let l = (q[0] * q[0] + q[1] * q[1] + q[2] * q[2]).sqrt();
+            let q = q.as_dvec3().normalize().to_array();
             let r = 1.0 + rng.range(-0.1, 0.1);
-            place(q.map(|x| x * r / l))
+            place(q.map(|x| x * r))
         })
+        .collect();
+    let triangles = sphere
+        .indices
+        .iter()
+        .map(|t| t.map(|i| i as usize))
         .collect();
     let n = vertices.len();
     Mesh::new(vertices, triangles, true, false, &vec![false; n])

@@ -415,6 +415,40 @@ fn unbounded_hits_are_rare_f64() {
 
 // ------------------------------------------------------- metamorphic
 
+/// Every kernel gives on the transformed inputs exactly the answers it gave
+/// on the originals, with every `t` mapped by `map` (the metamorphic
+/// identities below that change `t`).
+#[allow(clippy::too_many_arguments)]
+fn check_all_kernels_map<V: Vector>(
+    (ray, aabb, tri, plane): (Ray<V>, Aabb<V>, Triangle<V>, Plane<V>),
+    (ray2, aabb2, tri2, plane2): (Ray<V>, Aabb<V>, Triangle<V>, Plane<V>),
+    map: impl Fn(S<V>) -> S<V>,
+) -> Result<(), TestCaseError> {
+    let inf = S::<V>::INFINITY;
+    prop_assert_eq!(
+        ray_aabb(&ray2, &aabb2, inf),
+        ray_aabb(&ray, &aabb, inf).map(|(e, x)| (map(e), map(x)))
+    );
+    prop_assert_eq!(
+        ray_aabb_naive(&ray2, &aabb2, inf),
+        ray_aabb_naive(&ray, &aabb, inf).map(|(e, x)| (map(e), map(x)))
+    );
+    prop_assert_eq!(
+        ray_plane(&ray2, &plane2, inf),
+        ray_plane(&ray, &plane, inf).map(&map)
+    );
+    for kernel in [
+        ray_triangle::<V>,
+        ray_triangle_mt::<V>,
+        rayhit::ray_triangle_one_hit::<V>,
+    ] {
+        let a = kernel(&ray2, &tri2, inf);
+        let b = kernel(&ray, &tri, inf).map(|h| rayhit::TriangleHit { t: map(h.t), ..h });
+        prop_assert_eq!(a, b);
+    }
+    Ok(())
+}
+
 /// Scaling `dir` by `2^k` scales every `t` by `2^-k` exactly and changes
 /// nothing else: every kernel uses `dir` only through quantities that scale
 /// exactly (within the ranges the strategies draw, nothing under- or
@@ -428,30 +462,9 @@ fn check_direction_scaling<V: Vector>(
 ) -> Result<(), TestCaseError> {
     let s = S::<V>::from_f64(2f64.powi(k));
     let scaled = Ray::new(ray.origin, ray.dir * s);
-    let inf = S::<V>::INFINITY;
-    let div = |t: S<V>| t / s;
-    prop_assert_eq!(
-        ray_aabb(&scaled, &aabb, inf),
-        ray_aabb(&ray, &aabb, inf).map(|(e, x)| (div(e), div(x)))
-    );
-    prop_assert_eq!(
-        ray_aabb_naive(&scaled, &aabb, inf),
-        ray_aabb_naive(&ray, &aabb, inf).map(|(e, x)| (div(e), div(x)))
-    );
-    prop_assert_eq!(
-        ray_plane(&scaled, &plane, inf),
-        ray_plane(&ray, &plane, inf).map(div)
-    );
-    for kernel in [
-        ray_triangle::<V>,
-        ray_triangle_mt::<V>,
-        rayhit::ray_triangle_one_hit::<V>,
-    ] {
-        let a = kernel(&scaled, &tri, inf);
-        let b = kernel(&ray, &tri, inf).map(|h| rayhit::TriangleHit { t: div(h.t), ..h });
-        prop_assert_eq!(a, b);
-    }
-    Ok(())
+    check_all_kernels_map((ray, aabb, tri, plane), (scaled, aabb, tri, plane), |t| {
+        t / s
+    })
 }
 
 /// Mirroring an axis (negating one coordinate of every input) gives the same
@@ -657,34 +670,13 @@ fn check_position_scaling<V: Vector>(
     k: i32,
 ) -> Result<(), TestCaseError> {
     let s = S::<V>::from_f64(2f64.powi(k));
-    let inf = S::<V>::INFINITY;
-    let sray = Ray::new(ray.origin * s, ray.dir);
-    let sbox = Aabb::new(aabb.min * s, aabb.max * s);
-    let stri = Triangle::new(tri.a * s, tri.b * s, tri.c * s);
-    let splane = Plane::new(plane.point * s, plane.normal);
-    let mul = |t: S<V>| t * s;
-    prop_assert_eq!(
-        ray_aabb(&sray, &sbox, inf),
-        ray_aabb(&ray, &aabb, inf).map(|(e, x)| (mul(e), mul(x)))
+    let scaled = (
+        Ray::new(ray.origin * s, ray.dir),
+        Aabb::new(aabb.min * s, aabb.max * s),
+        Triangle::new(tri.a * s, tri.b * s, tri.c * s),
+        Plane::new(plane.point * s, plane.normal),
     );
-    prop_assert_eq!(
-        ray_aabb_naive(&sray, &sbox, inf),
-        ray_aabb_naive(&ray, &aabb, inf).map(|(e, x)| (mul(e), mul(x)))
-    );
-    prop_assert_eq!(
-        ray_plane(&sray, &splane, inf),
-        ray_plane(&ray, &plane, inf).map(mul)
-    );
-    for kernel in [
-        ray_triangle::<V>,
-        ray_triangle_mt::<V>,
-        rayhit::ray_triangle_one_hit::<V>,
-    ] {
-        let a = kernel(&sray, &stri, inf);
-        let b = kernel(&ray, &tri, inf).map(|h| rayhit::TriangleHit { t: mul(h.t), ..h });
-        prop_assert_eq!(a, b);
-    }
-    Ok(())
+    check_all_kernels_map((ray, aabb, tri, plane), scaled, |t| t * s)
 }
 
 proptest! {

@@ -92,14 +92,13 @@ pub fn plane_hit<V: Vector>(ray: &Ray<V>, plane: &Plane<V>, t_max: V::Scalar) ->
     (t.is_positive() && within(&t, &limit(t_max))).then_some(t)
 }
 
-/// The exact `(enter, exit)` of the ray against the closed box, clipped to
-/// `[0, t_max]`, whether or not it is empty (`enter > exit` is a miss by
-/// that much), or `None` when an axis the ray does not move along already
-/// excludes it (a miss that no rounding of the other axes can change).
-pub fn box_raw<V: Vector>(ray: &Ray<V>, b: &Aabb<V>, t_max: V::Scalar) -> Option<(R, R)> {
+/// The exact slab distances of the ray for every axis it moves along:
+/// `(near, far, axis)`, or `None` when an axis it does not move along
+/// already excludes it (a miss that no rounding of the other axes can
+/// change).
+pub fn box_slabs<V: Vector>(ray: &Ray<V>, b: &Aabb<V>) -> Option<Vec<(R, R, usize)>> {
     let (o, d, lo, hi) = (rv(ray.origin), rv(ray.dir), rv(b.min), rv(b.max));
-    let mut enter = R::zero();
-    let mut exit: Option<R> = limit(t_max);
+    let mut slabs = Vec::new();
     for k in 0..3 {
         if d[k].is_zero() {
             if o[k] < lo[k] || o[k] > hi[k] {
@@ -109,16 +108,24 @@ pub fn box_raw<V: Vector>(ray: &Ray<V>, b: &Aabb<V>, t_max: V::Scalar) -> Option
         }
         let t0 = (&lo[k] - &o[k]) / &d[k];
         let t1 = (&hi[k] - &o[k]) / &d[k];
-        let (near, far) = if t0 <= t1 { (t0, t1) } else { (t1, t0) };
-        if near > enter {
-            enter = near;
-        }
-        exit = Some(match exit {
-            Some(x) if x <= far => x,
-            _ => far,
-        });
+        slabs.push(if t0 <= t1 { (t0, t1, k) } else { (t1, t0, k) });
     }
-    Some((enter, exit.expect("a valid ray moves along some axis")))
+    Some(slabs)
+}
+
+/// The exact `(enter, exit)` of the ray against the closed box, clipped to
+/// `[0, t_max]`, whether or not it is empty (`enter > exit` is a miss by
+/// that much), or `None` as for [`box_slabs`].
+pub fn box_raw<V: Vector>(ray: &Ray<V>, b: &Aabb<V>, t_max: V::Scalar) -> Option<(R, R)> {
+    let slabs = box_slabs(ray, b)?;
+    let enter = slabs.iter().map(|s| s.0.clone()).chain([R::zero()]).max()?;
+    let exit = slabs
+        .iter()
+        .map(|s| s.1.clone())
+        .chain(limit(t_max))
+        .min()
+        .expect("a valid ray moves");
+    Some((enter, exit))
 }
 
 /// How far (in space, along one axis) a ray passes from a box that it
@@ -127,60 +134,35 @@ pub fn box_raw<V: Vector>(ray: &Ray<V>, b: &Aabb<V>, t_max: V::Scalar) -> Option
 /// (at the exit time the ray is that far outside along it) or the exit
 /// (likewise at the entry time), whichever is smaller. `t = 0` and `t_max`
 /// count as limits with no axis, and contribute only through the other side.
-/// `None` when an axis the ray does not move along excludes it.
+/// `None` as for [`box_slabs`].
 pub fn box_gap<V: Vector>(ray: &Ray<V>, b: &Aabb<V>, t_max: V::Scalar) -> Option<R> {
-    let (o, d, lo, hi) = (rv(ray.origin), rv(ray.dir), rv(b.min), rv(b.max));
-    let mut enter = (R::zero(), None);
-    let mut exit: (Option<R>, Option<usize>) = (limit(t_max), None);
-    for k in 0..3 {
-        if d[k].is_zero() {
-            if o[k] < lo[k] || o[k] > hi[k] {
-                return None;
-            }
-            continue;
-        }
-        let t0 = (&lo[k] - &o[k]) / &d[k];
-        let t1 = (&hi[k] - &o[k]) / &d[k];
-        let (near, far) = if t0 <= t1 { (t0, t1) } else { (t1, t0) };
-        if near > enter.0 {
-            enter = (near, Some(k));
-        }
-        if exit.0.as_ref().is_none_or(|x| &far < x) {
-            exit = (Some(far), Some(k));
-        }
-    }
-    let gap = (&enter.0 - exit.0.expect("a valid ray moves along some axis")).abs();
-    let speeds: Vec<R> = [enter.1, exit.1]
-        .into_iter()
-        .flatten()
-        .map(|k| d[k].abs())
-        .collect();
-    let speed = speeds.into_iter().min()?;
-    Some(gap * speed)
+    let slabs = box_slabs(ray, b)?;
+    let d = rv(ray.dir);
+    let (enter, exit) = box_raw(ray, b, t_max)?;
+    // The axes whose near (far) distance is the entry (exit), if any.
+    let by_enter = slabs.iter().filter(|s| s.0 == enter).map(|s| d[s.2].abs());
+    let by_exit = slabs.iter().filter(|s| s.1 == exit).map(|s| d[s.2].abs());
+    let speed = by_enter.chain(by_exit).min()?;
+    Some((enter - exit).abs() * speed)
 }
 
 /// How unambiguous the faces that set the entry and the exit are: the gap
 /// between the exact entry and the next largest lower limit (another axis's
 /// near distance, or 0), and likewise between the exit and the next
 /// smallest upper limit. Near an edge one of them is small and a kernel may
-/// take either face. `None` as for `box_raw`.
+/// take either face. `None` as for [`box_slabs`].
 pub fn box_face_margins<V: Vector>(ray: &Ray<V>, b: &Aabb<V>, t_max: V::Scalar) -> Option<(R, R)> {
-    let (o, d, lo, hi) = (rv(ray.origin), rv(ray.dir), rv(b.min), rv(b.max));
-    let mut nears = vec![R::zero()];
-    let mut fars: Vec<R> = limit(t_max).into_iter().collect();
-    for k in 0..3 {
-        if d[k].is_zero() {
-            if o[k] < lo[k] || o[k] > hi[k] {
-                return None;
-            }
-            continue;
-        }
-        let t0 = (&lo[k] - &o[k]) / &d[k];
-        let t1 = (&hi[k] - &o[k]) / &d[k];
-        let (near, far) = if t0 <= t1 { (t0, t1) } else { (t1, t0) };
-        nears.push(near);
-        fars.push(far);
-    }
+    let slabs = box_slabs(ray, b)?;
+    let mut nears: Vec<R> = slabs
+        .iter()
+        .map(|s| s.0.clone())
+        .chain([R::zero()])
+        .collect();
+    let mut fars: Vec<R> = slabs
+        .iter()
+        .map(|s| s.1.clone())
+        .chain(limit(t_max))
+        .collect();
     nears.sort();
     fars.sort();
     let gap = |v: &[R], i: usize, j: usize| {
