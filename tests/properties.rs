@@ -679,111 +679,80 @@ fn check_position_scaling<V: Vector>(
     check_all_kernels_map((ray, aabb, tri, plane), scaled, |t| t * s)
 }
 
+/// Declares each property once and runs it in both precisions: `$name`
+/// becomes the tests `$name_f32` and `$name_f64`, with the type `V` standing
+/// for `Vec3` and `DVec3` in the strategies.
+macro_rules! in_both_precisions {
+    ($(fn $name:ident($($arg:pat in $strategy:expr),* $(,)?) $body:block)*) => {
+        mod f32_cases {
+            use super::*;
+            type V = Vec3;
+            proptest! {
+                #![proptest_config(config())]
+                $(#[test] fn $name($($arg in $strategy),*) $body)*
+            }
+        }
+        mod f64_cases {
+            use super::*;
+            type V = DVec3;
+            proptest! {
+                #![proptest_config(config())]
+                $(#[test] fn $name($($arg in $strategy),*) $body)*
+            }
+        }
+    };
+}
+
+in_both_precisions! {
+    fn plane((plane, ray) in strat::plane_and_ray::<V>(), t_max in strat::t_max::<V>()) {
+        check_plane(plane, ray, t_max)?;
+    }
+
+    fn aabb((aabb, ray) in strat::aabb_and_ray::<V>(), t_max in strat::t_max::<V>()) {
+        check_box(aabb, ray, t_max)?;
+    }
+
+    fn triangle((tri, ray) in strat::triangle_and_ray::<V>(), t_max in strat::t_max::<V>()) {
+        check_triangle(tri, ray, t_max)?;
+    }
+
+    fn direction_scaling(aabb in strat::aabb::<V>(), (tri, ray) in strat::triangle_and_ray::<V>(), plane in strat::plane::<V>(), k in -8i32..=8) {
+        check_direction_scaling(aabb, tri, plane, ray, k)?;
+    }
+
+    fn mirror((aabb, ray) in strat::aabb_and_ray::<V>(), tri in strat::triangle::<V>(), plane in strat::plane::<V>(), axis in 0..3usize) {
+        check_mirror(aabb, tri, plane, ray, axis)?;
+    }
+
+    fn winding((tri, ray) in strat::triangle_and_ray::<V>()) {
+        check_winding(tri, ray)?;
+    }
+
+    fn spawn((tri, ray) in strat::triangle_and_ray::<V>(), w in strat::direction::<V>()) {
+        check_spawn(tri, ray, w)?;
+    }
+
+    fn spawn_plane((plane, ray) in strat::plane_and_ray::<V>(), w in strat::direction::<V>()) {
+        check_spawn_plane(plane, ray, w)?;
+    }
+
+    fn position_scaling((tri, ray) in strat::triangle_and_ray::<V>(), aabb in strat::aabb::<V>(), plane in strat::plane::<V>(), k in -8i32..=8) {
+        check_position_scaling(aabb, tri, plane, ray, k)?;
+    }
+
+    fn translation((tri, ray) in strat::triangle_and_ray::<V>(), aabb in strat::aabb::<V>(), shift in prop::array::uniform3(-16384i32..=16384)) {
+        check_translation(aabb, tri, ray, shift)?;
+    }
+
+}
+
 proptest! {
     #![proptest_config(config())]
 
-    #[test]
-    fn plane_f32((plane, ray) in strat::plane_and_ray::<Vec3>(), t_max in strat::t_max::<Vec3>()) {
-        check_plane(plane, ray, t_max)?;
-    }
-
-    #[test]
-    fn plane_f64((plane, ray) in strat::plane_and_ray::<DVec3>(), t_max in strat::t_max::<DVec3>()) {
-        check_plane(plane, ray, t_max)?;
-    }
-
-    #[test]
-    fn box_f32((aabb, ray) in strat::aabb_and_ray::<Vec3>(), t_max in strat::t_max::<Vec3>()) {
-        check_box(aabb, ray, t_max)?;
-    }
-
-    #[test]
-    fn box_f64((aabb, ray) in strat::aabb_and_ray::<DVec3>(), t_max in strat::t_max::<DVec3>()) {
-        check_box(aabb, ray, t_max)?;
-    }
-
-    #[test]
-    fn triangle_f32((tri, ray) in strat::triangle_and_ray::<Vec3>(), t_max in strat::t_max::<Vec3>()) {
-        check_triangle(tri, ray, t_max)?;
-    }
-
-    #[test]
-    fn triangle_f64((tri, ray) in strat::triangle_and_ray::<DVec3>(), t_max in strat::t_max::<DVec3>()) {
-        check_triangle(tri, ray, t_max)?;
-    }
-
-    #[test]
-    fn direction_scaling_f32(aabb in strat::aabb::<Vec3>(), (tri, ray) in strat::triangle_and_ray::<Vec3>(), plane in strat::plane::<Vec3>(), k in -8i32..=8) {
-        check_direction_scaling(aabb, tri, plane, ray, k)?;
-    }
-
-    #[test]
-    fn direction_scaling_f64(aabb in strat::aabb::<DVec3>(), (tri, ray) in strat::triangle_and_ray::<DVec3>(), plane in strat::plane::<DVec3>(), k in -8i32..=8) {
-        check_direction_scaling(aabb, tri, plane, ray, k)?;
-    }
-
-    #[test]
-    fn mirror_f32((aabb, ray) in strat::aabb_and_ray::<Vec3>(), tri in strat::triangle::<Vec3>(), plane in strat::plane::<Vec3>(), axis in 0..3usize) {
-        check_mirror(aabb, tri, plane, ray, axis)?;
-    }
-
-    #[test]
-    fn mirror_f64((aabb, ray) in strat::aabb_and_ray::<DVec3>(), tri in strat::triangle::<DVec3>(), plane in strat::plane::<DVec3>(), axis in 0..3usize) {
-        check_mirror(aabb, tri, plane, ray, axis)?;
-    }
 
     #[test]
     fn mirror_triangle_f32((tri, ray) in strat::triangle_and_ray::<Vec3>(), aabb in strat::aabb::<Vec3>(), plane in strat::plane::<Vec3>(), axis in 0..3usize) {
         check_mirror(aabb, tri, plane, ray, axis)?;
     }
 
-    #[test]
-    fn winding_f32((tri, ray) in strat::triangle_and_ray::<Vec3>()) {
-        check_winding(tri, ray)?;
-    }
-
-    #[test]
-    fn winding_f64((tri, ray) in strat::triangle_and_ray::<DVec3>()) {
-        check_winding(tri, ray)?;
-    }
-
-    #[test]
-    fn spawn_f32((tri, ray) in strat::triangle_and_ray::<Vec3>(), w in strat::direction::<Vec3>()) {
-        check_spawn(tri, ray, w)?;
-    }
-
-    #[test]
-    fn spawn_f64((tri, ray) in strat::triangle_and_ray::<DVec3>(), w in strat::direction::<DVec3>()) {
-        check_spawn(tri, ray, w)?;
-    }
-
-    #[test]
-    fn spawn_plane_f32((plane, ray) in strat::plane_and_ray::<Vec3>(), w in strat::direction::<Vec3>()) {
-        check_spawn_plane(plane, ray, w)?;
-    }
-
-    #[test]
-    fn spawn_plane_f64((plane, ray) in strat::plane_and_ray::<DVec3>(), w in strat::direction::<DVec3>()) {
-        check_spawn_plane(plane, ray, w)?;
-    }
-
-    #[test]
-    fn position_scaling_f32((tri, ray) in strat::triangle_and_ray::<Vec3>(), aabb in strat::aabb::<Vec3>(), plane in strat::plane::<Vec3>(), k in -8i32..=8) {
-        check_position_scaling(aabb, tri, plane, ray, k)?;
-    }
-
-    #[test]
-    fn position_scaling_f64((tri, ray) in strat::triangle_and_ray::<DVec3>(), aabb in strat::aabb::<DVec3>(), plane in strat::plane::<DVec3>(), k in -8i32..=8) {
-        check_position_scaling(aabb, tri, plane, ray, k)?;
-    }
-
-    #[test]
-    fn translation_f32((tri, ray) in strat::triangle_and_ray::<Vec3>(), aabb in strat::aabb::<Vec3>(), shift in prop::array::uniform3(-16384i32..=16384)) {
-        check_translation(aabb, tri, ray, shift)?;
-    }
-
-    #[test]
-    fn translation_f64((tri, ray) in strat::triangle_and_ray::<DVec3>(), aabb in strat::aabb::<DVec3>(), shift in prop::array::uniform3(-16384i32..=16384)) {
-        check_translation(aabb, tri, ray, shift)?;
-    }
 }
