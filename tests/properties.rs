@@ -268,27 +268,17 @@ fn check_triangle<V: Vector>(
             .as_ref()
             .expect("a hit on a triangle the ray is parallel to");
         let (u_exact, v_exact) = exact.uv.as_ref().expect("parallel");
-        prop_assert!(
-            unbounded || support::close(h.t, t_exact, err.t),
-            "t {:?} exact {} bound {:?}",
-            h.t,
-            support::to_f64(t_exact),
-            err.t
-        );
-        prop_assert!(
-            unbounded || support::close(h.u, u_exact, err.u),
-            "u {:?} exact {} bound {:?}",
-            h.u,
-            support::to_f64(u_exact),
-            err.u
-        );
-        prop_assert!(
-            unbounded || support::close(h.v, v_exact, err.v),
-            "v {:?} exact {} bound {:?}",
-            h.v,
-            support::to_f64(v_exact),
-            err.v
-        );
+        for (name, got, exact, bound) in [
+            ("t", h.t, t_exact, err.t),
+            ("u", h.u, u_exact, err.u),
+            ("v", h.v, v_exact, err.v),
+        ] {
+            prop_assert!(
+                unbounded || support::close(got, exact, bound),
+                "{name} = {got:?}, exact {}, bound {bound:?}",
+                support::to_f64(exact)
+            );
+        }
 
         // The barycentric point equals ray.at(t) within the bound: both are
         // within their errors of the exact crossing p*. Exactly from the
