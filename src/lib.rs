@@ -46,7 +46,8 @@
 //! (`f32`, the default type parameter, so `Ray` means `Ray<Vec3>`) or
 //! [`glam::DVec3`] (`f64`). The `f64` types also have glam-style names:
 //! [`DRay`], [`DAabb`], [`DPreparedRay`], [`DPlane`], [`DTriangle`],
-//! [`DTriangleHit`], [`DTriangleHitError`], [`DPinholeCamera`]. Functions
+//! [`DTriangleHit`], [`DTriangleHitError`], [`DPinholeCamera`],
+//! [`DSurfacePoint`]. Functions
 //! need no second name: `ray_triangle(&ray, &tri, f64::INFINITY)` takes a
 //! `DRay` and a `DTriangle`.
 //!
@@ -174,7 +175,7 @@ mod triangle;
 pub use aabb::{Aabb, PreparedRay, ray_aabb, ray_aabb_naive, ray_aabb_prepared};
 pub use camera::{CameraError, PinholeCamera};
 pub use plane::{Plane, ray_plane, ray_plane_hit_point, ray_plane_t_error};
-pub use ray::{Ray, offset_ray_origin};
+pub use ray::{Ray, SurfacePoint, offset_ray_origin};
 pub use real::{Scalar, Vector};
 /// `f64` names, glam-style (see the crate docs, "Precision").
 mod f64_names {
@@ -196,6 +197,8 @@ mod f64_names {
     pub type DTriangleHitError = crate::TriangleHitError<f64>;
     /// [`PinholeCamera`](crate::PinholeCamera) in `f64`.
     pub type DPinholeCamera = crate::PinholeCamera<DVec3>;
+    /// [`SurfacePoint`](crate::SurfacePoint) in `f64`.
+    pub type DSurfacePoint = crate::SurfacePoint<DVec3>;
 }
 pub use f64_names::*;
 

@@ -165,3 +165,83 @@ pub fn offset_ray_origin<V: Vector>(
     };
     V::new(moved(0), moved(1), moved(2))
 }
+
+/// A point on a surface with the error bounds needed to leave it safely:
+/// what [`offset_ray_origin`] takes, gathered so that the arguments cannot be
+/// passed in the wrong order.
+///
+/// Build it from a hit with [`SurfacePoint::on_triangle`] or
+/// [`SurfacePoint::on_plane`], then [`spawn`](SurfacePoint::spawn) shadow and
+/// bounce rays from it. (A box face is a plane: build a
+/// [`Plane`](crate::Plane) for it.)
+///
+/// ```
+/// use rayhit::{Ray, SurfacePoint, Triangle, ray_triangle, glam::Vec3};
+/// let tri = Triangle::new(Vec3::new(-1.0, 0.0, -1.0), Vec3::new(0.0, 0.0, 1.0), Vec3::new(1.0, 0.0, -1.0));
+/// let ray = Ray::new(Vec3::new(0.1, 2.0, 0.0), Vec3::new(0.0, -1.0, -0.1));
+/// let hit = ray_triangle(&ray, &tri, f32::INFINITY).unwrap();
+/// let surface = SurfacePoint::on_triangle(&tri, &hit);
+/// // A shadow ray towards a light above: it cannot hit the triangle it left.
+/// let shadow = surface.spawn(Vec3::new(0.3, 1.0, 0.2));
+/// assert!(ray_triangle(&shadow, &tri, f32::INFINITY).is_none());
+/// ```
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct SurfacePoint<V = Vec3> {
+    /// The computed point.
+    pub point: V,
+    /// Per component, a bound on its distance from a point of the exact
+    /// surface.
+    pub point_error: V,
+    /// The surface's normal, any length.
+    pub normal: V,
+    /// Per component, a bound on the normal's difference from the exact
+    /// surface's normal (zero when it is exact).
+    pub normal_error: V,
+}
+
+impl<V: Vector> SurfacePoint<V> {
+    /// The point of a triangle hit, from its barycentrics, with the
+    /// triangle's normal: [`triangle_hit_point`](crate::triangle_hit_point)
+    /// and [`Triangle::normal_with_error`](crate::Triangle::normal_with_error).
+    #[must_use]
+    pub fn on_triangle(tri: &crate::Triangle<V>, hit: &crate::TriangleHit<S<V>>) -> Self {
+        let (point, point_error) = crate::triangle_hit_point(tri, hit);
+        let (normal, normal_error) = tri.normal_with_error();
+        Self {
+            point,
+            point_error,
+            normal,
+            normal_error,
+        }
+    }
+
+    /// The point where `ray` meets `plane` at `t` (from
+    /// [`ray_plane`](crate::ray_plane)), with the plane's exact normal:
+    /// [`ray_plane_hit_point`](crate::ray_plane_hit_point).
+    #[must_use]
+    pub fn on_plane(ray: &Ray<V>, plane: &crate::Plane<V>, t: S<V>) -> Self {
+        let (point, point_error) = crate::ray_plane_hit_point(ray, plane, t);
+        Self {
+            point,
+            point_error,
+            normal: plane.normal,
+            normal_error: V::ZERO,
+        }
+    }
+
+    /// A ray leaving the surface along `dir`, from an origin offset by
+    /// [`offset_ray_origin`] to the side `dir` points into: it does not meet
+    /// the surface again (for `dir` not within rounding of tangent).
+    #[inline]
+    #[must_use]
+    pub fn spawn(&self, dir: V) -> Ray<V> {
+        let origin = offset_ray_origin(
+            self.point,
+            self.point_error,
+            self.normal,
+            self.normal_error,
+            dir,
+        );
+        Ray::new(origin, dir)
+    }
+}

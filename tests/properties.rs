@@ -599,8 +599,8 @@ fn check_spawn<V: Vector>(tri: Triangle<V>, ray: Ray<V>, w: V) -> Result<(), Tes
     if !(wn.abs() > wl * nl / 1024.0 && side_known) {
         return Ok(());
     }
-    let origin = offset_ray_origin(p, perr, n, nerr, w);
-    let spawned = Ray::new(origin, w);
+    let spawned = rayhit::SurfacePoint::on_triangle(&tri, &hit).spawn(w);
+    prop_assert_eq!(spawned.origin, offset_ray_origin(p, perr, n, nerr, w));
     prop_assert!(
         ray_triangle(&spawned, &tri, inf).is_none(),
         "spawned ray re-hit its triangle: {spawned:?}"
@@ -633,8 +633,8 @@ fn check_spawn_plane<V: Vector>(plane: Plane<V>, ray: Ray<V>, w: V) -> Result<()
     if !(w.dot(n).to_f64().abs() > w.length().to_f64() * n.length().to_f64() / 1024.0) {
         return Ok(());
     }
-    let origin = offset_ray_origin(p, perr, n, V::ZERO, w);
-    let spawned = Ray::new(origin, w);
+    let spawned = rayhit::SurfacePoint::on_plane(&ray, &plane, t).spawn(w);
+    prop_assert_eq!(spawned.origin, offset_ray_origin(p, perr, n, V::ZERO, w));
     prop_assert!(
         ray_plane(&spawned, &plane, inf).is_none(),
         "spawned ray re-hit its plane"
