@@ -119,7 +119,8 @@
 //!   given bounds on the hit point's and the normal's errors
 //!   ([`triangle_hit_point`], [`Triangle::normal_with_error`],
 //!   [`ray_plane_hit_point`]); a ray spawned from it in a direction not
-//!   within rounding of tangent does not hit that surface again.
+//!   within rounding of tangent (the sign of `dir . normal` known despite
+//!   its rounding and the normal's error) does not hit that surface again.
 //! - **Camera** ([`PinholeCamera`]). Unit directions within `gamma(6)`; the
 //!   centre pixel of an odd-sized image looks along the view direction to a
 //!   few ulps; agrees with glam's view and projection matrices.

@@ -92,11 +92,14 @@ pub(crate) fn t_max_ok<F: Scalar>(t_max: F) -> bool {
 /// `OffsetRayOrigin` (the same idea with an exact normal) is the special case
 /// `eta = 0`.
 ///
-/// Preconditions: `dir` is not within rounding of parallel to the surface
-/// (`|dir . normal| > sum |dir_i| eta_i`, so that `s` is the side exact
-/// arithmetic would pick), and the normal is known well enough that the
-/// denominator above is positive. Otherwise, and for non-finite input, the
-/// point is returned unchanged. Never panics.
+/// Preconditions: `dir` is not within rounding of parallel to the surface,
+/// so that `s`, the sign of the *computed* `dir . normal`, is the side exact
+/// arithmetic would pick: `|fl(dir . normal)|` must exceed the dot
+/// product's own rounding bound `gamma(3) sum |dir_i normal_i|` plus the
+/// normal's error `sum |dir_i| eta_i` (a few ulps of the angle for an exact
+/// normal). And the normal must be known well enough that the denominator
+/// above is positive; otherwise, and for non-finite input, the point is
+/// returned unchanged. Never panics.
 ///
 /// ```
 /// use rayhit::{Plane, Ray, offset_ray_origin, ray_plane, ray_plane_hit_point, glam::Vec3};
