@@ -75,6 +75,9 @@
 //! - `proptest`: the public `strategies` module, the generators the
 //!   crate's property tests use (aimed rays, boxes, triangles, planes), for
 //!   testing your own kernels against this crate's.
+//! - `arbitrary`: `arbitrary::Arbitrary` for [`Ray`], [`Aabb`], [`Plane`] and
+//!   [`Triangle`] in both precisions, every coordinate a raw bit pattern (NaN,
+//!   infinities, subnormals and `-0.0` included), for fuzzers.
 
 #![no_std]
 #![cfg_attr(docsrs, feature(doc_cfg))]
@@ -91,6 +94,8 @@ compile_error!(
 pub use glam;
 
 mod aabb;
+#[cfg(feature = "arbitrary")]
+mod arbitrary;
 mod camera;
 mod plane;
 mod ray;
