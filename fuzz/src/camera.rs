@@ -89,13 +89,18 @@ fn check_new<V: Vector>(
 ) {
     let zero = S::<V>::ZERO;
     let ctx = || format!("eye {eye:?}, view {view:?}, up {up:?}, focal {focal:?}, {w}x{h}");
-    let bad_view = !view.is_finite() || view == V::ZERO;
-    let bad_up = !up.is_finite() || up == V::ZERO;
+    // Documented: zero or non-finite. Also rejected, undocumented (see
+    // tests/fuzz_regressions.rs): a finite nonzero vector whose length
+    // under- or overflows, which `normalize_or_zero` turns into zero.
+    let bad_view = !view.is_finite() || view.normalize_or_zero() == V::ZERO;
+    let bad_up = !up.is_finite() || up.normalize_or_zero() == V::ZERO;
     let bad_focal = !(focal > zero && focal.is_finite());
     match cam {
         Ok(cam) => {
+            let documented_ok =
+                view.is_finite() && view != V::ZERO && up.is_finite() && up != V::ZERO;
             assert!(
-                eye.is_finite() && !bad_view && !bad_up && !bad_focal && w > 0 && h > 0,
+                eye.is_finite() && documented_ok && !bad_focal && w > 0 && h > 0,
                 "camera from bad input: {}",
                 ctx()
             );

@@ -123,3 +123,22 @@ where
     let z = raw::<S<V>>(u);
     V::new(x, y, z)
 }
+
+/// True when `x` is zero or so far above the subnormal range that `x` times
+/// any `gamma(n)` is still normal: `|x| >= MIN_POSITIVE * 2^(2p)` with `p`
+/// the precision (24 or 53 bits).
+///
+/// The crate's error bounds are relative-error arguments; they say "no
+/// intermediate overflow" but also need no intermediate underflow (see
+/// tests/fuzz_regressions.rs). Raw-bit inputs hold a kernel to its bounds
+/// only where every product it forms passes this.
+pub fn far_from_underflow<F: Scalar>(x: F) -> bool {
+    let margin = F::ONE / (F::UNIT_ROUNDOFF * F::UNIT_ROUNDOFF);
+    x == F::ZERO || x.abs() >= F::MIN_POSITIVE * margin
+}
+
+/// [`far_from_underflow`] for a product: exact zero (a zero factor) or
+/// far from underflow.
+pub fn product_far_from_underflow<F: Scalar>(a: F, b: F) -> bool {
+    a == F::ZERO || b == F::ZERO || (far_from_underflow(a * b) && a * b != F::ZERO)
+}
