@@ -8,7 +8,7 @@ use arbitrary::{Arbitrary, Unstructured};
 use rayhit::{Aabb, PreparedRay, Ray, Scalar, Vector, ray_aabb, ray_aabb_naive, ray_aabb_prepared};
 
 use crate::exact::{R, abs, gamma, int, r, rv};
-use crate::{Check, Mode, S, inputs, oracle, raw};
+use crate::{Check, Mode, S, far_from_underflow, inputs, oracle, raw};
 
 /// The `aabb` target: the slab test.
 ///
@@ -344,19 +344,28 @@ fn crossings_away_from_edges<V: Vector>(ray: &Ray<V>, b: &Aabb<V>) -> bool {
 }
 
 /// The naive test's relative error argument needs its roundings in the
-/// normal range: every nonzero direction component, face difference and face
-/// distance at least the smallest normal and at most `MAX / 4`.
+/// normal range: every nonzero direction component, face difference
+/// `plane - o`, face distance `t = (plane - o) / d` and product `t d_m` far
+/// from underflow ([`crate::far_from_underflow`]; a quotient or product of
+/// nonzero values must not round to zero) and at most `MAX / 4`.
 fn naive_in_normal_range<V: Vector>(ray: &Ray<V>, b: &Aabb<V>) -> bool {
-    let ok = |x: S<V>| {
-        x == S::<V>::ZERO
-            || (x.abs() >= S::<V>::MIN_POSITIVE && x.abs() <= S::<V>::MAX / S::<V>::from_u32(4))
-    };
+    let quarter = S::<V>::MAX / S::<V>::from_u32(4);
+    let ok = |x: S<V>| far_from_underflow(x) && x.abs() <= quarter;
+    let ok_nonzero = |x: S<V>| x != S::<V>::ZERO && ok(x);
     (0..3).all(|k| {
         let d = ray.dir[k];
         ok(d)
             && [b.min[k], b.max[k]].into_iter().all(|p| {
                 let diff = p - ray.origin[k];
-                ok(diff) && (d == S::<V>::ZERO || ok(diff / d))
+                if !ok(diff) {
+                    return false;
+                }
+                if d == S::<V>::ZERO || diff == S::<V>::ZERO {
+                    return true;
+                }
+                let t = diff / d;
+                ok_nonzero(t)
+                    && (0..3).all(|m| ray.dir[m] == S::<V>::ZERO || ok_nonzero(t * ray.dir[m]))
             })
     })
 }
