@@ -333,6 +333,17 @@ pub fn check_vs_mt<V: Vector>(ray: &Ray<V>, tri: &Triangle<V>, t_max: S<V>) {
     let Some((ue, ve)) = exact.uv.clone() else {
         return;
     };
+    // Fast path: where both tests give exact arithmetic's answer (and the
+    // same side), no agreement check can fail, band or not; only compute
+    // the (costly) bounds when one of them differs from exact arithmetic.
+    let exact_hit = exact.hits(&oracle::limit(t_max));
+    let sides_agree = match (wt, mt) {
+        (Some(a), Some(b)) => a.side == b.side,
+        _ => true,
+    };
+    if wt.is_some() == exact_hit && mt.is_some() == exact_hit && sides_agree {
+        return;
+    }
     let bounds = mt_bounds(ray, tri, &ue, &ve);
     agreement(ray, tri, t_max, &exact, wt, Some((mt, bounds)), &ctx);
 }
