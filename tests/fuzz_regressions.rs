@@ -186,3 +186,38 @@ fn aabb_naive_distances_underflow() {
     let (e, x) = ray_aabb_naive(&ray, &b, t_max).expect("naive hit");
     assert!(0.0 <= e && e <= x && x <= t_max);
 }
+
+/// `spawn` (structured): a bounce direction nearly in the plane. Exactly,
+/// `dir . normal = +7.4e-11` (the documented precondition holds: the plane's
+/// normal is exact, so its right-hand side is zero), but the rounded dot
+/// product is `-3.4e-10`, so `offset_ray_origin` moves the point to the
+/// wrong side of the plane: the new origin is behind the plane seen along
+/// `dir`, not "strictly on the side that dir points into". The side should
+/// be taken only where the dot product's rounding error (`gamma(3) sum |dir_i
+/// normal_i|`) cannot flip it, or the precondition should say so.
+#[test]
+#[ignore = "bug: offset_ray_origin picks the side from a rounded dot product whose sign can be wrong"]
+fn spawn_from_plane_nearly_parallel_goes_to_the_wrong_side() {
+    let plane = Plane::new(
+        Vec3::new(-63.988_28, 64.0, -63.998_047),
+        Vec3::new(-0.015_624_523, -0.015_624_283, 0.003_002_451),
+    );
+    let point = Vec3::new(-73.8551, 71.525_24, -76.1841);
+    let point_error = Vec3::new(5.660_092_6e-5, 4.233_192e-5, 5.687_856_5e-5);
+    let dir = Vec3::new(-0.707_102_2, 0.707_111_3, -9.107_16e-6);
+    let n = support::rv(plane.normal);
+    let heading = support::dot(&support::rv(dir), &n);
+    assert!(
+        heading > R::from_integer(0.into()),
+        "dir points to the + side"
+    );
+    let origin = rayhit::offset_ray_origin(point, point_error, plane.normal, Vec3::ZERO, dir);
+    let side = support::dot(
+        &support::sub(&support::rv(origin), &support::rv(plane.point)),
+        &n,
+    );
+    assert!(
+        side > R::from_integer(0.into()),
+        "origin {origin} is on the - side"
+    );
+}

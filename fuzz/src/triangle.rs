@@ -413,7 +413,7 @@ pub fn mt_bounds<V: Vector>(ray: &Ray<V>, tri: &Triangle<V>, u: &R, v: &R) -> (R
 /// from inside it or from outside, aimed at a vertex, a point of an edge, a
 /// point of a face or anywhere.
 ///
-/// From inside (the origin has barycentric weights of at least 1/8 in the
+/// From inside (the origin has barycentric weights of at least 1/16 in the
 /// tetrahedron), the ray leaves through exactly one point of the closed
 /// surface at a `t` well away from 0, and the surface around that point is
 /// seen from one side: the closed rule must hit at least one face and the
