@@ -41,7 +41,7 @@ impl Check for PlaneCheck {
 
 /// Every product `ray_plane` and its bounds form is far from underflow:
 /// `w_i n_i`, `d_i n_i` and `t d_j` (with `w = point - origin`), and `t`.
-fn no_underflow<V: Vector>(ray: &Ray<V>, plane: &Plane<V>) -> bool {
+pub fn no_underflow<V: Vector>(ray: &Ray<V>, plane: &Plane<V>) -> bool {
     let w = plane.point - ray.origin;
     let n = plane.normal;
     let t = w.dot(n) / ray.dir.dot(n);

@@ -24,7 +24,7 @@ use rayhit::{
 };
 
 use crate::exact::{R, abs, cross, dot, gamma, int, rv, sub};
-use crate::{Check, Mode, S, inputs, raw, raw_vec};
+use crate::{Check, Mode, S, inputs, product_far_from_underflow, raw, raw_vec};
 
 /// The `spawn` target.
 #[derive(Debug)]
@@ -46,7 +46,12 @@ impl Check for Spawn {
                 );
                 if let Some(hit) = ray_triangle(&ray, &tri, inf) {
                     let (p, perr) = triangle_hit_point(&tri, &hit);
-                    spawn_triangle(&tri, p, perr, dir, true);
+                    let (n, nerr) = tri.normal_with_error();
+                    let (e1, e2) = (tri.b - tri.a, tri.c - tri.a);
+                    let ranges = [tri.a, tri.b, tri.c, e1, e2, p, perr, n, nerr, dir];
+                    let bounded =
+                        triangle_no_underflow(&tri, hit.u, hit.v) && in_normal_range(&ranges);
+                    spawn_triangle(&tri, p, perr, dir, bounded);
                 }
                 let (plane, ray, dir) = (
                     raw::<Plane<V>>(u),
@@ -55,7 +60,9 @@ impl Check for Spawn {
                 );
                 if let Some(t) = ray_plane(&ray, &plane, inf) {
                     let (p, perr) = ray_plane_hit_point(&ray, &plane, t);
-                    spawn_plane(&plane, p, perr, dir, true);
+                    let bounded = crate::plane::no_underflow(&ray, &plane)
+                        && in_normal_range(&[plane.point, plane.normal, p, perr, dir]);
+                    spawn_plane(&plane, p, perr, dir, bounded);
                 }
                 let (p, pe, n, ne, d) = (
                     raw_vec::<V>(u),
@@ -84,7 +91,7 @@ impl Check for Spawn {
                     // A direction in the plane (rounded): normal x random.
                     let along = plane.normal.cross(inputs::direction::<V>(u));
                     let dir = new_dir(u, plane.normal, along);
-                    spawn_plane(&plane, p, perr, dir, false);
+                    spawn_plane(&plane, p, perr, dir, true);
                 } else {
                     let (tri, ray) = inputs::triangle_and_ray::<V>(u);
                     let Some(hit) = ray_triangle(&ray, &tri, inf) else {
@@ -92,7 +99,7 @@ impl Check for Spawn {
                     };
                     let (p, perr) = triangle_hit_point(&tri, &hit);
                     let dir = new_dir(u, tri.normal(), tri.b - tri.a);
-                    spawn_triangle(&tri, p, perr, dir, false);
+                    spawn_triangle(&tri, p, perr, dir, true);
                 }
             }
         }
@@ -135,6 +142,18 @@ fn in_normal_range<V: Vector>(vs: &[V]) -> bool {
     })
 }
 
+/// The products `triangle_hit_point` and `normal_with_error` form are far
+/// from underflow ([`crate::far_from_underflow`]): `u (b - a)_j`,
+/// `v (c - a)_j` and `(b - a)_j (c - a)_k`.
+fn triangle_no_underflow<V: Vector>(tri: &Triangle<V>, u: S<V>, v: S<V>) -> bool {
+    let (e1, e2) = (tri.b - tri.a, tri.c - tri.a);
+    (0..3).all(|j| {
+        product_far_from_underflow(u, e1[j])
+            && product_far_from_underflow(v, e2[j])
+            && (0..3).all(|k| product_far_from_underflow(e1[j], e2[k]))
+    })
+}
+
 /// The precondition of `offset_ray_origin`, exactly:
 /// `|dir . normal| > sum |dir_i| normal_error_i`, plus, with `dot_rounding`,
 /// the rounding error of the computed `dir . normal`,
@@ -165,7 +184,9 @@ fn strictly_on_dir_side<V: Vector>(origin: V, on_plane: V, exact_normal: &[R; 3]
     (side > int(0) && heading > int(0)) || (side < int(0) && heading < int(0))
 }
 
-fn spawn_triangle<V: Vector>(tri: &Triangle<V>, p: V, perr: V, dir: V, raw_input: bool) {
+/// `bounded`: the inputs came from realistic ranges or passed the raw-input
+/// guards ([`in_normal_range`] and no underflow), so the bounds hold.
+fn spawn_triangle<V: Vector>(tri: &Triangle<V>, p: V, perr: V, dir: V, bounded: bool) {
     let (n, nerr) = tri.normal_with_error();
     let origin = offset_ray_origin(p, perr, n, nerr, dir);
     let ctx = || {
@@ -182,20 +203,7 @@ fn spawn_triangle<V: Vector>(tri: &Triangle<V>, p: V, perr: V, dir: V, raw_input
         );
         return;
     }
-    if raw_input
-        && !in_normal_range(&[
-            tri.a,
-            tri.b,
-            tri.c,
-            tri.b - tri.a,
-            tri.c - tri.a,
-            p,
-            perr,
-            n,
-            nerr,
-            dir,
-        ])
-    {
+    if !bounded {
         return;
     }
     if !precondition(dir, n, nerr, false) || bits(origin) == bits(p) {
@@ -224,7 +232,8 @@ fn spawn_triangle<V: Vector>(tri: &Triangle<V>, p: V, perr: V, dir: V, raw_input
     );
 }
 
-fn spawn_plane<V: Vector>(plane: &Plane<V>, p: V, perr: V, dir: V, raw_input: bool) {
+/// `bounded`: as for [`spawn_triangle`].
+fn spawn_plane<V: Vector>(plane: &Plane<V>, p: V, perr: V, dir: V, bounded: bool) {
     let origin = offset_ray_origin(p, perr, plane.normal, V::ZERO, dir);
     let ctx =
         || format!("plane {plane:?}, point {p:?} +- {perr:?}, dir {dir:?} -> origin {origin:?}");
@@ -237,7 +246,7 @@ fn spawn_plane<V: Vector>(plane: &Plane<V>, p: V, perr: V, dir: V, raw_input: bo
         );
         return;
     }
-    if raw_input && !in_normal_range(&[plane.point, plane.normal, p, perr, dir]) {
+    if !bounded {
         return;
     }
     if !precondition(dir, plane.normal, V::ZERO, true) || bits(origin) == bits(p) {
