@@ -14,7 +14,7 @@ use rayhit::{
 };
 
 use crate::exact::{R, abs, cross, dot, gamma, int, r, rv, sub};
-use crate::{Check, Mode, S, inputs, oracle, raw};
+use crate::{Check, Mode, S, far_from_underflow, inputs, oracle, product_far_from_underflow, raw};
 
 /// The `triangle` target: the watertight test.
 ///
@@ -160,7 +160,7 @@ pub fn check<V: Vector>(ray: &Ray<V>, tri: &Triangle<V>, t_max: S<V>, detailed: 
             assert!(e >= S::<V>::ZERO, "error bound {err:?}: {}", ctx());
         }
     }
-    if !precondition(ray, tri) {
+    if !precondition(ray, tri) || !(detailed || frame_no_underflow(ray, tri)) {
         return;
     }
     let exact = oracle::triangle(ray, tri);
@@ -250,6 +250,57 @@ fn check_hit<V: Vector>(
     }
 }
 
+/// Raw inputs: the watertight test's bounds are relative-error arguments,
+/// valid where none of its products underflows. This recomputes the test's
+/// frame as the kernel does (permute so the largest direction component is
+/// `z`, shear by `-d_x / d_z` and `-d_y / d_z`, scale `z` by `1 / d_z`) and
+/// asks that every product it forms (the shear terms, the edge functions'
+/// products, `e_i z_i`) and the quotients `t`, `u`, `v` be zero or far from
+/// underflow ([`crate::far_from_underflow`]).
+pub fn frame_no_underflow<V: Vector>(ray: &Ray<V>, tri: &Triangle<V>) -> bool {
+    let (d, a) = (ray.dir, ray.dir.abs());
+    let kz = if a.x() > a.y() {
+        if a.x() > a.z() { 0 } else { 2 }
+    } else if a.y() > a.z() {
+        1
+    } else {
+        2
+    };
+    let perm = |v: V| match kz {
+        0 => (v.y(), v.z(), v.x()),
+        1 => (v.z(), v.x(), v.y()),
+        _ => (v.x(), v.y(), v.z()),
+    };
+    let (dx, dy, dz) = perm(d);
+    let (sx, sy, sz) = (-dx / dz, -dy / dz, S::<V>::ONE / dz);
+    let (mut x, mut y, mut z) = ([S::<V>::ZERO; 3], [S::<V>::ZERO; 3], [S::<V>::ZERO; 3]);
+    let mut ok = far_from_underflow(sx) && far_from_underflow(sy) && far_from_underflow(sz);
+    for (i, p) in [tri.a, tri.b, tri.c].into_iter().enumerate() {
+        let (px, py, pz) = perm(p - ray.origin);
+        ok &= product_far_from_underflow(sx, pz)
+            && product_far_from_underflow(sy, pz)
+            && product_far_from_underflow(pz, sz);
+        x[i] = px + sx * pz;
+        y[i] = py + sy * pz;
+        z[i] = pz * sz;
+    }
+    let mut e = [S::<V>::ZERO; 3];
+    for i in 0..3 {
+        let (j, k) = ((i + 1) % 3, (i + 2) % 3);
+        ok &= product_far_from_underflow(x[j], y[k]) && product_far_from_underflow(y[j], x[k]);
+        e[i] = x[j] * y[k] - y[j] * x[k];
+        ok &= product_far_from_underflow(e[i], z[i]);
+    }
+    let det = e[0] + e[1] + e[2];
+    if det != S::<V>::ZERO {
+        let t_scaled = e[0] * z[0] + e[1] * z[1] + e[2] * z[2];
+        for q in [t_scaled / det, e[1] / det, e[2] / det] {
+            ok &= far_from_underflow(q);
+        }
+    }
+    ok
+}
+
 /// Moller-Trumbore's answer and its `(u, v, t)` error bounds.
 type MtAnswer<F> = (Option<TriangleHit<F>>, (R, R, R));
 
@@ -326,7 +377,15 @@ pub fn check_vs_mt<V: Vector>(ray: &Ray<V>, tri: &Triangle<V>, t_max: S<V>) {
     let mt = ray_triangle_mt(ray, tri, t_max);
     in_range("watertight", wt, t_max, &ctx);
     in_range("mt", mt, t_max, &ctx);
-    if !precondition(ray, tri) || !mt_in_normal_range(ray, tri) {
+    if !(ray.is_valid() && t_max >= S::<V>::ZERO) {
+        assert!(
+            wt.is_none() && mt.is_none(),
+            "hit on invalid input: {}",
+            ctx()
+        );
+        return;
+    }
+    if !precondition(ray, tri) || !mt_in_normal_range(ray, tri) || !frame_no_underflow(ray, tri) {
         return;
     }
     let exact = oracle::triangle(ray, tri);
@@ -350,13 +409,14 @@ pub fn check_vs_mt<V: Vector>(ray: &Ray<V>, tri: &Triangle<V>, t_max: S<V>) {
 
 /// Moller-Trumbore's relative error argument needs its roundings in the
 /// normal range: every nonzero edge, offset and direction component between
-/// `2^-40` and `2^40` (`f32`; `2^-300` and `2^300` for `f64`), so that the
-/// triple products it forms neither underflow nor overflow.
+/// `2^-25` and `2^25` (`f32`; `2^-250` and `2^250` for `f64`), so that the
+/// triple products it forms, and their multiples by `gamma(7)` in its
+/// determinant test, neither underflow nor overflow.
 fn mt_in_normal_range<V: Vector>(ray: &Ray<V>, tri: &Triangle<V>) -> bool {
     let k = if S::<V>::UNIT_ROUNDOFF.to_f64() > 1e-10 {
-        40
+        25
     } else {
-        300
+        250
     };
     let (lo, hi) = (2f64.powi(-k), 2f64.powi(k));
     let ok = |v: V| {
