@@ -388,3 +388,29 @@ fn aabb_false_hit_with_overflowing_reciprocals() {
         "false hit: exact enter {ee}, exit {xx}"
     );
 }
+
+/// `aabb_slab_vs_naive` (raw): a box of zero thickness in z at `z = 0`, the
+/// ray starting on that plane and rising at `2.35e-38`: exactly, it leaves
+/// the z slab at `t = 0`, before it reaches the x slab at `1.09e-24`, a
+/// miss. The slab test is right. The naive test hits: its face test
+/// computes `t d_z = 2.5e-62`, which underflows to `0`, inside the face. The
+/// fuzzer's "naive hits, so the slab test hits" (also a property test)
+/// holds only where the naive test's false hits are rounding-sized.
+#[test]
+fn aabb_naive_false_hit_by_underflow() {
+    let ray = Ray::new(
+        Vec3::new(-46_179_510_000_000.0, 9.18712e-40, 0.0),
+        Vec3::new(4.253_575_7e37, 4.499_995e-39, 2.350_952_8e-38),
+    );
+    let b = Aabb::new(
+        Vec3::new(3.85762e-34, 9.1834e-41, 0.0),
+        Vec3::new(2.911_449e-11, 7.106_625e-15, 0.0),
+    );
+    let t_max = 2.238_725_5e29;
+    assert_eq!(support::box_interval(&ray, &b, t_max), None);
+    assert_eq!(ray_aabb(&ray, &b, t_max), None);
+    // The naive answer (a hit, today) is allowed; it must be in range.
+    if let Some((e, x)) = ray_aabb_naive(&ray, &b, t_max) {
+        assert!(0.0 <= e && e <= x && x <= t_max);
+    }
+}

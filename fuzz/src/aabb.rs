@@ -29,7 +29,8 @@ pub struct Slab;
 /// reference.
 ///
 /// Checks: the naive test's interval is in range and `None` for invalid
-/// input; whenever it hits, the slab test hits; away from the boundary band
+/// input; whenever it hits, the slab test hits (where the naive test's
+/// arithmetic stays in the normal range); away from the boundary band
 /// (the exact entry and exit more than `32u` apart, relative) the two agree
 /// on hit or miss and the naive distances are within `gamma(2)` of exact.
 #[derive(Debug)]
@@ -263,13 +264,21 @@ pub fn check_slab_vs_naive<V: Vector>(ray: &Ray<V>, b: &Aabb<V>, t_max: S<V>) {
         assert!(naive.is_none(), "naive hit on invalid input: {}", ctx());
         return;
     }
-    assert!(
-        naive.is_none() || slab.is_some(),
-        "naive hits {naive:?}, slab misses: {}",
-        ctx()
-    );
     if !slab_precondition(ray, b) {
         return;
+    }
+    // The slab test is conservative and the naive one is not, so the slab
+    // test hits wherever the naive one does, as long as the naive test's
+    // own false hits stay within rounding of an edge: where its face test
+    // underflows (`t d_m` rounding to zero), it can hit a box that misses by
+    // far (tests/fuzz_regressions.rs), so raw inputs are held to this only
+    // in the normal range.
+    if naive_in_normal_range(ray, b) {
+        assert!(
+            naive.is_none() || slab.is_some(),
+            "naive hits {naive:?}, slab misses: {}",
+            ctx()
+        );
     }
     let Some((ee, xx)) = oracle::box_raw(ray, b, t_max) else {
         assert!(
