@@ -142,3 +142,9 @@ pub fn far_from_underflow<F: Scalar>(x: F) -> bool {
 pub fn product_far_from_underflow<F: Scalar>(a: F, b: F) -> bool {
     a == F::ZERO || b == F::ZERO || (far_from_underflow(a * b) && a * b != F::ZERO)
 }
+
+/// [`far_from_underflow`] for a quotient: an exact zero (a zero numerator)
+/// or a nonzero quotient far from underflow.
+pub fn quotient_far_from_underflow<F: Scalar>(a: F, b: F) -> bool {
+    a == F::ZERO || (far_from_underflow(a / b) && a / b != F::ZERO)
+}

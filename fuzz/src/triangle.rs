@@ -14,7 +14,9 @@ use rayhit::{
 };
 
 use crate::exact::{R, abs, cross, dot, gamma, int, r, rv, sub};
-use crate::{Check, Mode, S, far_from_underflow, inputs, oracle, product_far_from_underflow, raw};
+use crate::{
+    Check, Mode, S, inputs, oracle, product_far_from_underflow, quotient_far_from_underflow, raw,
+};
 
 /// The `triangle` target: the watertight test.
 ///
@@ -274,7 +276,9 @@ pub fn frame_no_underflow<V: Vector>(ray: &Ray<V>, tri: &Triangle<V>) -> bool {
     let (dx, dy, dz) = perm(d);
     let (sx, sy, sz) = (-dx / dz, -dy / dz, S::<V>::ONE / dz);
     let (mut x, mut y, mut z) = ([S::<V>::ZERO; 3], [S::<V>::ZERO; 3], [S::<V>::ZERO; 3]);
-    let mut ok = far_from_underflow(sx) && far_from_underflow(sy) && far_from_underflow(sz);
+    let mut ok = quotient_far_from_underflow(dx, dz)
+        && quotient_far_from_underflow(dy, dz)
+        && quotient_far_from_underflow(S::<V>::ONE, dz);
     for (i, p) in [tri.a, tri.b, tri.c].into_iter().enumerate() {
         let (px, py, pz) = perm(p - ray.origin);
         ok &= product_far_from_underflow(sx, pz)
@@ -294,8 +298,8 @@ pub fn frame_no_underflow<V: Vector>(ray: &Ray<V>, tri: &Triangle<V>) -> bool {
     let det = e[0] + e[1] + e[2];
     if det != S::<V>::ZERO {
         let t_scaled = e[0] * z[0] + e[1] * z[1] + e[2] * z[2];
-        for q in [t_scaled / det, e[1] / det, e[2] / det] {
-            ok &= far_from_underflow(q);
+        for n in [t_scaled, e[1], e[2]] {
+            ok &= quotient_far_from_underflow(n, det);
         }
     }
     ok
