@@ -279,6 +279,15 @@ fn aabb_infinite_entry_with_overflowing_reciprocal() {
     let b = Aabb::new(Vec3::ZERO, Vec3::ZERO);
     assert_eq!(support::box_interval(&ray, &b, f32::INFINITY), None);
     assert_eq!(ray_aabb(&ray, &b, f32::INFINITY), None);
+    // And without an overflowing reciprocal (found by the 10-minute run):
+    // the y exit `(1.8e19 - 0.5) / 5.9e-39` overflows as a product.
+    let ray = Ray::new(
+        Vec3::new(-1.0, 0.5, 2.350_988_7e-38),
+        Vec3::new(0.0, 5.871_732e-39, 0.0),
+    );
+    let b = Aabb::new(Vec3::ZERO, Vec3::new(1.175_494_4e-38, 1.848_221e19, 1.0));
+    assert_eq!(support::box_interval(&ray, &b, f32::INFINITY), None);
+    assert_eq!(ray_aabb(&ray, &b, f32::INFINITY), None);
 }
 
 /// `triangle_watertight_vs_mt` (raw): a valid hit with `t_max = NaN`. The
@@ -468,4 +477,39 @@ fn aabb_infinite_exit_with_infinite_t_max() {
     let (enter, exit) = ray_aabb(&ray, &b, f32::INFINITY).expect("no false miss");
     assert_eq!(r(enter), ee);
     assert!(!exit.is_finite() || r(exit) >= xx);
+}
+
+/// `triangle` (structured; found by the 10-minute run): a sliver seen from
+/// close by, crossed at exact `t = 0.0624` with a `t` bound of `0.0624` at
+/// that crossing. The watertight test decides `t > 0` conservatively and
+/// rejects the hit, which its docs allow; the fuzzer's band for a required
+/// hit was `t > bound` and is now `t > 2 bound / (1 - 3 err_u)` (derived in
+/// `fuzz/src/triangle.rs`). Moller-Trumbore hits.
+#[test]
+fn triangle_conservative_t_rejection_near_the_origin() {
+    let ray = Ray::new(
+        Vec3::new(65.953_15, 65.937_52, -64.481_43),
+        Vec3::new(-0.031_249_048, -0.031_25, -0.031_25),
+    );
+    let tri = Triangle::new(
+        Vec3::new(66.727_97, 66.707_405, -64.608_246),
+        Vec3::new(63.422_65, 63.422_65, -64.077_354),
+        Vec3::new(63.430_725, 63.431_56, -64.077_774),
+    );
+    let exact = support::triangle(&ray, &tri);
+    let t_exact = exact.t.clone().expect("not parallel");
+    assert!(exact.interior() && exact.hits(&None));
+    if ray_triangle(&ray, &tri, f32::INFINITY).is_none() {
+        let (u, v) = exact.uv.clone().unwrap();
+        let probe = TriangleHit {
+            t: support::to_f64(&t_exact) as f32,
+            u: support::to_f64(&u) as f32,
+            v: support::to_f64(&v) as f32,
+            side: Side::Back,
+        };
+        let err = ray_triangle_error_bounds(&ray, &tri, &probe);
+        let int = |n: i64| R::from_integer(n.into());
+        let band = int(2) * r(err.t) / (int(1) - int(3) * r(err.u.max(err.v)));
+        assert!(t_exact <= band, "a miss outside the conservative band");
+    }
 }

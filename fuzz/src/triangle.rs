@@ -311,7 +311,8 @@ type MtAnswer<F> = (Option<TriangleHit<F>>, (R, R, R));
 /// Outside the rounding band, the watertight test (and, when given,
 /// Moller-Trumbore) agree with exact arithmetic. The band is the watertight
 /// test's error bounds evaluated at the exact crossing (the edge weight
-/// `1 - u - v` gets `err_u + err_v`), plus `extra` (Moller-Trumbore's).
+/// `1 - u - v` gets `err_u + err_v`; for `t`, the conservative `t > 0`
+/// test's band derived below), plus Moller-Trumbore's bounds when given.
 fn agreement<V: Vector>(
     ray: &Ray<V>,
     tri: &Triangle<V>,
@@ -341,7 +342,19 @@ fn agreement<V: Vector>(
     let (mu, mv, mtt) = mt
         .as_ref()
         .map_or((zero(), zero(), zero()), |(_, b)| b.clone());
-    let (eu, ev, et) = (r(err.u) + mu, r(err.v) + mv, r(err.t) + mtt);
+    // The t band. The watertight test accepts a hit only if its computed t
+    // exceeds T(t), the t bound evaluated at that t (or a cheaper test
+    // passes). If it rejects, then t <= T(t) and |t - t*| <= T(t), so
+    // t* <= 2 T(t). T depends on t only through the spread sum |z_i - t|,
+    // with sensitivity (edge error / |det| lower bound) <= err_u, so
+    // T(t) <= T(t*) + 3 |t - t*| err_u and T(t) <= T(t*) / (1 - 3 err_u).
+    // A rejection thus needs t* <= 2 T(t*) / (1 - 3 max(err_u, err_v)).
+    let e_max = if err.u > err.v { r(err.u) } else { r(err.v) };
+    if int(3) * &e_max >= int(1) {
+        return;
+    }
+    let t_band = int(2) * r(err.t) / (int(1) - int(3) * e_max);
+    let (eu, ev, et) = (r(err.u) + mu, r(err.v) + mv, t_band + mtt);
     let we = &eu + &ev;
     let w = int(1) - ue - ve;
     let inside = ue > &eu && ve > &ev && w > we;
