@@ -396,6 +396,21 @@ fn aabb_false_hit_with_overflowing_reciprocals() {
         None,
         "false hit: exact enter {ee}, exit {xx}"
     );
+    // f64 (found by the 10-minute `aabb_slab_vs_naive` run): the ray does
+    // not move along z and starts below the box (`0 < 1.3e-321`), a miss;
+    // its x speed `5.3e-315` has an overflowing reciprocal, every exit is
+    // clipped to `t_max = MAX`, whose widening overflows, and the slab test
+    // reports `Some((MAX, MAX))`.
+    let ray = Ray::new(
+        DVec3::new(0.0, 6.953_355_807_835e-310, 0.0),
+        DVec3::new(5.299_808_824e-315, 0.0, 0.0),
+    );
+    let b = Aabb::new(
+        DVec3::new(0.0, 0.0, 1.265e-321),
+        DVec3::new(1.61895e-319, 1.0, 3.645_561_009_778_199e-304),
+    );
+    assert_eq!(support::box_raw(&ray, &b, f64::MAX), None, "exact miss");
+    assert_eq!(ray_aabb(&ray, &b, f64::MAX), None);
 }
 
 /// `aabb_slab_vs_naive` (raw): a box of zero thickness in z at `z = 0`, the
