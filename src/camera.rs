@@ -6,7 +6,7 @@ use core::fmt;
 use glam::Vec3;
 
 use crate::ray::Ray;
-use crate::real::{S, Scalar, Vector};
+use crate::real::{S, Scalar, Vector, unit};
 
 /// Why a [`PinholeCamera`] could not be built.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
@@ -116,12 +116,12 @@ impl<V: Vector> PinholeCamera<V> {
         if !eye.is_finite() {
             return Err(CameraError::NonFiniteEye);
         }
-        let forward = view_dir.normalize_or_zero();
-        if !view_dir.is_finite() || forward == V::ZERO {
+        let forward = unit(view_dir);
+        if !forward.is_finite() {
             return Err(CameraError::InvalidViewDir);
         }
-        let up_unit = up.normalize_or_zero();
-        if !up.is_finite() || up_unit == V::ZERO {
+        let up_unit = unit(up);
+        if !up_unit.is_finite() {
             return Err(CameraError::InvalidUp);
         }
         let side = forward.cross(up_unit);
@@ -134,8 +134,8 @@ impl<V: Vector> PinholeCamera<V> {
         if width == 0 || height == 0 {
             return Err(CameraError::EmptyImage);
         }
-        let right = side.normalize_or_zero();
-        let up = right.cross(forward).normalize_or_zero();
+        let right = unit(side);
+        let up = unit(right.cross(forward));
         Ok(Self {
             eye,
             forward,
@@ -191,9 +191,11 @@ impl<V: Vector> PinholeCamera<V> {
         let dx = x - S::<V>::from_u32(self.width) * half;
         let dy = S::<V>::from_u32(self.height) * half - y;
         let dir = self.forward * self.focal_length + self.right * dx + self.up * dy;
-        // normalize_or_zero would hide a NaN position as a zero direction;
-        // divide by the length instead so that it stays visible.
-        Ray::new(self.eye, dir * (S::<V>::ONE / dir.length()))
+        // A NaN position stays visible as a NaN direction (normalize_or_zero
+        // would hide it as a zero one), and a focal length far outside the
+        // usual range (whose squared length overflows) still gives a unit
+        // direction.
+        Ray::new(self.eye, unit(dir))
     }
 
     /// The ray through the centre of pixel `(i, j)`: `ray(i + 0.5, j + 0.5)`.

@@ -81,12 +81,23 @@
 //! functions' products do not overflow, and, for the `f64` exact-sign
 //! fallback, those products above `2^-969` or zero.
 //!
+//! The error bounds (`t`, `u`, `v`, hit points, and so the spawned-ray
+//! guarantee) and the false-hit bands are relative-error arguments, like
+//! pbrt-v4's: they also assume that no intermediate product or quotient
+//! underflows (a result below `MIN_POSITIVE` carries an absolute error of up
+//! to half a subnormal, which they do not count). That takes coordinates,
+//! direction components and `t` values far below the normal range (such as
+//! `t < 2^-100` or a subnormal shear factor). The slab test's "no false
+//! miss" does not assume it (two subnormals of slack cover it), nor does
+//! the crack-freeness of the watertight and one-hit tests, which rests on
+//! computing a shared edge's functions identically, not on their accuracy.
+//!
 //! - **Slab test** ([`ray_aabb`], [`ray_aabb_prepared`]). No false miss: if
 //!   the closed box meets the ray on `[0, t_max]` exactly, the test reports
 //!   it, for every input including axis-parallel rays, rays lying in a face
 //!   plane, zero-thickness boxes, `-0.0` direction components and components
 //!   so small that their reciprocal overflows. The reported exit is at least
-//!   the exact exit. False hits only within a factor `1 + 16u` (plus two
+//!   the exact exit. False hits only within a factor `1 + 16u` (plus four
 //!   subnormals) of the boundary: the ray passes within a few ulps of an
 //!   edge.
 //! - **Naive box test** ([`ray_aabb_naive`]). The reference: agrees with the
@@ -145,6 +156,9 @@
 //! - `proptest`: the public `strategies` module, the generators the
 //!   crate's property tests use (aimed rays, boxes, triangles, planes), for
 //!   testing your own kernels against this crate's.
+//! - `arbitrary`: `arbitrary::Arbitrary` for [`Ray`], [`Aabb`], [`Plane`] and
+//!   [`Triangle`] in both precisions, every coordinate a raw bit pattern (NaN,
+//!   infinities, subnormals and `-0.0` included), for fuzzers.
 
 #![no_std]
 #![cfg_attr(docsrs, feature(doc_cfg))]
@@ -164,6 +178,8 @@ mod aabb;
 #[cfg(feature = "approx")]
 #[cfg_attr(docsrs, doc(cfg(feature = "approx")))]
 pub mod approx;
+#[cfg(feature = "arbitrary")]
+mod arbitrary;
 mod camera;
 mod plane;
 mod ray;

@@ -179,7 +179,16 @@ pub fn ray_plane_hit_point<V: Vector>(ray: &Ray<V>, plane: &Plane<V>, t: S<V>) -
     let g2 = S::<V>::gamma_n(2);
     let d = ray.dir.abs();
     let td = d * t.abs();
-    // At most 3 roundings along any path (product, sum, product).
-    let e = |j: usize| bound_up(err_t * d[j] + g2 * (ray.origin[j].abs() + td[j]), 3);
+    // At most 3 roundings along any path (product, sum, product). Where the
+    // ray does not move along an axis that coordinate is exact whatever `t`
+    // is, and its `t` term is zero (not `inf * 0` for an unknown `t`).
+    let e = |j: usize| {
+        let from_t = if d[j] == S::<V>::ZERO {
+            d[j]
+        } else {
+            err_t * d[j]
+        };
+        bound_up(from_t + g2 * (ray.origin[j].abs() + td[j]), 3)
+    };
     (p, V::new(e(0), e(1), e(2)))
 }

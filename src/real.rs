@@ -392,6 +392,49 @@ pub(crate) fn bound_up<F: Scalar>(value: F, roundings: u32) -> F {
     value * (F::ONE + F::gamma_n(roundings + 1)).next_up()
 }
 
+/// `v / |v|`, computed as `v * (1 / sqrt(v . v))` (glam's `normalize`) on
+/// `v` scaled by a power of two that brings its largest component into
+/// `[1, 2)`, so that `v . v` can neither overflow nor underflow; a NaN
+/// vector when `v` is zero or not finite.
+///
+/// Scaling by a power of two is exact in the normal range, and it scales
+/// `v . v` by the square, its square root and reciprocal by the power
+/// itself, all exactly: so where `v . v` is a normal float the result is bit
+/// for bit `normalize(v)`, and that case skips the scaling. Elsewhere (a
+/// length whose square overflows, such as a camera ray at a focal length of
+/// `1e30` pixels, or underflows) it is the same computation on the scaled
+/// vector, with the same error: components that the scaling pushes below
+/// the normal range are below `2^-126` of the largest and change the
+/// length by less than a rounding.
+pub(crate) fn unit<V: Vector>(v: V) -> V {
+    let one = S::<V>::ONE;
+    let l2 = v.dot(v);
+    if l2 >= S::<V>::MIN_POSITIVE && l2 <= S::<V>::MAX {
+        return v * (one / l2.sqrt());
+    }
+    let a = v.abs();
+    let m = max2(a.x(), max2(a.y(), a.z()));
+    if !(m > S::<V>::ZERO && m <= S::<V>::MAX) {
+        // Zero gives 0 * inf and an infinite component inf * 0: NaN.
+        return v * (one / l2.sqrt());
+    }
+    // A subnormal maximum first goes up by 2^(2p) (p the precision), exactly.
+    let lift = one / (S::<V>::UNIT_ROUNDOFF * S::<V>::UNIT_ROUNDOFF);
+    let (v, m) = if m < S::<V>::MIN_POSITIVE {
+        (v * lift, m * lift)
+    } else {
+        (v, m)
+    };
+    // m is normal: its exponent e, read from its f64 image (exact for both
+    // precisions), and 2^-e applied in two steps whose factors are each
+    // representable (|e| <= 1023 for f64, 127 for f32).
+    let e = ((m.to_f64().to_bits() >> 52) & 0x7ff) as i32 - 1023;
+    let pow2 = |k: i32| S::<V>::from_f64(f64::from_bits(((1023 + k) as u64) << 52));
+    let half = -e / 2;
+    let w = v * pow2(half) * pow2(-e - half);
+    w * (one / w.dot(w).sqrt())
+}
+
 /// Arithmetic rounded outward, for error bounds with differences and
 /// quotients in them (where [`bound_up`]'s counting argument does not
 /// apply). `fl(x)` is within half an ulp of `x`, so stepping it one ulp
@@ -493,6 +536,36 @@ mod tests {
         assert!(f32::diff_of_products_exact_sign(tiny, tiny, 0.0, 0.0) > 0.0);
         assert!(f32::diff_of_products_exact_sign(0.0, 0.0, tiny, tiny) < 0.0);
         assert_eq!(f32::diff_of_products_exact_sign(2.0, 3.0, 6.0, 1.0), 0.0);
+    }
+
+    #[test]
+    fn unit_is_normalize_where_that_works_and_unit_where_it_does_not() {
+        // Bit for bit glam's normalize for an ordinary vector (the scaling
+        // argument), in both precisions.
+        let v = Vec3::new(0.3, -1.7, 2.9);
+        assert_eq!(unit(v), v.normalize());
+        let w = DVec3::new(1e-3, 5.0, -7.0);
+        assert_eq!(unit(w), w.normalize());
+        // Squares that underflow or overflow: glam gives zero or NaN, unit
+        // gives the direction. The exact answers: (3, 4, 0) / 5 scaled.
+        for s in [1e-42_f32, 1e-30, 1e30, 8e37] {
+            let u = unit(Vec3::new(3.0, 4.0, 0.0) * s);
+            assert!(
+                (u - Vec3::new(0.6, 0.8, 0.0)).abs().max_element() < 1e-6,
+                "{s}: {u}"
+            );
+        }
+        for s in [1e-320_f64, 1e-200, 1e200, 1e307] {
+            let u = unit(DVec3::new(3.0, 4.0, 0.0) * s);
+            assert!(
+                (u - DVec3::new(0.6, 0.8, 0.0)).abs().max_element() < 1e-15,
+                "{s}: {u}"
+            );
+        }
+        // Zero and non-finite vectors give a non-finite result.
+        for bad in [Vec3::ZERO, Vec3::new(f32::INFINITY, 0.0, 0.0), Vec3::NAN] {
+            assert!(!unit(bad).is_finite());
+        }
     }
 
     #[test]

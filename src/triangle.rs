@@ -107,7 +107,11 @@ pub struct TriangleHit<F = f32> {
     pub u: F,
     /// Barycentric weight of corner `c`.
     pub v: F,
-    /// The side the ray arrived from.
+    /// The side the ray arrived from: the sign of the computed determinant
+    /// (`dir . normal`), which is the exact sign whenever
+    /// [`ray_triangle_error_bounds`] for the hit is finite (it is infinite
+    /// exactly when that sign is not certain: a ray within rounding of
+    /// parallel, or a sliver seen edge-on).
     pub side: Side,
 }
 

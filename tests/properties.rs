@@ -304,7 +304,10 @@ fn check_triangle<V: Vector>(
             }
         }
 
-        // Side: the sign of dir . normal, exactly.
+        // Side: the sign of dir . normal, exactly, wherever the bounds are
+        // finite (an infinite bound says the sign is not certain; proptest
+        // found such a sliver, nearly collinear corners seen from 250 units,
+        // reported Front where exact arithmetic says Back).
         let n = support::cross(&support::sub(&b, &a), &support::sub(&c, &a));
         let dn = support::dot(&d, &n);
         let side = if dn < R::from_integer(0.into()) {
@@ -312,7 +315,11 @@ fn check_triangle<V: Vector>(
         } else {
             Side::Back
         };
-        prop_assert_eq!(h.side, side);
+        prop_assert!(
+            unbounded || h.side == side,
+            "side {:?}, exact {side:?}",
+            h.side
+        );
     }
 
     // Outside the rounding band, the watertight test agrees with exact

@@ -1,0 +1,4 @@
+//! Fuzz target `aabb`: see `rayhit_fuzz::targets::aabb` for the input layout and the checks.
+#![no_main]
+
+libfuzzer_sys::fuzz_target!(|data: &[u8]| rayhit_fuzz::targets::aabb(data));

@@ -1,0 +1,152 @@
+#!/usr/bin/env python3
+"""Writes the hand-picked seed corpus: fuzz/seeds/<target>/<name>.
+
+Each seed is a mode byte (0 raw f32, 1 raw f64, 2 structured f32, 3
+structured f64; see src/lib.rs) followed by the target's input in raw mode:
+floats as little-endian bit patterns, in the order the target reads them.
+Run it from fuzz/ after changing a target's input layout; the seeds are
+checked in, so CI does not need Python.
+"""
+import math
+import os
+import struct
+
+NAN, INF = float("nan"), float("inf")
+SUB32 = struct.unpack("<f", struct.pack("<I", 1))[0]  # smallest f32 subnormal
+MAX32 = struct.unpack("<f", struct.pack("<I", 0x7F7FFFFF))[0]
+
+
+def raw(mode, *parts):
+    """mode 0: f32, 1: f64; parts are floats, or ('u32', n) for integers."""
+    out = bytes([mode])
+    for p in parts:
+        if isinstance(p, tuple):
+            out += struct.pack("<I", p[1])
+        else:
+            out += struct.pack("<f" if mode == 0 else "<d", p)
+    return out
+
+
+def vecs(*vs):
+    return [c for v in vs for c in v]
+
+
+def write(target, name, data):
+    d = os.path.join("seeds", target)
+    os.makedirs(d, exist_ok=True)
+    with open(os.path.join(d, name), "wb") as f:
+        f.write(data)
+
+
+def structured(target):
+    # Structured mode from a few byte patterns: libFuzzer mutates from here.
+    for name, fill in [("zeros", 0x00), ("mid", 0x80), ("ones", 0xFF), ("mixed", 0x5A)]:
+        write(target, f"structured-f32-{name}", bytes([2]) + bytes([fill]) * 160)
+        write(target, f"structured-f64-{name}", bytes([3]) + bytes([fill]) * 160)
+
+
+# Boxes: box min, max, ray origin, dir, t_max.
+UNIT = [(0, 0, 0), (1, 1, 1)]
+boxes = {
+    "axis-parallel-hit": vecs(*UNIT, (-1, 0.5, 0.5), (1, 0, 0)) + [INF],
+    "in-face-plane": vecs(*UNIT, (-1, 1, 0.5), (1, 0, 0)) + [INF],
+    "on-slab-plane-negzero": vecs(*UNIT, (-1, 0, 0.5), (1, -0.0, -0.0)) + [INF],
+    "through-edge": vecs(*UNIT, (-1, -1, 0.5), (1, 1, 0)) + [INF],
+    "through-corner": vecs(*UNIT, (-1, -1, -1), (1, 1, 1)) + [INF],
+    "starts-inside": vecs(*UNIT, (0.5, 0.5, 0.5), (0.3, -0.2, 0.1)) + [INF],
+    "zero-thickness": vecs((0, 0, 0), (1, 0, 1), (0.5, -1, 0.5), (0, 1, 0)) + [INF],
+    "point-box": vecs((1, 1, 1), (1, 1, 1), (0, 0, 0), (1, 1, 1)) + [INF],
+    "inverted": vecs((1, 1, 1), (0, 0, 0), (-1, 0.5, 0.5), (1, 0, 0)) + [INF],
+    "t-max-zero": vecs(*UNIT, (0.5, 0.5, 0.5), (1, 0, 0)) + [0.0],
+    "t-max-nan": vecs(*UNIT, (-1, 0.5, 0.5), (1, 0, 0)) + [NAN],
+    "subnormal-dir": vecs(*UNIT, (0.5, 0.5, -1), (SUB32, 0, 1)) + [INF],
+    "huge-dir": vecs(*UNIT, (0.5, 0.5, -1), (0, 0, MAX32)) + [INF],
+    "nan-origin": vecs(*UNIT, (NAN, 0.5, 0.5), (1, 0, 0)) + [INF],
+    "inf-box": vecs((-INF, 0, 0), (INF, 1, 1), (-1, 0.5, 0.5), (1, 0, 0)) + [INF],
+    "zero-dir": vecs(*UNIT, (0.5, 0.5, 0.5), (0, 0, 0)) + [INF],
+}
+for target in ["aabb", "aabb_slab_vs_naive"]:
+    for name, xs in boxes.items():
+        write(target, f"raw-f32-{name}", raw(0, *xs))
+        write(target, f"raw-f64-{name}", raw(1, *xs))
+    structured(target)
+
+# Planes: point, normal, ray origin, dir, t_max.
+planes = {
+    "straight-down": vecs((0, 0, 0), (0, 1, 0), (0, 3, 0), (1, -2, 0)) + [INF],
+    "parallel": vecs((0, 0, 0), (0, 1, 0), (0, 1, 0), (1, 0, 0)) + [INF],
+    "in-plane": vecs((0, 0, 0), (0, 1, 0), (0, 0, 0), (1, 0, 0)) + [INF],
+    "on-plane-leaving": vecs((0, 0, 0), (0, 1, 0), (0, 0, 0), (0, 1, 0)) + [INF],
+    "zero-normal": vecs((0, 0, 0), (0, 0, 0), (0, 1, 0), (0, -1, 0)) + [INF],
+    "t-max-exact": vecs((0, 0, 2), (0, 0, 1), (0, 0, 0), (0, 0, 1)) + [2.0],
+    "grazing": vecs((64, 64, 64), (0, 4, -3.9999995), (0, 19, 19), (0, -4, -4)) + [INF],
+    "tiny": vecs((SUB32, 0, 0), (1, 0, 0), (0, 0, 0), (SUB32, 0, 0)) + [INF],
+    "huge": vecs((MAX32, 0, 0), (1, 0, 0), (-MAX32, 0, 0), (1, 0, 0)) + [INF],
+}
+for name, xs in planes.items():
+    write("plane", f"raw-f32-{name}", raw(0, *xs))
+    write("plane", f"raw-f64-{name}", raw(1, *xs))
+structured("plane")
+
+# Triangles: a, b, c, ray origin, dir, t_max.
+TRI = [(0, 0, 0), (2, 0, 0), (0, 2, 0)]
+tris = {
+    "interior": vecs(*TRI, (0.5, 0.25, 4), (0, 0, -2)) + [INF],
+    "edge": vecs(*TRI, (1, 1, 4), (0, 0, -1)) + [INF],
+    "vertex": vecs(*TRI, (0, 0, 4), (0, 0, -1)) + [INF],
+    "edge-on": vecs(*TRI, (-1, 0.5, 0), (1, 0, 0)) + [INF],
+    "degenerate": vecs((0, 0, 0), (1, 1, 1), (2, 2, 2), (0, 1, -1), (0, 0, 1)) + [INF],
+    "coincident": vecs((1, 1, 1), (1, 1, 1), (1, 1, 1), (1, 1, 0), (0, 0, 1)) + [INF],
+    "origin-on-triangle": vecs(*TRI, (0.5, 0.5, 0), (0, 0, 1)) + [INF],
+    "oblique": vecs((0, 0, 3), (1, 0, 3), (0, 1, 3.1), (0, 0, 0), (0.1, 0.2, 1)) + [INF],
+    "far-sliver": vecs((1e6, 0, 0), (1e6, 1, 0), (1e6, 2, 1e-3), (0, 0.5, 0), (1, 0, 0)) + [INF],
+    "t-max-zero": vecs(*TRI, (0.5, 0.25, 4), (0, 0, -2)) + [0.0],
+    "nan": vecs(*TRI, (NAN, 0.25, 4), (0, 0, -2)) + [INF],
+    "subnormal-dir": vecs(*TRI, (0.5, 0.25, 4), (SUB32, SUB32, -SUB32)) + [INF],
+}
+for target in ["triangle", "triangle_watertight_vs_mt"]:
+    for name, xs in tris.items():
+        write(target, f"raw-f32-{name}", raw(0, *xs))
+        write(target, f"raw-f64-{name}", raw(1, *xs))
+    structured(target)
+
+# Spawn: triangle, ray, new dir; plane, ray, new dir; then point,
+# point error, normal, normal error, dir for a direct call.
+spawns = {
+    "bounce-back": vecs(*TRI, (0.5, 0.25, 4), (0, 0, -2), (0.3, 0.1, 1))
+    + vecs((0, 0, 0), (0, 1, 0), (0.1, 3, 0.2), (0.3, -1, 0.7), (0.3, 1, 0.7))
+    + vecs((1, 0, 0), (1e-7, 1e-7, 1e-7), (0, 0, 1), (0, 0, 0), (0, 0, 1)),
+    "transmit": vecs(*TRI, (0.5, 0.25, 4), (0, 0, -2), (0.3, 0.1, -1))
+    + vecs((0, 0, 0), (0, 1, 0), (0.1, 3, 0.2), (0.3, -1, 0.7), (0.3, -1, 0.7))
+    + vecs((1, 0, 0), (0, 0, 0), (0, 0, 1), (0, 0, 0), (0, 0, -1)),
+    "grazing": vecs(*TRI, (1, 1, 4), (0, 0, -1), (1, 0, 1e-7))
+    + vecs((0, 0, 0), (3, 1, 0), (0, 3, 0), (0, -1, 0), (1, -3, 1e-6))
+    + vecs((0, 0, 0), (0, 0, 0), (0, 0, 1), (0, 0, 0), (1, 0, 0)),
+    "vertex-at-origin": vecs(*TRI, (0, 0, 4), (0, 0, -1), (0, 0, 1))
+    + vecs((0, 0, 0), (0, 0, 1), (0, 0, 1), (0, 0, -1), (0, 0, 1))
+    + vecs((NAN, 0, 0), (0, 0, 0), (0, 0, 1), (0, 0, 0), (0, 0, 1)),
+}
+for name, xs in spawns.items():
+    write("spawn", f"raw-f32-{name}", raw(0, *xs))
+    write("spawn", f"raw-f64-{name}", raw(1, *xs))
+structured("spawn")
+
+# Camera: eye, view, up, focal, fov, width, height, x, y, i, j.
+def cam(mode, eye, view, up, focal, fov, w, h, x, y, i, j):
+    return raw(mode, *vecs(eye, view, up), focal, fov, ("u32", w), ("u32", h), x, y, ("u32", i), ("u32", j))
+
+cams = {
+    "centre": ((0, 0, 0), (0, 0, -1), (0, 1, 0), 1.5, math.pi / 2, 3, 3, 1.5, 1.5, 1, 1),
+    "corner": ((0, 1, 5), (0, 0, -1), (0, 1, 0), 240, math.radians(60), 640, 480, 0, 0, 639, 479),
+    "up-parallel": ((0, 0, 0), (0, 1, 0), (0, 2, 0), 1, 1, 4, 4, 2, 2, 0, 0),
+    "up-oblique": ((1, 2, 3), (1, -1, 0.5), (0.2, 1, 7), 100, 0.5, 101, 51, 50.5, 25.5, 50, 25),
+    "empty-image": ((0, 0, 0), (0, 0, -1), (0, 1, 0), 1, 1, 0, 1, 0, 0, 0, 0),
+    "huge-focal": ((0, 0, 0), (0, 0, -1), (0, 1, 0), 1e30, 1e-30, 3, 3, 1.5, 1.5, 1, 1),
+    "tiny-view": ((0, 0, 0), (SUB32, 0, 0), (0, 1, 0), 1, 1, 3, 3, 1.5, 1.5, 1, 1),
+    "nan-position": ((0, 0, 0), (0, 0, -1), (0, 1, 0), 1, 1, 3, 3, NAN, INF, 0xFFFFFFFF, 0),
+    "fov-pi": ((0, 0, 0), (0, 0, -1), (0, 1, 0), 1, math.pi, 3, 3, 1, 1, 1, 1),
+}
+for name, args in cams.items():
+    write("camera", f"raw-f32-{name}", cam(0, *args))
+    write("camera", f"raw-f64-{name}", cam(1, *args))
+structured("camera")

@@ -1,0 +1,213 @@
+//! `camera`: [`PinholeCamera::new`], [`PinholeCamera::from_fov`],
+//! [`PinholeCamera::ray`] and [`PinholeCamera::pixel_ray`].
+//!
+//! Input: raw mode, eye, view and up as raw-bit vectors, focal length, field
+//! of view and a raster position as raw-bit scalars, width, height and a
+//! pixel as raw `u32`s; structured mode, an eye in `[-64, 64]^3`, view and
+//! up from [`inputs::direction`], an image of 1 to 2048 pixels each way, a
+//! field of view of 10 to 150 degrees and a position in the image.
+//!
+//! Checks: no panic; a camera is built only from valid input, and each
+//! error names an input that is bad in the way the error says; the ray
+//! starts at the eye; `pixel_ray(i, j)` is `ray(i + 0.5, j + 0.5)` bit for
+//! bit; a NaN or infinite position gives a non-finite direction; and where
+//! the unnormalised direction is finite and nonzero (the camera normalises
+//! in a frame scaled by a power of two, so its squares neither overflow nor
+//! underflow) the direction has unit length within `2 gamma(6) + gamma(6)^2`
+//! (squared length), the tests/camera.rs bound. Structured inputs also: the centre
+//! pixel of an odd-sized image looks along the view direction, within the
+//! tests/camera.rs bound.
+
+use arbitrary::{Arbitrary, Unstructured};
+use rayhit::{CameraError, PinholeCamera, Scalar, Vector};
+
+use crate::exact::{R, cross, dot, gamma, int, rv};
+use crate::{Check, Mode, S, inputs, raw, raw_vec};
+
+/// The `camera` target.
+#[derive(Debug)]
+pub struct Camera;
+
+impl Check for Camera {
+    fn run<'a, V>(u: &mut Unstructured<'a>, mode: Mode)
+    where
+        V: Vector,
+        S<V>: Arbitrary<'a> + Scalar,
+    {
+        match mode {
+            Mode::Raw => {
+                let (eye, view, up) = (raw_vec::<V>(u), raw_vec::<V>(u), raw_vec::<V>(u));
+                let (focal, fov) = (raw::<S<V>>(u), raw::<S<V>>(u));
+                let (w, h) = (raw::<u32>(u), raw::<u32>(u));
+                let (x, y) = (raw::<S<V>>(u), raw::<S<V>>(u));
+                let (i, j) = (raw::<u32>(u), raw::<u32>(u));
+                let cam = PinholeCamera::new(eye, view, up, focal, w, h);
+                check_new(&cam, eye, view, up, focal, w, h);
+                let by_fov = PinholeCamera::from_fov(eye, view, up, fov, w, h);
+                check_fov(&by_fov, fov);
+                for cam in [cam, by_fov].into_iter().flatten() {
+                    check_rays(&cam, x, y, i, j);
+                }
+            }
+            Mode::Structured => {
+                let eye = inputs::point::<V>(u, 64.0);
+                let (view, up) = (inputs::direction::<V>(u), inputs::direction::<V>(u));
+                let (w, h) = (
+                    1 + inputs::index(u, 256) as u32 * 8 + inputs::index(u, 8) as u32,
+                    1 + inputs::index(u, 256) as u32 * 8 + inputs::index(u, 8) as u32,
+                );
+                let fov = inputs::s::<V>(inputs::range(u, 10.0, 150.0).to_radians());
+                let Ok(cam) = PinholeCamera::from_fov(eye, view, up, fov, w, h) else {
+                    return;
+                };
+                let x = inputs::s::<V>(inputs::range(u, 0.0, f64::from(w)));
+                let y = inputs::s::<V>(inputs::range(u, 0.0, f64::from(h)));
+                check_rays(
+                    &cam,
+                    x,
+                    y,
+                    inputs::index(u, 256) as u32 % w,
+                    inputs::index(u, 256) as u32 % h,
+                );
+                if w % 2 == 1 && h % 2 == 1 {
+                    check_centre(&cam, view);
+                }
+            }
+        }
+    }
+}
+
+fn check_new<V: Vector>(
+    cam: &Result<PinholeCamera<V>, CameraError>,
+    eye: V,
+    view: V,
+    up: V,
+    focal: S<V>,
+    w: u32,
+    h: u32,
+) {
+    let zero = S::<V>::ZERO;
+    let ctx = || format!("eye {eye:?}, view {view:?}, up {up:?}, focal {focal:?}, {w}x{h}");
+    // Documented: zero or non-finite (a finite nonzero vector whose squared
+    // length under- or overflows is fine: tests/fuzz_regressions.rs).
+    let bad_view = !view.is_finite() || view == V::ZERO;
+    let bad_up = !up.is_finite() || up == V::ZERO;
+    let bad_focal = !(focal > zero && focal.is_finite());
+    match cam {
+        Ok(cam) => {
+            let documented_ok =
+                view.is_finite() && view != V::ZERO && up.is_finite() && up != V::ZERO;
+            assert!(
+                eye.is_finite() && documented_ok && !bad_focal && w > 0 && h > 0,
+                "camera from bad input: {}",
+                ctx()
+            );
+            assert_eq!(cam.eye(), eye, "{}", ctx());
+            assert!(
+                cam.focal_length() == focal && cam.width() == w && cam.height() == h,
+                "{}",
+                ctx()
+            );
+        }
+        Err(e) => {
+            let ok = match e {
+                CameraError::NonFiniteEye => !eye.is_finite(),
+                CameraError::InvalidViewDir => bad_view,
+                CameraError::InvalidUp => bad_up,
+                CameraError::UpParallelToView => true,
+                CameraError::InvalidFocalLength => bad_focal,
+                CameraError::EmptyImage => w == 0 || h == 0,
+                _ => false,
+            };
+            assert!(ok, "{e:?} for input that is not bad that way: {}", ctx());
+        }
+    }
+}
+
+fn check_fov<V: Vector>(cam: &Result<PinholeCamera<V>, CameraError>, fov: S<V>) {
+    let fov_ok = fov > S::<V>::ZERO && fov < S::<V>::PI;
+    match cam {
+        Ok(_) => assert!(fov_ok, "camera from field of view {fov:?}"),
+        Err(CameraError::InvalidFieldOfView) => assert!(!fov_ok, "{fov:?} rejected"),
+        Err(_) => {}
+    }
+}
+
+/// The unnormalised direction, computed as `PinholeCamera::ray` does.
+fn unnormalised<V: Vector>(cam: &PinholeCamera<V>, x: S<V>, y: S<V>) -> V {
+    let half = S::<V>::HALF;
+    let dx = x - S::<V>::from_u32(cam.width()) * half;
+    let dy = S::<V>::from_u32(cam.height()) * half - y;
+    cam.forward() * cam.focal_length() + cam.right() * dx + cam.up() * dy
+}
+
+/// Where the unit-length claim holds: the unnormalised direction is finite
+/// and nonzero, however large or small.
+fn normalisable<V: Vector>(d: V) -> bool {
+    d.is_finite() && d != V::ZERO
+}
+
+fn check_rays<V: Vector>(cam: &PinholeCamera<V>, x: S<V>, y: S<V>, i: u32, j: u32) {
+    let ctx = || format!("camera {cam:?}, position ({x:?}, {y:?}), pixel ({i}, {j})");
+    let ray = cam.ray(x, y);
+    assert_eq!(ray.origin, cam.eye(), "{}", ctx());
+    if !(x.is_finite() && y.is_finite()) {
+        assert!(
+            !ray.dir.is_finite(),
+            "non-finite position, finite direction: {}",
+            ctx()
+        );
+    } else if normalisable(unnormalised(cam, x, y)) {
+        unit(ray.dir, &ctx);
+    }
+    let half = S::<V>::HALF;
+    let (pi, pj) = (S::<V>::from_u32(i) + half, S::<V>::from_u32(j) + half);
+    let a = cam.pixel_ray(i, j);
+    let b = cam.ray(pi, pj);
+    assert!(
+        bits(a.dir) == bits(b.dir) && bits(a.origin) == bits(b.origin),
+        "pixel_ray {a:?} is not ray(i + 0.5, j + 0.5) {b:?}: {}",
+        ctx()
+    );
+    if normalisable(unnormalised(cam, pi, pj)) {
+        unit(a.dir, &ctx);
+    }
+}
+
+fn bits<V: Vector>(v: V) -> [u64; 3] {
+    [0, 1, 2].map(|k| v[k].to_f64().to_bits())
+}
+
+/// `|len^2 - 1| <= 2 gamma(6) + gamma(6)^2`: `normalize` computes the
+/// squared length (`gamma(3)`), its square root (halving that, plus one
+/// rounding), the reciprocal and the products (one each), so each component
+/// is within `gamma(6)` of the exact unit vector's.
+fn unit<V: Vector>(d: V, ctx: &dyn Fn() -> String) {
+    assert!(d.is_finite(), "direction {d:?} not finite: {}", ctx());
+    let dv = rv(d);
+    let len2 = dot(&dv, &dv);
+    let g = gamma::<S<V>>(6);
+    let dev = crate::exact::abs(&(&len2 - int(1)));
+    assert!(
+        dev <= int(2) * &g + &g * &g,
+        "direction {d:?} has squared length {}: {}",
+        crate::exact::f(&len2),
+        ctx()
+    );
+}
+
+/// The centre pixel of an odd-sized image looks along the view direction
+/// (tests/camera.rs): `dir . view > 0` and
+/// `|dir x view| <= k |view|`, `k = gamma(3) (1 + gamma(6)) / (1 - gamma(3))`.
+fn check_centre<V: Vector>(cam: &PinholeCamera<V>, view: V) {
+    let dir = rv(cam.pixel_ray(cam.width() / 2, cam.height() / 2).dir);
+    let v = rv(view);
+    assert!(dot(&dir, &v) > int(0), "centre pixel looks away: {cam:?}");
+    let c = cross(&dir, &v);
+    let (g3, g6) = (gamma::<S<V>>(3), gamma::<S<V>>(6));
+    let k: R = &g3 * (int(1) + &g6) / (int(1) - &g3);
+    assert!(
+        dot(&c, &c) <= &k * &k * dot(&v, &v),
+        "centre pixel off the view direction {view:?}: {cam:?}"
+    );
+}

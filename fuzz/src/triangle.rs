@@ -1,0 +1,615 @@
+//! `triangle` and `triangle_watertight_vs_mt`: [`ray_triangle`],
+//! [`ray_triangle_one_hit`], [`ray_triangle_mt`] and
+//! [`ray_triangle_error_bounds`].
+//!
+//! Input: raw mode, a `Triangle`, a `Ray` and `t_max` as raw bits;
+//! structured mode, [`inputs::triangle_and_ray`] and [`inputs::t_max`], or (in the
+//! `triangle` target, one structured input in two) a closed tetrahedron and
+//! a ray from inside or outside it aimed at a vertex, an edge or a face.
+
+use arbitrary::{Arbitrary, Unstructured};
+use rayhit::{
+    Ray, Scalar, Side, Triangle, TriangleHit, Vector, ray_triangle, ray_triangle_error_bounds,
+    ray_triangle_mt, ray_triangle_one_hit,
+};
+
+use crate::exact::{R, abs, cross, dot, gamma, int, r, rv, sub};
+use crate::{
+    Check, Mode, S, inputs, oracle, product_far_from_underflow, quotient_far_from_underflow, raw,
+};
+
+/// The `triangle` target: the watertight test.
+///
+/// Checks, any input: no panic; for each of the three kernels `None` or
+/// `0 < t <= t_max` finite and `u, v` in `[0, 1]`; `None` for an invalid ray
+/// or `t_max`; a one-hit-rule hit is the closed test's hit, bit for bit;
+/// the error bounds are non-negative or infinite, never NaN. Where the
+/// documented precondition holds (finite, corners within `2^63` (`f32`) or
+/// `2^511` (`f64`) of the origin, checked exactly): a hit has an exact
+/// crossing, `t`, `u`, `v` within `ray_triangle_error_bounds` of it, the
+/// exact side where the bound is finite, and away from the rounding band the
+/// hit or miss is exact arithmetic's. Structured inputs also: the
+/// barycentric point and `ray.at(t)` agree within their bounds; a ray from
+/// inside a closed tetrahedron hits at least one face with the closed rule
+/// and exactly one with the one-hit rule, and a ray from outside hits an
+/// even number of faces with the one-hit rule.
+#[derive(Debug)]
+pub struct Watertight;
+
+/// The `triangle_watertight_vs_mt` target: Moller-Trumbore against the
+/// watertight test.
+///
+/// Checks: both in range on any input; where the precondition holds and the
+/// exact crossing is outside both tests' rounding bands (the watertight
+/// test's barycentric and `t` bounds plus Moller-Trumbore's, derived at
+/// [`mt_bounds`]), both give exact arithmetic's answer, with the same side.
+#[derive(Debug)]
+pub struct WatertightVsMt;
+
+impl Check for Watertight {
+    fn run<'a, V>(u: &mut Unstructured<'a>, mode: Mode)
+    where
+        V: Vector,
+        S<V>: Arbitrary<'a> + Scalar,
+    {
+        match mode {
+            Mode::Raw => {
+                let (tri, ray, t_max) = (raw::<Triangle<V>>(u), raw::<Ray<V>>(u), raw::<S<V>>(u));
+                check(&ray, &tri, t_max, false);
+            }
+            Mode::Structured => {
+                if inputs::index(u, 2) == 0 {
+                    tetrahedron::<V>(u);
+                } else {
+                    let (tri, ray) = inputs::triangle_and_ray::<V>(u);
+                    check(&ray, &tri, inputs::t_max::<V>(u), true);
+                }
+            }
+        }
+    }
+}
+
+impl Check for WatertightVsMt {
+    fn run<'a, V>(u: &mut Unstructured<'a>, mode: Mode)
+    where
+        V: Vector,
+        S<V>: Arbitrary<'a> + Scalar,
+    {
+        let (tri, ray, t_max) = match mode {
+            Mode::Raw => (raw::<Triangle<V>>(u), raw::<Ray<V>>(u), raw::<S<V>>(u)),
+            Mode::Structured => {
+                let (tri, ray) = inputs::triangle_and_ray::<V>(u);
+                (tri, ray, inputs::t_max::<V>(u))
+            }
+        };
+        check_vs_mt(&ray, &tri, t_max);
+    }
+}
+
+fn ctx<V: Vector>(ray: &Ray<V>, tri: &Triangle<V>, t_max: S<V>) -> String {
+    format!("ray {ray:?}, triangle {tri:?}, t_max {t_max:?}")
+}
+
+/// Range checks on a triangle kernel's answer.
+fn in_range<F: Scalar>(
+    name: &str,
+    hit: Option<TriangleHit<F>>,
+    t_max: F,
+    ctx: &dyn Fn() -> String,
+) {
+    if let Some(h) = hit {
+        assert!(
+            h.t > F::ZERO && h.t <= t_max && h.t.is_finite(),
+            "{name}: t = {:?}: {}",
+            h.t,
+            ctx()
+        );
+        assert!(
+            F::ZERO <= h.u && h.u <= F::ONE && F::ZERO <= h.v && h.v <= F::ONE,
+            "{name}: barycentrics {:?}: {}",
+            (h.u, h.v),
+            ctx()
+        );
+    }
+}
+
+/// The documented precondition, decided exactly: everything finite and
+/// every corner coordinate relative to the origin below `2^63` (`f32`) or
+/// `2^511` (`f64`) in magnitude.
+pub fn precondition<V: Vector>(ray: &Ray<V>, tri: &Triangle<V>) -> bool {
+    if !(ray.is_valid() && tri.a.is_finite() && tri.b.is_finite() && tri.c.is_finite()) {
+        return false;
+    }
+    let limit = crate::exact::pow2(if S::<V>::UNIT_ROUNDOFF.to_f64() > 1e-10 {
+        63
+    } else {
+        511
+    });
+    let o = rv(ray.origin);
+    [tri.a, tri.b, tri.c]
+        .into_iter()
+        .all(|p| sub(&rv(p), &o).iter().all(|x| abs(x) < limit))
+}
+
+/// All single-triangle checks on one input; `detailed` adds the ones that
+/// assume realistic ranges.
+pub fn check<V: Vector>(ray: &Ray<V>, tri: &Triangle<V>, t_max: S<V>, detailed: bool) {
+    let ctx = || ctx(ray, tri, t_max);
+    let wt = ray_triangle(ray, tri, t_max);
+    let one = ray_triangle_one_hit(ray, tri, t_max);
+    let mt = ray_triangle_mt(ray, tri, t_max);
+    in_range("watertight", wt, t_max, &ctx);
+    in_range("one-hit", one, t_max, &ctx);
+    in_range("mt", mt, t_max, &ctx);
+    if let Some(h) = one {
+        assert!(
+            wt.is_some_and(|w| same(&w, &h)),
+            "one-hit {one:?} but closed {wt:?}: {}",
+            ctx()
+        );
+    }
+    if !(ray.is_valid() && t_max >= S::<V>::ZERO) {
+        assert!(
+            wt.is_none() && one.is_none() && mt.is_none(),
+            "hit on invalid input: {}",
+            ctx()
+        );
+        return;
+    }
+    if let Some(h) = wt {
+        let err = ray_triangle_error_bounds(ray, tri, &h);
+        for e in [err.t, err.u, err.v] {
+            assert!(e >= S::<V>::ZERO, "error bound {err:?}: {}", ctx());
+        }
+    }
+    if !precondition(ray, tri) || !(detailed || frame_no_underflow(ray, tri)) {
+        return;
+    }
+    let exact = oracle::triangle(ray, tri);
+    if let Some(h) = wt {
+        check_hit(ray, tri, &h, &exact, detailed, &ctx);
+    }
+    agreement(ray, tri, t_max, &exact, wt, None, &ctx);
+}
+
+fn same<F: Scalar>(a: &TriangleHit<F>, b: &TriangleHit<F>) -> bool {
+    a.t.to_f64().to_bits() == b.t.to_f64().to_bits()
+        && a.u.to_f64().to_bits() == b.u.to_f64().to_bits()
+        && a.v.to_f64().to_bits() == b.v.to_f64().to_bits()
+        && a.side == b.side
+}
+
+/// A watertight hit against the exact crossing.
+fn check_hit<V: Vector>(
+    ray: &Ray<V>,
+    tri: &Triangle<V>,
+    h: &TriangleHit<S<V>>,
+    exact: &oracle::ExactTriangle,
+    detailed: bool,
+    ctx: &dyn Fn() -> String,
+) {
+    let err = ray_triangle_error_bounds(ray, tri, h);
+    let t_exact = exact
+        .t
+        .as_ref()
+        .unwrap_or_else(|| panic!("a hit on a triangle the ray is parallel to: {}", ctx()));
+    let (u_exact, v_exact) = exact.uv.as_ref().expect("not parallel");
+    if !err.t.is_finite() {
+        return;
+    }
+    let f = crate::exact::f;
+    assert!(
+        oracle::close(h.t, t_exact, err.t),
+        "t {:?} exact {} bound {:?}: {}",
+        h.t,
+        f(t_exact),
+        err.t,
+        ctx()
+    );
+    assert!(
+        oracle::close(h.u, u_exact, err.u),
+        "u {:?} exact {} bound {:?}: {}",
+        h.u,
+        f(u_exact),
+        err.u,
+        ctx()
+    );
+    assert!(
+        oracle::close(h.v, v_exact, err.v),
+        "v {:?} exact {} bound {:?}: {}",
+        h.v,
+        f(v_exact),
+        err.v,
+        ctx()
+    );
+    // Side: the exact sign of dir . normal.
+    let (a, b, c) = (rv(tri.a), rv(tri.b), rv(tri.c));
+    let d = rv(ray.dir);
+    let dn = dot(&d, &cross(&sub(&b, &a), &sub(&c, &a)));
+    let side = if dn < int(0) { Side::Front } else { Side::Back };
+    assert_eq!(h.side, side, "side: {}", ctx());
+    if detailed {
+        // The barycentric point and ray.at(t) are both within their errors
+        // of the exact crossing p*: from the reported u, v,
+        // |p_bary_j - p*_j| <= err_u |b_j - a_j| + err_v |c_j - a_j|;
+        // ray.at(t) adds |t - t*| |d_j| and its own two roundings,
+        // gamma(2) (|o_j| + |t d_j|).
+        let (o, p) = (rv(ray.origin), rv(ray.at(h.t)));
+        let (u, v, t) = (r(h.u), r(h.v), r(h.t));
+        let g2 = gamma::<S<V>>(2);
+        for j in 0..3 {
+            let bary = &a[j] + &u * (&b[j] - &a[j]) + &v * (&c[j] - &a[j]);
+            let bound = r(err.u) * abs(&(&b[j] - &a[j]))
+                + r(err.v) * abs(&(&c[j] - &a[j]))
+                + r(err.t) * abs(&d[j])
+                + &g2 * (abs(&o[j]) + &t * abs(&d[j]));
+            assert!(
+                abs(&(&bary - &p[j])) <= bound,
+                "barycentric point and ray.at(t) differ on axis {j}: {}",
+                ctx()
+            );
+        }
+    }
+}
+
+/// Raw inputs: the watertight test's bounds are relative-error arguments,
+/// valid where none of its products underflows. This recomputes the test's
+/// frame as the kernel does (permute so the largest direction component is
+/// `z`, shear by `-d_x / d_z` and `-d_y / d_z`, scale `z` by `1 / d_z`) and
+/// asks that every product it forms (the shear terms, the edge functions'
+/// products, `e_i z_i`) and the quotients `t`, `u`, `v` be zero or far from
+/// underflow ([`crate::far_from_underflow`]).
+pub fn frame_no_underflow<V: Vector>(ray: &Ray<V>, tri: &Triangle<V>) -> bool {
+    let (d, a) = (ray.dir, ray.dir.abs());
+    let kz = if a.x() > a.y() {
+        if a.x() > a.z() { 0 } else { 2 }
+    } else if a.y() > a.z() {
+        1
+    } else {
+        2
+    };
+    let perm = |v: V| match kz {
+        0 => (v.y(), v.z(), v.x()),
+        1 => (v.z(), v.x(), v.y()),
+        _ => (v.x(), v.y(), v.z()),
+    };
+    let (dx, dy, dz) = perm(d);
+    let (sx, sy, sz) = (-dx / dz, -dy / dz, S::<V>::ONE / dz);
+    let (mut x, mut y, mut z) = ([S::<V>::ZERO; 3], [S::<V>::ZERO; 3], [S::<V>::ZERO; 3]);
+    let mut ok = quotient_far_from_underflow(dx, dz)
+        && quotient_far_from_underflow(dy, dz)
+        && quotient_far_from_underflow(S::<V>::ONE, dz);
+    for (i, p) in [tri.a, tri.b, tri.c].into_iter().enumerate() {
+        let (px, py, pz) = perm(p - ray.origin);
+        ok &= product_far_from_underflow(sx, pz)
+            && product_far_from_underflow(sy, pz)
+            && product_far_from_underflow(pz, sz);
+        x[i] = px + sx * pz;
+        y[i] = py + sy * pz;
+        z[i] = pz * sz;
+    }
+    let mut e = [S::<V>::ZERO; 3];
+    for i in 0..3 {
+        let (j, k) = ((i + 1) % 3, (i + 2) % 3);
+        ok &= product_far_from_underflow(x[j], y[k]) && product_far_from_underflow(y[j], x[k]);
+        e[i] = x[j] * y[k] - y[j] * x[k];
+        ok &= product_far_from_underflow(e[i], z[i]);
+    }
+    let det = e[0] + e[1] + e[2];
+    if det != S::<V>::ZERO {
+        let t_scaled = e[0] * z[0] + e[1] * z[1] + e[2] * z[2];
+        for n in [t_scaled, e[1], e[2]] {
+            ok &= quotient_far_from_underflow(n, det);
+        }
+    }
+    ok
+}
+
+/// Moller-Trumbore's answer and its `(u, v, t)` error bounds.
+type MtAnswer<F> = (Option<TriangleHit<F>>, (R, R, R));
+
+/// Outside the rounding band, the watertight test (and, when given,
+/// Moller-Trumbore) agree with exact arithmetic. The band is the watertight
+/// test's error bounds evaluated at the exact crossing (the edge weight
+/// `1 - u - v` gets `err_u + err_v`; for `t`, the conservative `t > 0`
+/// test's band derived below), plus Moller-Trumbore's bounds when given.
+fn agreement<V: Vector>(
+    ray: &Ray<V>,
+    tri: &Triangle<V>,
+    t_max: S<V>,
+    exact: &oracle::ExactTriangle,
+    wt: Option<TriangleHit<S<V>>>,
+    mt: Option<MtAnswer<S<V>>>,
+    ctx: &dyn Fn() -> String,
+) {
+    let (Some(te), Some((ue, ve))) = (&exact.t, &exact.uv) else {
+        // Parallel (or a zero-area triangle) in exact arithmetic: a hit is
+        // impossible for the watertight test (checked in check_hit).
+        return;
+    };
+    let as_s = |x: &R| S::<V>::from_f64(crate::exact::f(x));
+    let probe = TriangleHit {
+        t: as_s(te),
+        u: as_s(ue),
+        v: as_s(ve),
+        side: Side::Front,
+    };
+    let err = ray_triangle_error_bounds(ray, tri, &probe);
+    if !(err.u.is_finite() && err.v.is_finite() && err.t.is_finite()) {
+        return;
+    }
+    let zero = || int(0);
+    let (mu, mv, mtt) = mt
+        .as_ref()
+        .map_or((zero(), zero(), zero()), |(_, b)| b.clone());
+    // The t band. The watertight test accepts a hit only if its computed t
+    // exceeds T(t), the t bound evaluated at that t (or a cheaper test
+    // passes). If it rejects, then t <= T(t) and |t - t*| <= T(t), so
+    // t* <= 2 T(t). T depends on t only through the spread sum |z_i - t|,
+    // with sensitivity (edge error / |det| lower bound) <= err_u, so
+    // T(t) <= T(t*) + 3 |t - t*| err_u and T(t) <= T(t*) / (1 - 3 err_u).
+    // A rejection thus needs t* <= 2 T(t*) / (1 - 3 max(err_u, err_v)).
+    let e_max = if err.u > err.v { r(err.u) } else { r(err.v) };
+    if int(3) * &e_max >= int(1) {
+        return;
+    }
+    let t_band = int(2) * r(err.t) / (int(1) - int(3) * e_max);
+    let (eu, ev, et) = (r(err.u) + mu, r(err.v) + mv, t_band + mtt);
+    let we = &eu + &ev;
+    let w = int(1) - ue - ve;
+    let inside = ue > &eu && ve > &ev && w > we;
+    let outside = ue < &-eu.clone() || ve < &-ev.clone() || w < -we;
+    let limit = oracle::limit(t_max);
+    let t_clear = te > &et && limit.as_ref().is_none_or(|m| (m - te) > et) || te < &-et.clone();
+    if !((inside || outside) && t_clear) {
+        return;
+    }
+    let expect = inside && te > &int(0) && limit.as_ref().is_none_or(|m| te <= m);
+    assert_eq!(
+        wt.is_some(),
+        expect,
+        "watertight {wt:?} disagrees with exact arithmetic (t {}, u {}, v {}) away from edges: {}",
+        crate::exact::f(te),
+        crate::exact::f(ue),
+        crate::exact::f(ve),
+        ctx()
+    );
+    if let Some((mt, _)) = mt {
+        assert_eq!(
+            mt.is_some(),
+            expect,
+            "Moller-Trumbore {mt:?} disagrees with exact arithmetic away from edges: {}",
+            ctx()
+        );
+        if let (Some(a), Some(b)) = (wt, mt) {
+            assert_eq!(a.side, b.side, "sides differ: {}", ctx());
+        }
+    }
+}
+
+/// Watertight against Moller-Trumbore on one input.
+pub fn check_vs_mt<V: Vector>(ray: &Ray<V>, tri: &Triangle<V>, t_max: S<V>) {
+    let ctx = || ctx(ray, tri, t_max);
+    let wt = ray_triangle(ray, tri, t_max);
+    let mt = ray_triangle_mt(ray, tri, t_max);
+    in_range("watertight", wt, t_max, &ctx);
+    in_range("mt", mt, t_max, &ctx);
+    if !(ray.is_valid() && t_max >= S::<V>::ZERO) {
+        assert!(
+            wt.is_none() && mt.is_none(),
+            "hit on invalid input: {}",
+            ctx()
+        );
+        return;
+    }
+    if !precondition(ray, tri) || !mt_in_normal_range(ray, tri) || !frame_no_underflow(ray, tri) {
+        return;
+    }
+    let exact = oracle::triangle(ray, tri);
+    let Some((ue, ve)) = exact.uv.clone() else {
+        return;
+    };
+    // Fast path: where both tests give exact arithmetic's answer (and the
+    // same side), no agreement check can fail, band or not; only compute
+    // the (costly) bounds when one of them differs from exact arithmetic.
+    let exact_hit = exact.hits(&oracle::limit(t_max));
+    let sides_agree = match (wt, mt) {
+        (Some(a), Some(b)) => a.side == b.side,
+        _ => true,
+    };
+    if wt.is_some() == exact_hit && mt.is_some() == exact_hit && sides_agree {
+        return;
+    }
+    let bounds = mt_bounds(ray, tri, &ue, &ve);
+    agreement(ray, tri, t_max, &exact, wt, Some((mt, bounds)), &ctx);
+}
+
+/// Moller-Trumbore's relative error argument needs its roundings in the
+/// normal range: every nonzero edge, offset and direction component between
+/// `2^-25` and `2^25` (`f32`; `2^-250` and `2^250` for `f64`), so that the
+/// triple products it forms, and their multiples by `gamma(7)` in its
+/// determinant test, neither underflow nor overflow.
+fn mt_in_normal_range<V: Vector>(ray: &Ray<V>, tri: &Triangle<V>) -> bool {
+    let k = if S::<V>::UNIT_ROUNDOFF.to_f64() > 1e-10 {
+        25
+    } else {
+        250
+    };
+    let (lo, hi) = (2f64.powi(-k), 2f64.powi(k));
+    let ok = |v: V| {
+        (0..3).all(|i| {
+            let x = v[i].to_f64().abs();
+            x == 0.0 || (lo..=hi).contains(&x)
+        })
+    };
+    ok(tri.b - tri.a) && ok(tri.c - tri.a) && ok(ray.origin - tri.a) && ok(ray.dir)
+}
+
+/// Error bounds of Moller-Trumbore's `u`, `v` and `t`, for the agreement
+/// band (the property tests' derivation).
+///
+/// MT computes `u = (s . p)/det`, `v = (d . q)/det`, `t = (e2 . q)/det` with
+/// `s = o - a`, `p = d x e2`, `q = s x e1`, `e1 = b - a`, `e2 = c - a`. Each
+/// numerator and `det` is a sum of triple products whose monomials carry at
+/// most 7 roundings (two subtractions, a product, a difference, a product,
+/// two sums), so each is within `gamma(7)` times the sum of the monomials'
+/// magnitudes. A quotient `N/D` computed as `fl(N) fl(1/det)` is then within
+/// `(dN + |q| dD)/(|D| - dD) + gamma(2)|q|` (with `q` the exact quotient),
+/// or a huge value when `dD >= |D|`.
+pub fn mt_bounds<V: Vector>(ray: &Ray<V>, tri: &Triangle<V>, u: &R, v: &R) -> (R, R, R) {
+    let (o, d) = (rv(ray.origin), rv(ray.dir));
+    let (a, b, c) = (rv(tri.a), rv(tri.b), rv(tri.c));
+    let (e1, e2, s) = (sub(&b, &a), sub(&c, &a), sub(&o, &a));
+    let mag = |x: &[R; 3], y: &[R; 3], z: &[R; 3]| -> R {
+        (0..3)
+            .map(|i| {
+                let (j, k) = ((i + 1) % 3, (i + 2) % 3);
+                abs(&x[i]) * (abs(&(&y[j] * &z[k])) + abs(&(&y[k] * &z[j])))
+            })
+            .sum()
+    };
+    let g7 = gamma::<S<V>>(7);
+    let det = dot(&e1, &cross(&d, &e2));
+    let d_det = &g7 * mag(&e1, &d, &e2);
+    let big = crate::exact::pow2(2000);
+    if abs(&det) <= d_det {
+        return (big.clone(), big.clone(), big);
+    }
+    let q = cross(&s, &e1);
+    let t = dot(&e2, &q) / &det;
+    let g2 = gamma::<S<V>>(2);
+    let quotient = |dn: R, q: &R| (dn + abs(q) * &d_det) / (abs(&det) - &d_det) + &g2 * abs(q);
+    (
+        quotient(&g7 * mag(&s, &d, &e2), u),
+        quotient(&g7 * mag(&d, &s, &e1), v),
+        quotient(&g7 * mag(&e2, &s, &e1), &t),
+    )
+}
+
+/// A closed tetrahedron, consistently wound (outward normals), and a ray
+/// from inside it or from outside, aimed at a vertex, a point of an edge, a
+/// point of a face or anywhere.
+///
+/// From inside (the origin has barycentric weights of at least 1/16 in the
+/// tetrahedron), the ray leaves through exactly one point of the closed
+/// surface at a `t` well away from 0, and the surface around that point is
+/// seen from one side: the closed rule must hit at least one face and the
+/// one-hit rule exactly one. From outside (at least the tetrahedron's size
+/// away), the one-hit rule must hit an even number of faces: the doc's
+/// "even for every ray line, even grazing a silhouette".
+///
+/// The tetrahedron is kept well shaped (its volume at least 1/64 of the
+/// cube of its longest edge, computed in `f64`), so that rounding its
+/// corners in the ray's frame (relative errors near `2^-20` in `f32`) cannot
+/// fold the surface around the exit point.
+pub fn tetrahedron<V: Vector>(u: &mut Unstructured) {
+    let centre = inputs::c(inputs::point::<V>(u, 64.0));
+    let size = inputs::pow2(u, -3, 3);
+    let base = [
+        [1.0, 1.0, 1.0],
+        [1.0, -1.0, -1.0],
+        [-1.0, 1.0, -1.0],
+        [-1.0, -1.0, 1.0],
+    ];
+    let mut p = [[0.0; 3]; 4];
+    for (i, b) in base.iter().enumerate() {
+        for k in 0..3 {
+            p[i][k] = centre[k] + size * (b[k] + inputs::range(u, -0.5, 0.5));
+        }
+    }
+    let mut vs: [V; 4] = p.map(inputs::v::<V>);
+    let f = |q: V| inputs::c(q);
+    let sub3 = |a: [f64; 3], b: [f64; 3]| [a[0] - b[0], a[1] - b[1], a[2] - b[2]];
+    let det = |vs: &[V; 4]| {
+        let (a, b, c) = (
+            sub3(f(vs[1]), f(vs[0])),
+            sub3(f(vs[2]), f(vs[0])),
+            sub3(f(vs[3]), f(vs[0])),
+        );
+        a[0] * (b[1] * c[2] - b[2] * c[1]) - a[1] * (b[0] * c[2] - b[2] * c[0])
+            + a[2] * (b[0] * c[1] - b[1] * c[0])
+    };
+    if det(&vs) < 0.0 {
+        vs.swap(2, 3);
+    }
+    let mut longest: f64 = 0.0;
+    for i in 0..4 {
+        for j in 0..i {
+            let e = sub3(f(vs[i]), f(vs[j]));
+            longest = longest.max((e[0] * e[0] + e[1] * e[1] + e[2] * e[2]).sqrt());
+        }
+    }
+    // det is six times the volume.
+    if !(det(&vs) / 6.0 >= longest.powi(3) / 64.0) {
+        return;
+    }
+    // Outward winding for a positively oriented tetrahedron.
+    let faces = [
+        Triangle::new(vs[0], vs[2], vs[1]),
+        Triangle::new(vs[0], vs[1], vs[3]),
+        Triangle::new(vs[0], vs[3], vs[2]),
+        Triangle::new(vs[1], vs[2], vs[3]),
+    ];
+    let inside = inputs::index(u, 2) == 0;
+    let origin = if inside {
+        let w = [0; 4].map(|_| inputs::range(u, 1.0, 5.0));
+        let sum: f64 = w.iter().sum();
+        let mut o = [0.0; 3];
+        for i in 0..4 {
+            for (k, ok) in o.iter_mut().enumerate() {
+                *ok += w[i] / sum * f(vs[i])[k];
+            }
+        }
+        inputs::v::<V>(o)
+    } else {
+        // Far enough out that every crossing is at t well above 0.
+        let dir = inputs::c(inputs::direction::<V>(u));
+        let len = (dir[0] * dir[0] + dir[1] * dir[1] + dir[2] * dir[2]).sqrt();
+        let dist = longest * inputs::range(u, 2.0, 8.0);
+        inputs::v::<V>([0, 1, 2].map(|k| centre[k] + dir[k] / len * dist))
+    };
+    let face = faces[inputs::index(u, 4)];
+    let target = match inputs::index(u, 4) {
+        0 => [face.a, face.b, face.c][inputs::index(u, 3)],
+        1 => {
+            let s = inputs::unit(u);
+            match inputs::index(u, 3) {
+                0 => inputs::barycentric(&face, s, 0.0),
+                1 => inputs::barycentric(&face, 0.0, s),
+                _ => inputs::barycentric(&face, s, 1.0 - s),
+            }
+        }
+        2 => inputs::barycentric(&face, inputs::unit(u) * 0.5, inputs::unit(u) * 0.5),
+        _ => inputs::v::<V>([0, 1, 2].map(|k| centre[k] + size * inputs::range(u, -2.0, 2.0))),
+    };
+    let dir = (target - origin) * inputs::s::<V>(inputs::pow2(u, -6, 6));
+    let ray = Ray::new(origin, dir);
+    if !ray.is_valid() {
+        return;
+    }
+    let inf = S::<V>::INFINITY;
+    let closed = faces
+        .iter()
+        .filter(|t| ray_triangle(&ray, t, inf).is_some())
+        .count();
+    let one = faces
+        .iter()
+        .filter(|t| ray_triangle_one_hit(&ray, t, inf).is_some())
+        .count();
+    let ctx = || format!("ray {ray:?}, tetrahedron {vs:?}");
+    if inside {
+        assert!(
+            closed >= 1,
+            "ray from inside leaks through the closed surface: {}",
+            ctx()
+        );
+        assert_eq!(one, 1, "one-hit count from inside: {}", ctx());
+    } else {
+        assert!(
+            one % 2 == 0,
+            "odd one-hit count {one} from outside: {}",
+            ctx()
+        );
+        assert!(closed >= one, "closed {closed} < one-hit {one}: {}", ctx());
+    }
+}

@@ -1,0 +1,117 @@
+//! `arbitrary::Arbitrary` for the public shape and ray types, for fuzzers.
+//!
+//! Enabled by the `arbitrary` feature. Every coordinate is a raw bit pattern:
+//! an `f32` is built from 4 bytes and an `f64` from 8 (little-endian, through
+//! `f32::from_bits` / `f64::from_bits`), so every float can come out: NaN
+//! with any payload, both infinities, subnormals, `-0.0` and the largest
+//! finite values. Nothing is filtered or normalised: most generated shapes
+//! are degenerate or invalid, which is what a fuzzer checking "no panic, no
+//! NaN" wants. When the input bytes run out, the remaining coordinates are
+//! `+0.0` (arbitrary's rule for exhausted data), so short inputs give rays
+//! and shapes at the coordinate origin.
+//!
+//! The impls are generic over the vector type, for both precisions
+//! (`Vec3` and `DVec3`); the components are read in the order the fields are
+//! declared, `x, y, z` each.
+
+use ::arbitrary::{Arbitrary, Result, Unstructured, size_hint};
+
+use crate::real::Vector;
+use crate::{Aabb, Plane, Ray, Triangle};
+
+/// A vector from three raw-bit scalars, `x`, `y`, `z`.
+fn vector<'a, V>(u: &mut Unstructured<'a>) -> Result<V>
+where
+    V: Vector,
+    <V as Vector>::Scalar: Arbitrary<'a>,
+{
+    let x = <V as Vector>::Scalar::arbitrary(u)?;
+    let y = <V as Vector>::Scalar::arbitrary(u)?;
+    let z = <V as Vector>::Scalar::arbitrary(u)?;
+    Ok(V::new(x, y, z))
+}
+
+/// The size hint of `n` vectors: `3 n` scalars.
+fn vectors_hint<'a, V>(depth: usize, n: usize) -> (usize, Option<usize>)
+where
+    V: Vector,
+    <V as Vector>::Scalar: Arbitrary<'a>,
+{
+    let one = <<V as Vector>::Scalar as Arbitrary<'a>>::size_hint(depth);
+    size_hint::and_all(&[one; 9][..3 * n])
+}
+
+macro_rules! impl_arbitrary {
+    ($(#[$doc:meta])* $T:ident { $($field:ident),+ }, $n:expr) => {
+        $(#[$doc])*
+        impl<'a, V> Arbitrary<'a> for $T<V>
+        where
+            V: Vector,
+            <V as Vector>::Scalar: Arbitrary<'a>,
+        {
+            fn arbitrary(u: &mut Unstructured<'a>) -> Result<Self> {
+                Ok(Self {
+                    $($field: vector(u)?,)+
+                })
+            }
+
+            fn size_hint(depth: usize) -> (usize, Option<usize>) {
+                vectors_hint::<V>(depth, $n)
+            }
+        }
+    };
+}
+
+impl_arbitrary!(
+    /// Raw bit patterns for `origin` then `dir` (every float, NaN and
+    /// infinities included; see the `arbitrary` feature).
+    Ray { origin, dir },
+    2
+);
+impl_arbitrary!(
+    /// Raw bit patterns for `min` then `max`: inverted, NaN and infinite
+    /// boxes included.
+    Aabb { min, max },
+    2
+);
+impl_arbitrary!(
+    /// Raw bit patterns for `point` then `normal`: zero and non-finite
+    /// normals included.
+    Plane { point, normal },
+    2
+);
+impl_arbitrary!(
+    /// Raw bit patterns for `a`, `b`, `c`: zero-area and non-finite
+    /// triangles included.
+    Triangle { a, b, c },
+    3
+);
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use glam::{DVec3, Vec3};
+
+    #[test]
+    fn floats_come_from_raw_little_endian_bits() {
+        // x = NaN (0x7fc00001), y = -0.0, z = smallest subnormal; then dir
+        // runs out of data and is all +0.0.
+        let bytes = [
+            0x01, 0x00, 0xc0, 0x7f, 0x00, 0x00, 0x00, 0x80, 0x01, 0x00, 0x00, 0x00,
+        ];
+        let ray = Ray::<Vec3>::arbitrary(&mut Unstructured::new(&bytes)).unwrap();
+        assert_eq!(ray.origin.x.to_bits(), 0x7fc0_0001);
+        assert_eq!(ray.origin.y.to_bits(), 0x8000_0000);
+        assert_eq!(ray.origin.z, f32::from_bits(1));
+        assert_eq!(ray.dir.to_array().map(f32::to_bits), [0; 3]);
+    }
+
+    #[test]
+    fn sizes_match_the_precision() {
+        assert_eq!(Ray::<Vec3>::size_hint(0), (24, Some(24)));
+        assert_eq!(Triangle::<DVec3>::size_hint(0), (72, Some(72)));
+        let bytes = [0xffu8; 72];
+        let tri = Triangle::<DVec3>::arbitrary(&mut Unstructured::new(&bytes)).unwrap();
+        assert!(tri.c.z.is_nan());
+    }
+}

@@ -1,0 +1,572 @@
+//! Inputs the fuzzers (`fuzz/`) found, kept as literal floats.
+//!
+//! Each test says which target found the input and what went wrong. Where
+//! the fault was in the fuzzer's own check, the test pins down the kernel's
+//! documented behaviour on that input. Where the kernel was at fault, the
+//! test asserts what the docs promise (and failed before the fix). Where the
+//! docs were (a guarantee stated without a precondition it needs), the test
+//! shows that the input is outside the precondition the docs now state, and
+//! that the answer is still safe (no panic, no NaN, in range).
+
+mod support;
+
+use rayhit::glam::{DVec3, Vec3};
+use rayhit::{
+    Aabb, PinholeCamera, Plane, Ray, Side, Triangle, TriangleHit, ray_aabb, ray_aabb_naive,
+    ray_plane, ray_plane_hit_point, ray_plane_t_error, ray_triangle, ray_triangle_error_bounds,
+    ray_triangle_mt,
+};
+use support::{R, r};
+
+fn bits(x: [u32; 3]) -> Vec3 {
+    Vec3::from_array(x.map(f32::from_bits))
+}
+
+/// `plane` (raw): a plane through a huge and a tiny coordinate, ray with a
+/// subnormal direction component. The fuzzer's false-miss check fed an
+/// infinite error bound to the exact oracle; the kernel was right: no hit
+/// or an in-range one, and the bound is not NaN.
+#[test]
+fn plane_raw_input_with_unbounded_error() {
+    let plane = Plane::new(
+        bits([0x1d00_f300, 0x4f01_019c, 0x0000_0000]),
+        bits([0x2800_0000, 0x2c2c_002c, 0xe7e7_2c2c]),
+    );
+    let ray = Ray::new(
+        bits([0xe7e7_e7e7, 0x2c2c_e7e7, 0x2c2c_2c2c]),
+        bits([0x2c2c_2c2c, 0x0000_002c, 0xff0b_3e3e]),
+    );
+    let t_max = f32::from_bits(0x00ef_0bac);
+    if let Some(t) = ray_plane(&ray, &plane, t_max) {
+        assert!(t > 0.0 && t <= t_max);
+        assert!(!ray_plane_t_error(&ray, &plane, t).is_nan());
+    }
+}
+
+/// `aabb_slab_vs_naive` (structured): a ray along the box's diagonal, in
+/// through one corner and out through the opposite one. The naive test
+/// rounds the exit corner outside all three faces it lies on and reports the
+/// entry as the exit; its docs allow that ("agrees with the slab test away
+/// from edges"), and the fuzzer's check (like the property test's) had not
+/// excluded crossings at edges and corners. Both tests still hit, and the
+/// slab interval contains the exact one.
+#[test]
+fn aabb_diagonal_through_two_corners() {
+    let ray = Ray::new(Vec3::splat(3.784_353_3), Vec3::splat(-1.709_803_9));
+    let b = Aabb::new(Vec3::splat(-27.662_565), Vec3::splat(-27.051_16));
+    let t_max = 36.643_14;
+    let (enter, exit) = ray_aabb(&ray, &b, t_max).expect("slab hit");
+    let (ee, xx) = support::box_interval(&ray, &b, t_max).expect("exact hit");
+    assert!(r(exit) >= xx);
+    assert!(r(enter) <= xx && ee > R::from_integer(0.into()));
+    assert!(ray_aabb_naive(&ray, &b, t_max).is_some());
+}
+
+/// `camera` (raw): a finite, nonzero view direction whose squared length
+/// underflows (`4.8e-44` along x, a subnormal) was rejected as
+/// `InvalidViewDir`, which the docs define as "zero or not finite"; so were
+/// views and up vectors whose squared length overflows (`1e30`). The camera
+/// now normalises in a frame scaled by a power of two.
+#[test]
+fn camera_view_with_underflowing_length() {
+    let tiny = f32::from_bits(34); // 4.8e-44
+    for (view, up) in [
+        (Vec3::new(tiny, 0.0, 0.0), Vec3::Y),
+        (Vec3::new(1e30, 0.0, 0.0), Vec3::Y),
+        (-Vec3::Z, Vec3::new(0.0, tiny, 0.0)),
+        (-Vec3::Z, Vec3::new(0.0, 3e38, 3e38)),
+    ] {
+        assert!(view.is_finite() && view != Vec3::ZERO);
+        let cam = PinholeCamera::new(Vec3::ZERO, view, up, 1.0, 1, 1).expect("valid camera");
+        // The one pixel looks along the view direction (exactly: x and y are
+        // at the image centre), and is a unit vector.
+        let dir = cam.pixel_ray(0, 0).dir;
+        let axis = if view.x != 0.0 { Vec3::X } else { -Vec3::Z };
+        assert_eq!(dir, axis, "view {view}, up {up}");
+    }
+}
+
+/// Found while writing the `camera` target: a focal length is accepted when
+/// positive and finite, but above about `2^64` pixels the squared length of
+/// every ray direction overflowed and `ray` returned a zero direction, not
+/// the documented unit one; below about `2^-64` the centre pixel's squared
+/// length underflowed the same way.
+#[test]
+fn camera_huge_focal_length_gives_unit_directions() {
+    for focal in [1e30, 1e-30] {
+        let cam = PinholeCamera::new(Vec3::ZERO, -Vec3::Z, Vec3::Y, focal, 3, 3).unwrap();
+        // The centre pixel of an odd image looks exactly along the view.
+        assert_eq!(cam.pixel_ray(1, 1).dir, -Vec3::Z, "focal {focal}");
+        // A corner: the documented unit length (gamma(6), about 4e-7).
+        let dir = cam.pixel_ray(0, 0).dir;
+        assert!((dir.length() - 1.0).abs() < 1e-6, "focal {focal}: {dir}");
+    }
+}
+
+/// `plane` (raw): the hit point's error bound from `ray_plane_hit_point` is
+/// `0` on x, but the point's x (`t * d_x`, subnormal) carries a rounding
+/// error of up to half a subnormal: the bound's products underflow to zero.
+/// The crate's error bounds assume no intermediate underflow, which the docs
+/// did not say (they named overflow only) and now do.
+#[test]
+fn plane_hit_point_bound_with_underflow() {
+    let plane = Plane::new(
+        bits([0x0000_7f23, 0x905b_4000, 0x0000_0000]),
+        bits([0x6500_0000, 0xbe54_26df, 0x0044_0000]),
+    );
+    let ray = Ray::new(
+        bits([0x0000_0000, 0x0000_0044, 0x0000_0000]),
+        bits([0x3a2b_3f5f, 0x4000_f7fb, 0x0000_00ff]),
+    );
+    let t = ray_plane(&ray, &plane, f32::INFINITY).expect("hit");
+    let (p, err) = ray_plane_hit_point(&ray, &plane, t);
+    // Outside the precondition: a product of the hit point underflows.
+    let td = ray.dir * t;
+    let underflows = |j: usize| ray.dir[j] != 0.0 && td[j].abs() < f32::MIN_POSITIVE;
+    assert!((0..3).any(underflows));
+    // Still safe: a finite point and bound.
+    assert!(p.is_finite() && err.is_finite() && err.min_element() >= 0.0);
+    // Where no product underflows, the bound holds.
+    let exact = support::plane_t(&ray, &plane).unwrap();
+    let (o, d) = (support::rv(ray.origin), support::rv(ray.dir));
+    for j in (0..3).filter(|&j| !underflows(j)) {
+        let star = &o[j] + &exact * &d[j];
+        assert!(
+            support::abs_diff(&r(p[j]), &star) <= r(err[j]),
+            "axis {j}: point {p}, bound {err}"
+        );
+    }
+}
+
+/// `plane` (structured): a ray within rounding of parallel to the plane
+/// gets an infinite `t` bound (right), and `ray_plane_hit_point` multiplies
+/// it by the direction's zero x component: the x bound is NaN, not a bound.
+/// It is now finite there: the x coordinate is exact whatever `t` is.
+#[test]
+fn plane_hit_point_bound_is_never_nan() {
+    let ray = Ray::new(
+        Vec3::new(-0.000_835_418_7, 18.996_55, 18.996_544),
+        Vec3::new(0.0, -4.0, -4.0),
+    );
+    let plane = Plane::new(
+        Vec3::new(63.999_165, 64.0, 64.0),
+        Vec3::new(0.0, 4.0, -3.999_999_5),
+    );
+    // `ray_plane` now rejects such rays (the sign of `dir . normal` is not
+    // certain); the hit point function still gets any `t` a caller passes.
+    assert_eq!(ray_plane(&ray, &plane, f32::INFINITY), None);
+    let t = 0.125;
+    assert!(ray_plane_t_error(&ray, &plane, t).is_infinite());
+    let (p, err) = ray_plane_hit_point(&ray, &plane, t);
+    assert!(!err.is_nan(), "bound {err}");
+    // x is exact; its bound is the rounding term alone, a few ulps of o_x.
+    assert_eq!(p.x, ray.origin.x);
+    assert!(err.x <= 4.0 * f32::EPSILON * ray.origin.x.abs());
+}
+
+/// `aabb` (raw): a box of zero width at `x = 0`, a ray starting `1.1e-16`
+/// short of it and moving away along `-x` with a huge speed: the exact exit
+/// is `-2.8026e-45`, just past two subnormals below zero, a miss. The slab
+/// test reports a hit (its subnormal products round by half a subnormal
+/// each), so the false hit lay a fraction of a subnormal outside the band
+/// the docs stated ("a factor 1 + 16u plus two subnormals"). The derivation
+/// (at `exit_slack` in src/aabb.rs) gives four subnormals, and the docs say
+/// so now; this case is within 3.
+#[test]
+fn aabb_false_hit_band_in_the_subnormal_range() {
+    let ray = Ray::new(
+        Vec3::new(-1.110_223e-16, 0.0, 0.0),
+        Vec3::new(-3.961_408_1e28, -1.280_654_7e-9, 6.3384e-41),
+    );
+    let b = Aabb::new(Vec3::ZERO, Vec3::new(0.0, 0.0, 4.316_268e-39));
+    let t_max = 0.0;
+    if ray_aabb(&ray, &b, t_max).is_some() {
+        let (ee, xx) = support::box_raw(&ray, &b, t_max).expect("moves along x");
+        let u = r(f32::EPSILON / 2.0);
+        let one = R::from_integer(1.into());
+        let band = &xx * (one + R::from_integer(16.into()) * u)
+            + r(f32::from_bits(1)) * R::from_integer(4.into());
+        assert!(ee <= band, "false hit beyond the band: exact exit {xx}");
+    }
+}
+
+/// `aabb_slab_vs_naive` (raw): face distances around `1e-50` underflow to
+/// zero in the naive test, so its exit is `0` where the exact exit is a
+/// positive value below the smallest subnormal. Its "within a few ulps"
+/// assumes no underflow, like every relative bound; the fuzzer's check now
+/// skips such inputs. Both tests hit, the slab interval contains the exact
+/// one, and the naive one is in range.
+#[test]
+fn aabb_naive_distances_underflow() {
+    let ray = Ray::new(
+        Vec3::new(-9.488_531_5e-14, 9.981_981e-37, -2.842_171e-14),
+        Vec3::new(-7.534_539e-14, 58_913_700_000_000.0, 1.044_035_45e36),
+    );
+    let b = Aabb::new(
+        Vec3::new(-9.4962e-14, -2.842_228_2e-14, -2.842_488_4e-14),
+        Vec3::new(-7.534_539e-14, 2.578_511_8e-9, 8.8e-44),
+    );
+    let t_max = 1e-45;
+    let (ee, xx) = support::box_interval(&ray, &b, t_max).expect("exact hit");
+    let (enter, exit) = ray_aabb(&ray, &b, t_max).expect("slab hit");
+    assert!(r(exit) >= xx && r(enter) <= xx && ee >= R::from_integer(0.into()));
+    let (e, x) = ray_aabb_naive(&ray, &b, t_max).expect("naive hit");
+    assert!(0.0 <= e && e <= x && x <= t_max);
+}
+
+/// `spawn` (structured): a bounce direction nearly in the plane. Exactly,
+/// `dir . normal = +7.4e-11` (the documented precondition holds: the plane's
+/// normal is exact, so its right-hand side is zero), but the rounded dot
+/// product is `-3.4e-10`, so `offset_ray_origin` moves the point to the
+/// wrong side of the plane: the new origin is behind the plane seen along
+/// `dir`. No offset can pick the side when the computed dot product cannot
+/// tell it; the precondition now says so (the dot product's own rounding
+/// bound, `gamma(3) sum |dir_i normal_i|`, is part of it), and this input is
+/// outside it.
+#[test]
+fn spawn_from_plane_nearly_parallel_goes_to_the_wrong_side() {
+    let plane = Plane::new(
+        Vec3::new(-63.988_28, 64.0, -63.998_047),
+        Vec3::new(-0.015_624_523, -0.015_624_283, 0.003_002_451),
+    );
+    let point = Vec3::new(-73.8551, 71.525_24, -76.1841);
+    let point_error = Vec3::new(5.660_092_6e-5, 4.233_192e-5, 5.687_856_5e-5);
+    let dir = Vec3::new(-0.707_102_2, 0.707_111_3, -9.107_16e-6);
+    let n = support::rv(plane.normal);
+    let heading = support::dot(&support::rv(dir), &n);
+    assert!(
+        heading > R::from_integer(0.into()),
+        "dir points to the + side"
+    );
+    let computed = dir.dot(plane.normal);
+    assert!(computed < 0.0, "the rounded dot product has the wrong sign");
+    let magnitude: R = (0..3)
+        .map(|i| {
+            support::abs_diff(
+                &(r(dir[i]) * r(plane.normal[i])),
+                &R::from_integer(0.into()),
+            )
+        })
+        .sum();
+    assert!(
+        r(computed.abs()) <= support::gamma::<f32>(3) * magnitude,
+        "outside the documented precondition"
+    );
+    let origin = rayhit::offset_ray_origin(point, point_error, plane.normal, Vec3::ZERO, dir);
+    assert!(origin.is_finite());
+}
+
+/// `spawn` (raw): a ray with a huge x speed (`4.8e35`) crosses a plane at a
+/// subnormal `t` (`9.7e-43`); the hit point then lies farther from the
+/// plane than `ray_plane_hit_point`'s bound allows, and `offset_ray_origin`
+/// (correctly sized for that bound) leaves the new origin behind the plane.
+/// Same cause as `plane_hit_point_bound_with_underflow`: the bounds assume
+/// no underflow, and the docs now say so; `t` is subnormal here.
+#[test]
+fn spawn_from_plane_hit_at_subnormal_t() {
+    let b = f32::from_bits(0xb9b9_b9b9); // -3.5424324e-4
+    let plane = Plane::new(Vec3::new(f32::from_bits(0xb9b9_7ab9), b, b), Vec3::splat(b));
+    let ray = Ray::new(Vec3::splat(b), Vec3::new(f32::from_bits(0x7ab9_b9b9), b, b));
+    let dir = Vec3::splat(b);
+    let t = ray_plane(&ray, &plane, f32::INFINITY).expect("hit");
+    assert!(t < f32::MIN_POSITIVE, "t = {t} is subnormal");
+    let (p, err) = ray_plane_hit_point(&ray, &plane, t);
+    let origin = rayhit::offset_ray_origin(p, err, plane.normal, Vec3::ZERO, dir);
+    assert!(p.is_finite() && err.is_finite() && origin.is_finite());
+}
+
+/// `aabb` (raw; found by the first CI run): a ray that does not move along
+/// x, with its origin outside the box's x slab, and a subnormal y speed
+/// (`1.9e-41`, whose reciprocal overflows), with `t_max = inf`. Exact
+/// arithmetic: a miss (x never enters the slab). The slab test returns
+/// `Some((inf, inf))`: every exit is infinite, so the infinite entry passes
+/// `enter <= limit`. The docs say the entry is finite for every hit, with no
+/// precondition (the "no false miss" precondition, exact distances at most
+/// `MAX / 2`, does not hold here, which excuses a false hit but not an
+/// infinite entry). Fixed: an infinite entry is a miss.
+#[test]
+fn aabb_infinite_entry_with_overflowing_reciprocal() {
+    let ray = Ray::new(Vec3::new(-1.0, 1.0, 0.5), Vec3::new(0.0, 1.9013e-41, 0.0));
+    let b = Aabb::new(Vec3::ZERO, Vec3::ONE);
+    assert_eq!(support::box_interval(&ray, &b, f32::INFINITY), None);
+    if let Some((enter, exit)) = ray_aabb(&ray, &b, f32::INFINITY) {
+        assert!(enter.is_finite() && enter <= exit, "({enter}, {exit})");
+    }
+    // Found by the 10-minute `aabb_slab_vs_naive` run: the same answer where
+    // the precondition does hold (the z distances are near 3e4). A point
+    // box at the origin; the ray does not move along y and starts above it.
+    let ray = Ray::new(
+        Vec3::new(0.0, 2.524_355e-29, -5.785_636e-39),
+        Vec3::new(0.0, -0.0, 1.78e-43),
+    );
+    let b = Aabb::new(Vec3::ZERO, Vec3::ZERO);
+    assert_eq!(support::box_interval(&ray, &b, f32::INFINITY), None);
+    assert_eq!(ray_aabb(&ray, &b, f32::INFINITY), None);
+    // And without an overflowing reciprocal (found by the 10-minute run):
+    // the y exit `(1.8e19 - 0.5) / 5.9e-39` overflows as a product.
+    let ray = Ray::new(
+        Vec3::new(-1.0, 0.5, 2.350_988_7e-38),
+        Vec3::new(0.0, 5.871_732e-39, 0.0),
+    );
+    let b = Aabb::new(Vec3::ZERO, Vec3::new(1.175_494_4e-38, 1.848_221e19, 1.0));
+    assert_eq!(support::box_interval(&ray, &b, f32::INFINITY), None);
+    assert_eq!(ray_aabb(&ray, &b, f32::INFINITY), None);
+}
+
+/// `triangle_watertight_vs_mt` (raw): a valid hit with `t_max = NaN`. The
+/// fuzzer's agreement check read the NaN limit as "no limit"; the kernels
+/// are right to return `None` (NaN `t_max` is invalid input).
+#[test]
+fn triangle_nan_t_max_is_a_miss() {
+    let tri = Triangle::new(
+        Vec3::ZERO,
+        Vec3::new(2.0, 0.0, 0.0),
+        Vec3::new(0.0, 2.0, 0.0),
+    );
+    let ray = Ray::new(Vec3::new(0.5, 0.25, 4.0), Vec3::new(0.0, 0.0, -2.0));
+    assert!(ray_triangle(&ray, &tri, f32::NAN).is_none());
+    assert!(ray_triangle_mt(&ray, &tri, f32::NAN).is_none());
+    assert!(ray_triangle(&ray, &tri, f32::INFINITY).is_some());
+}
+
+/// `triangle` (raw, `f64`): a ray along x in the plane `z = 7.7e-317`, a
+/// triangle whose corner `a` is lifted by `5.3e-315` (both subnormal), so
+/// the ray crosses the triangle's plane at `t = 2.47`, well inside (exact
+/// `u = 0.735`, `v = 0.25`). The watertight test misses, and
+/// `ray_triangle_error_bounds` at the exact crossing is finite and small,
+/// so the miss lies outside the band the bounds promise. The edge functions'
+/// products underflow: the bounds assume no underflow, which the docs did
+/// not say and now do. The answer is still safe.
+#[test]
+fn triangle_subnormal_lift_outside_the_error_band() {
+    let ray = Ray::new(DVec3::new(-1.0, 0.5, 7.7386016e-317), DVec3::X);
+    let tri = Triangle::new(
+        DVec3::new(0.0, 0.0, 5.304989477e-315),
+        DVec3::new(2.0, 0.0, 0.0),
+        DVec3::new(0.0, 2.0, 0.0),
+    );
+    let exact = support::triangle(&ray, &tri);
+    assert!(exact.interior() && exact.hits(&None));
+    let probe = TriangleHit {
+        t: 2.470_825_195_312_5,
+        u: 0.735_412_597_656_25,
+        v: 0.25,
+        side: Side::Front,
+    };
+    let err = ray_triangle_error_bounds(&ray, &tri, &probe);
+    assert!(!err.t.is_nan() && !err.u.is_nan() && !err.v.is_nan());
+    // Outside the precondition: the lift times a unit coordinate is a
+    // subnormal product in the edge functions.
+    let lift = tri.a.z * ray.origin.y;
+    assert!(lift != 0.0 && lift.abs() < f64::MIN_POSITIVE);
+    if let Some(hit) = ray_triangle(&ray, &tri, f64::INFINITY) {
+        assert!(hit.t > 0.0 && hit.t.is_finite());
+    }
+}
+
+/// `aabb` (raw; found by CI's 20-second run): the origin lies exactly on the
+/// box's `max.x` plane and the ray moves out along x at `2.7e-43` (a
+/// subnormal speed, whose reciprocal overflows). Exactly, the ray leaves
+/// the x slab at `t = 0` while the z slab is entered only at `t = 1.2e-25`:
+/// a miss, and the documented precondition holds (every exact distance is
+/// far below `MAX / 2`). The slab test computes that plane's distance as
+/// `0 * inf = NaN`, treats it as a ray lying in the face plane, and
+/// reports a hit far outside the band (exact entry `1.2e-25`, exact exit
+/// `0`). The docs now state the band only for components with a finite
+/// reciprocal (`|d_i| >= 1/MAX`); beyond that a false hit passes the box at
+/// a distance of at most `t |d_i| < t / MAX` along that axis, as here.
+#[test]
+fn aabb_origin_on_slab_plane_with_overflowing_reciprocal() {
+    let ray = Ray::new(
+        Vec3::new(1.212_387_3e-25, 1.212_387_3e-25, -3.1e-44),
+        Vec3::new(2.68e-43, 8.8e-44, 1.0),
+    );
+    let b = Aabb::new(
+        Vec3::new(1.033_975_8e-25, 1.212_387_3e-25, 1.212_387_3e-25),
+        Vec3::splat(1.212_387_3e-25),
+    );
+    let t_max = 0.000_488_281_25;
+    let (ee, xx) = support::box_raw(&ray, &b, t_max).expect("moves along every axis");
+    assert!(ee > xx, "exact miss");
+    assert!(overflows(ray.dir.x), "outside the band's condition");
+    overflow_false_hit_is_close(&ray, &b, t_max);
+}
+
+/// A slab hit where a direction component's reciprocal overflows: in range,
+/// and at the reported entry the ray is within the documented distance
+/// `enter / (MAX (1 - u)^2)` of the box along every such axis.
+fn overflow_false_hit_is_close(ray: &Ray, b: &Aabb, t_max: f32) {
+    let Some((enter, exit)) = ray_aabb(ray, b, t_max) else {
+        return;
+    };
+    assert!(0.0 <= enter && enter <= exit && exit <= t_max && enter.is_finite());
+    let e = r(enter);
+    let zero = R::from_integer(0.into());
+    let one_minus_u = R::from_integer(1.into()) - r(f32::EPSILON / 2.0);
+    let limit = &e / (r(f32::MAX) * &one_minus_u * &one_minus_u);
+    for k in (0..3).filter(|&k| overflows(ray.dir[k])) {
+        let x = r(ray.origin[k]) + &e * r(ray.dir[k]);
+        let below = r(b.min[k]) - &x;
+        let above = &x - r(b.max[k]);
+        let outside = below.max(above).max(zero.clone());
+        assert!(outside <= limit, "axis {k}: {ray:?} {b:?}");
+    }
+}
+
+/// A nonzero component whose reciprocal overflows (`|d| < 1/MAX`).
+fn overflows(d: f32) -> bool {
+    d != 0.0 && !(1.0 / d).is_finite()
+}
+
+/// `aabb` (raw; found by the 10-minute run): the same cause without the
+/// origin on a plane. The x and y speeds (`8.8e-44`, `2.3e-41`) have
+/// overflowing reciprocals; the slab test uses `MAX` for the y entry, which
+/// puts the computed entry at `0.023` where the exact entry is `3.02`, and
+/// an infinite x exit. Exactly, the ray leaves the z slab at `0.98`, before
+/// it enters the y slab: a miss by a factor of 3, far outside the
+/// band the docs then stated, with the precondition holding. The docs now
+/// state the band only for components with a finite reciprocal; this test
+/// holds the hit to the distance they give for the others.
+#[test]
+fn aabb_false_hit_with_overflowing_reciprocals() {
+    let ray = Ray::new(
+        Vec3::new(2.278e-41, -6.8697e-41, 2.68e-43),
+        Vec3::new(8.8e-44, 2.2768e-41, 1.758_649_8e-38),
+    );
+    let b = Aabb::new(Vec3::ZERO, Vec3::new(9.1835e-41, 5.9e-44, 1.726_507_3e-38));
+    let t_max = 1.766_275_7e21;
+    let (ee, xx) = support::box_raw(&ray, &b, t_max).expect("moves along every axis");
+    assert!(
+        ee > &xx * R::from_integer(3.into()),
+        "exact miss by a factor of 3"
+    );
+    assert!(overflows(ray.dir.y), "outside the band's condition");
+    overflow_false_hit_is_close(&ray, &b, t_max);
+    // f64 (found by the 10-minute `aabb_slab_vs_naive` run): the ray does
+    // not move along z and starts below the box (`0 < 1.3e-321`), a miss;
+    // its x speed `5.3e-315` has an overflowing reciprocal, every exit is
+    // clipped to `t_max = MAX`, whose widening overflows, and the slab test
+    // reports `Some((MAX, MAX))`.
+    let ray = Ray::new(
+        DVec3::new(0.0, 6.953_355_807_835e-310, 0.0),
+        DVec3::new(5.299_808_824e-315, 0.0, 0.0),
+    );
+    let b = Aabb::new(
+        DVec3::new(0.0, 0.0, 1.265e-321),
+        DVec3::new(1.61895e-319, 1.0, 3.645_561_009_778_199e-304),
+    );
+    assert_eq!(support::box_raw(&ray, &b, f64::MAX), None, "exact miss");
+    assert_eq!(ray_aabb(&ray, &b, f64::MAX), None);
+}
+
+/// `aabb_slab_vs_naive` (raw): a box of zero thickness in z at `z = 0`, the
+/// ray starting on that plane and rising at `2.35e-38`: exactly, it leaves
+/// the z slab at `t = 0`, before it reaches the x slab at `1.09e-24`, a
+/// miss. The slab test is right. The naive test hits: its face test
+/// computes `t d_z = 2.5e-62`, which underflows to `0`, inside the face. The
+/// fuzzer's "naive hits, so the slab test hits" (also a property test)
+/// holds only where the naive test's false hits are rounding-sized.
+#[test]
+fn aabb_naive_false_hit_by_underflow() {
+    let ray = Ray::new(
+        Vec3::new(-46_179_510_000_000.0, 9.18712e-40, 0.0),
+        Vec3::new(4.253_575_7e37, 4.499_995e-39, 2.350_952_8e-38),
+    );
+    let b = Aabb::new(
+        Vec3::new(3.85762e-34, 9.1834e-41, 0.0),
+        Vec3::new(2.911_449e-11, 7.106_625e-15, 0.0),
+    );
+    let t_max = 2.238_725_5e29;
+    assert_eq!(support::box_interval(&ray, &b, t_max), None);
+    assert_eq!(ray_aabb(&ray, &b, t_max), None);
+    // The naive answer (a hit, today) is allowed; it must be in range.
+    if let Some((e, x)) = ray_aabb_naive(&ray, &b, t_max) {
+        assert!(0.0 <= e && e <= x && x <= t_max);
+    }
+}
+
+/// `triangle` (raw, `f64`; found by the 10-minute run): huge y coordinates
+/// (`8.7e127`) next to subnormal z coordinates. The ray's shear factor
+/// `-d_z / d_y = -2.2e-440` underflows to zero, so the test's frame is not
+/// the one its error bounds describe: it reports `t = 0.82` with a bound of
+/// `0.06`, where the exact crossing is at `t = -3.2e11` (behind the ray).
+/// The bounds assume no underflow, which the docs did not say and now do.
+#[test]
+fn triangle_underflowing_shear_factor() {
+    let ray = Ray::new(
+        DVec3::new(
+            7.684_632_922_875_586e49,
+            7.684_632_922_875_586e49,
+            1.576_434_833_883e-312,
+        ),
+        DVec3::new(0.0, 8.656_131_277_727_177e127, 1.917_285_608_776e-312),
+    );
+    let tri = Triangle::new(
+        DVec3::new(0.0, 2.421_078_100_475_535_5e-305, 5e-324),
+        DVec3::new(0.0, 8.656_131_277_727_177e127, 1.917_285_608_776e-312),
+        DVec3::new(
+            1.783_886_899_799_318_6e127,
+            1.783_886_751_621_816_2e127,
+            4.778_646_941_129_981e-299,
+        ),
+    );
+    let t_max = 1.783_886_899_799_318_6e127;
+    // Outside the precondition: y is the dominant axis, and the shear
+    // factor of z, `d_z / d_y`, underflows to zero.
+    assert!(ray.dir.z != 0.0 && ray.dir.z / ray.dir.y == 0.0);
+    if let Some(hit) = ray_triangle(&ray, &tri, t_max) {
+        assert!(hit.t > 0.0 && hit.t <= t_max);
+        let err = ray_triangle_error_bounds(&ray, &tri, &hit);
+        assert!(!err.t.is_nan());
+    }
+}
+
+/// `aabb` (raw; found by CI's 20-second run): a ray from a corner of a thin
+/// box moving along y at `2.26e-41` (overflowing reciprocal), `t_max = inf`.
+/// The slab test returns an infinite exit, which is allowed (at least the
+/// exact exit `1.016`, and `t_max` is infinite); the fuzzer's check fed that
+/// infinite exit to the exact oracle.
+#[test]
+fn aabb_infinite_exit_with_infinite_t_max() {
+    let b = Aabb::new(Vec3::ZERO, bits([0x0000_a300, 0x0000_4000, 0x3f80_0000]));
+    let ray = Ray::new(Vec3::ZERO, bits([0x0000_0000, 0x0000_3f00, 0x0000_0000]));
+    let (ee, xx) = support::box_interval(&ray, &b, f32::INFINITY).expect("exact hit");
+    let (enter, exit) = ray_aabb(&ray, &b, f32::INFINITY).expect("no false miss");
+    assert_eq!(r(enter), ee);
+    assert!(!exit.is_finite() || r(exit) >= xx);
+}
+
+/// `triangle` (structured; found by the 10-minute run): a sliver seen from
+/// close by, crossed at exact `t = 0.0624` with a `t` bound of `0.0624` at
+/// that crossing. The watertight test decides `t > 0` conservatively and
+/// rejects the hit, which its docs allow; the fuzzer's band for a required
+/// hit was `t > bound` and is now `t > 2 bound / (1 - 3 err_u)` (derived in
+/// `fuzz/src/triangle.rs`). Moller-Trumbore hits.
+#[test]
+fn triangle_conservative_t_rejection_near_the_origin() {
+    let ray = Ray::new(
+        Vec3::new(65.953_15, 65.937_52, -64.481_43),
+        Vec3::new(-0.031_249_048, -0.031_25, -0.031_25),
+    );
+    let tri = Triangle::new(
+        Vec3::new(66.727_97, 66.707_405, -64.608_246),
+        Vec3::new(63.422_65, 63.422_65, -64.077_354),
+        Vec3::new(63.430_725, 63.431_56, -64.077_774),
+    );
+    let exact = support::triangle(&ray, &tri);
+    let t_exact = exact.t.clone().expect("not parallel");
+    assert!(exact.interior() && exact.hits(&None));
+    if ray_triangle(&ray, &tri, f32::INFINITY).is_none() {
+        let (u, v) = exact.uv.clone().unwrap();
+        let probe = TriangleHit {
+            t: support::to_f64(&t_exact) as f32,
+            u: support::to_f64(&u) as f32,
+            v: support::to_f64(&v) as f32,
+            side: Side::Back,
+        };
+        let err = ray_triangle_error_bounds(&ray, &tri, &probe);
+        let int = |n: i64| R::from_integer(n.into());
+        let band = int(2) * r(err.t) / (int(1) - int(3) * r(err.u.max(err.v)));
+        assert!(t_exact <= band, "a miss outside the conservative band");
+    }
+}
