@@ -162,6 +162,7 @@ mod aabb;
 #[cfg(feature = "approx")]
 #[cfg_attr(docsrs, doc(cfg(feature = "approx")))]
 pub mod approx;
+mod batch;
 mod camera;
 mod plane;
 mod ray;
@@ -172,6 +173,9 @@ pub mod strategies;
 mod triangle;
 
 pub use aabb::{Aabb, PreparedRay, ray_aabb, ray_aabb_naive, ray_aabb_prepared};
+pub use batch::{
+    AabbBatch, AabbBatchHits, TriangleBatch, TriangleBatchHits, ray_aabb_batch, ray_triangle_batch,
+};
 pub use camera::{CameraError, PinholeCamera};
 pub use plane::{Plane, ray_plane, ray_plane_hit_point, ray_plane_t_error};
 pub use ray::{Ray, offset_ray_origin};
@@ -201,7 +205,7 @@ pub use f64_names::*;
 
 pub use triangle::{
     Side, Triangle, TriangleHit, TriangleHitError, ray_triangle, ray_triangle_error_bounds,
-    ray_triangle_mt, ray_triangle_one_hit, triangle_hit_point,
+    ray_triangle_mt, ray_triangle_one_hit, ray_triangle_prepared, triangle_hit_point,
 };
 
 /// The README's code blocks, compiled and run as doc tests.

@@ -51,6 +51,8 @@ pub trait Scalar:
     const TWO: Self;
     /// Positive infinity.
     const INFINITY: Self;
+    /// A quiet NaN.
+    const NAN: Self;
     /// Pi, rounded to nearest.
     const PI: Self;
     /// The largest finite value.
@@ -199,6 +201,7 @@ macro_rules! impl_scalar {
             const HALF: Self = 0.5;
             const TWO: Self = 2.0;
             const INFINITY: Self = $f::INFINITY;
+            const NAN: Self = $f::NAN;
             const PI: Self = core::$f::consts::PI;
             const MAX: Self = $f::MAX;
             const MIN_POSITIVE: Self = $f::MIN_POSITIVE;
