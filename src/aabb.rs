@@ -40,14 +40,16 @@ impl<V: Vector> Aabb<V> {
     #[inline]
     #[must_use]
     pub fn is_valid(&self) -> bool {
-        (0..3).all(|k| valid_extent(self.min[k], self.max[k]))
+        valid_box(self.min, self.max)
     }
 }
 
-/// `-MAX <= lo <= hi <= MAX`: finite and not inverted (NaN fails).
+/// `-MAX <= min[k] <= max[k] <= MAX` on every axis: finite and not
+/// inverted (a NaN fails), as three packed comparisons.
 #[inline(always)]
-pub(crate) fn valid_extent<F: Scalar>(lo: F, hi: F) -> bool {
-    (lo >= -F::MAX) & (lo <= hi) & (hi <= F::MAX)
+pub(crate) fn valid_box<V: Vector>(min: V, max: V) -> bool {
+    let big = V::splat(S::<V>::MAX);
+    (-big).all_le(min) & min.all_le(max) & max.all_le(big)
 }
 
 /// A ray prepared for many box tests: its origin and, per axis, the
@@ -229,7 +231,7 @@ pub fn ray_aabb_prepared<V: Vector>(
 /// that [`ray_aabb`] prepares).
 #[inline(always)]
 fn slab_test<V: Vector>(ray: &SlabRay<V>, aabb: &Aabb<V>, t_max: S<V>) -> Option<(S<V>, S<V>)> {
-    let ok = (0..3).fold(true, |ok, k| ok & valid_extent(aabb.min[k], aabb.max[k]));
+    let ok = valid_box(aabb.min, aabb.max);
     let (hit, enter, exit) = slab_core(
         ray,
         [aabb.min.x(), aabb.min.y(), aabb.min.z()],

@@ -22,7 +22,7 @@ use glam::Vec3;
 
 use crate::aabb::{Aabb, PreparedRay, slab_core};
 use crate::ray::t_max_ok;
-use crate::real::{S, Scalar, Vector, bound_up, min2};
+use crate::real::{S, Scalar, Vector, bound_up, max2, min2};
 use crate::triangle::{EdgeRule, Side, Triangle, TriangleHit, max3, watertight_sheared};
 
 /// Checks `1 <= N <= 32` at compile time (the hit masks are `u32`).
@@ -485,7 +485,7 @@ pub fn ray_triangle_batch<V: Vector, const N: usize>(
 
     let mut hit = [false; N];
     let mut slow = [false; N];
-    let mut front = [false; N];
+    let mut dets = [zero; N];
     for l in 0..N {
         // Translate, permute, shear: as `Frame::new`.
         let corner = |i: usize| {
@@ -503,10 +503,12 @@ pub fn ray_triangle_batch<V: Vector, const N: usize>(
         let e1 = x2 * y0 - y2 * x0;
         let e2 = x0 * y1 - y0 * x1;
         let zero_edge = (e0 == zero) | (e1 == zero) | (e2 == zero);
-        // Inside test of `EdgeRule::Closed`.
-        let any_neg = (e0 < zero) | (e1 < zero) | (e2 < zero);
-        let any_pos = (e0 > zero) | (e1 > zero) | (e2 > zero);
-        let inside = !(any_neg & any_pos);
+        // Inside test of `EdgeRule::Closed`: not both signs among the edge
+        // functions. For non-NaN values "some e_i < 0" is "min e_i < 0",
+        // which is cheaper; a NaN edge function makes `det` NaN and the
+        // range test below fails, as in the scalar test, whatever this
+        // says.
+        let inside = !((min2(e0, min2(e1, e2)) < zero) & (max2(e0, max2(e1, e2)) > zero));
         let det = e0 + e1 + e2;
         // Scaled distance and range test.
         let z = [pz0 * sh.sz, pz1 * sh.sz, pz2 * sh.sz];
@@ -526,7 +528,7 @@ pub fn ray_triangle_batch<V: Vector, const N: usize>(
         let pass = inside & in_range & t_ok;
         hit[l] = !zero_edge & pass & ahead & uv_ok;
         slow[l] = zero_edge | (pass & !ahead);
-        front[l] = (det > zero) != ray_front;
+        dets[l] = det;
         out.t[l] = if hit[l] { t } else { inf };
         out.u[l] = if hit[l] { u } else { zero };
         out.v[l] = if hit[l] { v } else { zero };
@@ -534,7 +536,15 @@ pub fn ray_triangle_batch<V: Vector, const N: usize>(
     let used = batch.used;
     let hit = mask_of(&hit) & used;
     out.mask = hit;
-    out.front = mask_of(&front) & hit;
+    // The side, lane by lane for the (few) lanes hit.
+    let mut bits = hit;
+    while bits != 0 {
+        let l = bits.trailing_zeros() as usize;
+        bits &= bits - 1;
+        if (dets[l] > zero) != ray_front {
+            out.front |= 1 << l;
+        }
+    }
     let mut slow = mask_of(&slow) & used;
     while slow != 0 {
         let l = slow.trailing_zeros() as usize;
@@ -555,7 +565,6 @@ pub fn ray_triangle_batch<V: Vector, const N: usize>(
 mod tests {
     use super::*;
     use crate::Ray;
-    use crate::aabb::valid_extent;
     use std::vec;
 
     /// The empty lane's box is invalid, and the slab arithmetic alone
@@ -570,7 +579,7 @@ mod tests {
             (min, max)
         };
         let (min, max) = lane(0);
-        assert!(!(0..3).all(|k| valid_extent(min[k], max[k])));
+        assert!(!Aabb::new(Vec3::from(min), Vec3::from(max)).is_valid());
         let mut rays = vec![
             Ray::new(Vec3::splat(f32::NAN), Vec3::X),
             Ray::new(Vec3::ZERO, Vec3::ZERO),
