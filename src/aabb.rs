@@ -77,10 +77,9 @@ pub(crate) fn valid_box<V: Vector>(min: V, max: V) -> bool {
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct PreparedRay<V: Vector = Vec3> {
     /// The slab test's part: origin (`+inf` for an invalid ray) and the
-    /// directed reciprocals.
+    /// directed reciprocals. The triangle tests use the origin too (only
+    /// for a valid ray, where it is the ray's).
     pub(crate) slab: SlabRay<V>,
-    /// The ray's own origin (used by the triangle tests, for a valid ray).
-    pub(crate) origin: V,
     /// The triangle tests' shear of the ray's direction.
     pub(crate) shear: Shear<S<V>>,
     /// `Ray::is_valid` of the ray it was prepared from.
@@ -121,12 +120,17 @@ impl<V: Vector> PreparedRay<V> {
     #[must_use]
     pub fn new(ray: &Ray<V>) -> Self {
         let valid = ray.is_valid();
+        // An invalid ray's shear is never used (`valid` is false); that of
+        // `+z` stands in, so that equal invalid rays prepare equal.
+        let z = S::<V>::ZERO;
+        let dir = if valid {
+            ray.dir
+        } else {
+            V::new(z, z, S::<V>::ONE)
+        };
         Self {
             slab: SlabRay::new(ray),
-            origin: ray.origin,
-            // An invalid direction's shear is never used (`valid` is false);
-            // computing it anyway keeps this branch-free.
-            shear: Shear::new(ray.dir),
+            shear: Shear::new(dir),
             valid,
         }
     }

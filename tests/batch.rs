@@ -417,3 +417,26 @@ fn differential_on_random_bytes() {
         differential(&data);
     }
 }
+
+/// Invalid rays prepare into equal values (nothing of the invalid input is
+/// kept), and hit nothing in any batch.
+#[test]
+fn invalid_rays_prepare_alike_and_hit_nothing() {
+    let nan = f32::NAN;
+    let bad = [
+        Ray::new(Vec3::splat(nan), Vec3::X),
+        Ray::new(Vec3::ZERO, Vec3::ZERO),
+        Ray::new(Vec3::ZERO, Vec3::new(f32::INFINITY, 0.0, 0.0)),
+        Ray::new(Vec3::new(0.0, nan, 0.0), Vec3::new(nan, 1.0, 0.0)),
+    ];
+    let tri = Triangle::new(-Vec3::ONE, Vec3::new(1.0, -1.0, 0.0), Vec3::Y);
+    let boxes = AabbBatch::<Vec3, 4>::from_slice(&[Aabb::new(-Vec3::ONE, Vec3::ONE)]).unwrap();
+    let tris = TriangleBatch::<Vec3, 4>::from_slice(&[tri]).unwrap();
+    for ray in bad {
+        let p = PreparedRay::new(&ray);
+        assert_eq!(p, PreparedRay::new(&bad[1]));
+        assert_eq!(ray_aabb_batch(&p, &boxes, f32::INFINITY).mask, 0);
+        assert_eq!(ray_triangle_batch(&p, &tris, f32::INFINITY).mask, 0);
+        assert_eq!(ray_triangle_prepared(&p, &tri, f32::INFINITY), None);
+    }
+}
