@@ -150,3 +150,31 @@ for name, args in cams.items():
     write("camera", f"raw-f32-{name}", cam(0, *args))
     write("camera", f"raw-f64-{name}", cam(1, *args))
 structured("camera")
+
+
+# Batches: a layout byte (bit 0 triangles, bit 1 sixteen lanes, the rest the
+# number of filled lanes), t_max, ray origin, dir, then the shapes.
+def batch(mode, triangles, sixteen, shapes, origin, direction, t_max=INF):
+    layout = (1 if triangles else 0) | (2 if sixteen else 0) | (len(shapes) << 2)
+    floats = [t_max] + list(origin) + list(direction) + [c for s in shapes for v in s for c in v]
+    return bytes([mode, layout]) + raw(mode, *floats)[1:]
+
+
+ROW = [[(2 * i, 0, 0), (2 * i + 1, 1, 1)] for i in range(8)]
+HEX = [(math.cos(k * math.pi / 3), math.sin(k * math.pi / 3), 0) for k in range(7)]
+FAN = [[(0, 0, 0), HEX[k], HEX[k + 1]] for k in range(6)]
+batches = {
+    "boxes-row-along": (False, False, ROW, (-1, 0.5, 0.5), (1, 0, 0)),
+    "boxes-row-in-face": (False, True, ROW + ROW, (-1, 1, 0.5), (1, 0, 0)),
+    "boxes-row-corner": (False, False, ROW[:3], (-1, -1, -1), (1, 1, 1)),
+    "triangles-fan-centre": (True, False, FAN, (0, 0, 1), (0, 0, -1)),
+    "triangles-fan-edge": (True, True, FAN, (0.5, 0, 1), (0, 0, -1)),
+    "triangles-fan-edge-on": (True, False, FAN, (-2, 0, 0), (1, 0, 0)),
+}
+for name, (tri, sixteen, shapes, o, d) in batches.items():
+    write("batch", f"raw-f32-{name}", batch(0, tri, sixteen, shapes, o, d))
+    write("batch", f"raw-f64-{name}", batch(1, tri, sixteen, shapes, o, d))
+for name, fill in [("zeros", 0x00), ("mid", 0x80), ("ones", 0xFF), ("mixed", 0x5A)]:
+    for layout in (0x21, 0x22, 0x3F):
+        write("batch", f"structured-f32-{name}-{layout:02x}", bytes([2, layout]) + bytes([fill]) * 400)
+        write("batch", f"structured-f64-{name}-{layout:02x}", bytes([3, layout]) + bytes([fill]) * 400)

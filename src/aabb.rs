@@ -5,6 +5,7 @@ use glam::Vec3;
 
 use crate::ray::{Ray, t_max_ok};
 use crate::real::{S, Scalar, Vector, at_least, at_most, max2, min2};
+use crate::triangle::Shear;
 
 /// The closed box `min <= p <= max` (component-wise).
 ///
@@ -39,14 +40,16 @@ impl<V: Vector> Aabb<V> {
     #[inline]
     #[must_use]
     pub fn is_valid(&self) -> bool {
-        (0..3).all(|k| valid_extent(self.min[k], self.max[k]))
+        valid_box(self.min, self.max)
     }
 }
 
-/// `-MAX <= lo <= hi <= MAX`: finite and not inverted (NaN fails).
+/// `-MAX <= min[k] <= max[k] <= MAX` on every axis: finite and not
+/// inverted (a NaN fails), as three packed comparisons.
 #[inline(always)]
-fn valid_extent<F: Scalar>(lo: F, hi: F) -> bool {
-    (lo >= -F::MAX) & (lo <= hi) & (hi <= F::MAX)
+pub(crate) fn valid_box<V: Vector>(min: V, max: V) -> bool {
+    let big = V::splat(S::<V>::MAX);
+    (-big).all_le(min) & min.all_le(max) & max.all_le(big)
 }
 
 /// A ray prepared for many box tests: its origin and, per axis, the
@@ -65,13 +68,32 @@ fn valid_extent<F: Scalar>(lo: F, hi: F) -> bool {
 /// assert_eq!(enter, 1.0);
 /// assert!(ray_aabb_prepared(&ray, &far, 4.0).is_none());
 /// ```
+///
+/// The prepared ray also carries the per-ray part of the watertight
+/// triangle test (the axis permutation and shear of Woop et al.), so that
+/// [`ray_triangle_prepared`](crate::ray_triangle_prepared) and
+/// [`ray_triangle_batch`](crate::ray_triangle_batch) need not recompute it
+/// per triangle.
 #[derive(Clone, Copy, Debug, PartialEq)]
-pub struct PreparedRay<V = Vec3> {
-    origin: V,
+pub struct PreparedRay<V: Vector = Vec3> {
+    /// The slab test's part: origin (`+inf` for an invalid ray) and the
+    /// directed reciprocals. The triangle tests use the origin too (only
+    /// for a valid ray, where it is the ray's).
+    pub(crate) slab: SlabRay<V>,
+    /// The triangle tests' shear of the ray's direction.
+    pub(crate) shear: Shear<S<V>>,
+    /// `Ray::is_valid` of the ray it was prepared from.
+    pub(crate) valid: bool,
+}
+
+/// The slab test's per-ray data: see [`PreparedRay::new`].
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub(crate) struct SlabRay<V> {
+    pub(crate) origin: V,
     /// Per axis, the reciprocal used for the distance to the `min` plane.
-    inv_to_min: V,
+    pub(crate) inv_to_min: V,
     /// Per axis, the reciprocal used for the distance to the `max` plane.
-    inv_to_max: V,
+    pub(crate) inv_to_max: V,
 }
 
 impl<V: Vector> PreparedRay<V> {
@@ -90,9 +112,41 @@ impl<V: Vector> PreparedRay<V> {
     /// distance larger than with the exact reciprocal. `d = +-0` gives
     /// `+-inf` on both sides; the slab test handles the `0 * inf = NaN` this
     /// produces.
+    ///
+    /// For triangles it stores the ray's origin and the shear that the
+    /// watertight test computes from the direction, exactly as
+    /// [`ray_triangle`](crate::ray_triangle) computes them per call.
     #[inline]
     #[must_use]
     pub fn new(ray: &Ray<V>) -> Self {
+        let valid = ray.is_valid();
+        // An invalid ray's shear is never used (`valid` is false); that of
+        // `+z` stands in, so that equal invalid rays prepare equal.
+        let z = S::<V>::ZERO;
+        let dir = if valid {
+            ray.dir
+        } else {
+            V::new(z, z, S::<V>::ONE)
+        };
+        Self {
+            slab: SlabRay::new(ray),
+            shear: Shear::new(dir),
+            valid,
+        }
+    }
+
+    /// The ray's origin; `+inf` in every component for an invalid ray.
+    #[inline]
+    #[must_use]
+    pub fn origin(&self) -> V {
+        self.slab.origin
+    }
+}
+
+impl<V: Vector> SlabRay<V> {
+    /// See [`PreparedRay::new`].
+    #[inline(always)]
+    pub(crate) fn new(ray: &Ray<V>) -> Self {
         if !ray.is_valid() {
             // An origin at +inf puts every box at t = -inf: a miss for every
             // valid box, with no flag to test in the hot loop.
@@ -125,13 +179,6 @@ impl<V: Vector> PreparedRay<V> {
             inv_to_min: V::new(x0, y0, z0),
             inv_to_max: V::new(x1, y1, z1),
         }
-    }
-
-    /// The ray's origin.
-    #[inline]
-    #[must_use]
-    pub fn origin(&self) -> V {
-        self.origin
     }
 }
 
@@ -189,6 +236,35 @@ pub fn ray_aabb_prepared<V: Vector>(
     aabb: &Aabb<V>,
     t_max: S<V>,
 ) -> Option<(S<V>, S<V>)> {
+    slab_test(&ray.slab, aabb, t_max)
+}
+
+/// [`ray_aabb_prepared`] on the slab part of a prepared ray (which is all
+/// that [`ray_aabb`] prepares).
+#[inline(always)]
+fn slab_test<V: Vector>(ray: &SlabRay<V>, aabb: &Aabb<V>, t_max: S<V>) -> Option<(S<V>, S<V>)> {
+    let ok = valid_box(aabb.min, aabb.max);
+    let (hit, enter, exit) = slab_core(
+        ray,
+        [aabb.min.x(), aabb.min.y(), aabb.min.z()],
+        [aabb.max.x(), aabb.max.y(), aabb.max.z()],
+        t_max,
+    );
+    (ok & hit & t_max_ok(t_max)).then_some((enter, exit))
+}
+
+/// The slab test's arithmetic for one box, without the checks of the box's
+/// validity and of `t_max >= 0`: `(hit, enter, exit)`, where `enter` and
+/// `exit` are the answer when `hit` holds. [`ray_aabb_prepared`] and the box
+/// batches ([`ray_aabb_batch`](crate::ray_aabb_batch)) both run exactly this,
+/// so their answers are the same bits.
+#[inline(always)]
+pub(crate) fn slab_core<V: Vector>(
+    ray: &SlabRay<V>,
+    min: [S<V>; 3],
+    max: [S<V>; 3],
+    t_max: S<V>,
+) -> (bool, S<V>, S<V>) {
     let zero = S::<V>::ZERO;
     // Each axis folds its two plane distances into the interval [0, t_max]
     // the way Tavian Barnes does ("Fast, Branchless Ray/Bounding Box
@@ -196,15 +272,15 @@ pub fn ray_aabb_prepared<V: Vector>(
     // plane of an axis the ray does not move along) leaves the interval
     // unchanged, which is what exact arithmetic says of a closed box.
     let slab = |k: usize| {
-        let t0 = (aabb.min[k] - ray.origin[k]) * ray.inv_to_min[k];
-        let t1 = (aabb.max[k] - ray.origin[k]) * ray.inv_to_max[k];
+        let t0 = (min[k] - ray.origin[k]) * ray.inv_to_min[k];
+        let t1 = (max[k] - ray.origin[k]) * ray.inv_to_max[k];
         let enter = min2(at_least(t0, zero), at_least(t1, zero));
         let exit = max2(at_most(t0, t_max), at_most(t1, t_max));
-        (enter, exit, valid_extent(aabb.min[k], aabb.max[k]))
+        (enter, exit)
     };
-    let (ex, xx, okx) = slab(0);
-    let (ey, xy, oky) = slab(1);
-    let (ez, xz, okz) = slab(2);
+    let (ex, xx) = slab(0);
+    let (ey, xy) = slab(1);
+    let (ez, xz) = slab(2);
     let enter = max2(ex, max2(ey, ez));
     let exit = min2(xx, min2(xy, xz));
     // Widen the exit by the rounding bound so that no box that exact
@@ -212,13 +288,12 @@ pub fn ray_aabb_prepared<V: Vector>(
     let limit = exit * exit_widening::<S<V>>() + exit_slack::<S<V>>();
     // `enter` is infinite only for an axis the ray never enters (its
     // direction component is zero, or so small that every distance
-    // overflows): a miss even when `limit` is infinite too.
-    if okx & oky & okz & (enter <= limit) & (enter < S::<V>::INFINITY) & t_max_ok(t_max) {
-        let exit = at_most(limit, t_max);
-        Some((at_most(enter, exit), exit))
-    } else {
-        None
-    }
+    // overflows): a miss even when `limit` is infinite too. (`enter` is
+    // never NaN, `at_least` sees to that, so `enter <= MAX` is
+    // `enter < inf`, in one comparison.)
+    let hit = (enter <= limit) & (enter <= S::<V>::MAX);
+    let exit = at_most(limit, t_max);
+    (hit, at_most(enter, exit), exit)
 }
 
 /// The slab test: the part of `[0, t_max]` that `ray` spends inside the
@@ -275,7 +350,7 @@ pub fn ray_aabb_prepared<V: Vector>(
 #[inline]
 #[must_use]
 pub fn ray_aabb<V: Vector>(ray: &Ray<V>, aabb: &Aabb<V>, t_max: S<V>) -> Option<(S<V>, S<V>)> {
-    ray_aabb_prepared(&PreparedRay::new(ray), aabb, t_max)
+    slab_test(&SlabRay::new(ray), aabb, t_max)
 }
 
 /// The reference box test, face by face: each of the six faces is treated as

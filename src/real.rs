@@ -51,6 +51,8 @@ pub trait Scalar:
     const TWO: Self;
     /// Positive infinity.
     const INFINITY: Self;
+    /// A quiet NaN.
+    const NAN: Self;
     /// Pi, rounded to nearest.
     const PI: Self;
     /// The largest finite value.
@@ -180,6 +182,11 @@ pub trait Vector:
     /// True when every component is finite.
     #[must_use]
     fn is_finite(self) -> bool;
+    /// True when `self[k] <= rhs[k]` for every `k` (a NaN on either side
+    /// makes it false). In `f32` on SIMD targets it is one packed
+    /// comparison.
+    #[must_use]
+    fn all_le(self, rhs: Self) -> bool;
     /// Euclidean length.
     #[must_use]
     fn length(self) -> Self::Scalar;
@@ -199,6 +206,7 @@ macro_rules! impl_scalar {
             const HALF: Self = 0.5;
             const TWO: Self = 2.0;
             const INFINITY: Self = $f::INFINITY;
+            const NAN: Self = $f::NAN;
             const PI: Self = core::$f::consts::PI;
             const MAX: Self = $f::MAX;
             const MIN_POSITIVE: Self = $f::MIN_POSITIVE;
@@ -321,7 +329,7 @@ mod exact_sign {
 }
 
 macro_rules! impl_vector {
-    ($V:ty, $f:ty) => {
+    ($V:ty, $f:ty, $all_le:expr) => {
         impl Vector for $V {
             type Scalar = $f;
             const ZERO: Self = <$V>::ZERO;
@@ -363,6 +371,10 @@ macro_rules! impl_vector {
                 <$V>::is_finite(self)
             }
             #[inline]
+            fn all_le(self, rhs: Self) -> bool {
+                $all_le(self, rhs)
+            }
+            #[inline]
             fn length(self) -> $f {
                 <$V>::length(self)
             }
@@ -374,8 +386,12 @@ macro_rules! impl_vector {
     };
 }
 
-impl_vector!(Vec3, f32);
-impl_vector!(DVec3, f64);
+// `Vec3A` is glam's SIMD vector: `cmple` is one `cmpleps` on x86 (false for
+// NaN, as `<=` is), and `all` one `movmskps`.
+impl_vector!(Vec3, f32, |a: Vec3, b: Vec3| glam::Vec3A::from(a)
+    .cmple(glam::Vec3A::from(b))
+    .all());
+impl_vector!(DVec3, f64, |a: DVec3, b: DVec3| a.cmple(b).all());
 
 /// Makes an error bound that was evaluated in floating point an upper bound
 /// of the same expression evaluated exactly.

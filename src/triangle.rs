@@ -3,6 +3,7 @@
 
 use glam::Vec3;
 
+use crate::aabb::PreparedRay;
 use crate::ray::{Ray, t_max_ok};
 use crate::real::{S, Scalar, Vector, bound_up, max2, min2};
 
@@ -117,23 +118,23 @@ pub struct TriangleHit<F = f32> {
 
 /// The per-ray part of the watertight test: which axis the ray mostly runs
 /// along, and the shear that maps its direction to `+z`.
-#[derive(Clone, Copy, Debug)]
-struct Shear<F> {
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub(crate) struct Shear<F> {
     /// The axis of the direction's largest magnitude component; `kx, ky`
     /// follow it cyclically, so the permutation keeps the handedness.
-    kz: usize,
+    pub(crate) kz: usize,
     /// `-d_x / d_z` and `-d_y / d_z` in the permuted frame: `|s_x|, |s_y| <= 1`.
-    sx: F,
-    sy: F,
+    pub(crate) sx: F,
+    pub(crate) sy: F,
     /// `1 / d_z`.
-    sz: F,
+    pub(crate) sz: F,
     /// `d_z` itself, for the side of a hit.
-    dz: F,
+    pub(crate) dz: F,
 }
 
 impl<F: Scalar> Shear<F> {
     #[inline(always)]
-    fn new<V: Vector<Scalar = F>>(dir: V) -> Self {
+    pub(crate) fn new<V: Vector<Scalar = F>>(dir: V) -> Self {
         let a = dir.abs();
         let kz = if a.x() > a.y() {
             if a.x() > a.z() { 0 } else { 2 }
@@ -155,7 +156,7 @@ impl<F: Scalar> Shear<F> {
 
 /// `(v[kx], v[ky], v[kz])` with `kx = kz + 1`, `ky = kz + 2` (mod 3).
 #[inline(always)]
-fn permute<V: Vector>(v: V, kz: usize) -> (S<V>, S<V>, S<V>) {
+pub(crate) fn permute<V: Vector>(v: V, kz: usize) -> (S<V>, S<V>, S<V>) {
     match kz {
         0 => (v.y(), v.z(), v.x()),
         1 => (v.z(), v.x(), v.y()),
@@ -242,7 +243,7 @@ impl<F: Scalar> Frame<F> {
 /// Which edge rule the watertight core applies to an edge function of
 /// exactly zero.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
-enum EdgeRule {
+pub(crate) enum EdgeRule {
     /// Zero counts as inside: edges and corners belong to every triangle
     /// that has them.
     Closed,
@@ -261,12 +262,26 @@ fn watertight<V: Vector>(
     t_max: S<V>,
     rule: EdgeRule,
 ) -> Option<TriangleHit<S<V>>> {
-    let zero = S::<V>::ZERO;
     if !(ray.is_valid() && t_max_ok(t_max)) {
         return None;
     }
-    let shear = Shear::new(ray.dir);
-    let f = Frame::new(ray.origin, tri, &shear);
+    watertight_sheared(ray.origin, &Shear::new(ray.dir), tri, t_max, rule)
+}
+
+/// The watertight test for a valid ray, given its origin and shear, and a
+/// `t_max >= 0`. [`ray_triangle`], [`ray_triangle_prepared`] and the
+/// triangle batches' undecided lanes all come here.
+#[inline(always)]
+pub(crate) fn watertight_sheared<V: Vector>(
+    origin: V,
+    shear: &Shear<S<V>>,
+    tri: &Triangle<V>,
+    t_max: S<V>,
+    rule: EdgeRule,
+) -> Option<TriangleHit<S<V>>> {
+    let zero = S::<V>::ZERO;
+    let shear = *shear;
+    let f = Frame::new(origin, tri, &shear);
     let [e0, e1, e2] = f.e;
 
     // Inside test in the sheared plane.
@@ -331,11 +346,16 @@ fn watertight<V: Vector>(
     //   test): the exact numerator has the sign of det;
     // - where the determinant is well conditioned, t exceeds its own error
     //   bound: the exact crossing is at t > 0.
-    let bounds = ErrorBounds::new(&f, &z, &shear);
-    let ahead = z[0] > bounds.z && z[1] > bounds.z && z[2] > bounds.z;
-    let sure = ahead
-        || t_scaled.abs() > bounds.t_scaled
-        || HitCondition::new(&bounds, det).is_some_and(|c| t > c.t_error(&bounds, &z, t));
+    // The first test needs only the bound on z, so the other bounds are
+    // computed only when it fails (they are pure functions of the same
+    // values, so the order changes no answer).
+    let (_, dz) = z_error(&z);
+    let ahead = z[0] > dz && z[1] > dz && z[2] > dz;
+    let sure = ahead || {
+        let bounds = ErrorBounds::new(&f, &z, &shear);
+        t_scaled.abs() > bounds.t_scaled
+            || HitCondition::new(&bounds, det).is_some_and(|c| t > c.t_error(&bounds, &z, t))
+    };
     if !sure {
         return None;
     }
@@ -386,8 +406,7 @@ struct ErrorBounds<F> {
 impl<F: Scalar> ErrorBounds<F> {
     #[inline(always)]
     fn new(f: &Frame<F>, z: &[F; 3], shear: &Shear<F>) -> Self {
-        let max3 = |v: &[F; 3]| max2(v[0].abs(), max2(v[1].abs(), v[2].abs()));
-        let (mx, my, mz) = (max3(&f.x), max3(&f.y), max3(z));
+        let (mx, my) = (max3(&f.x), max3(&f.y));
         let (mpx, mpy, mpz) = (max3(&f.px), max3(&f.py), max3(&f.pz));
         let me = max3(&f.e);
         // Shear: with p = P(1 + d1) (translation), s_x = S_x (1 + d3),
@@ -407,9 +426,7 @@ impl<F: Scalar> ErrorBounds<F> {
             F::gamma_n(1) * (mpy + my) + F::gamma_n(4) * shear.sy.abs() * mpz,
             3,
         );
-        // Scale: z = fl(p_z fl(1/d_z)) = Z (1 + theta_3), so
-        // |z - Z| <= gamma(3)|Z| <= gamma(4)|z|. (1 rounding.)
-        let dz = bound_up(F::gamma_n(4) * mz, 1);
+        let (mz, dz) = z_error(z);
         // Edge function e_0 = fl(fl(x1 y2) - fl(y1 x2)) (or the exact-sign
         // recomputation, which is closer): rounding adds gamma(2)(|x1 y2| +
         // |y1 x2|) <= 2 gamma(2) mx my, and x1 y2 - X1 Y2 =
@@ -435,6 +452,23 @@ impl<F: Scalar> ErrorBounds<F> {
             max_z: mz,
         }
     }
+}
+
+/// `max |v_i|`, in the order every caller uses (so NaN propagates alike).
+#[inline(always)]
+pub(crate) fn max3<F: Scalar>(v: &[F; 3]) -> F {
+    max2(v[0].abs(), max2(v[1].abs(), v[2].abs()))
+}
+
+/// `(max |z_i|, dz)` with `dz` the bound on `|z_i - Z_i|` of
+/// [`ErrorBounds`].
+///
+/// Scale: z = fl(p_z fl(1/d_z)) = Z (1 + theta_3), so
+/// |z - Z| <= gamma(3)|Z| <= gamma(4)|z|. (1 rounding.)
+#[inline(always)]
+pub(crate) fn z_error<F: Scalar>(z: &[F; 3]) -> (F, F) {
+    let mz = max3(z);
+    (mz, bound_up(F::gamma_n(4) * mz, 1))
 }
 
 /// The conditioning of a hit: lower and upper bounds of `|sum E_i|` (the
@@ -569,6 +603,32 @@ pub fn ray_triangle<V: Vector>(
     t_max: S<V>,
 ) -> Option<TriangleHit<S<V>>> {
     watertight(ray, tri, t_max, EdgeRule::Closed)
+}
+
+/// [`ray_triangle`] on a [`PreparedRay`]: the same answer, bit for bit,
+/// without recomputing the ray's shear (three divisions) per triangle.
+///
+/// ```
+/// use rayhit::{PreparedRay, Ray, Triangle, ray_triangle, ray_triangle_prepared, glam::Vec3};
+/// let tri = Triangle::new(Vec3::ZERO, Vec3::new(2.0, 0.0, 0.0), Vec3::new(0.0, 2.0, 0.0));
+/// let ray = Ray::new(Vec3::new(0.5, 0.25, 4.0), Vec3::new(0.0, 0.0, -2.0));
+/// let prepared = PreparedRay::new(&ray);
+/// assert_eq!(
+///     ray_triangle_prepared(&prepared, &tri, f32::INFINITY),
+///     ray_triangle(&ray, &tri, f32::INFINITY),
+/// );
+/// ```
+#[inline]
+#[must_use]
+pub fn ray_triangle_prepared<V: Vector>(
+    ray: &PreparedRay<V>,
+    tri: &Triangle<V>,
+    t_max: S<V>,
+) -> Option<TriangleHit<S<V>>> {
+    if !(ray.valid && t_max_ok(t_max)) {
+        return None;
+    }
+    watertight_sheared(ray.slab.origin, &ray.shear, tri, t_max, EdgeRule::Closed)
 }
 
 /// The watertight test with exactly one hit per crossing of a mesh: each

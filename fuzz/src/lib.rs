@@ -26,6 +26,7 @@ use rayhit::glam::{DVec3, Vec3};
 use rayhit::{Scalar, Vector};
 
 pub mod aabb;
+pub mod batch;
 pub mod camera;
 pub mod exact;
 pub mod inputs;
@@ -103,6 +104,10 @@ pub mod targets {
     /// `spawn`: [`spawn::Spawn`].
     pub fn spawn(data: &[u8]) {
         dispatch::<spawn::Spawn>(data);
+    }
+    /// `batch`: [`batch::Batch`].
+    pub fn batch(data: &[u8]) {
+        dispatch::<batch::Batch>(data);
     }
 }
 

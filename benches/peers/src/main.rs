@@ -1,0 +1,1064 @@
+//! rayhit's kernels next to `bvh` 0.13 and `parry3d` 0.31 on identical data
+//! (the workloads of `benches/workloads`), printed as one Markdown table,
+//! followed by the ratios that issue 5 set as targets.
+//!
+//! ```sh
+//! cargo run --release --manifest-path benches/peers/Cargo.toml
+//! ```
+//!
+//! Timing: every kernel runs over its whole workload (4096 ray/shape tests
+//! unless said otherwise) enough times to take at least 2 ms; the kernels
+//! take turns, round after round, so that a change in machine load hits
+//! them alike, and each one's time is its fastest round (the least
+//! disturbed). Time is the thread's CPU time (`CLOCK_THREAD_CPUTIME_ID`),
+//! so that while other processes hold the core the clock stops; what they
+//! do to shared caches still shows. `ns/test` is that time over the number
+//! of ray/shape tests.
+//!
+//! Agreement is the fraction of ray/shape pairs on which a peer's hit or
+//! miss matches rayhit's answer to the same question: for `bvh`'s
+//! triangle test, which drops back faces, that is rayhit's hits from the
+//! front side; for every other kernel rayhit's two-sided answer.
+
+#[path = "../../workloads/mod.rs"]
+mod workloads;
+
+use std::hint::black_box;
+use std::time::{Duration, Instant};
+
+/// The calling thread's CPU time.
+fn cpu_now() -> Duration {
+    let mut ts = libc::timespec {
+        tv_sec: 0,
+        tv_nsec: 0,
+    };
+    // SAFETY: `ts` is a valid, writable timespec, and
+    // CLOCK_THREAD_CPUTIME_ID is a clock every Linux kernel since 2.6.12
+    // provides; the call only writes `ts`.
+    let rc = unsafe { libc::clock_gettime(libc::CLOCK_THREAD_CPUTIME_ID, &mut ts) };
+    assert_eq!(rc, 0, "clock_gettime(CLOCK_THREAD_CPUTIME_ID) failed");
+    Duration::new(ts.tv_sec as u64, ts.tv_nsec as u32)
+}
+
+use nalgebra::{Point3, Vector3};
+use parry3d::query::RayCast;
+use rayhit::glam::Vec3;
+use rayhit::{
+    Aabb, AabbBatch, PreparedRay, Ray, Side, Triangle, TriangleBatch, ray_aabb, ray_aabb_batch,
+    ray_aabb_prepared, ray_triangle, ray_triangle_batch, ray_triangle_mt, ray_triangle_prepared,
+};
+use workloads::*;
+
+const INF: f32 = f32::INFINITY;
+const ROUNDS: usize = 31;
+const MIN_ROUND: Duration = Duration::from_millis(2);
+
+/// One timed kernel: a closure over its prepared data that returns a
+/// checksum (so that nothing is optimised away), and the number of
+/// ray/shape tests one call makes.
+struct Kernel<'a> {
+    section: &'static str,
+    name: String,
+    workload: String,
+    tests: usize,
+    /// `None` for rayhit's own rows.
+    agreement: Option<f64>,
+    run: Box<dyn Fn() -> u64 + 'a>,
+    reps: u32,
+    best: f64,
+}
+
+fn kernel<'a>(
+    section: &'static str,
+    name: &str,
+    workload: &str,
+    tests: usize,
+    agreement: Option<f64>,
+    run: impl Fn() -> u64 + 'a,
+) -> Kernel<'a> {
+    Kernel {
+        section,
+        name: name.to_string(),
+        workload: workload.to_string(),
+        tests,
+        agreement,
+        run: Box::new(run),
+        reps: 1,
+        best: f64::INFINITY,
+    }
+}
+
+fn time_all(kernels: &mut [Kernel<'_>]) {
+    // Calibrate: enough repetitions for MIN_ROUND.
+    for k in kernels.iter_mut() {
+        loop {
+            let start = cpu_now();
+            for _ in 0..k.reps {
+                black_box((k.run)());
+            }
+            if cpu_now() - start >= MIN_ROUND {
+                break;
+            }
+            k.reps *= 2;
+        }
+    }
+    for _ in 0..ROUNDS {
+        for k in kernels.iter_mut() {
+            let start = cpu_now();
+            for _ in 0..k.reps {
+                black_box((k.run)());
+            }
+            let ns = (cpu_now() - start).as_secs_f64() * 1e9 / f64::from(k.reps) / k.tests as f64;
+            k.best = k.best.min(ns);
+        }
+    }
+}
+
+// ------------------------------------------------------------ conversions
+
+fn np(v: Vec3) -> Point3<f32> {
+    Point3::new(v.x, v.y, v.z)
+}
+
+fn nv(v: Vec3) -> Vector3<f32> {
+    Vector3::new(v.x, v.y, v.z)
+}
+
+fn pv(v: Vec3) -> parry3d::math::Vector {
+    parry3d::math::Vector::new(v.x, v.y, v.z)
+}
+
+fn bvh_ray(r: &Ray) -> bvh::ray::Ray<f32, 3> {
+    bvh::ray::Ray::new(np(r.origin), nv(r.dir))
+}
+
+fn bvh_box(b: &Aabb) -> bvh::aabb::Aabb<f32, 3> {
+    bvh::aabb::Aabb::with_bounds(np(b.min), np(b.max))
+}
+
+fn parry_ray(r: &Ray) -> parry3d::query::Ray {
+    parry3d::query::Ray::new(pv(r.origin), pv(r.dir))
+}
+
+fn parry_box(b: &Aabb) -> parry3d::bounding_volume::Aabb {
+    parry3d::bounding_volume::Aabb::new(pv(b.min), pv(b.max))
+}
+
+fn parry_tri(t: &Triangle) -> parry3d::shape::Triangle {
+    parry3d::shape::Triangle::new(pv(t.a), pv(t.b), pv(t.c))
+}
+
+type BvhTri = [Point3<f32>; 3];
+
+fn bvh_tri(t: &Triangle) -> BvhTri {
+    [np(t.a), np(t.b), np(t.c)]
+}
+
+fn bvh_hits(r: &bvh::ray::Ray<f32, 3>, t: &BvhTri) -> Option<f32> {
+    let i = r.intersects_triangle(&t[0], &t[1], &t[2]);
+    (i.distance < INF).then_some(i.distance)
+}
+
+fn agree(a: impl IntoIterator<Item = bool>, b: impl IntoIterator<Item = bool>) -> f64 {
+    rate(a.into_iter().zip(b).map(|(x, y)| x == y))
+}
+
+fn bits(x: f32) -> u64 {
+    u64::from(x.to_bits())
+}
+
+// ---------------------------------------------------------------- kernels
+
+struct BoxData {
+    name: &'static str,
+    rays: Vec<Ray>,
+    boxes: Vec<Aabb>,
+    prepared: Vec<PreparedRay>,
+    bvh_rays: Vec<bvh::ray::Ray<f32, 3>>,
+    bvh_boxes: Vec<bvh::aabb::Aabb<f32, 3>>,
+    parry_rays: Vec<parry3d::query::Ray>,
+    parry_boxes: Vec<parry3d::bounding_volume::Aabb>,
+}
+
+impl BoxData {
+    fn new(name: &'static str, rays: Vec<Ray>, boxes: Vec<Aabb>) -> Self {
+        Self {
+            name,
+            prepared: rays.iter().map(PreparedRay::new).collect(),
+            bvh_rays: rays.iter().map(bvh_ray).collect(),
+            bvh_boxes: boxes.iter().map(bvh_box).collect(),
+            parry_rays: rays.iter().map(parry_ray).collect(),
+            parry_boxes: boxes.iter().map(parry_box).collect(),
+            rays,
+            boxes,
+        }
+    }
+}
+
+struct TriData {
+    name: &'static str,
+    rays: Vec<Ray>,
+    tris: Vec<Triangle>,
+    prepared: Vec<PreparedRay>,
+    bvh_rays: Vec<bvh::ray::Ray<f32, 3>>,
+    bvh_tris: Vec<BvhTri>,
+    parry_rays: Vec<parry3d::query::Ray>,
+    parry_tris: Vec<parry3d::shape::Triangle>,
+}
+
+impl TriData {
+    fn new(name: &'static str, rays: Vec<Ray>, tris: Vec<Triangle>) -> Self {
+        Self {
+            name,
+            prepared: rays.iter().map(PreparedRay::new).collect(),
+            bvh_rays: rays.iter().map(bvh_ray).collect(),
+            bvh_tris: tris.iter().map(bvh_tri).collect(),
+            parry_rays: rays.iter().map(parry_ray).collect(),
+            parry_tris: tris.iter().map(parry_tri).collect(),
+            rays,
+            tris,
+        }
+    }
+}
+
+/// Pairwise box kernels: ray `i` against box `i`.
+fn box_kernels<'a>(d: &'a BoxData, out: &mut Vec<Kernel<'a>>) {
+    let n = d.rays.len();
+    let ours: Vec<bool> = (0..n)
+        .map(|i| ray_aabb(&d.rays[i], &d.boxes[i], INF).is_some())
+        .collect();
+    let bvh_agree = agree(
+        ours.iter().copied(),
+        (0..n).map(|i| d.bvh_rays[i].intersects_aabb(&d.bvh_boxes[i])),
+    );
+    let parry_agree = agree(
+        ours.iter().copied(),
+        (0..n).map(|i| {
+            d.parry_boxes[i]
+                .cast_local_ray(&d.parry_rays[i], f32::MAX, true)
+                .is_some()
+        }),
+    );
+    let w = d.name;
+    out.push(kernel("box", "rayhit ray_aabb", w, n, None, move || {
+        let mut c = 0;
+        for (r, b) in d.rays.iter().zip(&d.boxes) {
+            c += u64::from(ray_aabb(r, b, INF).is_some());
+        }
+        c
+    }));
+    out.push(kernel(
+        "box",
+        "rayhit ray_aabb_prepared",
+        w,
+        n,
+        None,
+        move || {
+            let mut c = 0;
+            for (r, b) in d.prepared.iter().zip(&d.boxes) {
+                c += u64::from(ray_aabb_prepared(r, b, INF).is_some());
+            }
+            c
+        },
+    ));
+    out.push(kernel(
+        "box",
+        "bvh intersects_aabb",
+        w,
+        n,
+        Some(bvh_agree),
+        move || {
+            let mut c = 0;
+            for (r, b) in d.bvh_rays.iter().zip(&d.bvh_boxes) {
+                c += u64::from(r.intersects_aabb(b));
+            }
+            c
+        },
+    ));
+    out.push(kernel(
+        "box",
+        "parry3d Aabb::cast_local_ray",
+        w,
+        n,
+        Some(parry_agree),
+        move || {
+            let mut c = 0;
+            for (r, b) in d.parry_rays.iter().zip(&d.parry_boxes) {
+                c += u64::from(b.cast_local_ray(r, f32::MAX, true).is_some());
+            }
+            c
+        },
+    ));
+}
+
+/// Pairwise triangle kernels: ray `i` against triangle `i`.
+fn triangle_kernels<'a>(d: &'a TriData, out: &mut Vec<Kernel<'a>>) {
+    let n = d.rays.len();
+    let ours: Vec<Option<Side>> = (0..n)
+        .map(|i| ray_triangle(&d.rays[i], &d.tris[i], INF).map(|h| h.side))
+        .collect();
+    let bvh_agree = agree(
+        ours.iter().map(|s| *s == Some(Side::Front)),
+        (0..n).map(|i| bvh_hits(&d.bvh_rays[i], &d.bvh_tris[i]).is_some()),
+    );
+    let parry_agree = agree(
+        ours.iter().map(Option::is_some),
+        (0..n).map(|i| {
+            d.parry_tris[i]
+                .cast_local_ray(&d.parry_rays[i], f32::MAX, true)
+                .is_some()
+        }),
+    );
+    let w = d.name;
+    out.push(kernel(
+        "triangle",
+        "rayhit ray_triangle",
+        w,
+        n,
+        None,
+        move || {
+            let mut c = 0;
+            for (r, t) in d.rays.iter().zip(&d.tris) {
+                c += ray_triangle(r, t, INF).map_or(0, |h| bits(h.t));
+            }
+            c
+        },
+    ));
+    out.push(kernel(
+        "triangle",
+        "rayhit ray_triangle_prepared",
+        w,
+        n,
+        None,
+        move || {
+            let mut c = 0;
+            for (r, t) in d.prepared.iter().zip(&d.tris) {
+                c += ray_triangle_prepared(r, t, INF).map_or(0, |h| bits(h.t));
+            }
+            c
+        },
+    ));
+    out.push(kernel(
+        "triangle",
+        "rayhit ray_triangle_mt",
+        w,
+        n,
+        None,
+        move || {
+            let mut c = 0;
+            for (r, t) in d.rays.iter().zip(&d.tris) {
+                c += ray_triangle_mt(r, t, INF).map_or(0, |h| bits(h.t));
+            }
+            c
+        },
+    ));
+    out.push(kernel(
+        "triangle",
+        "bvh intersects_triangle (front only)",
+        w,
+        n,
+        Some(bvh_agree),
+        move || {
+            let mut c = 0;
+            for (r, t) in d.bvh_rays.iter().zip(&d.bvh_tris) {
+                c += bvh_hits(r, t).map_or(0, bits);
+            }
+            c
+        },
+    ));
+    out.push(kernel(
+        "triangle",
+        "parry3d Triangle::cast_local_ray",
+        w,
+        n,
+        Some(parry_agree),
+        move || {
+            let mut c = 0;
+            for (r, t) in d.parry_rays.iter().zip(&d.parry_tris) {
+                c += t.cast_local_ray(r, f32::MAX, true).map_or(0, bits);
+            }
+            c
+        },
+    ));
+}
+
+/// Groups: ray `i` against shapes `8i..8i+8`, scalar and batched.
+fn group_kernels<'a>(
+    b: &'a BoxData,
+    bb4: &'a [AabbBatch<Vec3, 4>],
+    bb8: &'a [AabbBatch<Vec3, 8>],
+    t: &'a TriData,
+    tb4: &'a [TriangleBatch<Vec3, 4>],
+    tb8: &'a [TriangleBatch<Vec3, 8>],
+    out: &mut Vec<Kernel<'a>>,
+) {
+    let nb = b.boxes.len();
+    let group = |i: usize| i / GROUP;
+    let ours: Vec<bool> = (0..nb)
+        .map(|i| ray_aabb(&b.rays[group(i)], &b.boxes[i], INF).is_some())
+        .collect();
+    let bvh_agree = agree(
+        ours.iter().copied(),
+        (0..nb).map(|i| b.bvh_rays[group(i)].intersects_aabb(&b.bvh_boxes[i])),
+    );
+    let parry_agree = agree(
+        ours.iter().copied(),
+        (0..nb).map(|i| {
+            b.parry_boxes[i]
+                .cast_local_ray(&b.parry_rays[group(i)], f32::MAX, true)
+                .is_some()
+        }),
+    );
+    let w = "groups of 8";
+    out.push(kernel(
+        "box x8",
+        "rayhit ray_aabb_prepared",
+        w,
+        nb,
+        None,
+        move || {
+            let mut c = 0;
+            for (r, g) in b.prepared.iter().zip(b.boxes.chunks(GROUP)) {
+                for x in g {
+                    c += u64::from(ray_aabb_prepared(r, x, INF).is_some());
+                }
+            }
+            c
+        },
+    ));
+    out.push(kernel(
+        "box x8",
+        "rayhit ray_aabb_batch, 4 lanes",
+        w,
+        nb,
+        None,
+        move || {
+            let mut c = 0;
+            for (r, g) in b.prepared.iter().zip(bb4.chunks(2)) {
+                for x in g {
+                    c += u64::from(ray_aabb_batch(r, x, INF).mask.count_ones());
+                }
+            }
+            c
+        },
+    ));
+    out.push(kernel(
+        "box x8",
+        "rayhit ray_aabb_batch, 8 lanes",
+        w,
+        nb,
+        None,
+        move || {
+            let mut c = 0;
+            for (r, x) in b.prepared.iter().zip(bb8) {
+                c += u64::from(ray_aabb_batch(r, x, INF).mask.count_ones());
+            }
+            c
+        },
+    ));
+    out.push(kernel(
+        "box x8",
+        "bvh intersects_aabb",
+        w,
+        nb,
+        Some(bvh_agree),
+        move || {
+            let mut c = 0;
+            for (r, g) in b.bvh_rays.iter().zip(b.bvh_boxes.chunks(GROUP)) {
+                for x in g {
+                    c += u64::from(r.intersects_aabb(x));
+                }
+            }
+            c
+        },
+    ));
+    out.push(kernel(
+        "box x8",
+        "parry3d Aabb::cast_local_ray",
+        w,
+        nb,
+        Some(parry_agree),
+        move || {
+            let mut c = 0;
+            for (r, g) in b.parry_rays.iter().zip(b.parry_boxes.chunks(GROUP)) {
+                for x in g {
+                    c += u64::from(x.cast_local_ray(r, f32::MAX, true).is_some());
+                }
+            }
+            c
+        },
+    ));
+
+    let nt = t.tris.len();
+    let ours: Vec<Option<Side>> = (0..nt)
+        .map(|i| ray_triangle(&t.rays[group(i)], &t.tris[i], INF).map(|h| h.side))
+        .collect();
+    let bvh_agree = agree(
+        ours.iter().map(|s| *s == Some(Side::Front)),
+        (0..nt).map(|i| bvh_hits(&t.bvh_rays[group(i)], &t.bvh_tris[i]).is_some()),
+    );
+    let parry_agree = agree(
+        ours.iter().map(Option::is_some),
+        (0..nt).map(|i| {
+            t.parry_tris[i]
+                .cast_local_ray(&t.parry_rays[group(i)], f32::MAX, true)
+                .is_some()
+        }),
+    );
+    out.push(kernel(
+        "triangle x8",
+        "rayhit ray_triangle_prepared",
+        w,
+        nt,
+        None,
+        move || {
+            let mut c = 0;
+            for (r, g) in t.prepared.iter().zip(t.tris.chunks(GROUP)) {
+                for x in g {
+                    c += ray_triangle_prepared(r, x, INF).map_or(0, |h| bits(h.t));
+                }
+            }
+            c
+        },
+    ));
+    out.push(kernel(
+        "triangle x8",
+        "rayhit ray_triangle_batch, 4 lanes",
+        w,
+        nt,
+        None,
+        move || {
+            let mut c = 0;
+            for (r, g) in t.prepared.iter().zip(tb4.chunks(2)) {
+                for x in g {
+                    let h = ray_triangle_batch(r, x, INF);
+                    let mut m = h.mask;
+                    while m != 0 {
+                        c += bits(h.t[m.trailing_zeros() as usize]);
+                        m &= m - 1;
+                    }
+                }
+            }
+            c
+        },
+    ));
+    out.push(kernel(
+        "triangle x8",
+        "rayhit ray_triangle_batch, 8 lanes",
+        w,
+        nt,
+        None,
+        move || {
+            let mut c = 0;
+            for (r, x) in t.prepared.iter().zip(tb8) {
+                let h = ray_triangle_batch(r, x, INF);
+                let mut m = h.mask;
+                while m != 0 {
+                    c += bits(h.t[m.trailing_zeros() as usize]);
+                    m &= m - 1;
+                }
+            }
+            c
+        },
+    ));
+    out.push(kernel(
+        "triangle x8",
+        "bvh intersects_triangle (front only)",
+        w,
+        nt,
+        Some(bvh_agree),
+        move || {
+            let mut c = 0;
+            for (r, g) in t.bvh_rays.iter().zip(t.bvh_tris.chunks(GROUP)) {
+                for x in g {
+                    c += bvh_hits(r, x).map_or(0, bits);
+                }
+            }
+            c
+        },
+    ));
+    out.push(kernel(
+        "triangle x8",
+        "parry3d Triangle::cast_local_ray",
+        w,
+        nt,
+        Some(parry_agree),
+        move || {
+            let mut c = 0;
+            for (r, g) in t.parry_rays.iter().zip(t.parry_tris.chunks(GROUP)) {
+                for x in g {
+                    c += x.cast_local_ray(r, f32::MAX, true).map_or(0, bits);
+                }
+            }
+            c
+        },
+    ));
+}
+
+const SWEEP: [usize; 6] = [8, 16, 64, 256, 512, 1024];
+
+/// One ray against the first N boxes (all tested) and the first N
+/// triangles (nearest hit, `t_max` shrinking as hits are found; `bvh` has
+/// no `t_max`, so it keeps the smallest distance).
+struct Sweep {
+    rays: Vec<PreparedRay>,
+    bvh_rays: Vec<bvh::ray::Ray<f32, 3>>,
+    boxes: Vec<Aabb>,
+    bvh_boxes: Vec<bvh::aabb::Aabb<f32, 3>>,
+    b8: Vec<Vec<AabbBatch<Vec3, 8>>>,
+    b16: Vec<Vec<AabbBatch<Vec3, 16>>>,
+    t_rays: Vec<PreparedRay>,
+    t_bvh_rays: Vec<bvh::ray::Ray<f32, 3>>,
+    tris: Vec<Triangle>,
+    bvh_tris: Vec<BvhTri>,
+    t8: Vec<Vec<TriangleBatch<Vec3, 8>>>,
+    t16: Vec<Vec<TriangleBatch<Vec3, 16>>>,
+}
+
+impl Sweep {
+    fn new() -> Self {
+        let (rays, boxes) = box_sweep();
+        let (t_rays, tris) = triangle_sweep();
+        let b8 = SWEEP
+            .iter()
+            .map(|&n| {
+                boxes[..n]
+                    .chunks(8)
+                    .map(|c| AabbBatch::from_slice(c).expect("8"))
+                    .collect()
+            })
+            .collect();
+        let b16 = SWEEP
+            .iter()
+            .map(|&n| {
+                boxes[..n]
+                    .chunks(16)
+                    .map(|c| AabbBatch::from_slice(c).expect("16"))
+                    .collect()
+            })
+            .collect();
+        let t8 = SWEEP
+            .iter()
+            .map(|&n| {
+                tris[..n]
+                    .chunks(8)
+                    .map(|c| TriangleBatch::from_slice(c).expect("8"))
+                    .collect()
+            })
+            .collect();
+        let t16 = SWEEP
+            .iter()
+            .map(|&n| {
+                tris[..n]
+                    .chunks(16)
+                    .map(|c| TriangleBatch::from_slice(c).expect("16"))
+                    .collect()
+            })
+            .collect();
+        Self {
+            bvh_rays: rays.iter().map(bvh_ray).collect(),
+            rays: rays.iter().map(PreparedRay::new).collect(),
+            bvh_boxes: boxes.iter().map(bvh_box).collect(),
+            boxes,
+            b8,
+            b16,
+            t_bvh_rays: t_rays.iter().map(bvh_ray).collect(),
+            t_rays: t_rays.iter().map(PreparedRay::new).collect(),
+            bvh_tris: tris.iter().map(bvh_tri).collect(),
+            tris,
+            t8,
+            t16,
+        }
+    }
+}
+
+fn sweep_kernels<'a>(s: &'a Sweep, out: &mut Vec<Kernel<'a>>) {
+    for (i, &n) in SWEEP.iter().enumerate() {
+        let w = format!("N = {n}");
+        let tests = s.rays.len() * n;
+        out.push(kernel(
+            "box sweep",
+            "rayhit ray_aabb_prepared",
+            &w,
+            tests,
+            None,
+            move || {
+                let mut c = 0;
+                for r in &s.rays {
+                    for x in &s.boxes[..n] {
+                        c += u64::from(ray_aabb_prepared(r, x, INF).is_some());
+                    }
+                }
+                c
+            },
+        ));
+        out.push(kernel(
+            "box sweep",
+            "rayhit ray_aabb_batch, 8 lanes",
+            &w,
+            tests,
+            None,
+            move || {
+                let mut c = 0;
+                for r in &s.rays {
+                    for x in &s.b8[i] {
+                        c += u64::from(ray_aabb_batch(r, x, INF).mask.count_ones());
+                    }
+                }
+                c
+            },
+        ));
+        out.push(kernel(
+            "box sweep",
+            "rayhit ray_aabb_batch, 16 lanes",
+            &w,
+            tests,
+            None,
+            move || {
+                let mut c = 0;
+                for r in &s.rays {
+                    for x in &s.b16[i] {
+                        c += u64::from(ray_aabb_batch(r, x, INF).mask.count_ones());
+                    }
+                }
+                c
+            },
+        ));
+        out.push(kernel(
+            "box sweep",
+            "bvh intersects_aabb",
+            &w,
+            tests,
+            None,
+            move || {
+                let mut c = 0;
+                for r in &s.bvh_rays {
+                    for x in &s.bvh_boxes[..n] {
+                        c += u64::from(r.intersects_aabb(x));
+                    }
+                }
+                c
+            },
+        ));
+        let tests = s.t_rays.len() * n;
+        out.push(kernel(
+            "triangle sweep",
+            "rayhit ray_triangle_prepared",
+            &w,
+            tests,
+            None,
+            move || {
+                let mut c = 0;
+                for r in &s.t_rays {
+                    let mut t_max = INF;
+                    for x in &s.tris[..n] {
+                        if let Some(h) = ray_triangle_prepared(r, x, t_max) {
+                            t_max = h.t;
+                        }
+                    }
+                    c += bits(t_max);
+                }
+                c
+            },
+        ));
+        out.push(kernel(
+            "triangle sweep",
+            "rayhit ray_triangle_batch, 8 lanes",
+            &w,
+            tests,
+            None,
+            move || {
+                let mut c = 0;
+                for r in &s.t_rays {
+                    let mut t_max = INF;
+                    for x in &s.t8[i] {
+                        if let Some((_, h)) = ray_triangle_batch(r, x, t_max).nearest() {
+                            t_max = h.t;
+                        }
+                    }
+                    c += bits(t_max);
+                }
+                c
+            },
+        ));
+        out.push(kernel(
+            "triangle sweep",
+            "rayhit ray_triangle_batch, 16 lanes",
+            &w,
+            tests,
+            None,
+            move || {
+                let mut c = 0;
+                for r in &s.t_rays {
+                    let mut t_max = INF;
+                    for x in &s.t16[i] {
+                        if let Some((_, h)) = ray_triangle_batch(r, x, t_max).nearest() {
+                            t_max = h.t;
+                        }
+                    }
+                    c += bits(t_max);
+                }
+                c
+            },
+        ));
+        out.push(kernel(
+            "triangle sweep",
+            "bvh intersects_triangle (front only)",
+            &w,
+            tests,
+            None,
+            move || {
+                let mut c = 0;
+                for r in &s.t_bvh_rays {
+                    let mut best = INF;
+                    for x in &s.bvh_tris[..n] {
+                        if let Some(d) = bvh_hits(r, x) {
+                            best = best.min(d);
+                        }
+                    }
+                    c += bits(best);
+                }
+                c
+            },
+        ));
+    }
+}
+
+fn find(kernels: &[Kernel<'_>], section: &str, name: &str, workload: &str) -> f64 {
+    kernels
+        .iter()
+        .find(|k| k.section == section && k.name == name && k.workload == workload)
+        .map_or(f64::NAN, |k| k.best)
+}
+
+fn main() {
+    let box_data: Vec<BoxData> = box_workloads()
+        .into_iter()
+        .map(|w| BoxData::new(w.name, w.rays, w.boxes))
+        .collect();
+    let tri_data: Vec<TriData> = triangle_workloads()
+        .into_iter()
+        .map(|w| TriData::new(w.name, w.rays, w.triangles))
+        .collect();
+    let gb = box_groups();
+    let gb = BoxData::new("groups", gb.rays, gb.boxes);
+    let bb4: Vec<AabbBatch<Vec3, 4>> = gb
+        .boxes
+        .chunks(4)
+        .map(|c| AabbBatch::from_slice(c).expect("4"))
+        .collect();
+    let bb8: Vec<AabbBatch<Vec3, 8>> = gb
+        .boxes
+        .chunks(8)
+        .map(|c| AabbBatch::from_slice(c).expect("8"))
+        .collect();
+    let gt = triangle_groups();
+    let gt = TriData::new("groups", gt.rays, gt.triangles);
+    let tb4: Vec<TriangleBatch<Vec3, 4>> = gt
+        .tris
+        .chunks(4)
+        .map(|c| TriangleBatch::from_slice(c).expect("4"))
+        .collect();
+    let tb8: Vec<TriangleBatch<Vec3, 8>> = gt
+        .tris
+        .chunks(8)
+        .map(|c| TriangleBatch::from_slice(c).expect("8"))
+        .collect();
+    let sweep = Sweep::new();
+
+    let mut kernels = Vec::new();
+    for d in &box_data {
+        box_kernels(d, &mut kernels);
+    }
+    for d in &tri_data {
+        triangle_kernels(d, &mut kernels);
+    }
+    group_kernels(&gb, &bb4, &bb8, &gt, &tb4, &tb8, &mut kernels);
+    sweep_kernels(&sweep, &mut kernels);
+
+    let start = Instant::now();
+    time_all(&mut kernels);
+    let elapsed = start.elapsed();
+
+    let mut rates = Vec::new();
+    for d in &box_data {
+        let r = rate(
+            d.rays
+                .iter()
+                .zip(&d.boxes)
+                .map(|(r, b)| ray_aabb(r, b, INF).is_some()),
+        );
+        rates.push(format!("box {} {:.0}%", d.name, 100.0 * r));
+    }
+    for d in &tri_data {
+        let r = rate(
+            d.rays
+                .iter()
+                .zip(&d.tris)
+                .map(|(r, t)| ray_triangle(r, t, INF).is_some()),
+        );
+        rates.push(format!("triangle {} {:.0}%", d.name, 100.0 * r));
+    }
+    let r = rate(
+        gb.boxes
+            .iter()
+            .enumerate()
+            .map(|(i, b)| ray_aabb(&gb.rays[i / GROUP], b, INF).is_some()),
+    );
+    rates.push(format!("box groups {:.0}%", 100.0 * r));
+    let r = rate(
+        gt.tris
+            .iter()
+            .enumerate()
+            .map(|(i, t)| ray_triangle(&gt.rays[i / GROUP], t, INF).is_some()),
+    );
+    rates.push(format!("triangle groups {:.0}%", 100.0 * r));
+    println!("Hit rates (rayhit's answers): {}.", rates.join(", "));
+    println!();
+    println!("| kernel | workload | ns/test | speed vs fastest peer | agrees with rayhit |");
+    println!("| --- | --- | ---: | ---: | ---: |");
+    let mut last = "";
+    for k in &kernels {
+        if k.section != last {
+            println!("| **{}** | | | | |", k.section);
+            last = k.section;
+        }
+        let fastest_peer = kernels
+            .iter()
+            .filter(|p| p.section == k.section && p.workload == k.workload)
+            .filter(|p| p.name.starts_with("bvh") || p.name.starts_with("parry"))
+            .map(|p| p.best)
+            .fold(f64::INFINITY, f64::min);
+        let agreement = k
+            .agreement
+            .map_or(String::new(), |a| format!("{:.2}%", 100.0 * a));
+        println!(
+            "| {} | {} | {:.2} | {:.2}x | {} |",
+            k.name,
+            k.workload,
+            k.best,
+            fastest_peer / k.best,
+            agreement
+        );
+    }
+
+    println!();
+    println!("Targets (ratios from this run):");
+    let target = |what: &str, ratio: f64, goal: f64| {
+        let verdict = if ratio >= goal { "met" } else { "MISSED" };
+        println!("- {what}: {ratio:.2}x (target {goal:.1}x) {verdict}");
+    };
+    let total = |section: &str, name: &str| -> f64 {
+        ["random", "aimed", "axis", "camera"]
+            .iter()
+            .map(|w| find(&kernels, section, name, w))
+            .sum()
+    };
+    for w in ["random", "aimed", "axis", "camera"] {
+        let ours = find(&kernels, "box", "rayhit ray_aabb_prepared", w);
+        let bvh = find(&kernels, "box", "bvh intersects_aabb", w);
+        target(
+            &format!("prepared slab vs bvh intersects_aabb, {w}"),
+            bvh / ours,
+            1.5,
+        );
+    }
+    target(
+        "prepared slab vs bvh intersects_aabb, all four workloads",
+        total("box", "bvh intersects_aabb") / total("box", "rayhit ray_aabb_prepared"),
+        1.5,
+    );
+    let bvh_tri = total("triangle", "bvh intersects_triangle (front only)");
+    target(
+        "ray_triangle (two-sided, watertight) vs bvh, all four workloads",
+        bvh_tri / total("triangle", "rayhit ray_triangle"),
+        1.0,
+    );
+    target(
+        "ray_triangle_prepared vs bvh, all four workloads",
+        bvh_tri / total("triangle", "rayhit ray_triangle_prepared"),
+        1.0,
+    );
+    target(
+        "ray_triangle_mt vs bvh, all four workloads",
+        bvh_tri / total("triangle", "rayhit ray_triangle_mt"),
+        1.3,
+    );
+    let w = "groups of 8";
+    target(
+        "one ray against 8 boxes, per box, vs bvh",
+        find(&kernels, "box x8", "bvh intersects_aabb", w)
+            / find(&kernels, "box x8", "rayhit ray_aabb_batch, 8 lanes", w),
+        6.0,
+    );
+    target(
+        "one ray against 16 boxes (N = 1024 sweep), per box, vs bvh",
+        find(&kernels, "box sweep", "bvh intersects_aabb", "N = 1024")
+            / find(
+                &kernels,
+                "box sweep",
+                "rayhit ray_aabb_batch, 16 lanes",
+                "N = 1024",
+            ),
+        6.0,
+    );
+    target(
+        "one ray against 16 triangles (N = 1024 sweep: a dense cluster, where bvh, having no t_max, cannot cull), per triangle, vs bvh",
+        find(
+            &kernels,
+            "triangle sweep",
+            "bvh intersects_triangle (front only)",
+            "N = 1024",
+        ) / find(
+            &kernels,
+            "triangle sweep",
+            "rayhit ray_triangle_batch, 16 lanes",
+            "N = 1024",
+        ),
+        3.0,
+    );
+    target(
+        "one ray against 8 triangles, per triangle, vs bvh",
+        find(
+            &kernels,
+            "triangle x8",
+            "bvh intersects_triangle (front only)",
+            w,
+        ) / find(
+            &kernels,
+            "triangle x8",
+            "rayhit ray_triangle_batch, 8 lanes",
+            w,
+        ),
+        3.0,
+    );
+    for (section, name) in [
+        ("box sweep", "rayhit ray_aabb_batch, 8 lanes"),
+        ("box sweep", "rayhit ray_aabb_prepared"),
+        ("triangle sweep", "rayhit ray_triangle_batch, 8 lanes"),
+        ("triangle sweep", "rayhit ray_triangle_prepared"),
+    ] {
+        let costs: Vec<f64> = SWEEP
+            .iter()
+            .map(|n| find(&kernels, section, name, &format!("N = {n}")))
+            .collect();
+        let (lo, hi) = costs.iter().fold((f64::INFINITY, 0.0f64), |(lo, hi), &c| {
+            (lo.min(c), hi.max(c))
+        });
+        println!(
+            "- {section}, {name}: ns per shape from N = 8 to 1024: {}; largest / smallest {:.2}",
+            costs
+                .iter()
+                .map(|c| format!("{c:.2}"))
+                .collect::<Vec<_>>()
+                .join(", "),
+            hi / lo
+        );
+    }
+    println!();
+    println!(
+        "{} kernels, {ROUNDS} rounds each, timed in {:.1} s; fastest round reported.",
+        kernels.len(),
+        elapsed.as_secs_f64()
+    );
+}

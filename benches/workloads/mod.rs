@@ -1,0 +1,447 @@
+//! Fixed-seed workloads shared by the kernel benches (`benches/kernels.rs`)
+//! and the peers table (`benches/peers`), so that both time the same data.
+//!
+//! Every workload is a list of ray/shape pairs (4096 of them unless said
+//! otherwise) drawn from a small PCG generator with a fixed seed, and is
+//! named by how its rays relate to its shapes, which sets the hit rate:
+//!
+//! - `random`: origins and shapes scattered in a cube, directions uniform
+//!   on the sphere: few hits;
+//! - `aimed`: each ray aimed at a point near its shape: about half hit;
+//! - `axis`: aimed, but every direction along a coordinate axis (zero
+//!   components, infinite reciprocals), and a quarter of the rays lie in a
+//!   face plane of their box (the slab test's `0 * inf` case);
+//! - `camera`: the primary rays of a 64x64 pinhole camera over a 16x16
+//!   grid of shapes, each pixel paired with the shape in front of it:
+//!   coherent rays whose neighbours behave alike;
+//! - `groups`: 512 rays, each against a group of 8 nearby shapes it is
+//!   aimed into (a BVH node's children or a leaf's triangles).
+//!
+//! All of it is `f32`.
+#![allow(dead_code)]
+
+use rayhit::glam::Vec3;
+use rayhit::{Aabb, PinholeCamera, Plane, Ray, Triangle};
+
+/// Pairs per workload.
+pub const PAIRS: usize = 4096;
+/// Shapes per group in the `groups` workloads.
+pub const GROUP: usize = 8;
+
+/// PCG32 (O'Neill, 2014: XSH-RR output on a 64-bit LCG), the generator
+/// glam's own benches use; fixed seeds make every run time the same data.
+#[derive(Clone, Debug)]
+pub struct Pcg32 {
+    state: u64,
+    inc: u64,
+}
+
+impl Pcg32 {
+    /// A generator for `seed` on stream `stream`.
+    pub fn new(seed: u64, stream: u64) -> Self {
+        let mut rng = Self {
+            state: 0,
+            inc: (stream << 1) | 1,
+        };
+        rng.next_u32();
+        rng.state = rng.state.wrapping_add(seed);
+        rng.next_u32();
+        rng
+    }
+
+    /// The next 32 random bits.
+    pub fn next_u32(&mut self) -> u32 {
+        let old = self.state;
+        self.state = old
+            .wrapping_mul(6_364_136_223_846_793_005)
+            .wrapping_add(self.inc);
+        let xorshifted = (((old >> 18) ^ old) >> 27) as u32;
+        let rot = (old >> 59) as u32;
+        xorshifted.rotate_right(rot)
+    }
+
+    /// Uniform in `[0, 1)`, 24 random bits.
+    pub fn unit(&mut self) -> f32 {
+        (self.next_u32() >> 8) as f32 * (1.0 / 16_777_216.0)
+    }
+
+    /// Uniform in `[lo, hi)`.
+    pub fn range(&mut self, lo: f32, hi: f32) -> f32 {
+        lo + (hi - lo) * self.unit()
+    }
+
+    /// Uniform in `0..n`.
+    pub fn below(&mut self, n: u32) -> u32 {
+        ((u64::from(self.next_u32()) * u64::from(n)) >> 32) as u32
+    }
+
+    /// A point uniform in the cube `[-s, s]^3`.
+    pub fn cube(&mut self, s: f32) -> Vec3 {
+        Vec3::new(self.range(-s, s), self.range(-s, s), self.range(-s, s))
+    }
+
+    /// A unit vector uniform on the sphere.
+    pub fn sphere(&mut self) -> Vec3 {
+        loop {
+            let p = self.cube(1.0);
+            let l2 = p.length_squared();
+            if l2 > 0.01 && l2 <= 1.0 {
+                return p / l2.sqrt();
+            }
+        }
+    }
+
+    /// A unit vector along a random axis, either sign.
+    pub fn axis(&mut self) -> Vec3 {
+        let mut d = Vec3::ZERO;
+        d[self.below(3) as usize] = if self.below(2) == 0 { 1.0 } else { -1.0 };
+        d
+    }
+}
+
+/// A named list of ray/box pairs.
+#[derive(Clone, Debug)]
+pub struct BoxWorkload {
+    pub name: &'static str,
+    pub rays: Vec<Ray>,
+    pub boxes: Vec<Aabb>,
+}
+
+/// A named list of ray/triangle pairs.
+#[derive(Clone, Debug)]
+pub struct TriangleWorkload {
+    pub name: &'static str,
+    pub rays: Vec<Ray>,
+    pub triangles: Vec<Triangle>,
+}
+
+/// `groups` workloads: ray `i` against shapes `GROUP * i .. GROUP * (i + 1)`.
+#[derive(Clone, Debug)]
+pub struct BoxGroups {
+    pub rays: Vec<Ray>,
+    pub boxes: Vec<Aabb>,
+}
+
+/// See [`BoxGroups`].
+#[derive(Clone, Debug)]
+pub struct TriangleGroups {
+    pub rays: Vec<Ray>,
+    pub triangles: Vec<Triangle>,
+}
+
+fn random_box(rng: &mut Pcg32, spread: f32) -> Aabb {
+    let c = rng.cube(spread);
+    let h = Vec3::new(
+        rng.range(0.25, 1.0),
+        rng.range(0.25, 1.0),
+        rng.range(0.25, 1.0),
+    );
+    Aabb::new(c - h, c + h)
+}
+
+fn random_triangle(rng: &mut Pcg32, spread: f32) -> Triangle {
+    let c = rng.cube(spread);
+    let mut corner = || c + rng.sphere() * rng.range(0.5, 2.0);
+    Triangle::new(corner(), corner(), corner())
+}
+
+/// A ray that passes through `target` after running `4..16` along a random
+/// unit direction.
+fn through(rng: &mut Pcg32, target: Vec3, dir: Vec3) -> Ray {
+    Ray::new(target - dir * rng.range(4.0, 16.0), dir)
+}
+
+/// A point in `b` grown about its centre by `grow` on each axis.
+fn near_box(rng: &mut Pcg32, b: &Aabb, grow: f32) -> Vec3 {
+    let c = (b.min + b.max) * 0.5;
+    let h = (b.max - b.min) * 0.5;
+    c + h * rng.cube(grow)
+}
+
+/// `a + u (b - a) + v (c - a)` with `u, v` uniform in `[-0.15, 0.85)`:
+/// inside the triangle a little under half of the time.
+fn near_triangle(rng: &mut Pcg32, t: &Triangle) -> Vec3 {
+    let (u, v) = (rng.range(-0.15, 0.85), rng.range(-0.15, 0.85));
+    t.a + (t.b - t.a) * u + (t.c - t.a) * v
+}
+
+/// The 64x64 camera of the `camera` workloads: at `z = 12` looking down
+/// `-z` at the 16x16 grid of shapes in the plane `z = 0`.
+pub fn camera() -> PinholeCamera {
+    PinholeCamera::from_fov(
+        Vec3::new(0.0, 0.0, 12.0),
+        -Vec3::Z,
+        Vec3::Y,
+        60f32.to_radians(),
+        64,
+        64,
+    )
+    .expect("a valid camera")
+}
+
+/// The centre of grid cell `(i, j)` of the 16x16 grid that fills the
+/// camera's view at `z = 0`, and the cell size.
+fn grid_cell(i: u32, j: u32) -> (Vec3, f32) {
+    // Half the view at distance 12 with a 60 degree field: 12 tan 30.
+    let half = 12.0 * (30f32.to_radians()).tan();
+    let cell = 2.0 * half / 16.0;
+    let x = -half + (i as f32 + 0.5) * cell;
+    let y = half - (j as f32 + 0.5) * cell;
+    (Vec3::new(x, y, 0.0), cell)
+}
+
+/// The camera workloads' pixels: each `(pixel ray, grid cell)` pair.
+fn camera_pairs() -> impl Iterator<Item = (Ray, Vec3, f32)> {
+    let cam = camera();
+    (0..64u32).flat_map(move |j| {
+        (0..64u32).map(move |i| {
+            let (c, cell) = grid_cell(i / 4, j / 4);
+            (cam.pixel_ray(i, j), c, cell)
+        })
+    })
+}
+
+/// The four box workloads.
+pub fn box_workloads() -> Vec<BoxWorkload> {
+    let mut out = Vec::new();
+
+    let mut rng = Pcg32::new(1, 1);
+    let (mut rays, mut boxes) = (Vec::new(), Vec::new());
+    for _ in 0..PAIRS {
+        boxes.push(random_box(&mut rng, 4.0));
+        rays.push(Ray::new(rng.cube(4.0), rng.sphere()));
+    }
+    out.push(BoxWorkload {
+        name: "random",
+        rays,
+        boxes,
+    });
+
+    let mut rng = Pcg32::new(2, 1);
+    let (mut rays, mut boxes) = (Vec::new(), Vec::new());
+    for _ in 0..PAIRS {
+        let b = random_box(&mut rng, 8.0);
+        let target = near_box(&mut rng, &b, 1.7);
+        let dir = rng.sphere();
+        rays.push(through(&mut rng, target, dir));
+        boxes.push(b);
+    }
+    out.push(BoxWorkload {
+        name: "aimed",
+        rays,
+        boxes,
+    });
+
+    let mut rng = Pcg32::new(3, 1);
+    let (mut rays, mut boxes) = (Vec::new(), Vec::new());
+    for _ in 0..PAIRS {
+        // Boxes on a grid of quarter units, so that snapping an origin
+        // coordinate to a face is exact.
+        let q = |x: f32| (x * 4.0).round() * 0.25;
+        let b = random_box(&mut rng, 8.0);
+        let b = Aabb::new(b.min.map(q), b.max.map(q));
+        let dir = rng.axis();
+        let mut target = near_box(&mut rng, &b, 1.45);
+        if rng.below(4) == 0 {
+            // In a face plane of an axis the ray does not move along.
+            let k = (dir.abs().max_position() + 1 + rng.below(2) as usize) % 3;
+            target[k] = if rng.below(2) == 0 {
+                b.min[k]
+            } else {
+                b.max[k]
+            };
+        }
+        rays.push(through(&mut rng, target, dir));
+        boxes.push(b);
+    }
+    out.push(BoxWorkload {
+        name: "axis",
+        rays,
+        boxes,
+    });
+
+    let (mut rays, mut boxes) = (Vec::new(), Vec::new());
+    for (ray, c, cell) in camera_pairs() {
+        let h = Vec3::new(0.3 * cell, 0.3 * cell, 0.5);
+        rays.push(ray);
+        boxes.push(Aabb::new(c - h, c + h));
+    }
+    out.push(BoxWorkload {
+        name: "camera",
+        rays,
+        boxes,
+    });
+    out
+}
+
+/// The four triangle workloads. Triangles face every way, so about half of
+/// the hits are on the back side.
+pub fn triangle_workloads() -> Vec<TriangleWorkload> {
+    let mut out = Vec::new();
+
+    let mut rng = Pcg32::new(11, 2);
+    let (mut rays, mut triangles) = (Vec::new(), Vec::new());
+    for _ in 0..PAIRS {
+        triangles.push(random_triangle(&mut rng, 3.0));
+        rays.push(Ray::new(rng.cube(3.0), rng.sphere()));
+    }
+    out.push(TriangleWorkload {
+        name: "random",
+        rays,
+        triangles,
+    });
+
+    let mut rng = Pcg32::new(12, 2);
+    let (mut rays, mut triangles) = (Vec::new(), Vec::new());
+    for _ in 0..PAIRS {
+        let t = random_triangle(&mut rng, 8.0);
+        let target = near_triangle(&mut rng, &t);
+        let dir = rng.sphere();
+        rays.push(through(&mut rng, target, dir));
+        triangles.push(t);
+    }
+    out.push(TriangleWorkload {
+        name: "aimed",
+        rays,
+        triangles,
+    });
+
+    let mut rng = Pcg32::new(13, 2);
+    let (mut rays, mut triangles) = (Vec::new(), Vec::new());
+    for _ in 0..PAIRS {
+        let t = random_triangle(&mut rng, 8.0);
+        let target = near_triangle(&mut rng, &t);
+        let dir = rng.axis();
+        rays.push(through(&mut rng, target, dir));
+        triangles.push(t);
+    }
+    out.push(TriangleWorkload {
+        name: "axis",
+        rays,
+        triangles,
+    });
+
+    let mut rng = Pcg32::new(14, 2);
+    let (mut rays, mut triangles) = (Vec::new(), Vec::new());
+    // One triangle per cell, its winding flipped in every other cell.
+    let mut cells = Vec::new();
+    for cj in 0..16u32 {
+        for ci in 0..16u32 {
+            let (c, cell) = grid_cell(ci, cj);
+            let mut corner = |a: f32| {
+                let r = cell * rng.range(0.35, 0.6);
+                c + Vec3::new(r * a.cos(), r * a.sin(), rng.range(-0.3, 0.3))
+            };
+            let (a, b, d) = (corner(0.3), corner(2.4), corner(4.4));
+            cells.push(if (ci + cj) % 2 == 0 {
+                Triangle::new(a, b, d)
+            } else {
+                Triangle::new(a, d, b)
+            });
+        }
+    }
+    for (k, (ray, _, _)) in camera_pairs().enumerate() {
+        let (i, j) = (k as u32 % 64, k as u32 / 64);
+        rays.push(ray);
+        triangles.push(cells[((j / 4) * 16 + i / 4) as usize]);
+    }
+    out.push(TriangleWorkload {
+        name: "camera",
+        rays,
+        triangles,
+    });
+    out
+}
+
+/// 512 rays, each aimed into a group of 8 boxes around one centre (a BVH
+/// node's children).
+pub fn box_groups() -> BoxGroups {
+    let mut rng = Pcg32::new(21, 3);
+    let (mut rays, mut boxes) = (Vec::new(), Vec::new());
+    for _ in 0..PAIRS / GROUP {
+        let c = rng.cube(8.0);
+        for _ in 0..GROUP {
+            let b = random_box(&mut rng, 1.5);
+            boxes.push(Aabb::new(b.min + c, b.max + c));
+        }
+        let dir = rng.sphere();
+        let target = c + rng.cube(1.5);
+        rays.push(through(&mut rng, target, dir));
+    }
+    BoxGroups { rays, boxes }
+}
+
+/// 512 rays, each aimed into a group of 8 triangles around one centre (a
+/// BVH leaf).
+pub fn triangle_groups() -> TriangleGroups {
+    let mut rng = Pcg32::new(22, 3);
+    let (mut rays, mut triangles) = (Vec::new(), Vec::new());
+    for _ in 0..PAIRS / GROUP {
+        let c = rng.cube(8.0);
+        for _ in 0..GROUP {
+            let t = random_triangle(&mut rng, 1.0);
+            triangles.push(Triangle::new(t.a + c, t.b + c, t.c + c));
+        }
+        let dir = rng.sphere();
+        let target = c + rng.cube(1.0);
+        rays.push(through(&mut rng, target, dir));
+    }
+    TriangleGroups { rays, triangles }
+}
+
+/// 1024 boxes scattered over a cube of side 16 (a BVH's nodes) and 64 rays
+/// aimed at random ones among them: the `one ray against N boxes` sweep
+/// takes the first `N`.
+pub fn box_sweep() -> (Vec<Ray>, Vec<Aabb>) {
+    let mut rng = Pcg32::new(31, 4);
+    let boxes: Vec<Aabb> = (0..1024).map(|_| random_box(&mut rng, 8.0)).collect();
+    let rays = (0..64)
+        .map(|_| {
+            let b = boxes[rng.below(8) as usize];
+            let target = near_box(&mut rng, &b, 1.0);
+            let dir = rng.sphere();
+            through(&mut rng, target, dir)
+        })
+        .collect();
+    (rays, boxes)
+}
+
+/// 1024 triangles in a cube of side 4 (a BVH leaf's worth of a dense mesh,
+/// and more) and 64 rays aimed at the first 8.
+pub fn triangle_sweep() -> (Vec<Ray>, Vec<Triangle>) {
+    let mut rng = Pcg32::new(32, 4);
+    let triangles: Vec<Triangle> = (0..1024).map(|_| random_triangle(&mut rng, 2.0)).collect();
+    let rays = (0..64)
+        .map(|_| {
+            let t = triangles[rng.below(8) as usize];
+            let target = near_triangle(&mut rng, &t);
+            let dir = rng.sphere();
+            through(&mut rng, target, dir)
+        })
+        .collect();
+    (rays, triangles)
+}
+
+/// 4096 ray/plane pairs: planes through points in the cube with random
+/// normals, rays from points in the cube in random directions (half of
+/// them cross their plane ahead).
+pub fn plane_pairs() -> (Vec<Ray>, Vec<Plane>) {
+    let mut rng = Pcg32::new(41, 5);
+    let planes = (0..PAIRS)
+        .map(|_| Plane::new(rng.cube(8.0), rng.sphere()))
+        .collect();
+    let rays = (0..PAIRS)
+        .map(|_| Ray::new(rng.cube(8.0), rng.sphere()))
+        .collect();
+    (rays, planes)
+}
+
+/// The fraction of `flags` that are set.
+pub fn rate(flags: impl IntoIterator<Item = bool>) -> f64 {
+    let (mut n, mut k) = (0usize, 0usize);
+    for f in flags {
+        n += 1;
+        k += usize::from(f);
+    }
+    k as f64 / n.max(1) as f64
+}

@@ -1,0 +1,4 @@
+//! Fuzz target `batch`: see `rayhit_fuzz::targets::batch` for the input layout and the checks.
+#![no_main]
+
+libfuzzer_sys::fuzz_target!(|data: &[u8]| rayhit_fuzz::targets::batch(data));

@@ -1,0 +1,442 @@
+//! The batch kernels against the scalar ones, bit for bit.
+//!
+//! `ray_aabb_batch` must give, in every lane, the hit or miss and the entry
+//! `t` of `ray_aabb_prepared` on that lane's box; `ray_triangle_batch` the
+//! hit or miss, `t`, `u`, `v` and side of `ray_triangle` on that lane's
+//! triangle; and `ray_triangle_prepared` exactly `ray_triangle`. Since the
+//! scalar kernels are held to the exact oracle elsewhere (`properties`,
+//! `oracle`, `corpus`), identity carries every guarantee over.
+//!
+//! Inputs: the crate's aimed strategies, with the other lanes filled by
+//! copies of the aimed shape moved along the ray (several hits per batch,
+//! at different `t`), reversed copies, unrelated shapes, invalid shapes
+//! (inverted, NaN, infinite, zero-area) and empty lanes; and
+//! [`differential`], the body of the differential fuzz target, over
+//! arbitrary bit patterns.
+
+mod support;
+
+use proptest::prelude::*;
+use rayhit::glam::{DVec3, Vec3};
+use rayhit::strategies as strat;
+use rayhit::{
+    Aabb, AabbBatch, PreparedRay, Ray, Scalar, Triangle, TriangleBatch, TriangleHit, Vector,
+    ray_aabb_batch, ray_aabb_prepared, ray_triangle, ray_triangle_batch, ray_triangle_prepared,
+};
+
+type S<V> = <V as Vector>::Scalar;
+
+fn config() -> ProptestConfig {
+    ProptestConfig {
+        cases: 1024,
+        ..ProptestConfig::default()
+    }
+}
+
+/// A float's bits, for comparisons that tell `-0.0` from `0.0`.
+fn bits<F: Scalar>(x: F) -> u64 {
+    x.to_f64().to_bits()
+}
+
+fn same_enter<F: Scalar>(a: Option<F>, b: Option<F>) -> bool {
+    a.map(bits) == b.map(bits)
+}
+
+fn same_hit<F: Scalar>(a: &Option<TriangleHit<F>>, b: &Option<TriangleHit<F>>) -> bool {
+    match (a, b) {
+        (None, None) => true,
+        (Some(a), Some(b)) => {
+            bits(a.t) == bits(b.t)
+                && bits(a.u) == bits(b.u)
+                && bits(a.v) == bits(b.v)
+                && a.side == b.side
+        }
+        _ => false,
+    }
+}
+
+// ------------------------------------------------------------------ boxes
+
+/// Checks every lane of a batch of `N` against the scalar test, for a
+/// batch built from `boxes` (at most `N`; `None` entries are left empty).
+fn check_boxes<V: Vector, const N: usize>(
+    ray: &Ray<V>,
+    boxes: &[Option<Aabb<V>>],
+    t_max: S<V>,
+) -> Result<(), String> {
+    let mut batch = AabbBatch::<V, N>::empty();
+    for (lane, b) in boxes.iter().enumerate().take(N) {
+        if let Some(b) = b {
+            batch.set(lane, b);
+        }
+    }
+    let prepared = PreparedRay::new(ray);
+    let hits = ray_aabb_batch(&prepared, &batch, t_max);
+    for lane in 0..N {
+        let expected = match boxes.get(lane) {
+            Some(Some(b)) => ray_aabb_prepared(&prepared, b, t_max).map(|(enter, _)| enter),
+            _ => None,
+        };
+        let got = hits.get(lane);
+        if !same_enter(got, expected) {
+            return Err(format!(
+                "lane {lane} of {N}: batch {got:?}, scalar {expected:?}; ray {ray:?}, box {:?}, t_max {t_max:?}",
+                boxes.get(lane)
+            ));
+        }
+        if got.is_none() && bits(hits.enter[lane]) != bits(S::<V>::INFINITY) {
+            return Err(format!(
+                "lane {lane} missed but enter is {:?}",
+                hits.enter[lane]
+            ));
+        }
+    }
+    if hits.mask & !batch.mask() != 0 {
+        return Err(format!("mask {:b} outside the used lanes", hits.mask));
+    }
+    Ok(())
+}
+
+fn check_all_box_sizes<V: Vector>(
+    ray: &Ray<V>,
+    boxes: &[Option<Aabb<V>>],
+    t_max: S<V>,
+) -> Result<(), String> {
+    check_boxes::<V, 4>(ray, boxes, t_max)?;
+    check_boxes::<V, 8>(ray, boxes, t_max)?;
+    check_boxes::<V, 16>(ray, boxes, t_max)?;
+    // The same boxes in another order, and a lone one.
+    let mut rev = boxes.to_vec();
+    rev.reverse();
+    check_boxes::<V, 16>(ray, &rev, t_max)?;
+    check_boxes::<V, 1>(ray, &boxes[..1], t_max)
+}
+
+/// Lane contents for the box batches: the aimed box moved along the ray by
+/// `shift * dir` (so hit at another `t`), an unrelated box, an invalid box,
+/// or nothing.
+fn box_lanes<V: Vector>(
+    aimed: Aabb<V>,
+    ray: Ray<V>,
+) -> impl Strategy<Value = Vec<Option<Aabb<V>>>> {
+    let lane = prop_oneof![
+        4 => (-8i32..=8).prop_map(move |k| {
+            // Shifts by multiples of 1/4 of dir: exact when dir and the
+            // box's coordinates allow, rounded otherwise; both are fine.
+            let s = S::<V>::from_f64(f64::from(k) * 0.25);
+            Some(Aabb::new(aimed.min + ray.dir * s, aimed.max + ray.dir * s))
+        }),
+        2 => strat::aabb::<V>().prop_map(Some),
+        1 => Just(Some(Aabb::new(aimed.max, aimed.min))),
+        1 => Just(Some(Aabb::new(aimed.min, V::splat(S::<V>::INFINITY)))),
+        1 => Just(Some(Aabb::new(V::splat(S::<V>::NAN), aimed.max))),
+        1 => Just(None),
+    ];
+    prop::collection::vec(lane, 15).prop_map(move |mut lanes| {
+        lanes.insert(0, Some(aimed));
+        lanes
+    })
+}
+
+fn box_case<V: Vector>() -> impl Strategy<Value = (Ray<V>, Vec<Option<Aabb<V>>>, S<V>)> {
+    (strat::aabb_and_ray::<V>(), strat::t_max::<V>())
+        .prop_flat_map(|((aimed, ray), t_max)| (Just(ray), box_lanes(aimed, ray), Just(t_max)))
+}
+
+// -------------------------------------------------------------- triangles
+
+fn check_triangles<V: Vector, const N: usize>(
+    ray: &Ray<V>,
+    tris: &[Option<Triangle<V>>],
+    t_max: S<V>,
+) -> Result<(), String> {
+    let mut batch = TriangleBatch::<V, N>::empty();
+    for (lane, t) in tris.iter().enumerate().take(N) {
+        if let Some(t) = t {
+            batch.set(lane, t);
+        }
+    }
+    let prepared = PreparedRay::new(ray);
+    let hits = ray_triangle_batch(&prepared, &batch, t_max);
+    let mut nearest: Option<(usize, TriangleHit<S<V>>)> = None;
+    for lane in 0..N {
+        let expected = match tris.get(lane) {
+            Some(Some(t)) => ray_triangle(ray, t, t_max),
+            _ => None,
+        };
+        let got = hits.get(lane);
+        if !same_hit(&got, &expected) {
+            return Err(format!(
+                "lane {lane} of {N}: batch {got:?}, scalar {expected:?}; ray {ray:?}, triangle {:?}, t_max {t_max:?}",
+                tris.get(lane)
+            ));
+        }
+        if let Some(Some(t)) = tris.get(lane) {
+            let prepared_hit = ray_triangle_prepared(&prepared, t, t_max);
+            if !same_hit(&prepared_hit, &expected) {
+                return Err(format!(
+                    "ray_triangle_prepared {prepared_hit:?} != ray_triangle {expected:?}"
+                ));
+            }
+        }
+        if let Some(h) = expected {
+            if nearest.is_none_or(|(_, n)| h.t < n.t) {
+                nearest = Some((lane, h));
+            }
+        } else if bits(hits.t[lane]) != bits(S::<V>::INFINITY) {
+            return Err(format!("lane {lane} missed but t is {:?}", hits.t[lane]));
+        }
+    }
+    let got = hits.nearest();
+    let same_nearest = match (got, nearest) {
+        (None, None) => true,
+        (Some((a, x)), Some((b, y))) => a == b && same_hit(&Some(x), &Some(y)),
+        _ => false,
+    };
+    if !same_nearest {
+        return Err(format!("nearest {got:?}, expected {nearest:?}"));
+    }
+    Ok(())
+}
+
+fn check_all_triangle_sizes<V: Vector>(
+    ray: &Ray<V>,
+    tris: &[Option<Triangle<V>>],
+    t_max: S<V>,
+) -> Result<(), String> {
+    check_triangles::<V, 4>(ray, tris, t_max)?;
+    check_triangles::<V, 8>(ray, tris, t_max)?;
+    check_triangles::<V, 16>(ray, tris, t_max)?;
+    let mut rev = tris.to_vec();
+    rev.reverse();
+    check_triangles::<V, 16>(ray, &rev, t_max)?;
+    check_triangles::<V, 1>(ray, &tris[..1], t_max)
+}
+
+fn triangle_lanes<V: Vector>(
+    aimed: Triangle<V>,
+    ray: Ray<V>,
+) -> impl Strategy<Value = Vec<Option<Triangle<V>>>> {
+    let shift = move |t: Triangle<V>, k: i32| {
+        let s = S::<V>::from_f64(f64::from(k) * 0.25);
+        let d = ray.dir * s;
+        Triangle::new(t.a + d, t.b + d, t.c + d)
+    };
+    let nan = S::<V>::NAN;
+    let lane = prop_oneof![
+        4 => (-8i32..=8).prop_map(move |k| Some(shift(aimed, k))),
+        2 => (-8i32..=8).prop_map(move |k| Some(shift(aimed.flipped(), k))),
+        2 => strat::triangle::<V>().prop_map(Some),
+        1 => Just(Some(Triangle::new(aimed.a, aimed.a, aimed.c))),
+        1 => Just(Some(Triangle::new(aimed.a, aimed.b, V::splat(nan)))),
+        1 => Just(Some(Triangle::new(aimed.a, V::splat(S::<V>::INFINITY), aimed.c))),
+        1 => Just(None),
+    ];
+    prop::collection::vec(lane, 15).prop_map(move |mut lanes| {
+        lanes.insert(0, Some(aimed));
+        lanes
+    })
+}
+
+fn triangle_case<V: Vector>() -> impl Strategy<Value = (Ray<V>, Vec<Option<Triangle<V>>>, S<V>)> {
+    (strat::triangle_and_ray::<V>(), strat::t_max::<V>())
+        .prop_flat_map(|((aimed, ray), t_max)| (Just(ray), triangle_lanes(aimed, ray), Just(t_max)))
+}
+
+proptest! {
+    #![proptest_config(config())]
+
+    #[test]
+    fn box_batches_f32((ray, boxes, t_max) in box_case::<Vec3>()) {
+        check_all_box_sizes(&ray, &boxes, t_max).map_err(TestCaseError::fail)?;
+    }
+
+    #[test]
+    fn box_batches_f64((ray, boxes, t_max) in box_case::<DVec3>()) {
+        check_all_box_sizes(&ray, &boxes, t_max).map_err(TestCaseError::fail)?;
+    }
+
+    #[test]
+    fn triangle_batches_f32((ray, tris, t_max) in triangle_case::<Vec3>()) {
+        check_all_triangle_sizes(&ray, &tris, t_max).map_err(TestCaseError::fail)?;
+    }
+
+    #[test]
+    fn triangle_batches_f64((ray, tris, t_max) in triangle_case::<DVec3>()) {
+        check_all_triangle_sizes(&ray, &tris, t_max).map_err(TestCaseError::fail)?;
+    }
+}
+
+/// Rays through the shared corners of a grid mesh along the axes: every
+/// edge function through the corner is exactly zero, so these lanes take
+/// the exact-sign path; and rays in the plane of a box face.
+#[test]
+fn exact_zero_edge_functions_and_face_planes() {
+    for precision_f64 in [false, true] {
+        let mut tris = Vec::new();
+        for (i, j) in [(0, 0), (1, 0), (0, 1), (1, 1)] {
+            let p = |x: i32, y: i32| Vec3::new((i + x) as f32, (j + y) as f32, 0.0);
+            tris.push(Triangle::new(p(0, 0), p(1, 0), p(0, 1)));
+            tris.push(Triangle::new(p(1, 0), p(1, 1), p(0, 1)));
+        }
+        for x in 0..=2 {
+            for y in 0..=2 {
+                for dir in [-Vec3::Z, Vec3::Z, Vec3::new(0.0, 0.0, -0.5)] {
+                    let o = Vec3::new(x as f32, y as f32, -2.0 * dir.z.signum());
+                    let ray = Ray::new(o, dir);
+                    let lanes: Vec<_> = tris.iter().copied().map(Some).collect();
+                    if precision_f64 {
+                        let d = |v: Vec3| v.as_dvec3();
+                        let ray = Ray::new(d(ray.origin), d(ray.dir));
+                        let lanes: Vec<_> = lanes
+                            .iter()
+                            .map(|t| t.map(|t| Triangle::new(d(t.a), d(t.b), d(t.c))))
+                            .collect();
+                        check_all_triangle_sizes(&ray, &lanes, f64::INFINITY).unwrap();
+                    } else {
+                        check_all_triangle_sizes(&ray, &lanes, f32::INFINITY).unwrap();
+                    }
+                }
+            }
+        }
+    }
+    let unit = Aabb::new(Vec3::ZERO, Vec3::ONE);
+    let boxes = [Some(unit); 8];
+    for o in [
+        Vec3::new(-1.0, 1.0, 0.5),
+        Vec3::new(-1.0, 0.0, 1.0),
+        Vec3::new(-1.0, 1.0, 1.0),
+    ] {
+        for dir in [
+            Vec3::X,
+            Vec3::new(1.0, -0.0, 0.0),
+            Vec3::new(1.0, 0.0, -0.0),
+        ] {
+            let ray = Ray::new(o, dir);
+            check_all_box_sizes(&ray, &boxes, f32::INFINITY).unwrap();
+            assert_eq!(
+                ray_aabb_batch(
+                    &PreparedRay::new(&ray),
+                    &AabbBatch::<Vec3, 8>::from_slice(&[unit; 8]).unwrap(),
+                    f32::INFINITY
+                )
+                .mask,
+                0xff,
+                "a ray in a face plane of the closed box hits"
+            );
+        }
+    }
+}
+
+// ------------------------------------------------- the differential target
+
+/// Reads floats from arbitrary bytes: all bit patterns, NaN, infinities,
+/// subnormals and `-0.0` included, and, one time in four, a small integer
+/// (so that shapes share coordinates with the ray and edge functions come
+/// out exactly zero).
+struct Bytes<'a>(&'a [u8]);
+
+impl Bytes<'_> {
+    fn byte(&mut self) -> u8 {
+        let (first, rest) = self.0.split_first().unwrap_or((&0, &[]));
+        self.0 = rest;
+        *first
+    }
+
+    fn f64(&mut self, wide: bool) -> f64 {
+        let tag = self.byte();
+        if tag & 3 == 0 {
+            return f64::from(i32::from(tag as i8) >> 2);
+        }
+        if wide {
+            let mut b = [0u8; 8];
+            b.iter_mut().for_each(|x| *x = self.byte());
+            f64::from_le_bytes(b)
+        } else {
+            let mut b = [0u8; 4];
+            b.iter_mut().for_each(|x| *x = self.byte());
+            f64::from(f32::from_le_bytes(b))
+        }
+    }
+
+    fn scalar<V: Vector>(&mut self) -> S<V> {
+        let wide = S::<V>::UNIT_ROUNDOFF.to_f64() < 1e-10;
+        S::<V>::from_f64(self.f64(wide))
+    }
+
+    fn vector<V: Vector>(&mut self) -> V {
+        V::new(self.scalar::<V>(), self.scalar::<V>(), self.scalar::<V>())
+    }
+}
+
+/// The body of the differential fuzz target: decodes a ray, `t_max` and up
+/// to 16 boxes and triangles from arbitrary bytes, in both precisions, and
+/// panics if any lane of a batch differs from the scalar kernel in any bit
+/// (or if `ray_triangle_prepared` differs from `ray_triangle`). For
+/// `fuzz/fuzz_targets/batch.rs`:
+///
+/// ```text
+/// fuzz_target!(|data: &[u8]| differential(data));
+/// ```
+pub fn differential(data: &[u8]) {
+    differential_in::<Vec3>(data);
+    differential_in::<DVec3>(data);
+}
+
+fn differential_in<V: Vector>(data: &[u8]) {
+    let mut bytes = Bytes(data);
+    let ray = Ray::new(bytes.vector::<V>(), bytes.vector::<V>());
+    let t_max = bytes.scalar::<V>();
+    let count = usize::from(bytes.byte() % 17);
+    let boxes: Vec<Option<Aabb<V>>> = (0..count)
+        .map(|_| Some(Aabb::new(bytes.vector::<V>(), bytes.vector::<V>())))
+        .collect();
+    let tris: Vec<Option<Triangle<V>>> = (0..count)
+        .map(|_| {
+            Some(Triangle::new(
+                bytes.vector::<V>(),
+                bytes.vector::<V>(),
+                bytes.vector::<V>(),
+            ))
+        })
+        .collect();
+    if count > 0 {
+        check_all_box_sizes(&ray, &boxes, t_max).unwrap();
+        check_all_triangle_sizes(&ray, &tris, t_max).unwrap();
+    }
+}
+
+/// Runs [`differential`] on pseudo-random bytes (a fixed seed), so that
+/// `cargo test` exercises the fuzz target's body on every bit pattern
+/// class, not only on the strategies' well-formed shapes.
+#[test]
+fn differential_on_random_bytes() {
+    let mut rng = support::Pcg32::new(0x5eed_ba7c);
+    for len in (0..2048).map(|i| i % 700) {
+        let data: Vec<u8> = (0..len).map(|_| rng.next_u32() as u8).collect();
+        differential(&data);
+    }
+}
+
+/// Invalid rays prepare into equal values (nothing of the invalid input is
+/// kept), and hit nothing in any batch.
+#[test]
+fn invalid_rays_prepare_alike_and_hit_nothing() {
+    let nan = f32::NAN;
+    let bad = [
+        Ray::new(Vec3::splat(nan), Vec3::X),
+        Ray::new(Vec3::ZERO, Vec3::ZERO),
+        Ray::new(Vec3::ZERO, Vec3::new(f32::INFINITY, 0.0, 0.0)),
+        Ray::new(Vec3::new(0.0, nan, 0.0), Vec3::new(nan, 1.0, 0.0)),
+    ];
+    let tri = Triangle::new(-Vec3::ONE, Vec3::new(1.0, -1.0, 0.0), Vec3::Y);
+    let boxes = AabbBatch::<Vec3, 4>::from_slice(&[Aabb::new(-Vec3::ONE, Vec3::ONE)]).unwrap();
+    let tris = TriangleBatch::<Vec3, 4>::from_slice(&[tri]).unwrap();
+    for ray in bad {
+        let p = PreparedRay::new(&ray);
+        assert_eq!(p, PreparedRay::new(&bad[1]));
+        assert_eq!(ray_aabb_batch(&p, &boxes, f32::INFINITY).mask, 0);
+        assert_eq!(ray_triangle_batch(&p, &tris, f32::INFINITY).mask, 0);
+        assert_eq!(ray_triangle_prepared(&p, &tri, f32::INFINITY), None);
+    }
+}
