@@ -570,3 +570,42 @@ fn triangle_conservative_t_rejection_near_the_origin() {
         assert!(t_exact <= band, "a miss outside the conservative band");
     }
 }
+
+/// `triangle` (structured, `f64`; found by the 10-minute run): a ray exactly
+/// parallel to a sliver's plane (exact determinant zero) along the diagonal
+/// `(-1, -1, -1)`. The watertight test reports a hit at `t = 6.08` on the
+/// edge `u = 0`, `v = 1`; its error bounds are infinite, which is how the
+/// docs mark a hit whose determinant sign is not certain (the fuzzer asked
+/// for the exact `t` before looking at the bound). Moller-Trumbore and the
+/// one-hit test reject it.
+#[test]
+fn triangle_hit_parallel_to_the_plane_has_infinite_bounds() {
+    let ray = Ray::new(
+        DVec3::new(
+            220.980_540_043_868_64,
+            93.888_375_492_007_97,
+            221.636_422_426_553_93,
+        ),
+        DVec3::splat(-25.976_470_588_235_294),
+    );
+    let tri = Triangle::new(
+        DVec3::new(63.0, -63.998_046_904_801_87, 63.750_000_029_744_115),
+        DVec3::new(
+            63.422_649_730_810_38,
+            -64.575_397_173_991_49,
+            63.172_649_760_554_49,
+        ),
+        DVec3::new(
+            63.044_465_523_908_514,
+            -64.047_699_027_952_18,
+            63.700_347_906_593_805,
+        ),
+    );
+    let exact = support::triangle(&ray, &tri);
+    assert!(exact.t.is_none(), "exactly parallel");
+    if let Some(hit) = ray_triangle(&ray, &tri, f64::INFINITY) {
+        assert!(hit.t > 0.0 && hit.t.is_finite());
+        let err = ray_triangle_error_bounds(&ray, &tri, &hit);
+        assert!(err.t.is_infinite() && err.u.is_infinite() && err.v.is_infinite());
+    }
+}
