@@ -60,29 +60,50 @@ impl Check for Batch {
     }
 }
 
+/// A ray and `n` shapes: raw bit patterns, or (structured) the first shape
+/// with a ray aimed at it from `first`, and each further one from
+/// `next(u, first, previous)`.
+fn shapes<'a, V, T>(
+    u: &mut Unstructured<'a>,
+    mode: Mode,
+    n: usize,
+    first: impl FnOnce(&mut Unstructured<'a>) -> (T, Ray<V>),
+    next: impl Fn(&mut Unstructured<'a>, &T, &T) -> T,
+) -> (Ray<V>, Vec<T>)
+where
+    V: Vector,
+    S<V>: Arbitrary<'a> + Scalar,
+    T: Arbitrary<'a> + Default + Copy,
+{
+    match mode {
+        Mode::Raw => {
+            let ray = raw::<Ray<V>>(u);
+            (ray, (0..n).map(|_| raw::<T>(u)).collect())
+        }
+        Mode::Structured => {
+            let (head, ray) = first(u);
+            let mut all = vec![head];
+            while all.len() < n {
+                let shape = next(u, &head, &all[all.len() - 1]);
+                all.push(shape);
+            }
+            all.truncate(n);
+            (ray, all)
+        }
+    }
+}
+
 /// A ray and `n` boxes: raw, or the first box with a ray aimed at it and
-/// the others moved by up to their own size.
+/// the others moved to within their own size of it.
 fn box_inputs<'a, V>(u: &mut Unstructured<'a>, mode: Mode, n: usize) -> (Ray<V>, Vec<Aabb<V>>)
 where
     V: Vector,
     S<V>: Arbitrary<'a> + Scalar,
 {
-    match mode {
-        Mode::Raw => {
-            let ray = raw::<Ray<V>>(u);
-            (ray, (0..n).map(|_| raw::<Aabb<V>>(u)).collect())
-        }
-        Mode::Structured => {
-            let (first, ray) = inputs::aabb_and_ray::<V>(u);
-            let mut boxes = vec![first];
-            while boxes.len() < n {
-                let b = inputs::aabb::<V>(u);
-                boxes.push(near(u, &first.min, &b.min, &b.max).unwrap_or(b));
-            }
-            boxes.truncate(n);
-            (ray, boxes)
-        }
-    }
+    shapes(u, mode, n, inputs::aabb_and_ray::<V>, |u, first, _| {
+        let b = inputs::aabb::<V>(u);
+        near(u, &first.min, &b.min, &b.max).unwrap_or(b)
+    })
 }
 
 /// `b` translated so that its `min` lands within its size of `anchor`, or
@@ -98,8 +119,9 @@ fn near<V: Vector>(u: &mut Unstructured, anchor: &V, min: &V, max: &V) -> Option
 }
 
 /// A ray and `n` triangles: raw, or the first triangle with a ray aimed at
-/// it and the others sharing its first corner (a fan, so that lanes tie at
-/// shared edges and corners) or drawn anew.
+/// it and the others continuing a fan around its first corner or the
+/// previous triangle's edge (so that lanes tie at shared edges and
+/// corners, bit for bit), or drawn anew.
 fn triangle_inputs<'a, V>(
     u: &mut Unstructured<'a>,
     mode: Mode,
@@ -109,29 +131,20 @@ where
     V: Vector,
     S<V>: Arbitrary<'a> + Scalar,
 {
-    match mode {
-        Mode::Raw => {
-            let ray = raw::<Ray<V>>(u);
-            (ray, (0..n).map(|_| raw::<Triangle<V>>(u)).collect())
-        }
-        Mode::Structured => {
-            let (first, ray) = inputs::triangle_and_ray::<V>(u);
-            let mut tris = vec![first];
-            while tris.len() < n {
-                let t = inputs::triangle::<V>(u);
-                let prev = tris[tris.len() - 1];
-                tris.push(match inputs::index(u, 3) {
-                    // The next triangle of a fan around `first.a`, sharing
-                    // the previous one's last edge, bit for bit.
-                    0 => Triangle::new(first.a, prev.c, t.c),
-                    1 => Triangle::new(prev.b, prev.a, t.c),
-                    _ => t,
-                });
+    shapes(
+        u,
+        mode,
+        n,
+        inputs::triangle_and_ray::<V>,
+        |u, first, prev| {
+            let t = inputs::triangle::<V>(u);
+            match inputs::index(u, 3) {
+                0 => Triangle::new(first.a, prev.c, t.c),
+                1 => Triangle::new(prev.b, prev.a, t.c),
+                _ => t,
             }
-            tris.truncate(n);
-            (ray, tris)
-        }
-    }
+        },
+    )
 }
 
 fn check_boxes<V: Vector, const N: usize>(ray: &Ray<V>, boxes: &[Aabb<V>], t_max: S<V>) {

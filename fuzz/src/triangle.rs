@@ -13,7 +13,7 @@ use rayhit::{
     ray_triangle_mt, ray_triangle_one_hit,
 };
 
-use crate::exact::{R, abs, cross, dot, gamma, int, r, rv, sub};
+use crate::exact::{R, abs, cross, dot, int, r, rv, sub};
 use crate::{
     Check, Mode, S, inputs, oracle, product_far_from_underflow, quotient_far_from_underflow, raw,
 };
@@ -42,7 +42,7 @@ pub struct Watertight;
 /// Checks: both in range on any input; where the precondition holds and the
 /// exact crossing is outside both tests' rounding bands (the watertight
 /// test's barycentric and `t` bounds plus Moller-Trumbore's, derived at
-/// [`mt_bounds`]), both give exact arithmetic's answer, with the same side.
+/// [`crate::oracle::mt_bounds`]), both give exact arithmetic's answer, with the same side.
 #[derive(Debug)]
 pub struct WatertightVsMt;
 
@@ -233,26 +233,12 @@ fn check_hit<V: Vector>(
     let side = if dn < int(0) { Side::Front } else { Side::Back };
     assert_eq!(h.side, side, "side: {}", ctx());
     if detailed {
-        // The barycentric point and ray.at(t) are both within their errors
-        // of the exact crossing p*: from the reported u, v,
-        // |p_bary_j - p*_j| <= err_u |b_j - a_j| + err_v |c_j - a_j|;
-        // ray.at(t) adds |t - t*| |d_j| and its own two roundings,
-        // gamma(2) (|o_j| + |t d_j|).
-        let (o, p) = (rv(ray.origin), rv(ray.at(h.t)));
-        let (u, v, t) = (r(h.u), r(h.v), r(h.t));
-        let g2 = gamma::<S<V>>(2);
-        for j in 0..3 {
-            let bary = &a[j] + &u * (&b[j] - &a[j]) + &v * (&c[j] - &a[j]);
-            let bound = r(err.u) * abs(&(&b[j] - &a[j]))
-                + r(err.v) * abs(&(&c[j] - &a[j]))
-                + r(err.t) * abs(&d[j])
-                + &g2 * (abs(&o[j]) + &t * abs(&d[j]));
-            assert!(
-                abs(&(&bary - &p[j])) <= bound,
-                "barycentric point and ray.at(t) differ on axis {j}: {}",
-                ctx()
-            );
-        }
+        let axis = crate::oracle::hit_point_disagreement(ray, tri, h, &err);
+        assert!(
+            axis.is_none(),
+            "barycentric point and ray.at(t) differ on axis {axis:?}: {}",
+            ctx()
+        );
     }
 }
 
@@ -424,7 +410,7 @@ pub fn check_vs_mt<V: Vector>(ray: &Ray<V>, tri: &Triangle<V>, t_max: S<V>) {
     if wt.is_some() == exact_hit && mt.is_some() == exact_hit && sides_agree {
         return;
     }
-    let bounds = mt_bounds(ray, tri, &ue, &ve);
+    let bounds = crate::oracle::mt_bounds(ray, tri, &ue, &ve);
     agreement(ray, tri, t_max, &exact, wt, Some((mt, bounds)), &ctx);
 }
 
@@ -447,47 +433,6 @@ fn mt_in_normal_range<V: Vector>(ray: &Ray<V>, tri: &Triangle<V>) -> bool {
         })
     };
     ok(tri.b - tri.a) && ok(tri.c - tri.a) && ok(ray.origin - tri.a) && ok(ray.dir)
-}
-
-/// Error bounds of Moller-Trumbore's `u`, `v` and `t`, for the agreement
-/// band (the property tests' derivation).
-///
-/// MT computes `u = (s . p)/det`, `v = (d . q)/det`, `t = (e2 . q)/det` with
-/// `s = o - a`, `p = d x e2`, `q = s x e1`, `e1 = b - a`, `e2 = c - a`. Each
-/// numerator and `det` is a sum of triple products whose monomials carry at
-/// most 7 roundings (two subtractions, a product, a difference, a product,
-/// two sums), so each is within `gamma(7)` times the sum of the monomials'
-/// magnitudes. A quotient `N/D` computed as `fl(N) fl(1/det)` is then within
-/// `(dN + |q| dD)/(|D| - dD) + gamma(2)|q|` (with `q` the exact quotient),
-/// or a huge value when `dD >= |D|`.
-pub fn mt_bounds<V: Vector>(ray: &Ray<V>, tri: &Triangle<V>, u: &R, v: &R) -> (R, R, R) {
-    let (o, d) = (rv(ray.origin), rv(ray.dir));
-    let (a, b, c) = (rv(tri.a), rv(tri.b), rv(tri.c));
-    let (e1, e2, s) = (sub(&b, &a), sub(&c, &a), sub(&o, &a));
-    let mag = |x: &[R; 3], y: &[R; 3], z: &[R; 3]| -> R {
-        (0..3)
-            .map(|i| {
-                let (j, k) = ((i + 1) % 3, (i + 2) % 3);
-                abs(&x[i]) * (abs(&(&y[j] * &z[k])) + abs(&(&y[k] * &z[j])))
-            })
-            .sum()
-    };
-    let g7 = gamma::<S<V>>(7);
-    let det = dot(&e1, &cross(&d, &e2));
-    let d_det = &g7 * mag(&e1, &d, &e2);
-    let big = crate::exact::pow2(2000);
-    if abs(&det) <= d_det {
-        return (big.clone(), big.clone(), big);
-    }
-    let q = cross(&s, &e1);
-    let t = dot(&e2, &q) / &det;
-    let g2 = gamma::<S<V>>(2);
-    let quotient = |dn: R, q: &R| (dn + abs(q) * &d_det) / (abs(&det) - &d_det) + &g2 * abs(q);
-    (
-        quotient(&g7 * mag(&s, &d, &e2), u),
-        quotient(&g7 * mag(&d, &s, &e1), v),
-        quotient(&g7 * mag(&e2, &s, &e1), &t),
-    )
 }
 
 /// A closed tetrahedron, consistently wound (outward normals), and a ray

@@ -13,7 +13,7 @@ use std::cmp::Ordering;
 use num_bigint::BigInt;
 use num_rational::BigRational;
 use num_traits::{Signed, ToPrimitive, Zero};
-use rayhit::{Aabb, Plane, Ray, Scalar, Triangle, Vector};
+use rayhit::{Aabb, Plane, Ray, Scalar, Triangle, TriangleHit, TriangleHitError, Vector};
 
 /// An exact rational.
 pub type R = BigRational;
@@ -354,7 +354,7 @@ fn abs(x: &R) -> R {
 /// two sums), so each is within `gamma(7)` times the sum of the monomials'
 /// magnitudes `M`. A quotient `N/D` computed as `fl(N) fl(1/det)` is then
 /// within `(dN + |q| dD)/(|D| - dD) + gamma(2)|q|`, which is what this
-/// returns (with `q` the exact quotient), or a huge value when `dD >= |D|`.
+/// returns (with `q` the exact quotient), or `2^2000` when `dD >= |D|`.
 pub fn mt_bounds<V: Vector>(ray: &Ray<V>, tri: &Triangle<V>, u: &R, v: &R) -> (R, R, R) {
     let (o, d) = (rv(ray.origin), rv(ray.dir));
     let (a, b, c) = (rv(tri.a), rv(tri.b), rv(tri.c));
@@ -371,7 +371,8 @@ pub fn mt_bounds<V: Vector>(ray: &Ray<V>, tri: &Triangle<V>, u: &R, v: &R) -> (R
     let g7 = gamma::<V::Scalar>(7);
     let det = dot(&e1, &cross(&d, &e2));
     let d_det = &g7 * mag(&e1, &d, &e2);
-    let big = R::from_integer(num_bigint::BigInt::from(1u64 << 62));
+    // Above any bound in either precision (f64's largest is below 2^1024).
+    let big = dyadic(1, 2000);
     if abs(&det) <= d_det {
         return (big.clone(), big.clone(), big);
     }
@@ -384,6 +385,34 @@ pub fn mt_bounds<V: Vector>(ray: &Ray<V>, tri: &Triangle<V>, u: &R, v: &R) -> (R
         quotient(&g7 * mag(&d, &s, &e1), v),
         quotient(&g7 * mag(&e2, &s, &e1), &t),
     )
+}
+
+/// Where a triangle hit's barycentric point and `ray.at(t)` disagree by
+/// more than their bounds allow, the first such axis; `None` when they
+/// agree.
+///
+/// Both are within their errors of the exact crossing `p*`: from the
+/// reported `u`, `v`, `|p_bary_j - p*_j| <= err_u |b_j - a_j| + err_v |c_j -
+/// a_j|` (exactly, from the reported barycentrics); `ray.at(t)` adds
+/// `|t - t*| |d_j|` and its own two roundings, `gamma(2) (|o_j| + |t d_j|)`.
+pub fn hit_point_disagreement<V: Vector>(
+    ray: &Ray<V>,
+    tri: &Triangle<V>,
+    h: &TriangleHit<V::Scalar>,
+    err: &TriangleHitError<V::Scalar>,
+) -> Option<usize> {
+    let (a, b, c) = (rv(tri.a), rv(tri.b), rv(tri.c));
+    let (o, d, p) = (rv(ray.origin), rv(ray.dir), rv(ray.at(h.t)));
+    let (u, v, t) = (r(h.u), r(h.v), r(h.t));
+    let g2 = gamma::<V::Scalar>(2);
+    (0..3).find(|&j| {
+        let bary = &a[j] + &u * (&b[j] - &a[j]) + &v * (&c[j] - &a[j]);
+        let bound = r(err.u) * abs(&(&b[j] - &a[j]))
+            + r(err.v) * abs(&(&c[j] - &a[j]))
+            + r(err.t) * abs(&d[j])
+            + &g2 * (abs(&o[j]) + &t * abs(&d[j]));
+        abs(&(&bary - &p[j])) > bound
+    })
 }
 
 /// True when some nonzero direction component is so small that its
