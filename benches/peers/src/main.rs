@@ -44,8 +44,9 @@ use nalgebra::{Point3, Vector3};
 use parry3d::query::RayCast;
 use rayhit::glam::Vec3;
 use rayhit::{
-    Aabb, AabbBatch, PreparedRay, Ray, Side, Triangle, TriangleBatch, ray_aabb, ray_aabb_batch,
-    ray_aabb_prepared, ray_triangle, ray_triangle_batch, ray_triangle_mt, ray_triangle_prepared,
+    Aabb, AabbBatch, PreparedRay, Ray, Side, Triangle, TriangleBatch, TriangleBatchHits, ray_aabb,
+    ray_aabb_batch, ray_aabb_prepared, ray_triangle, ray_triangle_batch, ray_triangle_mt,
+    ray_triangle_prepared,
 };
 use workloads::*;
 
@@ -222,6 +223,81 @@ impl TriData {
 }
 
 /// Pairwise box kernels: ray `i` against box `i`.
+/// The timed loop of a row: ray `i` against shapes `k i .. k (i + 1)`
+/// (`k = per_ray`; 1 for the pairwise rows), the sum of `f`'s checksums.
+fn chunked<'a, R, X>(
+    rays: &'a [R],
+    shapes: &'a [X],
+    per_ray: usize,
+    f: impl Fn(&R, &X) -> u64 + 'a,
+) -> impl Fn() -> u64 + 'a {
+    move || {
+        let mut c = 0;
+        for (r, g) in rays.iter().zip(shapes.chunks(per_ray)) {
+            for x in g {
+                c += f(r, x);
+            }
+        }
+        c
+    }
+}
+
+/// The timed loop of a sweep row: every ray against all of `shapes`.
+fn every<'a, R, X>(
+    rays: &'a [R],
+    shapes: &'a [X],
+    f: impl Fn(&R, &X) -> u64 + 'a,
+) -> impl Fn() -> u64 + 'a {
+    move || {
+        let mut c = 0;
+        for r in rays {
+            for x in shapes {
+                c += f(r, x);
+            }
+        }
+        c
+    }
+}
+
+/// The timed loop of a nearest-hit sweep row: every ray through all of
+/// `shapes` in order, `f` given the nearest distance so far as its limit
+/// (the way a BVH leaf culls); the checksum of each ray's nearest hit.
+fn nearest<'a, R, X>(
+    rays: &'a [R],
+    shapes: &'a [X],
+    f: impl Fn(&R, &X, f32) -> Option<f32> + 'a,
+) -> impl Fn() -> u64 + 'a {
+    move || {
+        let mut c = 0;
+        for r in rays {
+            let mut t_max = INF;
+            for x in shapes {
+                if let Some(t) = f(r, x, t_max) {
+                    t_max = t_max.min(t);
+                }
+            }
+            c += bits(t_max);
+        }
+        c
+    }
+}
+
+/// The checksum of a triangle batch's hits: every hit lane's `t`.
+fn batch_t_sum<const N: usize>(h: &TriangleBatchHits<f32, N>) -> u64 {
+    let mut c = 0;
+    let mut m = h.mask;
+    while m != 0 {
+        c += bits(h.t[m.trailing_zeros() as usize]);
+        m &= m - 1;
+    }
+    c
+}
+
+/// The checksum of a hit's `t`, 0 for a miss.
+fn t_sum(t: Option<f32>) -> u64 {
+    t.map_or(0, bits)
+}
+
 fn box_kernels<'a>(d: &'a BoxData, out: &mut Vec<Kernel<'a>>) {
     let n = d.rays.len();
     let ours: Vec<bool> = (0..n)
@@ -239,56 +315,48 @@ fn box_kernels<'a>(d: &'a BoxData, out: &mut Vec<Kernel<'a>>) {
                 .is_some()
         }),
     );
-    let w = d.name;
-    out.push(kernel("box", "rayhit ray_aabb", w, n, None, move || {
-        let mut c = 0;
-        for (r, b) in d.rays.iter().zip(&d.boxes) {
-            c += u64::from(ray_aabb(r, b, INF).is_some());
-        }
-        c
-    }));
-    out.push(kernel(
-        "box",
-        "rayhit ray_aabb_prepared",
-        w,
-        n,
-        None,
-        move || {
-            let mut c = 0;
-            for (r, b) in d.prepared.iter().zip(&d.boxes) {
-                c += u64::from(ray_aabb_prepared(r, b, INF).is_some());
-            }
-            c
-        },
-    ));
-    out.push(kernel(
-        "box",
-        "bvh intersects_aabb",
-        w,
-        n,
-        Some(bvh_agree),
-        move || {
-            let mut c = 0;
-            for (r, b) in d.bvh_rays.iter().zip(&d.bvh_boxes) {
-                c += u64::from(r.intersects_aabb(b));
-            }
-            c
-        },
-    ));
-    out.push(kernel(
-        "box",
-        "parry3d Aabb::cast_local_ray",
-        w,
-        n,
-        Some(parry_agree),
-        move || {
-            let mut c = 0;
-            for (r, b) in d.parry_rays.iter().zip(&d.parry_boxes) {
-                c += u64::from(b.cast_local_ray(r, f32::MAX, true).is_some());
-            }
-            c
-        },
-    ));
+    let (w, sec) = (d.name, "box");
+    let hit = |x: Option<(f32, f32)>| u64::from(x.is_some());
+    out.extend([
+        kernel(
+            sec,
+            "rayhit ray_aabb",
+            w,
+            n,
+            None,
+            chunked(&d.rays, &d.boxes, 1, move |r, b| hit(ray_aabb(r, b, INF))),
+        ),
+        kernel(
+            sec,
+            "rayhit ray_aabb_prepared",
+            w,
+            n,
+            None,
+            chunked(&d.prepared, &d.boxes, 1, move |r, b| {
+                hit(ray_aabb_prepared(r, b, INF))
+            }),
+        ),
+        kernel(
+            sec,
+            "bvh intersects_aabb",
+            w,
+            n,
+            Some(bvh_agree),
+            chunked(&d.bvh_rays, &d.bvh_boxes, 1, |r, b| {
+                u64::from(r.intersects_aabb(b))
+            }),
+        ),
+        kernel(
+            sec,
+            "parry3d Aabb::cast_local_ray",
+            w,
+            n,
+            Some(parry_agree),
+            chunked(&d.parry_rays, &d.parry_boxes, 1, |r, b| {
+                u64::from(b.cast_local_ray(r, f32::MAX, true).is_some())
+            }),
+        ),
+    ]);
 }
 
 /// Pairwise triangle kernels: ray `i` against triangle `i`.
@@ -309,77 +377,57 @@ fn triangle_kernels<'a>(d: &'a TriData, out: &mut Vec<Kernel<'a>>) {
                 .is_some()
         }),
     );
-    let w = d.name;
-    out.push(kernel(
-        "triangle",
-        "rayhit ray_triangle",
-        w,
-        n,
-        None,
-        move || {
-            let mut c = 0;
-            for (r, t) in d.rays.iter().zip(&d.tris) {
-                c += ray_triangle(r, t, INF).map_or(0, |h| bits(h.t));
-            }
-            c
-        },
-    ));
-    out.push(kernel(
-        "triangle",
-        "rayhit ray_triangle_prepared",
-        w,
-        n,
-        None,
-        move || {
-            let mut c = 0;
-            for (r, t) in d.prepared.iter().zip(&d.tris) {
-                c += ray_triangle_prepared(r, t, INF).map_or(0, |h| bits(h.t));
-            }
-            c
-        },
-    ));
-    out.push(kernel(
-        "triangle",
-        "rayhit ray_triangle_mt",
-        w,
-        n,
-        None,
-        move || {
-            let mut c = 0;
-            for (r, t) in d.rays.iter().zip(&d.tris) {
-                c += ray_triangle_mt(r, t, INF).map_or(0, |h| bits(h.t));
-            }
-            c
-        },
-    ));
-    out.push(kernel(
-        "triangle",
-        "bvh intersects_triangle (front only)",
-        w,
-        n,
-        Some(bvh_agree),
-        move || {
-            let mut c = 0;
-            for (r, t) in d.bvh_rays.iter().zip(&d.bvh_tris) {
-                c += bvh_hits(r, t).map_or(0, bits);
-            }
-            c
-        },
-    ));
-    out.push(kernel(
-        "triangle",
-        "parry3d Triangle::cast_local_ray",
-        w,
-        n,
-        Some(parry_agree),
-        move || {
-            let mut c = 0;
-            for (r, t) in d.parry_rays.iter().zip(&d.parry_tris) {
-                c += t.cast_local_ray(r, f32::MAX, true).map_or(0, bits);
-            }
-            c
-        },
-    ));
+    let (w, sec) = (d.name, "triangle");
+    out.extend([
+        kernel(
+            sec,
+            "rayhit ray_triangle",
+            w,
+            n,
+            None,
+            chunked(&d.rays, &d.tris, 1, |r, t| {
+                t_sum(ray_triangle(r, t, INF).map(|h| h.t))
+            }),
+        ),
+        kernel(
+            sec,
+            "rayhit ray_triangle_prepared",
+            w,
+            n,
+            None,
+            chunked(&d.prepared, &d.tris, 1, |r, t| {
+                t_sum(ray_triangle_prepared(r, t, INF).map(|h| h.t))
+            }),
+        ),
+        kernel(
+            sec,
+            "rayhit ray_triangle_mt",
+            w,
+            n,
+            None,
+            chunked(&d.rays, &d.tris, 1, |r, t| {
+                t_sum(ray_triangle_mt(r, t, INF).map(|h| h.t))
+            }),
+        ),
+        kernel(
+            sec,
+            "bvh intersects_triangle (front only)",
+            w,
+            n,
+            Some(bvh_agree),
+            chunked(&d.bvh_rays, &d.bvh_tris, 1, |r, t| t_sum(bvh_hits(r, t))),
+        ),
+        kernel(
+            sec,
+            "parry3d Triangle::cast_local_ray",
+            w,
+            n,
+            Some(parry_agree),
+            chunked(&d.parry_rays, &d.parry_tris, 1, |r, t| {
+                t_sum(t.cast_local_ray(r, f32::MAX, true))
+            }),
+        ),
+    ]);
 }
 
 /// Groups: ray `i` against shapes `8i..8i+8`, scalar and batched.
@@ -409,85 +457,59 @@ fn group_kernels<'a>(
                 .is_some()
         }),
     );
-    let w = "groups of 8";
-    out.push(kernel(
-        "box x8",
-        "rayhit ray_aabb_prepared",
-        w,
-        nb,
-        None,
-        move || {
-            let mut c = 0;
-            for (r, g) in b.prepared.iter().zip(b.boxes.chunks(GROUP)) {
-                for x in g {
-                    c += u64::from(ray_aabb_prepared(r, x, INF).is_some());
-                }
-            }
-            c
-        },
-    ));
-    out.push(kernel(
-        "box x8",
-        "rayhit ray_aabb_batch, 4 lanes",
-        w,
-        nb,
-        None,
-        move || {
-            let mut c = 0;
-            for (r, g) in b.prepared.iter().zip(bb4.chunks(2)) {
-                for x in g {
-                    c += u64::from(ray_aabb_batch(r, x, INF).mask.count_ones());
-                }
-            }
-            c
-        },
-    ));
-    out.push(kernel(
-        "box x8",
-        "rayhit ray_aabb_batch, 8 lanes",
-        w,
-        nb,
-        None,
-        move || {
-            let mut c = 0;
-            for (r, x) in b.prepared.iter().zip(bb8) {
-                c += u64::from(ray_aabb_batch(r, x, INF).mask.count_ones());
-            }
-            c
-        },
-    ));
-    out.push(kernel(
-        "box x8",
-        "bvh intersects_aabb",
-        w,
-        nb,
-        Some(bvh_agree),
-        move || {
-            let mut c = 0;
-            for (r, g) in b.bvh_rays.iter().zip(b.bvh_boxes.chunks(GROUP)) {
-                for x in g {
-                    c += u64::from(r.intersects_aabb(x));
-                }
-            }
-            c
-        },
-    ));
-    out.push(kernel(
-        "box x8",
-        "parry3d Aabb::cast_local_ray",
-        w,
-        nb,
-        Some(parry_agree),
-        move || {
-            let mut c = 0;
-            for (r, g) in b.parry_rays.iter().zip(b.parry_boxes.chunks(GROUP)) {
-                for x in g {
-                    c += u64::from(x.cast_local_ray(r, f32::MAX, true).is_some());
-                }
-            }
-            c
-        },
-    ));
+    let (w, sec) = ("groups of 8", "box x8");
+    out.extend([
+        kernel(
+            sec,
+            "rayhit ray_aabb_prepared",
+            w,
+            nb,
+            None,
+            chunked(&b.prepared, &b.boxes, GROUP, |r, x| {
+                u64::from(ray_aabb_prepared(r, x, INF).is_some())
+            }),
+        ),
+        kernel(
+            sec,
+            "rayhit ray_aabb_batch, 4 lanes",
+            w,
+            nb,
+            None,
+            chunked(&b.prepared, bb4, GROUP / 4, |r, x| {
+                u64::from(ray_aabb_batch(r, x, INF).mask.count_ones())
+            }),
+        ),
+        kernel(
+            sec,
+            "rayhit ray_aabb_batch, 8 lanes",
+            w,
+            nb,
+            None,
+            chunked(&b.prepared, bb8, GROUP / 8, |r, x| {
+                u64::from(ray_aabb_batch(r, x, INF).mask.count_ones())
+            }),
+        ),
+        kernel(
+            sec,
+            "bvh intersects_aabb",
+            w,
+            nb,
+            Some(bvh_agree),
+            chunked(&b.bvh_rays, &b.bvh_boxes, GROUP, |r, x| {
+                u64::from(r.intersects_aabb(x))
+            }),
+        ),
+        kernel(
+            sec,
+            "parry3d Aabb::cast_local_ray",
+            w,
+            nb,
+            Some(parry_agree),
+            chunked(&b.parry_rays, &b.parry_boxes, GROUP, |r, x| {
+                u64::from(x.cast_local_ray(r, f32::MAX, true).is_some())
+            }),
+        ),
+    ]);
 
     let nt = t.tris.len();
     let ours: Vec<Option<Side>> = (0..nt)
@@ -505,94 +527,59 @@ fn group_kernels<'a>(
                 .is_some()
         }),
     );
-    out.push(kernel(
-        "triangle x8",
-        "rayhit ray_triangle_prepared",
-        w,
-        nt,
-        None,
-        move || {
-            let mut c = 0;
-            for (r, g) in t.prepared.iter().zip(t.tris.chunks(GROUP)) {
-                for x in g {
-                    c += ray_triangle_prepared(r, x, INF).map_or(0, |h| bits(h.t));
-                }
-            }
-            c
-        },
-    ));
-    out.push(kernel(
-        "triangle x8",
-        "rayhit ray_triangle_batch, 4 lanes",
-        w,
-        nt,
-        None,
-        move || {
-            let mut c = 0;
-            for (r, g) in t.prepared.iter().zip(tb4.chunks(2)) {
-                for x in g {
-                    let h = ray_triangle_batch(r, x, INF);
-                    let mut m = h.mask;
-                    while m != 0 {
-                        c += bits(h.t[m.trailing_zeros() as usize]);
-                        m &= m - 1;
-                    }
-                }
-            }
-            c
-        },
-    ));
-    out.push(kernel(
-        "triangle x8",
-        "rayhit ray_triangle_batch, 8 lanes",
-        w,
-        nt,
-        None,
-        move || {
-            let mut c = 0;
-            for (r, x) in t.prepared.iter().zip(tb8) {
-                let h = ray_triangle_batch(r, x, INF);
-                let mut m = h.mask;
-                while m != 0 {
-                    c += bits(h.t[m.trailing_zeros() as usize]);
-                    m &= m - 1;
-                }
-            }
-            c
-        },
-    ));
-    out.push(kernel(
-        "triangle x8",
-        "bvh intersects_triangle (front only)",
-        w,
-        nt,
-        Some(bvh_agree),
-        move || {
-            let mut c = 0;
-            for (r, g) in t.bvh_rays.iter().zip(t.bvh_tris.chunks(GROUP)) {
-                for x in g {
-                    c += bvh_hits(r, x).map_or(0, bits);
-                }
-            }
-            c
-        },
-    ));
-    out.push(kernel(
-        "triangle x8",
-        "parry3d Triangle::cast_local_ray",
-        w,
-        nt,
-        Some(parry_agree),
-        move || {
-            let mut c = 0;
-            for (r, g) in t.parry_rays.iter().zip(t.parry_tris.chunks(GROUP)) {
-                for x in g {
-                    c += x.cast_local_ray(r, f32::MAX, true).map_or(0, bits);
-                }
-            }
-            c
-        },
-    ));
+    let sec = "triangle x8";
+    out.extend([
+        kernel(
+            sec,
+            "rayhit ray_triangle_prepared",
+            w,
+            nt,
+            None,
+            chunked(&t.prepared, &t.tris, GROUP, |r, x| {
+                t_sum(ray_triangle_prepared(r, x, INF).map(|h| h.t))
+            }),
+        ),
+        kernel(
+            sec,
+            "rayhit ray_triangle_batch, 4 lanes",
+            w,
+            nt,
+            None,
+            chunked(&t.prepared, tb4, GROUP / 4, |r, x| {
+                batch_t_sum(&ray_triangle_batch(r, x, INF))
+            }),
+        ),
+        kernel(
+            sec,
+            "rayhit ray_triangle_batch, 8 lanes",
+            w,
+            nt,
+            None,
+            chunked(&t.prepared, tb8, GROUP / 8, |r, x| {
+                batch_t_sum(&ray_triangle_batch(r, x, INF))
+            }),
+        ),
+        kernel(
+            sec,
+            "bvh intersects_triangle (front only)",
+            w,
+            nt,
+            Some(bvh_agree),
+            chunked(&t.bvh_rays, &t.bvh_tris, GROUP, |r, x| {
+                t_sum(bvh_hits(r, x))
+            }),
+        ),
+        kernel(
+            sec,
+            "parry3d Triangle::cast_local_ray",
+            w,
+            nt,
+            Some(parry_agree),
+            chunked(&t.parry_rays, &t.parry_tris, GROUP, |r, x| {
+                t_sum(x.cast_local_ray(r, f32::MAX, true))
+            }),
+        ),
+    ]);
 }
 
 const SWEEP: [usize; 6] = [8, 16, 64, 256, 512, 1024];
@@ -675,152 +662,94 @@ impl Sweep {
 fn sweep_kernels<'a>(s: &'a Sweep, out: &mut Vec<Kernel<'a>>) {
     for (i, &n) in SWEEP.iter().enumerate() {
         let w = format!("N = {n}");
+        let (w, sec) = (w.as_str(), "box sweep");
         let tests = s.rays.len() * n;
-        out.push(kernel(
-            "box sweep",
-            "rayhit ray_aabb_prepared",
-            &w,
-            tests,
-            None,
-            move || {
-                let mut c = 0;
-                for r in &s.rays {
-                    for x in &s.boxes[..n] {
-                        c += u64::from(ray_aabb_prepared(r, x, INF).is_some());
-                    }
-                }
-                c
-            },
-        ));
-        out.push(kernel(
-            "box sweep",
-            "rayhit ray_aabb_batch, 8 lanes",
-            &w,
-            tests,
-            None,
-            move || {
-                let mut c = 0;
-                for r in &s.rays {
-                    for x in &s.b8[i] {
-                        c += u64::from(ray_aabb_batch(r, x, INF).mask.count_ones());
-                    }
-                }
-                c
-            },
-        ));
-        out.push(kernel(
-            "box sweep",
-            "rayhit ray_aabb_batch, 16 lanes",
-            &w,
-            tests,
-            None,
-            move || {
-                let mut c = 0;
-                for r in &s.rays {
-                    for x in &s.b16[i] {
-                        c += u64::from(ray_aabb_batch(r, x, INF).mask.count_ones());
-                    }
-                }
-                c
-            },
-        ));
-        out.push(kernel(
-            "box sweep",
-            "bvh intersects_aabb",
-            &w,
-            tests,
-            None,
-            move || {
-                let mut c = 0;
-                for r in &s.bvh_rays {
-                    for x in &s.bvh_boxes[..n] {
-                        c += u64::from(r.intersects_aabb(x));
-                    }
-                }
-                c
-            },
-        ));
+        let count = |m: u32| u64::from(m.count_ones());
+        out.extend([
+            kernel(
+                sec,
+                "rayhit ray_aabb_prepared",
+                w,
+                tests,
+                None,
+                every(&s.rays, &s.boxes[..n], |r, x| {
+                    u64::from(ray_aabb_prepared(r, x, INF).is_some())
+                }),
+            ),
+            kernel(
+                sec,
+                "rayhit ray_aabb_batch, 8 lanes",
+                w,
+                tests,
+                None,
+                every(&s.rays, &s.b8[i], move |r, x| {
+                    count(ray_aabb_batch(r, x, INF).mask)
+                }),
+            ),
+            kernel(
+                sec,
+                "rayhit ray_aabb_batch, 16 lanes",
+                w,
+                tests,
+                None,
+                every(&s.rays, &s.b16[i], move |r, x| {
+                    count(ray_aabb_batch(r, x, INF).mask)
+                }),
+            ),
+            kernel(
+                sec,
+                "bvh intersects_aabb",
+                w,
+                tests,
+                None,
+                every(&s.bvh_rays, &s.bvh_boxes[..n], |r, x| {
+                    u64::from(r.intersects_aabb(x))
+                }),
+            ),
+        ]);
+        let sec = "triangle sweep";
         let tests = s.t_rays.len() * n;
-        out.push(kernel(
-            "triangle sweep",
-            "rayhit ray_triangle_prepared",
-            &w,
-            tests,
-            None,
-            move || {
-                let mut c = 0;
-                for r in &s.t_rays {
-                    let mut t_max = INF;
-                    for x in &s.tris[..n] {
-                        if let Some(h) = ray_triangle_prepared(r, x, t_max) {
-                            t_max = h.t;
-                        }
-                    }
-                    c += bits(t_max);
-                }
-                c
-            },
-        ));
-        out.push(kernel(
-            "triangle sweep",
-            "rayhit ray_triangle_batch, 8 lanes",
-            &w,
-            tests,
-            None,
-            move || {
-                let mut c = 0;
-                for r in &s.t_rays {
-                    let mut t_max = INF;
-                    for x in &s.t8[i] {
-                        if let Some((_, h)) = ray_triangle_batch(r, x, t_max).nearest() {
-                            t_max = h.t;
-                        }
-                    }
-                    c += bits(t_max);
-                }
-                c
-            },
-        ));
-        out.push(kernel(
-            "triangle sweep",
-            "rayhit ray_triangle_batch, 16 lanes",
-            &w,
-            tests,
-            None,
-            move || {
-                let mut c = 0;
-                for r in &s.t_rays {
-                    let mut t_max = INF;
-                    for x in &s.t16[i] {
-                        if let Some((_, h)) = ray_triangle_batch(r, x, t_max).nearest() {
-                            t_max = h.t;
-                        }
-                    }
-                    c += bits(t_max);
-                }
-                c
-            },
-        ));
-        out.push(kernel(
-            "triangle sweep",
-            "bvh intersects_triangle (front only)",
-            &w,
-            tests,
-            None,
-            move || {
-                let mut c = 0;
-                for r in &s.t_bvh_rays {
-                    let mut best = INF;
-                    for x in &s.bvh_tris[..n] {
-                        if let Some(d) = bvh_hits(r, x) {
-                            best = best.min(d);
-                        }
-                    }
-                    c += bits(best);
-                }
-                c
-            },
-        ));
+        out.extend([
+            kernel(
+                sec,
+                "rayhit ray_triangle_prepared",
+                w,
+                tests,
+                None,
+                nearest(&s.t_rays, &s.tris[..n], |r, x, t_max| {
+                    ray_triangle_prepared(r, x, t_max).map(|h| h.t)
+                }),
+            ),
+            kernel(
+                sec,
+                "rayhit ray_triangle_batch, 8 lanes",
+                w,
+                tests,
+                None,
+                nearest(&s.t_rays, &s.t8[i], |r, x, t_max| {
+                    ray_triangle_batch(r, x, t_max).nearest().map(|(_, h)| h.t)
+                }),
+            ),
+            kernel(
+                sec,
+                "rayhit ray_triangle_batch, 16 lanes",
+                w,
+                tests,
+                None,
+                nearest(&s.t_rays, &s.t16[i], |r, x, t_max| {
+                    ray_triangle_batch(r, x, t_max).nearest().map(|(_, h)| h.t)
+                }),
+            ),
+            // bvh's test has no limit to cull with: it computes every hit.
+            kernel(
+                sec,
+                "bvh intersects_triangle (front only)",
+                w,
+                tests,
+                None,
+                nearest(&s.t_bvh_rays, &s.bvh_tris[..n], |r, x, _| bvh_hits(r, x)),
+            ),
+        ]);
     }
 }
 
