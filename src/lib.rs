@@ -100,8 +100,10 @@
 //! between a box coordinate and the origin overflows and the exact entry and
 //! exit are below `MAX / 2`; for the triangle tests, coordinates relative to
 //! the ray origin below `2^63` (`f32`) or `2^511` (`f64`), so that the edge
-//! functions' products do not overflow, and, for the `f64` exact-sign
-//! fallback, those products above `2^-969` or zero.
+//! functions' products do not overflow, the corners' distances along the
+//! ray scaled by `1 / d_z` (about `t`) times the edge functions finite (a
+//! nearly parallel ray with `|d_z|` near `1/MAX` can break this), and, for
+//! the `f64` exact-sign fallback, those products above `2^-969` or zero.
 //!
 //! The error bounds (`t`, `u`, `v`, hit points, and so the spawned-ray
 //! guarantee) and the false-hit bands are relative-error arguments, like

@@ -609,3 +609,31 @@ fn triangle_hit_parallel_to_the_plane_has_infinite_bounds() {
         assert!(err.t.is_infinite() && err.u.is_infinite() && err.v.is_infinite());
     }
 }
+
+/// `triangle` (raw; found by the 10-minute run): a ray from `z = 4` down
+/// through a triangle at `z = 0`, but with a `z` speed of `-2.1e-38`, so the
+/// exact crossing is at `t = 1.87e38`. The watertight test scales the
+/// corners' `z` by `1 / d_z` (`|z_i|` near `1.87e38`) and sums `e_i z_i`,
+/// which overflows (`e_0 = 2.5` here): outside the docs' shared
+/// precondition of no intermediate overflow. It reports a miss, which is
+/// safe; the fuzzer's raw-input guard now checks for overflow too.
+#[test]
+fn triangle_scaled_distance_overflows() {
+    let ray = Ray::new(
+        Vec3::new(0.5, 0.25, 4.0),
+        Vec3::new(1e-45, -0.0, -2.140_861_8e-38),
+    );
+    let tri = Triangle::new(
+        Vec3::ZERO,
+        Vec3::new(2.0, 0.0, 4.5918e-41),
+        Vec3::new(0.0, 2.0, 5.9e-44),
+    );
+    let exact = support::triangle(&ray, &tri);
+    assert!(exact.interior() && exact.hits(&None));
+    // Outside the precondition: e_0 z_0 overflows.
+    let z0 = (tri.a.z - ray.origin.z) * (1.0 / ray.dir.z);
+    assert!(z0.is_finite() && (2.5 * z0).is_infinite());
+    if let Some(hit) = ray_triangle(&ray, &tri, f32::INFINITY) {
+        assert!(hit.t > 0.0 && hit.t.is_finite());
+    }
+}

@@ -162,7 +162,7 @@ pub fn check<V: Vector>(ray: &Ray<V>, tri: &Triangle<V>, t_max: S<V>, detailed: 
             assert!(e >= S::<V>::ZERO, "error bound {err:?}: {}", ctx());
         }
     }
-    if !precondition(ray, tri) || !(detailed || frame_no_underflow(ray, tri)) {
+    if !precondition(ray, tri) || !(detailed || frame_in_range(ray, tri)) {
         return;
     }
     let exact = oracle::triangle(ray, tri);
@@ -243,13 +243,15 @@ fn check_hit<V: Vector>(
 }
 
 /// Raw inputs: the watertight test's bounds are relative-error arguments,
-/// valid where none of its products underflows. This recomputes the test's
+/// valid where none of its products underflows or overflows (the crate
+/// docs' shared preconditions; the fuzzer found `e_i z_i` overflowing for a
+/// nearly parallel ray whose `1 / d_z` is near `MAX`). This recomputes the test's
 /// frame as the kernel does (permute so the largest direction component is
 /// `z`, shear by `-d_x / d_z` and `-d_y / d_z`, scale `z` by `1 / d_z`) and
 /// asks that every product it forms (the shear terms, the edge functions'
 /// products, `e_i z_i`) and the quotients `t`, `u`, `v` be zero or far from
-/// underflow ([`crate::far_from_underflow`]).
-pub fn frame_no_underflow<V: Vector>(ray: &Ray<V>, tri: &Triangle<V>) -> bool {
+/// underflow ([`crate::far_from_underflow`]), and every one of them finite.
+pub fn frame_in_range<V: Vector>(ray: &Ray<V>, tri: &Triangle<V>) -> bool {
     let (d, a) = (ray.dir, ray.dir.abs());
     let kz = if a.x() > a.y() {
         if a.x() > a.z() { 0 } else { 2 }
@@ -283,13 +285,16 @@ pub fn frame_no_underflow<V: Vector>(ray: &Ray<V>, tri: &Triangle<V>) -> bool {
         let (j, k) = ((i + 1) % 3, (i + 2) % 3);
         ok &= product_far_from_underflow(x[j], y[k]) && product_far_from_underflow(y[j], x[k]);
         e[i] = x[j] * y[k] - y[j] * x[k];
-        ok &= product_far_from_underflow(e[i], z[i]);
+        ok &= product_far_from_underflow(e[i], z[i]) && (e[i] * z[i]).is_finite();
     }
     let det = e[0] + e[1] + e[2];
+    let t_scaled = e[0] * z[0] + e[1] * z[1] + e[2] * z[2];
+    let finite = |v: &[S<V>; 3]| v.iter().all(|c| c.is_finite());
+    ok &= finite(&x) && finite(&y) && finite(&z) && finite(&e) && det.is_finite();
+    ok &= t_scaled.is_finite();
     if det != S::<V>::ZERO {
-        let t_scaled = e[0] * z[0] + e[1] * z[1] + e[2] * z[2];
         for n in [t_scaled, e[1], e[2]] {
-            ok &= quotient_far_from_underflow(n, det);
+            ok &= quotient_far_from_underflow(n, det) && (n / det).is_finite();
         }
     }
     ok
@@ -392,7 +397,7 @@ pub fn check_vs_mt<V: Vector>(ray: &Ray<V>, tri: &Triangle<V>, t_max: S<V>) {
         );
         return;
     }
-    if !precondition(ray, tri) || !mt_in_normal_range(ray, tri) || !frame_no_underflow(ray, tri) {
+    if !precondition(ray, tri) || !mt_in_normal_range(ray, tri) || !frame_in_range(ray, tri) {
         return;
     }
     let exact = oracle::triangle(ray, tri);
