@@ -74,8 +74,9 @@
 //! [`ray_triangle_batch`]; 4, 8 or 16 lanes are the useful sizes),
 //! returning a hit mask and per-lane distances. They are plain loops over
 //! the lanes that the compiler vectorises for the target (SSE2 by default,
-//! AVX2 or AVX-512 with `-C target-cpu=native`), in both precisions, with
-//! no `unsafe`, and each lane's answer is bit for bit the scalar kernel's.
+//! AVX2 or AVX-512 with `-C target-cpu=native`; with `std` on x86-64, an
+//! AVX2 copy is picked at run time where the CPU has it), in both
+//! precisions, and each lane's answer is bit for bit the scalar kernel's.
 //!
 //! ```
 //! use rayhit::{Aabb, AabbBatch, PreparedRay, Ray, ray_aabb_batch, glam::Vec3};
