@@ -82,8 +82,6 @@ pub struct PreparedRay<V: Vector = Vec3> {
     pub(crate) slab: SlabRay<V>,
     /// The triangle tests' shear of the ray's direction.
     pub(crate) shear: Shear<S<V>>,
-    /// `Ray::is_valid` of the ray it was prepared from.
-    pub(crate) valid: bool,
 }
 
 /// The slab test's per-ray data: see [`PreparedRay::new`].
@@ -119,11 +117,10 @@ impl<V: Vector> PreparedRay<V> {
     #[inline]
     #[must_use]
     pub fn new(ray: &Ray<V>) -> Self {
-        let valid = ray.is_valid();
-        // An invalid ray's shear is never used (`valid` is false); that of
+        // An invalid ray's shear is never used (see `is_valid`); that of
         // `+z` stands in, so that equal invalid rays prepare equal.
         let z = S::<V>::ZERO;
-        let dir = if valid {
+        let dir = if ray.is_valid() {
             ray.dir
         } else {
             V::new(z, z, S::<V>::ONE)
@@ -131,8 +128,14 @@ impl<V: Vector> PreparedRay<V> {
         Self {
             slab: SlabRay::new(ray),
             shear: Shear::new(dir),
-            valid,
         }
+    }
+
+    /// `Ray::is_valid` of the ray this was prepared from: a valid ray's
+    /// origin is finite, and an invalid one's is prepared at `+inf`.
+    #[inline(always)]
+    pub(crate) fn is_valid(&self) -> bool {
+        self.slab.origin.x() < S::<V>::INFINITY
     }
 
     /// The ray's origin; `+inf` in every component for an invalid ray.

@@ -520,7 +520,7 @@ fn triangle_batch_body<V: Vector, const N: usize>(
         u: [zero; N],
         v: [zero; N],
     };
-    if !(ray.valid && t_max_ok(t_max)) {
+    if !(ray.is_valid() && t_max_ok(t_max)) {
         return out;
     }
     let sh = ray.shear;

@@ -625,7 +625,7 @@ pub fn ray_triangle_prepared<V: Vector>(
     tri: &Triangle<V>,
     t_max: S<V>,
 ) -> Option<TriangleHit<S<V>>> {
-    if !(ray.valid && t_max_ok(t_max)) {
+    if !(ray.is_valid() && t_max_ok(t_max)) {
         return None;
     }
     watertight_sheared(ray.slab.origin, &ray.shear, tri, t_max, EdgeRule::Closed)

@@ -369,16 +369,13 @@ impl Bytes<'_> {
     }
 }
 
-/// The body of the differential fuzz target: decodes a ray, `t_max` and up
-/// to 16 boxes and triangles from arbitrary bytes, in both precisions, and
-/// panics if any lane of a batch differs from the scalar kernel in any bit
-/// (or if `ray_triangle_prepared` differs from `ray_triangle`). For
-/// `fuzz/fuzz_targets/batch.rs`:
-///
-/// ```text
-/// fuzz_target!(|data: &[u8]| differential(data));
-/// ```
-pub fn differential(data: &[u8]) {
+/// Decodes a ray, `t_max` and up to 16 boxes and triangles from arbitrary
+/// bytes, in both precisions, and panics if any lane of a batch differs
+/// from the scalar kernel in any bit (or if `ray_triangle_prepared` differs
+/// from `ray_triangle`): the `batch` fuzz target's check (fuzz/src/batch.rs,
+/// which reads its inputs through the `arbitrary` feature instead), run by
+/// `cargo test` on fixed bytes.
+fn differential(data: &[u8]) {
     differential_in::<Vec3>(data);
     differential_in::<DVec3>(data);
 }

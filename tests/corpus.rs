@@ -24,8 +24,8 @@ use std::path::PathBuf;
 use num_traits::Signed;
 use rayhit::glam::{DVec3, Vec3};
 use rayhit::{
-    Aabb, Plane, Ray, Scalar, Side, Triangle, TriangleHit, Vector, ray_aabb, ray_aabb_naive,
-    ray_plane, ray_plane_t_error, ray_triangle, ray_triangle_error_bounds, ray_triangle_mt,
+    Aabb, Plane, Ray, Scalar, Side, Triangle, Vector, ray_aabb, ray_aabb_naive, ray_plane,
+    ray_plane_t_error, ray_triangle, ray_triangle_error_bounds, ray_triangle_mt,
     ray_triangle_one_hit,
 };
 use support::generators::*;
@@ -335,33 +335,14 @@ fn tri_line<V: Vector>((tri, ray, t_max): &TriCase<V>) -> Option<String> {
     } else {
         "miss".into()
     };
-    // Clear: the exact crossing is farther from every edge (in barycentric
-    // terms) and from t = 0 and t_max than the watertight test's error
-    // bounds plus Moller-Trumbore's, evaluated there (as in the property
-    // tests). A parallel ray with no crossing at all is clear.
+    // Clear: exact arithmetic decides the case outside the watertight
+    // test's rounding band widened by Moller-Trumbore's
+    // (support::triangle_decided, as in the property tests). A parallel ray
+    // with no crossing at all is clear.
     let clear = match (&ex.t, &ex.uv) {
-        (Some(te), Some((ue, ve))) => {
-            let as_s = |x: &R| S::<V>::from_f64(support::to_f64(x));
-            let probe = TriangleHit {
-                t: as_s(te),
-                u: as_s(ue),
-                v: as_s(ve),
-                side: Side::Front,
-            };
-            let err = ray_triangle_error_bounds(ray, tri, &probe);
-            if err.t.is_finite() && err.u.is_finite() && err.v.is_finite() {
-                let mte = support::mt_bounds(ray, tri, ue, ve);
-                let (eu, ev, et) = (r(err.u) + &mte.0, r(err.v) + &mte.1, r(err.t) + &mte.2);
-                let we = &eu + &ev;
-                let w = R::from_integer(1.into()) - ue - ve;
-                let inside = ue > &eu && ve > &ev && w > we;
-                let outside = ue < &-eu.clone() || ve < &-ev.clone() || w < -we;
-                let t_clear =
-                    (te > &et && limit.as_ref().is_none_or(|m| (m - te) > et)) || te < &-et;
-                (inside || outside) && t_clear
-            } else {
-                false
-            }
+        (Some(_), Some((ue, ve))) => {
+            let mte = support::mt_bounds(ray, tri, ue, ve);
+            support::triangle_decided(ray, tri, &ex, *t_max, &mte).is_some()
         }
         _ => !ex.line_hits(),
     };

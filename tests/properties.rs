@@ -310,46 +310,24 @@ fn check_triangle<V: Vector>(
         );
     }
 
-    // Outside the rounding band, the watertight test agrees with exact
-    // arithmetic, and Moller-Trumbore agrees with both. The band is the
-    // error bound of the barycentrics (the same bound the hit reports),
-    // evaluated at the exact crossing; the edge weight w = 1 - u - v gets
-    // err_u + err_v. For MT, a separate bound (below) is added.
-    if let (Some(te), Some((ue, ve))) = (&exact.t, &exact.uv) {
-        let as_s = |x: &R| S::<V>::from_f64(support::to_f64(x));
-        let probe = rayhit::TriangleHit {
-            t: as_s(te),
-            u: as_s(ue),
-            v: as_s(ve),
-            side: Side::Front,
-        };
-        let err = ray_triangle_error_bounds(&ray, &tri, &probe);
+    // Outside the rounding band (support::triangle_decided: the
+    // watertight test's bounds at the exact crossing, widened by
+    // Moller-Trumbore's), both agree with exact arithmetic, and on the side.
+    if let (Some(_), Some((ue, ve))) = (&exact.t, &exact.uv) {
         let mte = support::mt_bounds(&ray, &tri, ue, ve);
-        if err.u.is_finite() && err.v.is_finite() && err.t.is_finite() {
-            let (eu, ev, et) = (r(err.u) + &mte.0, r(err.v) + &mte.1, r(err.t) + &mte.2);
-            let we = &eu + &ev;
-            let w = R::from_integer(1.into()) - ue - ve;
-            let inside = ue > &eu && ve > &ev && w > we;
-            let outside = ue < &-eu.clone() || ve < &-ev.clone() || w < -we;
-            let limit = support::limit(t_max);
-            let t_clear =
-                te > &et && limit.as_ref().is_none_or(|m| (m - te) > et) || te < &-et.clone();
-            if (inside || outside) && t_clear {
-                let expect = inside && te > &R::from_integer(0.into());
-                let expect = expect && limit.as_ref().is_none_or(|m| te <= m);
-                prop_assert_eq!(
-                    wt.is_some(),
-                    expect,
-                    "watertight disagrees with exact arithmetic away from edges"
-                );
-                prop_assert_eq!(
-                    mt.is_some(),
-                    expect,
-                    "Moller-Trumbore disagrees away from edges"
-                );
-                if let (Some(a), Some(b)) = (wt, mt) {
-                    prop_assert_eq!(a.side, b.side);
-                }
+        if let Some(expect) = support::triangle_decided(&ray, &tri, &exact, t_max, &mte) {
+            prop_assert_eq!(
+                wt.is_some(),
+                expect,
+                "watertight disagrees with exact arithmetic away from edges"
+            );
+            prop_assert_eq!(
+                mt.is_some(),
+                expect,
+                "Moller-Trumbore disagrees away from edges"
+            );
+            if let (Some(a), Some(b)) = (wt, mt) {
+                prop_assert_eq!(a.side, b.side);
             }
         }
     }

@@ -225,7 +225,7 @@ fn rays_leaving_the_ground_or_a_box_never_hit_it_again() {
             if let Shape::Mesh(_) = shape {
                 continue;
             }
-            let n = hit.normal.normalize();
+            let n = hit.surface.normal.normalize();
             let n = if n.dot(ray.dir) > 0.0 { -n } else { n };
             let (t1, t2) = n.any_orthonormal_pair();
             // Towards the sun, along the normal, and grazing.
@@ -234,8 +234,11 @@ fn rays_leaving_the_ground_or_a_box_never_hit_it_again() {
                 dirs.extend([t1, -t1, t2, -t2].map(|t| (t + n * k).normalize()));
             }
             for dir in dirs.into_iter().filter(|d| d.dot(n) > 0.0) {
-                assert!(!hits_again(&hit.leave(dir)), "pixel ({i}, {j}), {dir}");
-                unoffset_hits += u32::from(hits_again(&Ray::new(hit.point, dir)));
+                assert!(
+                    !hits_again(&hit.surface.spawn(dir)),
+                    "pixel ({i}, {j}), {dir}"
+                );
+                unoffset_hits += u32::from(hits_again(&Ray::new(hit.surface.point, dir)));
                 checked += 1;
             }
         }

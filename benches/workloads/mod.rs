@@ -28,38 +28,12 @@ pub const PAIRS: usize = 4096;
 /// Shapes per group in the `groups` workloads.
 pub const GROUP: usize = 8;
 
-/// PCG32 (O'Neill, 2014: XSH-RR output on a 64-bit LCG), the generator
-/// glam's own benches use; fixed seeds make every run time the same data.
-#[derive(Clone, Debug)]
-pub struct Pcg32 {
-    state: u64,
-    inc: u64,
-}
+#[path = "../../tests/support/pcg.rs"]
+mod pcg;
+pub use pcg::Pcg32;
 
+/// The workloads' `f32` draws (the generator is the oracle suite's).
 impl Pcg32 {
-    /// A generator for `seed` on stream `stream`.
-    pub fn new(seed: u64, stream: u64) -> Self {
-        let mut rng = Self {
-            state: 0,
-            inc: (stream << 1) | 1,
-        };
-        rng.next_u32();
-        rng.state = rng.state.wrapping_add(seed);
-        rng.next_u32();
-        rng
-    }
-
-    /// The next 32 random bits.
-    pub fn next_u32(&mut self) -> u32 {
-        let old = self.state;
-        self.state = old
-            .wrapping_mul(6_364_136_223_846_793_005)
-            .wrapping_add(self.inc);
-        let xorshifted = (((old >> 18) ^ old) >> 27) as u32;
-        let rot = (old >> 59) as u32;
-        xorshifted.rotate_right(rot)
-    }
-
     /// Uniform in `[0, 1)`, 24 random bits.
     pub fn unit(&mut self) -> f32 {
         (self.next_u32() >> 8) as f32 * (1.0 / 16_777_216.0)
@@ -68,11 +42,6 @@ impl Pcg32 {
     /// Uniform in `[lo, hi)`.
     pub fn range(&mut self, lo: f32, hi: f32) -> f32 {
         lo + (hi - lo) * self.unit()
-    }
-
-    /// Uniform in `0..n`.
-    pub fn below(&mut self, n: u32) -> u32 {
-        ((u64::from(self.next_u32()) * u64::from(n)) >> 32) as u32
     }
 
     /// A point uniform in the cube `[-s, s]^3`.
@@ -205,7 +174,7 @@ fn camera_pairs() -> impl Iterator<Item = (Ray, Vec3, f32)> {
 pub fn box_workloads() -> Vec<BoxWorkload> {
     let mut out = Vec::new();
 
-    let mut rng = Pcg32::new(1, 1);
+    let mut rng = Pcg32::with_stream(1, 1);
     let (mut rays, mut boxes) = (Vec::new(), Vec::new());
     for _ in 0..PAIRS {
         boxes.push(random_box(&mut rng, 4.0));
@@ -217,7 +186,7 @@ pub fn box_workloads() -> Vec<BoxWorkload> {
         boxes,
     });
 
-    let mut rng = Pcg32::new(2, 1);
+    let mut rng = Pcg32::with_stream(2, 1);
     let (mut rays, mut boxes) = (Vec::new(), Vec::new());
     for _ in 0..PAIRS {
         let b = random_box(&mut rng, 8.0);
@@ -232,7 +201,7 @@ pub fn box_workloads() -> Vec<BoxWorkload> {
         boxes,
     });
 
-    let mut rng = Pcg32::new(3, 1);
+    let mut rng = Pcg32::with_stream(3, 1);
     let (mut rays, mut boxes) = (Vec::new(), Vec::new());
     for _ in 0..PAIRS {
         // Boxes on a grid of quarter units, so that snapping an origin
@@ -279,7 +248,7 @@ pub fn box_workloads() -> Vec<BoxWorkload> {
 pub fn triangle_workloads() -> Vec<TriangleWorkload> {
     let mut out = Vec::new();
 
-    let mut rng = Pcg32::new(11, 2);
+    let mut rng = Pcg32::with_stream(11, 2);
     let (mut rays, mut triangles) = (Vec::new(), Vec::new());
     for _ in 0..PAIRS {
         triangles.push(random_triangle(&mut rng, 3.0));
@@ -291,7 +260,7 @@ pub fn triangle_workloads() -> Vec<TriangleWorkload> {
         triangles,
     });
 
-    let mut rng = Pcg32::new(12, 2);
+    let mut rng = Pcg32::with_stream(12, 2);
     let (mut rays, mut triangles) = (Vec::new(), Vec::new());
     for _ in 0..PAIRS {
         let t = random_triangle(&mut rng, 8.0);
@@ -306,7 +275,7 @@ pub fn triangle_workloads() -> Vec<TriangleWorkload> {
         triangles,
     });
 
-    let mut rng = Pcg32::new(13, 2);
+    let mut rng = Pcg32::with_stream(13, 2);
     let (mut rays, mut triangles) = (Vec::new(), Vec::new());
     for _ in 0..PAIRS {
         let t = random_triangle(&mut rng, 8.0);
@@ -321,7 +290,7 @@ pub fn triangle_workloads() -> Vec<TriangleWorkload> {
         triangles,
     });
 
-    let mut rng = Pcg32::new(14, 2);
+    let mut rng = Pcg32::with_stream(14, 2);
     let (mut rays, mut triangles) = (Vec::new(), Vec::new());
     // One triangle per cell, its winding flipped in every other cell.
     let mut cells = Vec::new();
@@ -356,7 +325,7 @@ pub fn triangle_workloads() -> Vec<TriangleWorkload> {
 /// 512 rays, each aimed into a group of 8 boxes around one centre (a BVH
 /// node's children).
 pub fn box_groups() -> BoxGroups {
-    let mut rng = Pcg32::new(21, 3);
+    let mut rng = Pcg32::with_stream(21, 3);
     let (mut rays, mut boxes) = (Vec::new(), Vec::new());
     for _ in 0..PAIRS / GROUP {
         let c = rng.cube(8.0);
@@ -374,7 +343,7 @@ pub fn box_groups() -> BoxGroups {
 /// 512 rays, each aimed into a group of 8 triangles around one centre (a
 /// BVH leaf).
 pub fn triangle_groups() -> TriangleGroups {
-    let mut rng = Pcg32::new(22, 3);
+    let mut rng = Pcg32::with_stream(22, 3);
     let (mut rays, mut triangles) = (Vec::new(), Vec::new());
     for _ in 0..PAIRS / GROUP {
         let c = rng.cube(8.0);
@@ -393,7 +362,7 @@ pub fn triangle_groups() -> TriangleGroups {
 /// aimed at random ones among them: the `one ray against N boxes` sweep
 /// takes the first `N`.
 pub fn box_sweep() -> (Vec<Ray>, Vec<Aabb>) {
-    let mut rng = Pcg32::new(31, 4);
+    let mut rng = Pcg32::with_stream(31, 4);
     let boxes: Vec<Aabb> = (0..1024).map(|_| random_box(&mut rng, 8.0)).collect();
     let rays = (0..64)
         .map(|_| {
@@ -409,7 +378,7 @@ pub fn box_sweep() -> (Vec<Ray>, Vec<Aabb>) {
 /// 1024 triangles in a cube of side 4 (a BVH leaf's worth of a dense mesh,
 /// and more) and 64 rays aimed at the first 8.
 pub fn triangle_sweep() -> (Vec<Ray>, Vec<Triangle>) {
-    let mut rng = Pcg32::new(32, 4);
+    let mut rng = Pcg32::with_stream(32, 4);
     let triangles: Vec<Triangle> = (0..1024).map(|_| random_triangle(&mut rng, 2.0)).collect();
     let rays = (0..64)
         .map(|_| {
@@ -426,7 +395,7 @@ pub fn triangle_sweep() -> (Vec<Ray>, Vec<Triangle>) {
 /// normals, rays from points in the cube in random directions (half of
 /// them cross their plane ahead).
 pub fn plane_pairs() -> (Vec<Ray>, Vec<Plane>) {
-    let mut rng = Pcg32::new(41, 5);
+    let mut rng = Pcg32::with_stream(41, 5);
     let planes = (0..PAIRS)
         .map(|_| Plane::new(rng.cube(8.0), rng.sphere()))
         .collect();

@@ -8,14 +8,13 @@
 //! slab test and a `ray_plane` on the face it reports, the meshes from the
 //! slab test on their bounding boxes and BVH nodes and then `ray_triangle`
 //! (or `ray_triangle_mt`). Every ray that leaves a surface (towards the sun,
-//! towards the sky, or reflected) starts from `offset_ray_origin`, fed with
-//! the hit point's error bound and the normal's, so it cannot hit the
-//! surface it left.
+//! towards the sky, or reflected) starts from `SurfacePoint::spawn`, which
+//! offsets the origin (`offset_ray_origin`) by the hit point's error bound
+//! and the normal's, so it cannot hit the surface it left.
 
 use rayhit::glam::{Mat3, Vec3};
 use rayhit::{
-    Aabb, PinholeCamera, Plane, PreparedRay, Ray, Side, offset_ray_origin, ray_aabb_prepared,
-    ray_plane, ray_plane_hit_point, triangle_hit_point,
+    Aabb, PinholeCamera, Plane, PreparedRay, Ray, Side, SurfacePoint, ray_aabb_prepared, ray_plane,
 };
 use rayon::prelude::*;
 
@@ -99,33 +98,12 @@ pub struct Hit {
     pub t: f32,
     /// Index of the object in `Scene::objects`.
     pub object: usize,
-    /// The hit point and a per-component bound on its error.
-    pub point: Vec3,
-    /// See `point`.
-    pub point_error: Vec3,
-    /// The surface's geometric normal (any length, any orientation) and a
-    /// per-component bound on its error.
-    pub normal: Vec3,
-    /// See `normal`.
-    pub normal_error: Vec3,
+    /// The hit point and the geometric normal with their error bounds:
+    /// `surface.spawn(dir)` starts a ray that cannot hit the surface it
+    /// leaves.
+    pub surface: SurfacePoint,
     /// The unit normal used for shading (interpolated on smooth meshes).
     pub shading: Vec3,
-}
-
-impl Hit {
-    /// A ray leaving the surface along `dir`, from the hit point moved off
-    /// the surface by the crate's bound (`offset_ray_origin`), so that it
-    /// cannot hit the surface it leaves.
-    pub fn leave(&self, dir: Vec3) -> Ray {
-        let origin = offset_ray_origin(
-            self.point,
-            self.point_error,
-            self.normal,
-            self.normal_error,
-            dir,
-        );
-        Ray::new(origin, dir)
-    }
 }
 
 /// A small deterministic random number generator (SplitMix64), seeded per
@@ -188,17 +166,13 @@ impl Scene {
                     .intersect(ray, &prepared, t_max, self.kernel, false)
                     .map(|(hit, id)| {
                         let tri = bvh.mesh.triangle(id as usize);
-                        let (point, point_error) = triangle_hit_point(&tri, &hit);
-                        let (normal, normal_error) = tri.normal_with_error();
+                        let surface = SurfacePoint::on_triangle(&tri, &hit);
                         let shading = bvh.mesh.shading_normal(id as usize, hit.u, hit.v);
                         Hit {
                             t: hit.t,
                             object: 0,
-                            point,
-                            point_error,
-                            normal,
-                            normal_error,
-                            shading: shading.unwrap_or_else(|| normal.normalize()),
+                            surface,
+                            shading: shading.unwrap_or_else(|| surface.normal.normalize()),
                         }
                     }),
             };
@@ -243,7 +217,7 @@ impl Scene {
         let material = &self.objects[hit.object].material;
         // Both normals, turned to face the incoming ray.
         let flip = |n: Vec3| if n.dot(ray.dir) > 0.0 { -n } else { n };
-        let geometric = flip(hit.normal.normalize());
+        let geometric = flip(hit.surface.normal.normalize());
         let shading = flip(hit.shading);
         let mut light = Vec3::ZERO;
 
@@ -254,7 +228,7 @@ impl Scene {
         let cos = shading.dot(to_sun);
         if cos > 0.0 && geometric.dot(to_sun) > 0.0 {
             *rays += 1;
-            if !self.occluded(&hit.leave(to_sun), f32::INFINITY) {
+            if !self.occluded(&hit.surface.spawn(to_sun), f32::INFINITY) {
                 light += SUN * cos;
             }
         }
@@ -266,18 +240,18 @@ impl Scene {
         let dir = t1 * x + t2 * y + shading * (1.0 - x * x - y * y).max(0.0).sqrt();
         if dir.dot(geometric) > 0.0 {
             *rays += 1;
-            if !self.occluded(&hit.leave(dir), OCCLUSION_RANGE) {
+            if !self.occluded(&hit.surface.spawn(dir), OCCLUSION_RANGE) {
                 light += SKY_LIGHT;
             }
         }
 
-        let mut colour = material.albedo_at(hit.point) * light;
+        let mut colour = material.albedo_at(hit.surface.point) * light;
         if material.mirror > 0.0 && depth < MAX_DEPTH {
             let mut dir = ray.dir.reflect(shading);
             if dir.dot(geometric) <= 0.0 {
                 dir = ray.dir.reflect(geometric);
             }
-            let reflected = self.radiance(&hit.leave(dir), depth + 1, rng, rays);
+            let reflected = self.radiance(&hit.surface.spawn(dir), depth + 1, rng, rays);
             colour = colour.lerp(reflected * material.albedo, material.mirror);
         }
         colour
@@ -286,15 +260,11 @@ impl Scene {
 
 /// The hit record for `ray` crossing `plane` at `t`.
 fn plane_hit(ray: &Ray, plane: &Plane, t: f32) -> Hit {
-    let (point, point_error) = ray_plane_hit_point(ray, plane, t);
     Hit {
         t,
         object: 0,
-        point,
-        point_error,
-        normal: plane.normal,
         // A plane's normal is given, not computed: it has no error.
-        normal_error: Vec3::ZERO,
+        surface: SurfacePoint::on_plane(ray, plane, t),
         shading: plane.normal.normalize(),
     }
 }

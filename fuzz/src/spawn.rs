@@ -184,14 +184,30 @@ fn strictly_on_dir_side<V: Vector>(origin: V, on_plane: V, exact_normal: &[R; 3]
     (side > int(0) && heading > int(0)) || (side < int(0) && heading < int(0))
 }
 
-/// `bounded`: the inputs came from realistic ranges or passed the raw-input
-/// guards ([`in_normal_range`] and no underflow), so the bounds hold.
-fn spawn_triangle<V: Vector>(tri: &Triangle<V>, p: V, perr: V, dir: V, bounded: bool) {
-    let (n, nerr) = tri.normal_with_error();
+/// The checks both surfaces share, on the origin `offset_ray_origin` gives
+/// for `p +- perr`, normal `n +- nerr`, `dir`: non-finite input leaves the
+/// point where it is; otherwise, where the bounds hold (`bounded`: the
+/// inputs came from realistic ranges or passed the raw-input guards,
+/// [`in_normal_range`] and no underflow) and the precondition does
+/// (`dot_rounding` as in [`precondition`]), the origin lies strictly on the
+/// side of the exact plane (through `on_plane`, normal `exact_normal`) that
+/// `dir` points into. Returns the origin when it was checked so.
+#[allow(clippy::too_many_arguments)]
+fn offset_to_dir_side<V: Vector>(
+    (p, perr): (V, V),
+    (n, nerr): (V, V),
+    dir: V,
+    on_plane: V,
+    exact_normal: &[R; 3],
+    dot_rounding: bool,
+    bounded: bool,
+    surface: &dyn Fn() -> String,
+) -> Option<V> {
     let origin = offset_ray_origin(p, perr, n, nerr, dir);
     let ctx = || {
         format!(
-            "triangle {tri:?}, point {p:?} +- {perr:?}, normal {n:?} +- {nerr:?}, dir {dir:?} -> origin {origin:?}"
+            "{}, point {p:?} +- {perr:?}, normal {n:?} +- {nerr:?}, dir {dir:?} -> origin {origin:?}",
+            surface()
         )
     };
     if !crate::exact::all_finite(&[p, perr, n, nerr, dir]) {
@@ -201,23 +217,42 @@ fn spawn_triangle<V: Vector>(tri: &Triangle<V>, p: V, perr: V, dir: V, bounded: 
             "non-finite input moved the point: {}",
             ctx()
         );
-        return;
+        return None;
     }
-    if !bounded {
-        return;
+    if !bounded || !precondition(dir, n, nerr, dot_rounding) || bits(origin) == bits(p) {
+        return None;
     }
-    if !precondition(dir, n, nerr, false) || bits(origin) == bits(p) {
-        return;
-    }
-    let (a, b, c) = (rv(tri.a), rv(tri.b), rv(tri.c));
-    let exact_normal = cross(&sub(&b, &a), &sub(&c, &a));
     assert!(
-        strictly_on_dir_side(origin, tri.a, &exact_normal, dir),
+        strictly_on_dir_side(origin, on_plane, exact_normal, dir),
         "spawned origin not strictly on the side dir points into: {}",
         ctx()
     );
+    Some(origin)
+}
+
+/// A spawned ray from a triangle: on the right side, and neither
+/// watertight test hits the triangle again. `bounded`: see
+/// [`offset_to_dir_side`].
+fn spawn_triangle<V: Vector>(tri: &Triangle<V>, p: V, perr: V, dir: V, bounded: bool) {
+    let (a, b, c) = (rv(tri.a), rv(tri.b), rv(tri.c));
+    let exact_normal = cross(&sub(&b, &a), &sub(&c, &a));
+    let surface = || format!("triangle {tri:?}");
+    let normal = tri.normal_with_error();
+    let Some(origin) = offset_to_dir_side(
+        (p, perr),
+        normal,
+        dir,
+        tri.a,
+        &exact_normal,
+        false,
+        bounded,
+        &surface,
+    ) else {
+        return;
+    };
     let ray = Ray::new(origin, dir);
     let inf = S::<V>::INFINITY;
+    let ctx = || format!("{}, dir {dir:?} -> origin {origin:?}", surface());
     let again = ray_triangle(&ray, tri, inf);
     assert!(
         again.is_none(),
@@ -232,29 +267,19 @@ fn spawn_triangle<V: Vector>(tri: &Triangle<V>, p: V, perr: V, dir: V, bounded: 
     );
 }
 
-/// `bounded`: as for [`spawn_triangle`].
+/// A spawned ray from a plane (exact normal): on the right side, with the
+/// dot product's rounding in the precondition. `bounded`: see
+/// [`offset_to_dir_side`].
 fn spawn_plane<V: Vector>(plane: &Plane<V>, p: V, perr: V, dir: V, bounded: bool) {
-    let origin = offset_ray_origin(p, perr, plane.normal, V::ZERO, dir);
-    let ctx =
-        || format!("plane {plane:?}, point {p:?} +- {perr:?}, dir {dir:?} -> origin {origin:?}");
-    if !crate::exact::all_finite(&[p, perr, plane.normal, dir]) {
-        assert_eq!(
-            bits(origin),
-            bits(p),
-            "non-finite input moved the point: {}",
-            ctx()
-        );
-        return;
-    }
-    if !bounded {
-        return;
-    }
-    if !precondition(dir, plane.normal, V::ZERO, true) || bits(origin) == bits(p) {
-        return;
-    }
-    assert!(
-        strictly_on_dir_side(origin, plane.point, &rv(plane.normal), dir),
-        "spawned origin not strictly on the side dir points into: {}",
-        ctx()
+    let surface = || format!("plane {plane:?}");
+    offset_to_dir_side(
+        (p, perr),
+        (plane.normal, V::ZERO),
+        dir,
+        plane.point,
+        &rv(plane.normal),
+        true,
+        bounded,
+        &surface,
     );
 }

@@ -13,7 +13,7 @@ use rayhit::{
     ray_triangle_mt, ray_triangle_one_hit,
 };
 
-use crate::exact::{R, abs, cross, dot, int, r, rv, sub};
+use crate::exact::{R, abs, cross, dot, int, rv, sub};
 use crate::{
     Check, Mode, S, inputs, oracle, product_far_from_underflow, quotient_far_from_underflow, raw,
 };
@@ -304,10 +304,10 @@ pub fn frame_in_range<V: Vector>(ray: &Ray<V>, tri: &Triangle<V>) -> bool {
 type MtAnswer<F> = (Option<TriangleHit<F>>, (R, R, R));
 
 /// Outside the rounding band, the watertight test (and, when given,
-/// Moller-Trumbore) agree with exact arithmetic. The band is the watertight
-/// test's error bounds evaluated at the exact crossing (the edge weight
-/// `1 - u - v` gets `err_u + err_v`; for `t`, the conservative `t > 0`
-/// test's band derived below), plus Moller-Trumbore's bounds when given.
+/// Moller-Trumbore) agree with exact arithmetic: the band of
+/// `oracle::triangle_decided` (the watertight test's bounds at the exact
+/// crossing, with the conservative `t > 0` test's `t` band), widened by
+/// Moller-Trumbore's bounds when given.
 fn agreement<V: Vector>(
     ray: &Ray<V>,
     tri: &Triangle<V>,
@@ -317,56 +317,23 @@ fn agreement<V: Vector>(
     mt: Option<MtAnswer<S<V>>>,
     ctx: &dyn Fn() -> String,
 ) {
-    let (Some(te), Some((ue, ve))) = (&exact.t, &exact.uv) else {
-        // Parallel (or a zero-area triangle) in exact arithmetic: a hit is
-        // impossible for the watertight test (checked in check_hit).
-        return;
-    };
-    let as_s = |x: &R| S::<V>::from_f64(crate::exact::f(x));
-    let probe = TriangleHit {
-        t: as_s(te),
-        u: as_s(ue),
-        v: as_s(ve),
-        side: Side::Front,
-    };
-    let err = ray_triangle_error_bounds(ray, tri, &probe);
-    if !(err.u.is_finite() && err.v.is_finite() && err.t.is_finite()) {
-        return;
-    }
-    let zero = || int(0);
-    let (mu, mv, mtt) = mt
+    let extra = mt
         .as_ref()
-        .map_or((zero(), zero(), zero()), |(_, b)| b.clone());
-    // The t band. The watertight test accepts a hit only if its computed t
-    // exceeds T(t), the t bound evaluated at that t (or a cheaper test
-    // passes). If it rejects, then t <= T(t) and |t - t*| <= T(t), so
-    // t* <= 2 T(t). T depends on t only through the spread sum |z_i - t|,
-    // with sensitivity (edge error / |det| lower bound) <= err_u, so
-    // T(t) <= T(t*) + 3 |t - t*| err_u and T(t) <= T(t*) / (1 - 3 err_u).
-    // A rejection thus needs t* <= 2 T(t*) / (1 - 3 max(err_u, err_v)).
-    let e_max = if err.u > err.v { r(err.u) } else { r(err.v) };
-    if int(3) * &e_max >= int(1) {
+        .map_or_else(oracle::no_extra, |(_, b)| b.clone());
+    // Parallel (or zero-area) in exact arithmetic, or inside the band: no
+    // claim (a hit on a parallel line is checked in check_hit).
+    let Some(expect) = oracle::triangle_decided(ray, tri, exact, t_max, &extra) else {
         return;
-    }
-    let t_band = int(2) * r(err.t) / (int(1) - int(3) * e_max);
-    let (eu, ev, et) = (r(err.u) + mu, r(err.v) + mv, t_band + mtt);
-    let we = &eu + &ev;
-    let w = int(1) - ue - ve;
-    let inside = ue > &eu && ve > &ev && w > we;
-    let outside = ue < &-eu.clone() || ve < &-ev.clone() || w < -we;
-    let limit = oracle::limit(t_max);
-    let t_clear = te > &et && limit.as_ref().is_none_or(|m| (m - te) > et) || te < &-et.clone();
-    if !((inside || outside) && t_clear) {
-        return;
-    }
-    let expect = inside && te > &int(0) && limit.as_ref().is_none_or(|m| te <= m);
+    };
+    let f = |x: &Option<R>| x.as_ref().map(crate::exact::f);
+    let (ue, ve) = exact.uv.clone().unzip();
     assert_eq!(
         wt.is_some(),
         expect,
-        "watertight {wt:?} disagrees with exact arithmetic (t {}, u {}, v {}) away from edges: {}",
-        crate::exact::f(te),
-        crate::exact::f(ue),
-        crate::exact::f(ve),
+        "watertight {wt:?} disagrees with exact arithmetic (t {:?}, u {:?}, v {:?}) away from edges: {}",
+        f(&exact.t),
+        f(&ue),
+        f(&ve),
         ctx()
     );
     if let Some((mt, _)) = mt {

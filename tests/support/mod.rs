@@ -7,6 +7,9 @@
 #![allow(dead_code)]
 
 pub mod generators;
+mod pcg;
+
+pub use pcg::Pcg32;
 
 use std::cmp::Ordering;
 
@@ -258,32 +261,8 @@ pub fn dyadic(m: i64, e: i32) -> R {
     }
 }
 
-/// A small PCG-XSH-RR generator (O'Neill, 2014) with a fixed seed, so that
-/// every oracle run sees the same cases.
-#[derive(Clone, Debug)]
-pub struct Pcg32 {
-    state: u64,
-}
-
+/// The oracle's `f64` draws (the generator itself is in `pcg.rs`).
 impl Pcg32 {
-    const MUL: u64 = 6364136223846793005;
-    const INC: u64 = 1442695040888963407;
-
-    pub fn new(seed: u64) -> Self {
-        let mut rng = Self { state: 0 };
-        rng.next_u32();
-        rng.state = rng.state.wrapping_add(seed);
-        rng.next_u32();
-        rng
-    }
-
-    pub fn next_u32(&mut self) -> u32 {
-        let old = self.state;
-        self.state = old.wrapping_mul(Self::MUL).wrapping_add(Self::INC);
-        let xorshifted = (((old >> 18) ^ old) >> 27) as u32;
-        xorshifted.rotate_right((old >> 59) as u32)
-    }
-
     /// Uniform in `[0, 1)`, 53 random bits.
     pub fn unit(&mut self) -> f64 {
         let hi = u64::from(self.next_u32()) << 21;
@@ -299,11 +278,6 @@ impl Pcg32 {
     /// `2^x` for `x` uniform in `[lo, hi)`: log-uniform magnitudes.
     pub fn log2_range(&mut self, lo: f64, hi: f64) -> f64 {
         self.range(lo, hi).exp2()
-    }
-
-    /// Uniform integer in `[0, n)`.
-    pub fn below(&mut self, n: u32) -> u32 {
-        ((u64::from(self.next_u32()) * u64::from(n)) >> 32) as u32
     }
 
     /// True with probability `1/n`.
@@ -337,11 +311,17 @@ pub fn ulp<F: Scalar>(m: f64) -> f64 {
 
 /// `gamma(n) = n u / (1 - n u)` for precision `F`, exactly.
 pub fn gamma<F: Scalar>(n: i64) -> R {
-    let nu = R::from_integer(n.into()) * r(F::UNIT_ROUNDOFF);
-    &nu / (R::from_integer(1.into()) - &nu)
+    let nu = int(n) * r(F::UNIT_ROUNDOFF);
+    &nu / (int(1) - &nu)
 }
 
-fn abs(x: &R) -> R {
+/// An exact integer.
+pub fn int(n: i64) -> R {
+    R::from_integer(n.into())
+}
+
+/// `|x|`.
+pub fn abs(x: &R) -> R {
     x.abs()
 }
 
@@ -385,6 +365,62 @@ pub fn mt_bounds<V: Vector>(ray: &Ray<V>, tri: &Triangle<V>, u: &R, v: &R) -> (R
         quotient(&g7 * mag(&d, &s, &e1), v),
         quotient(&g7 * mag(&e2, &s, &e1), &t),
     )
+}
+
+/// What the watertight test must answer on `ray` and `tri` with limit
+/// `t_max`, when exact arithmetic decides it outside the test's rounding
+/// band: `Some(hit)`, or `None` inside the band (and for a line parallel to
+/// the triangle's plane). `extra` widens the band by another kernel's
+/// `(u, v, t)` bounds (Moller-Trumbore's, from [`mt_bounds`]), or zeros.
+///
+/// The band is `ray_triangle_error_bounds` evaluated at the exact crossing:
+/// the edge weight `w = 1 - u - v` gets `err_u + err_v`, and for `t` the
+/// conservative `t > 0` test's band. That test accepts a hit only if its
+/// computed `t` exceeds `T(t)`, the `t` bound evaluated at that `t` (or a
+/// cheaper sufficient test passes). If it rejects, `t <= T(t)` and
+/// `|t - t*| <= T(t)`, so `t* <= 2 T(t)`. `T` depends on `t` only through
+/// the spread `sum |z_i - t|`, with sensitivity at most `err_u` (the edge
+/// error over the determinant's lower bound), so
+/// `T(t) <= T(t*) + 3 |t - t*| err_u`, and `T(t) <= T(t*) / (1 - 3 err_u)`.
+/// A rejection thus needs `t* <= 2 T(t*) / (1 - 3 max(err_u, err_v))`.
+pub fn triangle_decided<V: Vector>(
+    ray: &Ray<V>,
+    tri: &Triangle<V>,
+    exact: &ExactTriangle,
+    t_max: V::Scalar,
+    extra: &(R, R, R),
+) -> Option<bool> {
+    let (te, (ue, ve)) = (exact.t.as_ref()?, exact.uv.as_ref()?);
+    let as_s = |x: &R| V::Scalar::from_f64(to_f64(x));
+    let probe = TriangleHit {
+        t: as_s(te),
+        u: as_s(ue),
+        v: as_s(ve),
+        side: rayhit::Side::Front,
+    };
+    let err = rayhit::ray_triangle_error_bounds(ray, tri, &probe);
+    if !(err.u.is_finite() && err.v.is_finite() && err.t.is_finite()) {
+        return None;
+    }
+    let e_max = if err.u > err.v { r(err.u) } else { r(err.v) };
+    if int(3) * &e_max >= int(1) {
+        return None;
+    }
+    let t_band = int(2) * r(err.t) / (int(1) - int(3) * e_max);
+    let (eu, ev, et) = (r(err.u) + &extra.0, r(err.v) + &extra.1, t_band + &extra.2);
+    let we = &eu + &ev;
+    let w = int(1) - ue - ve;
+    let inside = ue > &eu && ve > &ev && w > we;
+    let outside = ue < &-eu.clone() || ve < &-ev.clone() || w < -we;
+    let limit = limit(t_max);
+    let t_clear = (te > &et && limit.as_ref().is_none_or(|m| (m - te) > et)) || te < &-et;
+    ((inside || outside) && t_clear)
+        .then(|| inside && te > &int(0) && limit.as_ref().is_none_or(|m| te <= m))
+}
+
+/// No widening: the zeros for [`triangle_decided`]'s `extra`.
+pub fn no_extra() -> (R, R, R) {
+    (int(0), int(0), int(0))
 }
 
 /// Where a triangle hit's barycentric point and `ray.at(t)` disagree by
