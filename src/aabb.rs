@@ -3,8 +3,9 @@
 
 use glam::Vec3;
 
+use crate::lanes::Lanes;
 use crate::ray::{Ray, t_max_ok};
-use crate::real::{S, Scalar, Vector, at_least, at_most, max2, min2};
+use crate::real::{L, S, Scalar, Vector, at_least, at_most, max2, min2};
 use crate::triangle::Shear;
 
 /// The closed box `min <= p <= max` (component-wise).
@@ -84,14 +85,22 @@ pub struct PreparedRay<V: Vector = Vec3> {
     pub(crate) shear: Shear<S<V>>,
 }
 
-/// The slab test's per-ray data: see [`PreparedRay::new`].
-#[derive(Clone, Copy, Debug, PartialEq)]
-pub(crate) struct SlabRay<V> {
-    pub(crate) origin: V,
+/// The slab test's per-ray data, in lanes: see [`PreparedRay::new`].
+#[derive(Clone, Copy, Debug)]
+pub(crate) struct SlabRay<V: Vector> {
+    pub(crate) origin: L<V>,
     /// Per axis, the reciprocal used for the distance to the `min` plane.
-    pub(crate) inv_to_min: V,
+    pub(crate) inv_to_min: L<V>,
     /// Per axis, the reciprocal used for the distance to the `max` plane.
-    pub(crate) inv_to_max: V,
+    pub(crate) inv_to_max: L<V>,
+}
+
+impl<V: Vector> PartialEq for SlabRay<V> {
+    fn eq(&self, o: &Self) -> bool {
+        self.origin.to_array() == o.origin.to_array()
+            && self.inv_to_min.to_array() == o.inv_to_min.to_array()
+            && self.inv_to_max.to_array() == o.inv_to_max.to_array()
+    }
 }
 
 impl<V: Vector> PreparedRay<V> {
@@ -142,7 +151,8 @@ impl<V: Vector> PreparedRay<V> {
     #[inline]
     #[must_use]
     pub fn origin(&self) -> V {
-        self.slab.origin
+        let [x, y, z] = self.slab.origin.to_array();
+        V::new(x, y, z)
     }
 }
 
@@ -150,15 +160,42 @@ impl<V: Vector> SlabRay<V> {
     /// See [`PreparedRay::new`].
     #[inline(always)]
     pub(crate) fn new(ray: &Ray<V>) -> Self {
-        if !ray.is_valid() {
+        let lanes = |v: V| L::<V>::new(v.x(), v.y(), v.z());
+        let (one, zero) = (L::<V>::splat(S::<V>::ONE), L::<V>::splat(S::<V>::ZERO));
+        let (origin, dir) = (lanes(ray.origin), lanes(ray.dir));
+        // `Ray::is_valid`, on the lanes: finite, and the direction not zero.
+        let big = L::<V>::splat(S::<V>::MAX);
+        let finite = origin.abs().le(big) & dir.abs().le(big) == 0b111;
+        if !(finite && dir.eq(zero) != 0b111) {
             // An origin at +inf puts every box at t = -inf: a miss for every
             // valid box, with no flag to test in the hot loop.
             return Self {
-                origin: V::splat(S::<V>::INFINITY),
-                inv_to_min: V::splat(S::<V>::ONE),
-                inv_to_max: V::splat(S::<V>::ONE),
+                origin: L::<V>::splat(S::<V>::INFINITY),
+                inv_to_min: one,
+                inv_to_max: one,
             };
         }
+        let r = one.div(dir);
+        // Where every reciprocal is a normal float (or an exact infinity,
+        // from d = +-0), both planes use it.
+        let a = r.abs();
+        let normal =
+            L::<V>::splat(S::<V>::MIN_POSITIVE).le(a) & a.lt(L::<V>::splat(S::<V>::INFINITY));
+        if normal | dir.eq(zero) == 0b111 {
+            return Self {
+                origin,
+                inv_to_min: r,
+                inv_to_max: r,
+            };
+        }
+        Self::stepped(origin, ray.dir)
+    }
+
+    /// The rare case of [`SlabRay::new`]: some reciprocal is subnormal or
+    /// has overflowed.
+    #[cold]
+    #[inline(never)]
+    fn stepped(origin: L<V>, dir: V) -> Self {
         // Stepping: for d > 0 the min plane is the entry (wants the smaller
         // magnitude, r stepped down) and the max plane the exit (r stepped
         // up). For d < 0, r is negative and the roles swap, and stepping
@@ -174,13 +211,13 @@ impl<V: Vector> SlabRay<V> {
                 (r.next_down(), r.next_up())
             }
         };
-        let (x0, x1) = axis(ray.dir.x());
-        let (y0, y1) = axis(ray.dir.y());
-        let (z0, z1) = axis(ray.dir.z());
+        let (x0, x1) = axis(dir.x());
+        let (y0, y1) = axis(dir.y());
+        let (z0, z1) = axis(dir.z());
         Self {
-            origin: ray.origin,
-            inv_to_min: V::new(x0, y0, z0),
-            inv_to_max: V::new(x1, y1, z1),
+            origin,
+            inv_to_min: L::<V>::new(x0, y0, z0),
+            inv_to_max: L::<V>::new(x1, y1, z1),
         }
     }
 }
@@ -244,39 +281,58 @@ pub fn ray_aabb_prepared<V: Vector>(
 
 /// [`ray_aabb_prepared`] on the slab part of a prepared ray (which is all
 /// that [`ray_aabb`] prepares).
+///
+/// The same operations as [`slab_core`], on all three axes at once (see
+/// `crate::lanes`), so the same bits: the per-axis folds are lane-wise; the
+/// largest entry and the smallest exit are taken in every lane (values that
+/// are never NaN: the folds see to that; the entries are never `-0`, and a
+/// `-0`/`+0` tie among the exits widens to the same limit); and the final
+/// comparisons are `slab_finish`'s, with `enter <= limit && enter <= MAX`
+/// as `enter <= min(limit, MAX)`, and the box's validity, in one mask.
 #[inline(always)]
 fn slab_test<V: Vector>(ray: &SlabRay<V>, aabb: &Aabb<V>, t_max: S<V>) -> Option<(S<V>, S<V>)> {
-    let ok = valid_box(aabb.min, aabb.max);
-    let (hit, enter, exit) = slab_core(
-        ray,
-        [aabb.min.x(), aabb.min.y(), aabb.min.z()],
-        [aabb.max.x(), aabb.max.y(), aabb.max.z()],
-        t_max,
-    );
-    (ok & hit & t_max_ok(t_max)).then_some((enter, exit))
+    let splat = L::<V>::splat;
+    let lanes = |v: V| L::<V>::new(v.x(), v.y(), v.z());
+    let (min, max) = (lanes(aabb.min), lanes(aabb.max));
+    let big = S::<V>::MAX;
+    let (zero, limit) = (splat(S::<V>::ZERO), splat(t_max));
+    let t0 = min.sub(ray.origin).mul(ray.inv_to_min);
+    let t1 = max.sub(ray.origin).mul(ray.inv_to_max);
+    // `max(t, 0)` is `at_least(t, 0)` and `min(t, t_max)` is
+    // `at_most(t, t_max)`: a NaN `t` gives the second operand.
+    let enter = t0.max(zero).min(t1.max(zero)).max_all();
+    let exit = t0.min(limit).max(t1.min(limit)).min_all();
+    let widened = exit.mul(splat(exit_widening())).add(splat(exit_slack()));
+    let hit = enter.le(widened.min(splat(big)));
+    let valid = Lanes::ordered(splat(-big), min, max, splat(big));
+    let exit = at_most(widened.x(), t_max);
+    (valid & (hit == 0b111) & t_max_ok(t_max)).then(|| (at_most(enter.x(), exit), exit))
 }
 
 /// The slab test's arithmetic for one box, without the checks of the box's
 /// validity and of `t_max >= 0`: `(hit, enter, exit)`, where `enter` and
-/// `exit` are the answer when `hit` holds. [`ray_aabb_prepared`] and the box
-/// batches ([`ray_aabb_batch`](crate::ray_aabb_batch)) both run exactly this,
-/// so their answers are the same bits.
+/// `exit` are the answer when `hit` holds. The box batches
+/// ([`ray_aabb_batch`](crate::ray_aabb_batch)) run exactly this per lane,
+/// and [`ray_aabb_prepared`] the same operations on all axes at once
+/// (`slab_test`), so their answers are the same bits.
 #[inline(always)]
-pub(crate) fn slab_core<V: Vector>(
-    ray: &SlabRay<V>,
-    min: [S<V>; 3],
-    max: [S<V>; 3],
-    t_max: S<V>,
-) -> (bool, S<V>, S<V>) {
-    let zero = S::<V>::ZERO;
+pub(crate) fn slab_core<F: Scalar>(
+    origin: [F; 3],
+    inv_to_min: [F; 3],
+    inv_to_max: [F; 3],
+    min: [F; 3],
+    max: [F; 3],
+    t_max: F,
+) -> (bool, F, F) {
+    let zero = F::ZERO;
     // Each axis folds its two plane distances into the interval [0, t_max]
     // the way Tavian Barnes does ("Fast, Branchless Ray/Bounding Box
     // Intersections, Part 3", 2022): a NaN distance (origin exactly on a slab
     // plane of an axis the ray does not move along) leaves the interval
     // unchanged, which is what exact arithmetic says of a closed box.
     let slab = |k: usize| {
-        let t0 = (min[k] - ray.origin[k]) * ray.inv_to_min[k];
-        let t1 = (max[k] - ray.origin[k]) * ray.inv_to_max[k];
+        let t0 = (min[k] - origin[k]) * inv_to_min[k];
+        let t1 = (max[k] - origin[k]) * inv_to_max[k];
         let enter = min2(at_least(t0, zero), at_least(t1, zero));
         let exit = max2(at_most(t0, t_max), at_most(t1, t_max));
         (enter, exit)
@@ -284,17 +340,22 @@ pub(crate) fn slab_core<V: Vector>(
     let (ex, xx) = slab(0);
     let (ey, xy) = slab(1);
     let (ez, xz) = slab(2);
-    let enter = max2(ex, max2(ey, ez));
-    let exit = min2(xx, min2(xy, xz));
+    slab_finish(max2(ex, max2(ey, ez)), min2(xx, min2(xy, xz)), t_max)
+}
+
+/// The end of the slab test, from the largest per-axis entry and the
+/// smallest per-axis exit: `(hit, enter, exit)`.
+#[inline(always)]
+fn slab_finish<F: Scalar>(enter: F, exit: F, t_max: F) -> (bool, F, F) {
     // Widen the exit by the rounding bound so that no box that exact
     // arithmetic hits is missed (see `exit_widening`).
-    let limit = exit * exit_widening::<S<V>>() + exit_slack::<S<V>>();
+    let limit = exit * exit_widening::<F>() + exit_slack::<F>();
     // `enter` is infinite only for an axis the ray never enters (its
     // direction component is zero, or so small that every distance
     // overflows): a miss even when `limit` is infinite too. (`enter` is
     // never NaN, `at_least` sees to that, so `enter <= MAX` is
     // `enter < inf`, in one comparison.)
-    let hit = (enter <= limit) & (enter <= S::<V>::MAX);
+    let hit = (enter <= limit) & (enter <= F::MAX);
     let exit = at_most(limit, t_max);
     (hit, at_most(enter, exit), exit)
 }

@@ -26,6 +26,7 @@
 use glam::Vec3;
 
 use crate::aabb::{Aabb, PreparedRay, slab_core};
+use crate::lanes::Lanes;
 use crate::ray::t_max_ok;
 use crate::real::{S, Scalar, Vector, bound_up, max2, min2};
 use crate::triangle::{EdgeRule, Side, Triangle, TriangleHit, max3, watertight_sheared};
@@ -252,9 +253,16 @@ fn aabb_batch_body<V: Vector, const N: usize>(
         return AabbBatchHits { mask: 0, enter };
     }
     let mut hit = [false; N];
+    let (o, r0, r1) = (
+        ray.slab.origin.to_array(),
+        ray.slab.inv_to_min.to_array(),
+        ray.slab.inv_to_max.to_array(),
+    );
     for l in 0..N {
         let (h, e, _) = slab_core(
-            &ray.slab,
+            o,
+            r0,
+            r1,
             [batch.min[0][l], batch.min[1][l], batch.min[2][l]],
             [batch.max[0][l], batch.max[1][l], batch.max[2][l]],
             t_max,
@@ -526,7 +534,7 @@ fn triangle_batch_body<V: Vector, const N: usize>(
     let sh = ray.shear;
     // The permuted axes: x, y, z of the ray's frame.
     let (kx, ky, kz) = ((sh.kz + 1) % 3, (sh.kz + 2) % 3, sh.kz);
-    let origin = ray.slab.origin;
+    let origin = ray.origin();
     let (ox, oy, oz) = (origin[kx], origin[ky], origin[kz]);
     let ray_front = sh.dz > zero;
     // `bound_up(gamma(4) * mz, 1)` of `z_error`, with its constant hoisted.
@@ -682,7 +690,13 @@ mod tests {
             for t_max in [0.0, 1.0, f32::MAX, f32::INFINITY] {
                 for l in 0..4 {
                     let (min, max) = lane(l);
-                    let (hit, _, _) = slab_core(&p.slab, min, max, t_max);
+                    let s = &p.slab;
+                    let (o, r0, r1) = (
+                        s.origin.to_array(),
+                        s.inv_to_min.to_array(),
+                        s.inv_to_max.to_array(),
+                    );
+                    let (hit, _, _) = slab_core(o, r0, r1, min, max, t_max);
                     assert!(!hit, "{ray:?}");
                 }
             }

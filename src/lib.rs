@@ -211,6 +211,7 @@ pub mod approx;
 mod arbitrary;
 mod batch;
 mod camera;
+mod lanes;
 mod plane;
 mod ray;
 mod real;

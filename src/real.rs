@@ -69,6 +69,11 @@ pub trait Scalar:
     /// operation whose result is normal has relative error at most `u`.
     const UNIT_ROUNDOFF: Self;
 
+    /// Four lanes of this scalar, for the kernels' hot paths (SSE registers
+    /// for `f32` on x86). An implementation detail.
+    #[doc(hidden)]
+    type Lanes: crate::lanes::Lanes<F = Self>;
+
     /// The bound `gamma(n) = n*u / (1 - n*u)` on the relative error of `n`
     /// chained roundings, rounded up so that it is a true upper bound.
     ///
@@ -197,10 +202,13 @@ pub trait Vector:
 
 /// The scalar type of the vector type `V`.
 pub(crate) type S<V> = <V as Vector>::Scalar;
+/// The four-lane type of the vector type `V`'s scalar.
+pub(crate) type L<V> = <S<V> as Scalar>::Lanes;
 
 macro_rules! impl_scalar {
-    ($f:ident, $libm_tan:ident, $libm_sqrt:ident) => {
+    ($f:ident, $lanes:ty, $libm_tan:ident, $libm_sqrt:ident) => {
         impl Scalar for $f {
+            type Lanes = $lanes;
             const ZERO: Self = 0.0;
             const ONE: Self = 1.0;
             const HALF: Self = 0.5;
@@ -276,8 +284,8 @@ macro_rules! impl_scalar {
     };
 }
 
-impl_scalar!(f32, tanf, sqrtf);
-impl_scalar!(f64, tan, sqrt);
+impl_scalar!(f32, crate::lanes::F32Lanes, tanf, sqrtf);
+impl_scalar!(f64, crate::lanes::Portable<f64>, tan, sqrt);
 
 /// The sign-exact `a*b - c*d` for each precision (see
 /// [`Scalar::diff_of_products_exact_sign`]).

@@ -628,7 +628,7 @@ pub fn ray_triangle_prepared<V: Vector>(
     if !(ray.is_valid() && t_max_ok(t_max)) {
         return None;
     }
-    watertight_sheared(ray.slab.origin, &ray.shear, tri, t_max, EdgeRule::Closed)
+    watertight_sheared(ray.origin(), &ray.shear, tri, t_max, EdgeRule::Closed)
 }
 
 /// The watertight test with exactly one hit per crossing of a mesh: each

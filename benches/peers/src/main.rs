@@ -920,6 +920,14 @@ fn main() {
         return;
     }
 
+    // `--only SECTION`: time only the rows of the sections whose name
+    // contains SECTION (a quick look while working on one kernel).
+    if let [_, flag, section] = args.as_slice()
+        && flag == "--only"
+    {
+        kernels.retain(|k| k.section.contains(section.as_str()));
+    }
+
     let start = Instant::now();
     time_all(&mut kernels);
     let elapsed = start.elapsed();

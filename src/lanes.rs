@@ -1,0 +1,440 @@
+//! Four-lane arithmetic for the kernels' hot paths: the three axes of a
+//! box, or the three corners of a triangle, in one register.
+//!
+//! [`Lanes`] is the small set of operations the scalar kernels need, each
+//! defined lane by lane with the semantics of the scalar code it replaces,
+//! so that a kernel written against it gives the same bits as the
+//! one-component-at-a-time code (which the batch kernels and the `f64`
+//! kernels still run): IEEE add, subtract and multiply; `max(a, b)` is
+//! `if a > b { a } else { b }` and `min(a, b)` is `if a < b { a } else { b }`
+//! (so a NaN in `a` gives `b`: the property the slab test's NaN-safe folds
+//! rely on); comparisons are false for NaN. Only lanes 0 to 2 carry data;
+//! lane 3 is computed along and never read.
+//!
+//! `f32` on x86 and x86-64 (where SSE2 is part of every target the crate
+//! builds for) uses SSE registers: each operation is one instruction,
+//! because SSE's `maxps`/`minps` are exactly the comparisons above,
+//! operand order included (Intel SDM, MAXPS: "if only one value is a NaN ...
+//! the second operand ... is returned"). Everywhere else, and for `f64`,
+//! [`Portable`] runs the same definitions on an array.
+
+use core::fmt::Debug;
+
+use crate::real::Scalar;
+
+/// Four lanes of a scalar type; see the module docs for the semantics.
+///
+/// Public only so that it can appear in the sealed [`Scalar`] trait; it is
+/// not reachable from outside the crate.
+pub trait Lanes: Copy + Debug + Send + Sync + 'static {
+    /// The scalar in each lane.
+    type F: Scalar;
+    /// `(x, y, z)`; lane 3 repeats `z`.
+    fn new(x: Self::F, y: Self::F, z: Self::F) -> Self;
+    /// `v` in every lane.
+    fn splat(v: Self::F) -> Self;
+    /// Lanes 0, 1, 2.
+    fn to_array(self) -> [Self::F; 3];
+    /// Lane 0.
+    fn x(self) -> Self::F;
+    /// Lane-wise `self + o`.
+    fn add(self, o: Self) -> Self;
+    /// Lane-wise `self - o`.
+    fn sub(self, o: Self) -> Self;
+    /// Lane-wise `self * o`.
+    fn mul(self, o: Self) -> Self;
+    /// Lane-wise `self / o`.
+    fn div(self, o: Self) -> Self;
+    /// Lane-wise `if self > o { self } else { o }`.
+    fn max(self, o: Self) -> Self;
+    /// Lane-wise `if self < o { self } else { o }`.
+    fn min(self, o: Self) -> Self;
+    /// Lane-wise absolute value.
+    fn abs(self) -> Self;
+    /// Bit `k` set when `self[k] < o[k]`, for `k` in 0..3.
+    fn lt(self, o: Self) -> u32;
+    /// Bit `k` set when `self[k] <= o[k]`.
+    fn le(self, o: Self) -> u32;
+    /// Bit `k` set when `self[k] == o[k]`.
+    fn eq(self, o: Self) -> u32;
+    /// `(y, z, x)`: lane `k` holds lane `k + 1` (mod 3).
+    fn rot1(self) -> Self;
+    /// `(z, x, y)`: lane `k` holds lane `k + 2` (mod 3).
+    fn rot2(self) -> Self;
+    /// `max(max(v[k], v[k + 1]), v[k + 2])` in lane `k` (indices mod 3),
+    /// with [`Lanes::max`]'s semantics: for values that are not NaN, the
+    /// largest of the three in every lane (a `+0`/`-0` tie aside).
+    #[inline(always)]
+    fn max_all(self) -> Self {
+        self.max(self.rot1()).max(self.rot2())
+    }
+    /// The same with [`Lanes::min`]: the smallest of the three.
+    #[inline(always)]
+    fn min_all(self) -> Self {
+        self.min(self.rot1()).min(self.rot2())
+    }
+    /// `(x + y) + z`, in that order.
+    fn sum3(self) -> Self::F;
+    /// True when `lo <= min` and `min <= max` and `max <= hi` on every axis
+    /// (false for NaN): the box test's validity, in one go.
+    fn ordered(lo: Self, min: Self, max: Self, hi: Self) -> bool {
+        lo.le(min) & min.le(max) & max.le(hi) == 0b111
+    }
+}
+
+/// The lanes as an array, each operation a loop over it: the definition of
+/// the semantics, and the implementation wherever no register type is used.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Portable<F>([F; 4]);
+
+impl<F: Scalar> Portable<F> {
+    #[inline(always)]
+    fn map2(self, o: Self, f: impl Fn(F, F) -> F) -> Self {
+        let (a, b) = (self.0, o.0);
+        Self([f(a[0], b[0]), f(a[1], b[1]), f(a[2], b[2]), f(a[3], b[3])])
+    }
+
+    #[inline(always)]
+    fn mask(self, o: Self, f: impl Fn(F, F) -> bool) -> u32 {
+        let (a, b) = (self.0, o.0);
+        u32::from(f(a[0], b[0])) | u32::from(f(a[1], b[1])) << 1 | u32::from(f(a[2], b[2])) << 2
+    }
+}
+
+impl<F: Scalar> Lanes for Portable<F> {
+    type F = F;
+    #[inline(always)]
+    fn new(x: F, y: F, z: F) -> Self {
+        Self([x, y, z, z])
+    }
+    #[inline(always)]
+    fn splat(v: F) -> Self {
+        Self([v; 4])
+    }
+    #[inline(always)]
+    fn to_array(self) -> [F; 3] {
+        [self.0[0], self.0[1], self.0[2]]
+    }
+    #[inline(always)]
+    fn x(self) -> F {
+        self.0[0]
+    }
+    #[inline(always)]
+    fn add(self, o: Self) -> Self {
+        self.map2(o, |a, b| a + b)
+    }
+    #[inline(always)]
+    fn sub(self, o: Self) -> Self {
+        self.map2(o, |a, b| a - b)
+    }
+    #[inline(always)]
+    fn mul(self, o: Self) -> Self {
+        self.map2(o, |a, b| a * b)
+    }
+    #[inline(always)]
+    fn div(self, o: Self) -> Self {
+        self.map2(o, |a, b| a / b)
+    }
+    #[inline(always)]
+    fn max(self, o: Self) -> Self {
+        self.map2(o, |a, b| if a > b { a } else { b })
+    }
+    #[inline(always)]
+    fn min(self, o: Self) -> Self {
+        self.map2(o, |a, b| if a < b { a } else { b })
+    }
+    #[inline(always)]
+    fn abs(self) -> Self {
+        Self(self.0.map(F::abs))
+    }
+    #[inline(always)]
+    fn lt(self, o: Self) -> u32 {
+        self.mask(o, |a, b| a < b)
+    }
+    #[inline(always)]
+    fn le(self, o: Self) -> u32 {
+        self.mask(o, |a, b| a <= b)
+    }
+    #[inline(always)]
+    fn eq(self, o: Self) -> u32 {
+        self.mask(o, |a, b| a == b)
+    }
+    #[inline(always)]
+    fn rot1(self) -> Self {
+        let a = self.0;
+        Self([a[1], a[2], a[0], a[3]])
+    }
+    #[inline(always)]
+    fn rot2(self) -> Self {
+        let a = self.0;
+        Self([a[2], a[0], a[1], a[3]])
+    }
+    #[inline(always)]
+    fn sum3(self) -> F {
+        let [x, y, z, _] = self.0;
+        (x + y) + z
+    }
+}
+
+/// The `f32` lanes the kernels use on this target.
+#[cfg(all(
+    any(target_arch = "x86", target_arch = "x86_64"),
+    target_feature = "sse2"
+))]
+pub type F32Lanes = sse::F32x4;
+/// The `f32` lanes the kernels use on this target.
+#[cfg(not(all(
+    any(target_arch = "x86", target_arch = "x86_64"),
+    target_feature = "sse2"
+)))]
+pub type F32Lanes = Portable<f32>;
+
+/// SSE registers, one instruction per operation.
+///
+/// Safety of the `unsafe` blocks below: each calls an SSE or SSE2 intrinsic
+/// (`core::arch`), and the only precondition of those is that the CPU
+/// supports the instruction set. This module is compiled only when the
+/// target has SSE2 enabled at compile time (`target_feature = "sse2"`, part
+/// of every x86-64 target and of the i686 ones), so every CPU the code can
+/// run on has it. None of them touches memory: they take and return values.
+#[cfg(all(
+    any(target_arch = "x86", target_arch = "x86_64"),
+    target_feature = "sse2"
+))]
+#[allow(unsafe_code)]
+pub(crate) mod sse {
+    #[cfg(target_arch = "x86")]
+    use core::arch::x86::*;
+    #[cfg(target_arch = "x86_64")]
+    use core::arch::x86_64::*;
+
+    use super::Lanes;
+
+    /// Four `f32` lanes in an SSE register.
+    #[derive(Clone, Copy)]
+    pub struct F32x4(__m128);
+
+    impl core::fmt::Debug for F32x4 {
+        fn fmt(&self, f: &mut core::fmt::Formatter<'_>) -> core::fmt::Result {
+            self.to_array().fmt(f)
+        }
+    }
+
+    /// Lane 1 of `v` in every lane.
+    #[inline(always)]
+    fn lane1(v: __m128) -> __m128 {
+        // SAFETY: see the module docs (SSE, no memory access).
+        unsafe { _mm_shuffle_ps::<0b01_01_01_01>(v, v) }
+    }
+
+    /// Lane 2 of `v` in every lane.
+    #[inline(always)]
+    fn lane2(v: __m128) -> __m128 {
+        // SAFETY: see the module docs (SSE, no memory access).
+        unsafe { _mm_shuffle_ps::<0b10_10_10_10>(v, v) }
+    }
+
+    /// A lane-wise operation of two registers.
+    macro_rules! op2 {
+        ($name:ident, $intrinsic:ident) => {
+            #[inline(always)]
+            fn $name(self, o: Self) -> Self {
+                // SAFETY: see the module docs (SSE, no memory access).
+                Self(unsafe { $intrinsic(self.0, o.0) })
+            }
+        };
+    }
+
+    /// A comparison of two registers, as a mask of lanes 0 to 2.
+    macro_rules! cmp {
+        ($name:ident, $intrinsic:ident) => {
+            #[inline(always)]
+            fn $name(self, o: Self) -> u32 {
+                // SAFETY: see the module docs (SSE, no memory access).
+                (unsafe { _mm_movemask_ps($intrinsic(self.0, o.0)) } as u32) & 0b111
+            }
+        };
+    }
+
+    impl Lanes for F32x4 {
+        type F = f32;
+        #[inline(always)]
+        fn new(x: f32, y: f32, z: f32) -> Self {
+            // SAFETY: see the module docs (SSE, no memory access).
+            Self(unsafe { _mm_set_ps(z, z, y, x) })
+        }
+        #[inline(always)]
+        fn splat(v: f32) -> Self {
+            // SAFETY: see the module docs (SSE, no memory access).
+            Self(unsafe { _mm_set1_ps(v) })
+        }
+        #[inline(always)]
+        fn to_array(self) -> [f32; 3] {
+            // SAFETY: see the module docs (SSE, no memory access).
+            unsafe {
+                [
+                    _mm_cvtss_f32(self.0),
+                    _mm_cvtss_f32(lane1(self.0)),
+                    _mm_cvtss_f32(lane2(self.0)),
+                ]
+            }
+        }
+        #[inline(always)]
+        fn x(self) -> f32 {
+            // SAFETY: see the module docs (SSE, no memory access).
+            unsafe { _mm_cvtss_f32(self.0) }
+        }
+        op2!(add, _mm_add_ps);
+        op2!(sub, _mm_sub_ps);
+        op2!(mul, _mm_mul_ps);
+        op2!(div, _mm_div_ps);
+        // MAXPS/MINPS return the second operand unless the first compares
+        // greater (less): `if a > b { a } else { b }`, NaN included.
+        op2!(max, _mm_max_ps);
+        op2!(min, _mm_min_ps);
+        #[inline(always)]
+        fn abs(self) -> Self {
+            // SAFETY: see the module docs (SSE, no memory access).
+            Self(unsafe { _mm_andnot_ps(_mm_set1_ps(-0.0), self.0) })
+        }
+        cmp!(lt, _mm_cmplt_ps);
+        cmp!(le, _mm_cmple_ps);
+        cmp!(eq, _mm_cmpeq_ps);
+        #[inline(always)]
+        fn rot1(self) -> Self {
+            // (y, z, x, w): lanes 1, 2, 0, 3.
+            // SAFETY: see the module docs (SSE, no memory access).
+            Self(unsafe { _mm_shuffle_ps::<0b11_00_10_01>(self.0, self.0) })
+        }
+        #[inline(always)]
+        fn rot2(self) -> Self {
+            // (z, x, y, w): lanes 2, 0, 1, 3.
+            // SAFETY: see the module docs (SSE, no memory access).
+            Self(unsafe { _mm_shuffle_ps::<0b11_01_00_10>(self.0, self.0) })
+        }
+        #[inline(always)]
+        fn sum3(self) -> f32 {
+            // SAFETY: see the module docs (SSE, no memory access).
+            unsafe {
+                let xy = _mm_add_ss(self.0, lane1(self.0));
+                _mm_cvtss_f32(_mm_add_ss(xy, lane2(self.0)))
+            }
+        }
+        #[inline(always)]
+        fn ordered(lo: Self, min: Self, max: Self, hi: Self) -> bool {
+            // SAFETY: see the module docs (SSE, no memory access).
+            let mask = unsafe {
+                let a = _mm_cmple_ps(lo.0, min.0);
+                let b = _mm_cmple_ps(min.0, max.0);
+                let c = _mm_cmple_ps(max.0, hi.0);
+                _mm_movemask_ps(_mm_and_ps(_mm_and_ps(a, b), c))
+            };
+            mask & 0b111 == 0b111
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// A value from a mix of ordinary numbers and the special ones.
+    fn pick(state: &mut u64) -> f32 {
+        *state ^= *state << 13;
+        *state ^= *state >> 7;
+        *state ^= *state << 17;
+        const SPECIAL: [f32; 8] = [
+            0.0,
+            -0.0,
+            f32::INFINITY,
+            f32::NEG_INFINITY,
+            f32::NAN,
+            f32::MAX,
+            f32::from_bits(1),
+            1.0,
+        ];
+        match *state % 4 {
+            0 => SPECIAL[(*state >> 8) as usize % 8],
+            1 => ((*state >> 16) % 9) as f32 - 4.0,
+            _ => f32::from_bits((*state >> 20) as u32),
+        }
+    }
+
+    fn same(a: [f32; 3], b: [f32; 3]) -> bool {
+        a.iter().zip(&b).all(|(x, y)| x.to_bits() == y.to_bits())
+    }
+
+    /// Every operation of the register type gives the portable definition's
+    /// bits, NaN, infinities and signed zeros included (lane 3 aside).
+    #[test]
+    fn registers_match_the_definition() {
+        let mut state = 0x2545_f491_4f6c_dd1d_u64;
+        for _ in 0..200_000 {
+            let mut v = || [pick(&mut state), pick(&mut state), pick(&mut state)];
+            let (a, b) = (v(), v());
+            let (pa, pb) = (
+                Portable::new(a[0], a[1], a[2]),
+                Portable::new(b[0], b[1], b[2]),
+            );
+            let (fa, fb) = (
+                F32Lanes::new(a[0], a[1], a[2]),
+                F32Lanes::new(b[0], b[1], b[2]),
+            );
+            type Op<L> = fn(L, L) -> L;
+            let ops: [(Op<Portable<f32>>, Op<F32Lanes>); 6] = [
+                (Lanes::add, Lanes::add),
+                (Lanes::sub, Lanes::sub),
+                (Lanes::mul, Lanes::mul),
+                (Lanes::div, Lanes::div),
+                (Lanes::max, Lanes::max),
+                (Lanes::min, Lanes::min),
+            ];
+            for (p, f) in ops {
+                assert!(
+                    same(p(pa, pb).to_array(), f(fa, fb).to_array()),
+                    "{a:?} {b:?}"
+                );
+            }
+            for (p, f) in [
+                (pa.abs(), fa.abs()),
+                (pa.rot1(), fa.rot1()),
+                (pa.rot2(), fa.rot2()),
+            ] {
+                assert!(same(p.to_array(), f.to_array()), "{a:?}");
+            }
+            assert_eq!(pa.lt(pb), fa.lt(fb));
+            assert_eq!(pa.le(pb), fa.le(fb));
+            assert_eq!(pa.eq(pb), fa.eq(fb));
+            for (p, f) in [(pa.max_all(), fa.max_all()), (pa.min_all(), fa.min_all())] {
+                assert!(same(p.to_array(), f.to_array()), "{a:?}");
+            }
+            assert_eq!(pa.sum3().to_bits(), fa.sum3().to_bits(), "{a:?}");
+            assert_eq!(pa.x().to_bits(), fa.x().to_bits());
+            let (c, d) = (v(), v());
+            let (pc, pd) = (
+                Portable::new(c[0], c[1], c[2]),
+                Portable::new(d[0], d[1], d[2]),
+            );
+            let (fc, fd) = (
+                F32Lanes::new(c[0], c[1], c[2]),
+                F32Lanes::new(d[0], d[1], d[2]),
+            );
+            assert_eq!(
+                Lanes::ordered(pa, pb, pc, pd),
+                Lanes::ordered(fa, fb, fc, fd)
+            );
+        }
+    }
+
+    /// The semantics the slab test relies on, spelled out.
+    #[test]
+    fn max_and_min_return_the_second_operand_for_nan() {
+        let nan = F32Lanes::splat(f32::NAN);
+        let zero = F32Lanes::splat(0.0);
+        assert_eq!(nan.max(zero).to_array(), [0.0; 3]);
+        assert_eq!(nan.min(zero).to_array(), [0.0; 3]);
+        assert!(zero.max(nan).x().is_nan());
+        // -0 > +0 is false: the second operand.
+        assert_eq!(F32Lanes::splat(-0.0).max(zero).x().to_bits(), 0);
+    }
+}
