@@ -75,7 +75,7 @@ pub(crate) fn valid_box<V: Vector>(min: V, max: V) -> bool {
 /// [`ray_triangle_prepared`](crate::ray_triangle_prepared) and
 /// [`ray_triangle_batch`](crate::ray_triangle_batch) need not recompute it
 /// per triangle.
-#[derive(Clone, Copy, Debug, PartialEq)]
+#[derive(Clone, Copy, Debug)]
 pub struct PreparedRay<V: Vector = Vec3> {
     /// The slab test's part: origin (`+inf` for an invalid ray) and the
     /// directed reciprocals. The triangle tests use the origin too (only
@@ -83,6 +83,16 @@ pub struct PreparedRay<V: Vector = Vec3> {
     pub(crate) slab: SlabRay<V>,
     /// The triangle tests' shear of the ray's direction.
     pub(crate) shear: Shear<S<V>>,
+    /// The origin's coordinates in the shear's axis order, each in every
+    /// lane (see `Shear::origin_lanes`).
+    pub(crate) origin_lanes: [L<V>; 3],
+}
+
+impl<V: Vector> PartialEq for PreparedRay<V> {
+    fn eq(&self, o: &Self) -> bool {
+        // `origin_lanes` is a function of the other two.
+        self.slab == o.slab && self.shear == o.shear
+    }
 }
 
 /// The slab test's per-ray data, in lanes: see [`PreparedRay::new`].
@@ -134,9 +144,11 @@ impl<V: Vector> PreparedRay<V> {
         } else {
             V::new(z, z, S::<V>::ONE)
         };
+        let shear = Shear::new(dir);
         Self {
             slab: SlabRay::new(ray),
-            shear: Shear::new(dir),
+            origin_lanes: shear.origin_lanes(ray.origin),
+            shear,
         }
     }
 

@@ -533,7 +533,7 @@ fn triangle_batch_body<V: Vector, const N: usize>(
     }
     let sh = ray.shear;
     // The permuted axes: x, y, z of the ray's frame.
-    let (kx, ky, kz) = ((sh.kz + 1) % 3, (sh.kz + 2) % 3, sh.kz);
+    let (kx, ky, kz) = (sh.kx as usize, sh.ky as usize, sh.kz as usize);
     let origin = ray.origin();
     let (ox, oy, oz) = (origin[kx], origin[ky], origin[kz]);
     let ray_front = sh.dz > zero;

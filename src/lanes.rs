@@ -22,6 +22,31 @@ use core::fmt::Debug;
 
 use crate::real::Scalar;
 
+/// A coordinate axis, as an index the compiler knows is below 3 (so that
+/// indexing a three-component array with it needs no bounds check).
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+#[repr(u8)]
+pub enum Axis {
+    /// `x`, index 0.
+    X = 0,
+    /// `y`, index 1.
+    Y = 1,
+    /// `z`, index 2.
+    Z = 2,
+}
+
+impl Axis {
+    /// The next axis, cyclically: `x -> y -> z -> x`.
+    #[inline(always)]
+    pub(crate) fn next(self) -> Self {
+        match self {
+            Axis::X => Axis::Y,
+            Axis::Y => Axis::Z,
+            Axis::Z => Axis::X,
+        }
+    }
+}
+
 /// Four lanes of a scalar type; see the module docs for the semantics.
 ///
 /// Public only so that it can appear in the sealed [`Scalar`] trait; it is

@@ -160,6 +160,12 @@ pub trait Vector:
     /// All zeros.
     const ZERO: Self;
 
+    /// The component on axis `k`. (An implementation detail: an index the
+    /// compiler knows is in range, for the triangle tests' permutation.)
+    #[doc(hidden)]
+    #[must_use]
+    fn get(&self, k: crate::lanes::Axis) -> Self::Scalar;
+
     /// A vector from its components.
     #[must_use]
     fn new(x: Self::Scalar, y: Self::Scalar, z: Self::Scalar) -> Self;
@@ -341,6 +347,12 @@ macro_rules! impl_vector {
         impl Vector for $V {
             type Scalar = $f;
             const ZERO: Self = <$V>::ZERO;
+
+            #[inline(always)]
+            fn get(&self, k: crate::lanes::Axis) -> $f {
+                let a: &[$f; 3] = self.as_ref();
+                a[k as usize]
+            }
 
             #[inline]
             fn new(x: $f, y: $f, z: $f) -> Self {

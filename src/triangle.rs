@@ -4,8 +4,9 @@
 use glam::Vec3;
 
 use crate::aabb::PreparedRay;
+use crate::lanes::{Axis, Lanes};
 use crate::ray::{Ray, t_max_ok};
-use crate::real::{S, Scalar, Vector, bound_up, max2, min2};
+use crate::real::{L, S, Scalar, Vector, bound_up, max2, min2};
 
 /// The triangle with corners `a`, `b`, `c`.
 ///
@@ -118,11 +119,13 @@ pub struct TriangleHit<F = f32> {
 
 /// The per-ray part of the watertight test: which axis the ray mostly runs
 /// along, and the shear that maps its direction to `+z`.
-#[derive(Clone, Copy, Debug, PartialEq)]
-pub(crate) struct Shear<F> {
+#[derive(Clone, Copy, Debug)]
+pub(crate) struct Shear<F: Scalar> {
     /// The axis of the direction's largest magnitude component; `kx, ky`
     /// follow it cyclically, so the permutation keeps the handedness.
-    pub(crate) kz: usize,
+    pub(crate) kx: Axis,
+    pub(crate) ky: Axis,
+    pub(crate) kz: Axis,
     /// `-d_x / d_z` and `-d_y / d_z` in the permuted frame: `|s_x|, |s_y| <= 1`.
     pub(crate) sx: F,
     pub(crate) sy: F,
@@ -130,6 +133,14 @@ pub(crate) struct Shear<F> {
     pub(crate) sz: F,
     /// `d_z` itself, for the side of a hit.
     pub(crate) dz: F,
+    /// `sx`, `sy`, `sz`, each in every lane.
+    pub(crate) lanes: [F::Lanes; 3],
+}
+
+impl<F: Scalar> PartialEq for Shear<F> {
+    fn eq(&self, o: &Self) -> bool {
+        (self.kz, self.sx, self.sy, self.sz, self.dz) == (o.kz, o.sx, o.sy, o.sz, o.dz)
+    }
 }
 
 impl<F: Scalar> Shear<F> {
@@ -137,30 +148,45 @@ impl<F: Scalar> Shear<F> {
     pub(crate) fn new<V: Vector<Scalar = F>>(dir: V) -> Self {
         let a = dir.abs();
         let kz = if a.x() > a.y() {
-            if a.x() > a.z() { 0 } else { 2 }
+            if a.x() > a.z() { Axis::X } else { Axis::Z }
         } else if a.y() > a.z() {
-            1
+            Axis::Y
         } else {
-            2
+            Axis::Z
         };
-        let (dx, dy, dz) = permute(dir, kz);
+        let (kx, ky) = (kz.next(), kz.next().next());
+        let (dx, dy, dz) = (dir.get(kx), dir.get(ky), dir.get(kz));
+        // Three quotients, each rounded once, in one division of lanes.
+        let q = F::Lanes::new(-dx, -dy, F::ONE).div(F::Lanes::splat(dz));
+        let [sx, sy, sz] = q.to_array();
         Self {
+            kx,
+            ky,
             kz,
-            sx: -dx / dz,
-            sy: -dy / dz,
-            sz: F::ONE / dz,
+            sx,
+            sy,
+            sz,
             dz,
+            lanes: [
+                F::Lanes::splat(sx),
+                F::Lanes::splat(sy),
+                F::Lanes::splat(sz),
+            ],
         }
     }
-}
 
-/// `(v[kx], v[ky], v[kz])` with `kx = kz + 1`, `ky = kz + 2` (mod 3).
-#[inline(always)]
-pub(crate) fn permute<V: Vector>(v: V, kz: usize) -> (S<V>, S<V>, S<V>) {
-    match kz {
-        0 => (v.y(), v.z(), v.x()),
-        1 => (v.z(), v.x(), v.y()),
-        _ => (v.x(), v.y(), v.z()),
+    /// `(v[kx], v[ky], v[kz])`.
+    #[inline(always)]
+    pub(crate) fn permute<V: Vector<Scalar = F>>(&self, v: V) -> (F, F, F) {
+        (v.get(self.kx), v.get(self.ky), v.get(self.kz))
+    }
+
+    /// `origin[kx]`, `origin[ky]`, `origin[kz]`, each in every lane: what
+    /// the lanes form of the test subtracts from the corners.
+    #[inline(always)]
+    pub(crate) fn origin_lanes<V: Vector<Scalar = F>>(&self, origin: V) -> [F::Lanes; 3] {
+        let (x, y, z) = self.permute(origin);
+        [F::Lanes::splat(x), F::Lanes::splat(y), F::Lanes::splat(z)]
     }
 }
 
@@ -193,7 +219,7 @@ impl<F: Scalar> Frame<F> {
         };
         for (i, p) in [tri.a, tri.b, tri.c].into_iter().enumerate() {
             // Translate, permute, shear.
-            let (px, py, pz) = permute(p - origin, shear.kz);
+            let (px, py, pz) = shear.permute(p - origin);
             f.px[i] = px;
             f.py[i] = py;
             f.pz[i] = pz;
@@ -265,7 +291,106 @@ fn watertight<V: Vector>(
     if !(ray.is_valid() && t_max_ok(t_max)) {
         return None;
     }
-    watertight_sheared(ray.origin, &Shear::new(ray.dir), tri, t_max, rule)
+    let shear = Shear::new(ray.dir);
+    match rule {
+        EdgeRule::Closed => watertight_lanes(
+            || ray.origin,
+            &shear.origin_lanes(ray.origin),
+            &shear,
+            tri,
+            t_max,
+        ),
+        EdgeRule::OneHit => watertight_sheared(ray.origin, &shear, tri, t_max, rule),
+    }
+}
+
+/// The closed watertight test for a valid ray and a `t_max >= 0`, with the
+/// three corners in the lanes of one register: the same operations as
+/// [`watertight_sheared`], lane by lane, so the same bits. The two rare
+/// cases go to [`watertight_sheared`] itself: an edge function that
+/// rounds to zero (its sign must be recomputed exactly), and a crossing
+/// for which the cheapest sufficient test for `t > 0` (every corner in
+/// front of the origin) fails. `origin_lanes` is
+/// [`Shear::origin_lanes`] of `origin`.
+#[inline(always)]
+pub(crate) fn watertight_lanes<V: Vector>(
+    origin: impl Fn() -> V,
+    origin_lanes: &[L<V>; 3],
+    shear: &Shear<S<V>>,
+    tri: &Triangle<V>,
+    t_max: S<V>,
+) -> Option<TriangleHit<S<V>>> {
+    let (zero, one) = (S::<V>::ZERO, S::<V>::ONE);
+    let corners = |k: Axis| L::<V>::new(tri.a.get(k), tri.b.get(k), tri.c.get(k));
+    let [sx, sy, sz] = shear.lanes;
+    let [ox, oy, oz] = *origin_lanes;
+    // Translate, permute (the corners' coordinates are read in the ray's
+    // axis order), shear.
+    let px = corners(shear.kx).sub(ox);
+    let py = corners(shear.ky).sub(oy);
+    let pz = corners(shear.kz).sub(oz);
+    let x = px.add(sx.mul(pz));
+    let y = py.add(sy.mul(pz));
+    // Edge functions: lane i is x[i+1] y[i+2] - y[i+1] x[i+2].
+    let e = x.rot1().mul(y.rot2()).sub(y.rot1().mul(x.rot2()));
+    let lanes_zero = L::<V>::splat(zero);
+    let (neg, pos) = (e.lt(lanes_zero), lanes_zero.lt(e));
+    if neg != 0 && pos != 0 {
+        // Outside, whatever the exact sign of an edge function of zero.
+        return None;
+    }
+    if e.eq(lanes_zero) != 0 {
+        return watertight_slow(origin(), shear, tri, t_max);
+    }
+    let det = e.sum3();
+    let z = pz.mul(sz);
+    let t_scaled = e.mul(z).sum3();
+    let in_range = if det > zero {
+        t_scaled > zero && t_scaled <= t_max * det
+    } else if det < zero {
+        t_scaled < zero && t_scaled >= t_max * det
+    } else {
+        false
+    };
+    if !in_range {
+        return None;
+    }
+    let inv_det = one / det;
+    let t = t_scaled * inv_det;
+    // (`t > 0` makes `is_finite` the same as `t <= MAX`, which compiles to
+    // one comparison.)
+    if !(t > zero && t <= t_max && t <= S::<V>::MAX) {
+        return None;
+    }
+    // The first sufficient test for t > 0 (see `watertight_sheared`).
+    let dz = bound_up(S::<V>::gamma_n(4) * z.abs().max_all().x(), 1);
+    if L::<V>::splat(dz).lt(z) != 0b111 {
+        return watertight_slow(origin(), shear, tri, t_max);
+    }
+    // u and v: lanes 1 and 2 of `min(e * inv_det, 1)`.
+    let w = e.mul(L::<V>::splat(inv_det)).min(L::<V>::splat(one));
+    if w.abs().le(L::<V>::splat(S::<V>::MAX)) & 0b110 != 0b110 {
+        return None;
+    }
+    let [_, u, v] = w.to_array();
+    let side = if (det > zero) != (shear.dz > zero) {
+        Side::Front
+    } else {
+        Side::Back
+    };
+    Some(TriangleHit { t, u, v, side })
+}
+
+/// [`watertight_sheared`] with the closed rule, out of the hot path.
+#[cold]
+#[inline(never)]
+fn watertight_slow<V: Vector>(
+    origin: V,
+    shear: &Shear<S<V>>,
+    tri: &Triangle<V>,
+    t_max: S<V>,
+) -> Option<TriangleHit<S<V>>> {
+    watertight_sheared(origin, shear, tri, t_max, EdgeRule::Closed)
 }
 
 /// The watertight test for a valid ray, given its origin and shear, and a
@@ -628,7 +753,7 @@ pub fn ray_triangle_prepared<V: Vector>(
     if !(ray.is_valid() && t_max_ok(t_max)) {
         return None;
     }
-    watertight_sheared(ray.origin(), &ray.shear, tri, t_max, EdgeRule::Closed)
+    watertight_lanes(|| ray.origin(), &ray.origin_lanes, &ray.shear, tri, t_max)
 }
 
 /// The watertight test with exactly one hit per crossing of a mesh: each
@@ -864,4 +989,100 @@ pub fn ray_triangle_mt<V: Vector>(
     // runs against the normal.
     let side = if det > zero { Side::Front } else { Side::Back };
     Some(TriangleHit { t, u, v, side })
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use glam::DVec3;
+
+    /// A coordinate on a coarse grid (so that shared edges, zero edge
+    /// functions and axis-parallel rays are common) or, one time in four, a
+    /// float with random bits in a moderate range.
+    fn coordinate(state: &mut u64) -> f64 {
+        *state ^= *state << 13;
+        *state ^= *state >> 7;
+        *state ^= *state << 17;
+        if *state % 4 == 0 {
+            let m = ((*state >> 11) % (1 << 20)) as f64 / (1 << 20) as f64;
+            (m - 0.5) * 2f64.powi(((*state >> 40) % 40) as i32 - 20)
+        } else {
+            ((*state >> 8) % 17) as f64 / 4.0 - 2.0
+        }
+    }
+
+    /// The watertight test on lanes (what `ray_triangle` and
+    /// `ray_triangle_prepared` run) gives, bit for bit, the answer of the
+    /// one-component-at-a-time definition, `watertight_sheared`, in both
+    /// precisions and for any `t_max`.
+    #[test]
+    fn lanes_are_the_definition() {
+        fn check<V: Vector>(state: &mut u64) -> usize {
+            let mut v = || {
+                V::new(
+                    S::<V>::from_f64(coordinate(state)),
+                    S::<V>::from_f64(coordinate(state)),
+                    S::<V>::from_f64(coordinate(state)),
+                )
+            };
+            let tri = Triangle::new(v(), v(), v());
+            let origin = v();
+            // Half of the rays aimed at an edge's midpoint or the centroid
+            // (rounded), for hits and edge cases.
+            let half = S::<V>::HALF;
+            let pick = coordinate(state);
+            let mut v = || {
+                V::new(
+                    S::<V>::from_f64(coordinate(state)),
+                    S::<V>::from_f64(coordinate(state)),
+                    S::<V>::from_f64(coordinate(state)),
+                )
+            };
+            let dir = match (pick * 4.0) as i64 % 4 {
+                0 => (tri.a + tri.b) * half - origin,
+                1 => (tri.a + tri.b + tri.c) * (S::<V>::ONE / S::<V>::from_u32(3)) - origin,
+                _ => v(),
+            };
+            let ray = Ray::new(origin, dir);
+            let t_max = S::<V>::from_f64(coordinate(state).abs() * 4.0);
+            let mut hits = 0;
+            for t_max in [t_max, S::<V>::INFINITY] {
+                let expected = (ray.is_valid() && t_max_ok(t_max)).then(|| {
+                    let shear = Shear::new(ray.dir);
+                    watertight_sheared(ray.origin, &shear, &tri, t_max, EdgeRule::Closed)
+                });
+                let bits = |h: Option<TriangleHit<S<V>>>| {
+                    h.map(|h| {
+                        (
+                            h.t.to_f64().to_bits(),
+                            h.u.to_f64().to_bits(),
+                            h.v.to_f64().to_bits(),
+                            h.side,
+                        )
+                    })
+                };
+                let expected = bits(expected.flatten());
+                hits += usize::from(expected.is_some());
+                assert_eq!(
+                    bits(ray_triangle(&ray, &tri, t_max)),
+                    expected,
+                    "{ray:?} {tri:?}"
+                );
+                let prepared = PreparedRay::new(&ray);
+                assert_eq!(
+                    bits(ray_triangle_prepared(&prepared, &tri, t_max)),
+                    expected,
+                    "{ray:?} {tri:?}"
+                );
+            }
+            hits
+        }
+        let mut state = 0x1234_5678_9abc_def1_u64;
+        let mut hits = 0;
+        for _ in 0..100_000 {
+            hits += check::<Vec3>(&mut state) + check::<DVec3>(&mut state);
+        }
+        // Enough hits that the comparison means something (about a third).
+        assert!(hits > 100_000, "{hits}");
+    }
 }
