@@ -144,7 +144,7 @@ impl<V: Vector> PreparedRay<V> {
         } else {
             V::new(z, z, S::<V>::ONE)
         };
-        let shear = Shear::new(dir);
+        let shear = Shear::new(&dir);
         Self {
             slab: SlabRay::new(ray),
             origin_lanes: shear.origin_lanes(ray.origin),

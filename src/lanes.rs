@@ -36,13 +36,13 @@ pub enum Axis {
 }
 
 impl Axis {
-    /// The next axis, cyclically: `x -> y -> z -> x`.
+    /// The axis of index `k`, for `k` in 0..3 (`z` for anything larger).
     #[inline(always)]
-    pub(crate) fn next(self) -> Self {
-        match self {
-            Axis::X => Axis::Y,
-            Axis::Y => Axis::Z,
-            Axis::Z => Axis::X,
+    pub(crate) fn from_index(k: usize) -> Self {
+        match k {
+            0 => Axis::X,
+            1 => Axis::Y,
+            _ => Axis::Z,
         }
     }
 }
@@ -76,6 +76,8 @@ pub trait Lanes: Copy + Debug + Send + Sync + 'static {
     fn min(self, o: Self) -> Self;
     /// Lane-wise absolute value.
     fn abs(self) -> Self;
+    /// Lane-wise negation (the sign bit flipped, as `-x` does).
+    fn neg(self) -> Self;
     /// Bit `k` set when `self[k] < o[k]`, for `k` in 0..3.
     fn lt(self, o: Self) -> u32;
     /// Bit `k` set when `self[k] <= o[k]`.
@@ -171,6 +173,10 @@ impl<F: Scalar> Lanes for Portable<F> {
     #[inline(always)]
     fn abs(self) -> Self {
         Self(self.0.map(F::abs))
+    }
+    #[inline(always)]
+    fn neg(self) -> Self {
+        Self(self.0.map(|x| -x))
     }
     #[inline(always)]
     fn lt(self, o: Self) -> u32 {
@@ -322,6 +328,11 @@ pub(crate) mod sse {
             // SAFETY: see the module docs (SSE, no memory access).
             Self(unsafe { _mm_andnot_ps(_mm_set1_ps(-0.0), self.0) })
         }
+        #[inline(always)]
+        fn neg(self) -> Self {
+            // SAFETY: see the module docs (SSE, no memory access).
+            Self(unsafe { _mm_xor_ps(_mm_set1_ps(-0.0), self.0) })
+        }
         cmp!(lt, _mm_cmplt_ps);
         cmp!(le, _mm_cmple_ps);
         cmp!(eq, _mm_cmpeq_ps);
@@ -422,6 +433,7 @@ mod tests {
             }
             for (p, f) in [
                 (pa.abs(), fa.abs()),
+                (pa.neg(), fa.neg()),
                 (pa.rot1(), fa.rot1()),
                 (pa.rot2(), fa.rot2()),
             ] {

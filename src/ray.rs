@@ -2,7 +2,8 @@
 
 use glam::Vec3;
 
-use crate::real::{S, Scalar, Vector};
+use crate::lanes::Lanes;
+use crate::real::{L, S, Scalar, Vector};
 
 /// A ray `origin + t * dir` for `t >= 0`.
 ///
@@ -49,7 +50,14 @@ impl<V: Vector> Ray<V> {
     #[inline]
     #[must_use]
     pub fn is_valid(&self) -> bool {
-        self.origin.is_finite() && self.dir.is_finite() && self.dir != V::ZERO
+        // `origin.is_finite() && dir.is_finite() && dir != 0`, written as
+        // comparisons on lanes: `|c| <= MAX` is false exactly for the
+        // infinities and NaN.
+        let lanes = |v: V| L::<V>::new(v.x(), v.y(), v.z());
+        let (o, d) = (lanes(self.origin), lanes(self.dir));
+        let big = L::<V>::splat(S::<V>::MAX);
+        let finite = o.abs().le(big) & d.abs().le(big) == 0b111;
+        finite & (d.eq(L::<V>::splat(S::<V>::ZERO)) != 0b111)
     }
 }
 

@@ -143,18 +143,31 @@ impl<F: Scalar> PartialEq for Shear<F> {
     }
 }
 
+/// The index of the ray's main axis from the magnitudes of its direction's
+/// components: x if `|d_x| > |d_y|` and `|d_x| > |d_z|`, else y if
+/// `|d_y| > |d_z|`, else z. Written as selects rather than branches (the
+/// direction of the next ray is not predictable).
+#[inline(always)]
+fn largest_axis<F: Scalar>(a: [F; 3]) -> usize {
+    let x_wins = a[0] > a[1];
+    let larger = if x_wins { a[0] } else { a[1] };
+    if larger > a[2] {
+        usize::from(!x_wins)
+    } else {
+        2
+    }
+}
+
 impl<F: Scalar> Shear<F> {
     #[inline(always)]
-    pub(crate) fn new<V: Vector<Scalar = F>>(dir: V) -> Self {
+    pub(crate) fn new<V: Vector<Scalar = F>>(dir: &V) -> Self {
         let a = dir.abs();
-        let kz = if a.x() > a.y() {
-            if a.x() > a.z() { Axis::X } else { Axis::Z }
-        } else if a.y() > a.z() {
-            Axis::Y
-        } else {
-            Axis::Z
-        };
-        let (kx, ky) = (kz.next(), kz.next().next());
+        let k = largest_axis([a.x(), a.y(), a.z()]);
+        let (kz, kx, ky) = (
+            Axis::from_index(k),
+            Axis::from_index(if k == 2 { 0 } else { k + 1 }),
+            Axis::from_index(if k == 0 { 2 } else { k - 1 }),
+        );
         let (dx, dy, dz) = (dir.get(kx), dir.get(ky), dir.get(kz));
         // Three quotients, each rounded once, in one division of lanes.
         let q = F::Lanes::new(-dx, -dy, F::ONE).div(F::Lanes::splat(dz));
@@ -291,17 +304,115 @@ fn watertight<V: Vector>(
     if !(ray.is_valid() && t_max_ok(t_max)) {
         return None;
     }
-    let shear = Shear::new(ray.dir);
     match rule {
-        EdgeRule::Closed => watertight_lanes(
-            || ray.origin,
-            &shear.origin_lanes(ray.origin),
-            &shear,
-            tri,
-            t_max,
-        ),
-        EdgeRule::OneHit => watertight_sheared(ray.origin, &shear, tri, t_max, rule),
+        EdgeRule::Closed => watertight_every_axis(ray, tri, t_max),
+        EdgeRule::OneHit => watertight_sheared(ray.origin, &Shear::new(&ray.dir), tri, t_max, rule),
     }
+}
+
+/// The closed watertight test for a valid ray (not prepared) and a
+/// `t_max >= 0`, computed for all three choices of the ray's main axis at
+/// once, lane `k` being the test in the frame with `kz = k`, and decided
+/// on the lane of the ray's actual main axis.
+///
+/// Lane `k` runs exactly the operations of [`watertight_sheared`] with
+/// `kz = k` (the shear factors `-d[k+1] / d[k]`, `-d[k+2] / d[k]` and
+/// `1 / d[k]`, each one division; the corners translated in their natural
+/// axis order, so that `p[k+1]`, `p[k+2]`, `p[k]` are the permuted `px`,
+/// `py`, `pz`), so on the chosen lane its values are the definition's,
+/// bit for bit. Nothing waits for the choice of the axis: on one ray
+/// against one triangle, that shortens the chain of dependent operations
+/// (the ray's shear is not known in advance) more than the two other
+/// lanes cost. The rare cases go to [`watertight_sheared`], as in
+/// [`watertight_lanes`].
+#[inline(always)]
+fn watertight_every_axis<V: Vector>(
+    ray: &Ray<V>,
+    tri: &Triangle<V>,
+    t_max: S<V>,
+) -> Option<TriangleHit<S<V>>> {
+    let splat = L::<V>::splat;
+    let lanes = |v: V| L::<V>::new(v.x(), v.y(), v.z());
+    let (zero, one) = (splat(S::<V>::ZERO), splat(S::<V>::ONE));
+    let (o, d) = (lanes(ray.origin), lanes(ray.dir));
+    let kz = largest_axis(d.abs().to_array());
+    let bit = 1 << kz;
+    let slow = || watertight_slow(ray.origin, &Shear::new(&ray.dir), tri, t_max);
+    // The three candidate shears: lane k holds -d[k+1] / d[k],
+    // -d[k+2] / d[k] and 1 / d[k].
+    let sx = d.rot1().neg().div(d);
+    let sy = d.rot2().neg().div(d);
+    let sz = one.div(d);
+    // Translate; then lane k of `x` is p[k+1] + sx[k] p[k], and so on.
+    let p = [
+        lanes(tri.a).sub(o),
+        lanes(tri.b).sub(o),
+        lanes(tri.c).sub(o),
+    ];
+    let x = p.map(|p| p.rot1().add(sx.mul(p)));
+    let y = p.map(|p| p.rot2().add(sy.mul(p)));
+    let z = p.map(|p| p.mul(sz));
+    let edge = |j: usize, k: usize| x[j].mul(y[k]).sub(y[j].mul(x[k]));
+    let (e0, e1, e2) = (edge(1, 2), edge(2, 0), edge(0, 1));
+    // Both signs among the edge functions: outside. (For values that are
+    // not NaN, "some e_i < 0" is "min e_i < 0"; a NaN edge function, from
+    // overflow, makes `det` NaN and fails the range test below, whatever
+    // this says, as in the definition.)
+    let neg = e0.min(e1).min(e2).lt(zero);
+    let pos = zero.lt(e0.max(e1).max(e2));
+    if neg & pos & bit != 0 {
+        return None;
+    }
+    if (e0.eq(zero) | e1.eq(zero) | e2.eq(zero)) & bit != 0 {
+        return slow();
+    }
+    let det = e0.add(e1).add(e2);
+    let t_scaled = e0.mul(z[0]).add(e1.mul(z[1])).add(e2.mul(z[2]));
+    let limit = splat(t_max).mul(det);
+    let ahead_range = zero.lt(det) & zero.lt(t_scaled) & t_scaled.le(limit);
+    let behind_range = det.lt(zero) & t_scaled.lt(zero) & limit.le(t_scaled);
+    if (ahead_range | behind_range) & bit == 0 {
+        return None;
+    }
+    let inv_det = one.div(det);
+    let t = t_scaled.mul(inv_det);
+    // (`t > 0` makes `is_finite` the same as `t <= MAX`.)
+    let big = splat(S::<V>::MAX);
+    if zero.lt(t) & t.le(splat(t_max)) & t.le(big) & bit == 0 {
+        return None;
+    }
+    // The first sufficient test for t > 0 (see `watertight_sheared`).
+    let max_z = z[0].abs().max(z[1].abs().max(z[2].abs()));
+    let dz = bound_up_lanes(max_z.mul(splat(S::<V>::gamma_n(4))), 1);
+    if dz.lt(z[0]) & dz.lt(z[1]) & dz.lt(z[2]) & bit == 0 {
+        return slow();
+    }
+    let u = e1.mul(inv_det).min(one);
+    let v = e2.mul(inv_det).min(one);
+    if u.abs().le(big) & v.abs().le(big) & bit == 0 {
+        return None;
+    }
+    let pick = |w: L<V>| -> S<V> { Lanes::to_array(w)[kz] };
+    let det = pick(det);
+    let side = if (det > S::<V>::ZERO) != (pick(d) > S::<V>::ZERO) {
+        Side::Front
+    } else {
+        Side::Back
+    };
+    Some(TriangleHit {
+        t: pick(t),
+        u: pick(u),
+        v: pick(v),
+        side,
+    })
+}
+
+/// [`bound_up`] on every lane.
+#[inline(always)]
+fn bound_up_lanes<T: Lanes>(value: T, roundings: u32) -> T {
+    value.mul(T::splat(
+        (T::F::ONE + T::F::gamma_n(roundings + 1)).next_up(),
+    ))
 }
 
 /// The closed watertight test for a valid ray and a `t_max >= 0`, with the
@@ -310,11 +421,11 @@ fn watertight<V: Vector>(
 /// cases go to [`watertight_sheared`] itself: an edge function that
 /// rounds to zero (its sign must be recomputed exactly), and a crossing
 /// for which the cheapest sufficient test for `t > 0` (every corner in
-/// front of the origin) fails. `origin_lanes` is
-/// [`Shear::origin_lanes`] of `origin`.
+/// front of the origin) fails: `slow` is that call. `origin_lanes` is
+/// [`Shear::origin_lanes`] of the ray's origin.
 #[inline(always)]
 pub(crate) fn watertight_lanes<V: Vector>(
-    origin: impl Fn() -> V,
+    slow: impl Fn() -> Option<TriangleHit<S<V>>>,
     origin_lanes: &[L<V>; 3],
     shear: &Shear<S<V>>,
     tri: &Triangle<V>,
@@ -340,7 +451,7 @@ pub(crate) fn watertight_lanes<V: Vector>(
         return None;
     }
     if e.eq(lanes_zero) != 0 {
-        return watertight_slow(origin(), shear, tri, t_max);
+        return slow();
     }
     let det = e.sum3();
     let z = pz.mul(sz);
@@ -365,7 +476,7 @@ pub(crate) fn watertight_lanes<V: Vector>(
     // The first sufficient test for t > 0 (see `watertight_sheared`).
     let dz = bound_up(S::<V>::gamma_n(4) * z.abs().max_all().x(), 1);
     if L::<V>::splat(dz).lt(z) != 0b111 {
-        return watertight_slow(origin(), shear, tri, t_max);
+        return slow();
     }
     // u and v: lanes 1 and 2 of `min(e * inv_det, 1)`.
     let w = e.mul(L::<V>::splat(inv_det)).min(L::<V>::splat(one));
@@ -753,7 +864,8 @@ pub fn ray_triangle_prepared<V: Vector>(
     if !(ray.is_valid() && t_max_ok(t_max)) {
         return None;
     }
-    watertight_lanes(|| ray.origin(), &ray.origin_lanes, &ray.shear, tri, t_max)
+    let slow = || watertight_slow(ray.origin(), &ray.shear, tri, t_max);
+    watertight_lanes(slow, &ray.origin_lanes, &ray.shear, tri, t_max)
 }
 
 /// The watertight test with exactly one hit per crossing of a mesh: each
@@ -891,7 +1003,7 @@ pub fn ray_triangle_error_bounds<V: Vector>(
     if !(ray.is_valid() && hit.t.is_finite() && hit.u.is_finite() && hit.v.is_finite()) {
         return unbounded;
     }
-    let shear = Shear::new(ray.dir);
+    let shear = Shear::new(&ray.dir);
     let f = Frame::new(ray.origin, tri, &shear);
     let z = [f.pz[0] * shear.sz, f.pz[1] * shear.sz, f.pz[2] * shear.sz];
     let b = ErrorBounds::new(&f, &z, &shear);
@@ -940,49 +1052,52 @@ pub fn ray_triangle_mt<V: Vector>(
     tri: &Triangle<V>,
     t_max: S<V>,
 ) -> Option<TriangleHit<S<V>>> {
-    let zero = S::<V>::ZERO;
-    let one = S::<V>::ONE;
-    if !(ray.is_valid() && t_max_ok(t_max)) {
+    let (zero, one) = (S::<V>::ZERO, S::<V>::ONE);
+    // Invalid input needs no test of its own: a zero direction gives
+    // `det = 0`, so `u` is NaN or infinite, a NaN or infinite coordinate
+    // makes `det` or `u`, `v`, `t` NaN or infinite, and each fails a range
+    // test, as does a NaN or negative `t_max`.
+    let lanes = |v: V| L::<V>::new(v.x(), v.y(), v.z());
+    let (a, d) = (lanes(tri.a), lanes(ray.dir));
+    let e1 = lanes(tri.b).sub(a);
+    let e2 = lanes(tri.c).sub(a);
+    // p = d x e2, lane k = d[k+1] e2[k+2] - d[k+2] e2[k+1], with the two
+    // products of each component kept for the determinant's error bound.
+    let (m1, m2) = (d.rot1().mul(e2.rot2()), d.rot2().mul(e2.rot1()));
+    let p = m1.sub(m2);
+    let det = e1.mul(p).sum3();
+    let inv_det = one / det;
+    let s = lanes(ray.origin).sub(a);
+    let u = s.mul(p).sum3() * inv_det;
+    if !(u >= zero && u <= one) {
         return None;
     }
-    let d = ray.dir;
-    let e1 = tri.b - tri.a;
-    let e2 = tri.c - tri.a;
-    // p = d x e2, written out to keep the two products of each component
-    // for the determinant's error bound.
-    let (m1, m2) = (d.y() * e2.z(), d.z() * e2.y());
-    let (m3, m4) = (d.z() * e2.x(), d.x() * e2.z());
-    let (m5, m6) = (d.x() * e2.y(), d.y() * e2.x());
-    let p = V::new(m1 - m2, m3 - m4, m5 - m6);
-    let det = e1.dot(p);
+    // q = s x e1.
+    let q = s.rot1().mul(e1.rot2()).sub(s.rot2().mul(e1.rot1()));
+    let v = d.mul(q).sum3() * inv_det;
+    if !(v >= zero && u + v <= one) {
+        return None;
+    }
+    let t = e2.mul(q).sum3() * inv_det;
+    // (`t > 0` makes `is_finite` the same as `t <= MAX`.)
+    if !(t > zero && t <= t_max && t <= S::<V>::MAX) {
+        return None;
+    }
+    // The determinant's sign must be certain, or the ray is taken as
+    // parallel. (Tested last, so that the common misses above skip it;
+    // every test is a pure function of the same values, so the order
+    // changes no answer: a determinant of zero makes `u` NaN or infinite,
+    // which the first test rejects.)
+    //
     // Each monomial e1_i d_j e2_k of det carries at most 7 roundings (two
     // edge subtractions, a product, a difference, a product, two sums), so
     // |det - det_exact| <= gamma(7) sum_i |e1_i| (|d_j e2_k| + |d_k e2_j|).
     // The sum is evaluated from the computed e1 and products m, which are
     // rounded versions of the exact ones (at most 6 roundings along any
     // path, with the sum's own), and `bound_up` makes it an upper bound.
-    let mag = V::new(
-        m1.abs() + m2.abs(),
-        m3.abs() + m4.abs(),
-        m5.abs() + m6.abs(),
-    );
-    let det_bound = bound_up(S::<V>::gamma_n(7) * e1.abs().dot(mag), 7);
+    let mag = m1.abs().add(m2.abs());
+    let det_bound = bound_up(S::<V>::gamma_n(7) * e1.abs().mul(mag).sum3(), 7);
     if !(det.abs() > det_bound) {
-        return None;
-    }
-    let inv_det = one / det;
-    let s = ray.origin - tri.a;
-    let u = s.dot(p) * inv_det;
-    if !(u >= zero && u <= one) {
-        return None;
-    }
-    let q = s.cross(e1);
-    let v = d.dot(q) * inv_det;
-    if !(v >= zero && u + v <= one) {
-        return None;
-    }
-    let t = e2.dot(q) * inv_det;
-    if !(t > zero && t <= t_max && t.is_finite()) {
         return None;
     }
     // det = e1 . (d x e2) = -d . ((b - a) x (c - a)): positive when the ray
@@ -1048,7 +1163,7 @@ mod tests {
             let mut hits = 0;
             for t_max in [t_max, S::<V>::INFINITY] {
                 let expected = (ray.is_valid() && t_max_ok(t_max)).then(|| {
-                    let shear = Shear::new(ray.dir);
+                    let shear = Shear::new(&ray.dir);
                     watertight_sheared(ray.origin, &shear, &tri, t_max, EdgeRule::Closed)
                 });
                 let bits = |h: Option<TriangleHit<S<V>>>| {
@@ -1084,5 +1199,112 @@ mod tests {
         }
         // Enough hits that the comparison means something (about a third).
         assert!(hits > 100_000, "{hits}");
+    }
+
+    /// Moller-Trumbore as written with glam's `cross` and `dot`, one
+    /// component at a time: the definition the lanes form must match.
+    fn mt_definition<V: Vector>(
+        ray: &Ray<V>,
+        tri: &Triangle<V>,
+        t_max: S<V>,
+    ) -> Option<TriangleHit<S<V>>> {
+        let (zero, one) = (S::<V>::ZERO, S::<V>::ONE);
+        if !(ray.is_valid() && t_max_ok(t_max)) {
+            return None;
+        }
+        let d = ray.dir;
+        let (e1, e2) = (tri.b - tri.a, tri.c - tri.a);
+        let (m1, m2) = (d.y() * e2.z(), d.z() * e2.y());
+        let (m3, m4) = (d.z() * e2.x(), d.x() * e2.z());
+        let (m5, m6) = (d.x() * e2.y(), d.y() * e2.x());
+        let p = V::new(m1 - m2, m3 - m4, m5 - m6);
+        let det = e1.dot(p);
+        let mag = V::new(
+            m1.abs() + m2.abs(),
+            m3.abs() + m4.abs(),
+            m5.abs() + m6.abs(),
+        );
+        let det_bound = bound_up(S::<V>::gamma_n(7) * e1.abs().dot(mag), 7);
+        if !(det.abs() > det_bound) {
+            return None;
+        }
+        let inv_det = one / det;
+        let s = ray.origin - tri.a;
+        let u = s.dot(p) * inv_det;
+        if !(u >= zero && u <= one) {
+            return None;
+        }
+        let q = s.cross(e1);
+        let v = d.dot(q) * inv_det;
+        if !(v >= zero && u + v <= one) {
+            return None;
+        }
+        let t = e2.dot(q) * inv_det;
+        if !(t > zero && t <= t_max && t.is_finite()) {
+            return None;
+        }
+        let side = if det > zero { Side::Front } else { Side::Back };
+        Some(TriangleHit { t, u, v, side })
+    }
+
+    /// `ray_triangle_mt` (on lanes, with no separate validity test) is bit
+    /// for bit its definition, invalid input included.
+    #[test]
+    fn mt_lanes_are_the_definition() {
+        fn check<V: Vector>(state: &mut u64) -> usize {
+            let mut v = || {
+                let special = [
+                    S::<V>::NAN,
+                    S::<V>::INFINITY,
+                    -S::<V>::INFINITY,
+                    S::<V>::ZERO,
+                ];
+                let c = |state: &mut u64| {
+                    let x = coordinate(state);
+                    if *state % 97 == 0 {
+                        special[(*state >> 9) as usize % 4]
+                    } else {
+                        S::<V>::from_f64(x)
+                    }
+                };
+                V::new(c(state), c(state), c(state))
+            };
+            let tri = Triangle::new(v(), v(), v());
+            let (origin, other) = (v(), v());
+            let dir = if *state % 2 == 0 {
+                (tri.a + tri.b + tri.c) * (S::<V>::ONE / S::<V>::from_u32(3)) - origin
+            } else {
+                other
+            };
+            let ray = Ray::new(origin, dir);
+            let mut hits = 0;
+            let t_max = S::<V>::from_f64(coordinate(state) * 4.0);
+            for t_max in [t_max, S::<V>::INFINITY, S::<V>::NAN] {
+                let bits = |h: Option<TriangleHit<S<V>>>| {
+                    h.map(|h| {
+                        (
+                            h.t.to_f64().to_bits(),
+                            h.u.to_f64().to_bits(),
+                            h.v.to_f64().to_bits(),
+                            h.side,
+                        )
+                    })
+                };
+                let expected = bits(mt_definition(&ray, &tri, t_max));
+                hits += usize::from(expected.is_some());
+                assert_eq!(
+                    bits(ray_triangle_mt(&ray, &tri, t_max)),
+                    expected,
+                    "{ray:?} {tri:?} {t_max:?}"
+                );
+            }
+            hits
+        }
+        let mut state = 0x0fed_cba9_8765_4321_u64;
+        let mut hits = 0;
+        for _ in 0..100_000 {
+            hits += check::<Vec3>(&mut state) + check::<DVec3>(&mut state);
+        }
+        assert!(hits > 50_000, "{hits}");
     }
 }
