@@ -103,6 +103,11 @@ pub(crate) struct SlabRay<V: Vector> {
     pub(crate) inv_to_min: L<V>,
     /// Per axis, the reciprocal used for the distance to the `max` plane.
     pub(crate) inv_to_max: L<V>,
+    /// True when every reciprocal is a normal float (so the two above are
+    /// equal, and no distance is NaN for a valid box): the batch kernels
+    /// then take each axis' near and far plane from the sign of the
+    /// direction instead of ordering each pair (see `batch`).
+    pub(crate) simple: bool,
 }
 
 impl<V: Vector> PartialEq for SlabRay<V> {
@@ -185,6 +190,7 @@ impl<V: Vector> SlabRay<V> {
                 origin: L::<V>::splat(S::<V>::INFINITY),
                 inv_to_min: one,
                 inv_to_max: one,
+                simple: false,
             };
         }
         let r = one.div(dir);
@@ -198,6 +204,7 @@ impl<V: Vector> SlabRay<V> {
                 origin,
                 inv_to_min: r,
                 inv_to_max: r,
+                simple: normal == 0b111,
             };
         }
         Self::stepped(origin, ray.dir)
@@ -230,6 +237,7 @@ impl<V: Vector> SlabRay<V> {
             origin,
             inv_to_min: L::<V>::new(x0, y0, z0),
             inv_to_max: L::<V>::new(x1, y1, z1),
+            simple: false,
         }
     }
 }
@@ -358,7 +366,7 @@ pub(crate) fn slab_core<F: Scalar>(
 /// The end of the slab test, from the largest per-axis entry and the
 /// smallest per-axis exit: `(hit, enter, exit)`.
 #[inline(always)]
-fn slab_finish<F: Scalar>(enter: F, exit: F, t_max: F) -> (bool, F, F) {
+pub(crate) fn slab_finish<F: Scalar>(enter: F, exit: F, t_max: F) -> (bool, F, F) {
     // Widen the exit by the rounding bound so that no box that exact
     // arithmetic hits is missed (see `exit_widening`).
     let limit = exit * exit_widening::<F>() + exit_slack::<F>();

@@ -25,10 +25,10 @@
 
 use glam::Vec3;
 
-use crate::aabb::{Aabb, PreparedRay, slab_core};
+use crate::aabb::{Aabb, PreparedRay, slab_core, slab_finish};
 use crate::lanes::Lanes;
 use crate::ray::t_max_ok;
-use crate::real::{S, Scalar, Vector, bound_up, max2, min2};
+use crate::real::{S, Scalar, Vector, at_least, at_most, bound_up, max2, min2};
 use crate::triangle::{EdgeRule, Side, Triangle, TriangleHit, max3, watertight_sheared};
 
 /// Checks `1 <= N <= 32` at compile time (the hit masks are `u32`).
@@ -252,28 +252,63 @@ fn aabb_batch_body<V: Vector, const N: usize>(
     if !t_max_ok(t_max) {
         return AabbBatchHits { mask: 0, enter };
     }
-    let mut hit = [false; N];
     let (o, r0, r1) = (
         ray.slab.origin.to_array(),
         ray.slab.inv_to_min.to_array(),
         ray.slab.inv_to_max.to_array(),
     );
-    for l in 0..N {
-        let (h, e, _) = slab_core(
-            o,
-            r0,
-            r1,
-            [batch.min[0][l], batch.min[1][l], batch.min[2][l]],
-            [batch.max[0][l], batch.max[1][l], batch.max[2][l]],
-            t_max,
-        );
-        hit[l] = h;
-        enter[l] = if h { e } else { inf };
+    let mut mask = 0;
+    if ray.slab.simple {
+        // Every reciprocal is normal (`r0 == r1`) and every box valid, so
+        // no distance is NaN, and per axis the distance to the `min` plane
+        // is at most that to the `max` plane when `r > 0` and at least it
+        // when `r < 0` (rounding is monotone). Then `slab_core`'s folds
+        // reduce to taking the near plane's distance as the entry and the
+        // far plane's as the exit: `min(max(t0, 0), max(t1, 0))` is
+        // `max(t_near, 0)` and `max(min(t0, t_max), min(t1, t_max))` is
+        // `min(t_far, t_max)` (up to the sign of a zero exit, which the
+        // widening turns into the same limit). The largest entry is taken
+        // before the clamp at 0 rather than after: the same value for
+        // values that are not NaN, and `+0`, never `-0`, when it is 0. So
+        // the answers are `slab_core`'s, bit for bit; the near and far
+        // rows are chosen once per call (Williams, Barrus, Morley and
+        // Shirley, "An Efficient and Robust Ray-Box Intersection
+        // Algorithm", JGT 2005).
+        let zero = S::<V>::ZERO;
+        let rows = |k: usize| {
+            if r0[k] > zero {
+                (&batch.min[k], &batch.max[k])
+            } else {
+                (&batch.max[k], &batch.min[k])
+            }
+        };
+        let ((n0, f0), (n1, f1), (n2, f2)) = (rows(0), rows(1), rows(2));
+        for l in 0..N {
+            let near = |n: &[S<V>; N], k: usize| (n[l] - o[k]) * r0[k];
+            let entry = max2(max2(near(n0, 0), near(n1, 1)), near(n2, 2));
+            let exit = min2(min2(near(f0, 0), near(f1, 1)), near(f2, 2));
+            let (h, e, _) = slab_finish(at_least(entry, zero), at_most(exit, t_max), t_max);
+            mask |= u32::from(h) << l;
+            enter[l] = if h { e } else { inf };
+        }
+    } else {
+        for l in 0..N {
+            let (h, e, _) = slab_core(
+                o,
+                r0,
+                r1,
+                [batch.min[0][l], batch.min[1][l], batch.min[2][l]],
+                [batch.max[0][l], batch.max[1][l], batch.max[2][l]],
+                t_max,
+            );
+            mask |= u32::from(h) << l;
+            enter[l] = if h { e } else { inf };
+        }
     }
     // Empty lanes never hit (see `AabbBatch`); the mask of used lanes is
     // applied all the same.
     AabbBatchHits {
-        mask: mask_of(&hit) & batch.used,
+        mask: mask & batch.used,
         enter,
     }
 }
@@ -618,6 +653,50 @@ fn triangle_batch_body<V: Vector, const N: usize>(
     out
 }
 
+/// Runs `f` compiled, where the compiler inlines it, for the widest SIMD
+/// instruction set the CPU has: put a whole BVH traversal inside it, and
+/// the batch kernels it calls run without a check and a call per node.
+///
+/// The batch kernels pick their SIMD copy at run time on each call (on
+/// x86-64 with `std`, AVX2 where the CPU has it and the build does not
+/// already assume it); that costs a check and a function call per batch,
+/// which is a large part of testing 8 boxes. Code inside `with_simd` is
+/// compiled with AVX2 enabled and runs only on a CPU that has it (else
+/// `f` runs as it is), so the batch kernels' AVX2 copies are inlined into
+/// it. The answers are the same bits either way. Where there is nothing to
+/// choose (other targets, `no_std`, or a build for a CPU with AVX2), it
+/// just calls `f`.
+///
+/// The compiler decides what to inline: `f` itself nearly always is (it
+/// is called once), and the batch kernels are marked for it; a function
+/// of yours that `f` calls may need `#[inline]`.
+///
+/// ```
+/// use rayhit::{Aabb, AabbBatch, PreparedRay, Ray, ray_aabb_batch, with_simd, glam::Vec3};
+/// let boxes: Vec<Aabb> = (0..8)
+///     .map(|i| Aabb::new(Vec3::new(i as f32, 0.0, 0.0), Vec3::new(i as f32 + 0.5, 1.0, 1.0)))
+///     .collect();
+/// let node = AabbBatch::<Vec3, 8>::from_slice(&boxes).unwrap();
+/// let rays: Vec<PreparedRay> = (0..100)
+///     .map(|i| PreparedRay::new(&Ray::new(Vec3::new(-1.0, 0.5, i as f32 / 100.0), Vec3::X)))
+///     .collect();
+/// // A traversal's inner loop, compiled once for the CPU's best SIMD.
+/// let hits = with_simd(|| rays.iter().map(|r| ray_aabb_batch(r, &node, f32::INFINITY).mask.count_ones()).sum::<u32>());
+/// assert_eq!(hits, 800);
+/// ```
+#[inline]
+pub fn with_simd<R>(f: impl FnOnce() -> R) -> R {
+    #[cfg(all(feature = "std", target_arch = "x86_64", not(target_feature = "avx2")))]
+    if std::is_x86_feature_detected!("avx2") {
+        #[allow(unsafe_code)]
+        // SAFETY: the one precondition of calling a function compiled with
+        // `#[target_feature(enable = "avx2")]` is that the CPU has AVX2,
+        // which the line above has just checked at run time.
+        return unsafe { avx2::run(f) };
+    }
+    f()
+}
+
 /// The batch kernels compiled a second time with AVX2 enabled, for x86-64
 /// builds whose target does not already have it (the default one has only
 /// SSE2): the same source, so the same answers bit for bit (Rust never
@@ -628,7 +707,15 @@ fn triangle_batch_body<V: Vector, const N: usize>(
 mod avx2 {
     use super::*;
 
+    /// `f()`, compiled with AVX2 where it is inlined (see [`with_simd`]).
     #[target_feature(enable = "avx2")]
+    #[inline]
+    pub(super) fn run<R>(f: impl FnOnce() -> R) -> R {
+        f()
+    }
+
+    #[target_feature(enable = "avx2")]
+    #[inline]
     pub(super) fn aabb<V: Vector, const N: usize>(
         ray: &PreparedRay<V>,
         batch: &AabbBatch<V, N>,
@@ -638,6 +725,7 @@ mod avx2 {
     }
 
     #[target_feature(enable = "avx2")]
+    #[inline]
     pub(super) fn triangle<V: Vector, const N: usize>(
         ray: &PreparedRay<V>,
         batch: &TriangleBatch<V, N>,

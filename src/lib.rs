@@ -223,6 +223,7 @@ mod triangle;
 pub use aabb::{Aabb, PreparedRay, ray_aabb, ray_aabb_naive, ray_aabb_prepared};
 pub use batch::{
     AabbBatch, AabbBatchHits, TriangleBatch, TriangleBatchHits, ray_aabb_batch, ray_triangle_batch,
+    with_simd,
 };
 pub use camera::{CameraError, PinholeCamera};
 pub use plane::{Plane, ray_plane, ray_plane_hit_point, ray_plane_t_error};

@@ -46,7 +46,7 @@ use rayhit::glam::Vec3;
 use rayhit::{
     Aabb, AabbBatch, PreparedRay, Ray, Side, Triangle, TriangleBatch, TriangleBatchHits, ray_aabb,
     ray_aabb_batch, ray_aabb_prepared, ray_triangle, ray_triangle_batch, ray_triangle_mt,
-    ray_triangle_prepared,
+    ray_triangle_prepared, with_simd,
 };
 use workloads::*;
 
@@ -242,6 +242,12 @@ fn chunked<'a, R, X>(
         }
         c
     }
+}
+
+/// A row's loop run inside `rayhit::with_simd`: compiled once for the
+/// CPU's widest SIMD, so that the batch kernels are inlined into it.
+fn simd<'a>(f: impl Fn() -> u64 + 'a) -> impl Fn() -> u64 + 'a {
+    move || with_simd(&f)
 }
 
 /// The timed loop of a sweep row: every ray against all of `shapes`.
@@ -562,7 +568,7 @@ fn group_kernels<'a>(
             nb,
             None,
             chunked(&b.prepared, bb4, GROUP / 4, |r, x| {
-                u64::from(ray_aabb_batch(r, x, INF).mask.count_ones())
+                u64::from(ray_aabb_batch(r, x, INF).mask)
             }),
         ),
         kernel(
@@ -572,8 +578,18 @@ fn group_kernels<'a>(
             nb,
             None,
             chunked(&b.prepared, bb8, GROUP / 8, |r, x| {
-                u64::from(ray_aabb_batch(r, x, INF).mask.count_ones())
+                u64::from(ray_aabb_batch(r, x, INF).mask)
             }),
+        ),
+        kernel(
+            sec,
+            "rayhit ray_aabb_batch, 8 lanes, with_simd",
+            w,
+            nb,
+            None,
+            simd(chunked(&b.prepared, bb8, GROUP / 8, |r, x| {
+                u64::from(ray_aabb_batch(r, x, INF).mask)
+            })),
         ),
         kernel(
             sec,
@@ -644,6 +660,16 @@ fn group_kernels<'a>(
             chunked(&t.prepared, tb8, GROUP / 8, |r, x| {
                 batch_t_sum(&ray_triangle_batch(r, x, INF))
             }),
+        ),
+        kernel(
+            sec,
+            "rayhit ray_triangle_batch, 8 lanes, with_simd",
+            w,
+            nt,
+            None,
+            simd(chunked(&t.prepared, tb8, GROUP / 8, |r, x| {
+                batch_t_sum(&ray_triangle_batch(r, x, INF))
+            })),
         ),
         kernel(
             sec,
@@ -750,7 +776,7 @@ fn sweep_kernels<'a>(s: &'a Sweep, out: &mut Vec<Kernel<'a>>) {
         let w = format!("N = {n}");
         let (w, sec) = (w.as_str(), "box sweep");
         let tests = s.rays.len() * n;
-        let count = |m: u32| u64::from(m.count_ones());
+        let count = |m: u32| u64::from(m);
         out.extend([
             kernel(
                 sec,
@@ -781,6 +807,26 @@ fn sweep_kernels<'a>(s: &'a Sweep, out: &mut Vec<Kernel<'a>>) {
                 every(&s.rays, &s.b16[i], move |r, x| {
                     count(ray_aabb_batch(r, x, INF).mask)
                 }),
+            ),
+            kernel(
+                sec,
+                "rayhit ray_aabb_batch, 8 lanes, with_simd",
+                w,
+                tests,
+                None,
+                simd(every(&s.rays, &s.b8[i], move |r, x| {
+                    count(ray_aabb_batch(r, x, INF).mask)
+                })),
+            ),
+            kernel(
+                sec,
+                "rayhit ray_aabb_batch, 16 lanes, with_simd",
+                w,
+                tests,
+                None,
+                simd(every(&s.rays, &s.b16[i], move |r, x| {
+                    count(ray_aabb_batch(r, x, INF).mask)
+                })),
             ),
             kernel(
                 sec,
