@@ -262,7 +262,7 @@ impl<V: Vector> SlabRay<V> {
 /// the same argument in ulps. The value is stepped up one ulp to cover its
 /// own rounding.
 #[inline(always)]
-fn exit_widening<F: Scalar>() -> F {
+pub(crate) fn exit_widening<F: Scalar>() -> F {
     (F::ONE + F::TWO * F::gamma_n(4)).next_up()
 }
 
@@ -279,7 +279,7 @@ fn exit_widening<F: Scalar>() -> F {
 /// two (the fuzzer found a false hit 2.5 subnormals out, which the
 /// regression tests keep).
 #[inline(always)]
-fn exit_slack<F: Scalar>() -> F {
+pub(crate) fn exit_slack<F: Scalar>() -> F {
     F::TWO * F::TINY
 }
 
@@ -366,7 +366,7 @@ pub(crate) fn slab_core<F: Scalar>(
 /// The end of the slab test, from the largest per-axis entry and the
 /// smallest per-axis exit: `(hit, enter, exit)`.
 #[inline(always)]
-pub(crate) fn slab_finish<F: Scalar>(enter: F, exit: F, t_max: F) -> (bool, F, F) {
+fn slab_finish<F: Scalar>(enter: F, exit: F, t_max: F) -> (bool, F, F) {
     // Widen the exit by the rounding bound so that no box that exact
     // arithmetic hits is missed (see `exit_widening`).
     let limit = exit * exit_widening::<F>() + exit_slack::<F>();

@@ -25,10 +25,10 @@
 
 use glam::Vec3;
 
-use crate::aabb::{Aabb, PreparedRay, slab_core, slab_finish};
-use crate::lanes::Lanes;
+use crate::aabb::{Aabb, PreparedRay, exit_slack, exit_widening, slab_core};
+use crate::lanes::{Lanes, Lanes8};
 use crate::ray::t_max_ok;
-use crate::real::{S, Scalar, Vector, at_least, at_most, bound_up, max2, min2};
+use crate::real::{S, Scalar, Vector, bound_up, max2, min2};
 use crate::triangle::{EdgeRule, Side, Triangle, TriangleHit, max3, watertight_sheared};
 
 /// Checks `1 <= N <= 32` at compile time (the hit masks are `u32`).
@@ -77,10 +77,10 @@ fn mask_of<const N: usize>(flags: &[bool; N]) -> u32 {
 /// ```
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct AabbBatch<V: Vector = Vec3, const N: usize = 8> {
-    /// `min[k][lane]`: the box's lower bound on axis `k`.
-    min: [[S<V>; N]; 3],
-    /// `max[k][lane]`: the upper bound on axis `k`.
-    max: [[S<V>; N]; 3],
+    /// `planes[0][k][lane]`: the box's lower bound on axis `k`;
+    /// `planes[1][k][lane]` its upper bound. (One array, so that a kernel
+    /// picks the near plane of an axis by index, not by branch.)
+    planes: [[[S<V>; N]; 3]; 2],
     /// The lanes that hold a valid box.
     used: u32,
 }
@@ -95,10 +95,9 @@ impl<V: Vector, const N: usize> AabbBatch<V, N> {
     pub fn empty() -> Self {
         const { check_lanes::<N>() };
         let (inf, zero) = (S::<V>::INFINITY, S::<V>::ZERO);
-        let empty = [inf, -inf, zero];
+        let empty = [inf, -inf, zero].map(|c| [c; N]);
         Self {
-            min: empty.map(|c| [c; N]),
-            max: empty.map(|c| [c; N]),
+            planes: [empty, empty],
             used: 0,
         }
     }
@@ -128,8 +127,8 @@ impl<V: Vector, const N: usize> AabbBatch<V, N> {
         assert!(lane < N, "lane {lane} out of range for a batch of {N}");
         if aabb.is_valid() {
             for k in 0..3 {
-                self.min[k][lane] = aabb.min[k];
-                self.max[k][lane] = aabb.max[k];
+                self.planes[0][k][lane] = aabb.min[k];
+                self.planes[1][k][lane] = aabb.max[k];
             }
             self.used |= 1 << lane;
         } else {
@@ -147,8 +146,8 @@ impl<V: Vector, const N: usize> AabbBatch<V, N> {
         assert!(lane < N, "lane {lane} out of range for a batch of {N}");
         let empty = Self::empty();
         for k in 0..3 {
-            self.min[k][lane] = empty.min[k][lane];
-            self.max[k][lane] = empty.max[k][lane];
+            self.planes[0][k][lane] = empty.planes[0][k][lane];
+            self.planes[1][k][lane] = empty.planes[1][k][lane];
         }
         self.used &= !(1 << lane);
     }
@@ -163,7 +162,8 @@ impl<V: Vector, const N: usize> AabbBatch<V, N> {
     pub fn get(&self, lane: usize) -> Option<Aabb<V>> {
         assert!(lane < N, "lane {lane} out of range for a batch of {N}");
         let corner = |c: &[[S<V>; N]; 3]| V::new(c[0][lane], c[1][lane], c[2][lane]);
-        (self.used & (1 << lane) != 0).then(|| Aabb::new(corner(&self.min), corner(&self.max)))
+        let [min, max] = &self.planes;
+        (self.used & (1 << lane) != 0).then(|| Aabb::new(corner(min), corner(max)))
     }
 
     /// The lanes that hold a box, one bit each (lane `i` is bit `i`).
@@ -227,22 +227,18 @@ pub fn ray_aabb_batch<V: Vector, const N: usize>(
     batch: &AabbBatch<V, N>,
     t_max: S<V>,
 ) -> AabbBatchHits<S<V>, N> {
-    const { check_lanes::<N>() };
     #[cfg(all(feature = "std", target_arch = "x86_64", not(target_feature = "avx2")))]
-    if std::is_x86_feature_detected!("avx2") {
-        #[allow(unsafe_code)]
-        // SAFETY: the one precondition of calling a function compiled with
-        // `#[target_feature(enable = "avx2")]` is that the CPU has AVX2,
-        // which the line above has just checked at run time.
-        return unsafe { avx2::aabb(ray, batch, t_max) };
+    if let Some(simd) = Avx2::detect() {
+        return simd.ray_aabb_batch(ray, batch, t_max);
     }
-    aabb_batch_body(ray, batch, t_max)
+    TargetSimd.ray_aabb_batch(ray, batch, t_max)
 }
 
 /// The body of [`ray_aabb_batch`], inlined into both the default build and
-/// the AVX2 copy.
+/// the AVX2 copy, with the eight-lane type `W` of each: eight lanes at a
+/// time when `N` is a multiple of 8, else one lane at a time.
 #[inline(always)]
-fn aabb_batch_body<V: Vector, const N: usize>(
+fn aabb_batch_body<W: Lanes8<F = S<V>>, V: Vector, const N: usize>(
     ray: &PreparedRay<V>,
     batch: &AabbBatch<V, N>,
     t_max: S<V>,
@@ -257,39 +253,53 @@ fn aabb_batch_body<V: Vector, const N: usize>(
         ray.slab.inv_to_min.to_array(),
         ray.slab.inv_to_max.to_array(),
     );
+    let zero = S::<V>::ZERO;
+    // For rays whose reciprocals are all normal (every component nonzero),
+    // the per-axis folds simplify. Every reciprocal is then normal
+    // (`r0 == r1`) and every box valid, so no distance is NaN, and
+    // `slab_core`'s folds reduce to the textbook order of each pair: the
+    // entry through an axis is `min(max(t0, 0), max(t1, 0))`, which is
+    // `max(min(t0, t1), 0)`, and the exit `max(min(t0, t_max),
+    // min(t1, t_max))`, which is `min(max(t0, t1), t_max)` (max and min
+    // commute with the clamps for values that are not NaN). The largest
+    // entry is taken before the clamp at 0 rather than after: the same
+    // value, and `+0`, never `-0`, when it is 0; a `-0`/`+0` tie among the
+    // exits widens to the same limit. So the answers are `slab_core`'s,
+    // bit for bit.
+    let simple = ray.slab.simple;
+    let [min, max] = &batch.planes;
     let mut mask = 0;
-    if ray.slab.simple {
-        // Every reciprocal is normal (`r0 == r1`) and every box valid, so
-        // no distance is NaN, and per axis the distance to the `min` plane
-        // is at most that to the `max` plane when `r > 0` and at least it
-        // when `r < 0` (rounding is monotone). Then `slab_core`'s folds
-        // reduce to taking the near plane's distance as the entry and the
-        // far plane's as the exit: `min(max(t0, 0), max(t1, 0))` is
-        // `max(t_near, 0)` and `max(min(t0, t_max), min(t1, t_max))` is
-        // `min(t_far, t_max)` (up to the sign of a zero exit, which the
-        // widening turns into the same limit). The largest entry is taken
-        // before the clamp at 0 rather than after: the same value for
-        // values that are not NaN, and `+0`, never `-0`, when it is 0. So
-        // the answers are `slab_core`'s, bit for bit; the near and far
-        // rows are chosen once per call (Williams, Barrus, Morley and
-        // Shirley, "An Efficient and Robust Ray-Box Intersection
-        // Algorithm", JGT 2005).
-        let zero = S::<V>::ZERO;
-        let rows = |k: usize| {
-            if r0[k] > zero {
-                (&batch.min[k], &batch.max[k])
+    if N % 8 == 0 {
+        let splat = W::splat;
+        let (lo, hi) = (splat(zero), splat(t_max));
+        let (ox, oy, oz) = (splat(o[0]), splat(o[1]), splat(o[2]));
+        let (ax, ay, az) = (splat(r0[0]), splat(r0[1]), splat(r0[2]));
+        let (bx, by, bz) = (splat(r1[0]), splat(r1[1]), splat(r1[2]));
+        for c in 0..N / 8 {
+            let at = |row: &[S<V>; N]| W::load(row[8 * c..8 * c + 8].try_into().expect("8 lanes"));
+            let (tx0, tx1) = (at(&min[0]).sub(ox).mul(ax), at(&max[0]).sub(ox).mul(bx));
+            let (ty0, ty1) = (at(&min[1]).sub(oy).mul(ay), at(&max[1]).sub(oy).mul(by));
+            let (tz0, tz1) = (at(&min[2]).sub(oz).mul(az), at(&max[2]).sub(oz).mul(bz));
+            let (enter_c, exit_c) = if simple {
+                let entry = tx0.min(tx1).max(ty0.min(ty1)).max(tz0.min(tz1));
+                let exit = tx0.max(tx1).min(ty0.max(ty1)).min(tz0.max(tz1));
+                (entry.max(lo), exit.min(hi))
             } else {
-                (&batch.max[k], &batch.min[k])
-            }
-        };
-        let ((n0, f0), (n1, f1), (n2, f2)) = (rows(0), rows(1), rows(2));
-        for l in 0..N {
-            let near = |n: &[S<V>; N], k: usize| (n[l] - o[k]) * r0[k];
-            let entry = max2(max2(near(n0, 0), near(n1, 1)), near(n2, 2));
-            let exit = min2(min2(near(f0, 0), near(f1, 1)), near(f2, 2));
-            let (h, e, _) = slab_finish(at_least(entry, zero), at_most(exit, t_max), t_max);
-            mask |= u32::from(h) << l;
-            enter[l] = if h { e } else { inf };
+                // `slab_core`'s folds, lane by lane.
+                let fold = |t0: W, t1: W| (t0.max(lo).min(t1.max(lo)), t0.min(hi).max(t1.min(hi)));
+                let ((ex, xx), (ey, xy), (ez, xz)) =
+                    (fold(tx0, tx1), fold(ty0, ty1), fold(tz0, tz1));
+                (ex.max(ey.max(ez)), xx.min(xy.min(xz)))
+            };
+            // `slab_finish`, lane by lane (`enter <= limit && enter <= MAX`
+            // as `enter <= min(limit, MAX)`: `limit` is not NaN here, as
+            // `t_max` is not).
+            let limit = exit_c.mul(splat(exit_widening())).add(splat(exit_slack()));
+            let hit = enter_c.le(limit.min(splat(S::<V>::MAX)));
+            let exit_c = limit.min(hi);
+            let out = W::select(hit, enter_c.min(exit_c), splat(inf));
+            out.store((&mut enter[8 * c..8 * c + 8]).try_into().expect("8 lanes"));
+            mask |= W::bits(hit) << (8 * c);
         }
     } else {
         for l in 0..N {
@@ -297,8 +307,8 @@ fn aabb_batch_body<V: Vector, const N: usize>(
                 o,
                 r0,
                 r1,
-                [batch.min[0][l], batch.min[1][l], batch.min[2][l]],
-                [batch.max[0][l], batch.max[1][l], batch.max[2][l]],
+                [min[0][l], min[1][l], min[2][l]],
+                [max[0][l], max[1][l], max[2][l]],
                 t_max,
             );
             mask |= u32::from(h) << l;
@@ -535,14 +545,11 @@ pub fn ray_triangle_batch<V: Vector, const N: usize>(
     batch: &TriangleBatch<V, N>,
     t_max: S<V>,
 ) -> TriangleBatchHits<S<V>, N> {
-    const { check_lanes::<N>() };
     #[cfg(all(feature = "std", target_arch = "x86_64", not(target_feature = "avx2")))]
-    if std::is_x86_feature_detected!("avx2") {
-        #[allow(unsafe_code)]
-        // SAFETY: as in `ray_aabb_batch`: AVX2 was just detected.
-        return unsafe { avx2::triangle(ray, batch, t_max) };
+    if let Some(simd) = Avx2::detect() {
+        return simd.ray_triangle_batch(ray, batch, t_max);
     }
-    triangle_batch_body(ray, batch, t_max)
+    TargetSimd.ray_triangle_batch(ray, batch, t_max)
 }
 
 /// The body of [`ray_triangle_batch`], inlined into both the default build
@@ -653,26 +660,165 @@ fn triangle_batch_body<V: Vector, const N: usize>(
     out
 }
 
-/// Runs `f` compiled, where the compiler inlines it, for the widest SIMD
-/// instruction set the CPU has: put a whole BVH traversal inside it, and
-/// the batch kernels it calls run without a check and a call per node.
+/// Work that [`with_simd`] runs compiled for the CPU's widest SIMD: a BVH
+/// traversal, a tile of primary rays, any loop that calls the batch
+/// kernels many times.
 ///
-/// The batch kernels pick their SIMD copy at run time on each call (on
-/// x86-64 with `std`, AVX2 where the CPU has it and the build does not
-/// already assume it); that costs a check and a function call per batch,
-/// which is a large part of testing 8 boxes. Code inside `with_simd` is
-/// compiled with AVX2 enabled and runs only on a CPU that has it (else
-/// `f` runs as it is), so the batch kernels' AVX2 copies are inlined into
-/// it. The answers are the same bits either way. Where there is nothing to
-/// choose (other targets, `no_std`, or a build for a CPU with AVX2), it
-/// just calls `f`.
+/// [`SimdWork::run`] gets the chosen instruction set as `simd`; calling the
+/// batch kernels through it ([`Simd::ray_aabb_batch`],
+/// [`Simd::ray_triangle_batch`]) runs them with no check and no call per
+/// batch. Implement `run` with `#[inline(always)]`: `with_simd` compiles
+/// it once per instruction set, and the attribute is what makes the
+/// compiler copy the body into each (functions it calls need at least
+/// `#[inline]`, and closures are not always inlined: write the loop out).
+pub trait SimdWork {
+    /// What the work returns.
+    type Output;
+    /// The work itself.
+    fn run<I: Simd>(self, simd: I) -> Self::Output;
+}
+
+mod sealed {
+    pub trait Sealed {}
+}
+
+/// An instruction set the batch kernels are compiled for; [`with_simd`]
+/// hands one to [`SimdWork::run`].
 ///
-/// The compiler decides what to inline: `f` itself nearly always is (it
-/// is called once), and the batch kernels are marked for it; a function
-/// of yours that `f` calls may need `#[inline]`.
+/// Sealed. The kernels' answers are the same bits whichever it is.
+pub trait Simd: Copy + core::fmt::Debug + sealed::Sealed {
+    /// [`ray_aabb_batch`], compiled for this instruction set.
+    #[must_use]
+    fn ray_aabb_batch<V: Vector, const N: usize>(
+        self,
+        ray: &PreparedRay<V>,
+        batch: &AabbBatch<V, N>,
+        t_max: S<V>,
+    ) -> AabbBatchHits<S<V>, N>;
+
+    /// [`ray_triangle_batch`], compiled for this instruction set.
+    #[must_use]
+    fn ray_triangle_batch<V: Vector, const N: usize>(
+        self,
+        ray: &PreparedRay<V>,
+        batch: &TriangleBatch<V, N>,
+        t_max: S<V>,
+    ) -> TriangleBatchHits<S<V>, N>;
+}
+
+/// The instruction set the build's target has (SSE2 on the default x86-64
+/// target; AVX2 and more with `-C target-cpu=native` on such a CPU).
+#[derive(Clone, Copy, Debug, Default)]
+pub struct TargetSimd;
+
+impl sealed::Sealed for TargetSimd {}
+
+impl Simd for TargetSimd {
+    #[inline(always)]
+    fn ray_aabb_batch<V: Vector, const N: usize>(
+        self,
+        ray: &PreparedRay<V>,
+        batch: &AabbBatch<V, N>,
+        t_max: S<V>,
+    ) -> AabbBatchHits<S<V>, N> {
+        const { check_lanes::<N>() };
+        aabb_batch_body::<<S<V> as Scalar>::Lanes8, V, N>(ray, batch, t_max)
+    }
+
+    #[inline(always)]
+    fn ray_triangle_batch<V: Vector, const N: usize>(
+        self,
+        ray: &PreparedRay<V>,
+        batch: &TriangleBatch<V, N>,
+        t_max: S<V>,
+    ) -> TriangleBatchHits<S<V>, N> {
+        const { check_lanes::<N>() };
+        triangle_batch_body(ray, batch, t_max)
+    }
+}
+
+/// AVX2, on a CPU that has it: [`with_simd`] makes one only after checking
+/// (x86-64 builds with `std` whose target does not already assume AVX2).
+#[cfg(all(feature = "std", target_arch = "x86_64", not(target_feature = "avx2")))]
+#[derive(Clone, Copy, Debug)]
+pub struct Avx2(());
+
+#[cfg(all(feature = "std", target_arch = "x86_64", not(target_feature = "avx2")))]
+impl sealed::Sealed for Avx2 {}
+
+#[cfg(all(feature = "std", target_arch = "x86_64", not(target_feature = "avx2")))]
+impl Avx2 {
+    /// `Some` when the CPU has AVX2.
+    #[inline]
+    fn detect() -> Option<Self> {
+        std::is_x86_feature_detected!("avx2").then_some(Avx2(()))
+    }
+}
+
+#[cfg(all(feature = "std", target_arch = "x86_64", not(target_feature = "avx2")))]
+#[allow(unsafe_code)]
+impl Simd for Avx2 {
+    #[inline(always)]
+    fn ray_aabb_batch<V: Vector, const N: usize>(
+        self,
+        ray: &PreparedRay<V>,
+        batch: &AabbBatch<V, N>,
+        t_max: S<V>,
+    ) -> AabbBatchHits<S<V>, N> {
+        const { check_lanes::<N>() };
+        // SAFETY: the one precondition of calling a function compiled with
+        // `#[target_feature(enable = "avx2")]` is that the CPU has AVX2;
+        // an `Avx2` exists only where `Avx2::detect` found it.
+        unsafe { avx2::aabb(ray, batch, t_max) }
+    }
+
+    #[inline(always)]
+    fn ray_triangle_batch<V: Vector, const N: usize>(
+        self,
+        ray: &PreparedRay<V>,
+        batch: &TriangleBatch<V, N>,
+        t_max: S<V>,
+    ) -> TriangleBatchHits<S<V>, N> {
+        const { check_lanes::<N>() };
+        // SAFETY: as above.
+        unsafe { avx2::triangle(ray, batch, t_max) }
+    }
+}
+
+/// Runs `work` compiled for the widest SIMD instruction set the CPU has,
+/// and gives it that instruction set to call the batch kernels with: the
+/// choice is made once, here, instead of on every batch.
+///
+/// [`ray_aabb_batch`] and [`ray_triangle_batch`] pick their SIMD copy at
+/// run time on each call (on x86-64 with `std`, AVX2 where the CPU has it
+/// and the build does not already assume it): a check and a function call
+/// per batch, a large part of the cost of testing 8 boxes. Inside
+/// `with_simd`, on a CPU with AVX2, the work is compiled with AVX2 enabled
+/// and its [`Simd`] calls are inlined AVX2 kernels; elsewhere it runs as
+/// compiled for the build's target ([`TargetSimd`]). The answers are the
+/// same bits either way.
 ///
 /// ```
-/// use rayhit::{Aabb, AabbBatch, PreparedRay, Ray, ray_aabb_batch, with_simd, glam::Vec3};
+/// use rayhit::{Aabb, AabbBatch, PreparedRay, Ray, Simd, SimdWork, with_simd, glam::Vec3};
+///
+/// /// Counts, for every ray, the boxes of one node it hits.
+/// struct CountHits<'a> {
+///     rays: &'a [PreparedRay],
+///     node: &'a AabbBatch<Vec3, 8>,
+/// }
+///
+/// impl SimdWork for CountHits<'_> {
+///     type Output = u32;
+///     #[inline(always)]
+///     fn run<I: Simd>(self, simd: I) -> u32 {
+///         let mut hits = 0;
+///         for ray in self.rays {
+///             hits += simd.ray_aabb_batch(ray, self.node, f32::INFINITY).mask.count_ones();
+///         }
+///         hits
+///     }
+/// }
+///
 /// let boxes: Vec<Aabb> = (0..8)
 ///     .map(|i| Aabb::new(Vec3::new(i as f32, 0.0, 0.0), Vec3::new(i as f32 + 0.5, 1.0, 1.0)))
 ///     .collect();
@@ -680,21 +826,19 @@ fn triangle_batch_body<V: Vector, const N: usize>(
 /// let rays: Vec<PreparedRay> = (0..100)
 ///     .map(|i| PreparedRay::new(&Ray::new(Vec3::new(-1.0, 0.5, i as f32 / 100.0), Vec3::X)))
 ///     .collect();
-/// // A traversal's inner loop, compiled once for the CPU's best SIMD.
-/// let hits = with_simd(|| rays.iter().map(|r| ray_aabb_batch(r, &node, f32::INFINITY).mask.count_ones()).sum::<u32>());
-/// assert_eq!(hits, 800);
+/// assert_eq!(with_simd(CountHits { rays: &rays, node: &node }), 800);
 /// ```
 #[inline]
-pub fn with_simd<R>(f: impl FnOnce() -> R) -> R {
+pub fn with_simd<W: SimdWork>(work: W) -> W::Output {
     #[cfg(all(feature = "std", target_arch = "x86_64", not(target_feature = "avx2")))]
-    if std::is_x86_feature_detected!("avx2") {
+    if let Some(simd) = Avx2::detect() {
         #[allow(unsafe_code)]
         // SAFETY: the one precondition of calling a function compiled with
         // `#[target_feature(enable = "avx2")]` is that the CPU has AVX2,
-        // which the line above has just checked at run time.
-        return unsafe { avx2::run(f) };
+        // which `Avx2::detect` has just checked.
+        return unsafe { avx2::run(work, simd) };
     }
-    f()
+    work.run(TargetSimd)
 }
 
 /// The batch kernels compiled a second time with AVX2 enabled, for x86-64
@@ -707,11 +851,11 @@ pub fn with_simd<R>(f: impl FnOnce() -> R) -> R {
 mod avx2 {
     use super::*;
 
-    /// `f()`, compiled with AVX2 where it is inlined (see [`with_simd`]).
+    /// `work.run(simd)`, compiled with AVX2 (see [`with_simd`]).
     #[target_feature(enable = "avx2")]
     #[inline]
-    pub(super) fn run<R>(f: impl FnOnce() -> R) -> R {
-        f()
+    pub(super) fn run<W: SimdWork>(work: W, simd: Avx2) -> W::Output {
+        work.run(simd)
     }
 
     #[target_feature(enable = "avx2")]
@@ -721,7 +865,7 @@ mod avx2 {
         batch: &AabbBatch<V, N>,
         t_max: S<V>,
     ) -> AabbBatchHits<S<V>, N> {
-        aabb_batch_body(ray, batch, t_max)
+        aabb_batch_body::<<S<V> as Scalar>::Lanes8Avx2, V, N>(ray, batch, t_max)
     }
 
     #[target_feature(enable = "avx2")]
@@ -748,8 +892,9 @@ mod tests {
     fn empty_lanes_are_missed_by_the_arithmetic_alone() {
         let empty = AabbBatch::<Vec3, 4>::empty();
         let lane = |l: usize| {
-            let min = [empty.min[0][l], empty.min[1][l], empty.min[2][l]];
-            let max = [empty.max[0][l], empty.max[1][l], empty.max[2][l]];
+            let [lo, hi] = &empty.planes;
+            let min = [lo[0][l], lo[1][l], lo[2][l]];
+            let max = [hi[0][l], hi[1][l], hi[2][l]];
             (min, max)
         };
         let (min, max) = lane(0);
@@ -829,7 +974,9 @@ mod tests {
             let p = PreparedRay::new(&ray);
             let bb = AabbBatch::<Vec3, 8>::from_slice(&boxes).unwrap();
             let tb = TriangleBatch::<Vec3, 8>::from_slice(&tris).unwrap();
-            let mut box_answers = vec![aabb_batch_body(&p, &bb, t_max)];
+            let mut box_answers = vec![aabb_batch_body::<<f32 as Scalar>::Lanes8, _, 8>(
+                &p, &bb, t_max,
+            )];
             let mut tri_answers = vec![triangle_batch_body(&p, &tb, t_max)];
             #[cfg(all(target_arch = "x86_64", not(target_feature = "avx2")))]
             if std::is_x86_feature_detected!("avx2") {

@@ -227,7 +227,8 @@ pub type F32Lanes = Portable<f32>;
 /// supports the instruction set. This module is compiled only when the
 /// target has SSE2 enabled at compile time (`target_feature = "sse2"`, part
 /// of every x86-64 target and of the i686 ones), so every CPU the code can
-/// run on has it. None of them touches memory: they take and return values.
+/// run on has it. None of them touches memory except the loads and stores
+/// of `F32x4x2`, whose comments say why they stay inside their reference.
 #[cfg(all(
     any(target_arch = "x86", target_arch = "x86_64"),
     target_feature = "sse2"
@@ -366,6 +367,384 @@ pub(crate) mod sse {
                 _mm_movemask_ps(_mm_and_ps(_mm_and_ps(a, b), c))
             };
             mask & 0b111 == 0b111
+        }
+    }
+
+    /// Eight `f32` lanes in two SSE registers.
+    #[derive(Clone, Copy, Debug)]
+    pub struct F32x4x2([__m128; 2]);
+
+    impl F32x4x2 {
+        #[inline(always)]
+        fn map2(self, o: Self, f: impl Fn(__m128, __m128) -> __m128) -> Self {
+            Self([f(self.0[0], o.0[0]), f(self.0[1], o.0[1])])
+        }
+    }
+
+    /// A lane-wise operation of two register pairs.
+    macro_rules! op2x2 {
+        ($name:ident, $intrinsic:ident) => {
+            #[inline(always)]
+            fn $name(self, o: Self) -> Self {
+                // SAFETY: see the module docs (SSE, no memory access).
+                self.map2(o, |a, b| unsafe { $intrinsic(a, b) })
+            }
+        };
+    }
+
+    /// A comparison of two register pairs, as a mask pair.
+    macro_rules! cmpx2 {
+        ($name:ident, $intrinsic:ident) => {
+            #[inline(always)]
+            fn $name(self, o: Self) -> [__m128; 2] {
+                // SAFETY: see the module docs (SSE, no memory access).
+                self.map2(o, |a, b| unsafe { $intrinsic(a, b) }).0
+            }
+        };
+    }
+
+    impl super::Lanes8 for F32x4x2 {
+        type F = f32;
+        type Mask = [__m128; 2];
+        #[inline(always)]
+        fn splat(v: f32) -> Self {
+            // SAFETY: see the module docs (SSE, no memory access).
+            let x = unsafe { _mm_set1_ps(v) };
+            Self([x, x])
+        }
+        #[inline(always)]
+        fn load(a: &[f32; 8]) -> Self {
+            // SAFETY: see the module docs (SSE); each unaligned load reads
+            // 16 bytes inside a reference to 8 `f32`.
+            Self(unsafe { [_mm_loadu_ps(a.as_ptr()), _mm_loadu_ps(a.as_ptr().add(4))] })
+        }
+        #[inline(always)]
+        fn store(self, a: &mut [f32; 8]) {
+            // SAFETY: see the module docs (SSE); each unaligned store writes
+            // 16 bytes inside a mutable reference to 8 `f32`.
+            unsafe {
+                _mm_storeu_ps(a.as_mut_ptr(), self.0[0]);
+                _mm_storeu_ps(a.as_mut_ptr().add(4), self.0[1]);
+            }
+        }
+        op2x2!(add, _mm_add_ps);
+        op2x2!(sub, _mm_sub_ps);
+        op2x2!(mul, _mm_mul_ps);
+        op2x2!(div, _mm_div_ps);
+        op2x2!(max, _mm_max_ps);
+        op2x2!(min, _mm_min_ps);
+        #[inline(always)]
+        fn abs(self) -> Self {
+            // SAFETY: see the module docs (SSE, no memory access).
+            Self(
+                self.0
+                    .map(|v| unsafe { _mm_andnot_ps(_mm_set1_ps(-0.0), v) }),
+            )
+        }
+        cmpx2!(lt, _mm_cmplt_ps);
+        cmpx2!(le, _mm_cmple_ps);
+        cmpx2!(eq, _mm_cmpeq_ps);
+        #[inline(always)]
+        fn and(a: [__m128; 2], b: [__m128; 2]) -> [__m128; 2] {
+            // SAFETY: see the module docs (SSE, no memory access).
+            [0, 1].map(|h| unsafe { _mm_and_ps(a[h], b[h]) })
+        }
+        #[inline(always)]
+        fn or(a: [__m128; 2], b: [__m128; 2]) -> [__m128; 2] {
+            // SAFETY: see the module docs (SSE, no memory access).
+            [0, 1].map(|h| unsafe { _mm_or_ps(a[h], b[h]) })
+        }
+        #[inline(always)]
+        fn and_not(a: [__m128; 2], b: [__m128; 2]) -> [__m128; 2] {
+            // ANDNPS complements its first operand.
+            // SAFETY: see the module docs (SSE, no memory access).
+            [0, 1].map(|h| unsafe { _mm_andnot_ps(b[h], a[h]) })
+        }
+        #[inline(always)]
+        fn bits(m: [__m128; 2]) -> u32 {
+            // SAFETY: see the module docs (SSE, no memory access).
+            let (lo, hi) = unsafe { (_mm_movemask_ps(m[0]), _mm_movemask_ps(m[1])) };
+            (lo | hi << 4) as u32
+        }
+        #[inline(always)]
+        fn select(m: [__m128; 2], a: Self, b: Self) -> Self {
+            // SSE2 has no blend: (m & a) | (!m & b).
+            // SAFETY: see the module docs (SSE, no memory access).
+            Self([0, 1].map(|h| unsafe {
+                _mm_or_ps(_mm_and_ps(m[h], a.0[h]), _mm_andnot_ps(m[h], b.0[h]))
+            }))
+        }
+    }
+}
+
+/// Eight lanes of a scalar type: one lane per shape of a batch. The same
+/// semantics as [`Lanes`] (see the module docs), on all eight lanes, with
+/// comparisons giving a lane mask.
+///
+/// Public only so that it can appear in the sealed [`Scalar`] trait.
+pub trait Lanes8: Copy {
+    /// The scalar in each lane.
+    type F: Scalar;
+    /// A per-lane flag, as the comparisons give it.
+    type Mask: Copy;
+    /// `v` in every lane.
+    fn splat(v: Self::F) -> Self;
+    /// The lanes from an array.
+    fn load(a: &[Self::F; 8]) -> Self;
+    /// The lanes into an array.
+    fn store(self, a: &mut [Self::F; 8]);
+    /// Lane-wise `self + o`.
+    fn add(self, o: Self) -> Self;
+    /// Lane-wise `self - o`.
+    fn sub(self, o: Self) -> Self;
+    /// Lane-wise `self * o`.
+    fn mul(self, o: Self) -> Self;
+    /// Lane-wise `self / o`.
+    fn div(self, o: Self) -> Self;
+    /// Lane-wise `if self > o { self } else { o }`.
+    fn max(self, o: Self) -> Self;
+    /// Lane-wise `if self < o { self } else { o }`.
+    fn min(self, o: Self) -> Self;
+    /// Lane-wise absolute value.
+    fn abs(self) -> Self;
+    /// Lane-wise `self < o`.
+    fn lt(self, o: Self) -> Self::Mask;
+    /// Lane-wise `self <= o`.
+    fn le(self, o: Self) -> Self::Mask;
+    /// Lane-wise `self == o`.
+    fn eq(self, o: Self) -> Self::Mask;
+    /// Lane-wise `a && b`.
+    fn and(a: Self::Mask, b: Self::Mask) -> Self::Mask;
+    /// Lane-wise `a || b`.
+    fn or(a: Self::Mask, b: Self::Mask) -> Self::Mask;
+    /// Lane-wise `a && !b`.
+    fn and_not(a: Self::Mask, b: Self::Mask) -> Self::Mask;
+    /// Bit `l` set when lane `l` is set.
+    fn bits(m: Self::Mask) -> u32;
+    /// Lane-wise `if m { a } else { b }`.
+    fn select(m: Self::Mask, a: Self, b: Self) -> Self;
+}
+
+/// Eight lanes as an array: the definition, and the implementation where
+/// no register type is used.
+#[derive(Clone, Copy, Debug)]
+pub struct Portable8<F>([F; 8]);
+
+impl<F: Scalar> Portable8<F> {
+    #[inline(always)]
+    fn map2(self, o: Self, f: impl Fn(F, F) -> F) -> Self {
+        Self(core::array::from_fn(|l| f(self.0[l], o.0[l])))
+    }
+    #[inline(always)]
+    fn test(self, o: Self, f: impl Fn(F, F) -> bool) -> [bool; 8] {
+        core::array::from_fn(|l| f(self.0[l], o.0[l]))
+    }
+}
+
+impl<F: Scalar> Lanes8 for Portable8<F> {
+    type F = F;
+    type Mask = [bool; 8];
+    #[inline(always)]
+    fn splat(v: F) -> Self {
+        Self([v; 8])
+    }
+    #[inline(always)]
+    fn load(a: &[F; 8]) -> Self {
+        Self(*a)
+    }
+    #[inline(always)]
+    fn store(self, a: &mut [F; 8]) {
+        *a = self.0;
+    }
+    #[inline(always)]
+    fn add(self, o: Self) -> Self {
+        self.map2(o, |a, b| a + b)
+    }
+    #[inline(always)]
+    fn sub(self, o: Self) -> Self {
+        self.map2(o, |a, b| a - b)
+    }
+    #[inline(always)]
+    fn mul(self, o: Self) -> Self {
+        self.map2(o, |a, b| a * b)
+    }
+    #[inline(always)]
+    fn div(self, o: Self) -> Self {
+        self.map2(o, |a, b| a / b)
+    }
+    #[inline(always)]
+    fn max(self, o: Self) -> Self {
+        self.map2(o, |a, b| if a > b { a } else { b })
+    }
+    #[inline(always)]
+    fn min(self, o: Self) -> Self {
+        self.map2(o, |a, b| if a < b { a } else { b })
+    }
+    #[inline(always)]
+    fn abs(self) -> Self {
+        Self(self.0.map(F::abs))
+    }
+    #[inline(always)]
+    fn lt(self, o: Self) -> [bool; 8] {
+        self.test(o, |a, b| a < b)
+    }
+    #[inline(always)]
+    fn le(self, o: Self) -> [bool; 8] {
+        self.test(o, |a, b| a <= b)
+    }
+    #[inline(always)]
+    fn eq(self, o: Self) -> [bool; 8] {
+        self.test(o, |a, b| a == b)
+    }
+    #[inline(always)]
+    fn and(a: [bool; 8], b: [bool; 8]) -> [bool; 8] {
+        core::array::from_fn(|l| a[l] & b[l])
+    }
+    #[inline(always)]
+    fn or(a: [bool; 8], b: [bool; 8]) -> [bool; 8] {
+        core::array::from_fn(|l| a[l] | b[l])
+    }
+    #[inline(always)]
+    fn and_not(a: [bool; 8], b: [bool; 8]) -> [bool; 8] {
+        core::array::from_fn(|l| a[l] & !b[l])
+    }
+    #[inline(always)]
+    fn bits(m: [bool; 8]) -> u32 {
+        m.iter()
+            .enumerate()
+            .fold(0, |acc, (l, &b)| acc | u32::from(b) << l)
+    }
+    #[inline(always)]
+    fn select(m: [bool; 8], a: Self, b: Self) -> Self {
+        Self(core::array::from_fn(|l| if m[l] { a.0[l] } else { b.0[l] }))
+    }
+}
+
+/// The `f32` eight lanes the batch kernels use on this target.
+#[cfg(all(target_arch = "x86_64", target_feature = "avx2"))]
+pub type F32Lanes8 = avx::F32x8;
+/// The `f32` eight lanes the batch kernels use on this target.
+#[cfg(all(
+    any(target_arch = "x86", target_arch = "x86_64"),
+    target_feature = "sse2",
+    not(all(target_arch = "x86_64", target_feature = "avx2"))
+))]
+pub type F32Lanes8 = sse::F32x4x2;
+/// The `f32` eight lanes the batch kernels use on this target.
+#[cfg(not(any(
+    all(
+        any(target_arch = "x86", target_arch = "x86_64"),
+        target_feature = "sse2"
+    ),
+    all(target_arch = "x86_64", target_feature = "avx2")
+)))]
+pub type F32Lanes8 = Portable8<f32>;
+
+/// Eight `f32` lanes in one AVX register.
+///
+/// Safety of the `unsafe` blocks below: each calls an AVX or AVX2
+/// intrinsic, whose one precondition is that the CPU supports it, and none
+/// touches memory. Values of this type are made and used only (a) in a
+/// build whose target has AVX2 enabled at compile time, where every CPU the
+/// code runs on has it, or (b) inside the functions of `batch::avx2`,
+/// compiled with `#[target_feature(enable = "avx2")]` and called only after
+/// `is_x86_feature_detected!("avx2")`. Nothing else in the crate names the
+/// type: it is reached through `Scalar::Lanes8` in case (a) and
+/// `Scalar::Lanes8Avx2`, which only `batch::avx2` uses, in case (b).
+#[cfg(all(target_arch = "x86_64", any(target_feature = "avx2", feature = "std")))]
+#[allow(unsafe_code)]
+pub(crate) mod avx {
+    use core::arch::x86_64::*;
+
+    use super::Lanes8;
+
+    /// Eight `f32` lanes in an AVX register.
+    #[derive(Clone, Copy, Debug)]
+    pub struct F32x8(__m256);
+
+    /// A lane-wise operation of two registers.
+    macro_rules! op2 {
+        ($name:ident, $intrinsic:ident) => {
+            #[inline(always)]
+            fn $name(self, o: Self) -> Self {
+                // SAFETY: see the module docs (AVX, no memory access).
+                Self(unsafe { $intrinsic(self.0, o.0) })
+            }
+        };
+    }
+
+    /// A comparison, as a lane mask.
+    macro_rules! cmp {
+        ($name:ident, $pred:ident) => {
+            #[inline(always)]
+            fn $name(self, o: Self) -> __m256 {
+                // SAFETY: see the module docs (AVX, no memory access).
+                unsafe { _mm256_cmp_ps::<$pred>(self.0, o.0) }
+            }
+        };
+    }
+
+    impl Lanes8 for F32x8 {
+        type F = f32;
+        type Mask = __m256;
+        #[inline(always)]
+        fn splat(v: f32) -> Self {
+            // SAFETY: see the module docs (AVX, no memory access).
+            Self(unsafe { _mm256_set1_ps(v) })
+        }
+        #[inline(always)]
+        fn load(a: &[f32; 8]) -> Self {
+            // SAFETY: see the module docs (AVX); the unaligned load reads
+            // 32 bytes from a reference to 8 `f32`, which is valid for that.
+            Self(unsafe { _mm256_loadu_ps(a.as_ptr()) })
+        }
+        #[inline(always)]
+        fn store(self, a: &mut [f32; 8]) {
+            // SAFETY: see the module docs (AVX); the unaligned store writes
+            // 32 bytes through a mutable reference to 8 `f32`.
+            unsafe { _mm256_storeu_ps(a.as_mut_ptr(), self.0) }
+        }
+        op2!(add, _mm256_add_ps);
+        op2!(sub, _mm256_sub_ps);
+        op2!(mul, _mm256_mul_ps);
+        op2!(div, _mm256_div_ps);
+        // VMAXPS/VMINPS return the second operand unless the first compares
+        // greater (less), NaN included, as MAXPS does.
+        op2!(max, _mm256_max_ps);
+        op2!(min, _mm256_min_ps);
+        #[inline(always)]
+        fn abs(self) -> Self {
+            // SAFETY: see the module docs (AVX, no memory access).
+            Self(unsafe { _mm256_andnot_ps(_mm256_set1_ps(-0.0), self.0) })
+        }
+        cmp!(lt, _CMP_LT_OQ);
+        cmp!(le, _CMP_LE_OQ);
+        cmp!(eq, _CMP_EQ_OQ);
+        #[inline(always)]
+        fn and(a: __m256, b: __m256) -> __m256 {
+            // SAFETY: see the module docs (AVX, no memory access).
+            unsafe { _mm256_and_ps(a, b) }
+        }
+        #[inline(always)]
+        fn or(a: __m256, b: __m256) -> __m256 {
+            // SAFETY: see the module docs (AVX, no memory access).
+            unsafe { _mm256_or_ps(a, b) }
+        }
+        #[inline(always)]
+        fn and_not(a: __m256, b: __m256) -> __m256 {
+            // ANDNPS complements its first operand.
+            // SAFETY: see the module docs (AVX, no memory access).
+            unsafe { _mm256_andnot_ps(b, a) }
+        }
+        #[inline(always)]
+        fn bits(m: __m256) -> u32 {
+            // SAFETY: see the module docs (AVX, no memory access).
+            (unsafe { _mm256_movemask_ps(m) }) as u32
+        }
+        #[inline(always)]
+        fn select(m: __m256, a: Self, b: Self) -> Self {
+            // SAFETY: see the module docs (AVX, no memory access).
+            Self(unsafe { _mm256_blendv_ps(b.0, a.0, m) })
         }
     }
 }

@@ -221,9 +221,11 @@ pub mod strategies;
 mod triangle;
 
 pub use aabb::{Aabb, PreparedRay, ray_aabb, ray_aabb_naive, ray_aabb_prepared};
+#[cfg(all(feature = "std", target_arch = "x86_64", not(target_feature = "avx2")))]
+pub use batch::Avx2;
 pub use batch::{
-    AabbBatch, AabbBatchHits, TriangleBatch, TriangleBatchHits, ray_aabb_batch, ray_triangle_batch,
-    with_simd,
+    AabbBatch, AabbBatchHits, Simd, SimdWork, TargetSimd, TriangleBatch, TriangleBatchHits,
+    ray_aabb_batch, ray_triangle_batch, with_simd,
 };
 pub use camera::{CameraError, PinholeCamera};
 pub use plane::{Plane, ray_plane, ray_plane_hit_point, ray_plane_t_error};

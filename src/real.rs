@@ -74,6 +74,18 @@ pub trait Scalar:
     #[doc(hidden)]
     type Lanes: crate::lanes::Lanes<F = Self>;
 
+    /// Eight lanes of this scalar, for the batch kernels (AVX or SSE
+    /// registers for `f32` on x86). An implementation detail.
+    #[doc(hidden)]
+    type Lanes8: crate::lanes::Lanes8<F = Self>;
+
+    /// The eight lanes for code compiled with AVX2 enabled and run only
+    /// where the CPU has it (the batch kernels' AVX2 copies). An
+    /// implementation detail.
+    #[cfg(all(feature = "std", target_arch = "x86_64", not(target_feature = "avx2")))]
+    #[doc(hidden)]
+    type Lanes8Avx2: crate::lanes::Lanes8<F = Self>;
+
     /// The bound `gamma(n) = n*u / (1 - n*u)` on the relative error of `n`
     /// chained roundings, rounded up so that it is a true upper bound.
     ///
@@ -212,9 +224,12 @@ pub(crate) type S<V> = <V as Vector>::Scalar;
 pub(crate) type L<V> = <S<V> as Scalar>::Lanes;
 
 macro_rules! impl_scalar {
-    ($f:ident, $lanes:ty, $libm_tan:ident, $libm_sqrt:ident) => {
+    ($f:ident, $lanes:ty, $lanes8:ty, $lanes8_avx2:ty, $libm_tan:ident, $libm_sqrt:ident) => {
         impl Scalar for $f {
             type Lanes = $lanes;
+            type Lanes8 = $lanes8;
+            #[cfg(all(feature = "std", target_arch = "x86_64", not(target_feature = "avx2")))]
+            type Lanes8Avx2 = $lanes8_avx2;
             const ZERO: Self = 0.0;
             const ONE: Self = 1.0;
             const HALF: Self = 0.5;
@@ -290,8 +305,22 @@ macro_rules! impl_scalar {
     };
 }
 
-impl_scalar!(f32, crate::lanes::F32Lanes, tanf, sqrtf);
-impl_scalar!(f64, crate::lanes::Portable<f64>, tan, sqrt);
+impl_scalar!(
+    f32,
+    crate::lanes::F32Lanes,
+    crate::lanes::F32Lanes8,
+    crate::lanes::avx::F32x8,
+    tanf,
+    sqrtf
+);
+impl_scalar!(
+    f64,
+    crate::lanes::Portable<f64>,
+    crate::lanes::Portable8<f64>,
+    crate::lanes::Portable8<f64>,
+    tan,
+    sqrt
+);
 
 /// The sign-exact `a*b - c*d` for each precision (see
 /// [`Scalar::diff_of_products_exact_sign`]).

@@ -44,9 +44,9 @@ use nalgebra::{Point3, Vector3};
 use parry3d::query::RayCast;
 use rayhit::glam::Vec3;
 use rayhit::{
-    Aabb, AabbBatch, PreparedRay, Ray, Side, Triangle, TriangleBatch, TriangleBatchHits, ray_aabb,
-    ray_aabb_batch, ray_aabb_prepared, ray_triangle, ray_triangle_batch, ray_triangle_mt,
-    ray_triangle_prepared, with_simd,
+    Aabb, AabbBatch, PreparedRay, Ray, Side, Simd, SimdWork, Triangle, TriangleBatch,
+    TriangleBatchHits, ray_aabb, ray_aabb_batch, ray_aabb_prepared, ray_triangle,
+    ray_triangle_batch, ray_triangle_mt, ray_triangle_prepared, with_simd,
 };
 use workloads::*;
 
@@ -244,10 +244,68 @@ fn chunked<'a, R, X>(
     }
 }
 
-/// A row's loop run inside `rayhit::with_simd`: compiled once for the
-/// CPU's widest SIMD, so that the batch kernels are inlined into it.
-fn simd<'a>(f: impl Fn() -> u64 + 'a) -> impl Fn() -> u64 + 'a {
-    move || with_simd(&f)
+/// A batch row's loop as `rayhit::SimdWork`: ray `i` against batches
+/// `k i .. k (i + 1)` (`k = per_ray`), or every ray against every batch
+/// (`per_ray = 0`), the checksum of the hit masks (boxes) or of the hit
+/// lanes' `t` (triangles). Written out, without closures, so that
+/// `with_simd` compiles it, kernels included, for the CPU's widest SIMD.
+struct BatchRows<'a, B> {
+    rays: &'a [PreparedRay],
+    batches: &'a [B],
+    per_ray: usize,
+}
+
+impl<'a, B> Clone for BatchRows<'a, B> {
+    fn clone(&self) -> Self {
+        *self
+    }
+}
+impl<'a, B> Copy for BatchRows<'a, B> {}
+
+impl<const N: usize> SimdWork for BatchRows<'_, AabbBatch<Vec3, N>> {
+    type Output = u64;
+    #[inline(always)]
+    fn run<I: Simd>(self, simd: I) -> u64 {
+        let mut c = 0;
+        for (i, r) in self.rays.iter().enumerate() {
+            let group = match self.per_ray {
+                0 => self.batches,
+                k => &self.batches[k * i..k * (i + 1)],
+            };
+            for b in group {
+                c += u64::from(simd.ray_aabb_batch(r, b, INF).mask);
+            }
+        }
+        c
+    }
+}
+
+impl<const N: usize> SimdWork for BatchRows<'_, TriangleBatch<Vec3, N>> {
+    type Output = u64;
+    #[inline(always)]
+    fn run<I: Simd>(self, simd: I) -> u64 {
+        let mut c = 0;
+        for (i, r) in self.rays.iter().enumerate() {
+            let group = match self.per_ray {
+                0 => self.batches,
+                k => &self.batches[k * i..k * (i + 1)],
+            };
+            for b in group {
+                let h = simd.ray_triangle_batch(r, b, INF);
+                let mut m = h.mask;
+                while m != 0 {
+                    c += bits(h.t[m.trailing_zeros() as usize]);
+                    m &= m - 1;
+                }
+            }
+        }
+        c
+    }
+}
+
+/// The timed loop of a `with_simd` row.
+fn simd<'a, W: SimdWork<Output = u64> + Copy + 'a>(work: W) -> impl Fn() -> u64 + 'a {
+    move || with_simd(work)
 }
 
 /// The timed loop of a sweep row: every ray against all of `shapes`.
@@ -587,9 +645,11 @@ fn group_kernels<'a>(
             w,
             nb,
             None,
-            simd(chunked(&b.prepared, bb8, GROUP / 8, |r, x| {
-                u64::from(ray_aabb_batch(r, x, INF).mask)
-            })),
+            simd(BatchRows {
+                rays: &b.prepared,
+                batches: bb8,
+                per_ray: GROUP / 8,
+            }),
         ),
         kernel(
             sec,
@@ -667,9 +727,11 @@ fn group_kernels<'a>(
             w,
             nt,
             None,
-            simd(chunked(&t.prepared, tb8, GROUP / 8, |r, x| {
-                batch_t_sum(&ray_triangle_batch(r, x, INF))
-            })),
+            simd(BatchRows {
+                rays: &t.prepared,
+                batches: tb8,
+                per_ray: GROUP / 8,
+            }),
         ),
         kernel(
             sec,
@@ -814,9 +876,11 @@ fn sweep_kernels<'a>(s: &'a Sweep, out: &mut Vec<Kernel<'a>>) {
                 w,
                 tests,
                 None,
-                simd(every(&s.rays, &s.b8[i], move |r, x| {
-                    count(ray_aabb_batch(r, x, INF).mask)
-                })),
+                simd(BatchRows {
+                    rays: &s.rays,
+                    batches: &s.b8[i],
+                    per_ray: 0,
+                }),
             ),
             kernel(
                 sec,
@@ -824,9 +888,11 @@ fn sweep_kernels<'a>(s: &'a Sweep, out: &mut Vec<Kernel<'a>>) {
                 w,
                 tests,
                 None,
-                simd(every(&s.rays, &s.b16[i], move |r, x| {
-                    count(ray_aabb_batch(r, x, INF).mask)
-                })),
+                simd(BatchRows {
+                    rays: &s.rays,
+                    batches: &s.b16[i],
+                    per_ray: 0,
+                }),
             ),
             kernel(
                 sec,
