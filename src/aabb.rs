@@ -5,7 +5,7 @@ use glam::Vec3;
 
 use crate::lanes::Lanes;
 use crate::ray::{Ray, t_max_ok};
-use crate::real::{L, S, Scalar, Vector, at_least, at_most, max2, min2};
+use crate::real::{L, S, Scalar, Vector, at_most, max2, min2};
 use crate::triangle::Shear;
 
 /// The closed box `min <= p <= max` (component-wise).
@@ -302,13 +302,15 @@ pub fn ray_aabb_prepared<V: Vector>(
 /// [`ray_aabb_prepared`] on the slab part of a prepared ray (which is all
 /// that [`ray_aabb`] prepares).
 ///
-/// The same operations as [`slab_core`], on all three axes at once (see
-/// `crate::lanes`), so the same bits: the per-axis folds are lane-wise; the
-/// largest entry and the smallest exit are taken in every lane (values that
-/// are never NaN: the folds see to that; the entries are never `-0`, and a
-/// `-0`/`+0` tie among the exits widens to the same limit); and the final
-/// comparisons are `slab_finish`'s, with `enter <= limit && enter <= MAX`
-/// as `enter <= min(limit, MAX)`, and the box's validity, in one mask.
+/// All three axes at once, on lanes (see `crate::lanes`). The unit tests
+/// hold it, bit for bit, to the same operations written one axis at a time
+/// (`definition::slab_core`), which the box batches also match: the
+/// per-axis folds are lane-wise; the largest entry and the smallest exit
+/// are taken in every lane (values that are never NaN: the folds see to
+/// that; the entries are never `-0`, and a `-0`/`+0` tie among the exits
+/// widens to the same limit); and the final comparisons, with
+/// `enter <= limit && enter <= MAX` as `enter <= min(limit, MAX)`, and the
+/// box's validity, are one mask.
 #[inline(always)]
 fn slab_test<V: Vector>(ray: &SlabRay<V>, aabb: &Aabb<V>, t_max: S<V>) -> Option<(S<V>, S<V>)> {
     let splat = L::<V>::splat;
@@ -318,66 +320,24 @@ fn slab_test<V: Vector>(ray: &SlabRay<V>, aabb: &Aabb<V>, t_max: S<V>) -> Option
     let (zero, limit) = (splat(S::<V>::ZERO), splat(t_max));
     let t0 = min.sub(ray.origin).mul(ray.inv_to_min);
     let t1 = max.sub(ray.origin).mul(ray.inv_to_max);
-    // `max(t, 0)` is `at_least(t, 0)` and `min(t, t_max)` is
-    // `at_most(t, t_max)`: a NaN `t` gives the second operand.
+    // Each axis folds its two plane distances into the interval [0, t_max]
+    // the way Tavian Barnes does ("Fast, Branchless Ray/Bounding Box
+    // Intersections, Part 3", 2022): `max(t, 0)` and `min(t, t_max)` give
+    // the second operand for a NaN `t` (origin exactly on a slab plane of
+    // an axis the ray does not move along), which leaves the interval
+    // unchanged, as exact arithmetic says of a closed box.
     let enter = t0.max(zero).min(t1.max(zero)).max_all();
     let exit = t0.min(limit).max(t1.min(limit)).min_all();
+    // Widen the exit by the rounding bound so that no box that exact
+    // arithmetic hits is missed (see `exit_widening`). `enter` is infinite
+    // only for an axis the ray never enters (its direction component is
+    // zero, or so small that every distance overflows): a miss even when
+    // the limit is infinite too, hence the `MAX`.
     let widened = exit.mul(splat(exit_widening())).add(splat(exit_slack()));
     let hit = enter.le(widened.min(splat(big)));
     let valid = Lanes::ordered(splat(-big), min, max, splat(big));
     let exit = at_most(widened.x(), t_max);
     (valid & (hit == 0b111) & t_max_ok(t_max)).then(|| (at_most(enter.x(), exit), exit))
-}
-
-/// The slab test's arithmetic for one box, without the checks of the box's
-/// validity and of `t_max >= 0`: `(hit, enter, exit)`, where `enter` and
-/// `exit` are the answer when `hit` holds. The box batches
-/// ([`ray_aabb_batch`](crate::ray_aabb_batch)) run exactly this per lane,
-/// and [`ray_aabb_prepared`] the same operations on all axes at once
-/// (`slab_test`), so their answers are the same bits.
-#[inline(always)]
-pub(crate) fn slab_core<F: Scalar>(
-    origin: [F; 3],
-    inv_to_min: [F; 3],
-    inv_to_max: [F; 3],
-    min: [F; 3],
-    max: [F; 3],
-    t_max: F,
-) -> (bool, F, F) {
-    let zero = F::ZERO;
-    // Each axis folds its two plane distances into the interval [0, t_max]
-    // the way Tavian Barnes does ("Fast, Branchless Ray/Bounding Box
-    // Intersections, Part 3", 2022): a NaN distance (origin exactly on a slab
-    // plane of an axis the ray does not move along) leaves the interval
-    // unchanged, which is what exact arithmetic says of a closed box.
-    let slab = |k: usize| {
-        let t0 = (min[k] - origin[k]) * inv_to_min[k];
-        let t1 = (max[k] - origin[k]) * inv_to_max[k];
-        let enter = min2(at_least(t0, zero), at_least(t1, zero));
-        let exit = max2(at_most(t0, t_max), at_most(t1, t_max));
-        (enter, exit)
-    };
-    let (ex, xx) = slab(0);
-    let (ey, xy) = slab(1);
-    let (ez, xz) = slab(2);
-    slab_finish(max2(ex, max2(ey, ez)), min2(xx, min2(xy, xz)), t_max)
-}
-
-/// The end of the slab test, from the largest per-axis entry and the
-/// smallest per-axis exit: `(hit, enter, exit)`.
-#[inline(always)]
-fn slab_finish<F: Scalar>(enter: F, exit: F, t_max: F) -> (bool, F, F) {
-    // Widen the exit by the rounding bound so that no box that exact
-    // arithmetic hits is missed (see `exit_widening`).
-    let limit = exit * exit_widening::<F>() + exit_slack::<F>();
-    // `enter` is infinite only for an axis the ray never enters (its
-    // direction component is zero, or so small that every distance
-    // overflows): a miss even when `limit` is infinite too. (`enter` is
-    // never NaN, `at_least` sees to that, so `enter <= MAX` is
-    // `enter < inf`, in one comparison.)
-    let hit = (enter <= limit) & (enter <= F::MAX);
-    let exit = at_most(limit, t_max);
-    (hit, at_most(enter, exit), exit)
 }
 
 /// The slab test: the part of `[0, t_max]` that `ray` spends inside the
@@ -492,4 +452,147 @@ pub fn ray_aabb_naive<V: Vector>(
     let enter = max2(first, S::<V>::ZERO);
     let exit = min2(last, t_max);
     (enter <= exit).then_some((enter, exit))
+}
+
+#[cfg(test)]
+pub(crate) mod definition {
+    //! The slab test written one axis at a time, with scalar comparisons:
+    //! the definition the kernels on lanes are held to.
+    use crate::real::{Scalar, at_most, max2, min2};
+
+    use super::{exit_slack, exit_widening};
+
+    /// `t` unless it is below `lo` or NaN, else `lo`.
+    fn at_least<F: Scalar>(t: F, lo: F) -> F {
+        if t > lo { t } else { lo }
+    }
+
+    /// The slab test's arithmetic for one box, one axis at a time, without
+    /// the checks of the box's validity and of `t_max >= 0`: `(hit, enter,
+    /// exit)`, where `enter` and `exit` are the answer when `hit` holds.
+    /// [`ray_aabb_prepared`](crate::ray_aabb_prepared) and the box batches
+    /// must give exactly these bits.
+    pub(crate) fn slab_core<F: Scalar>(
+        origin: [F; 3],
+        inv_to_min: [F; 3],
+        inv_to_max: [F; 3],
+        min: [F; 3],
+        max: [F; 3],
+        t_max: F,
+    ) -> (bool, F, F) {
+        let zero = F::ZERO;
+        // Each axis folds its two plane distances into the interval [0, t_max]
+        // the way Tavian Barnes does ("Fast, Branchless Ray/Bounding Box
+        // Intersections, Part 3", 2022): a NaN distance (origin exactly on a slab
+        // plane of an axis the ray does not move along) leaves the interval
+        // unchanged, which is what exact arithmetic says of a closed box.
+        let slab = |k: usize| {
+            let t0 = (min[k] - origin[k]) * inv_to_min[k];
+            let t1 = (max[k] - origin[k]) * inv_to_max[k];
+            let enter = min2(at_least(t0, zero), at_least(t1, zero));
+            let exit = max2(at_most(t0, t_max), at_most(t1, t_max));
+            (enter, exit)
+        };
+        let (ex, xx) = slab(0);
+        let (ey, xy) = slab(1);
+        let (ez, xz) = slab(2);
+        slab_finish(max2(ex, max2(ey, ez)), min2(xx, min2(xy, xz)), t_max)
+    }
+
+    /// The end of the slab test, from the largest per-axis entry and the
+    /// smallest per-axis exit: `(hit, enter, exit)`.
+    fn slab_finish<F: Scalar>(enter: F, exit: F, t_max: F) -> (bool, F, F) {
+        // Widen the exit by the rounding bound so that no box that exact
+        // arithmetic hits is missed (see `exit_widening`).
+        let limit = exit * exit_widening::<F>() + exit_slack::<F>();
+        // `enter` is infinite only for an axis the ray never enters (its
+        // direction component is zero, or so small that every distance
+        // overflows): a miss even when `limit` is infinite too. (`enter` is
+        // never NaN, `at_least` sees to that, so `enter <= MAX` is
+        // `enter < inf`, in one comparison.)
+        let hit = (enter <= limit) & (enter <= F::MAX);
+        let exit = at_most(limit, t_max);
+        (hit, at_most(enter, exit), exit)
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use glam::DVec3;
+
+    /// A coordinate on a coarse grid (so that face planes, zero direction
+    /// components and origins on slab planes are common), or one time in
+    /// four a float with random bits in a wide range.
+    fn coordinate(state: &mut u64) -> f64 {
+        *state ^= *state << 13;
+        *state ^= *state >> 7;
+        *state ^= *state << 17;
+        if *state % 4 == 0 {
+            let m = ((*state >> 11) % (1 << 20)) as f64 / (1 << 20) as f64;
+            (m - 0.5) * 2f64.powi(((*state >> 40) % 200) as i32 - 100)
+        } else {
+            ((*state >> 8) % 17) as f64 / 4.0 - 2.0
+        }
+    }
+
+    /// `ray_aabb_prepared` and `ray_aabb` (all axes at once) give, bit for
+    /// bit, the answer of the one-axis-at-a-time definition, in both
+    /// precisions, for valid and invalid boxes and any `t_max`.
+    #[test]
+    fn lanes_are_the_definition() {
+        fn check<V: Vector>(state: &mut u64) -> usize {
+            let mut c = || S::<V>::from_f64(coordinate(state));
+            let ray = Ray::new(V::new(c(), c(), c()), V::new(c(), c(), c()));
+            let (a, b) = (V::new(c(), c(), c()), V::new(c(), c(), c()));
+            // Mostly valid boxes, some inverted.
+            let aabb = if c() > S::<V>::from_f64(-1.5) {
+                Aabb::new(
+                    V::new(min2(a.x(), b.x()), min2(a.y(), b.y()), min2(a.z(), b.z())),
+                    V::new(max2(a.x(), b.x()), max2(a.y(), b.y()), max2(a.z(), b.z())),
+                )
+            } else {
+                Aabb::new(a, b)
+            };
+            let mut hits = 0;
+            for t_max in [c().abs() * S::<V>::TWO, S::<V>::INFINITY, S::<V>::NAN] {
+                let p = PreparedRay::new(&ray);
+                let s = &p.slab;
+                let expected = (ray.is_valid() && aabb.is_valid() && t_max_ok(t_max))
+                    .then(|| {
+                        let [min, max] = [aabb.min, aabb.max].map(|v| [v.x(), v.y(), v.z()]);
+                        let arrays = (
+                            s.origin.to_array(),
+                            s.inv_to_min.to_array(),
+                            s.inv_to_max.to_array(),
+                        );
+                        let (hit, enter, exit) =
+                            definition::slab_core(arrays.0, arrays.1, arrays.2, min, max, t_max);
+                        hit.then_some((enter, exit))
+                    })
+                    .flatten();
+                let bits = |h: Option<(S<V>, S<V>)>| {
+                    h.map(|(e, x)| (e.to_f64().to_bits(), x.to_f64().to_bits()))
+                };
+                hits += usize::from(expected.is_some());
+                assert_eq!(
+                    bits(ray_aabb_prepared(&p, &aabb, t_max)),
+                    bits(expected),
+                    "{ray:?} {aabb:?}"
+                );
+                assert_eq!(
+                    bits(ray_aabb(&ray, &aabb, t_max)),
+                    bits(expected),
+                    "{ray:?} {aabb:?}"
+                );
+            }
+            hits
+        }
+        let mut state = 0x0123_4567_89ab_cdef_u64;
+        let mut hits = 0;
+        for _ in 0..100_000 {
+            hits += check::<Vec3>(&mut state) + check::<DVec3>(&mut state);
+        }
+        assert!(hits > 20_000, "{hits}");
+    }
 }

@@ -25,25 +25,60 @@
 
 use glam::Vec3;
 
-use crate::aabb::{Aabb, PreparedRay, exit_slack, exit_widening, slab_core};
+use crate::aabb::{Aabb, PreparedRay, exit_slack, exit_widening};
 use crate::lanes::{Lanes, Lanes8};
 use crate::ray::t_max_ok;
-use crate::real::{S, Scalar, Vector, bound_up, max2, min2};
-use crate::triangle::{EdgeRule, Side, Triangle, TriangleHit, max3, watertight_sheared};
+use crate::real::{S, Scalar, Vector, bound_up};
+use crate::triangle::{EdgeRule, Side, Triangle, TriangleHit, watertight_sheared};
 
 /// Checks `1 <= N <= 32` at compile time (the hit masks are `u32`).
 const fn check_lanes<const N: usize>() {
     assert!(N >= 1 && N <= 32, "a batch has 1 to 32 lanes");
 }
 
-/// Builds a lane mask from per-lane flags.
+/// Lanes `8 c .. 8 c + 8` of `row`, lanes past its end NaN.
+///
+/// The kernels on eight lanes call only functions marked
+/// `#[inline(always)]`, never closures: the AVX2 copies must be inlined,
+/// whole, into the functions compiled with AVX2.
 #[inline(always)]
-fn mask_of<const N: usize>(flags: &[bool; N]) -> u32 {
-    let mut mask = 0u32;
-    for (l, &f) in flags.iter().enumerate() {
-        mask |= u32::from(f) << l;
+fn lanes_at<W: Lanes8, const N: usize>(row: &[W::F; N], c: usize) -> W {
+    match row.get(8 * c..8 * c + 8) {
+        Some(full) => W::load(full.try_into().expect("8 lanes")),
+        None => W::load(&core::array::from_fn(|l| {
+            row.get(8 * c + l).copied().unwrap_or(W::F::NAN)
+        })),
     }
-    mask
+}
+
+/// Stores lanes `8 c .. 8 c + 8` of `row` from `lanes` (those that exist).
+#[inline(always)]
+fn put<W: Lanes8, const N: usize>(row: &mut [W::F; N], c: usize, lanes: W) {
+    if let Some(full) = row.get_mut(8 * c..8 * c + 8) {
+        lanes.store(full.try_into().expect("8 lanes"));
+    } else {
+        let mut a = [W::F::ZERO; 8];
+        lanes.store(&mut a);
+        for (l, x) in a.into_iter().enumerate() {
+            if let Some(slot) = row.get_mut(8 * c + l) {
+                *slot = x;
+            }
+        }
+    }
+}
+
+/// `(plane - o) * r` on lanes `8 c .. 8 c + 8` of a row of planes.
+#[inline(always)]
+fn dist<W: Lanes8, const N: usize>(row: &[W::F; N], c: usize, o: W, r: W) -> W {
+    lanes_at::<W, N>(row, c).sub(o).mul(r)
+}
+
+/// One axis of the slab test's NaN-safe fold (see
+/// [`ray_aabb_prepared`](crate::ray_aabb_prepared)): the entry and exit
+/// through the slab with plane distances `t0`, `t1`, clipped to `[lo, hi]`.
+#[inline(always)]
+fn fold<W: Lanes8>(t0: W, t1: W, lo: W, hi: W) -> (W, W) {
+    (t0.max(lo).min(t1.max(lo)), t0.min(hi).max(t1.min(hi)))
 }
 
 /// Up to `N` boxes, structure-of-arrays, validated when stored.
@@ -76,6 +111,10 @@ fn mask_of<const N: usize>(flags: &[bool; N]) -> u32 {
 /// assert_eq!(hits.get(2), None);
 /// ```
 #[derive(Clone, Copy, Debug, PartialEq)]
+// Aligned so that, for 8 and 16 lanes, every row of `f32` starts a 32-byte
+// boundary: an AVX load that straddles a cache line costs about twice as
+// much, and a 196-byte batch would make that depend on where it lies.
+#[repr(C, align(32))]
 pub struct AabbBatch<V: Vector = Vec3, const N: usize = 8> {
     /// `planes[0][k][lane]`: the box's lower bound on axis `k`;
     /// `planes[1][k][lane]` its upper bound. (One array, so that a kernel
@@ -235,8 +274,8 @@ pub fn ray_aabb_batch<V: Vector, const N: usize>(
 }
 
 /// The body of [`ray_aabb_batch`], inlined into both the default build and
-/// the AVX2 copy, with the eight-lane type `W` of each: eight lanes at a
-/// time when `N` is a multiple of 8, else one lane at a time.
+/// the AVX2 copy, with the eight-lane type `W` of each, eight lanes at a
+/// time.
 #[inline(always)]
 fn aabb_batch_body<W: Lanes8<F = S<V>>, V: Vector, const N: usize>(
     ray: &PreparedRay<V>,
@@ -269,51 +308,39 @@ fn aabb_batch_body<W: Lanes8<F = S<V>>, V: Vector, const N: usize>(
     let simple = ray.slab.simple;
     let [min, max] = &batch.planes;
     let mut mask = 0;
-    if N % 8 == 0 {
-        let splat = W::splat;
-        let (lo, hi) = (splat(zero), splat(t_max));
-        let (ox, oy, oz) = (splat(o[0]), splat(o[1]), splat(o[2]));
-        let (ax, ay, az) = (splat(r0[0]), splat(r0[1]), splat(r0[2]));
-        let (bx, by, bz) = (splat(r1[0]), splat(r1[1]), splat(r1[2]));
-        for c in 0..N / 8 {
-            let at = |row: &[S<V>; N]| W::load(row[8 * c..8 * c + 8].try_into().expect("8 lanes"));
-            let (tx0, tx1) = (at(&min[0]).sub(ox).mul(ax), at(&max[0]).sub(ox).mul(bx));
-            let (ty0, ty1) = (at(&min[1]).sub(oy).mul(ay), at(&max[1]).sub(oy).mul(by));
-            let (tz0, tz1) = (at(&min[2]).sub(oz).mul(az), at(&max[2]).sub(oz).mul(bz));
-            let (enter_c, exit_c) = if simple {
-                let entry = tx0.min(tx1).max(ty0.min(ty1)).max(tz0.min(tz1));
-                let exit = tx0.max(tx1).min(ty0.max(ty1)).min(tz0.max(tz1));
-                (entry.max(lo), exit.min(hi))
-            } else {
-                // `slab_core`'s folds, lane by lane.
-                let fold = |t0: W, t1: W| (t0.max(lo).min(t1.max(lo)), t0.min(hi).max(t1.min(hi)));
-                let ((ex, xx), (ey, xy), (ez, xz)) =
-                    (fold(tx0, tx1), fold(ty0, ty1), fold(tz0, tz1));
-                (ex.max(ey.max(ez)), xx.min(xy.min(xz)))
-            };
-            // `slab_finish`, lane by lane (`enter <= limit && enter <= MAX`
-            // as `enter <= min(limit, MAX)`: `limit` is not NaN here, as
-            // `t_max` is not).
-            let limit = exit_c.mul(splat(exit_widening())).add(splat(exit_slack()));
-            let hit = enter_c.le(limit.min(splat(S::<V>::MAX)));
-            let exit_c = limit.min(hi);
-            let out = W::select(hit, enter_c.min(exit_c), splat(inf));
-            out.store((&mut enter[8 * c..8 * c + 8]).try_into().expect("8 lanes"));
-            mask |= W::bits(hit) << (8 * c);
-        }
-    } else {
-        for l in 0..N {
-            let (h, e, _) = slab_core(
-                o,
-                r0,
-                r1,
-                [min[0][l], min[1][l], min[2][l]],
-                [max[0][l], max[1][l], max[2][l]],
-                t_max,
-            );
-            mask |= u32::from(h) << l;
-            enter[l] = if h { e } else { inf };
-        }
+    let splat = W::splat;
+    let (lo, hi) = (splat(zero), splat(t_max));
+    let (ox, oy, oz) = (splat(o[0]), splat(o[1]), splat(o[2]));
+    let (ax, ay, az) = (splat(r0[0]), splat(r0[1]), splat(r0[2]));
+    let (bx, by, bz) = (splat(r1[0]), splat(r1[1]), splat(r1[2]));
+    for c in 0..N.div_ceil(8) {
+        // Lanes past N hold NaN, and are not in `batch.used`.
+        let (tx0, tx1) = (dist(&min[0], c, ox, ax), dist(&max[0], c, ox, bx));
+        let (ty0, ty1) = (dist(&min[1], c, oy, ay), dist(&max[1], c, oy, by));
+        let (tz0, tz1) = (dist(&min[2], c, oz, az), dist(&max[2], c, oz, bz));
+        let (enter_c, exit_c) = if simple {
+            let entry = tx0.min(tx1).max(ty0.min(ty1)).max(tz0.min(tz1));
+            let exit = tx0.max(tx1).min(ty0.max(ty1)).min(tz0.max(tz1));
+            (entry.max(lo), exit.min(hi))
+        } else {
+            // The definition's folds, lane by lane.
+            let (ex, xx) = fold(tx0, tx1, lo, hi);
+            let (ey, xy) = fold(ty0, ty1, lo, hi);
+            let (ez, xz) = fold(tz0, tz1, lo, hi);
+            (ex.max(ey.max(ez)), xx.min(xy.min(xz)))
+        };
+        // `slab_finish`, lane by lane (`enter <= limit && enter <= MAX` as
+        // `enter <= min(limit, MAX)`: `limit` is not NaN here, as `t_max`
+        // is not).
+        let limit = exit_c.mul(splat(exit_widening())).add(splat(exit_slack()));
+        let hit = enter_c.le(limit.min(splat(S::<V>::MAX)));
+        let exit_c = limit.min(hi);
+        put(
+            &mut enter,
+            c,
+            W::select(hit, enter_c.min(exit_c), splat(inf)),
+        );
+        mask |= W::bits(hit) << (8 * c);
     }
     // Empty lanes never hit (see `AabbBatch`); the mask of used lanes is
     // applied all the same.
@@ -346,6 +373,8 @@ fn aabb_batch_body<W: Lanes8<F = S<V>>, V: Vector, const N: usize>(
 /// assert_eq!((lane, nearest.t, nearest.u, nearest.v), (0, 1.0, 0.25, 0.25));
 /// ```
 #[derive(Clone, Copy, Debug, PartialEq)]
+// Aligned as `AabbBatch` is, for the same reason.
+#[repr(C, align(32))]
 pub struct TriangleBatch<V: Vector = Vec3, const N: usize = 8> {
     /// `p[corner][axis][lane]`, corners `a, b, c`.
     p: [[[S<V>; N]; 3]; 3],
@@ -500,6 +529,23 @@ impl<F: Scalar, const N: usize> TriangleBatchHits<F, N> {
     }
 }
 
+/// One corner of eight triangles in the ray's frame, as `Frame::new`
+/// computes it: translated, its axes in the ray's order `k`, sheared.
+#[inline(always)]
+fn sheared<W: Lanes8, const N: usize>(
+    p: &[[W::F; N]; 3],
+    c: usize,
+    k: [usize; 3],
+    o: [W; 3],
+    sx: W,
+    sy: W,
+) -> (W, W, W) {
+    let px = lanes_at::<W, N>(&p[k[0]], c).sub(o[0]);
+    let py = lanes_at::<W, N>(&p[k[1]], c).sub(o[1]);
+    let pz = lanes_at::<W, N>(&p[k[2]], c).sub(o[2]);
+    (px.add(sx.mul(pz)), py.add(sy.mul(pz)), pz)
+}
+
 /// The watertight test ([`ray_triangle`](crate::ray_triangle)) of one
 /// prepared ray against every triangle of a batch.
 ///
@@ -553,9 +599,10 @@ pub fn ray_triangle_batch<V: Vector, const N: usize>(
 }
 
 /// The body of [`ray_triangle_batch`], inlined into both the default build
-/// and the AVX2 copy.
+/// and the AVX2 copy, with the eight-lane type `W` of each, eight lanes at a
+/// time.
 #[inline(always)]
-fn triangle_batch_body<V: Vector, const N: usize>(
+fn triangle_batch_body<W: Lanes8<F = S<V>>, V: Vector, const N: usize>(
     ray: &PreparedRay<V>,
     batch: &TriangleBatch<V, N>,
     t_max: S<V>,
@@ -576,80 +623,100 @@ fn triangle_batch_body<V: Vector, const N: usize>(
     let sh = ray.shear;
     // The permuted axes: x, y, z of the ray's frame.
     let (kx, ky, kz) = (sh.kx as usize, sh.ky as usize, sh.kz as usize);
-    let origin = ray.origin();
-    let (ox, oy, oz) = (origin[kx], origin[ky], origin[kz]);
+    // The origin in the ray's axis order, from the prepared lanes (indexing
+    // the origin by axis would branch on the axis).
+    let [ox, oy, oz] = ray.origin_lanes.map(|l| l.x());
     let ray_front = sh.dz > zero;
-    // `bound_up(gamma(4) * mz, 1)` of `z_error`, with its constant hoisted.
-    let g4 = S::<V>::gamma_n(4);
 
-    let mut hit = [false; N];
-    let mut slow = [false; N];
-    let mut dets = [zero; N];
-    for l in 0..N {
-        // Translate, permute, shear: as `Frame::new`.
-        let corner = |i: usize| {
-            let px = batch.p[i][kx][l] - ox;
-            let py = batch.p[i][ky][l] - oy;
-            let pz = batch.p[i][kz][l] - oz;
-            (px + sh.sx * pz, py + sh.sy * pz, pz)
-        };
-        let (x0, y0, pz0) = corner(0);
-        let (x1, y1, pz1) = corner(1);
-        let (x2, y2, pz2) = corner(2);
+    let splat = W::splat;
+    let (lo, top, ones) = (splat(zero), splat(t_max), splat(one));
+    let (sx, sy, sz) = (splat(sh.sx), splat(sh.sy), splat(sh.sz));
+    let (ox, oy, oz) = (splat(ox), splat(oy), splat(oz));
+    let (g4, up1) = (splat(S::<V>::gamma_n(4)), splat(bound_up(one, 1)));
+    let top_max = splat(if t_max < S::<V>::MAX {
+        t_max
+    } else {
+        S::<V>::MAX
+    });
+    let (mut hit, mut slow, mut front) = (0, 0, 0);
+    let all = lo.le(lo);
+    for c in 0..N.div_ceil(8) {
+        // Lanes past N hold NaN, and are not in `batch.used`.
+        let (k, o) = ([kx, ky, kz], [ox, oy, oz]);
+        let (x0, y0, pz0) = sheared::<W, N>(&batch.p[0], c, k, o, sx, sy);
+        let (x1, y1, pz1) = sheared::<W, N>(&batch.p[1], c, k, o, sx, sy);
+        let (x2, y2, pz2) = sheared::<W, N>(&batch.p[2], c, k, o, sx, sy);
         // Edge functions; a zero sends the lane to the scalar code, which
         // recomputes it with its sign exact.
-        let e0 = x1 * y2 - y1 * x2;
-        let e1 = x2 * y0 - y2 * x0;
-        let e2 = x0 * y1 - y0 * x1;
-        let zero_edge = (e0 == zero) | (e1 == zero) | (e2 == zero);
+        let e0 = x1.mul(y2).sub(y1.mul(x2));
+        let e1 = x2.mul(y0).sub(y2.mul(x0));
+        let e2 = x0.mul(y1).sub(y0.mul(x1));
+        let zero_edge = W::or(W::or(e0.eq(lo), e1.eq(lo)), e2.eq(lo));
         // Inside test of `EdgeRule::Closed`: not both signs among the edge
         // functions. For non-NaN values "some e_i < 0" is "min e_i < 0",
         // which is cheaper; a NaN edge function makes `det` NaN and the
         // range test below fails, as in the scalar test, whatever this
         // says.
-        let inside = !((min2(e0, min2(e1, e2)) < zero) & (max2(e0, max2(e1, e2)) > zero));
-        let det = e0 + e1 + e2;
+        let outside = W::and(e0.min(e1.min(e2)).lt(lo), lo.lt(e0.max(e1.max(e2))));
+        if W::bits(W::and_not(all, outside)) == 0 {
+            // Every lane outside (most rays miss most triangles of a leaf):
+            // nothing more to compute for this chunk. (A lane outside
+            // stays outside whatever the exact sign of a zero edge
+            // function.)
+            continue;
+        }
+        let det = e0.add(e1).add(e2);
         // Scaled distance and range test.
-        let z = [pz0 * sh.sz, pz1 * sh.sz, pz2 * sh.sz];
-        let t_scaled = e0 * z[0] + e1 * z[1] + e2 * z[2];
-        let limit = t_max * det;
-        let in_range = ((det > zero) & (t_scaled > zero) & (t_scaled <= limit))
-            | ((det < zero) & (t_scaled < zero) & (t_scaled >= limit));
-        let inv_det = one / det;
-        let t = t_scaled * inv_det;
-        let t_ok = (t > zero) & (t <= t_max) & (t.abs() < inf);
-        // The first sufficient test for t > 0 (see `watertight_sheared`).
-        let dz = bound_up(g4 * max3(&z), 1);
-        let ahead = (z[0] > dz) & (z[1] > dz) & (z[2] > dz);
-        let u = min2(e1 * inv_det, one);
-        let v = min2(e2 * inv_det, one);
-        let uv_ok = (u.abs() < inf) & (v.abs() < inf);
-        let pass = inside & in_range & t_ok;
-        hit[l] = !zero_edge & pass & ahead & uv_ok;
-        slow[l] = zero_edge | (pass & !ahead);
-        dets[l] = det;
-        out.t[l] = if hit[l] { t } else { inf };
-        out.u[l] = if hit[l] { u } else { zero };
-        out.v[l] = if hit[l] { v } else { zero };
+        let (z0, z1, z2) = (pz0.mul(sz), pz1.mul(sz), pz2.mul(sz));
+        let t_scaled = e0.mul(z0).add(e1.mul(z1)).add(e2.mul(z2));
+        let limit = top.mul(det);
+        let ahead_range = W::and(W::and(lo.lt(det), lo.lt(t_scaled)), t_scaled.le(limit));
+        let behind_range = W::and(W::and(det.lt(lo), t_scaled.lt(lo)), limit.le(t_scaled));
+        let inv_det = ones.div(det);
+        let t = t_scaled.mul(inv_det);
+        // (`t > 0` makes `is_finite` the same as `t <= MAX`, and `top_max`
+        // is `min(t_max, MAX)`.)
+        let t_ok = W::and(lo.lt(t), t.le(top_max));
+        let pass = W::and(W::and_not(W::or(ahead_range, behind_range), outside), t_ok);
+        // The first sufficient test for t > 0 (see `watertight_sheared`):
+        // every `z_i > dz = bound_up(gamma(4) * max |z_i|, 1)`. Where it
+        // matters (`pass` and no zero edge function), every `z_i` is finite
+        // (a NaN or infinite one makes `det` or `t` fail above), and then
+        // `min z_i > bound_up(gamma(4) * max z_i, 1)` is the same test: if
+        // all `z_i > 0`, `max z_i` is `max |z_i|`, and if some `z_i <= 0`
+        // both tests fail (the bound of a positive maximum is positive; that
+        // of a maximum `<= 0` is at least the maximum, itself at least the
+        // minimum).
+        let z_min = z0.min(z1.min(z2));
+        let dz = z0.max(z1.max(z2)).mul(g4).mul(up1);
+        let ahead = dz.lt(z_min);
+        // u and v: finite whenever `pass` holds and no edge function is
+        // zero (each `|e_i| <= |det|`, as the `e_i` share a sign, and
+        // `1 / det` is finite, as `t` is), so the definition's finiteness
+        // test of `u` and `v` is always passed here and is not repeated.
+        let u = e1.mul(inv_det).min(ones);
+        let v = e2.mul(inv_det).min(ones);
+        let hit_c = W::and(W::and_not(pass, zero_edge), ahead);
+        let shift = 8 * c;
+        hit |= W::bits(hit_c) << shift;
+        slow |= W::bits(W::or(zero_edge, W::and_not(pass, ahead))) << shift;
+        front |= W::bits(lo.lt(det)) << shift;
+        put(&mut out.t, c, W::select(hit_c, t, splat(inf)));
+        put(&mut out.u, c, W::select(hit_c, u, lo));
+        put(&mut out.v, c, W::select(hit_c, v, lo));
     }
     let used = batch.used;
-    let hit = mask_of(&hit) & used;
+    let hit = hit & used;
     out.mask = hit;
-    // The side, lane by lane for the (few) lanes hit.
-    let mut bits = hit;
-    while bits != 0 {
-        let l = bits.trailing_zeros() as usize;
-        bits &= bits - 1;
-        if (dets[l] > zero) != ray_front {
-            out.front |= 1 << l;
-        }
-    }
-    let mut slow = mask_of(&slow) & used;
+    // A hit is from the front when the sign of its determinant differs
+    // from that of the ray's main component (see `watertight_sheared`).
+    out.front = if ray_front { !front & hit } else { front & hit };
+    let mut slow = slow & used;
     while slow != 0 {
         let l = slow.trailing_zeros() as usize;
         slow &= slow - 1;
         let tri = batch.lane(l);
-        if let Some(h) = watertight_sheared(origin, &sh, &tri, t_max, EdgeRule::Closed) {
+        if let Some(h) = watertight_sheared(ray.origin(), &sh, &tri, t_max, EdgeRule::Closed) {
             out.mask |= 1 << l;
             if h.side == Side::Front {
                 out.front |= 1 << l;
@@ -733,7 +800,7 @@ impl Simd for TargetSimd {
         t_max: S<V>,
     ) -> TriangleBatchHits<S<V>, N> {
         const { check_lanes::<N>() };
-        triangle_batch_body(ray, batch, t_max)
+        triangle_batch_body::<<S<V> as Scalar>::Lanes8, V, N>(ray, batch, t_max)
     }
 }
 
@@ -875,7 +942,7 @@ mod avx2 {
         batch: &TriangleBatch<V, N>,
         t_max: S<V>,
     ) -> TriangleBatchHits<S<V>, N> {
-        triangle_batch_body(ray, batch, t_max)
+        triangle_batch_body::<<S<V> as Scalar>::Lanes8Avx2, V, N>(ray, batch, t_max)
     }
 }
 
@@ -929,7 +996,8 @@ mod tests {
                         s.inv_to_min.to_array(),
                         s.inv_to_max.to_array(),
                     );
-                    let (hit, _, _) = slab_core(o, r0, r1, min, max, t_max);
+                    let (hit, _, _) =
+                        crate::aabb::definition::slab_core(o, r0, r1, min, max, t_max);
                     assert!(!hit, "{ray:?}");
                 }
             }
@@ -977,7 +1045,9 @@ mod tests {
             let mut box_answers = vec![aabb_batch_body::<<f32 as Scalar>::Lanes8, _, 8>(
                 &p, &bb, t_max,
             )];
-            let mut tri_answers = vec![triangle_batch_body(&p, &tb, t_max)];
+            let mut tri_answers = vec![triangle_batch_body::<<f32 as Scalar>::Lanes8, _, 8>(
+                &p, &tb, t_max,
+            )];
             #[cfg(all(target_arch = "x86_64", not(target_feature = "avx2")))]
             if std::is_x86_feature_detected!("avx2") {
                 #[allow(unsafe_code)]

@@ -842,6 +842,96 @@ mod tests {
         }
     }
 
+    /// Eight lanes of random specials and ordinary values.
+    fn eight(state: &mut u64) -> [f32; 8] {
+        core::array::from_fn(|_| pick(state))
+    }
+
+    /// Every operation of an eight-lane register type gives the portable
+    /// definition's bits and masks.
+    fn check_lanes8<W: Lanes8<F = f32>>(a: [f32; 8], b: [f32; 8]) {
+        let (pa, pb) = (Portable8::load(&a), Portable8::load(&b));
+        let (wa, wb) = (W::load(&a), W::load(&b));
+        // Bits, with every NaN alike: which NaN's payload an operation
+        // passes on is the hardware's choice (and the compiler may swap
+        // the operands of an addition), and no kernel answer is a NaN.
+        let canonical = |x: f32| if x.is_nan() { u32::MAX } else { x.to_bits() };
+        let out = |w: W| {
+            let mut x = [0.0; 8];
+            w.store(&mut x);
+            x.map(canonical)
+        };
+        let pout = |p: Portable8<f32>| {
+            let mut x = [0.0; 8];
+            p.store(&mut x);
+            x.map(canonical)
+        };
+        type Op<L> = fn(L, L) -> L;
+        let ops: [(Op<Portable8<f32>>, Op<W>); 6] = [
+            (Lanes8::add, Lanes8::add),
+            (Lanes8::sub, Lanes8::sub),
+            (Lanes8::mul, Lanes8::mul),
+            (Lanes8::div, Lanes8::div),
+            (Lanes8::max, Lanes8::max),
+            (Lanes8::min, Lanes8::min),
+        ];
+        for (p, w) in ops {
+            assert_eq!(pout(p(pa, pb)), out(w(wa, wb)), "{a:?} {b:?}");
+        }
+        assert_eq!(pout(pa.abs()), out(wa.abs()));
+        assert_eq!(pout(Portable8::splat(a[3])), out(W::splat(a[3])));
+        let masks = [
+            (pa.lt(pb), wa.lt(wb)),
+            (pa.le(pb), wa.le(wb)),
+            (pa.eq(pb), wa.eq(wb)),
+        ];
+        for (p, w) in masks {
+            assert_eq!(Portable8::<f32>::bits(p), W::bits(w), "{a:?} {b:?}");
+        }
+        let (pm, pn) = (pa.lt(pb), pb.le(pa));
+        let (wm, wn) = (wa.lt(wb), wb.le(wa));
+        assert_eq!(
+            Portable8::<f32>::bits(Portable8::<f32>::and(pm, pn)),
+            W::bits(W::and(wm, wn))
+        );
+        assert_eq!(
+            Portable8::<f32>::bits(Portable8::<f32>::or(pm, pn)),
+            W::bits(W::or(wm, wn))
+        );
+        assert_eq!(
+            Portable8::<f32>::bits(Portable8::<f32>::and_not(pm, pn)),
+            W::bits(W::and_not(wm, wn))
+        );
+        assert_eq!(
+            pout(Portable8::select(pm, pa, pb)),
+            out(W::select(wm, wa, wb))
+        );
+    }
+
+    /// The eight-lane types the batch kernels use on this target, and the
+    /// AVX one where the CPU has AVX2, match the definition.
+    #[test]
+    fn eight_lane_registers_match_the_definition() {
+        #[cfg(all(target_arch = "x86_64", not(target_feature = "avx2")))]
+        #[target_feature(enable = "avx2")]
+        fn with_avx2(a: [f32; 8], b: [f32; 8]) {
+            check_lanes8::<avx::F32x8>(a, b);
+        }
+        let mut state = 0x9e37_79b9_7f4a_7c15_u64;
+        for _ in 0..50_000 {
+            let (a, b) = (eight(&mut state), eight(&mut state));
+            check_lanes8::<F32Lanes8>(a, b);
+            #[cfg(all(target_arch = "x86_64", not(target_feature = "avx2")))]
+            if std::is_x86_feature_detected!("avx2") {
+                #[allow(unsafe_code)]
+                // SAFETY: AVX2 was just detected.
+                unsafe {
+                    with_avx2(a, b)
+                };
+            }
+        }
+    }
+
     /// The semantics the slab test relies on, spelled out.
     #[test]
     fn max_and_min_return_the_second_operand_for_nan() {

@@ -539,15 +539,6 @@ pub(crate) mod outward {
     }
 }
 
-/// `t` unless it is below `lo` or NaN, else `lo`.
-///
-/// Written as a comparison so that the NaN case is explicit rather than left
-/// to `f32::max`, and so that it compiles to one `maxss` on x86.
-#[inline(always)]
-pub(crate) fn at_least<F: Scalar>(t: F, lo: F) -> F {
-    if t > lo { t } else { lo }
-}
-
 /// `t` unless it is above `hi` or NaN, else `hi`.
 #[inline(always)]
 pub(crate) fn at_most<F: Scalar>(t: F, hi: F) -> F {

@@ -245,9 +245,9 @@ fn chunked<'a, R, X>(
 }
 
 /// A batch row's loop as `rayhit::SimdWork`: ray `i` against batches
-/// `k i .. k (i + 1)` (`k = per_ray`), or every ray against every batch
-/// (`per_ray = 0`), the checksum of the hit masks (boxes) or of the hit
-/// lanes' `t` (triangles). Written out, without closures, so that
+/// `k i .. k (i + 1)` (`k = per_ray`), or, for boxes, every ray against
+/// every batch (`per_ray = 0`); the checksum of the hit masks (boxes) or
+/// of the hit lanes' `t` (triangles). Written out, without closures, so that
 /// `with_simd` compiles it, kernels included, for the CPU's widest SIMD.
 struct BatchRows<'a, B> {
     rays: &'a [PreparedRay],
@@ -267,13 +267,21 @@ impl<const N: usize> SimdWork for BatchRows<'_, AabbBatch<Vec3, N>> {
     #[inline(always)]
     fn run<I: Simd>(self, simd: I) -> u64 {
         let mut c = 0;
-        for (i, r) in self.rays.iter().enumerate() {
-            let group = match self.per_ray {
-                0 => self.batches,
-                k => &self.batches[k * i..k * (i + 1)],
-            };
-            for b in group {
-                c += u64::from(simd.ray_aabb_batch(r, b, INF).mask);
+        if self.per_ray == 0 {
+            for r in self.rays {
+                for b in self.batches {
+                    c += u64::from(simd.ray_aabb_batch(r, b, INF).mask);
+                }
+            }
+        } else {
+            for (r, group) in self
+                .rays
+                .iter()
+                .zip(self.batches.chunks_exact(self.per_ray))
+            {
+                for b in group {
+                    c += u64::from(simd.ray_aabb_batch(r, b, INF).mask);
+                }
             }
         }
         c
@@ -285,11 +293,11 @@ impl<const N: usize> SimdWork for BatchRows<'_, TriangleBatch<Vec3, N>> {
     #[inline(always)]
     fn run<I: Simd>(self, simd: I) -> u64 {
         let mut c = 0;
-        for (i, r) in self.rays.iter().enumerate() {
-            let group = match self.per_ray {
-                0 => self.batches,
-                k => &self.batches[k * i..k * (i + 1)],
-            };
+        for (r, group) in self
+            .rays
+            .iter()
+            .zip(self.batches.chunks_exact(self.per_ray))
+        {
             for b in group {
                 let h = simd.ray_triangle_batch(r, b, INF);
                 let mut m = h.mask;
