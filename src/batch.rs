@@ -67,18 +67,96 @@ fn put<W: Lanes8, const N: usize>(row: &mut [W::F; N], c: usize, lanes: W) {
     }
 }
 
-/// `(plane - o) * r` on lanes `8 c .. 8 c + 8` of a row of planes.
-#[inline(always)]
-fn dist<W: Lanes8, const N: usize>(row: &[W::F; N], c: usize, o: W, r: W) -> W {
-    lanes_at::<W, N>(row, c).sub(o).mul(r)
-}
-
 /// One axis of the slab test's NaN-safe fold (see
 /// [`ray_aabb_prepared`](crate::ray_aabb_prepared)): the entry and exit
 /// through the slab with plane distances `t0`, `t1`, clipped to `[lo, hi]`.
 #[inline(always)]
 fn fold<W: Lanes8>(t0: W, t1: W, lo: W, hi: W) -> (W, W) {
     (t0.max(lo).min(t1.max(lo)), t0.min(hi).max(t1.min(hi)))
+}
+
+/// A prepared ray's slab test on eight boxes at a time: the ray's values
+/// in every lane, ready for [`Slab8::test`].
+pub(crate) struct Slab8<W: Lanes8> {
+    origin: [W; 3],
+    inv_to_min: [W; 3],
+    inv_to_max: [W; 3],
+    /// `0` and `t_max` in every lane.
+    lo: W,
+    hi: W,
+    simple: bool,
+}
+
+impl<W: Lanes8> Slab8<W> {
+    #[inline(always)]
+    pub(crate) fn new<V: Vector<Scalar = W::F>>(ray: &PreparedRay<V>, t_max: W::F) -> Self {
+        let [ox, oy, oz] = ray.slab.origin.to_array();
+        let [ax, ay, az] = ray.slab.inv_to_min.to_array();
+        let [bx, by, bz] = ray.slab.inv_to_max.to_array();
+        Self {
+            origin: [W::splat(ox), W::splat(oy), W::splat(oz)],
+            inv_to_min: [W::splat(ax), W::splat(ay), W::splat(az)],
+            inv_to_max: [W::splat(bx), W::splat(by), W::splat(bz)],
+            lo: W::splat(W::F::ZERO),
+            hi: W::splat(t_max),
+            simple: ray.slab.simple,
+        }
+    }
+
+    /// The slab test of eight valid boxes (for `t_max >= 0`): the lanes
+    /// hit, and the entry `t` of each (`+inf` where not hit), bit for bit
+    /// what [`ray_aabb_prepared`](crate::ray_aabb_prepared) gives for each.
+    ///
+    /// For rays whose reciprocals are all normal (every component
+    /// nonzero), the per-axis folds simplify. Every reciprocal is then
+    /// normal (the two per axis are equal) and every box valid, so no
+    /// distance is NaN, and the definition's folds reduce to the textbook
+    /// order of each pair: the entry through an axis,
+    /// `min(max(t0, 0), max(t1, 0))`, is `max(min(t0, t1), 0)`, and the exit,
+    /// `max(min(t0, t_max), min(t1, t_max))`, is `min(max(t0, t1), t_max)`
+    /// (max and min commute with the clamps for values that are not NaN).
+    /// The largest entry is taken before the clamp at 0 rather than after:
+    /// the same value, and `+0`, never `-0`, when it is 0; a `-0`/`+0` tie
+    /// among the exits widens to the same limit. So the answers are the
+    /// definition's, bit for bit.
+    #[inline(always)]
+    pub(crate) fn test(&self, min: [W; 3], max: [W; 3]) -> (W::Mask, W) {
+        let (lo, hi, o) = (self.lo, self.hi, self.origin);
+        let (r0, r1) = (self.inv_to_min, self.inv_to_max);
+        let t0 = [
+            min[0].sub(o[0]).mul(r0[0]),
+            min[1].sub(o[1]).mul(r0[1]),
+            min[2].sub(o[2]).mul(r0[2]),
+        ];
+        let t1 = [
+            max[0].sub(o[0]).mul(r1[0]),
+            max[1].sub(o[1]).mul(r1[1]),
+            max[2].sub(o[2]).mul(r1[2]),
+        ];
+        let (enter, exit) = if self.simple {
+            let near = t0[0].min(t1[0]).max(t0[1].min(t1[1])).max(t0[2].min(t1[2]));
+            let far = t0[0].max(t1[0]).min(t0[1].max(t1[1])).min(t0[2].max(t1[2]));
+            (near.max(lo), far.min(hi))
+        } else {
+            // The definition's folds, lane by lane.
+            let (ex, xx) = fold(t0[0], t1[0], lo, hi);
+            let (ey, xy) = fold(t0[1], t1[1], lo, hi);
+            let (ez, xz) = fold(t0[2], t1[2], lo, hi);
+            (ex.max(ey.max(ez)), xx.min(xy.min(xz)))
+        };
+        // The end of the definition, lane by lane (`enter <= limit &&
+        // enter <= MAX` as `enter <= min(limit, MAX)`: `limit` is not NaN
+        // here, as `t_max` is not).
+        let limit = exit
+            .mul(W::splat(exit_widening()))
+            .add(W::splat(exit_slack()));
+        let hit = enter.le(limit.min(W::splat(W::F::MAX)));
+        let exit = limit.min(hi);
+        (
+            hit,
+            W::select(hit, enter.min(exit), W::splat(W::F::INFINITY)),
+        )
+    }
 }
 
 /// Up to `N` boxes, structure-of-arrays, validated when stored.
@@ -287,59 +365,24 @@ fn aabb_batch_body<W: Lanes8<F = S<V>>, V: Vector, const N: usize>(
     if !t_max_ok(t_max) {
         return AabbBatchHits { mask: 0, enter };
     }
-    let (o, r0, r1) = (
-        ray.slab.origin.to_array(),
-        ray.slab.inv_to_min.to_array(),
-        ray.slab.inv_to_max.to_array(),
-    );
-    let zero = S::<V>::ZERO;
-    // For rays whose reciprocals are all normal (every component nonzero),
-    // the per-axis folds simplify. Every reciprocal is then normal
-    // (`r0 == r1`) and every box valid, so no distance is NaN, and
-    // `slab_core`'s folds reduce to the textbook order of each pair: the
-    // entry through an axis is `min(max(t0, 0), max(t1, 0))`, which is
-    // `max(min(t0, t1), 0)`, and the exit `max(min(t0, t_max),
-    // min(t1, t_max))`, which is `min(max(t0, t1), t_max)` (max and min
-    // commute with the clamps for values that are not NaN). The largest
-    // entry is taken before the clamp at 0 rather than after: the same
-    // value, and `+0`, never `-0`, when it is 0; a `-0`/`+0` tie among the
-    // exits widens to the same limit. So the answers are `slab_core`'s,
-    // bit for bit.
-    let simple = ray.slab.simple;
+    let slab = Slab8::<W>::new(ray, t_max);
     let [min, max] = &batch.planes;
     let mut mask = 0;
-    let splat = W::splat;
-    let (lo, hi) = (splat(zero), splat(t_max));
-    let (ox, oy, oz) = (splat(o[0]), splat(o[1]), splat(o[2]));
-    let (ax, ay, az) = (splat(r0[0]), splat(r0[1]), splat(r0[2]));
-    let (bx, by, bz) = (splat(r1[0]), splat(r1[1]), splat(r1[2]));
     for c in 0..N.div_ceil(8) {
         // Lanes past N hold NaN, and are not in `batch.used`.
-        let (tx0, tx1) = (dist(&min[0], c, ox, ax), dist(&max[0], c, ox, bx));
-        let (ty0, ty1) = (dist(&min[1], c, oy, ay), dist(&max[1], c, oy, by));
-        let (tz0, tz1) = (dist(&min[2], c, oz, az), dist(&max[2], c, oz, bz));
-        let (enter_c, exit_c) = if simple {
-            let entry = tx0.min(tx1).max(ty0.min(ty1)).max(tz0.min(tz1));
-            let exit = tx0.max(tx1).min(ty0.max(ty1)).min(tz0.max(tz1));
-            (entry.max(lo), exit.min(hi))
-        } else {
-            // The definition's folds, lane by lane.
-            let (ex, xx) = fold(tx0, tx1, lo, hi);
-            let (ey, xy) = fold(ty0, ty1, lo, hi);
-            let (ez, xz) = fold(tz0, tz1, lo, hi);
-            (ex.max(ey.max(ez)), xx.min(xy.min(xz)))
-        };
-        // `slab_finish`, lane by lane (`enter <= limit && enter <= MAX` as
-        // `enter <= min(limit, MAX)`: `limit` is not NaN here, as `t_max`
-        // is not).
-        let limit = exit_c.mul(splat(exit_widening())).add(splat(exit_slack()));
-        let hit = enter_c.le(limit.min(splat(S::<V>::MAX)));
-        let exit_c = limit.min(hi);
-        put(
-            &mut enter,
-            c,
-            W::select(hit, enter_c.min(exit_c), splat(inf)),
+        let (hit, enter_c) = slab.test(
+            [
+                lanes_at::<W, N>(&min[0], c),
+                lanes_at::<W, N>(&min[1], c),
+                lanes_at::<W, N>(&min[2], c),
+            ],
+            [
+                lanes_at::<W, N>(&max[0], c),
+                lanes_at::<W, N>(&max[1], c),
+                lanes_at::<W, N>(&max[2], c),
+            ],
         );
+        put(&mut enter, c, enter_c);
         mask |= W::bits(hit) << (8 * c);
     }
     // Empty lanes never hit (see `AabbBatch`); the mask of used lanes is
