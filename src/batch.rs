@@ -27,6 +27,7 @@ use glam::Vec3;
 
 use crate::aabb::{Aabb, PreparedRay, exit_slack, exit_widening};
 use crate::lanes::{Lanes, Lanes8};
+use crate::quantized::{QuantizedChildren, quantized_body};
 use crate::ray::t_max_ok;
 use crate::real::{S, Scalar, Vector, bound_up};
 use crate::triangle::{EdgeRule, Side, Triangle, TriangleHit, watertight_sheared};
@@ -814,6 +815,16 @@ pub trait Simd: Copy + core::fmt::Debug + sealed::Sealed {
         batch: &TriangleBatch<V, N>,
         t_max: S<V>,
     ) -> TriangleBatchHits<S<V>, N>;
+
+    /// [`ray_quantized_children`](crate::ray_quantized_children), compiled
+    /// for this instruction set.
+    #[must_use]
+    fn ray_quantized_children(
+        self,
+        ray: &PreparedRay,
+        node: &QuantizedChildren<'_>,
+        t_max: f32,
+    ) -> AabbBatchHits<f32, 8>;
 }
 
 /// The instruction set the build's target has (SSE2 on the default x86-64
@@ -845,6 +856,16 @@ impl Simd for TargetSimd {
         const { check_lanes::<N>() };
         triangle_batch_body::<<S<V> as Scalar>::Lanes8, V, N>(ray, batch, t_max)
     }
+
+    #[inline(always)]
+    fn ray_quantized_children(
+        self,
+        ray: &PreparedRay,
+        node: &QuantizedChildren<'_>,
+        t_max: f32,
+    ) -> AabbBatchHits<f32, 8> {
+        quantized_body::<<f32 as Scalar>::Lanes8>(ray, node, t_max)
+    }
 }
 
 /// AVX2, on a CPU that has it: [`with_simd`] makes one only after checking
@@ -860,7 +881,7 @@ impl sealed::Sealed for Avx2 {}
 impl Avx2 {
     /// `Some` when the CPU has AVX2.
     #[inline]
-    fn detect() -> Option<Self> {
+    pub(crate) fn detect() -> Option<Self> {
         std::is_x86_feature_detected!("avx2").then_some(Avx2(()))
     }
 }
@@ -892,6 +913,17 @@ impl Simd for Avx2 {
         const { check_lanes::<N>() };
         // SAFETY: as above.
         unsafe { avx2::triangle(ray, batch, t_max) }
+    }
+
+    #[inline(always)]
+    fn ray_quantized_children(
+        self,
+        ray: &PreparedRay,
+        node: &QuantizedChildren<'_>,
+        t_max: f32,
+    ) -> AabbBatchHits<f32, 8> {
+        // SAFETY: as above.
+        unsafe { avx2::quantized(ray, node, t_max) }
     }
 }
 
@@ -976,6 +1008,16 @@ mod avx2 {
         t_max: S<V>,
     ) -> AabbBatchHits<S<V>, N> {
         aabb_batch_body::<<S<V> as Scalar>::Lanes8Avx2, V, N>(ray, batch, t_max)
+    }
+
+    #[target_feature(enable = "avx2")]
+    #[inline]
+    pub(super) fn quantized(
+        ray: &PreparedRay,
+        node: &QuantizedChildren<'_>,
+        t_max: f32,
+    ) -> AabbBatchHits<f32, 8> {
+        quantized_body::<<f32 as Scalar>::Lanes8Avx2>(ray, node, t_max)
     }
 
     #[target_feature(enable = "avx2")]

@@ -427,6 +427,20 @@ pub(crate) mod sse {
                 _mm_storeu_ps(a.as_mut_ptr().add(4), self.0[1]);
             }
         }
+        #[inline(always)]
+        fn from_bytes(b: &[u8; 8]) -> Self {
+            // SAFETY: see the module docs (SSE2); the load reads 8 bytes
+            // from a reference to 8 bytes. Bytes widen to 16 and then 32
+            // bits by interleaving with zeros (SSE2 has no zero extension).
+            Self(unsafe {
+                let zero = _mm_setzero_si128();
+                let words = _mm_unpacklo_epi8(_mm_loadl_epi64(b.as_ptr().cast()), zero);
+                [
+                    _mm_cvtepi32_ps(_mm_unpacklo_epi16(words, zero)),
+                    _mm_cvtepi32_ps(_mm_unpackhi_epi16(words, zero)),
+                ]
+            })
+        }
         op2x2!(add, _mm_add_ps);
         op2x2!(sub, _mm_sub_ps);
         op2x2!(mul, _mm_mul_ps);
@@ -493,6 +507,8 @@ pub trait Lanes8: Copy {
     fn load(a: &[Self::F; 8]) -> Self;
     /// The lanes into an array.
     fn store(self, a: &mut [Self::F; 8]);
+    /// Eight bytes as numbers (exact).
+    fn from_bytes(b: &[u8; 8]) -> Self;
     /// Lane-wise `self + o`.
     fn add(self, o: Self) -> Self;
     /// Lane-wise `self - o`.
@@ -555,6 +571,10 @@ impl<F: Scalar> Lanes8 for Portable8<F> {
     #[inline(always)]
     fn store(self, a: &mut [F; 8]) {
         *a = self.0;
+    }
+    #[inline(always)]
+    fn from_bytes(b: &[u8; 8]) -> Self {
+        Self(b.map(|x| F::from_u32(u32::from(x))))
     }
     #[inline(always)]
     fn add(self, o: Self) -> Self {
@@ -703,6 +723,15 @@ pub(crate) mod avx {
             // SAFETY: see the module docs (AVX); the unaligned store writes
             // 32 bytes through a mutable reference to 8 `f32`.
             unsafe { _mm256_storeu_ps(a.as_mut_ptr(), self.0) }
+        }
+        #[inline(always)]
+        fn from_bytes(b: &[u8; 8]) -> Self {
+            // SAFETY: see the module docs (AVX2); the load reads 8 bytes
+            // from a reference to 8 bytes.
+            Self(unsafe {
+                let bytes = _mm_loadl_epi64(b.as_ptr().cast());
+                _mm256_cvtepi32_ps(_mm256_cvtepu8_epi32(bytes))
+            })
         }
         op2!(add, _mm256_add_ps);
         op2!(sub, _mm256_sub_ps);
@@ -879,6 +908,11 @@ mod tests {
             assert_eq!(pout(p(pa, pb)), out(w(wa, wb)), "{a:?} {b:?}");
         }
         assert_eq!(pout(pa.abs()), out(wa.abs()));
+        let bytes = a.map(|x| x.to_bits() as u8);
+        assert_eq!(
+            pout(Portable8::from_bytes(&bytes)),
+            out(W::from_bytes(&bytes))
+        );
         assert_eq!(pout(Portable8::splat(a[3])), out(W::splat(a[3])));
         let masks = [
             (pa.lt(pb), wa.lt(wb)),

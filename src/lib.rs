@@ -213,6 +213,7 @@ mod batch;
 mod camera;
 mod lanes;
 mod plane;
+mod quantized;
 mod ray;
 mod real;
 #[cfg(feature = "proptest")]
@@ -229,6 +230,7 @@ pub use batch::{
 };
 pub use camera::{CameraError, PinholeCamera};
 pub use plane::{Plane, ray_plane, ray_plane_hit_point, ray_plane_t_error};
+pub use quantized::{QuantizedChildren, quantize_bounds, ray_quantized_children};
 pub use ray::{Ray, SurfacePoint, offset_ray_origin};
 pub use real::{Scalar, Vector};
 /// `f64` names, glam-style (see the crate docs, "Precision").

@@ -1,0 +1,292 @@
+//! The children of a compressed wide BVH node, stored quantized, and the
+//! conservative ray test that reads them where the node keeps them.
+
+use glam::Vec3;
+
+use crate::aabb::{Aabb, PreparedRay};
+use crate::batch::{AabbBatch, AabbBatchHits, Slab8};
+use crate::lanes::Lanes8;
+use crate::ray::t_max_ok;
+
+/// The eight child boxes of a compressed wide BVH node, read in place:
+/// the quantized format of Ylitie, Karras and Laine ("Efficient Incoherent
+/// Ray Traversal on GPUs Through Compressed Wide BVHs", HPG 2017), which
+/// obvhs and other CPU and GPU BVHs store.
+///
+/// Per axis `k`, a child's box runs from `origin[k] + s[k] * min[k][child]`
+/// to `origin[k] + s[k] * max[k][child]`, where the grid step
+/// `s[k] = 2^(exponents[k] - 127)` is the `f32` whose bits are
+/// `exponents[k] << 23`, and the bounds are bytes. The struct holds
+/// references to the node's own byte arrays, so the node is not copied: build
+/// one per node visit from the fields of whatever node type the BVH uses.
+///
+/// The boxes the ray test uses, [`QuantizedChildren::child_box`], contain
+/// these exact boxes: every coordinate is rounded outward by at least the
+/// rounding error of computing it (see `widening`). A node whose origin is
+/// not finite or whose exponent is 255 (a step of infinity) is invalid and
+/// none of its children is hit; a child with `min > max` on some axis is
+/// empty and never hit. Empty child slots are tested like any other: mask
+/// the answer with the node's occupied slots.
+///
+/// ```
+/// use rayhit::{QuantizedChildren, glam::Vec3};
+/// // Step 2^(125 - 127) = 0.25 on every axis, children measured from (1, 2, 3).
+/// let (lo, hi) = ([0, 4, 0, 0, 0, 0, 0, 0], [4, 8, 0, 0, 0, 0, 0, 0]);
+/// let node = QuantizedChildren {
+///     origin: Vec3::new(1.0, 2.0, 3.0),
+///     exponents: [125; 3],
+///     min: [&lo, &lo, &lo],
+///     max: [&hi, &hi, &hi],
+/// };
+/// assert_eq!(node.step(), Vec3::splat(0.25));
+/// // Child 1 spans [2, 3] x [3, 4] x [4, 5], widened by a few ulps.
+/// let b = node.child_box(1).unwrap();
+/// assert!(b.min.x <= 2.0 && b.min.x > 2.0 - 1e-5 && b.max.z >= 5.0 && b.max.z < 5.0 + 1e-5);
+/// ```
+#[derive(Clone, Copy, Debug)]
+pub struct QuantizedChildren<'a> {
+    /// The corner the children's bounds are measured from.
+    pub origin: Vec3,
+    /// Per axis, the biased exponent of the grid step.
+    pub exponents: [u8; 3],
+    /// Per axis, the eight children's lower bounds, in grid steps.
+    pub min: [&'a [u8; 8]; 3],
+    /// Per axis, the eight children's upper bounds, in grid steps.
+    pub max: [&'a [u8; 8]; 3],
+}
+
+/// The grid step `2^(e - 127)` of a biased exponent `e` (`0` for `e = 0`,
+/// `+inf` for `e = 255`).
+#[inline(always)]
+fn step_of(e: u8) -> f32 {
+    f32::from_bits(u32::from(e) << 23)
+}
+
+/// The outward rounding of the decoded coordinates of one axis: a float
+/// `w` such that for every byte `q`, `fl(r - w) <= p + s q <= fl(r + w)`
+/// exactly, where `r = fl(fl(s q) + p)` is the coordinate computed.
+///
+/// Derivation. `s q` is exact (a byte times a power of two, for steps from
+/// `2^-126` up; below, `s = 0` or a subnormal step, whose products are also
+/// exact as long as they stay subnormal or `q s` is a multiple of the
+/// smallest subnormal, which it is). So `r` is one rounding of the exact
+/// `x = p + s q`: `|r - x| <= ulp(r) / 2 <= 2^-24 |r|` for a normal `r`,
+/// and `<= TINY / 2` below. Rounding is monotone in `q`, so `|r| <= M =
+/// max(|p|, |fl(p + 255 s)|)`. With `w = fl(2^-22 M) + 2 TINY` (at least
+/// `2^-22 M + TINY`), the difference `r - w` is at most
+/// `x - 3 * 2^-24 M - TINY/2`, and rounding it adds at most
+/// `2^-24 |r - w| <= 2^-24 (M + w)` for a normal result, less than that
+/// margin (a subnormal result of a subtraction is exact). The same holds
+/// for `r + w` upward. So the decoded box contains the exact one, wider by
+/// about four ulps of the node's largest coordinate on each side.
+#[inline(always)]
+fn widening(p: f32, s: f32) -> f32 {
+    let far = p + s * 255.0;
+    let m = if p.abs() > far.abs() {
+        p.abs()
+    } else {
+        far.abs()
+    };
+    m * f32::from_bits(0x3480_0000) + 2.0 * f32::from_bits(1)
+}
+
+impl QuantizedChildren<'_> {
+    /// The grid step `2^(e - 127)` of each axis.
+    #[inline]
+    #[must_use]
+    pub fn step(&self) -> Vec3 {
+        Vec3::from_array(self.exponents.map(step_of))
+    }
+
+    /// True when the origin is finite, no exponent is 255, and every
+    /// decoded coordinate is finite (an origin within a few ulps of
+    /// `f32::MAX`, or a step so large that `origin + 255 step` overflows,
+    /// makes the node invalid).
+    #[inline]
+    #[must_use]
+    pub fn is_valid(&self) -> bool {
+        (0..3).all(|k| {
+            let (p, s) = (self.origin[k], step_of(self.exponents[k]));
+            let w = widening(p, s);
+            ((p - w).abs() <= f32::MAX) & ((p + s * 255.0) + w <= f32::MAX)
+        })
+    }
+
+    /// The box the ray test uses for `child` (0 to 7): the quantized box
+    /// rounded outward, so that it contains the exact one; `None` for an
+    /// invalid node, an empty child (`min > max` on an axis) or `child >= 8`.
+    #[must_use]
+    pub fn child_box(&self, child: usize) -> Option<Aabb> {
+        if child >= 8 || !self.is_valid() {
+            return None;
+        }
+        let mut lo = [0.0; 3];
+        let mut hi = [0.0; 3];
+        for k in 0..3 {
+            let (p, s) = (self.origin[k], step_of(self.exponents[k]));
+            let w = widening(p, s);
+            let (a, b) = (self.min[k][child], self.max[k][child]);
+            if a > b {
+                return None;
+            }
+            lo[k] = (s * f32::from(a) + p) - w;
+            hi[k] = (s * f32::from(b) + p) + w;
+        }
+        Some(Aabb::new(Vec3::from_array(lo), Vec3::from_array(hi)))
+    }
+
+    /// The eight boxes of [`QuantizedChildren::child_box`] as a batch
+    /// (empty children and invalid nodes give empty lanes):
+    /// [`ray_aabb_batch`](crate::ray_aabb_batch) on it gives, bit for bit,
+    /// what [`ray_quantized_children`] gives on the node.
+    #[must_use]
+    pub fn boxes(&self) -> AabbBatch<Vec3, 8> {
+        let mut batch = AabbBatch::empty();
+        for child in 0..8 {
+            if let Some(b) = self.child_box(child) {
+                batch.set(child, &b);
+            }
+        }
+        batch
+    }
+}
+
+/// Quantizes one axis of a child's bounds for a node with origin `origin`
+/// and biased exponent `exponent` on that axis, conservatively: the bytes
+/// `(lo, hi)` with the tightest box whose decoded form
+/// ([`QuantizedChildren::child_box`]) contains `[min, max]`, or `None`
+/// when no byte pair does (the node's box does not contain the child's, or
+/// its step is too small) or the input is not finite or inverted.
+///
+/// A BVH builder that quantizes with this (or checks its own bytes against
+/// `child_box`) gets nodes whose test never misses a child the ray meets.
+///
+/// ```
+/// use rayhit::quantize_bounds;
+/// // Origin 1, step 0.25 (exponent 125): [1.6, 2.2] needs [1.5, 2.25].
+/// assert_eq!(quantize_bounds(1.0, 125, 1.6, 2.2), Some((2, 5)));
+/// // Below the origin: no byte reaches it.
+/// assert_eq!(quantize_bounds(1.0, 125, 0.5, 2.0), None);
+/// ```
+#[must_use]
+pub fn quantize_bounds(origin: f32, exponent: u8, min: f32, max: f32) -> Option<(u8, u8)> {
+    if !(origin.is_finite() && exponent < 255 && min.is_finite() && max.is_finite() && min <= max) {
+        return None;
+    }
+    let s = step_of(exponent);
+    let w = widening(origin, s);
+    let lo_of = |q: u8| (s * f32::from(q) + origin) - w;
+    let hi_of = |q: u8| (s * f32::from(q) + origin) + w;
+    // A first guess from the quotient, then the exact decode decides (the
+    // decoded coordinates grow with the byte).
+    let guess = |x: f32| {
+        let q = if s > 0.0 { (x - origin) / s } else { 0.0 };
+        if q.is_nan() { 0.0 } else { q.clamp(0.0, 255.0) }
+    };
+    let mut lo = guess(min).floor() as u8;
+    while lo_of(lo) > min {
+        lo = lo.checked_sub(1)?;
+    }
+    while lo < 255 && lo_of(lo + 1) <= min {
+        lo += 1;
+    }
+    let mut hi = guess(max).ceil() as u8;
+    while hi_of(hi) < max {
+        hi = hi.checked_add(1)?;
+    }
+    while hi > lo && hi_of(hi - 1) >= max {
+        hi -= 1;
+    }
+    // For bounds thinner than the widening, `lo` can pass `hi`; then every
+    // byte between them decodes to a box containing the bounds (the decoded
+    // coordinates grow with the byte), `hi` among them.
+    Some(if lo > hi { (hi, hi) } else { (lo, hi) })
+}
+
+/// The slab test of one prepared ray against the eight children of a
+/// compressed wide BVH node, read from the node itself: which children the
+/// ray meets on `[0, t_max]`, and where it enters each.
+///
+/// Each child's box is decoded with outward rounding
+/// ([`QuantizedChildren::child_box`]), so it contains the exact quantized
+/// box, and tested with the conservative slab test: the answer is, bit for
+/// bit, [`ray_aabb_batch`](crate::ray_aabb_batch) on
+/// [`QuantizedChildren::boxes`], so every guarantee of
+/// [`ray_aabb_prepared`](crate::ray_aabb_prepared) holds per child. In
+/// particular: no false miss against exact arithmetic on the quantized
+/// boxes. With a builder whose quantized boxes contain the children's
+/// geometry (see [`quantize_bounds`]), a traversal with this node test and
+/// [`ray_triangle`](crate::ray_triangle) in the leaves is watertight. False
+/// hits only within a few ulps of a decoded box (about four ulps of the
+/// node's largest coordinate, from the outward rounding, plus the slab
+/// test's band).
+///
+/// An invalid node, an invalid ray and a NaN or negative `t_max` give no
+/// hits; empty children are never hit. Never panics. On x86-64 with `std`
+/// it picks an AVX2 copy at run time like the batch kernels (see
+/// [`with_simd`](crate::with_simd) to choose once per traversal).
+///
+/// ```
+/// use rayhit::{PreparedRay, QuantizedChildren, Ray, ray_quantized_children, glam::Vec3};
+/// let (lo, hi) = ([0, 4, 0, 0, 0, 0, 0, 0], [4, 8, 0, 0, 0, 0, 0, 0]);
+/// let node = QuantizedChildren {
+///     origin: Vec3::ZERO,
+///     exponents: [127; 3], // step 1
+///     min: [&lo, &lo, &lo],
+///     max: [&hi, &hi, &hi],
+/// };
+/// // Along the diagonal: child 0 is [0, 4]^3, child 1 is [4, 8]^3.
+/// let ray = PreparedRay::new(&Ray::new(Vec3::splat(-1.0), Vec3::ONE));
+/// let hits = ray_quantized_children(&ray, &node, f32::INFINITY);
+/// assert_eq!(hits.mask & 0b11, 0b11);
+/// assert!(hits.enter[1] <= 5.0 && hits.enter[1] > 4.99);
+/// ```
+#[inline]
+#[must_use]
+pub fn ray_quantized_children(
+    ray: &PreparedRay,
+    node: &QuantizedChildren<'_>,
+    t_max: f32,
+) -> AabbBatchHits<f32, 8> {
+    #[cfg(all(feature = "std", target_arch = "x86_64", not(target_feature = "avx2")))]
+    if let Some(simd) = crate::batch::Avx2::detect() {
+        return crate::Simd::ray_quantized_children(simd, ray, node, t_max);
+    }
+    crate::Simd::ray_quantized_children(crate::TargetSimd, ray, node, t_max)
+}
+
+/// Axis `k` of the eight children, decoded as `child_box` does: the lower
+/// and upper planes, and which children are not empty on that axis.
+/// (A function, not a closure: the AVX2 copy must be inlined whole.)
+#[inline(always)]
+fn decode<W: Lanes8<F = f32>>(node: &QuantizedChildren<'_>, k: usize) -> (W, W, W::Mask) {
+    let (p, s) = (node.origin[k], step_of(node.exponents[k]));
+    let w = widening(p, s);
+    let (a, b) = (W::from_bytes(node.min[k]), W::from_bytes(node.max[k]));
+    let (s, p, w) = (W::splat(s), W::splat(p), W::splat(w));
+    (a.mul(s).add(p).sub(w), b.mul(s).add(p).add(w), a.le(b))
+}
+
+/// The body of [`ray_quantized_children`] with the eight-lane type `W`.
+#[inline(always)]
+pub(crate) fn quantized_body<W: Lanes8<F = f32>>(
+    ray: &PreparedRay,
+    node: &QuantizedChildren<'_>,
+    t_max: f32,
+) -> AabbBatchHits<f32, 8> {
+    let mut enter = [f32::INFINITY; 8];
+    if !(t_max_ok(t_max) && node.is_valid()) {
+        return AabbBatchHits { mask: 0, enter };
+    }
+    let (x0, x1, ox) = decode::<W>(node, 0);
+    let (y0, y1, oy) = decode::<W>(node, 1);
+    let (z0, z1, oz) = decode::<W>(node, 2);
+    let slab = Slab8::<W>::new(ray, t_max);
+    let (hit, e) = slab.test([x0, y0, z0], [x1, y1, z1]);
+    let hit = W::and(hit, W::and(ox, W::and(oy, oz)));
+    W::select(hit, e, W::splat(f32::INFINITY)).store(&mut enter);
+    AabbBatchHits {
+        mask: W::bits(hit),
+        enter,
+    }
+}
