@@ -23,6 +23,8 @@
 #[path = "../../workloads/mod.rs"]
 mod workloads;
 
+mod cwbvh;
+
 use std::hint::black_box;
 use std::time::{Duration, Instant};
 
@@ -962,9 +964,124 @@ fn sweep_kernels<'a>(s: &'a Sweep, out: &mut Vec<Kernel<'a>>) {
 /// The rows rayhit is compared against: the other crates and the
 /// textbook kernels written in this file.
 fn is_peer(name: &str) -> bool {
-    ["bvh", "parry3d", "textbook"]
+    ["bvh", "parry3d", "textbook", "obvhs"]
         .iter()
         .any(|p| name.starts_with(p))
+}
+
+/// One mesh's CWBVH, its leak rays, and both pipelines' inputs.
+struct CwbvhData {
+    name: &'static str,
+    /// obvhs's nodes as built, for obvhs's own pipeline.
+    obvhs: cwbvh::Scene,
+    /// The same build with the child bytes that rayhit's decoding would
+    /// not contain rewritten by `quantize_bounds`, for rayhit's.
+    fixed: cwbvh::Scene,
+    rays: Vec<Ray>,
+    prepared: Vec<(PreparedRay, rayhit::glam::Vec3A)>,
+}
+
+impl CwbvhData {
+    fn new(mesh: &cwbvh::Mesh, count: usize) -> Self {
+        let obvhs = cwbvh::Scene::new(mesh);
+        let mut fixed = cwbvh::Scene::new(mesh);
+        fixed.check_quantization(true);
+        let leak = cwbvh::LeakRays::new(mesh, count, 7);
+        let rays: Vec<Ray> = leak.inside.into_iter().chain(leak.outside).collect();
+        let prepared = rays
+            .iter()
+            .map(|r| (PreparedRay::new(r), r.dir.into()))
+            .collect();
+        Self {
+            name: mesh.name,
+            obvhs,
+            fixed,
+            rays,
+            prepared,
+        }
+    }
+}
+
+/// Closest hit through a CWBVH: obvhs's own kernels against rayhit's, on
+/// the same rays (half from inside the mesh, half from outside, all aimed
+/// exactly at vertices or edge midpoints).
+fn cwbvh_kernels<'a>(d: &'a CwbvhData, out: &mut Vec<Kernel<'a>>) {
+    let (w, sec, n) = (d.name, "cwbvh (per ray)", d.rays.len());
+    let agreement = agree(
+        d.rays.iter().map(|r| cwbvh::rayhit_one(&d.fixed, r) < INF),
+        d.rays.iter().map(|r| d.obvhs.obvhs_closest(r) < INF),
+    );
+    out.extend([
+        kernel(
+            sec,
+            "rayhit ray_quantized_children + ray_triangle_prepared, with_simd",
+            w,
+            n,
+            None,
+            move || {
+                with_simd(cwbvh::RayhitPipeline {
+                    scene: &d.fixed,
+                    rays: &d.prepared,
+                })
+            },
+        ),
+        kernel(
+            sec,
+            "obvhs CwBvh::ray_traverse (its node and triangle tests)",
+            w,
+            n,
+            Some(agreement),
+            move || {
+                d.rays
+                    .iter()
+                    .map(|r| u64::from(d.obvhs.obvhs_closest(r).to_bits()))
+                    .fold(0u64, u64::wrapping_add)
+            },
+        ),
+    ]);
+}
+
+/// `--leaks`: the leak and pass-through counts of every pipeline on every
+/// mesh, and how many of obvhs's quantized child boxes rayhit's decoding
+/// had to widen.
+fn print_leaks(meshes: &[cwbvh::Mesh], count: usize) {
+    println!(
+        "| mesh | triangles | rays from inside | rays from outside | pipeline | inside rays that hit nothing | outside rays past their target |"
+    );
+    println!("| --- | ---: | ---: | ---: | --- | ---: | ---: |");
+    for mesh in meshes {
+        let rays = cwbvh::LeakRays::new(mesh, count, 7);
+        let obvhs = cwbvh::Scene::new(mesh);
+        let mut fixed = cwbvh::Scene::new(mesh);
+        let (children, bad) = fixed.check_quantization(true);
+        let row = |name: &str, l: cwbvh::Leaks| {
+            println!(
+                "| {} | {} | {} | {} | {name} | {} | {} |",
+                mesh.name,
+                mesh.faces.len(),
+                rays.inside.len(),
+                rays.outside.len(),
+                l.inside_missed,
+                l.passed_through
+            );
+        };
+        row(
+            "obvhs nodes, obvhs triangles",
+            cwbvh::count_leaks(&rays, |r| obvhs.obvhs_closest(r)),
+        );
+        row(
+            "obvhs nodes, rayhit ray_triangle",
+            cwbvh::count_leaks(&rays, |r| obvhs.obvhs_nodes_rayhit_triangles(r)),
+        );
+        row(
+            "rayhit ray_quantized_children + ray_triangle",
+            cwbvh::count_leaks(&rays, |r| cwbvh::rayhit_one(&fixed, r)),
+        );
+        println!(
+            "({}: {bad} of {children} occupied child boxes as obvhs quantized them were not contained in rayhit's decoding and were re-quantized with quantize_bounds.)",
+            mesh.name
+        );
+    }
 }
 
 fn find(kernels: &[Kernel<'_>], section: &str, name: &str, workload: &str) -> f64 {
@@ -975,6 +1092,12 @@ fn find(kernels: &[Kernel<'_>], section: &str, name: &str, workload: &str) -> f6
 }
 
 fn main() {
+    let meshes = [cwbvh::Mesh::torus(250, 200), cwbvh::Mesh::icosphere(6)];
+    if std::env::args().nth(1).as_deref() == Some("--leaks") {
+        print_leaks(&meshes, 200_000);
+        return;
+    }
+    let cwbvh_data: Vec<CwbvhData> = meshes.iter().map(|m| CwbvhData::new(m, 4096)).collect();
     let box_data: Vec<BoxData> = box_workloads()
         .into_iter()
         .map(|w| BoxData::new(w.name, w.rays, w.boxes))
@@ -1018,6 +1141,9 @@ fn main() {
     }
     group_kernels(&gb, &bb4, &bb8, &gt, &tb4, &tb8, &mut kernels);
     sweep_kernels(&sweep, &mut kernels);
+    for d in &cwbvh_data {
+        cwbvh_kernels(d, &mut kernels);
+    }
 
     // `--count NAME WORKLOAD REPS`: run one row's loop REPS times, untimed,
     // and stop; under `valgrind --tool=callgrind`, the difference between
