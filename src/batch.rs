@@ -1,18 +1,15 @@
 //! Batch kernels: one ray against a small batch of boxes or triangles
 //! stored structure-of-arrays, the inner loops of BVH traversal.
 //!
-//! A batch holds up to `N` shapes (`N` from 1 to 32; 4, 8 and 16 are the
+//! A batch holds up to `N` shapes (`N` from 1 to 32; 8 and 16 are the
 //! useful sizes), each coordinate in an array of its own, so that one
-//! arithmetic operation serves every lane. The kernels are plain loops over
-//! the lanes, written so that the compiler turns them into SIMD code for
-//! the target it compiles for (SSE2 on the default x86-64 target, AVX2 or
-//! AVX-512 with `-C target-cpu=native`): no architecture-specific code, and
-//! the same source for `f32` and `f64`. On x86-64 with the `std` feature,
-//! when the target lacks AVX2, the same source is compiled a second time
-//! with AVX2 enabled and picked at run time on CPUs that have it (the
-//! crate's only `unsafe`: one call per kernel, each guarded by that check;
-//! it made the 8-lane
-//! batches 1.6x to 1.8x faster on the default target, see the README).
+//! arithmetic operation serves eight lanes. The kernels work on eight lanes
+//! at a time (`crate::lanes::Lanes8`: one AVX register, two SSE registers,
+//! or an array elsewhere and for `f64`), from one source. On x86-64 with
+//! the `std` feature, when the target lacks AVX2 (the default target has
+//! only SSE2), each kernel also exists compiled with AVX2 and is picked at
+//! run time on CPUs that have it: per call by [`ray_aabb_batch`] and
+//! [`ray_triangle_batch`], or once for a whole traversal by [`with_simd`].
 //!
 //! Every lane's answer is, bit for bit, the answer of the scalar kernel on
 //! that lane's shape: [`ray_aabb_batch`] runs the very arithmetic of
@@ -608,12 +605,6 @@ fn sheared<W: Lanes8, const N: usize>(
 /// sufficient tests for `t > 0` (all corners in front of the origin)
 /// fails, so that the other two must decide. The answer is the same either
 /// way; such a lane costs a scalar call more.
-///
-/// Why plain loops: on the benchmark machine they were faster than the
-/// same arithmetic written with the `wide` crate's `f32x8` or with glam's
-/// `Vec4` (see the README's speed section), they serve `f64` from the same
-/// source, and they widen with the target (`-C target-cpu=native`, or the
-/// AVX2 copy picked at run time; see the module docs).
 ///
 /// Empty lanes, an invalid ray and a NaN or negative `t_max` give no hits.
 /// Never panics.

@@ -71,12 +71,13 @@
 //! per ray that the box and triangle tests need, and the batch kernels test
 //! one prepared ray against up to 32 shapes stored structure-of-arrays
 //! ([`AabbBatch`] with [`ray_aabb_batch`], [`TriangleBatch`] with
-//! [`ray_triangle_batch`]; 4, 8 or 16 lanes are the useful sizes),
-//! returning a hit mask and per-lane distances. They are plain loops over
-//! the lanes that the compiler vectorises for the target (SSE2 by default,
-//! AVX2 or AVX-512 with `-C target-cpu=native`; with `std` on x86-64, an
-//! AVX2 copy is picked at run time where the CPU has it), in both
+//! [`ray_triangle_batch`]; 8 or 16 lanes are the useful sizes), returning a
+//! hit mask and per-lane distances. They work on eight lanes at a time in
+//! SIMD registers (SSE2 by default; AVX2 where the build or the CPU has it:
+//! with `std` on x86-64 an AVX2 copy is picked at run time), in both
 //! precisions, and each lane's answer is bit for bit the scalar kernel's.
+//! [`with_simd`] makes that choice once for a whole traversal instead of
+//! once per batch.
 //!
 //! ```
 //! use rayhit::{Aabb, AabbBatch, PreparedRay, Ray, ray_aabb_batch, glam::Vec3};
@@ -86,6 +87,83 @@
 //! let hits = ray_aabb_batch(&ray, &batch, f32::INFINITY);
 //! assert_eq!(hits.mask, 0b01);
 //! assert_eq!(hits.enter[0], 1.0);
+//! ```
+//!
+//! # Watertight traversal
+//!
+//! The watertight triangle test keeps a ray from slipping between two
+//! triangles; a BVH can still lose the ray before it reaches them. A ray
+//! aimed at a shared vertex or edge passes exactly along the boundary of
+//! the boxes around it, and a node test that misses such a box by one
+//! rounding (as the textbook slab test does, and a test with an epsilon on
+//! `t`) never visits the leaf holding the triangles: the ray goes through
+//! the mesh. So a watertight traversal needs a *conservative* node test,
+//! one that never misses a box exact arithmetic says the ray meets, and the
+//! triangle test in the leaves; all the crate's box tests are conservative:
+//!
+//! | BVH shape | node test | leaves |
+//! | --- | --- | --- |
+//! | binary, boxes as `Aabb` | [`ray_aabb_prepared`] | [`ray_triangle_prepared`] |
+//! | wide (4 to 16 children), boxes stored as an [`AabbBatch`] | [`ray_aabb_batch`] | [`ray_triangle_batch`] or [`ray_triangle_prepared`] |
+//! | compressed wide (children quantized to bytes, Ylitie et al. 2017) | [`ray_quantized_children`] on the node as stored | the same |
+//!
+//! Closest hit: pass the nearest hit so far as `t_max` to both tests, so
+//! that farther nodes and triangles are culled. For a compressed wide BVH,
+//! the node test is conservative for the boxes the bytes describe; those
+//! must contain the geometry, which [`quantize_bounds`] guarantees for a
+//! builder that uses it.
+//!
+//! ```
+//! use rayhit::glam::Vec3;
+//! use rayhit::{Aabb, PreparedRay, Ray, Triangle, ray_aabb_prepared, ray_triangle_prepared};
+//!
+//! /// A binary BVH node: a box and either two children or a range of triangles.
+//! enum Node {
+//!     Inner { bounds: Aabb, children: [usize; 2] },
+//!     Leaf { bounds: Aabb, triangles: std::ops::Range<usize> },
+//! }
+//!
+//! /// The nearest hit along `ray`: `(t, triangle index)`.
+//! fn closest(nodes: &[Node], triangles: &[Triangle], ray: &Ray) -> Option<(f32, usize)> {
+//!     let ray = PreparedRay::new(ray);
+//!     let (mut best, mut t_max) = (None, f32::INFINITY);
+//!     let mut stack = vec![0];
+//!     while let Some(i) = stack.pop() {
+//!         let bounds = match &nodes[i] {
+//!             Node::Inner { bounds, .. } | Node::Leaf { bounds, .. } => bounds,
+//!         };
+//!         // Conservative: never skips a node the ray meets before `t_max`.
+//!         if ray_aabb_prepared(&ray, bounds, t_max).is_none() {
+//!             continue;
+//!         }
+//!         match &nodes[i] {
+//!             Node::Inner { children, .. } => stack.extend(children),
+//!             Node::Leaf { triangles: range, .. } => {
+//!                 for k in range.clone() {
+//!                     if let Some(hit) = ray_triangle_prepared(&ray, &triangles[k], t_max) {
+//!                         (best, t_max) = (Some((hit.t, k)), hit.t);
+//!                     }
+//!                 }
+//!             }
+//!         }
+//!     }
+//!     best
+//! }
+//!
+//! // Two triangles sharing the edge from (1, 0, 0) to (0, 1, 0), one leaf each.
+//! let tris = [
+//!     Triangle::new(Vec3::ZERO, Vec3::X, Vec3::Y),
+//!     Triangle::new(Vec3::X, Vec3::new(1.0, 1.0, 0.0), Vec3::Y),
+//! ];
+//! let bounds = |t: &Triangle| Aabb::new(t.a.min(t.b).min(t.c), t.a.max(t.b).max(t.c));
+//! let nodes = [
+//!     Node::Inner { bounds: Aabb::new(Vec3::ZERO, Vec3::new(1.0, 1.0, 0.0)), children: [1, 2] },
+//!     Node::Leaf { bounds: bounds(&tris[0]), triangles: 0..1 },
+//!     Node::Leaf { bounds: bounds(&tris[1]), triangles: 1..2 },
+//! ];
+//! // Straight down through the middle of the shared edge: found.
+//! let ray = Ray::new(Vec3::new(0.5, 0.5, 1.0), -Vec3::Z);
+//! assert_eq!(closest(&nodes, &tris, &ray).map(|(t, _)| t), Some(1.0));
 //! ```
 //!
 //! # Numerical guarantees
@@ -151,6 +229,10 @@
 //!   [`ray_triangle_prepared`]). Bit for bit the answers of
 //!   [`ray_aabb_prepared`] and [`ray_triangle`] on each lane's shape, so
 //!   every guarantee above holds per lane.
+//! - **Compressed wide nodes** ([`ray_quantized_children`]). Every child
+//!   box is decoded rounded outward, so that it contains the exact
+//!   quantized box, and tested as [`ray_aabb_batch`] tests it: no false
+//!   miss against exact arithmetic on the quantized boxes.
 //! - **Plane** ([`ray_plane`]). `t` within [`ray_plane_t_error`], always
 //!   finite for a reported hit; rays within rounding of parallel (the sign
 //!   of `dir . normal` not certain) are not reported.

@@ -39,9 +39,10 @@ use crate::ray::t_max_ok;
 ///     max: [&hi, &hi, &hi],
 /// };
 /// assert_eq!(node.step(), Vec3::splat(0.25));
-/// // Child 1 spans [2, 3] x [3, 4] x [4, 5], widened by a few ulps.
+/// // Child 1 spans [2, 3] x [3, 4] x [4, 5], widened by a few ulps of the
+/// // node's largest coordinate (3 + 255 * 0.25 = 66.75, ulp 2^-17).
 /// let b = node.child_box(1).unwrap();
-/// assert!(b.min.x <= 2.0 && b.min.x > 2.0 - 1e-5 && b.max.z >= 5.0 && b.max.z < 5.0 + 1e-5);
+/// assert!(b.min.x <= 2.0 && b.min.x > 2.0 - 1e-4 && b.max.z >= 5.0 && b.max.z < 5.0 + 1e-4);
 /// ```
 #[derive(Clone, Copy, Debug)]
 pub struct QuantizedChildren<'a> {

@@ -434,6 +434,47 @@ fn textbook_mt(r: &Ray, tri: &Triangle) -> Option<f32> {
     (t > EPS).then_some(t)
 }
 
+/// The watertight test of Woop, Benthin and Wald (JCGT 2013) as the paper
+/// lays it out, with the ray's shear computed per call (as `ray_triangle`
+/// must): permute so the ray runs along its largest axis, shear, three 2-D
+/// edge functions with the sign test, then `t` from the scaled depths,
+/// two-sided, no exact-sign fallback, no conservative `t > 0` tests, no
+/// input checks. The floor against which `ray_triangle` is measured: the
+/// operations the watertight guarantee needs beyond Moller-Trumbore.
+#[inline]
+fn textbook_watertight(r: &Ray, tri: &Triangle) -> Option<f32> {
+    let d = r.dir;
+    let a = d.abs();
+    let kz = if a.x > a.y {
+        if a.x > a.z { 0 } else { 2 }
+    } else if a.y > a.z {
+        1
+    } else {
+        2
+    };
+    let (kx, ky) = ((kz + 1) % 3, (kz + 2) % 3);
+    let (sx, sy, sz) = (-d[kx] / d[kz], -d[ky] / d[kz], 1.0 / d[kz]);
+    let corner = |p: Vec3| {
+        let q = p - r.origin;
+        (q[kx] + sx * q[kz], q[ky] + sy * q[kz], q[kz] * sz)
+    };
+    let (ax, ay, az) = corner(tri.a);
+    let (bx, by, bz) = corner(tri.b);
+    let (cx, cy, cz) = corner(tri.c);
+    let u = cx * by - cy * bx;
+    let v = ax * cy - ay * cx;
+    let w = bx * ay - by * ax;
+    if (u < 0.0 || v < 0.0 || w < 0.0) && (u > 0.0 || v > 0.0 || w > 0.0) {
+        return None;
+    }
+    let det = u + v + w;
+    if det == 0.0 {
+        return None;
+    }
+    let t = (u * az + v * bz + w * cz) / det;
+    (t > 0.0).then_some(t)
+}
+
 fn box_kernels<'a>(d: &'a BoxData, out: &mut Vec<Kernel<'a>>) {
     let n = d.rays.len();
     let ours: Vec<bool> = (0..n)
@@ -529,6 +570,10 @@ fn triangle_kernels<'a>(d: &'a TriData, out: &mut Vec<Kernel<'a>>) {
         ours.iter().map(Option::is_some),
         (0..n).map(|i| textbook_mt(&d.rays[i], &d.tris[i]).is_some()),
     );
+    let woop_agree = agree(
+        ours.iter().map(Option::is_some),
+        (0..n).map(|i| textbook_watertight(&d.rays[i], &d.tris[i]).is_some()),
+    );
     let (w, sec) = (d.name, "triangle");
     out.extend([
         kernel(
@@ -568,6 +613,14 @@ fn triangle_kernels<'a>(d: &'a TriData, out: &mut Vec<Kernel<'a>>) {
             n,
             Some(mt_agree),
             chunked(&d.rays, &d.tris, 1, |r, t| t_sum(textbook_mt(r, t))),
+        ),
+        kernel(
+            sec,
+            "floor: textbook watertight, shear per call",
+            w,
+            n,
+            Some(woop_agree),
+            chunked(&d.rays, &d.tris, 1, |r, t| t_sum(textbook_watertight(r, t))),
         ),
         kernel(
             sec,
