@@ -184,14 +184,16 @@ pub fn quantize_bounds(origin: f32, exponent: u8, min: f32, max: f32) -> Option<
         let q = if s > 0.0 { (x - origin) / s } else { 0.0 };
         if q.is_nan() { 0.0 } else { q.clamp(0.0, 255.0) }
     };
-    let mut lo = guess(min).floor() as u8;
+    // (`as u8` truncates, which the loops below correct either way; no
+    // `floor` or `ceil` without `std`.)
+    let mut lo = guess(min) as u8;
     while lo_of(lo) > min {
         lo = lo.checked_sub(1)?;
     }
     while lo < 255 && lo_of(lo + 1) <= min {
         lo += 1;
     }
-    let mut hi = guess(max).ceil() as u8;
+    let mut hi = guess(max) as u8;
     while hi_of(hi) < max {
         hi = hi.checked_add(1)?;
     }

@@ -142,6 +142,27 @@ pub trait Scalar:
     /// underflow).
     #[must_use]
     fn diff_of_products_exact_sign(a: Self, b: Self, c: Self, d: Self) -> Self;
+
+    /// The exact sign of `sum a_i * b_i` over at most four pairs (an
+    /// implementation detail of the box tests' entry face).
+    ///
+    /// `f32`: each product is exact in `f64`; `f64`: each product is split
+    /// into its rounded value and its exact error by a fused multiply-add
+    /// (exact while the products are above `2^-969` or zero). The terms are
+    /// then summed exactly as a floating-point expansion (Shewchuk,
+    /// "Adaptive Precision Floating-Point Arithmetic and Fast Robust
+    /// Geometric Predicates", 1997: growing a nonoverlapping expansion with
+    /// error-free sums), whose sign is that of its largest component.
+    #[doc(hidden)]
+    #[must_use]
+    fn sum_of_products_sign(terms: &[(Self, Self)]) -> core::cmp::Ordering;
+
+    /// `(s, e)` with `s = fl(a - b)` and `s + e = a - b` exactly (Knuth's
+    /// two-sum; exact whenever `a - b` does not overflow). An
+    /// implementation detail.
+    #[doc(hidden)]
+    #[must_use]
+    fn two_diff(a: Self, b: Self) -> (Self, Self);
 }
 
 /// A 3-component vector the kernels run on: [`glam::Vec3`] or
@@ -301,6 +322,15 @@ macro_rules! impl_scalar {
             fn diff_of_products_exact_sign(a: Self, b: Self, c: Self, d: Self) -> Self {
                 exact_sign::$f(a, b, c, d)
             }
+            fn sum_of_products_sign(terms: &[(Self, Self)]) -> core::cmp::Ordering {
+                exact_sign::sum_sign(exact_sign::products::$f(terms))
+            }
+            #[inline]
+            fn two_diff(a: Self, b: Self) -> (Self, Self) {
+                let s = a - b;
+                let bb = s - a;
+                (s, (a - (s - bb)) - (b + bb))
+            }
         }
     };
 }
@@ -356,6 +386,69 @@ mod exact_sign {
             return diff;
         }
         fma(a, b, -p) - fma(c, d, -q)
+    }
+
+    /// The products of the pairs, as `f64` terms whose exact sum is the
+    /// exact sum of the products (at most 8 terms for 4 pairs).
+    pub(super) mod products {
+        /// Exact: 24 + 24 bits fit in 53.
+        pub(crate) fn f32(terms: &[(f32, f32)]) -> ([f64; 8], usize) {
+            let mut out = [0.0; 8];
+            for (o, &(a, b)) in out.iter_mut().zip(terms.iter().take(8)) {
+                *o = f64::from(a) * f64::from(b);
+            }
+            (out, terms.len().min(8))
+        }
+        /// Each product as its rounded value and its exact error.
+        pub(crate) fn f64(terms: &[(f64, f64)]) -> ([f64; 8], usize) {
+            let mut out = [0.0; 8];
+            let mut n = 0;
+            for &(a, b) in terms.iter().take(4) {
+                let p = a * b;
+                out[n] = p;
+                out[n + 1] = super::fma(a, b, -p);
+                n += 2;
+            }
+            (out, n)
+        }
+    }
+
+    /// The exact sign of the sum of the first `n` terms: they are added one
+    /// by one to a nonoverlapping expansion (components of increasing
+    /// magnitude, each a two-sum's exact error), dropping zero components;
+    /// the sign of an expansion is that of its largest component.
+    pub(super) fn sum_sign((terms, n): ([f64; 8], usize)) -> core::cmp::Ordering {
+        let two_sum = |a: f64, b: f64| {
+            let s = a + b;
+            let bb = s - a;
+            (s, (a - (s - bb)) + (b - bb))
+        };
+        let mut e = [0.0f64; 8];
+        let mut len = 0;
+        for &x in &terms[..n] {
+            let mut q = x;
+            let mut kept = 0;
+            for i in 0..len {
+                let (s, err) = two_sum(q, e[i]);
+                if err != 0.0 {
+                    e[kept] = err;
+                    kept += 1;
+                }
+                q = s;
+            }
+            if q != 0.0 {
+                e[kept] = q;
+                kept += 1;
+            }
+            len = kept;
+        }
+        if len == 0 {
+            core::cmp::Ordering::Equal
+        } else if e[len - 1] > 0.0 {
+            core::cmp::Ordering::Greater
+        } else {
+            core::cmp::Ordering::Less
+        }
     }
 
     #[inline]
