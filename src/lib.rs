@@ -303,7 +303,10 @@ mod real;
 pub mod strategies;
 mod triangle;
 
-pub use aabb::{Aabb, PreparedRay, ray_aabb, ray_aabb_naive, ray_aabb_prepared};
+pub use aabb::{
+    Aabb, BoxFace, BoxHit, PreparedRay, aabb_entry_face, ray_aabb, ray_aabb_face, ray_aabb_naive,
+    ray_aabb_prepared, ray_aabb_prepared_face,
+};
 #[cfg(all(feature = "std", target_arch = "x86_64", not(target_feature = "avx2")))]
 pub use batch::Avx2;
 pub use batch::{

@@ -181,10 +181,9 @@ pub fn offset_ray_origin<V: Vector>(
 /// what [`offset_ray_origin`] takes, gathered so that the arguments cannot be
 /// passed in the wrong order.
 ///
-/// Build it from a hit with [`SurfacePoint::on_triangle`] or
-/// [`SurfacePoint::on_plane`], then [`spawn`](SurfacePoint::spawn) shadow and
-/// bounce rays from it. (A box face is a plane: build a
-/// [`Plane`](crate::Plane) for it.)
+/// Build it from a hit with [`SurfacePoint::on_triangle`],
+/// [`SurfacePoint::on_plane`] or [`SurfacePoint::on_box`], then
+/// [`spawn`](SurfacePoint::spawn) shadow and bounce rays from it.
 ///
 /// ```
 /// use rayhit::{Ray, SurfacePoint, Triangle, ray_triangle, glam::Vec3};
@@ -238,6 +237,51 @@ impl<V: Vector> SurfacePoint<V> {
             normal: plane.normal,
             normal_error: V::ZERO,
         }
+    }
+
+    /// The point where `ray` enters a box through the face of `hit` (from
+    /// [`ray_aabb_face`](crate::ray_aabb_face) or
+    /// [`ray_aabb_prepared_face`](crate::ray_aabb_prepared_face)), with the
+    /// face's exact outward normal; `None` when the hit has no entry face
+    /// (the ray starts inside the box).
+    ///
+    /// The point is `ray.at(hit.enter)` with its coordinate on the face's
+    /// axis replaced by the face's plane, so it lies exactly on that plane
+    /// (its other coordinates carry the rounding of `origin + enter dir`,
+    /// and near an edge can be a rounding outside the face). The bounds are
+    /// those of an exact point on an exact plane, so
+    /// [`spawn`](SurfacePoint::spawn) moves a new ray's origin one ulp off
+    /// the plane, to the side its direction points into.
+    ///
+    /// ```
+    /// use rayhit::{Aabb, Ray, SurfacePoint, ray_aabb, ray_aabb_face, glam::Vec3};
+    /// let unit = Aabb::new(Vec3::ZERO, Vec3::ONE);
+    /// let ray = Ray::new(Vec3::new(0.3, 3.0, 0.6), Vec3::new(0.1, -1.0, 0.2));
+    /// let hit = ray_aabb_face(&ray, &unit, f32::INFINITY).unwrap();
+    /// let surface = SurfacePoint::on_box(&ray, &unit, &hit).unwrap();
+    /// assert_eq!((surface.point.y, surface.normal), (1.0, Vec3::Y));
+    /// // A bounce off the top face does not touch the box again.
+    /// let bounce = surface.spawn(Vec3::new(0.1, 1.0, 0.2));
+    /// assert!(bounce.origin.y > 1.0);
+    /// assert_eq!(ray_aabb(&bounce, &unit, f32::INFINITY), None);
+    /// ```
+    #[must_use]
+    pub fn on_box(ray: &Ray<V>, aabb: &crate::Aabb<V>, hit: &crate::BoxHit<S<V>>) -> Option<Self> {
+        let face = hit.face?;
+        let k = face.axis();
+        let p = ray.at(hit.enter);
+        let on = |i: usize| if i == k { face.plane(aabb) } else { p[i] };
+        // The point is exactly on the plane: an error of the smallest
+        // subnormal on the axis (a bound, and not zero, so that the offset
+        // is not zero either) and none elsewhere, which the exact normal
+        // ignores.
+        let error = |i: usize| if i == k { S::<V>::TINY } else { S::<V>::ZERO };
+        Some(Self {
+            point: V::new(on(0), on(1), on(2)),
+            point_error: V::new(error(0), error(1), error(2)),
+            normal: face.normal(),
+            normal_error: V::ZERO,
+        })
     }
 
     /// A ray leaving the surface along `dir`, from an origin offset by
