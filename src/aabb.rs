@@ -496,10 +496,11 @@ pub struct BoxHit<F = f32> {
 /// `None` when there is none.
 fn entry_face<V: Vector>(origin: V, dir: V, aabb: &Aabb<V>) -> Option<BoxFace> {
     let zero = S::<V>::ZERO;
-    // Per candidate axis: (axis, s, e, d, c) with the exact distance to its
-    // entry plane `(s + e) / d`, `s + e = plane - o` exactly, and
-    // `c = fl(s / d)`.
-    let mut best: Option<(usize, S<V>, S<V>, S<V>, S<V>)> = None;
+    // Per candidate axis: the axis and `(s, e, d, c)`, with the exact
+    // distance to its entry plane `(s + e) / d`, `s + e = plane - o`
+    // exactly, and `c = fl(s / d)`.
+    type Distance<F> = (F, F, F, F);
+    let mut best: Option<(usize, Distance<S<V>>)> = None;
     for k in 0..3 {
         let d = dir[k];
         if !(d != zero) {
@@ -515,13 +516,13 @@ fn entry_face<V: Vector>(origin: V, dir: V, aabb: &Aabb<V>) -> Option<BoxFace> {
         let c = s / d;
         let later = match best {
             None => true,
-            Some((_, bs, be, bd, bc)) => crosses_later((s, e, d, c), (bs, be, bd, bc)),
+            Some((_, other)) => crosses_later((s, e, d, c), other),
         };
         if later {
-            best = Some((k, s, e, d, c));
+            best = Some((k, (s, e, d, c)));
         }
     }
-    best.and_then(|(k, _, _, d, _)| BoxFace::new(k, d < zero))
+    best.and_then(|(k, (_, _, d, _))| BoxFace::new(k, d < zero))
 }
 
 /// Whether the exact distance `(s + e) / d` of the first plane is larger
