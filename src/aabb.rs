@@ -5,7 +5,7 @@ use glam::Vec3;
 
 use crate::lanes::Lanes;
 use crate::ray::{Ray, t_max_ok};
-use crate::real::{L, S, Scalar, Vector, at_most, max2, min2};
+use crate::real::{L, S, Scalar, Vector, at_most, max2, min2, scale_to_one};
 use crate::triangle::Shear;
 
 /// The closed box `min <= p <= max` (component-wise).
@@ -573,22 +573,6 @@ fn crosses_later<F: Scalar>(
         (-ks(g2 * e2), kd(d1.abs())),
     ];
     f64::sum_of_products_sign(&terms) == core::cmp::Ordering::Greater
-}
-
-/// `x` times the power of two that brings `m` (positive, finite) into
-/// `[1, 2)`: exact unless the product leaves the normal range.
-fn scale_to_one(x: f64, m: f64) -> f64 {
-    let pow2 = |k: i32| f64::from_bits(((1023 + k) as u64) << 52);
-    let exponent = |m: f64| ((m.to_bits() >> 52) & 0x7ff) as i32 - 1023;
-    // A subnormal `m` (biased exponent 0) is lifted by 2^64 first, and `x`
-    // with it: x 2^-e(m) = (x 2^64) 2^-e(m 2^64).
-    let (x, e) = if exponent(m) == -1023 {
-        (x * pow2(64), exponent(m * pow2(64)))
-    } else {
-        (x, exponent(m))
-    };
-    let half = -e / 2;
-    x * pow2(half) * pow2(-e - half)
 }
 
 /// [`ray_aabb`] with the face the ray enters through.

@@ -143,8 +143,9 @@ pub trait Scalar:
     #[must_use]
     fn diff_of_products_exact_sign(a: Self, b: Self, c: Self, d: Self) -> Self;
 
-    /// The exact sign of `sum a_i * b_i` over at most four pairs (an
-    /// implementation detail of the box tests' entry face).
+    /// The exact sign of `sum a_i * b_i` over at most eight pairs (an
+    /// implementation detail of the box tests' entry face and of
+    /// [`Triangle::is_degenerate`](crate::Triangle::is_degenerate)).
     ///
     /// `f32`: each product is exact in `f64`; `f64`: each product is split
     /// into its rounded value and its exact error by a fused multiply-add
@@ -389,21 +390,21 @@ mod exact_sign {
     }
 
     /// The products of the pairs, as `f64` terms whose exact sum is the
-    /// exact sum of the products (at most 8 terms for 4 pairs).
+    /// exact sum of the products (at most 16 terms for 8 pairs).
     pub(super) mod products {
         /// Exact: 24 + 24 bits fit in 53.
-        pub(crate) fn f32(terms: &[(f32, f32)]) -> ([f64; 8], usize) {
-            let mut out = [0.0; 8];
+        pub(crate) fn f32(terms: &[(f32, f32)]) -> ([f64; 16], usize) {
+            let mut out = [0.0; 16];
             for (o, &(a, b)) in out.iter_mut().zip(terms.iter().take(8)) {
                 *o = f64::from(a) * f64::from(b);
             }
             (out, terms.len().min(8))
         }
         /// Each product as its rounded value and its exact error.
-        pub(crate) fn f64(terms: &[(f64, f64)]) -> ([f64; 8], usize) {
-            let mut out = [0.0; 8];
+        pub(crate) fn f64(terms: &[(f64, f64)]) -> ([f64; 16], usize) {
+            let mut out = [0.0; 16];
             let mut n = 0;
-            for &(a, b) in terms.iter().take(4) {
+            for &(a, b) in terms.iter().take(8) {
                 let p = a * b;
                 out[n] = p;
                 out[n + 1] = super::fma(a, b, -p);
@@ -417,13 +418,13 @@ mod exact_sign {
     /// by one to a nonoverlapping expansion (components of increasing
     /// magnitude, each a two-sum's exact error), dropping zero components;
     /// the sign of an expansion is that of its largest component.
-    pub(super) fn sum_sign((terms, n): ([f64; 8], usize)) -> core::cmp::Ordering {
+    pub(super) fn sum_sign((terms, n): ([f64; 16], usize)) -> core::cmp::Ordering {
         let two_sum = |a: f64, b: f64| {
             let s = a + b;
             let bb = s - a;
             (s, (a - (s - bb)) + (b - bb))
         };
-        let mut e = [0.0f64; 8];
+        let mut e = [0.0f64; 16];
         let mut len = 0;
         for &x in &terms[..n] {
             let mut q = x;
@@ -591,6 +592,22 @@ pub(crate) fn unit<V: Vector>(v: V) -> V {
     let half = -e / 2;
     let w = v * pow2(half) * pow2(-e - half);
     w * (one / w.dot(w).sqrt())
+}
+
+/// `x` times the power of two that brings `m` (positive, finite) into
+/// `[1, 2)`: exact unless the product leaves the normal range.
+pub(crate) fn scale_to_one(x: f64, m: f64) -> f64 {
+    let pow2 = |k: i32| f64::from_bits(((1023 + k) as u64) << 52);
+    let exponent = |m: f64| ((m.to_bits() >> 52) & 0x7ff) as i32 - 1023;
+    // A subnormal `m` (biased exponent 0) is lifted by 2^64 first, and `x`
+    // with it: x 2^-e(m) = (x 2^64) 2^-e(m 2^64).
+    let (x, e) = if exponent(m) == -1023 {
+        (x * pow2(64), exponent(m * pow2(64)))
+    } else {
+        (x, exponent(m))
+    };
+    let half = -e / 2;
+    x * pow2(half) * pow2(-e - half)
 }
 
 /// Arithmetic rounded outward, for error bounds with differences and

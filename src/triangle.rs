@@ -6,7 +6,7 @@ use glam::Vec3;
 use crate::aabb::PreparedRay;
 use crate::lanes::{Axis, Lanes};
 use crate::ray::{Ray, t_max_ok};
-use crate::real::{L, S, Scalar, Vector, bound_up, max2, min2};
+use crate::real::{L, S, Scalar, Vector, bound_up, max2, min2, scale_to_one};
 
 /// The triangle with corners `a`, `b`, `c`.
 ///
@@ -71,6 +71,75 @@ impl<V: Vector> Triangle<V> {
             bound_up(err.z(), 3),
         );
         (e1.cross(e2), err)
+    }
+
+    /// True when the corners are collinear or coincide, in exact arithmetic:
+    /// `(b - a) x (c - a)` is exactly zero. No tolerance: a triangle with
+    /// the smallest area the coordinates allow is not degenerate.
+    ///
+    /// For loading meshes: the watertight tests still hit such a triangle
+    /// where its rounded corners enclose the ray (see [`Triangle`]); drop
+    /// it only where the mesh does not rely on it to stay closed.
+    ///
+    /// Exact: the rounded cross product decides when a component clearly
+    /// exceeds its rounding error (almost always: a few dozen operations);
+    /// otherwise each difference is split into its rounded value and exact
+    /// error (Knuth's two-sum) and each component's sign is computed exactly
+    /// from the sixteen products (Shewchuk's expansions; a few hundred
+    /// operations). For `f64`, exact as long as no product of two
+    /// coordinate differences, scaled to the largest, underflows (the
+    /// differences within a factor `2^900` of each other).
+    ///
+    /// ```
+    /// use rayhit::{Triangle, glam::Vec3};
+    /// // c - a = 2 (b - a): collinear, exactly.
+    /// let line = Triangle::new(Vec3::new(6.0, -5.0, 2.0), Vec3::new(4.0, -2.0, 5.0), Vec3::new(2.0, 1.0, 8.0));
+    /// assert!(line.is_degenerate());
+    /// // Off the line by one ulp: not degenerate.
+    /// let sliver = Triangle::new(line.a, line.b, Vec3::new(2.0, 1.0, 8.0f32.next_up()));
+    /// assert!(!sliver.is_degenerate());
+    /// assert!(Triangle::new(Vec3::ONE, Vec3::ONE, Vec3::ONE).is_degenerate());
+    /// ```
+    #[must_use]
+    pub fn is_degenerate(&self) -> bool {
+        let (n, err) = self.normal_with_error();
+        if n.abs().x() > err.x() || n.abs().y() > err.y() || n.abs().z() > err.z() {
+            return false;
+        }
+        // Exact differences: b - a = s1 + e1, c - a = s2 + e2.
+        let split = |p: V, q: V| {
+            let d = |k: usize| S::<V>::two_diff(p[k], q[k]);
+            [d(0), d(1), d(2)]
+        };
+        let (u, v) = (split(self.b, self.a), split(self.c, self.a));
+        // Scale each difference vector's parts by a common power of two
+        // first (exact), so that tiny or huge coordinates neither underflow
+        // nor overflow the products.
+        let scale = |w: [(S<V>, S<V>); 3]| {
+            let m = w.iter().fold(0.0f64, |m, (s, _)| m.max(s.to_f64().abs()));
+            if m == 0.0 {
+                return w.map(|(s, e)| (s.to_f64(), e.to_f64()));
+            }
+            w.map(|(s, e)| (scale_to_one(s.to_f64(), m), scale_to_one(e.to_f64(), m)))
+        };
+        let (u, v) = (scale(u), scale(v));
+        // Component k of u x v: u_j v_l - u_l v_j, (j, l) = (k + 1, k + 2).
+        (0..3).all(|k| {
+            let (j, l) = ((k + 1) % 3, (k + 2) % 3);
+            let ((uj, ej), (ul, el)) = (u[j], u[l]);
+            let ((vj, fj), (vl, fl)) = (v[j], v[l]);
+            let terms = [
+                (uj, vl),
+                (uj, fl),
+                (ej, vl),
+                (ej, fl),
+                (-ul, vj),
+                (-ul, fj),
+                (-el, vj),
+                (-el, fj),
+            ];
+            f64::sum_of_products_sign(&terms) == core::cmp::Ordering::Equal
+        })
     }
 
     /// The same triangle with the opposite winding (`a, c, b`): the normal

@@ -1,0 +1,152 @@
+//! Zero-area triangles: `is_degenerate` against exact arithmetic, and
+//! hits on them safe to use (no NaN in the hit point, the normal, its
+//! error bound or a spawned ray).
+
+mod support;
+
+use num_traits::Zero;
+use proptest::prelude::*;
+use rayhit::glam::{DVec3, Vec3};
+use rayhit::{Ray, Scalar, SurfacePoint, Triangle, Vector, ray_triangle};
+use support::{Pcg32, cross, rv, sub};
+
+type S<V> = <V as Vector>::Scalar;
+
+/// The exact answer: `(b - a) x (c - a)` is the zero vector.
+fn exactly_degenerate<V: Vector>(t: &Triangle<V>) -> bool {
+    let (a, b, c) = (rv(t.a), rv(t.b), rv(t.c));
+    cross(&sub(&b, &a), &sub(&c, &a)).iter().all(Zero::is_zero)
+}
+
+/// Triangles that are exactly collinear (on a dyadic grid, `c = a + k (b -
+/// a)` with a small `k`, so the coordinates stay exact), coincident, one
+/// ulp off collinear, tiny, huge, and ordinary.
+///
+/// Within the documented preconditions: coordinates below `2^60` (so that
+/// `f32` cross products do not overflow; the kernels assume `2^63`), and a
+/// coordinate one ulp off is bumped only where it is not zero (one ulp
+/// above zero is the smallest subnormal, whose products with the other
+/// differences underflow: `is_degenerate` documents that it is exact only
+/// where they do not, as the `f64` exact-sign fallback does).
+fn triangle<V: Vector>(rng: &mut Pcg32) -> Triangle<V> {
+    let scale = 2f64.powi(rng.below(114) as i32 - 60);
+    let grid = |rng: &mut Pcg32| (f64::from(rng.below(2048) as i32 - 1024) / 16.0) * scale;
+    let (a, b) = (
+        [grid(rng), grid(rng), grid(rng)],
+        [grid(rng), grid(rng), grid(rng)],
+    );
+    let f = |p: [f64; 3]| support::generators::v::<V>(p);
+    let k = f64::from(rng.below(9) as i32 - 4) / 2.0;
+    let c = [0, 1, 2].map(|i| a[i] + k * (b[i] - a[i]));
+    match rng.below(6) {
+        0 | 1 => Triangle::new(f(a), f(b), f(c)),
+        2 => Triangle::new(f(a), f(a), f(b)),
+        3 => {
+            let mut c = f(c);
+            let bumped = [c.x(), c.y(), c.z()];
+            let Some(i) = (0..3).find(|&i| bumped[i] != S::<V>::ZERO) else {
+                return Triangle::new(f(a), f(b), c);
+            };
+            c = V::new(
+                if i == 0 {
+                    bumped[0].next_up()
+                } else {
+                    bumped[0]
+                },
+                if i == 1 {
+                    bumped[1].next_up()
+                } else {
+                    bumped[1]
+                },
+                if i == 2 {
+                    bumped[2].next_up()
+                } else {
+                    bumped[2]
+                },
+            );
+            Triangle::new(f(a), f(b), c)
+        }
+        _ => Triangle::new(f(a), f(b), f([grid(rng), grid(rng), grid(rng)])),
+    }
+}
+
+fn is_degenerate_is_exact<V: Vector>() {
+    let mut rng = Pcg32::new(41);
+    let (mut yes, mut no) = (0, 0);
+    for _ in 0..50_000 {
+        let t = triangle::<V>(&mut rng);
+        let exact = exactly_degenerate(&t);
+        assert_eq!(t.is_degenerate(), exact, "{t:?}");
+        if exact {
+            yes += 1;
+        } else {
+            no += 1;
+        }
+    }
+    assert!(yes > 10_000 && no > 10_000, "{yes} {no}");
+}
+
+#[test]
+fn is_degenerate_is_exact_f32() {
+    is_degenerate_is_exact::<Vec3>();
+}
+
+#[test]
+fn is_degenerate_is_exact_f64() {
+    is_degenerate_is_exact::<DVec3>();
+}
+
+/// A hit on a zero-area triangle is safe to use: every number derived from
+/// it is finite (the normal is zero or meaningless, and says so by its
+/// error bound), and a ray spawned from it in any direction is finite.
+fn hits_are_safe<V: Vector>() {
+    let mut rng = Pcg32::new(43);
+    let mut hits = 0;
+    for _ in 0..100_000 {
+        let t = triangle::<V>(&mut rng);
+        if !t.is_degenerate() {
+            continue;
+        }
+        // Aim at a point of the segment, from a random side.
+        let w = support::generators::v::<V>([rng.unit(), rng.unit(), rng.unit()]);
+        let target = t.a + (t.b - t.a) * w.x();
+        let origin = target + support::generators::v::<V>(rng.direction()) * (t.b - t.a).length();
+        let ray = Ray::new(origin, target - origin);
+        let Some(hit) = ray_triangle(&ray, &t, S::<V>::INFINITY) else {
+            continue;
+        };
+        hits += 1;
+        assert!(hit.t.is_finite() && hit.u.is_finite() && hit.v.is_finite());
+        let (n, err) = t.normal_with_error();
+        assert!(n.is_finite() && err.is_finite(), "{t:?}");
+        let surface = SurfacePoint::on_triangle(&t, &hit);
+        assert!(surface.point.is_finite() && surface.point_error.is_finite());
+        for dir in [
+            ray.dir,
+            -ray.dir,
+            n,
+            support::generators::v::<V>(rng.direction()),
+        ] {
+            let spawned = surface.spawn(dir);
+            assert!(spawned.origin.is_finite(), "{t:?} {hit:?} {dir:?}");
+        }
+    }
+    assert!(hits > 1_000, "{hits}");
+}
+
+#[test]
+fn hits_on_zero_area_triangles_are_safe_f32() {
+    hits_are_safe::<Vec3>();
+}
+
+#[test]
+fn hits_on_zero_area_triangles_are_safe_f64() {
+    hits_are_safe::<DVec3>();
+}
+
+proptest! {
+    #[test]
+    fn is_degenerate_matches_exact_on_strategy_triangles(t in rayhit::strategies::triangle::<Vec3>()) {
+        prop_assert_eq!(t.is_degenerate(), exactly_degenerate(&t));
+    }
+}
