@@ -329,18 +329,28 @@ fn slab_test<V: Vector>(ray: &SlabRay<V>, aabb: &Aabb<V>, t_max: S<V>) -> Option
     // the second operand for a NaN `t` (origin exactly on a slab plane of
     // an axis the ray does not move along), which leaves the interval
     // unchanged, as exact arithmetic says of a closed box.
-    let enter = t0.max(zero).min(t1.max(zero)).max_all();
-    let exit = t0.min(limit).max(t1.min(limit)).min_all();
+    let enter = t0.max(zero).min(t1.max(zero));
+    let exit = t0.min(limit).max(t1.min(limit));
     // Widen the exit by the rounding bound so that no box that exact
     // arithmetic hits is missed (see `exit_widening`). `enter` is infinite
     // only for an axis the ray never enters (its direction component is
     // zero, or so small that every distance overflows): a miss even when
     // the limit is infinite too, hence the `MAX`.
     let widened = exit.mul(splat(exit_widening())).add(splat(exit_slack()));
-    let hit = enter.le(widened.min(splat(big)));
+    let capped = widened.min(splat(big));
+    // The box is hit when the largest entry is at most the smallest widened
+    // exit, that is, when every axis's entry is at most every axis's widened
+    // exit: three lane-wise comparisons against the exits rotated, fewer
+    // operations than the two reductions. (Widening rounds monotonically,
+    // so widening each exit and then taking the smallest is widening the
+    // smallest: the same bits as the definition.)
+    let hit = enter.le(capped) & enter.le(capped.rot1()) & enter.le(capped.rot2());
     let valid = Lanes::ordered(splat(-big), min, max, splat(big));
-    let exit = at_most(widened.x(), t_max);
-    (valid & (hit == 0b111) & t_max_ok(t_max)).then(|| (at_most(enter.x(), exit), exit))
+    if !(valid & (hit == 0b111) & t_max_ok(t_max)) {
+        return None;
+    }
+    let exit = at_most(widened.min_all().x(), t_max);
+    Some((at_most(enter.max_all().x(), exit), exit))
 }
 
 /// The slab test: the part of `[0, t_max]` that `ray` spends inside the

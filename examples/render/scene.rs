@@ -14,7 +14,8 @@
 
 use rayhit::glam::{Mat3, Vec3};
 use rayhit::{
-    Aabb, PinholeCamera, Plane, PreparedRay, Ray, Side, SurfacePoint, ray_aabb_prepared, ray_plane,
+    Aabb, PinholeCamera, Plane, PreparedRay, Ray, Side, SurfacePoint, ray_aabb_prepared,
+    ray_aabb_prepared_face, ray_plane,
 };
 use rayon::prelude::*;
 
@@ -172,7 +173,11 @@ impl Scene {
                             t: hit.t,
                             object: 0,
                             surface,
-                            shading: shading.unwrap_or_else(|| surface.normal.normalize()),
+                            // A zero-area triangle (a mesh's T-junction filler) can be hit
+                            // and has no normal: fall back to facing the ray.
+                            shading: shading
+                                .or_else(|| surface.normal.try_normalize())
+                                .unwrap_or(-ray.dir.normalize()),
                         }
                     }),
             };
@@ -217,7 +222,7 @@ impl Scene {
         let material = &self.objects[hit.object].material;
         // Both normals, turned to face the incoming ray.
         let flip = |n: Vec3| if n.dot(ray.dir) > 0.0 { -n } else { n };
-        let geometric = flip(hit.surface.normal.normalize());
+        let geometric = flip(hit.surface.normal.try_normalize().unwrap_or(hit.shading));
         let shading = flip(hit.shading);
         let mut light = Vec3::ZERO;
 
@@ -269,31 +274,21 @@ fn plane_hit(ray: &Ray, plane: &Plane, t: f32) -> Hit {
     }
 }
 
-/// The hit of `ray` on the surface of a box: the slab test says whether and
-/// where the ray enters, and the plane of the face it enters through gives
-/// the point with its error bound. A ray that starts inside the box (the
-/// entry clipped to 0) has no surface in front of it to shade and gets
-/// `None`; `Scene::occluded` treats such a ray as blocked.
+/// The hit of `ray` on the surface of a box: the slab test with the face
+/// the ray enters through, and the point on that face with its error
+/// bound. A ray that starts inside the box has no entry face, so no surface
+/// in front of it to shade, and gets `None`; `Scene::occluded` treats such
+/// a ray as blocked.
 fn box_hit(ray: &Ray, prepared: &PreparedRay, aabb: &Aabb, t_max: f32) -> Option<Hit> {
-    let (enter, _) = ray_aabb_prepared(prepared, aabb, t_max)?;
-    if enter == 0.0 {
-        return None;
-    }
-    // The face the entry point lies on: the axis where the point is
-    // farthest out, relative to the box's half-size.
-    let centre = (aabb.min + aabb.max) * 0.5;
-    let p = ray.at(enter);
-    let axis = ((p - centre) / (aabb.max - aabb.min)).abs().max_position();
-    let mut normal = Vec3::ZERO;
-    normal[axis] = if p[axis] > centre[axis] { 1.0 } else { -1.0 };
-    let on_face = if normal[axis] > 0.0 {
-        aabb.max
-    } else {
-        aabb.min
-    };
-    let face = Plane::new(on_face, normal);
-    let t = ray_plane(ray, &face, t_max)?;
-    Some(plane_hit(ray, &face, t))
+    let hit = ray_aabb_prepared_face(prepared, aabb, t_max)?;
+    let surface = SurfacePoint::on_box(ray, aabb, &hit)?;
+    Some(Hit {
+        t: hit.enter,
+        object: 0,
+        surface,
+        // The face's outward normal is exact and already of unit length.
+        shading: surface.normal,
+    })
 }
 
 /// The default scene: a checkered ground, a red icosphere in the middle, a
