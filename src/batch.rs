@@ -918,6 +918,74 @@ impl Simd for Avx2 {
     }
 }
 
+#[cfg(all(feature = "std", target_arch = "x86_64", not(target_feature = "avx2")))]
+/// AVX-512 (with its 256-bit forms, AVX-512VL), on a CPU that has it and
+/// AVX2: [`with_simd`] makes one only after checking (the same builds as
+/// [`Avx2`]).
+///
+/// The box kernels run on the same eight lanes as with [`Avx2`], compiled
+/// with AVX-512 enabled: twice the vector registers, so a ray's prepared
+/// values stay in registers across a node's boxes, and comparisons into
+/// mask registers. The triangle batch runs its AVX2 copy (compiled with
+/// AVX-512 it comes out slower). The answers are the same bits.
+#[derive(Clone, Copy, Debug)]
+pub struct Avx512(());
+
+#[cfg(all(feature = "std", target_arch = "x86_64", not(target_feature = "avx2")))]
+impl sealed::Sealed for Avx512 {}
+
+#[cfg(all(feature = "std", target_arch = "x86_64", not(target_feature = "avx2")))]
+impl Avx512 {
+    /// `Some` when the CPU has AVX2, AVX-512F and AVX-512VL.
+    #[inline]
+    pub(crate) fn detect() -> Option<Self> {
+        (std::is_x86_feature_detected!("avx2")
+            && std::is_x86_feature_detected!("avx512f")
+            && std::is_x86_feature_detected!("avx512vl"))
+        .then_some(Avx512(()))
+    }
+}
+
+#[cfg(all(feature = "std", target_arch = "x86_64", not(target_feature = "avx2")))]
+#[allow(unsafe_code)]
+impl Simd for Avx512 {
+    #[inline(always)]
+    fn ray_aabb_batch<V: Vector, const N: usize>(
+        self,
+        ray: &PreparedRay<V>,
+        batch: &AabbBatch<V, N>,
+        t_max: S<V>,
+    ) -> AabbBatchHits<S<V>, N> {
+        const { check_lanes::<N>() };
+        // SAFETY: the one precondition of calling a function compiled with
+        // `#[target_feature(enable = "avx2,avx512f,avx512vl")]` is that the
+        // CPU has those; an `Avx512` exists only where `Avx512::detect`
+        // found them.
+        unsafe { avx512::aabb(ray, batch, t_max) }
+    }
+
+    #[inline(always)]
+    fn ray_triangle_batch<V: Vector, const N: usize>(
+        self,
+        ray: &PreparedRay<V>,
+        batch: &TriangleBatch<V, N>,
+        t_max: S<V>,
+    ) -> TriangleBatchHits<S<V>, N> {
+        avx512::triangle(Avx2(()), ray, batch, t_max)
+    }
+
+    #[inline(always)]
+    fn ray_quantized_children(
+        self,
+        ray: &PreparedRay,
+        node: &QuantizedChildren<'_>,
+        t_max: f32,
+    ) -> AabbBatchHits<f32, 8> {
+        // SAFETY: as above.
+        unsafe { avx512::quantized(ray, node, t_max) }
+    }
+}
+
 /// Runs `work` compiled for the widest SIMD instruction set the CPU has,
 /// and gives it that instruction set to call the batch kernels with: the
 /// choice is made once, here, instead of on every batch.
@@ -926,10 +994,11 @@ impl Simd for Avx2 {
 /// run time on each call (on x86-64 with `std`, AVX2 where the CPU has it
 /// and the build does not already assume it): a check and a function call
 /// per batch, a large part of the cost of testing 8 boxes. Inside
-/// `with_simd`, on a CPU with AVX2, the work is compiled with AVX2 enabled
-/// and its [`Simd`] calls are inlined AVX2 kernels; elsewhere it runs as
-/// compiled for the build's target ([`TargetSimd`]). The answers are the
-/// same bits either way.
+/// `with_simd`, on a CPU with AVX-512 the work is compiled with it enabled
+/// ([`Avx512`]: the box kernels inlined, the triangle batch as its AVX2
+/// copy), on one with AVX2 with AVX2 enabled ([`Avx2`], every kernel
+/// inlined); elsewhere it runs as compiled for the build's target
+/// ([`TargetSimd`]). The answers are the same bits either way.
 ///
 /// ```
 /// use rayhit::{Aabb, AabbBatch, PreparedRay, Ray, Simd, SimdWork, with_simd, glam::Vec3};
@@ -964,7 +1033,13 @@ impl Simd for Avx2 {
 #[inline]
 pub fn with_simd<W: SimdWork>(work: W) -> W::Output {
     #[cfg(all(feature = "std", target_arch = "x86_64", not(target_feature = "avx2")))]
-    if let Some(simd) = Avx2::detect() {
+    if let Some(simd) = Avx512::detect() {
+        #[allow(unsafe_code)]
+        // SAFETY: the one precondition of calling a function compiled with
+        // `#[target_feature(enable = "avx2,avx512f,avx512vl")]` is that the
+        // CPU has those, which `Avx512::detect` has just checked.
+        return unsafe { avx512::run(work, simd) };
+    } else if let Some(simd) = Avx2::detect() {
         #[allow(unsafe_code)]
         // SAFETY: the one precondition of calling a function compiled with
         // `#[target_feature(enable = "avx2")]` is that the CPU has AVX2,
@@ -1019,6 +1094,50 @@ mod avx2 {
         t_max: S<V>,
     ) -> TriangleBatchHits<S<V>, N> {
         triangle_batch_body::<<S<V> as Scalar>::Lanes8Avx2, V, N>(ray, batch, t_max)
+    }
+}
+
+#[cfg(all(feature = "std", target_arch = "x86_64", not(target_feature = "avx2")))]
+mod avx512 {
+    use super::*;
+
+    /// `work.run(simd)`, compiled with AVX-512 (see [`with_simd`]).
+    #[target_feature(enable = "avx2,avx512f,avx512vl")]
+    #[inline]
+    pub(super) fn run<W: SimdWork>(work: W, simd: Avx512) -> W::Output {
+        work.run(simd)
+    }
+
+    #[target_feature(enable = "avx2,avx512f,avx512vl")]
+    #[inline]
+    pub(super) fn aabb<V: Vector, const N: usize>(
+        ray: &PreparedRay<V>,
+        batch: &AabbBatch<V, N>,
+        t_max: S<V>,
+    ) -> AabbBatchHits<S<V>, N> {
+        aabb_batch_body::<<S<V> as Scalar>::Lanes8Avx2, V, N>(ray, batch, t_max)
+    }
+
+    #[target_feature(enable = "avx2,avx512f,avx512vl")]
+    #[inline]
+    pub(super) fn quantized(
+        ray: &PreparedRay,
+        node: &QuantizedChildren<'_>,
+        t_max: f32,
+    ) -> AabbBatchHits<f32, 8> {
+        quantized_body::<<f32 as Scalar>::Lanes8Avx2>(ray, node, t_max)
+    }
+
+    /// The AVX2 triangle batch, kept out of line so that it is not
+    /// inlined into (and recompiled for) the AVX-512 caller.
+    #[inline(never)]
+    pub(super) fn triangle<V: Vector, const N: usize>(
+        simd: Avx2,
+        ray: &PreparedRay<V>,
+        batch: &TriangleBatch<V, N>,
+        t_max: S<V>,
+    ) -> TriangleBatchHits<S<V>, N> {
+        simd.ray_triangle_batch(ray, batch, t_max)
     }
 }
 
@@ -1100,7 +1219,8 @@ mod tests {
     }
 
     /// Each compiled copy of the batch kernels (the target's own and, on a
-    /// CPU with AVX2, the AVX2 copy that `ray_*_batch` then picks) gives
+    /// CPU with AVX2, the AVX2 copy that `ray_*_batch` then picks, and on
+    /// one with AVX-512 the copy `with_simd` picks) gives
     /// the scalar kernels' answers bit for bit: the copy not picked here
     /// is tested too.
     #[test]
@@ -1132,6 +1252,15 @@ mod tests {
                     box_answers.push(avx2::aabb(&p, &bb, t_max));
                     tri_answers.push(avx2::triangle(&p, &tb, t_max));
                 }
+            }
+            #[cfg(all(target_arch = "x86_64", not(target_feature = "avx2")))]
+            if let Some(simd) = Avx512::detect() {
+                #[allow(unsafe_code)]
+                // SAFETY: AVX2, AVX-512F and AVX-512VL were just detected.
+                unsafe {
+                    box_answers.push(avx512::aabb(&p, &bb, t_max));
+                }
+                tri_answers.push(simd.ray_triangle_batch(&p, &tb, t_max));
             }
             for l in 0..8 {
                 let scalar = crate::ray_aabb_prepared(&p, &boxes[l], t_max).map(|(e, _)| e);

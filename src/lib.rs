@@ -307,12 +307,12 @@ pub use aabb::{
     Aabb, BoxFace, BoxHit, PreparedRay, aabb_entry_face, ray_aabb, ray_aabb_face, ray_aabb_naive,
     ray_aabb_prepared, ray_aabb_prepared_face,
 };
-#[cfg(all(feature = "std", target_arch = "x86_64", not(target_feature = "avx2")))]
-pub use batch::Avx2;
 pub use batch::{
     AabbBatch, AabbBatchHits, Simd, SimdWork, TargetSimd, TriangleBatch, TriangleBatchHits,
     ray_aabb_batch, ray_triangle_batch, with_simd,
 };
+#[cfg(all(feature = "std", target_arch = "x86_64", not(target_feature = "avx2")))]
+pub use batch::{Avx2, Avx512};
 pub use camera::{CameraError, PinholeCamera};
 pub use plane::{Plane, ray_plane, ray_plane_hit_point, ray_plane_t_error};
 pub use quantized::{QuantizedChildren, quantize_bounds, ray_quantized_children};
