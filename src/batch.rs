@@ -393,9 +393,9 @@ fn aabb_batch_body<W: Lanes8<F = S<V>>, V: Vector, const N: usize>(
 
 /// Up to `N` triangles, structure-of-arrays.
 ///
-/// Triangles are stored as given (a degenerate or non-finite one is a lane
-/// that the watertight test misses, as the scalar test would); empty lanes
-/// hold NaN corners and are masked off.
+/// Triangles are stored as given (a non-finite one is a lane that the
+/// watertight test misses, and a zero-area one is hit exactly where the
+/// scalar test hits it); empty lanes hold NaN corners and are masked off.
 ///
 /// ```
 /// use rayhit::{PreparedRay, Ray, Triangle, TriangleBatch, ray_triangle_batch, glam::Vec3};

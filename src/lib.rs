@@ -36,9 +36,10 @@
 //! - Camera: right-handed world, raster `(0, 0)` at the image's top-left,
 //!   `x` right, `y` down, pixel `(i, j)` centred at `(i + 0.5, j + 0.5)`,
 //!   `right = normalize(view x up)`; see [`PinholeCamera`].
-//! - Bad input (NaN, infinities, zero vectors, degenerate shapes, inverted
+//! - Bad input (NaN, infinities, zero vectors, zero plane normals, inverted
 //!   boxes, NaN or negative `t_max`) gives `None` or a [`CameraError`];
-//!   nothing panics and no `t` is NaN.
+//!   nothing panics and no `t` is NaN. Zero-area triangles are hit where
+//!   rounding leaves them a sliver (see [`Triangle`]).
 //!
 //! # Precision
 //!
@@ -251,9 +252,11 @@
 //!   an axis and translating on a coarse grid change nothing; reversing a
 //!   triangle's winding swaps `u` and `v` and the side.
 //!
-//! Invalid input (NaN, infinities, zero direction, inverted box, zero-area
-//! triangle, NaN or negative `t_max`) gives `None` or a [`CameraError`]:
-//! never a panic, never a NaN or negative `t`.
+//! Invalid input (NaN, infinities, zero direction, inverted box, NaN or
+//! negative `t_max`) gives `None` or a [`CameraError`]: never a panic, never
+//! a NaN or negative `t`. Zero-area triangles are not invalid: they can be
+//! hit where rounding leaves them a sliver, which keeps meshes that close
+//! T-junctions with them watertight (see [`Triangle`]).
 //!
 //! # Features
 //!

@@ -287,6 +287,11 @@ impl<V: Vector> SurfacePoint<V> {
     /// A ray leaving the surface along `dir`, from an origin offset by
     /// [`offset_ray_origin`] to the side `dir` points into: it does not meet
     /// the surface again (for `dir` not within rounding of tangent).
+    ///
+    /// Where the normal is not known well enough to pick a side (a zero or
+    /// nearly zero normal, as on a zero-area triangle), the ray starts at
+    /// `point` itself, unmoved: finite, but it may meet the surfaces through
+    /// that point again at a tiny `t`.
     #[inline]
     #[must_use]
     pub fn spawn(&self, dir: V) -> Ray<V> {

@@ -13,9 +13,27 @@ use crate::real::{L, S, Scalar, Vector, bound_up, max2, min2, scale_to_one};
 /// The winding `a -> b -> c` defines the geometric normal
 /// `(b - a) x (c - a)` (right-handed: counter-clockwise seen from the side it
 /// points to) and so which side of a hit is [`Side::Front`]. The tests are
-/// two-sided and report the side. A triangle whose corners are collinear or
-/// coincide (zero area), or that has a NaN or infinite coordinate, is hit by
-/// nothing.
+/// two-sided and report the side. A triangle with a NaN or infinite
+/// coordinate is hit by nothing.
+///
+/// **Zero-area triangles** (corners collinear or coincident, exactly:
+/// [`Triangle::is_degenerate`]) can be hit, on purpose. The watertight tests
+/// hit one where, in the ray's sheared frame, its rounded corners enclose the
+/// ray: rounding gives the segment a sliver of area there. Meshes close
+/// T-junctions (a vertex on another triangle's edge, filled with the
+/// zero-area triangle between that edge and the two halves) and collapsed
+/// edges with such triangles, and in the rounded frame the filler is exactly
+/// the sliver between the neighbours' edges; dropping it would open a crack
+/// just there. A hit on one has `u`, `v` in range, the side of its rounded
+/// determinant, and a `t` between the nearest and farthest corner along
+/// the ray (within the usual rounding); its normal is zero or meaningless,
+/// so shade it with a neighbour's. [`SurfacePoint::on_triangle`] and
+/// [`SurfacePoint::spawn`] stay finite: with a zero normal the spawned
+/// ray starts at the hit point itself. Use [`Triangle::is_degenerate`] to
+/// drop such triangles when loading a mesh that does not need them.
+///
+/// [`SurfacePoint::on_triangle`]: crate::SurfacePoint::on_triangle
+/// [`SurfacePoint::spawn`]: crate::SurfacePoint::spawn
 ///
 /// ```
 /// use rayhit::{Triangle, glam::Vec3};
@@ -884,8 +902,10 @@ impl<F: Scalar> HitCondition<F> {
 ///   [`offset_ray_origin`](crate::offset_ray_origin) does not hit it again.
 /// - `t`, `u` and `v` are within [`ray_triangle_error_bounds`] of the
 ///   exact crossing.
-/// - Zero-area (in the ray's frame) and non-finite triangles, invalid rays
-///   and NaN or negative `t_max` give `None`; never panics, never NaN.
+/// - Triangles of zero area in the ray's sheared frame (after rounding),
+///   non-finite triangles, invalid rays and NaN or negative `t_max` give
+///   `None`; never panics, never NaN. A triangle of exactly zero area can
+///   still be hit where rounding leaves it a sliver (see [`Triangle`]).
 /// - Precondition for all of the above: coordinates relative to the ray
 ///   origin small enough that the edge-function products do not overflow
 ///   (`|coordinate| < 2^63` in `f32`, `2^511` in `f64`).

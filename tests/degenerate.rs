@@ -117,6 +117,31 @@ fn hits_are_safe<V: Vector>() {
         };
         hits += 1;
         assert!(hit.t.is_finite() && hit.u.is_finite() && hit.v.is_finite());
+        // `t` is a convex combination of the corners' depths along the ray
+        // (the edge functions share a sign), up to rounding: between the
+        // nearest and the farthest corner. (Measured on the ray's main
+        // axis, as the kernel does; the slack is far above its `gamma(8)`
+        // rounding term and far below the corners' spread in these cases.)
+        let d = ray.dir.abs();
+        let k = if d.x() >= d.y() && d.x() >= d.z() {
+            0
+        } else if d.y() >= d.z() {
+            1
+        } else {
+            2
+        };
+        let depth = |p: V| ((p - ray.origin)[k] / ray.dir[k]).to_f64();
+        let z = [depth(t.a), depth(t.b), depth(t.c)];
+        let (lo, hi) = (
+            z.iter().copied().fold(f64::INFINITY, f64::min),
+            z.iter().copied().fold(f64::NEG_INFINITY, f64::max),
+        );
+        let slack = 1e-5 * hi.abs().max(lo.abs());
+        let th = hit.t.to_f64();
+        assert!(
+            lo - slack <= th && th <= hi + slack,
+            "{t:?} {ray:?} {hit:?} {z:?}"
+        );
         let (n, err) = t.normal_with_error();
         assert!(n.is_finite() && err.is_finite(), "{t:?}");
         let surface = SurfacePoint::on_triangle(&t, &hit);
