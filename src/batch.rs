@@ -722,9 +722,16 @@ fn triangle_batch_body<W: Lanes8<F = S<V>>, V: Vector, const N: usize>(
         // both tests fail (the bound of a positive maximum is positive; that
         // of a maximum `<= 0` is at least the maximum, itself at least the
         // minimum).
-        let z_min = z0.min(z1.min(z2));
-        let dz = z0.max(z1.max(z2)).mul(g4).mul(up1);
+        let (z_min, z_max) = (z0.min(z1.min(z2)), z0.max(z1.max(z2)));
+        let dz = z_max.mul(g4).mul(up1);
         let ahead = dz.lt(z_min);
+        // Every corner behind the origin, the scalar test's `z_i < -dz`: for
+        // `z_min < 0` that `dz` is `-(z_min g4 up1)` (rounding is symmetric),
+        // and otherwise both are false. A lane the plain test rejects with
+        // its corners neither all in front nor all behind goes to the
+        // scalar code, as in `watertight_lanes`.
+        let behind = z_max.lt(z_min.mul(g4).mul(up1));
+        let unsettled = W::and_not(W::and_not(W::and_not(all, outside), ahead), behind);
         // u and v: finite whenever `pass` holds and no edge function is
         // zero (each `|e_i| <= |det|`, as the `e_i` share a sign, and
         // `1 / det` is finite, as `t` is), so the definition's finiteness
@@ -734,7 +741,8 @@ fn triangle_batch_body<W: Lanes8<F = S<V>>, V: Vector, const N: usize>(
         let hit_c = W::and(W::and_not(pass, zero_edge), ahead);
         let shift = 8 * c;
         hit |= W::bits(hit_c) << shift;
-        slow |= W::bits(W::or(zero_edge, W::and_not(pass, ahead))) << shift;
+        let rejected = W::and_not(unsettled, pass);
+        slow |= W::bits(W::or(W::or(zero_edge, W::and_not(pass, ahead)), rejected)) << shift;
         front |= W::bits(lo.lt(det)) << shift;
         put(&mut out.t, c, W::select(hit_c, t, splat(inf)));
         put(&mut out.u, c, W::select(hit_c, u, lo));

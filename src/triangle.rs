@@ -458,20 +458,23 @@ fn watertight_every_axis<V: Vector>(
     let limit = splat(t_max).mul(det);
     let ahead_range = zero.lt(det) & zero.lt(t_scaled) & t_scaled.le(limit);
     let behind_range = det.lt(zero) & t_scaled.lt(zero) & limit.le(t_scaled);
-    if (ahead_range | behind_range) & bit == 0 {
-        return None;
-    }
+    // Every corner in front, or every corner behind (see
+    // `watertight_lanes`).
+    let max_z = z[0].abs().max(z[1].abs().max(z[2].abs()));
+    let dz = bound_up_lanes(max_z.mul(splat(S::<V>::gamma_n(4))), 1);
+    let ahead = dz.lt(z[0]) & dz.lt(z[1]) & dz.lt(z[2]) & bit != 0;
+    let back = dz.neg();
+    let settled = ahead || z[0].lt(back) & z[1].lt(back) & z[2].lt(back) & bit != 0;
     let inv_det = one.div(det);
     let t = t_scaled.mul(inv_det);
     // (`t > 0` makes `is_finite` the same as `t <= MAX`.)
     let big = splat(S::<V>::MAX);
-    if zero.lt(t) & t.le(splat(t_max)) & t.le(big) & bit == 0 {
-        return None;
+    let t_ok = zero.lt(t) & t.le(splat(t_max)) & t.le(big);
+    if (ahead_range | behind_range) & t_ok & bit == 0 {
+        return if settled { None } else { slow() };
     }
     // The first sufficient test for t > 0 (see `watertight_sheared`).
-    let max_z = z[0].abs().max(z[1].abs().max(z[2].abs()));
-    let dz = bound_up_lanes(max_z.mul(splat(S::<V>::gamma_n(4))), 1);
-    if dz.lt(z[0]) & dz.lt(z[1]) & dz.lt(z[2]) & bit == 0 {
+    if !ahead {
         return slow();
     }
     let u = e1.mul(inv_det).min(one);
@@ -550,19 +553,21 @@ pub(crate) fn watertight_lanes<V: Vector>(
     } else {
         false
     };
-    if !in_range {
-        return None;
-    }
+    // Every corner in front of the origin, or every corner behind, in
+    // exact arithmetic (see `watertight_sheared`); otherwise the plain
+    // answer may be wrong either way, and the definition decides.
+    let dz = L::<V>::splat(bound_up(S::<V>::gamma_n(4) * z.abs().max_all().x(), 1));
+    let ahead = dz.lt(z) == 0b111;
+    let settled = ahead || z.lt(dz.neg()) == 0b111;
     let inv_det = one / det;
     let t = t_scaled * inv_det;
     // (`t > 0` makes `is_finite` the same as `t <= MAX`, which compiles to
     // one comparison.)
-    if !(t > zero && t <= t_max && t <= S::<V>::MAX) {
-        return None;
+    if !(in_range && t > zero && t <= t_max && t <= S::<V>::MAX) {
+        return if settled { None } else { slow() };
     }
     // The first sufficient test for t > 0 (see `watertight_sheared`).
-    let dz = bound_up(S::<V>::gamma_n(4) * z.abs().max_all().x(), 1);
-    if L::<V>::splat(dz).lt(z) != 0b111 {
+    if !ahead {
         return slow();
     }
     // u and v: lanes 1 and 2 of `min(e * inv_det, 1)`.
@@ -649,15 +654,9 @@ pub(crate) fn watertight_sheared<V: Vector>(
     } else {
         false // zero area in the sheared plane, or NaN
     };
-    if !in_range {
-        return None;
-    }
-
     let inv_det = S::<V>::ONE / det;
-    let t = t_scaled * inv_det;
-    if !(t > zero && t <= t_max && t.is_finite()) {
-        return None;
-    }
+    let plain = t_scaled * inv_det;
+    let plain_ok = in_range && plain > zero && plain <= t_max && plain.is_finite();
     // t > 0 decided conservatively, by any of three sufficient tests, in
     // order of cost:
     // - every corner lies in front of the origin in exact arithmetic
@@ -671,17 +670,39 @@ pub(crate) fn watertight_sheared<V: Vector>(
     //   bound: the exact crossing is at t > 0.
     // The first test needs only the bound on z, so the other bounds are
     // computed only when it fails (they are pure functions of the same
-    // values, so the order changes no answer).
+    // values, so the order changes no answer). Every corner behind the
+    // origin (z_i < -dz) likewise means no hit.
     let (_, dz) = z_error(&z);
     let ahead = z[0] > dz && z[1] > dz && z[2] > dz;
-    let sure = ahead || {
-        let bounds = ErrorBounds::new(&f, &z, &shear);
-        t_scaled.abs() > bounds.t_scaled
-            || HitCondition::new(&bounds, det).is_some_and(|c| t > c.t_error(&bounds, &z, t))
-    };
-    if !sure {
+    let behind = z[0] < -dz && z[1] < -dz && z[2] < -dz;
+    let t = if plain_ok && ahead {
+        plain
+    } else if ahead || behind {
         return None;
-    }
+    } else {
+        let bounds = ErrorBounds::new(&f, &z, &shear);
+        let condition = HitCondition::new(&bounds, det);
+        if plain_ok
+            && (t_scaled.abs() > bounds.t_scaled
+                || condition.is_some_and(|c| plain > c.t_error(&bounds, &z, plain)))
+        {
+            plain
+        } else if condition.is_none() {
+            // The corners straddle the origin's depth and rounding leaves
+            // the determinant's sign unknown (a zero-area or sliver
+            // triangle in the ray's frame): `plain` weighs the corners'
+            // depths almost arbitrarily, its sign included. The depth of
+            // the longest edge's point nearest the ray is well conditioned;
+            // the hit stands where that is surely in front.
+            let (t, bound) = longest_edge_t(&f, &z, &bounds)?;
+            if !(t > bound && t <= t_max) {
+                return None;
+            }
+            t
+        } else {
+            return None;
+        }
+    };
     // Each e_i / det is in [0, 1] exactly (all e_i share det's sign, and
     // |det| >= |e_i|); the rounded reciprocal can push it one ulp past 1.
     let one = S::<V>::ONE;
@@ -724,6 +745,8 @@ struct ErrorBounds<F> {
     t_scaled: F,
     /// `max |z_i|`.
     max_z: F,
+    /// Bound on `|x_i - X_i|` and `|y_i - Y_i|`.
+    xy: F,
 }
 
 impl<F: Scalar> ErrorBounds<F> {
@@ -773,6 +796,7 @@ impl<F: Scalar> ErrorBounds<F> {
             z: dz,
             t_scaled: dt,
             max_z: mz,
+            xy: max2(dx, dy),
         }
     }
 }
@@ -792,6 +816,79 @@ pub(crate) fn max3<F: Scalar>(v: &[F; 3]) -> F {
 pub(crate) fn z_error<F: Scalar>(z: &[F; 3]) -> (F, F) {
     let mz = max3(z);
     (mz, bound_up(F::gamma_n(4) * mz, 1))
+}
+
+/// The `t` of a hit whose determinant's sign rounding leaves unknown and
+/// whose corners straddle the origin's depth: the depth of the point of the
+/// triangle's longest edge in the sheared plane nearest the ray (clamped to
+/// the edge), and a bound on its distance from the same point of the exact
+/// edge. For a triangle whose corners are exactly collinear, that point is
+/// where the ray passes the segment. `None` when the edge is too short for
+/// the bound (the ray runs along it).
+///
+/// With `p` the edge's first corner and `D` the edge in the sheared plane,
+/// `sigma = -(p . D) / (D . D)`, `s = clamp(sigma, 0, 1)` and
+/// `t = z_i + s (z_j - z_i)`. Each coordinate is within `d` (`xy` of
+/// [`ErrorBounds`]) of the exact one and each difference within `2d` plus
+/// its own rounding `u |D_k|`, so the numerator and the denominator are
+/// within `en` and `eden` below of their exact values (products of the
+/// perturbations, and `gamma(2)` for the rounding of each dot product), and
+/// `|s - s*| <= gamma(1) |sigma| + (en + |sigma*| eden) / den` with
+/// `|sigma*| <= (|num| + en) / (den - eden)` (clamping does not increase a
+/// difference). Then `|t - t*| <= gamma(3) (|z_i| + |z_j - z_i|) + 3 dz +
+/// |s - s*| (|z_j - z_i| (1 + u) + 2 dz)`. Each bound is evaluated with at
+/// most a dozen roundings, which `bound_up` covers.
+#[cold]
+#[inline(never)]
+fn longest_edge_t<F: Scalar>(f: &Frame<F>, z: &[F; 3], b: &ErrorBounds<F>) -> Option<(F, F)> {
+    let len2 = |i: usize, j: usize| {
+        let (dx, dy) = (f.x[j] - f.x[i], f.y[j] - f.y[i]);
+        dx * dx + dy * dy
+    };
+    let (mut i, mut j, mut best) = (0, 1, len2(0, 1));
+    for (a, c) in [(1, 2), (2, 0)] {
+        let l = len2(a, c);
+        if l > best {
+            (i, j, best) = (a, c, l);
+        }
+    }
+    let (px, py) = (f.x[i], f.y[i]);
+    let (dx, dy) = (f.x[j] - px, f.y[j] - py);
+    let den = dx * dx + dy * dy;
+    let num = -(px * dx + py * dy);
+    let sigma = num / den;
+    let s = min2(max2(sigma, F::ZERO), F::ONE);
+    let dzij = z[j] - z[i];
+    let t = z[i] + s * dzij;
+    // The bound.
+    let u = F::UNIT_ROUNDOFF;
+    let (g2, g3) = (F::gamma_n(2), F::gamma_n(3));
+    let (d, two) = (b.xy, F::TWO);
+    let (adx, ady, apx, apy) = (dx.abs(), dy.abs(), px.abs(), py.abs());
+    let ed = |a: F| two * d + u * a;
+    let en = g2 * (apx * adx + apy * ady)
+        + apx * ed(adx)
+        + apy * ed(ady)
+        + (adx + ed(adx)) * d
+        + (ady + ed(ady)) * d;
+    let eden = g2 * den + ed(adx) * (two * adx + ed(adx)) + ed(ady) * (two * ady + ed(ady));
+    let (en, eden) = (bound_up(en, 12), bound_up(eden, 12));
+    if !(den > eden && eden.is_finite() && en.is_finite() && num.is_finite()) {
+        return None;
+    }
+    let sigma_exact = bound_up((num.abs() + en) / (den - eden), 4);
+    let es = bound_up(
+        F::gamma_n(1) * sigma.abs() + (en + sigma_exact * eden) / den,
+        4,
+    );
+    let dz = b.z;
+    let bound = bound_up(
+        g3 * (z[i].abs() + dzij.abs())
+            + F::from_u32(3) * dz
+            + es * (dzij.abs() * (F::ONE + u) + two * dz),
+        8,
+    );
+    (t.is_finite() && bound.is_finite()).then_some((t, bound))
 }
 
 /// The conditioning of a hit: lower and upper bounds of `|sum E_i|` (the
@@ -895,13 +992,19 @@ impl<F: Scalar> HitCondition<F> {
 ///   (locally a proper surface, seen from one side) hits at least one of the
 ///   triangles around it: no ray leaks through.
 /// - **`t > 0` decided conservatively**: the reported `t` is positive, and
-///   the hit is in front of the origin in exact arithmetic by one of three
+///   the hit is in front of the origin in exact arithmetic by one of four
 ///   tests: all three corners are in front (so is any crossing), or the
 ///   scaled numerator exceeds its rounding error bound (pbrt-v4's test), or
-///   `t` exceeds its error bound. A ray spawned from the triangle with
+///   `t` exceeds its error bound, or, where rounding leaves the sign of the
+///   determinant unknown (a zero-area or sliver triangle in the ray's frame)
+///   and the corners straddle the origin's depth, the depth of the point of
+///   the longest edge nearest the ray exceeds its own error bound, and that
+///   depth is the reported `t`. Where every corner is behind the origin
+///   there is no hit. A ray spawned from the triangle with
 ///   [`offset_ray_origin`](crate::offset_ray_origin) does not hit it again.
 /// - `t`, `u` and `v` are within [`ray_triangle_error_bounds`] of the
-///   exact crossing.
+///   exact crossing (where that bound is finite); `t` always lies between
+///   the nearest and farthest corner's depth along the ray, up to rounding.
 /// - Triangles of zero area in the ray's sheared frame (after rounding),
 ///   non-finite triangles, invalid rays and NaN or negative `t_max` give
 ///   `None`; never panics, never NaN. A triangle of exactly zero area can

@@ -7,7 +7,9 @@ mod support;
 use num_traits::Zero;
 use proptest::prelude::*;
 use rayhit::glam::{DVec3, Vec3};
-use rayhit::{Ray, Scalar, SurfacePoint, Triangle, Vector, ray_triangle};
+use rayhit::{
+    Ray, Scalar, Side, SurfacePoint, Triangle, Vector, ray_triangle, ray_triangle_one_hit,
+};
 use support::{Pcg32, cross, rv, sub};
 
 type S<V> = <V as Vector>::Scalar;
@@ -174,4 +176,134 @@ proptest! {
     fn is_degenerate_matches_exact_on_strategy_triangles(t in rayhit::strategies::triangle::<Vec3>()) {
         prop_assert_eq!(t.is_degenerate(), exactly_degenerate(&t));
     }
+}
+
+/// A T-junction closed with a zero-area filler: the edge `A B` of `T1 =
+/// (A, B, C)` meets, on the other side, the two triangles `T2 = (A, D, M)`
+/// and `T3 = (M, D, B)` through the midpoint `M` of `A B`, and the filler
+/// `F = (A, M, B)` (corners exactly collinear: `M` is exact) joins them,
+/// every shared edge traversed in opposite directions. Around any interior
+/// point of `A B` the four triangles close the surface (for a ray that sees
+/// the real ones from one side), so the watertight test must hit one of
+/// them for every ray aimed there, from near (some corners behind the
+/// origin) or far; rounding opens a
+/// sliver between `A B` and `A M`, `M B` in the ray's frame, which only the
+/// filler covers, and some rays go through it. The one-hit test counts the
+/// crossing exactly once, with its side, the filler included.
+fn t_junctions<V: Vector>() {
+    let mut rng = Pcg32::new(47);
+    let f = |p: [f64; 3]| support::generators::v::<V>(p);
+    let (mut rays, mut only_filler) = (0u32, 0u32);
+    for _ in 0..4_000 {
+        // Integer corners (exact in both precisions), `B - A` even and on
+        // no axis, so that `M` is exact; a random power-of-two scale.
+        let scale = 2f64.powi(rng.below(40) as i32 - 20);
+        let int = |rng: &mut Pcg32, n: u32| f64::from(rng.below(2 * n + 1) as i32 - n as i32);
+        let a = [int(&mut rng, 512), int(&mut rng, 512), int(&mut rng, 512)];
+        let mut k = [0.0; 3];
+        for kk in &mut k {
+            while *kk == 0.0 {
+                *kk = int(&mut rng, 256);
+            }
+        }
+        let b = [0, 1, 2].map(|i| a[i] + 2.0 * k[i]);
+        let m = [0, 1, 2].map(|i| a[i] + k[i]);
+        // C and D on either side of A B, about |A B| away.
+        let ab = [0, 1, 2].map(|i| b[i] - a[i]);
+        let len = (ab[0] * ab[0] + ab[1] * ab[1] + ab[2] * ab[2]).sqrt();
+        let q = rng.direction();
+        let side = [
+            q[1] * ab[2] - q[2] * ab[1],
+            q[2] * ab[0] - q[0] * ab[2],
+            q[0] * ab[1] - q[1] * ab[0],
+        ];
+        let sl = (side[0] * side[0] + side[1] * side[1] + side[2] * side[2]).sqrt();
+        if sl < 0.1 * len {
+            continue;
+        }
+        let side = side.map(|x| x / sl * len);
+        let normal = [
+            ab[1] * side[2] - ab[2] * side[1],
+            ab[2] * side[0] - ab[0] * side[2],
+            ab[0] * side[1] - ab[1] * side[0],
+        ];
+        let nl = (normal[0] * normal[0] + normal[1] * normal[1] + normal[2] * normal[2]).sqrt();
+        let c = [0, 1, 2].map(|i| m[i] + side[i] + 0.3 * rng.range(-1.0, 1.0) * len);
+        let d = [0, 1, 2].map(|i| m[i] - side[i] + 0.3 * rng.range(-1.0, 1.0) * len);
+        let s = |p: [f64; 3]| f(p.map(|x| x * scale));
+        let (pa, pb, pc, pd, pm) = (s(a), s(b), s(c), s(d), s(m));
+        let tris = [
+            Triangle::new(pa, pb, pc),
+            Triangle::new(pa, pd, pm),
+            Triangle::new(pm, pd, pb),
+            Triangle::new(pa, pm, pb),
+        ];
+        assert!(tris[3].is_degenerate() && !tris[0].is_degenerate());
+        for _ in 0..100 {
+            // Aim at an interior point of A B from either side, not grazing,
+            // from near (some corners behind the origin) and far.
+            let w = rng.range(0.1, 0.9);
+            let target = [0, 1, 2].map(|i| a[i] + w * ab[i]);
+            let sign = if rng.one_in(2) { 1.0 } else { -1.0 };
+            let r = rng.direction();
+            let from = [0, 1, 2].map(|i| {
+                target[i] + (sign * normal[i] / nl + 0.5 * r[i]) * rng.range(0.2, 2.0) * len
+            });
+            let (o, t) = (s(from), s(target));
+            let ray = Ray::new(o, t - o);
+            // Only where the ray sees the three real triangles from the same
+            // side, well away from edge-on: otherwise the patch folds at
+            // `A B` as seen from the ray, `A B` is a silhouette, and a ray
+            // passing it on the open side rightly hits nothing.
+            let facing = |tri: &Triangle<V>| {
+                let (n, dir) = (tri.normal(), ray.dir);
+                let cos = n.dot(dir).to_f64() / (n.length() * dir.length()).to_f64();
+                if cos > 0.1 {
+                    1
+                } else if cos < -0.1 {
+                    -1
+                } else {
+                    0
+                }
+            };
+            let sides = [facing(&tris[0]), facing(&tris[1]), facing(&tris[2])];
+            if sides[0] == 0 || sides[1] != sides[0] || sides[2] != sides[0] {
+                continue;
+            }
+            let hits = tris.map(|tri| ray_triangle(&ray, &tri, S::<V>::INFINITY).is_some());
+            assert!(
+                hits.iter().any(|&h| h),
+                "a ray slipped through: {ray:?} {tris:?}"
+            );
+            if hits == [false, false, false, true] {
+                only_filler += 1;
+            }
+            // The one-hit test: the crossings counted with their side (+1
+            // front, -1 back) add up to one crossing of the surface. (Not
+            // always one hit: where rounding puts `M` on `T1`'s side of
+            // `A B`, `T2` or `T3` overlap `T1` in the ray's frame and the
+            // filler, wound the other way there, is hit from the back.)
+            let signed: i32 = tris
+                .iter()
+                .filter_map(|tri| ray_triangle_one_hit(&ray, tri, S::<V>::INFINITY))
+                .map(|h| if h.side == Side::Front { 1 } else { -1 })
+                .sum();
+            assert_eq!(signed.abs(), 1, "{ray:?} {tris:?}");
+            rays += 1;
+        }
+    }
+    assert!(rays > 300_000, "{rays}");
+    // The filler is what closes the mesh for some rays (so the test fails
+    // if zero-area triangles are dropped).
+    assert!(only_filler > 100, "{only_filler} of {rays}");
+}
+
+#[test]
+fn t_junctions_closed_by_a_zero_area_filler_leak_nothing_f32() {
+    t_junctions::<Vec3>();
+}
+
+#[test]
+fn t_junctions_closed_by_a_zero_area_filler_leak_nothing_f64() {
+    t_junctions::<DVec3>();
 }
