@@ -668,6 +668,9 @@ fn triangle_batch_body<W: Lanes8<F = S<V>>, V: Vector, const N: usize>(
     let (sx, sy, sz) = (splat(sh.sx), splat(sh.sy), splat(sh.sz));
     let (ox, oy, oz) = (splat(ox), splat(oy), splat(oz));
     let (g4, up1) = (splat(S::<V>::gamma_n(4)), splat(bound_up(one, 1)));
+    let c = |n: u32| splat(S::<V>::from_u32(n) * S::<V>::UNIT_ROUNDOFF);
+    let (c72u, c160u) = (c(72), c(160));
+    let dz_ray = splat(sh.dz.abs());
     let top_max = splat(if t_max < S::<V>::MAX {
         t_max
     } else {
@@ -738,11 +741,23 @@ fn triangle_batch_body<W: Lanes8<F = S<V>>, V: Vector, const N: usize>(
         // test of `u` and `v` is always passed here and is not repeated.
         let u = e1.mul(inv_det).min(ones);
         let v = e2.mul(inv_det).min(ones);
-        let hit_c = W::and(W::and_not(pass, zero_edge), ahead);
+        // A determinant whose sign rounding cannot have changed (the
+        // scalar `well_conditioned`, lane by lane; `z_max` is `max |z_i|`
+        // wherever `ahead` holds); else the scalar code takes `t` from the
+        // longest edge.
+        let m = x0
+            .abs()
+            .max(y0.abs())
+            .max(x1.abs().max(y1.abs()))
+            .max(x2.abs().max(y2.abs()));
+        let w = dz_ray.mul(z_max);
+        let q = m.add(w).mul(c72u.mul(m).add(c160u.mul(w)));
+        let sure = W::and(ahead, q.lt(det.abs()));
+        let hit_c = W::and(W::and_not(pass, zero_edge), sure);
         let shift = 8 * c;
         hit |= W::bits(hit_c) << shift;
         let rejected = W::and_not(unsettled, pass);
-        slow |= W::bits(W::or(W::or(zero_edge, W::and_not(pass, ahead)), rejected)) << shift;
+        slow |= W::bits(W::or(W::or(zero_edge, W::and_not(pass, sure)), rejected)) << shift;
         front |= W::bits(lo.lt(det)) << shift;
         put(&mut out.t, c, W::select(hit_c, t, splat(inf)));
         put(&mut out.u, c, W::select(hit_c, u, lo));

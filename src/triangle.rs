@@ -25,9 +25,9 @@ use crate::real::{L, S, Scalar, Vector, bound_up, max2, min2, scale_to_one};
 /// edges with such triangles, and in the rounded frame the filler is exactly
 /// the sliver between the neighbours' edges; dropping it would open a crack
 /// just there. A hit on one has `u`, `v` in range, the side of its rounded
-/// determinant, and a `t` between the nearest and farthest corner along
-/// the ray (within the usual rounding); its normal is zero or meaningless,
-/// so shade it with a neighbour's. [`SurfacePoint::on_triangle`] and
+/// determinant, and the `t` where the ray passes the segment, within the
+/// finite bound [`ray_triangle_error_bounds`] gives; its normal is zero or
+/// meaningless, so shade it with a neighbour's. [`SurfacePoint::on_triangle`] and
 /// [`SurfacePoint::spawn`] stay finite: with a zero normal the spawned
 /// ray starts at the hit point itself. Use [`Triangle::is_degenerate`] to
 /// drop such triangles when loading a mesh that does not need them.
@@ -473,15 +473,22 @@ fn watertight_every_axis<V: Vector>(
     if (ahead_range | behind_range) & t_ok & bit == 0 {
         return if settled { None } else { slow() };
     }
-    // The first sufficient test for t > 0 (see `watertight_sheared`).
-    if !ahead {
+    // The first sufficient test for t > 0 (see `watertight_sheared`), and
+    // a well-conditioned determinant (see `watertight_lanes`).
+    let m = x[0]
+        .abs()
+        .max(y[0].abs())
+        .max(x[1].abs().max(y[1].abs()))
+        .max(x[2].abs().max(y[2].abs()));
+    let w = d.abs().mul(max_z);
+    let c = |n: u32| splat(S::<V>::from_u32(n) * S::<V>::UNIT_ROUNDOFF);
+    let q = m.add(w).mul(m.mul(c(72)).add(w.mul(c(160))));
+    if !(ahead && q.lt(det.abs()) & bit != 0) {
         return slow();
     }
+    // u and v, finite here (see `watertight_lanes`).
     let u = e1.mul(inv_det).min(one);
     let v = e2.mul(inv_det).min(one);
-    if u.abs().le(big) & v.abs().le(big) & bit == 0 {
-        return None;
-    }
     let pick = |w: L<V>| -> S<V> { Lanes::to_array(w)[kz] };
     let det = pick(det);
     let side = if (det > S::<V>::ZERO) != (pick(d) > S::<V>::ZERO) {
@@ -556,25 +563,31 @@ pub(crate) fn watertight_lanes<V: Vector>(
     // Every corner in front of the origin, or every corner behind, in
     // exact arithmetic (see `watertight_sheared`); otherwise the plain
     // answer may be wrong either way, and the definition decides.
-    let dz = L::<V>::splat(bound_up(S::<V>::gamma_n(4) * z.abs().max_all().x(), 1));
-    let ahead = dz.lt(z) == 0b111;
-    let settled = ahead || z.lt(dz.neg()) == 0b111;
+    let max_z = z.abs().max_all().x();
+    let dz = L::<V>::splat(bound_up(S::<V>::gamma_n(4) * max_z, 1));
+    let settled = || dz.lt(z) == 0b111 || z.lt(dz.neg()) == 0b111;
     let inv_det = one / det;
     let t = t_scaled * inv_det;
     // (`t > 0` makes `is_finite` the same as `t <= MAX`, which compiles to
     // one comparison.)
     if !(in_range && t > zero && t <= t_max && t <= S::<V>::MAX) {
-        return if settled { None } else { slow() };
+        return if settled() { None } else { slow() };
     }
-    // The first sufficient test for t > 0 (see `watertight_sheared`).
-    if !ahead {
+    // The first sufficient test for t > 0 (every corner in front; see
+    // `watertight_sheared`), and a determinant whose sign rounding cannot
+    // have changed (`well_conditioned`, lane by lane: it increases with
+    // each corner's `max(|x_i|, |y_i|)`); else the definition decides.
+    let a = x.abs().max(y.abs());
+    let w = L::<V>::splat(shear.dz.abs() * max_z);
+    let c = |n: u32| L::<V>::splat(S::<V>::from_u32(n) * S::<V>::UNIT_ROUNDOFF);
+    let q = a.add(w).mul(a.mul(c(72)).add(w.mul(c(160))));
+    if dz.lt(z) & q.lt(L::<V>::splat(det.abs())) != 0b111 {
         return slow();
     }
-    // u and v: lanes 1 and 2 of `min(e * inv_det, 1)`.
+    // u and v: lanes 1 and 2 of `min(e * inv_det, 1)`, finite here: each
+    // `|e_i| <= |det|` (the `e_i` share a sign), and `1 / det` is finite
+    // (else `t` would be infinite).
     let w = e.mul(L::<V>::splat(inv_det)).min(L::<V>::splat(one));
-    if w.abs().le(L::<V>::splat(S::<V>::MAX)) & 0b110 != 0b110 {
-        return None;
-    }
     let [_, u, v] = w.to_array();
     let side = if (det > zero) != (shear.dz > zero) {
         Side::Front
@@ -675,32 +688,44 @@ pub(crate) fn watertight_sheared<V: Vector>(
     let (_, dz) = z_error(&z);
     let ahead = z[0] > dz && z[1] > dz && z[2] > dz;
     let behind = z[0] < -dz && z[1] < -dz && z[2] < -dz;
-    let t = if plain_ok && ahead {
+    let (mz, _) = z_error(&z);
+    let m = max2(max3(&f.x), max3(&f.y));
+    let t = if plain_ok && ahead && well_conditioned(det, m, shear.dz.abs() * mz) {
+        // (The common case, and the fast paths' answer: the full test
+        // below would give the same, as the determinant's sign is known.)
         plain
-    } else if ahead || behind {
+    } else if behind {
         return None;
     } else {
         let bounds = ErrorBounds::new(&f, &z, &shear);
-        let condition = HitCondition::new(&bounds, det);
-        if plain_ok
-            && (t_scaled.abs() > bounds.t_scaled
-                || condition.is_some_and(|c| plain > c.t_error(&bounds, &z, plain)))
-        {
-            plain
-        } else if condition.is_none() {
-            // The corners straddle the origin's depth and rounding leaves
-            // the determinant's sign unknown (a zero-area or sliver
-            // triangle in the ray's frame): `plain` weighs the corners'
-            // depths almost arbitrarily, its sign included. The depth of
-            // the longest edge's point nearest the ray is well conditioned;
-            // the hit stands where that is surely in front.
-            let (t, bound) = longest_edge_t(&f, &z, &bounds)?;
-            if !(t > bound && t <= t_max) {
-                return None;
+        match HitCondition::new(&bounds, det) {
+            Some(c) => {
+                let sure = ahead
+                    || t_scaled.abs() > bounds.t_scaled
+                    || plain > c.t_error(&bounds, &z, plain);
+                if !(plain_ok && sure) {
+                    return None;
+                }
+                plain
             }
-            t
-        } else {
-            return None;
+            None if det != zero && tri.is_degenerate() => {
+                // A triangle of zero area (its corners exactly collinear)
+                // that rounding leaves a sliver in the ray's frame: `plain`
+                // weighs the corners' depths almost arbitrarily, its sign
+                // included. The depth of the longest edge's point nearest
+                // the ray is well conditioned, and is where the ray passes
+                // the segment; the hit stands where that is surely in front
+                // (as it is when every corner is).
+                let (t, bound) = longest_edge_t(&f, &z, &bounds)?;
+                if !((ahead || t > bound) && t > zero && t <= t_max) {
+                    return None;
+                }
+                t
+            }
+            // Otherwise (a ray within rounding of parallel to the triangle,
+            // or a sliver far away), only where every corner is in front.
+            None if plain_ok && ahead => plain,
+            None => return None,
         }
     };
     // Each e_i / det is in [0, 1] exactly (all e_i share det's sign, and
@@ -807,6 +832,27 @@ pub(crate) fn max3<F: Scalar>(v: &[F; 3]) -> F {
     max2(v[0].abs(), max2(v[1].abs(), v[2].abs()))
 }
 
+/// A cheap sufficient condition for the determinant's sign to be known
+/// (for [`HitCondition::new`] to be `Some`): `|det| > u (m + w) (72 m +
+/// 160 w)`, with `m` the largest `|x_i|`, `|y_i|` and `w = |d_z| max
+/// |z_i|`, which exceeds `u (64 m^2 + 128 m w + 256 u (m + w)^2)` for any
+/// `u <= 1/32`.
+///
+/// Why: `|p_z| <= |z| |d_z| (1 + 3u)`, and `|s_x|, |s_y| <= 1`, so each
+/// shear product `|s_x p_z|` is at most about `w`, and each `|p_x|`,
+/// `|p_y|` at most about `m + w`. Then [`ErrorBounds`] gives `dx, dy <=
+/// u (2m + 5w)` and `de <= u (12 m^2 + 20 m w) + 8 u^2 (2m + 5w)^2`
+/// (to first order in the `(1 + k u)` factors), so `4 de` is below the
+/// threshold by a factor of at least 1.3, which covers those factors and
+/// the rounding of the threshold itself; then the lower bound of
+/// [`HitCondition`] is positive. NaN or infinite input fails it.
+#[inline(always)]
+fn well_conditioned<F: Scalar>(det: F, m: F, w: F) -> bool {
+    let u = F::UNIT_ROUNDOFF;
+    let c = |n: u32| F::from_u32(n) * u;
+    det.abs() > (m + w) * (c(72) * m + c(160) * w)
+}
+
 /// `(max |z_i|, dz)` with `dz` the bound on `|z_i - Z_i|` of
 /// [`ErrorBounds`].
 ///
@@ -818,77 +864,171 @@ pub(crate) fn z_error<F: Scalar>(z: &[F; 3]) -> (F, F) {
     (mz, bound_up(F::gamma_n(4) * mz, 1))
 }
 
-/// The `t` of a hit whose determinant's sign rounding leaves unknown and
-/// whose corners straddle the origin's depth: the depth of the point of the
-/// triangle's longest edge in the sheared plane nearest the ray (clamped to
-/// the edge), and a bound on its distance from the same point of the exact
-/// edge. For a triangle whose corners are exactly collinear, that point is
-/// where the ray passes the segment. `None` when the edge is too short for
-/// the bound (the ray runs along it).
+/// The `t` of a hit whose determinant's sign rounding leaves unknown: the
+/// depth of the point of the triangle's longest edge in the sheared plane
+/// nearest the ray (clamped to the edge), and a bound on its distance from
+/// the same point of the exact edge. For a triangle whose corners are
+/// exactly collinear, that point is where the ray passes the segment.
+/// `None` when the edge is too short for the bound (the ray runs along it).
 ///
-/// With `p` the edge's first corner and `D` the edge in the sheared plane,
-/// `sigma = -(p . D) / (D . D)`, `s = clamp(sigma, 0, 1)` and
-/// `t = z_i + s (z_j - z_i)`. Each coordinate is within `d` (`xy` of
-/// [`ErrorBounds`]) of the exact one and each difference within `2d` plus
-/// its own rounding `u |D_k|`, so the numerator and the denominator are
-/// within `en` and `eden` below of their exact values (products of the
-/// perturbations, and `gamma(2)` for the rounding of each dot product), and
-/// `|s - s*| <= gamma(1) |sigma| + (en + |sigma*| eden) / den` with
-/// `|sigma*| <= (|num| + en) / (den - eden)` (clamping does not increase a
-/// difference). Then `|t - t*| <= gamma(3) (|z_i| + |z_j - z_i|) + 3 dz +
-/// |s - s*| (|z_j - z_i| (1 + u) + 2 dz)`. Each bound is evaluated with at
-/// most a dozen roundings, which `bound_up` covers.
+/// With `p` the edge's first corner and `D` the edge, `s = clamp(-(p . D) /
+/// (D . D), 0, 1)` and `t = z_i + s (z_j - z_i)`; see [`EdgeLine::param`]
+/// for `|s - s*|` (clamping does not increase it) and
+/// [`EdgeLine::depth_error`] for `|t - t*|`.
 #[cold]
 #[inline(never)]
 fn longest_edge_t<F: Scalar>(f: &Frame<F>, z: &[F; 3], b: &ErrorBounds<F>) -> Option<(F, F)> {
-    let len2 = |i: usize, j: usize| {
-        let (dx, dy) = (f.x[j] - f.x[i], f.y[j] - f.y[i]);
-        dx * dx + dy * dy
-    };
-    let (mut i, mut j, mut best) = (0, 1, len2(0, 1));
-    for (a, c) in [(1, 2), (2, 0)] {
-        let l = len2(a, c);
-        if l > best {
-            (i, j, best) = (a, c, l);
-        }
-    }
-    let (px, py) = (f.x[i], f.y[i]);
-    let (dx, dy) = (f.x[j] - px, f.y[j] - py);
-    let den = dx * dx + dy * dy;
-    let num = -(px * dx + py * dy);
-    let sigma = num / den;
+    let line = EdgeLine::new(f, z, b)?;
+    let (sigma, es) = line.param(-line.px, -line.py, line.d, line.d)?;
     let s = min2(max2(sigma, F::ZERO), F::ONE);
-    let dzij = z[j] - z[i];
-    let t = z[i] + s * dzij;
-    // The bound.
-    let u = F::UNIT_ROUNDOFF;
-    let (g2, g3) = (F::gamma_n(2), F::gamma_n(3));
-    let (d, two) = (b.xy, F::TWO);
-    let (adx, ady, apx, apy) = (dx.abs(), dy.abs(), px.abs(), py.abs());
-    let ed = |a: F| two * d + u * a;
-    let en = g2 * (apx * adx + apy * ady)
-        + apx * ed(adx)
-        + apy * ed(ady)
-        + (adx + ed(adx)) * d
-        + (ady + ed(ady)) * d;
-    let eden = g2 * den + ed(adx) * (two * adx + ed(adx)) + ed(ady) * (two * ady + ed(ady));
-    let (en, eden) = (bound_up(en, 12), bound_up(eden, 12));
-    if !(den > eden && eden.is_finite() && en.is_finite() && num.is_finite()) {
-        return None;
-    }
-    let sigma_exact = bound_up((num.abs() + en) / (den - eden), 4);
-    let es = bound_up(
-        F::gamma_n(1) * sigma.abs() + (en + sigma_exact * eden) / den,
-        4,
-    );
-    let dz = b.z;
-    let bound = bound_up(
-        g3 * (z[i].abs() + dzij.abs())
-            + F::from_u32(3) * dz
-            + es * (dzij.abs() * (F::ONE + u) + two * dz),
-        8,
-    );
+    let t = line.zi + s * line.dzij;
+    let bound = line.depth_error(line.zi.abs(), F::ONE, es);
     (t.is_finite() && bound.is_finite()).then_some((t, bound))
+}
+
+/// A bound on the distance of a `t` that [`longest_edge_t`] gave for a
+/// triangle of zero area from where the ray passes the segment: its own
+/// bound plus how far the third corner's depth is from the edge's depth line
+/// (zero in exact arithmetic, as the corners are collinear; the computed
+/// deviation carries the rounding of the coordinates, which this also
+/// covers). The same sum bounds the distance from the exact plane's
+/// crossing for a sliver the ray meets (the plane's depth is affine, so at
+/// the ray it differs from the edge's by at most the third corner's
+/// deviation), which is what makes it a natural bound; the test uses the
+/// route only for zero-area triangles.
+fn longest_edge_t_error<F: Scalar>(f: &Frame<F>, z: &[F; 3], b: &ErrorBounds<F>) -> Option<F> {
+    let (_, bound) = longest_edge_t(f, z, b)?;
+    let line = EdgeLine::new(f, z, b)?;
+    let k = line.k;
+    // The third corner relative to the first: each component within 2d
+    // plus its rounding.
+    let (ax, ay) = (f.x[k] - line.px, f.y[k] - line.py);
+    let u = F::UNIT_ROUNDOFF;
+    let (eax, eay) = (
+        F::TWO * line.d + u * ax.abs(),
+        F::TWO * line.d + u * ay.abs(),
+    );
+    let (sk, esk) = line.param(ax, ay, eax, eay)?;
+    let on_line = line.zi + sk * line.dzij;
+    // |Z_k - line*(sk*)| <= |z_k - on_line| + dz + depth_error(...).
+    let deviation = bound_up(
+        (z[k] - on_line).abs() + line.dz + line.depth_error(line.zi.abs(), sk.abs(), esk),
+        3,
+    );
+    let total = bound_up(bound + deviation, 1);
+    total.is_finite().then_some(total)
+}
+
+/// The longest edge `i -> j` of a triangle in the sheared plane, with what
+/// [`longest_edge_t`] and its error bound need.
+struct EdgeLine<F> {
+    /// The third corner.
+    k: usize,
+    /// The first corner.
+    px: F,
+    py: F,
+    /// The edge `D`, and bounds on its components' distances from the
+    /// exact edge's: each coordinate is within `d` of the exact one, so
+    /// each difference within `2d` plus its own rounding.
+    dx: F,
+    dy: F,
+    edx: F,
+    edy: F,
+    /// `D . D`, and a bound on its distance from the exact edge's.
+    den: F,
+    eden: F,
+    /// The first corner's depth, the edge's change in depth, and the
+    /// bounds on the coordinates' and depths' errors.
+    zi: F,
+    dzij: F,
+    d: F,
+    dz: F,
+}
+
+impl<F: Scalar> EdgeLine<F> {
+    fn new(f: &Frame<F>, z: &[F; 3], b: &ErrorBounds<F>) -> Option<Self> {
+        let len2 = |i: usize, j: usize| {
+            let (dx, dy) = (f.x[j] - f.x[i], f.y[j] - f.y[i]);
+            dx * dx + dy * dy
+        };
+        let (mut i, mut j, mut k, mut best) = (0, 1, 2, len2(0, 1));
+        for (a, c, r) in [(1, 2, 0), (2, 0, 1)] {
+            let l = len2(a, c);
+            if l > best {
+                (i, j, k, best) = (a, c, r, l);
+            }
+        }
+        let (px, py) = (f.x[i], f.y[i]);
+        let (dx, dy) = (f.x[j] - px, f.y[j] - py);
+        let den = dx * dx + dy * dy;
+        let (d, u, two) = (b.xy, F::UNIT_ROUNDOFF, F::TWO);
+        let (edx, edy) = (two * d + u * dx.abs(), two * d + u * dy.abs());
+        // Rounding of the dot product, and the perturbation of each square.
+        let eden = bound_up(
+            F::gamma_n(2) * den + edx * (two * dx.abs() + edx) + edy * (two * dy.abs() + edy),
+            12,
+        );
+        (den > eden && eden.is_finite()).then_some(Self {
+            k,
+            px,
+            py,
+            dx,
+            dy,
+            edx,
+            edy,
+            den,
+            eden,
+            zi: z[i],
+            dzij: z[j] - z[i],
+            d,
+            dz: b.z,
+        })
+    }
+
+    /// `sigma = (a . D) / (D . D)` for a vector `a` whose components are
+    /// within `ea_x`, `ea_y` of the exact ones, and a bound on `|sigma -
+    /// sigma*|` (`sigma*` from exact values). The numerator is within
+    /// `en = gamma(2) (|a_x D_x| + |a_y D_y|) + sum_k (|a_k| eD_k + (|D_k| +
+    /// eD_k) ea_k)` of the exact one and the denominator within `eden`;
+    /// `sigma - sigma* = (num - num*) / den + sigma* (den* - den) / den`,
+    /// with `|sigma*| <= (|num| + en) / (den - eden)`, and the division adds
+    /// `gamma(1) |sigma|`.
+    fn param(&self, ax: F, ay: F, eax: F, eay: F) -> Option<(F, F)> {
+        let num = ax * self.dx + ay * self.dy;
+        let sigma = num / self.den;
+        let (adx, ady) = (self.dx.abs(), self.dy.abs());
+        let en = bound_up(
+            F::gamma_n(2) * (ax.abs() * adx + ay.abs() * ady)
+                + ax.abs() * self.edx
+                + ay.abs() * self.edy
+                + (adx + self.edx) * eax
+                + (ady + self.edy) * eay,
+            12,
+        );
+        let exact = bound_up((num.abs() + en) / (self.den - self.eden), 4);
+        let es = bound_up(
+            F::gamma_n(1) * sigma.abs() + (en + exact * self.eden) / self.den,
+            4,
+        );
+        (sigma.is_finite() && es.is_finite()).then_some((sigma, es))
+    }
+
+    /// A bound on `|z_i + s (z_j - z_i) - (Z_i + s* (Z_j - Z_i))|` for
+    /// `|s| <= s_abs` and `|s - s*| <= es`: the rounding `gamma(3) (|z_i| +
+    /// max(1, s_abs) |z_j - z_i|)`, the depths' errors `(1 + 2 max(1,
+    /// s_abs)) dz`, and `es (|z_j - z_i| (1 + u) + 2 dz)`, evaluated with at
+    /// most eight roundings.
+    fn depth_error(&self, abs_zi: F, s_abs: F, es: F) -> F {
+        let (u, two) = (F::UNIT_ROUNDOFF, F::TWO);
+        let adz = self.dzij.abs();
+        let s = max2(F::ONE, s_abs);
+        bound_up(
+            F::gamma_n(3) * (abs_zi + s * adz)
+                + (F::ONE + two * s) * self.dz
+                + es * (adz * (F::ONE + u) + two * self.dz),
+            8,
+        )
+    }
 }
 
 /// The conditioning of a hit: lower and upper bounds of `|sum E_i|` (the
@@ -995,12 +1135,11 @@ impl<F: Scalar> HitCondition<F> {
 ///   the hit is in front of the origin in exact arithmetic by one of four
 ///   tests: all three corners are in front (so is any crossing), or the
 ///   scaled numerator exceeds its rounding error bound (pbrt-v4's test), or
-///   `t` exceeds its error bound, or, where rounding leaves the sign of the
-///   determinant unknown (a zero-area or sliver triangle in the ray's frame)
-///   and the corners straddle the origin's depth, the depth of the point of
-///   the longest edge nearest the ray exceeds its own error bound, and that
-///   depth is the reported `t`. Where every corner is behind the origin
-///   there is no hit. A ray spawned from the triangle with
+///   `t` exceeds its error bound, or, for a triangle of zero area (corners
+///   exactly collinear) that rounding leaves a sliver, the depth of the
+///   point of its longest edge nearest the ray (where the ray passes the
+///   segment, and then the reported `t`) exceeds its own error bound. Where
+///   every corner is behind the origin there is no hit. A ray spawned from the triangle with
 ///   [`offset_ray_origin`](crate::offset_ray_origin) does not hit it again.
 /// - `t`, `u` and `v` are within [`ray_triangle_error_bounds`] of the
 ///   exact crossing (where that bound is finite); `t` always lies between
@@ -1160,11 +1299,17 @@ pub struct TriangleHitError<F = f32> {
 /// sensitivity of `t = sum e_i z_i / sum e_i` and of `e_i / sum e_i` to
 /// them. The `t` bound grows with the spread of the corners' distances along
 /// the ray, not with the distance itself, so it stays within a few ulps of
-/// `t` for a triangle facing the ray, however far away. Every bound is
-/// infinite when the exact determinant's sign is not known: the ray is within
-/// rounding of parallel to the triangle, or the triangle is so thin, seen
-/// from the ray, that rounding its corners could flip it (a sliver far
-/// away); likewise for invalid input.
+/// `t` for a triangle facing the ray, however far away.
+///
+/// Where the exact determinant's sign is not known, the bounds are infinite
+/// (the ray is within rounding of parallel to the triangle, or the triangle
+/// is so thin, seen from the ray, that rounding its corners could flip it:
+/// a sliver far away), with one exception: for a triangle of zero area
+/// (corners exactly collinear) the test takes `t` from the point of the
+/// longest edge (in the ray's frame) nearest the ray, and the `t` bound is
+/// finite, a bound on the distance from where the ray passes the segment
+/// (`u` and `v` are then only known to be in `[0, 1]`, and their bounds are
+/// infinite). Every bound is infinite for invalid input.
 ///
 /// ```
 /// use rayhit::{Ray, Triangle, ray_triangle, ray_triangle_error_bounds, glam::Vec3};
@@ -1207,6 +1352,11 @@ pub fn ray_triangle_error_bounds<V: Vector>(
             t: c.t_error(&b, &z, hit.t),
             u: c.barycentric_error(&b, hit.u),
             v: c.barycentric_error(&b, hit.v),
+        },
+        // The test took `t` from the longest edge.
+        None if same_sign && det != zero && tri.is_degenerate() => TriangleHitError {
+            t: longest_edge_t_error(&f, &z, &b).unwrap_or(inf),
+            ..unbounded
         },
         _ => unbounded,
     }
