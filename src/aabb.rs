@@ -602,6 +602,12 @@ fn crosses_later<F: Scalar>(
 /// comparison is redone exactly, from error-free products. Use [`ray_aabb`]
 /// when only the interval is wanted.
 ///
+/// Precondition of the exact face, for `f64` only (`f32` has none): on each
+/// axis the origin coordinate and the box's are each zero or within a
+/// factor `2^300` of each other, and the nonzero direction components are
+/// within a factor `2^300` of each other (beyond that a product in the
+/// exact comparison can underflow, and a tie can be decided wrongly).
+///
 /// ```
 /// use rayhit::{Aabb, BoxFace, Ray, ray_aabb_face, glam::Vec3};
 /// let unit = Aabb::new(Vec3::ZERO, Vec3::ONE);

@@ -5,7 +5,10 @@
 //! mode, [`inputs::aabb_and_ray`] and [`inputs::t_max`].
 
 use arbitrary::{Arbitrary, Unstructured};
-use rayhit::{Aabb, PreparedRay, Ray, Scalar, Vector, ray_aabb, ray_aabb_naive, ray_aabb_prepared};
+use rayhit::{
+    Aabb, BoxFace, PreparedRay, Ray, Scalar, Vector, ray_aabb, ray_aabb_face, ray_aabb_naive,
+    ray_aabb_prepared, ray_aabb_prepared_face,
+};
 
 use crate::exact::{R, abs, gamma, int, r, rv};
 use crate::{Check, Mode, S, far_from_underflow, inputs, oracle, raw};
@@ -19,7 +22,11 @@ use crate::{Check, Mode, S, far_from_underflow, inputs, oracle, raw};
 /// overflows, no exact axis distance above `MAX / 2`, checked exactly): no
 /// false miss against the exact oracle, `exit` at least the exact exit, and
 /// a false hit only inside the documented band (exact entry at most the
-/// exact exit times `1 + 16u`, plus two subnormals). Structured inputs also:
+/// exact exit times `1 + 16u`, plus two subnormals). The entry face
+/// (`ray_aabb_face`, `ray_aabb_prepared_face`): the same interval bit for
+/// bit, and, where the precondition holds, exactly the documented face (the
+/// largest positive entry-plane distance, the lowest axis on a tie, none
+/// when no entry plane is ahead). Structured inputs also:
 /// `enter` within `gamma(3)` of the exact entry, `exit` at most the band
 /// above the exact exit, and the entry point on the box surface.
 #[derive(Debug)]
@@ -151,6 +158,13 @@ pub fn check_slab<V: Vector>(ray: &Ray<V>, b: &Aabb<V>, t_max: S<V>, detailed: b
         ctx()
     );
     in_range::<V>("slab", slab, t_max, &ctx);
+    let face = ray_aabb_face(ray, b, t_max);
+    assert!(
+        bits(face.map(|h| (h.enter, h.exit))) == bits(slab)
+            && face == ray_aabb_prepared_face(&PreparedRay::new(ray), b, t_max),
+        "face test {face:?} differs from the slab test {slab:?}: {}",
+        ctx()
+    );
     if !valid(ray, b, t_max) {
         assert!(slab.is_none(), "slab hit on invalid input: {}", ctx());
         return;
@@ -171,6 +185,11 @@ pub fn check_slab<V: Vector>(ray: &Ray<V>, b: &Aabb<V>, t_max: S<V>, detailed: b
         ctx()
     );
     let Some((e, x)) = slab else { return };
+    if face_precondition(ray, b) {
+        let got = face.and_then(|h| h.face);
+        let want = exact_face(ray, b);
+        assert!(got == want, "entry face {got:?}, exact {want:?}: {}", ctx());
+    }
     match &exact {
         Some((ee, xx)) => {
             // An infinite exit (t_max infinite) is at least anything.
@@ -213,6 +232,46 @@ pub fn check_slab<V: Vector>(ray: &Ray<V>, b: &Aabb<V>, t_max: S<V>, detailed: b
             );
         }
     }
+}
+
+/// The entry face's documented precondition for `f64` (none for `f32`):
+/// on each axis the origin coordinate and the box's coordinates are each
+/// zero or within a factor `2^300` of each other, and the nonzero direction
+/// components are within a factor `2^300` of each other.
+fn face_precondition<V: Vector>(ray: &Ray<V>, b: &Aabb<V>) -> bool {
+    if S::<V>::UNIT_ROUNDOFF > S::<V>::from_f64(1e-10) {
+        return true;
+    }
+    let near = |a: f64, c: f64| {
+        let (a, c) = (a.abs(), c.abs());
+        a == 0.0 || c == 0.0 || (a <= c * 2f64.powi(300) && c <= a * 2f64.powi(300))
+    };
+    let f = |x: S<V>| x.to_f64();
+    (0..3).all(|k| {
+        let o = f(ray.origin[k]);
+        near(o, f(b.min[k])) && near(o, f(b.max[k]))
+    }) && (0..3).all(|i| (0..3).all(|j| near(f(ray.dir[i]), f(ray.dir[j]))))
+}
+
+/// The documented entry face, exactly: over the axes the ray moves along,
+/// the entry plane (`min` for a positive component, else `max`) with the
+/// largest positive distance, the lowest axis on a tie; `None` when no
+/// entry plane is ahead (the ray starts inside or on the surface).
+fn exact_face<V: Vector>(ray: &Ray<V>, b: &Aabb<V>) -> Option<BoxFace> {
+    let (o, d, lo, hi) = (rv(ray.origin), rv(ray.dir), rv(b.min), rv(b.max));
+    let zero = int(0);
+    let mut best: Option<(usize, R)> = None;
+    for k in 0..3 {
+        if d[k] == zero {
+            continue;
+        }
+        let plane = if d[k] > zero { &lo[k] } else { &hi[k] };
+        let t = (plane - &o[k]) / &d[k];
+        if t > zero && best.as_ref().is_none_or(|(_, bt)| t > *bt) {
+            best = Some((k, t));
+        }
+    }
+    best.and_then(|(k, _)| BoxFace::new(k, d[k] < zero))
 }
 
 /// The point `ray.at(enter)` lies on the box surface within its bound.
