@@ -25,37 +25,6 @@ use support::{Pcg32, R, rv};
 
 type S<V> = <V as Vector>::Scalar;
 
-/// The exact answer: the face of the largest positive entry-plane distance,
-/// the lowest axis on a tie, `None` when no entry plane is ahead; and
-/// whether it was a tie.
-fn exact_face<V: Vector>(ray: &Ray<V>, b: &Aabb<V>) -> (Option<BoxFace>, bool) {
-    let (o, d, lo, hi) = (rv(ray.origin), rv(ray.dir), rv(b.min), rv(b.max));
-    let mut best: Option<(usize, R)> = None;
-    let mut tie = false;
-    for k in 0..3 {
-        if d[k].is_zero() {
-            continue;
-        }
-        let plane = if d[k] > R::zero() { &lo[k] } else { &hi[k] };
-        let t = (plane - &o[k]) / &d[k];
-        if t <= R::zero() {
-            continue;
-        }
-        match &best {
-            Some((_, bt)) if t.cmp(bt) == Ordering::Equal => tie = true,
-            Some((_, bt)) if t < *bt => {}
-            _ => {
-                best = Some((k, t));
-                tie = false;
-            }
-        }
-    }
-    (
-        best.and_then(|(k, _)| BoxFace::new(k, d[k] < R::zero())),
-        tie,
-    )
-}
-
 /// Every generator, both precisions: the face of every hit is the exact
 /// one, the interval is `ray_aabb`'s bit for bit, and the prepared form
 /// and `aabb_entry_face` agree.
@@ -84,7 +53,7 @@ fn check_generators<V: Vector>(cases: usize) -> (usize, usize, usize) {
             );
             let Some(hit) = got else { continue };
             hits += 1;
-            let (expected, tie) = exact_face(&ray, &aabb);
+            let (expected, tie) = support::box_face(&ray, &aabb);
             assert_eq!(hit.face, expected, "{name}: {ray:?} {aabb:?}");
             faces += usize::from(expected.is_some());
             ties += usize::from(tie);
@@ -156,7 +125,7 @@ fn every_face_is_reported<V: Vector>() {
             assert!(support::box_interval(&ray, &aabb, S::<V>::INFINITY).is_none());
             continue;
         };
-        let (expected, _) = exact_face(&ray, &aabb);
+        let (expected, _) = support::box_face(&ray, &aabb);
         assert_eq!(hit.face, expected, "{ray:?} {aabb:?}");
         if let Some(f) = hit.face {
             seen[f as usize] += 1;
@@ -248,14 +217,14 @@ proptest! {
     #[test]
     fn face_is_exact_f32((aabb, ray) in strat::aabb_and_ray::<Vec3>()) {
         if let Some(hit) = ray_aabb_face(&ray, &aabb, f32::INFINITY) {
-            prop_assert_eq!(hit.face, exact_face(&ray, &aabb).0);
+            prop_assert_eq!(hit.face, support::box_face(&ray, &aabb).0);
         }
     }
 
     #[test]
     fn face_is_exact_f64((aabb, ray) in strat::aabb_and_ray::<DVec3>()) {
         if let Some(hit) = ray_aabb_face(&ray, &aabb, f64::INFINITY) {
-            prop_assert_eq!(hit.face, exact_face(&ray, &aabb).0);
+            prop_assert_eq!(hit.face, support::box_face(&ray, &aabb).0);
         }
     }
 

@@ -24,9 +24,9 @@ use std::path::PathBuf;
 use num_traits::Signed;
 use rayhit::glam::{DVec3, Vec3};
 use rayhit::{
-    Aabb, Plane, Ray, Scalar, Side, Triangle, Vector, ray_aabb, ray_aabb_naive, ray_plane,
-    ray_plane_t_error, ray_triangle, ray_triangle_error_bounds, ray_triangle_mt,
-    ray_triangle_one_hit,
+    Aabb, BoxFace, Plane, Ray, Scalar, Side, Triangle, Vector, ray_aabb, ray_aabb_face,
+    ray_aabb_naive, ray_plane, ray_plane_t_error, ray_triangle, ray_triangle_error_bounds,
+    ray_triangle_mt, ray_triangle_one_hit,
 };
 use support::generators::*;
 use support::{Pcg32, R, gamma, r, rv};
@@ -192,7 +192,20 @@ impl Failures {
 
 // ------------------------------------------------------------------ boxes
 
-const BOX_HEADER: &str = "origin dir min max t_max | exact answer: miss, or hit ENTER EXIT (rounded to nearest) | band: clear (hit/miss must match) or edge";
+const BOX_HEADER: &str = "origin dir min max t_max | exact answer: miss, or hit ENTER EXIT (rounded to nearest) FACE (the entry face: min-x .. max-z, or inside) | band: clear (hit/miss must match) or edge";
+
+/// The corpus's name of an entry face.
+fn face_name(face: Option<BoxFace>) -> &'static str {
+    match face {
+        None => "inside",
+        Some(BoxFace::MinX) => "min-x",
+        Some(BoxFace::MaxX) => "max-x",
+        Some(BoxFace::MinY) => "min-y",
+        Some(BoxFace::MaxY) => "max-y",
+        Some(BoxFace::MinZ) => "min-z",
+        Some(BoxFace::MaxZ) => "max-z",
+    }
+}
 
 fn box_line<V: Vector>((b, ray, t_max): &BoxCase<V>) -> Option<String> {
     if !(ray.is_valid() && b.is_valid()) {
@@ -209,9 +222,10 @@ fn box_line<V: Vector>((b, ray, t_max): &BoxCase<V>) -> Option<String> {
     }
     let answer = match support::box_interval(ray, b, *t_max) {
         Some((e, x)) => format!(
-            "hit {} {}",
+            "hit {} {} {}",
             hex(nearest::<S<V>>(&e)),
-            hex(nearest::<S<V>>(&x))
+            hex(nearest::<S<V>>(&x)),
+            face_name(support::box_face(ray, b).0)
         ),
         None => "miss".into(),
     };
@@ -267,6 +281,15 @@ fn check_boxes<V: Vector>(lines: &[String]) -> Failures {
             "hit" => Some((ans.f::<S<V>>(), ans.f::<S<V>>())),
             _ => None,
         };
+        // The entry face of every reported hit, exact hits or not (the
+        // face is defined by the entry planes alone).
+        if exact.is_some() {
+            let want = ans.word().to_string();
+            let got = ray_aabb_face(&ray, &b, t_max).map(|h| face_name(h.face));
+            fail.check(got.is_none_or(|g| g == want), i, || {
+                format!("entry face {got:?}, exact {want}")
+            });
+        }
         let clear = parts[2].trim() == "clear";
         let slab = ray_aabb(&ray, &b, t_max);
         let naive = ray_aabb_naive(&ray, &b, t_max);

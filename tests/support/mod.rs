@@ -16,7 +16,7 @@ use std::cmp::Ordering;
 use num_bigint::BigInt;
 use num_rational::BigRational;
 use num_traits::{Signed, ToPrimitive, Zero};
-use rayhit::{Aabb, Plane, Ray, Scalar, Triangle, TriangleHit, TriangleHitError, Vector};
+use rayhit::{Aabb, BoxFace, Plane, Ray, Scalar, Triangle, TriangleHit, TriangleHitError, Vector};
 
 /// An exact rational.
 pub type R = BigRational;
@@ -174,6 +174,37 @@ pub fn box_face_margins<V: Vector>(ray: &Ray<V>, b: &Aabb<V>, t_max: V::Scalar) 
     };
     let n = nears.len();
     Some((gap(&nears, n - 1, n - 2), gap(&fars, 0, 1)))
+}
+
+/// The exact answer: the face of the largest positive entry-plane distance,
+/// the lowest axis on a tie, `None` when no entry plane is ahead; and
+/// whether it was a tie.
+pub fn box_face<V: Vector>(ray: &Ray<V>, b: &Aabb<V>) -> (Option<BoxFace>, bool) {
+    let (o, d, lo, hi) = (rv(ray.origin), rv(ray.dir), rv(b.min), rv(b.max));
+    let mut best: Option<(usize, R)> = None;
+    let mut tie = false;
+    for k in 0..3 {
+        if d[k].is_zero() {
+            continue;
+        }
+        let plane = if d[k] > R::zero() { &lo[k] } else { &hi[k] };
+        let t = (plane - &o[k]) / &d[k];
+        if t <= R::zero() {
+            continue;
+        }
+        match &best {
+            Some((_, bt)) if t.cmp(bt) == Ordering::Equal => tie = true,
+            Some((_, bt)) if t < *bt => {}
+            _ => {
+                best = Some((k, t));
+                tie = false;
+            }
+        }
+    }
+    (
+        best.and_then(|(k, _)| BoxFace::new(k, d[k] < R::zero())),
+        tie,
+    )
 }
 
 /// Exact interval `[enter, exit]` of `t` in `[0, t_max]` with the ray inside
