@@ -10,9 +10,6 @@
 
 mod support;
 
-use std::cmp::Ordering;
-
-use num_traits::Zero;
 use proptest::prelude::*;
 use rayhit::glam::{DVec3, Vec3};
 use rayhit::strategies as strat;
@@ -20,8 +17,8 @@ use rayhit::{
     Aabb, AabbBatch, BoxFace, PreparedRay, Ray, Scalar, SurfacePoint, Vector, aabb_entry_face,
     ray_aabb, ray_aabb_batch, ray_aabb_face, ray_aabb_prepared, ray_aabb_prepared_face,
 };
+use support::Pcg32;
 use support::generators::box_generators;
-use support::{Pcg32, R, rv};
 
 type S<V> = <V as Vector>::Scalar;
 
