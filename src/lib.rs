@@ -78,7 +78,8 @@
 //! with `std` on x86-64 an AVX2 copy is picked at run time), in both
 //! precisions, and each lane's answer is bit for bit the scalar kernel's.
 //! [`with_simd`] makes that choice once for a whole traversal instead of
-//! once per batch.
+//! once per batch, and also uses an AVX-512 copy of the box kernels on CPUs
+//! that have it.
 //!
 //! ```
 //! use rayhit::{Aabb, AabbBatch, PreparedRay, Ray, ray_aabb_batch, glam::Vec3};
