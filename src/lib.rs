@@ -297,6 +297,9 @@ pub mod approx;
 mod arbitrary;
 mod batch;
 mod camera;
+#[cfg(feature = "exact")]
+#[cfg_attr(docsrs, doc(cfg(feature = "exact")))]
+pub mod exact;
 mod lanes;
 mod plane;
 mod quantized;

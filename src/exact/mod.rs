@@ -1,0 +1,387 @@
+//! Exact answers: the crate's exact-arithmetic oracle, for holding any
+//! ray/box, ray/triangle or ray/plane kernel to the truth.
+//!
+//! Every finite `f32` and `f64` is a dyadic rational, so each question a
+//! kernel answers (does the ray hit, at which `t`, where on the triangle)
+//! has one exact answer for the very floats the kernel saw. This module
+//! computes it with big rationals ([`Rational`]) and judges a claimed answer
+//! against it ([`judge`]), with the conventions of the crate's kernels:
+//!
+//! - box ([`ray_aabb`]): the closed box against `t` in `[0, t_max]`;
+//! - triangle ([`ray_triangle`], [`ray_mesh`]): closed and two-sided,
+//!   `0 < t <= t_max`;
+//! - plane ([`ray_plane`]): `0 < t <= t_max`, no hit when parallel;
+//! - invalid input (a non-finite coordinate, a zero direction, an inverted
+//!   box, a zero plane normal, a NaN `t_max`) is a miss, never a panic.
+//!
+//! Each exact value comes with its correctly rounded float ([`Exact`],
+//! rounding to nearest, ties to even).
+//!
+//! ```
+//! use rayhit::{Aabb, Ray, glam::Vec3};
+//! use rayhit::exact;
+//! let ray = Ray::new(Vec3::new(-1.0, 0.5, 0.5), Vec3::new(3.0, 0.0, 0.0));
+//! let hit = exact::ray_aabb(&ray, &Aabb::new(Vec3::ZERO, Vec3::ONE), f32::INFINITY).unwrap();
+//! // Enters at x = 0 (t = 1/3, not a float) and leaves at x = 1 (t = 2/3).
+//! assert_eq!(hit.enter.value, exact::Rational::new(1.into(), 3.into()));
+//! assert_eq!(hit.enter.rounded, 1.0f32 / 3.0);
+//! ```
+//!
+//! # Speed
+//!
+//! Exact arithmetic is slow: see the table in the crate's `BENCHMARKS.md`
+//! section "Exact oracle" (measured with `cargo run --release --example
+//! check -- --speed`). As a guide, on one core of a 2020s x86-64 machine
+//! it decides tens of thousands of random box and plane cases per second
+//! and roughly ten thousand triangle cases per second; judging (which adds
+//! the rounding band) costs a few times more.
+//!
+//! The dependencies are re-exported, so a dependent needs no version of its
+//! own: [`num_bigint`], [`num_rational`], [`num_traits`].
+
+use std::vec::Vec;
+
+use num_traits::{Signed, Zero};
+
+use crate::{Aabb, BoxFace, Plane, Ray, Scalar, Side, Triangle, Vector};
+
+pub use num_bigint;
+pub use num_rational;
+pub use num_traits;
+
+pub mod oracle;
+mod verdict;
+
+pub use verdict::{
+    Band, Case, Claim, Field, Judgement, Tally, Verdict, band, distance_ulps, judge,
+};
+
+/// An exact rational number.
+pub type Rational = num_rational::BigRational;
+
+/// The exact value of a float, or `None` for an infinity or NaN.
+#[must_use]
+pub fn rational<F: Scalar>(x: F) -> Option<Rational> {
+    x.is_finite().then(|| oracle::r(x))
+}
+
+/// `x` rounded to the nearest float of precision `F`, ties to even; values
+/// beyond the largest finite float round to an infinity as IEEE 754 says
+/// (at or above `MAX + half an ulp`).
+#[must_use]
+pub fn round<F: Scalar>(x: &Rational) -> F {
+    let single = F::UNIT_ROUNDOFF.to_f64() == f64::EPSILON * 0.5 * (1u64 << 29) as f64;
+    // Significand bits, and the exponent of the smallest normal.
+    let (p, emin, emax): (i64, i64, i64) = if single {
+        (24, -126, 127)
+    } else {
+        (53, -1022, 1023)
+    };
+    F::from_f64(round_bits(x, p, emin, emax))
+}
+
+fn round_bits(x: &Rational, p: i64, emin: i64, emax: i64) -> f64 {
+    use num_bigint::BigInt;
+    if x.is_zero() {
+        return 0.0;
+    }
+    let negative = x.is_negative();
+    let n = x.numer().abs();
+    let d = x.denom().abs();
+    // 2^e <= |x| < 2^(e + 1).
+    let mut e = n.bits() as i64 - d.bits() as i64;
+    let shl = |v: &BigInt, k: i64| -> BigInt { if k >= 0 { v << (k as usize) } else { v.clone() } };
+    if shl(&n, -e) < shl(&d, e) {
+        e -= 1;
+    }
+    // The spacing of floats at |x| (subnormals share the smallest normal's).
+    let q = e.max(emin) - (p - 1);
+    let (num, den) = (shl(&n, -q), shl(&d, q));
+    let mut m = &num / &den;
+    let twice: BigInt = (&num - &m * &den) << 1usize;
+    if twice > den || (twice == den && m.bit(0)) {
+        m += 1;
+    }
+    // m <= 2^p, so it converts exactly; m 2^q overflows exactly when the
+    // rounded value exceeds the largest finite float.
+    let m = num_traits::ToPrimitive::to_f64(&m).unwrap_or(f64::INFINITY);
+    let top = (m.log2().floor() as i64) + q;
+    let mag = if top > emax {
+        f64::INFINITY
+    } else {
+        // Exact: multiply in two power-of-two steps, each representable.
+        let half = q / 2;
+        m * pow2(half) * pow2(q - half)
+    };
+    if negative { -mag } else { mag }
+}
+
+/// `2^k` as an `f64` for `-1074 <= k <= 1023` (0 below, infinity above).
+fn pow2(k: i64) -> f64 {
+    if k > 1023 {
+        f64::INFINITY
+    } else if k >= -1022 {
+        f64::from_bits(((k + 1023) as u64) << 52)
+    } else if k >= -1074 {
+        f64::from_bits(1u64 << (k + 1074))
+    } else {
+        0.0
+    }
+}
+
+/// An exact value and its correctly rounded float.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Exact<F> {
+    /// The exact value.
+    pub value: Rational,
+    /// `value` rounded to the nearest float, ties to even.
+    pub rounded: F,
+}
+
+impl<F: Scalar> Exact<F> {
+    /// `value` with its rounding.
+    #[must_use]
+    pub fn new(value: Rational) -> Self {
+        let rounded = round(&value);
+        Self { value, rounded }
+    }
+}
+
+fn valid_limit<F: Scalar>(t_max: F) -> bool {
+    t_max.partial_cmp(&t_max).is_some()
+}
+
+/// The exact answer for a ray against a box that it hits.
+#[derive(Clone, Debug, PartialEq)]
+pub struct BoxAnswer<F> {
+    /// Where the ray enters the closed box, at least 0.
+    pub enter: Exact<F>,
+    /// Where it leaves the box or reaches `t_max`, whichever is first.
+    pub exit: Exact<F>,
+    /// The faces whose planes the ray crosses at `enter` on the way in: one,
+    /// or two or three at an edge or corner; none when it starts strictly
+    /// inside (a ray starting on a face, going in, lists that face). In
+    /// axis order, x before y before z.
+    pub entry_faces: Vec<BoxFace>,
+    /// The faces whose planes it crosses at `exit` on the way out (none when
+    /// `t_max` comes first).
+    pub exit_faces: Vec<BoxFace>,
+}
+
+/// Exact ray/box: the interval of `t` in `[0, t_max]` with the ray in the
+/// closed box, and the faces at its ends; `None` for a miss or invalid input
+/// (see [`Ray::is_valid`], [`Aabb::is_valid`]; a NaN `t_max`). The same
+/// question as [`ray_aabb`](crate::ray_aabb) answers with rounding.
+///
+/// ```
+/// use rayhit::{Aabb, BoxFace, Ray, exact, glam::DVec3};
+/// let b = Aabb::new(DVec3::ZERO, DVec3::ONE);
+/// // Through the edge x = 0, y = 0.
+/// let ray = Ray::new(DVec3::new(-1.0, -1.0, 0.5), DVec3::new(1.0, 1.0, 0.0));
+/// let hit = exact::ray_aabb(&ray, &b, f64::INFINITY).unwrap();
+/// assert_eq!(hit.entry_faces, [BoxFace::MinX, BoxFace::MinY]);
+/// assert_eq!(hit.exit_faces, [BoxFace::MaxX, BoxFace::MaxY]);
+/// assert!(exact::ray_aabb(&ray, &b, 0.5).is_none());
+/// ```
+#[must_use]
+pub fn ray_aabb<V: Vector>(
+    ray: &Ray<V>,
+    b: &Aabb<V>,
+    t_max: V::Scalar,
+) -> Option<BoxAnswer<V::Scalar>> {
+    if !(ray.is_valid() && b.is_valid() && valid_limit(t_max)) {
+        return None;
+    }
+    let slabs = oracle::box_slabs(ray, b)?;
+    let (enter, exit) = oracle::box_interval(ray, b, t_max)?;
+    let d = oracle::rv(ray.dir);
+    let face = |k: usize, near: bool| {
+        let max_side = (d[k] < Rational::zero()) == near;
+        BoxFace::new(k, max_side).expect("axis below 3")
+    };
+    let entry_faces = slabs
+        .iter()
+        .filter(|s| s.0 == enter)
+        .map(|s| face(s.2, true))
+        .collect();
+    let exit_faces = slabs
+        .iter()
+        .filter(|s| s.1 == exit)
+        .map(|s| face(s.2, false))
+        .collect();
+    Some(BoxAnswer {
+        enter: Exact::new(enter),
+        exit: Exact::new(exit),
+        entry_faces,
+        exit_faces,
+    })
+}
+
+/// Where on a triangle a crossing is: inside, on one edge, or at a corner.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+pub enum Place {
+    /// Strictly inside.
+    Interior,
+    /// On an edge, not at its ends: 0 for `a-b`, 1 for `b-c`, 2 for `c-a`.
+    Edge(usize),
+    /// At a corner: 0, 1, 2 for `a`, `b`, `c`.
+    Corner(usize),
+}
+
+/// The exact answer for a ray against a triangle that it crosses.
+#[derive(Clone, Debug, PartialEq)]
+pub struct TriangleAnswer<F> {
+    /// Distance along the ray, in units of `dir`.
+    pub t: Exact<F>,
+    /// Barycentric weight of `b`.
+    pub u: Exact<F>,
+    /// Barycentric weight of `c`.
+    pub v: Exact<F>,
+    /// The side the ray arrives from (the exact sign of `dir . normal`).
+    pub side: Side,
+    /// Inside, on an edge, or at a corner, exactly.
+    pub place: Place,
+}
+
+/// Exact ray/triangle: closed and two-sided, `0 < t <= t_max`; `None` for a
+/// miss, a line parallel to the triangle's plane (including a degenerate
+/// triangle) or invalid input. The same question as
+/// [`ray_triangle`](crate::ray_triangle) answers with rounding.
+///
+/// ```
+/// use rayhit::{Ray, Side, Triangle, exact, glam::Vec3};
+/// let tri = Triangle::new(Vec3::ZERO, Vec3::X, Vec3::Y);
+/// // Straight down onto the middle of the edge b-c.
+/// let ray = Ray::new(Vec3::new(0.5, 0.5, 2.0), Vec3::new(0.0, 0.0, -1.0));
+/// let hit = exact::ray_triangle(&ray, &tri, f32::INFINITY).unwrap();
+/// assert_eq!((hit.t.rounded, hit.u.rounded, hit.v.rounded), (2.0, 0.5, 0.5));
+/// assert_eq!(hit.place, exact::Place::Edge(1));
+/// assert_eq!(hit.side, Side::Front);
+/// ```
+#[must_use]
+pub fn ray_triangle<V: Vector>(
+    ray: &Ray<V>,
+    tri: &Triangle<V>,
+    t_max: V::Scalar,
+) -> Option<TriangleAnswer<V::Scalar>> {
+    if !(ray.is_valid()
+        && tri.a.is_finite()
+        && tri.b.is_finite()
+        && tri.c.is_finite()
+        && valid_limit(t_max))
+    {
+        return None;
+    }
+    let ex = oracle::triangle(ray, tri);
+    if !ex.hits(&oracle::limit(t_max)) {
+        return None;
+    }
+    let (t, (u, v)) = (ex.t.clone()?, ex.uv.clone()?);
+    let zero = |k: usize| ex.signs[k] == core::cmp::Ordering::Equal;
+    // Edge k runs from corner k to corner k + 1.
+    let place = match (zero(0), zero(1), zero(2)) {
+        (false, false, false) => Place::Interior,
+        (true, false, false) => Place::Edge(0),
+        (false, true, false) => Place::Edge(1),
+        (false, false, true) => Place::Edge(2),
+        (true, true, _) => Place::Corner(1),
+        (false, true, true) => Place::Corner(2),
+        (true, false, true) => Place::Corner(0),
+    };
+    let (a, b, c) = (oracle::rv(tri.a), oracle::rv(tri.b), oracle::rv(tri.c));
+    let n = oracle::cross(&oracle::sub(&b, &a), &oracle::sub(&c, &a));
+    let side = if oracle::dot(&oracle::rv(ray.dir), &n).is_negative() {
+        Side::Front
+    } else {
+        Side::Back
+    };
+    Some(TriangleAnswer {
+        t: Exact::new(t),
+        u: Exact::new(u),
+        v: Exact::new(v),
+        side,
+        place,
+    })
+}
+
+/// One crossing of a ray through a mesh: the exact `t` and every triangle
+/// the ray crosses there (several when it passes through a shared edge or
+/// corner), with each triangle's answer.
+#[derive(Clone, Debug, PartialEq)]
+pub struct MeshCrossing<F> {
+    /// Where along the ray.
+    pub t: Exact<F>,
+    /// The triangles crossed at `t`, by index, in index order.
+    pub triangles: Vec<(usize, TriangleAnswer<F>)>,
+}
+
+/// Exact ray/mesh: every crossing of the ray with the triangles (each
+/// closed and two-sided, `0 < t <= t_max`), nearest first, the triangles
+/// that share a crossing (equal exact `t`) grouped together. A watertight
+/// kernel must report at least one triangle of each crossing whose triangles
+/// close up around it.
+///
+/// ```
+/// use rayhit::{Ray, Triangle, exact, glam::Vec3};
+/// // Two triangles sharing the diagonal of the unit square.
+/// let quad = [
+///     Triangle::new(Vec3::ZERO, Vec3::X, Vec3::ONE.with_z(0.0)),
+///     Triangle::new(Vec3::ZERO, Vec3::ONE.with_z(0.0), Vec3::Y),
+/// ];
+/// let ray = Ray::new(Vec3::new(0.5, 0.5, 1.0), Vec3::NEG_Z);
+/// let crossings = exact::ray_mesh(&ray, &quad, f32::INFINITY);
+/// assert_eq!(crossings.len(), 1);
+/// assert_eq!(crossings[0].triangles.len(), 2);
+/// ```
+#[must_use]
+pub fn ray_mesh<V: Vector>(
+    ray: &Ray<V>,
+    tris: &[Triangle<V>],
+    t_max: V::Scalar,
+) -> Vec<MeshCrossing<V::Scalar>> {
+    let mut hits: Vec<(usize, TriangleAnswer<V::Scalar>)> = tris
+        .iter()
+        .enumerate()
+        .filter_map(|(i, tri)| ray_triangle(ray, tri, t_max).map(|h| (i, h)))
+        .collect();
+    hits.sort_by(|x, y| x.1.t.value.cmp(&y.1.t.value).then(x.0.cmp(&y.0)));
+    let mut out: Vec<MeshCrossing<V::Scalar>> = Vec::new();
+    for (i, h) in hits {
+        match out.last_mut() {
+            Some(last) if last.t.value == h.t.value => last.triangles.push((i, h)),
+            _ => out.push(MeshCrossing {
+                t: h.t.clone(),
+                triangles: std::vec![(i, h)],
+            }),
+        }
+    }
+    out
+}
+
+/// Exact ray/plane: the crossing `t` with `0 < t <= t_max`; `None` when the
+/// ray is parallel to the plane, crosses it outside that range, or the
+/// input is invalid (a zero or non-finite normal, a non-finite point). The
+/// same question as [`ray_plane`](crate::ray_plane) answers with rounding.
+///
+/// ```
+/// use rayhit::{Plane, Ray, exact, glam::Vec3};
+/// let floor = Plane::new(Vec3::ZERO, Vec3::Y);
+/// let ray = Ray::new(Vec3::new(0.0, 1.0, 0.0), Vec3::new(1.0, -3.0, 0.0));
+/// let t = exact::ray_plane(&ray, &floor, f32::INFINITY).unwrap();
+/// assert_eq!(t.value, exact::Rational::new(1.into(), 3.into()));
+/// ```
+#[must_use]
+pub fn ray_plane<V: Vector>(
+    ray: &Ray<V>,
+    plane: &Plane<V>,
+    t_max: V::Scalar,
+) -> Option<Exact<V::Scalar>> {
+    if !(ray.is_valid()
+        && plane.point.is_finite()
+        && plane.normal.is_finite()
+        && valid_limit(t_max))
+    {
+        return None;
+    }
+    oracle::plane_hit(ray, plane, t_max).map(Exact::new)
+}

@@ -1,0 +1,513 @@
+//! The exact building blocks: big-rational values of floats, vector
+//! arithmetic on them, and the exact slab, triangle and plane computations
+//! with the crate's conventions.
+//!
+//! These take *valid* inputs (finite coordinates): [`r`] and [`rv`] panic on
+//! a non-finite float. The checked entry points are the parent module's
+//! [`ray_aabb`](super::ray_aabb), [`ray_triangle`](super::ray_triangle),
+//! [`ray_plane`](super::ray_plane) and [`judge`](super::judge); this module
+//! is public for the crate's own tests and fuzzers and is not part of the
+//! stable interface.
+#![allow(missing_docs)]
+
+use std::vec::Vec;
+
+use std::cmp::Ordering;
+
+use crate::{Aabb, BoxFace, Plane, Ray, Scalar, Triangle, TriangleHit, TriangleHitError, Vector};
+use num_bigint::BigInt;
+use num_rational::BigRational;
+use num_traits::{Signed, ToPrimitive, Zero};
+
+/// An exact rational.
+pub type R = BigRational;
+/// An exact 3-vector.
+pub type R3 = [R; 3];
+
+/// The exact value of a finite float.
+pub fn r<F: Scalar>(x: F) -> R {
+    R::from_float(x.to_f64()).expect("finite input")
+}
+
+/// The exact value of a finite vector.
+pub fn rv<V: Vector>(v: V) -> R3 {
+    [r(v.x()), r(v.y()), r(v.z())]
+}
+
+pub fn sub(a: &R3, b: &R3) -> R3 {
+    [&a[0] - &b[0], &a[1] - &b[1], &a[2] - &b[2]]
+}
+
+pub fn dot(a: &R3, b: &R3) -> R {
+    &a[0] * &b[0] + &a[1] * &b[1] + &a[2] * &b[2]
+}
+
+pub fn cross(a: &R3, b: &R3) -> R3 {
+    [
+        &a[1] * &b[2] - &a[2] * &b[1],
+        &a[2] * &b[0] - &a[0] * &b[2],
+        &a[0] * &b[1] - &a[1] * &b[0],
+    ]
+}
+
+/// `t_max` as an exact bound, `None` for `+inf`.
+pub fn limit<F: Scalar>(t_max: F) -> Option<R> {
+    if t_max.is_finite() {
+        Some(r(t_max))
+    } else {
+        None
+    }
+}
+
+fn within(t: &R, t_max: &Option<R>) -> bool {
+    t_max.as_ref().is_none_or(|m| t <= m)
+}
+
+/// The nearest float of precision `F` to an exact value (for reports).
+pub fn to_f64(x: &R) -> f64 {
+    x.to_f64().unwrap_or(f64::NAN)
+}
+
+/// `|a - b|` as an `f64` (for comparing against a bound given as a float:
+/// an exact comparison, because a float bound is itself exact).
+pub fn abs_diff(a: &R, b: &R) -> R {
+    (a - b).abs()
+}
+
+/// True when the exact `|a - b| <= bound`.
+pub fn close<F: Scalar>(computed: F, exact: &R, bound: F) -> bool {
+    bound.is_finite() && abs_diff(&r(computed), exact) <= r(bound)
+}
+
+/// Exact ray/plane: the crossing `t` (any sign), or `None` when the ray is
+/// parallel to the plane (or the normal is zero).
+pub fn plane_t<V: Vector>(ray: &Ray<V>, plane: &Plane<V>) -> Option<R> {
+    let n = rv(plane.normal);
+    let den = dot(&rv(ray.dir), &n);
+    if den.is_zero() {
+        return None;
+    }
+    Some(dot(&sub(&rv(plane.point), &rv(ray.origin)), &n) / den)
+}
+
+/// Exact ray/plane answer with the kernel's conventions: `0 < t <= t_max`.
+pub fn plane_hit<V: Vector>(ray: &Ray<V>, plane: &Plane<V>, t_max: V::Scalar) -> Option<R> {
+    let t = plane_t(ray, plane)?;
+    (t.is_positive() && within(&t, &limit(t_max))).then_some(t)
+}
+
+/// The exact slab distances of the ray for every axis it moves along:
+/// `(near, far, axis)`, or `None` when an axis it does not move along
+/// already excludes it (a miss that no rounding of the other axes can
+/// change).
+pub fn box_slabs<V: Vector>(ray: &Ray<V>, b: &Aabb<V>) -> Option<Vec<(R, R, usize)>> {
+    let (o, d, lo, hi) = (rv(ray.origin), rv(ray.dir), rv(b.min), rv(b.max));
+    let mut slabs = Vec::new();
+    for k in 0..3 {
+        if d[k].is_zero() {
+            if o[k] < lo[k] || o[k] > hi[k] {
+                return None;
+            }
+            continue;
+        }
+        let t0 = (&lo[k] - &o[k]) / &d[k];
+        let t1 = (&hi[k] - &o[k]) / &d[k];
+        slabs.push(if t0 <= t1 { (t0, t1, k) } else { (t1, t0, k) });
+    }
+    Some(slabs)
+}
+
+/// The exact `(enter, exit)` of the ray against the closed box, clipped to
+/// `[0, t_max]`, whether or not it is empty (`enter > exit` is a miss by
+/// that much), or `None` as for [`box_slabs`].
+pub fn box_raw<V: Vector>(ray: &Ray<V>, b: &Aabb<V>, t_max: V::Scalar) -> Option<(R, R)> {
+    let slabs = box_slabs(ray, b)?;
+    let enter = slabs.iter().map(|s| s.0.clone()).chain([R::zero()]).max()?;
+    let exit = slabs
+        .iter()
+        .map(|s| s.1.clone())
+        .chain(limit(t_max))
+        .min()
+        .expect("a valid ray moves");
+    Some((enter, exit))
+}
+
+/// How far (in space, along one axis) a ray passes from a box that it
+/// misses, or how deep it goes into one it hits, exactly: the gap between
+/// entry and exit in `t` times the speed along the axis that sets the entry
+/// (at the exit time the ray is that far outside along it) or the exit
+/// (likewise at the entry time), whichever is smaller. `t = 0` and `t_max`
+/// count as limits with no axis, and contribute only through the other side.
+/// `None` as for [`box_slabs`].
+pub fn box_gap<V: Vector>(ray: &Ray<V>, b: &Aabb<V>, t_max: V::Scalar) -> Option<R> {
+    let slabs = box_slabs(ray, b)?;
+    let d = rv(ray.dir);
+    let (enter, exit) = box_raw(ray, b, t_max)?;
+    // The axes whose near (far) distance is the entry (exit), if any.
+    let by_enter = slabs.iter().filter(|s| s.0 == enter).map(|s| d[s.2].abs());
+    let by_exit = slabs.iter().filter(|s| s.1 == exit).map(|s| d[s.2].abs());
+    let speed = by_enter.chain(by_exit).min()?;
+    Some((enter - exit).abs() * speed)
+}
+
+/// How unambiguous the faces that set the entry and the exit are: the gap
+/// between the exact entry and the next largest lower limit (another axis's
+/// near distance, or 0), and likewise between the exit and the next
+/// smallest upper limit. Near an edge one of them is small and a kernel may
+/// take either face. `None` as for [`box_slabs`].
+pub fn box_face_margins<V: Vector>(ray: &Ray<V>, b: &Aabb<V>, t_max: V::Scalar) -> Option<(R, R)> {
+    let slabs = box_slabs(ray, b)?;
+    let mut nears: Vec<R> = slabs
+        .iter()
+        .map(|s| s.0.clone())
+        .chain([R::zero()])
+        .collect();
+    let mut fars: Vec<R> = slabs
+        .iter()
+        .map(|s| s.1.clone())
+        .chain(limit(t_max))
+        .collect();
+    nears.sort();
+    fars.sort();
+    let gap = |v: &[R], i: usize, j: usize| {
+        v.get(j)
+            .map_or_else(|| R::from_integer(1_000_000.into()), |x| (x - &v[i]).abs())
+    };
+    let n = nears.len();
+    Some((gap(&nears, n - 1, n - 2), gap(&fars, 0, 1)))
+}
+
+/// The exact answer: the face of the largest positive entry-plane distance,
+/// the lowest axis on a tie, `None` when no entry plane is ahead; and
+/// whether it was a tie.
+pub fn box_face<V: Vector>(ray: &Ray<V>, b: &Aabb<V>) -> (Option<BoxFace>, bool) {
+    let (o, d, lo, hi) = (rv(ray.origin), rv(ray.dir), rv(b.min), rv(b.max));
+    let mut best: Option<(usize, R)> = None;
+    let mut tie = false;
+    for k in 0..3 {
+        if d[k].is_zero() {
+            continue;
+        }
+        let plane = if d[k] > R::zero() { &lo[k] } else { &hi[k] };
+        let t = (plane - &o[k]) / &d[k];
+        if t <= R::zero() {
+            continue;
+        }
+        match &best {
+            Some((_, bt)) if t.cmp(bt) == Ordering::Equal => tie = true,
+            Some((_, bt)) if t < *bt => {}
+            _ => {
+                best = Some((k, t));
+                tie = false;
+            }
+        }
+    }
+    (
+        best.and_then(|(k, _)| BoxFace::new(k, d[k] < R::zero())),
+        tie,
+    )
+}
+
+/// Exact interval `[enter, exit]` of `t` in `[0, t_max]` with the ray inside
+/// the closed box, or `None` when it is empty.
+pub fn box_interval<V: Vector>(ray: &Ray<V>, b: &Aabb<V>, t_max: V::Scalar) -> Option<(R, R)> {
+    box_raw(ray, b, t_max).filter(|(e, x)| e <= x)
+}
+
+/// The exact answer for a ray against a triangle (two-sided, closed).
+#[derive(Debug, Clone)]
+pub struct ExactTriangle {
+    /// Orientation of the ray's line against each edge (`a->b`, `b->c`,
+    /// `c->a`): the sign of the Plucker product `((p - o) x (q - o)) . d`.
+    pub signs: [Ordering; 3],
+    /// The line's crossing with the plane, when not parallel.
+    pub t: Option<R>,
+    /// Barycentric weights of `b` and `c` at the crossing.
+    pub uv: Option<(R, R)>,
+}
+
+impl ExactTriangle {
+    /// The line passes through the closed triangle (not parallel to it).
+    pub fn line_hits(&self) -> bool {
+        self.t.is_some()
+            && !(self.signs.contains(&Ordering::Less) && self.signs.contains(&Ordering::Greater))
+    }
+
+    /// The kernel's question: the closed triangle is crossed at `0 < t <= t_max`.
+    pub fn hits(&self, t_max: &Option<R>) -> bool {
+        self.line_hits()
+            && self
+                .t
+                .as_ref()
+                .is_some_and(|t| t.is_positive() && within(t, t_max))
+    }
+
+    /// The line crosses the triangle's interior (no edge product is zero).
+    pub fn interior(&self) -> bool {
+        self.line_hits() && !self.signs.contains(&Ordering::Equal)
+    }
+}
+
+/// Exact ray/triangle: signs of the three edge Plucker products, the plane
+/// crossing `t` and the barycentrics `(u, v)` there.
+pub fn triangle<V: Vector>(ray: &Ray<V>, tri: &Triangle<V>) -> ExactTriangle {
+    let (o, d) = (rv(ray.origin), rv(ray.dir));
+    let (a, b, c) = (
+        sub(&rv(tri.a), &o),
+        sub(&rv(tri.b), &o),
+        sub(&rv(tri.c), &o),
+    );
+    let s_ab = dot(&cross(&a, &b), &d);
+    let s_bc = dot(&cross(&b, &c), &d);
+    let s_ca = dot(&cross(&c, &a), &d);
+    let zero = R::zero();
+    let signs = [s_ab.cmp(&zero), s_bc.cmp(&zero), s_ca.cmp(&zero)];
+    let sum = &s_ab + &s_bc + &s_ca;
+    if sum.is_zero() {
+        return ExactTriangle {
+            signs,
+            t: None,
+            uv: None,
+        };
+    }
+    // The weight of each corner is the product of the edge opposite it.
+    let u = &s_ca / &sum;
+    let v = &s_ab / &sum;
+    let n = cross(&sub(&b, &a), &sub(&c, &a));
+    let t = dot(&a, &n) / dot(&d, &n);
+    ExactTriangle {
+        signs,
+        t: Some(t),
+        uv: Some((u, v)),
+    }
+}
+
+/// An exact dyadic rational `m * 2^e` as an `R` (for building inputs).
+pub fn dyadic(m: i64, e: i32) -> R {
+    let m = R::from_integer(BigInt::from(m));
+    let two = R::from_integer(BigInt::from(2));
+    if e >= 0 {
+        m * num_traits::pow(two, e as usize)
+    } else {
+        m / num_traits::pow(two, (-e) as usize)
+    }
+}
+
+/// The spacing of floats of precision `F` at magnitude `m` (one ulp), as f64.
+pub fn ulp<F: Scalar>(m: f64) -> f64 {
+    let x = F::from_f64(m.abs());
+    (x.next_up().to_f64() - x.to_f64()).max(F::TINY.to_f64())
+}
+
+/// `gamma(n) = n u / (1 - n u)` for precision `F`, exactly.
+pub fn gamma<F: Scalar>(n: i64) -> R {
+    let nu = int(n) * r(F::UNIT_ROUNDOFF);
+    &nu / (int(1) - &nu)
+}
+
+/// An exact integer.
+pub fn int(n: i64) -> R {
+    R::from_integer(n.into())
+}
+
+/// `|x|`.
+pub fn abs(x: &R) -> R {
+    x.abs()
+}
+
+/// Error bounds of Moller-Trumbore's `u`, `v` and `t`, for the agreement band.
+///
+/// MT computes `u = (s . p)/det`, `v = (d . q)/det`, `t = (e2 . q)/det` with
+/// `s = o - a`, `p = d x e2`, `q = s x e1`, `e1 = b - a`, `e2 = c - a`. Each
+/// numerator and `det` is a sum of triple products whose monomials carry at
+/// most 7 roundings (two subtractions, a product, a difference, a product,
+/// two sums), so each is within `gamma(7)` times the sum of the monomials'
+/// magnitudes `M`. A quotient `N/D` computed as `fl(N) fl(1/det)` is then
+/// within `(dN + |q| dD)/(|D| - dD) + gamma(2)|q|`, which is what this
+/// returns (with `q` the exact quotient), or `2^2000` when `dD >= |D|`.
+pub fn mt_bounds<V: Vector>(ray: &Ray<V>, tri: &Triangle<V>, u: &R, v: &R) -> (R, R, R) {
+    let (o, d) = (rv(ray.origin), rv(ray.dir));
+    let (a, b, c) = (rv(tri.a), rv(tri.b), rv(tri.c));
+    let (e1, e2, s) = (sub(&b, &a), sub(&c, &a), sub(&o, &a));
+    let mag = |x: &[R; 3], y: &[R; 3], z: &[R; 3]| -> R {
+        // sum_i |x_i| (|y_j z_k| + |y_k z_j|): the monomials of x . (y x z).
+        (0..3)
+            .map(|i| {
+                let (j, k) = ((i + 1) % 3, (i + 2) % 3);
+                abs(&x[i]) * (abs(&(&y[j] * &z[k])) + abs(&(&y[k] * &z[j])))
+            })
+            .sum()
+    };
+    let g7 = gamma::<V::Scalar>(7);
+    let det = dot(&e1, &cross(&d, &e2));
+    let d_det = &g7 * mag(&e1, &d, &e2);
+    // Above any bound in either precision (f64's largest is below 2^1024).
+    let big = dyadic(1, 2000);
+    if abs(&det) <= d_det {
+        return (big.clone(), big.clone(), big);
+    }
+    let q = cross(&s, &e1);
+    let t = dot(&e2, &q) / &det;
+    let g2 = gamma::<V::Scalar>(2);
+    let quotient = |dn: R, q: &R| (dn + abs(q) * &d_det) / (abs(&det) - &d_det) + &g2 * abs(q);
+    (
+        quotient(&g7 * mag(&s, &d, &e2), u),
+        quotient(&g7 * mag(&d, &s, &e1), v),
+        quotient(&g7 * mag(&e2, &s, &e1), &t),
+    )
+}
+
+/// What the watertight test must answer on `ray` and `tri` with limit
+/// `t_max`, when exact arithmetic decides it outside the test's rounding
+/// band: `Some(hit)`, or `None` inside the band (and for a line parallel to
+/// the triangle's plane). `extra` widens the band by another kernel's
+/// `(u, v, t)` bounds (Moller-Trumbore's, from [`mt_bounds`]), or zeros.
+///
+/// The band is `ray_triangle_error_bounds` evaluated at the exact crossing:
+/// the edge weight `w = 1 - u - v` gets `err_u + err_v`, and for `t` the
+/// conservative `t > 0` test's band. That test accepts a hit only if its
+/// computed `t` exceeds `T(t)`, the `t` bound evaluated at that `t` (or a
+/// cheaper sufficient test passes). If it rejects, `t <= T(t)` and
+/// `|t - t*| <= T(t)`, so `t* <= 2 T(t)`. `T` depends on `t` only through
+/// the spread `sum |z_i - t|`, with sensitivity at most `err_u` (the edge
+/// error over the determinant's lower bound), so
+/// `T(t) <= T(t*) + 3 |t - t*| err_u`, and `T(t) <= T(t*) / (1 - 3 err_u)`.
+/// A rejection thus needs `t* <= 2 T(t*) / (1 - 3 max(err_u, err_v))`.
+pub fn triangle_decided<V: Vector>(
+    ray: &Ray<V>,
+    tri: &Triangle<V>,
+    exact: &ExactTriangle,
+    t_max: V::Scalar,
+    extra: &(R, R, R),
+) -> Option<bool> {
+    let (te, (ue, ve)) = (exact.t.as_ref()?, exact.uv.as_ref()?);
+    let as_s = |x: &R| V::Scalar::from_f64(to_f64(x));
+    let probe = TriangleHit {
+        t: as_s(te),
+        u: as_s(ue),
+        v: as_s(ve),
+        side: crate::Side::Front,
+    };
+    let err = crate::ray_triangle_error_bounds(ray, tri, &probe);
+    if !(err.u.is_finite() && err.v.is_finite() && err.t.is_finite()) {
+        return None;
+    }
+    let e_max = if err.u > err.v { r(err.u) } else { r(err.v) };
+    if int(3) * &e_max >= int(1) {
+        return None;
+    }
+    let t_band = int(2) * r(err.t) / (int(1) - int(3) * e_max);
+    let (eu, ev, et) = (r(err.u) + &extra.0, r(err.v) + &extra.1, t_band + &extra.2);
+    let we = &eu + &ev;
+    let w = int(1) - ue - ve;
+    let inside = ue > &eu && ve > &ev && w > we;
+    let outside = ue < &-eu.clone() || ve < &-ev.clone() || w < -we;
+    let limit = limit(t_max);
+    let t_clear = (te > &et && limit.as_ref().is_none_or(|m| (m - te) > et)) || te < &-et;
+    ((inside || outside) && t_clear)
+        .then(|| inside && te > &int(0) && limit.as_ref().is_none_or(|m| te <= m))
+}
+
+/// No widening: the zeros for [`triangle_decided`]'s `extra`.
+pub fn no_extra() -> (R, R, R) {
+    (int(0), int(0), int(0))
+}
+
+/// Where a triangle hit's barycentric point and `ray.at(t)` disagree by
+/// more than their bounds allow, the first such axis; `None` when they
+/// agree.
+///
+/// Both are within their errors of the exact crossing `p*`: from the
+/// reported `u`, `v`, `|p_bary_j - p*_j| <= err_u |b_j - a_j| + err_v |c_j -
+/// a_j|` (exactly, from the reported barycentrics); `ray.at(t)` adds
+/// `|t - t*| |d_j|` and its own two roundings, `gamma(2) (|o_j| + |t d_j|)`.
+pub fn hit_point_disagreement<V: Vector>(
+    ray: &Ray<V>,
+    tri: &Triangle<V>,
+    h: &TriangleHit<V::Scalar>,
+    err: &TriangleHitError<V::Scalar>,
+) -> Option<usize> {
+    let (a, b, c) = (rv(tri.a), rv(tri.b), rv(tri.c));
+    let (o, d, p) = (rv(ray.origin), rv(ray.dir), rv(ray.at(h.t)));
+    let (u, v, t) = (r(h.u), r(h.v), r(h.t));
+    let g2 = gamma::<V::Scalar>(2);
+    (0..3).find(|&j| {
+        let bary = &a[j] + &u * (&b[j] - &a[j]) + &v * (&c[j] - &a[j]);
+        let bound = r(err.u) * abs(&(&b[j] - &a[j]))
+            + r(err.v) * abs(&(&c[j] - &a[j]))
+            + r(err.t) * abs(&d[j])
+            + &g2 * (abs(&o[j]) + &t * abs(&d[j]));
+        abs(&(&bary - &p[j])) > bound
+    })
+}
+
+/// True when some nonzero direction component is so small that its
+/// reciprocal overflows (`|d_i| < 1/MAX`): the slab test's exit is then only
+/// an upper bound, not within its relative band (see `ray_aabb`).
+pub fn reciprocal_overflows<V: Vector>(dir: V) -> bool {
+    [dir.x(), dir.y(), dir.z()]
+        .into_iter()
+        .any(|d| d != V::Scalar::ZERO && !(V::Scalar::ONE / d).is_finite())
+}
+
+/// True when no nonzero direction component is subnormal (where the slab
+/// test's bands stop being relative).
+fn dir_normal<V: Vector>(dir: V) -> bool {
+    [dir.x(), dir.y(), dir.z()]
+        .into_iter()
+        .all(|d| d == V::Scalar::ZERO || d.abs() >= V::Scalar::MIN_POSITIVE)
+}
+
+/// The box case is outside the slab test's rounding band: the exact
+/// interval is more than `32u` (relative to the larger of entry and exit)
+/// plus four subnormals over the slowest moving direction component from
+/// empty, or an axis the ray does not move along rules it out; and no
+/// nonzero direction component is subnormal. Valid inputs only.
+pub fn box_clear<V: Vector>(ray: &Ray<V>, b: &Aabb<V>, t_max: V::Scalar) -> bool {
+    dir_normal(ray.dir)
+        && match box_raw(ray, b, t_max) {
+            None => true,
+            Some((e, x)) => {
+                let scale = if e.abs() > x.abs() { e.abs() } else { x.abs() };
+                let dmin = [ray.dir.x(), ray.dir.y(), ray.dir.z()]
+                    .into_iter()
+                    .filter(|d| *d != V::Scalar::ZERO)
+                    .map(|d| r(d.abs()))
+                    .min()
+                    .expect("a valid ray moves");
+                let absolute = r(V::Scalar::TINY) * int(4) / dmin;
+                (x - e).abs() > int(32) * r(V::Scalar::UNIT_ROUNDOFF) * scale + absolute
+            }
+        }
+}
+
+/// The triangle case is decided outside the watertight test's rounding band
+/// widened by Moller-Trumbore's ([`triangle_decided`] with [`mt_bounds`]);
+/// a line parallel to the plane with no crossing is clear. Valid inputs only.
+pub fn triangle_clear<V: Vector>(ray: &Ray<V>, tri: &Triangle<V>, t_max: V::Scalar) -> bool {
+    let ex = triangle(ray, tri);
+    match (&ex.t, &ex.uv) {
+        (Some(_), Some((ue, ve))) => {
+            let mte = mt_bounds(ray, tri, ue, ve);
+            triangle_decided(ray, tri, &ex, t_max, &mte).is_some()
+        }
+        _ => !ex.line_hits(),
+    }
+}
+
+/// The plane case is outside the kernel's rounding band: not within rounding
+/// of parallel (`|d.n| > 4 gamma(3) sum |d_i n_i|`, twice the kernel's own
+/// threshold), and the crossing farther than its error bound from 0 and
+/// `t_max`. Valid inputs only.
+pub fn plane_clear<V: Vector>(ray: &Ray<V>, plane: &Plane<V>, t_max: V::Scalar) -> bool {
+    let (d, n) = (rv(ray.dir), rv(plane.normal));
+    let mag: R = (0..3).map(|k| (&d[k] * &n[k]).abs()).sum();
+    let resolved = dot(&d, &n).abs() > int(4) * gamma::<V::Scalar>(3) * mag;
+    resolved
+        && plane_t(ray, plane).is_none_or(|t| {
+            let err =
+                r(crate::ray_plane_t_error(ray, plane, V::Scalar::from_f64(to_f64(&t))).next_up());
+            let limit = limit(t_max);
+            t.abs() > err && limit.is_none_or(|m| (m - &t).abs() > err)
+        })
+}

@@ -1,0 +1,412 @@
+//! Judging a claimed answer against the exact one.
+
+use core::fmt;
+use std::vec::Vec;
+
+use super::oracle::{self, R};
+use num_traits::Signed;
+
+use super::{Rational, rational};
+use crate::{Aabb, Plane, Ray, Scalar, Triangle, Vector};
+
+/// One question a kernel answers: a ray against a box, a triangle or a
+/// plane, with the limit `t_max`.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub enum Case<V: Vector> {
+    /// Ray/box, `t` in `[0, t_max]`.
+    Box(Ray<V>, Aabb<V>, V::Scalar),
+    /// Ray/triangle (closed, two-sided), `0 < t <= t_max`.
+    Triangle(Ray<V>, Triangle<V>, V::Scalar),
+    /// Ray/plane, `0 < t <= t_max`.
+    Plane(Ray<V>, Plane<V>, V::Scalar),
+}
+
+/// What a kernel answered for a [`Case`].
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub enum Claim<F> {
+    /// No hit.
+    Miss,
+    /// A box hit: entry and exit.
+    Box {
+        /// Claimed entry.
+        enter: F,
+        /// Claimed exit.
+        exit: F,
+    },
+    /// A triangle hit.
+    Triangle {
+        /// Claimed `t`.
+        t: F,
+        /// Claimed weight of `b`.
+        u: F,
+        /// Claimed weight of `c`.
+        v: F,
+    },
+    /// A plane hit.
+    Plane {
+        /// Claimed `t`.
+        t: F,
+    },
+}
+
+impl<F> Claim<F> {
+    /// True for every claim but [`Claim::Miss`].
+    #[must_use]
+    pub fn is_hit(&self) -> bool {
+        !matches!(self, Claim::Miss)
+    }
+}
+
+/// Hit or miss against the exact answer.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+pub enum Verdict {
+    /// Hit when the exact answer hits, miss when it misses.
+    Right,
+    /// A hit where the exact answer misses.
+    FalseHit,
+    /// A miss where the exact answer hits.
+    FalseMiss,
+}
+
+/// Whether rounding may excuse a wrong hit/miss.
+///
+/// `Clear` cases lie outside the crate's documented rounding band for the
+/// kernel (see [`band`]): a kernel that meets the crate's guarantees gets
+/// every one right. `Edge` cases lie within it.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+pub enum Band {
+    /// Outside the rounding band.
+    Clear,
+    /// Within it.
+    Edge,
+}
+
+/// A claimed value: which one.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+pub enum Field {
+    /// Box entry.
+    Enter,
+    /// Box exit.
+    Exit,
+    /// Triangle or plane `t`.
+    T,
+    /// Triangle `u`.
+    U,
+    /// Triangle `v`.
+    V,
+}
+
+/// The judgement of one claim.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Judgement {
+    /// Right, false hit or false miss.
+    pub verdict: Verdict,
+    /// Whether the case is outside the rounding band.
+    pub band: Band,
+    /// The distance of the ray from the decisive boundary, in ulps of the
+    /// case's largest coordinate (see [`distance_ulps`]).
+    pub distance_ulps: f64,
+    /// For a right hit, each claimed value's error: `t`, entry and exit in
+    /// ulps of the exact value (the spacing of floats at its magnitude),
+    /// `u` and `v` in ulps of 1 (they are fractions of the triangle).
+    pub errors: Vec<(Field, f64)>,
+    /// The fields whose error exceeds the bound given to [`judge`].
+    pub outside: Vec<Field>,
+}
+
+impl Judgement {
+    /// The largest error of a `t`-like field (`t`, entry, exit), or 0.
+    #[must_use]
+    pub fn worst_t_error(&self) -> f64 {
+        self.errors
+            .iter()
+            .filter(|(f, _)| matches!(f, Field::T | Field::Enter | Field::Exit))
+            .map(|e| e.1)
+            .fold(0.0, f64::max)
+    }
+}
+
+fn f(x: &R) -> f64 {
+    oracle::to_f64(x)
+}
+
+fn max_abs<V: Vector>(points: &[V]) -> f64 {
+    points
+        .iter()
+        .flat_map(|p| [p.x(), p.y(), p.z()])
+        .map(|c| c.to_f64().abs())
+        .fold(0.0, f64::max)
+}
+
+fn valid<V: Vector>(case: &Case<V>) -> bool {
+    match case {
+        Case::Box(ray, b, t_max) => {
+            ray.is_valid() && b.is_valid() && t_max.partial_cmp(t_max).is_some()
+        }
+        Case::Triangle(ray, tri, t_max) => {
+            ray.is_valid()
+                && tri.a.is_finite()
+                && tri.b.is_finite()
+                && tri.c.is_finite()
+                && t_max.partial_cmp(t_max).is_some()
+        }
+        Case::Plane(ray, p, t_max) => {
+            ray.is_valid()
+                && p.point.is_finite()
+                && p.normal.is_finite()
+                && t_max.partial_cmp(t_max).is_some()
+        }
+    }
+}
+
+/// How far the case's ray is from the boundary that decides hit or miss, in
+/// ulps of the largest coordinate involved (origin and shape; the spacing of
+/// floats of the case's precision there): the measure the crate's oracle
+/// tests print. Infinite when no boundary is near (an axis the ray does not
+/// move along rules a box out; a ray parallel to a plane), and for invalid
+/// input.
+///
+/// - box: the exact gap between entry and exit in `t` times the speed along
+///   the axis that sets either (how far outside the ray passes, or how deep
+///   inside it goes);
+/// - triangle: the distance of the ray's line from the nearest edge's line,
+///   or, if smaller, the distance along the ray from the crossing to `t = 0`
+///   or `t_max`;
+/// - plane: the distance in `t` from the crossing to 0 or `t_max`, times the
+///   largest direction component.
+#[must_use]
+pub fn distance_ulps<V: Vector>(case: &Case<V>) -> f64 {
+    if !valid(case) {
+        return f64::INFINITY;
+    }
+    match case {
+        Case::Box(ray, b, t_max) => {
+            let scale = max_abs(&[ray.origin, b.min, b.max]);
+            oracle::box_gap(ray, b, *t_max)
+                .map_or(f64::INFINITY, |g| f(&g) / oracle::ulp::<V::Scalar>(scale))
+        }
+        Case::Triangle(ray, tri, t_max) => {
+            let ex = oracle::triangle(ray, tri);
+            let scale = max_abs(&[ray.origin, tri.a, tri.b, tri.c]);
+            let (o, d) = (oracle::rv(ray.origin), oracle::rv(ray.dir));
+            let corners = [oracle::rv(tri.a), oracle::rv(tri.b), oracle::rv(tri.c)];
+            let mut gap = f64::INFINITY;
+            for k in 0..3 {
+                let (p, q) = (&corners[k], &corners[(k + 1) % 3]);
+                let s = oracle::dot(&oracle::cross(&oracle::sub(p, &o), &oracle::sub(q, &o)), &d);
+                let m = oracle::cross(&d, &oracle::sub(q, p));
+                let sine = f(&oracle::dot(&m, &m)).sqrt();
+                if sine > 0.0 {
+                    gap = gap.min(f(&s).abs() / sine);
+                }
+            }
+            if let Some(t) = &ex.t {
+                let dlen = f(&oracle::dot(&d, &d)).sqrt();
+                gap = gap.min(f(t).abs() * dlen);
+                if t_max.is_finite() {
+                    gap = gap.min((f(t) - t_max.to_f64()).abs() * dlen);
+                }
+            }
+            gap / oracle::ulp::<V::Scalar>(scale)
+        }
+        Case::Plane(ray, plane, t_max) => {
+            let scale = max_abs(&[ray.origin, plane.point]);
+            oracle::plane_t(ray, plane).map_or(f64::INFINITY, |t| {
+                let dmax = max_abs(&[ray.dir]);
+                let edge = if t_max.is_finite() {
+                    f(&t).abs().min((f(&t) - t_max.to_f64()).abs())
+                } else {
+                    f(&t).abs()
+                };
+                edge * dmax / oracle::ulp::<V::Scalar>(scale)
+            })
+        }
+    }
+}
+
+/// The band of a case: `Clear` when exact arithmetic decides it outside the
+/// documented rounding band of the crate's kernel for it, `Edge` otherwise
+/// (and for invalid input, which every kernel must miss: `Clear`).
+///
+/// - box: the exact interval is more than `32u` (relative, plus four
+///   subnormals over the slowest direction component) from empty, and no
+///   direction component is subnormal;
+/// - triangle: decided outside the watertight test's error bounds
+///   ([`ray_triangle_error_bounds`](crate::ray_triangle_error_bounds)) widened
+///   by Moller-Trumbore's, in `u`, `v`, `1 - u - v` and `t`;
+/// - plane: not within rounding of parallel and the crossing farther than
+///   [`ray_plane_t_error`](crate::ray_plane_t_error) from 0 and `t_max`.
+#[must_use]
+pub fn band<V: Vector>(case: &Case<V>) -> Band {
+    let clear = !valid(case)
+        || match case {
+            Case::Box(ray, b, t_max) => oracle::box_clear(ray, b, *t_max),
+            Case::Triangle(ray, tri, t_max) => oracle::triangle_clear(ray, tri, *t_max),
+            Case::Plane(ray, p, t_max) => oracle::plane_clear(ray, p, *t_max),
+        };
+    if clear { Band::Clear } else { Band::Edge }
+}
+
+/// `|claimed - exact|` in units of `unit` (a claimed non-finite value is
+/// infinitely wrong).
+fn err_in<F: Scalar>(claimed: F, exact: &Rational, unit: f64) -> f64 {
+    match rational(claimed) {
+        Some(c) => f(&(c - exact).abs()) / unit,
+        None => f64::INFINITY,
+    }
+}
+
+fn rel_err<F: Scalar>(claimed: F, exact: &Rational) -> f64 {
+    err_in(claimed, exact, oracle::ulp::<F>(f(exact)))
+}
+
+/// Judges `claim` for `case`: right, false hit or false miss, the case's
+/// band and distance from the boundary, and for a right hit the error of
+/// each claimed value, with those over `bound_ulps` listed (`t`, entry,
+/// exit in ulps of the exact value, `u`, `v` in ulps of 1; see
+/// [`Judgement::errors`]). A claim of the wrong kind (a triangle hit for a
+/// box case) counts as a hit with every value infinitely wrong.
+///
+/// ```
+/// use rayhit::{Ray, Triangle, exact, glam::Vec3};
+/// use rayhit::exact::{Band, Case, Claim, Verdict};
+/// let tri = Triangle::new(Vec3::ZERO, Vec3::X, Vec3::Y);
+/// let ray = Ray::new(Vec3::new(0.25, 0.25, 1.0), Vec3::NEG_Z);
+/// let case = Case::Triangle(ray, tri, f32::INFINITY);
+/// let j = exact::judge(&case, &Claim::Triangle { t: 1.0, u: 0.25, v: 0.25 }, 2.0);
+/// assert_eq!((j.verdict, j.band), (Verdict::Right, Band::Clear));
+/// assert!(j.outside.is_empty());
+/// let j = exact::judge(&case, &Claim::Miss, 2.0);
+/// assert_eq!(j.verdict, Verdict::FalseMiss);
+/// ```
+#[must_use]
+pub fn judge<V: Vector>(case: &Case<V>, claim: &Claim<V::Scalar>, bound_ulps: f64) -> Judgement {
+    let one = oracle::ulp::<V::Scalar>(1.0);
+    let mut errors = Vec::new();
+    let exact_hit = match case {
+        Case::Box(ray, b, t_max) => {
+            let ex = super::ray_aabb(ray, b, *t_max);
+            if let (Some(ex), Claim::Box { enter, exit }) = (&ex, claim) {
+                errors.push((Field::Enter, rel_err(*enter, &ex.enter.value)));
+                errors.push((Field::Exit, rel_err(*exit, &ex.exit.value)));
+            }
+            ex.is_some()
+        }
+        Case::Triangle(ray, tri, t_max) => {
+            let ex = super::ray_triangle(ray, tri, *t_max);
+            if let (Some(ex), Claim::Triangle { t, u, v }) = (&ex, claim) {
+                errors.push((Field::T, rel_err(*t, &ex.t.value)));
+                errors.push((Field::U, err_in(*u, &ex.u.value, one)));
+                errors.push((Field::V, err_in(*v, &ex.v.value, one)));
+            }
+            ex.is_some()
+        }
+        Case::Plane(ray, p, t_max) => {
+            let ex = super::ray_plane(ray, p, *t_max);
+            if let (Some(ex), Claim::Plane { t }) = (&ex, claim) {
+                errors.push((Field::T, rel_err(*t, &ex.value)));
+            }
+            ex.is_some()
+        }
+    };
+    if exact_hit && claim.is_hit() && errors.is_empty() {
+        // A hit of the wrong kind.
+        errors.push((Field::T, f64::INFINITY));
+    }
+    let verdict = match (claim.is_hit(), exact_hit) {
+        (true, false) => Verdict::FalseHit,
+        (false, true) => Verdict::FalseMiss,
+        _ => Verdict::Right,
+    };
+    let outside = errors
+        .iter()
+        .filter(|e| !(e.1 <= bound_ulps))
+        .map(|e| e.0)
+        .collect();
+    Judgement {
+        verdict,
+        band: band(case),
+        distance_ulps: distance_ulps(case),
+        errors,
+        outside,
+    }
+}
+
+/// Counts of judgements: right, false hits and misses (those on `Clear`
+/// cases apart), the worst distance of a wrong answer from the boundary, the
+/// worst `t` error of a right hit, and how many hits had a value outside
+/// the bound.
+#[derive(Clone, Debug, Default, PartialEq)]
+pub struct Tally {
+    /// Cases judged.
+    pub cases: u64,
+    /// Cases the exact answer hits.
+    pub exact_hits: u64,
+    /// False hits, all bands.
+    pub false_hits: u64,
+    /// False misses, all bands.
+    pub false_misses: u64,
+    /// False hits on `Clear` cases.
+    pub clear_false_hits: u64,
+    /// False misses on `Clear` cases.
+    pub clear_false_misses: u64,
+    /// The largest [`Judgement::distance_ulps`] of a false hit (0 if none).
+    pub worst_false_hit_ulps: f64,
+    /// The largest [`Judgement::distance_ulps`] of a false miss (0 if none).
+    pub worst_false_miss_ulps: f64,
+    /// The largest [`Judgement::worst_t_error`] of a right hit.
+    pub worst_t_error: f64,
+    /// Right hits with some value outside the bound.
+    pub outside_bound: u64,
+}
+
+impl Tally {
+    /// Counts one judgement.
+    pub fn add(&mut self, j: &Judgement) {
+        self.cases += 1;
+        let clear = j.band == Band::Clear;
+        match j.verdict {
+            Verdict::Right => {}
+            Verdict::FalseHit => {
+                self.false_hits += 1;
+                self.clear_false_hits += u64::from(clear);
+                self.worst_false_hit_ulps = self.worst_false_hit_ulps.max(j.distance_ulps);
+            }
+            Verdict::FalseMiss => {
+                self.false_misses += 1;
+                self.clear_false_misses += u64::from(clear);
+                self.worst_false_miss_ulps = self.worst_false_miss_ulps.max(j.distance_ulps);
+            }
+        }
+        let exact_hit = matches!(j.verdict, Verdict::FalseMiss)
+            || (j.verdict == Verdict::Right && !j.errors.is_empty());
+        self.exact_hits += u64::from(exact_hit);
+        self.worst_t_error = self.worst_t_error.max(j.worst_t_error());
+        self.outside_bound += u64::from(!j.outside.is_empty());
+    }
+
+    /// True when anything counts against the kernel: a false hit or miss on
+    /// a `Clear` case, or a value outside the bound.
+    #[must_use]
+    pub fn failed(&self) -> bool {
+        self.clear_false_hits + self.clear_false_misses + self.outside_bound > 0
+    }
+}
+
+impl fmt::Display for Tally {
+    fn fmt(&self, out: &mut fmt::Formatter<'_>) -> fmt::Result {
+        write!(
+            out,
+            "{:>8} cases | false hits {:>6} (clear {:>4}, worst {:.3e} ulps) | false misses {:>6} (clear {:>4}, worst {:.3e} ulps) | worst t error {:.3} ulps | over bound {}",
+            self.cases,
+            self.false_hits,
+            self.clear_false_hits,
+            self.worst_false_hit_ulps,
+            self.false_misses,
+            self.clear_false_misses,
+            self.worst_false_miss_ulps,
+            self.worst_t_error,
+            self.outside_bound
+        )
+    }
+}
