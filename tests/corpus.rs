@@ -22,6 +22,7 @@ use std::fmt::Write as _;
 use std::path::PathBuf;
 
 use num_traits::Signed;
+use rayhit::exact;
 use rayhit::glam::{DVec3, Vec3};
 use rayhit::{
     Aabb, BoxFace, Plane, Ray, Scalar, Side, Triangle, Vector, ray_aabb, ray_aabb_face,
@@ -229,33 +230,8 @@ fn box_line<V: Vector>((b, ray, t_max): &BoxCase<V>) -> Option<String> {
         ),
         None => "miss".into(),
     };
-    // Clear: the exact interval is more than 32u (relative) from empty, or
-    // an axis the ray does not move along rules it out; and no nonzero
-    // direction component is subnormal, where the bands are not relative
-    // (reciprocals overflow, products underflow).
-    let subnormal = [ray.dir.x(), ray.dir.y(), ray.dir.z()]
-        .into_iter()
-        .any(|d| d != S::<V>::ZERO && d.abs() < S::<V>::MIN_POSITIVE);
-    let clear = !subnormal
-        && match &raw {
-            None => true,
-            Some((e, x)) => {
-                // Relative band 32u, and an absolute one: an underflowing
-                // product errs by up to half a subnormal, which in t is that
-                // over the smallest moving direction component (4 subnormals
-                // cover the slab test's slack and the naive test's products).
-                let scale = if e.abs() > x.abs() { e.abs() } else { x.abs() };
-                let dmin = [ray.dir.x(), ray.dir.y(), ray.dir.z()]
-                    .into_iter()
-                    .filter(|d| *d != S::<V>::ZERO)
-                    .map(|d| r(d.abs()))
-                    .min()
-                    .expect("a valid ray moves");
-                let absolute = r(S::<V>::TINY) * R::from_integer(4.into()) / dmin;
-                (x - e).abs()
-                    > R::from_integer(32.into()) * r(S::<V>::UNIT_ROUNDOFF) * scale + absolute
-            }
-        };
+    // Clear: outside the slab test's rounding band (see `exact::band`).
+    let clear = exact::band(&exact::Case::Box(*ray, *b, *t_max)) == exact::Band::Clear;
     let band = if clear { "clear" } else { "edge" };
     Some(format!(
         "{} {} {} {} {} | {answer} | {band}",
@@ -358,17 +334,9 @@ fn tri_line<V: Vector>((tri, ray, t_max): &TriCase<V>) -> Option<String> {
     } else {
         "miss".into()
     };
-    // Clear: exact arithmetic decides the case outside the watertight
-    // test's rounding band widened by Moller-Trumbore's
-    // (support::triangle_decided, as in the property tests). A parallel ray
-    // with no crossing at all is clear.
-    let clear = match (&ex.t, &ex.uv) {
-        (Some(_), Some((ue, ve))) => {
-            let mte = support::mt_bounds(ray, tri, ue, ve);
-            support::triangle_decided(ray, tri, &ex, *t_max, &mte).is_some()
-        }
-        _ => !ex.line_hits(),
-    };
+    // Clear: decided outside the watertight test's rounding band widened by
+    // Moller-Trumbore's (see `exact::band`).
+    let clear = exact::band(&exact::Case::Triangle(*ray, *tri, *t_max)) == exact::Band::Clear;
     let band = if clear { "clear" } else { "edge" };
     Some(format!(
         "{} {} {} {} {} {} | {answer} | {band}",
@@ -453,19 +421,9 @@ fn plane_line<V: Vector>((plane, ray, t_max): &(Plane<V>, Ray<V>, S<V>)) -> Opti
         Some(t) => format!("hit {}", hex(nearest::<S<V>>(t))),
         None => "miss".into(),
     };
-    // Clear: not within rounding of parallel (|d.n| > 4 gamma(3) sum|d_i n_i|,
-    // twice the kernel's own threshold), and the crossing farther than its
-    // error bound from 0 and t_max.
-    let (d, n) = (rv(ray.dir), rv(plane.normal));
-    let mag: R = (0..3).map(|k| (&d[k] * &n[k]).abs()).sum();
-    let resolved = support::dot(&d, &n).abs() > R::from_integer(4.into()) * gamma::<S<V>>(3) * mag;
-    let clear = resolved
-        && support::plane_t(ray, plane).is_none_or(|t| {
-            let err =
-                r(ray_plane_t_error(ray, plane, S::<V>::from_f64(support::to_f64(&t))).next_up());
-            let limit = support::limit(*t_max);
-            t.abs() > err && limit.is_none_or(|m| (m - &t).abs() > err)
-        });
+    // Clear: not within rounding of parallel, the crossing farther than its
+    // error bound from 0 and t_max (see `exact::band`).
+    let clear = exact::band(&exact::Case::Plane(*ray, *plane, *t_max)) == exact::Band::Clear;
     let band = if clear { "clear" } else { "edge" };
     Some(format!(
         "{} {} {} {} {} | {answer} | {band}",

@@ -52,14 +52,6 @@ fn f(x: &R) -> f64 {
     support::to_f64(x)
 }
 
-fn max_abs<V: Vector>(points: &[V]) -> f64 {
-    points
-        .iter()
-        .flat_map(|p| [p.x(), p.y(), p.z()])
-        .map(|c| c.to_f64().abs())
-        .fold(0.0, f64::max)
-}
-
 // ---------------------------------------------------------------- tallies
 
 /// Right / false hit / false miss counts for one kernel on one generator,
@@ -128,8 +120,7 @@ fn precision<V: Vector>() -> &'static str {
 /// How far a ray passes from a box it misses (or how deep it goes into one
 /// it hits), in ulps of the largest coordinate (see `support::box_gap`).
 fn box_gap_ulps<V: Vector>(ray: &Ray<V>, b: &Aabb<V>, t_max: S<V>) -> f64 {
-    let scale = max_abs(&[ray.origin, b.min, b.max]);
-    support::box_gap(ray, b, t_max).map_or(f64::INFINITY, |g| f(&g) / support::ulp::<S<V>>(scale))
+    rayhit::exact::distance_ulps(&rayhit::exact::Case::Box(*ray, *b, t_max))
 }
 
 fn run_boxes<V: Vector>(name: &str, seed: u64, n: usize, generator: fn(&mut Pcg32) -> BoxCase<V>) {
@@ -190,32 +181,7 @@ fn all_boxes<V: Vector>(n: usize) {
 /// from the crossing to `t = 0` or `t_max`. This is the distance in the
 /// ray's own frame, which is where the kernels round.
 fn tri_gap_ulps<V: Vector>(ray: &Ray<V>, tri: &Triangle<V>, t_max: S<V>) -> f64 {
-    let ex = support::triangle(ray, tri);
-    let scale = max_abs(&[ray.origin, tri.a, tri.b, tri.c]);
-    let ulp = support::ulp::<S<V>>(scale);
-    let (o, d) = (rv(ray.origin), rv(ray.dir));
-    let corners = [rv(tri.a), rv(tri.b), rv(tri.c)];
-    let mut gap = f64::INFINITY;
-    for k in 0..3 {
-        let (p, q) = (&corners[k], &corners[(k + 1) % 3]);
-        let s = support::dot(
-            &support::cross(&support::sub(p, &o), &support::sub(q, &o)),
-            &d,
-        );
-        let m = support::cross(&d, &support::sub(q, p));
-        let sine = f(&support::dot(&m, &m)).sqrt();
-        if sine > 0.0 {
-            gap = gap.min(f(&s).abs() / sine);
-        }
-    }
-    if let Some(t) = &ex.t {
-        let dlen = f(&support::dot(&d, &d)).sqrt();
-        gap = gap.min(f(t).abs() * dlen);
-        if t_max.is_finite() {
-            gap = gap.min((f(t) - t_max.to_f64()).abs() * dlen);
-        }
-    }
-    gap / ulp
+    rayhit::exact::distance_ulps(&rayhit::exact::Case::Triangle(*ray, *tri, t_max))
 }
 
 #[derive(Default)]
@@ -336,18 +302,7 @@ fn run_planes<V: Vector>(n: usize) {
                 continue;
             }
         }
-        let ulps = || {
-            let scale = max_abs(&[ray.origin, plane.point]);
-            support::plane_t(&ray, &plane).map_or(f64::INFINITY, |t| {
-                let dmax = max_abs(&[ray.dir]);
-                let edge = if t_max.is_finite() {
-                    f(&t).abs().min((f(&t) - t_max.to_f64()).abs())
-                } else {
-                    f(&t).abs()
-                };
-                edge * dmax / support::ulp::<S<V>>(scale)
-            })
-        };
+        let ulps = || rayhit::exact::distance_ulps(&rayhit::exact::Case::Plane(ray, plane, t_max));
         tally.record(got.is_some(), exact.is_some(), ulps);
         if let (Some(t), Some(te)) = (got, support::plane_t(&ray, &plane)) {
             let err = ray_plane_t_error(&ray, &plane, t);

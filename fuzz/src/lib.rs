@@ -34,7 +34,7 @@ pub mod plane;
 pub mod spawn;
 pub mod triangle;
 
-/// The exact big-rational oracle of the property tests, shared as is.
+/// The test support (generators, and `rayhit::exact`'s oracle under short names), shared as is.
 #[path = "../../tests/support/mod.rs"]
 pub mod oracle;
 
