@@ -15,6 +15,11 @@
 //!
 //! Replace `their_ray_triangle` with your own function to get the same table
 //! for it.
+//!
+//! `cargo run --release --example compare -- --dump FILE` also writes every
+//! case and the kernel's answer (`t`, `u`, `v`) in the checker's format (see
+//! `examples/check/main.rs`), for
+//! `cargo run --release --features exact --example check -- --front-only FILE`.
 
 use proptest::strategy::{Strategy, ValueTree};
 use proptest::test_runner::{Config, TestRng, TestRunner};
@@ -22,7 +27,7 @@ use rayhit::glam::Vec3;
 use rayhit::{Ray, Triangle, ray_triangle, ray_triangle_error_bounds, strategies};
 
 /// The kernel under test: Moller-Trumbore with `EPSILON = 1e-7`, one-sided.
-fn their_ray_triangle(o: Vec3, d: Vec3, a: Vec3, b: Vec3, c: Vec3) -> Option<f32> {
+fn their_ray_triangle(o: Vec3, d: Vec3, a: Vec3, b: Vec3, c: Vec3) -> Option<(f32, f32, f32)> {
     const EPSILON: f32 = 1e-7;
     let (e1, e2) = (b - a, c - a);
     let p = d.cross(e2);
@@ -41,7 +46,28 @@ fn their_ray_triangle(o: Vec3, d: Vec3, a: Vec3, b: Vec3, c: Vec3) -> Option<f32
         return None;
     }
     let t = e2.dot(q) / det;
-    (t > EPSILON).then_some(t)
+    (t > EPSILON).then_some((t, u, v))
+}
+
+/// A line of the checker's format: the case and the kernel's answer.
+fn dump_line(
+    family: &str,
+    ray: &Ray,
+    tri: &Triangle,
+    t_max: f32,
+    answer: Option<(f32, f32, f32)>,
+) -> String {
+    let h = |x: f32| format!("{:08x}", x.to_bits());
+    let inputs: Vec<String> = [ray.origin, ray.dir, tri.a, tri.b, tri.c]
+        .iter()
+        .flat_map(|p| [p.x, p.y, p.z])
+        .chain([t_max])
+        .map(h)
+        .collect();
+    let answer = answer.map_or("miss".to_string(), |(t, u, v)| {
+        format!("hit {} {} {}", h(t), h(u), h(v))
+    });
+    format!("triangle f32 {family} | {} | {answer}", inputs.join(" "))
 }
 
 /// One row of the table.
@@ -86,6 +112,18 @@ fn bits(s: &str) -> f32 {
 }
 
 fn main() {
+    let args: Vec<String> = std::env::args().collect();
+    let dump_path = match args.iter().position(|a| a == "--dump") {
+        Some(i) => match args.get(i + 1) {
+            Some(p) => Some(p.clone()),
+            None => {
+                eprintln!("--dump needs a file name");
+                std::process::exit(2);
+            }
+        },
+        None => None,
+    };
+    let mut dump = Vec::new();
     println!(
         "{:<34} {:>6} {:>8} {:>10} {:>12} {:>14}",
         "reference", "cases", "agree", "false hits", "false misses", "worst t (ulps)"
@@ -104,7 +142,15 @@ fn main() {
         let (o, d, a, b, c, t_max) = (v(0), v(3), v(6), v(9), v(12), f[15]);
         let answer: Vec<&str> = parts[1].split_whitespace().collect();
         let exact = (answer[0] == "hit" && answer[4] == "front").then(|| bits(answer[1]));
-        let theirs = their_ray_triangle(o, d, a, b, c).filter(|t| *t <= t_max);
+        let full = their_ray_triangle(o, d, a, b, c).filter(|h| h.0 <= t_max);
+        let theirs = full.map(|h| h.0);
+        dump.push(dump_line(
+            "corpus",
+            &Ray::new(o, d),
+            &Triangle::new(a, b, c),
+            t_max,
+            full,
+        ));
         if answer[0] == "hit" && answer[4] == "back" {
             continue;
         }
@@ -130,11 +176,13 @@ fn main() {
         let (tri, ray): (Triangle, Ray) = strategy.new_tree(&mut runner).expect("a case").current();
         let reference =
             ray_triangle(&ray, &tri, f32::INFINITY).filter(|h| h.side == rayhit::Side::Front);
-        let theirs = their_ray_triangle(ray.origin, ray.dir, tri.a, tri.b, tri.c);
-        if let (Some(t), Some(h)) = (theirs, reference) {
-            if (t - h.t).abs() > ray_triangle_error_bounds(&ray, &tri, &h).t {
-                beyond_bound += 1;
-            }
+        let full = their_ray_triangle(ray.origin, ray.dir, tri.a, tri.b, tri.c);
+        dump.push(dump_line("generated", &ray, &tri, f32::INFINITY, full));
+        let theirs = full.map(|h| h.0);
+        if let (Some(t), Some(h)) = (theirs, reference)
+            && (t - h.t).abs() > ray_triangle_error_bounds(&ray, &tri, &h).t
+        {
+            beyond_bound += 1;
         }
         row.add(theirs, reference.map(|h| h.t));
     }
@@ -142,4 +190,18 @@ fn main() {
     println!(
         "\n{beyond_bound} generated hits differ from rayhit's t by more than rayhit's error bound."
     );
+    if let Some(path) = dump_path {
+        let mut text = String::from(
+            "# Textbook Moller-Trumbore (examples/compare.rs): cases and its answers.\n",
+        );
+        for line in &dump {
+            text.push_str(line);
+            text.push('\n');
+        }
+        if let Err(e) = std::fs::write(&path, text) {
+            eprintln!("cannot write {path}: {e}");
+            std::process::exit(2);
+        }
+        println!("wrote {} cases to {path}", dump.len());
+    }
 }

@@ -1,0 +1,333 @@
+//! Judging any kernel's answers against exact arithmetic.
+//!
+//! `cargo run --release --features exact --example check -- [--front-only] [--t-ulps N] FILE`
+//!
+//! Reads cases and a kernel's answers from `FILE` (`-` for standard input),
+//! one case a line, and prints, per kind, precision and family, the false
+//! hits and misses (those on `clear` cases apart), the worst distance of a
+//! wrong answer from the boundary in ulps, the worst `t` error of a right hit
+//! in ulps, and how many right hits have a `t` (or box entry or exit) beyond
+//! the bound; then the worst cases, as lines to paste into a test file. Exits
+//! with status 1 when anything counts against the kernel: a false hit or
+//! miss on a `clear` case, or a `t` beyond the bound.
+//!
+//! # Format
+//!
+//! Blank lines and lines starting with `#` are skipped. Every other line is
+//!
+//! ```text
+//! KIND PRECISION FAMILY | INPUTS | ANSWER [| BAND]
+//! ```
+//!
+//! - `KIND`: `box`, `triangle` or `plane`; `PRECISION`: `f32` or `f64`;
+//!   `FAMILY`: any word, the row the case is counted in.
+//! - `INPUTS`: every float as its IEEE 754 bit pattern in hex (8 digits for
+//!   `f32`, 16 for `f64`), as in the crate's corpus: `box`: origin, dir,
+//!   min, max, t_max (13 numbers); `triangle`: origin, dir, a, b, c, t_max
+//!   (16); `plane`: origin, dir, point, normal, t_max (13).
+//! - `ANSWER`, the kernel's: `miss`, or `hit ENTER EXIT` (box), `hit T U V`
+//!   (triangle; any further words, like `front`, are ignored), `hit T`
+//!   (plane), in hex bit patterns.
+//! - `BAND`, optional (`clear` or `edge`): ignored; the checker decides the
+//!   band itself (`rayhit::exact::band`), so corpus lines can be used as
+//!   they are.
+//!
+//! # Options
+//!
+//! - `--front-only`: the kernel culls back faces; an exact triangle hit from
+//!   the back counts as a miss.
+//! - `--t-ulps N`: the bound on `t` (and box entry and exit) in ulps of the
+//!   exact value. By default it is rayhit's own documented bound for the
+//!   case: `ray_triangle_error_bounds` and `ray_plane_t_error` at the exact
+//!   answer, and for boxes 16 ulps.
+
+use std::collections::BTreeMap;
+use std::fmt::Write as _;
+use std::io::Read;
+use std::process::ExitCode;
+
+use rayhit::exact::{self, Case, Claim, Field, Judgement, Tally, Verdict};
+use rayhit::glam::{DVec3, Vec3};
+use rayhit::{Aabb, Plane, Ray, Scalar, Side, Triangle, TriangleHit, Vector};
+
+/// The documented box bound used by default, in ulps.
+const BOX_ULPS: f64 = 16.0;
+
+pub(crate) struct Options {
+    pub(crate) front_only: bool,
+    pub(crate) t_ulps: Option<f64>,
+}
+
+/// A worst case: how bad, and the line.
+type Worst = Vec<(f64, String)>;
+
+fn hex<F: Scalar>(s: &str) -> Result<F, String> {
+    let bad = || format!("not a bit pattern: {s}");
+    match s.len() {
+        8 => Ok(F::from_f64(f64::from(f32::from_bits(
+            u32::from_str_radix(s, 16).map_err(|_| bad())?,
+        )))),
+        16 => Ok(F::from_f64(f64::from_bits(
+            u64::from_str_radix(s, 16).map_err(|_| bad())?,
+        ))),
+        _ => Err(bad()),
+    }
+}
+
+fn ulp<F: Scalar>(x: f64) -> f64 {
+    let a = F::from_f64(x.abs());
+    (a.next_up().to_f64() - a.to_f64()).max(F::TINY.to_f64())
+}
+
+/// Judges one line of precision `V`; `None` for a line not of this kind.
+fn judge_line<V: Vector>(
+    kind: &str,
+    inputs: &[&str],
+    answer: &[&str],
+    opts: &Options,
+) -> Result<Judgement, String> {
+    let n: Vec<V::Scalar> = inputs.iter().map(|s| hex(s)).collect::<Result<_, _>>()?;
+    let want = match kind {
+        "box" | "plane" => 13,
+        "triangle" => 16,
+        _ => return Err(format!("unknown kind {kind}")),
+    };
+    if n.len() != want {
+        return Err(format!("{kind} needs {want} numbers, got {}", n.len()));
+    }
+    let v = |i: usize| V::new(n[i], n[i + 1], n[i + 2]);
+    let ray = Ray::new(v(0), v(3));
+    let hit = answer.first() == Some(&"hit");
+    if !hit && answer.first() != Some(&"miss") {
+        return Err("the answer is neither `hit` nor `miss`".into());
+    }
+    let a = |i: usize| -> Result<V::Scalar, String> {
+        hex(answer.get(i).ok_or("too few numbers in the answer")?)
+    };
+    let (case, claim) = match kind {
+        "box" => {
+            let claim = if hit {
+                Claim::Box {
+                    enter: a(1)?,
+                    exit: a(2)?,
+                }
+            } else {
+                Claim::Miss
+            };
+            (Case::Box(ray, Aabb::new(v(6), v(9)), n[12]), claim)
+        }
+        "triangle" => {
+            let claim = if hit {
+                Claim::Triangle {
+                    t: a(1)?,
+                    u: a(2)?,
+                    v: a(3)?,
+                }
+            } else {
+                Claim::Miss
+            };
+            (
+                Case::Triangle(ray, Triangle::new(v(6), v(9), v(12)), n[15]),
+                claim,
+            )
+        }
+        _ => {
+            let claim = if hit {
+                Claim::Plane { t: a(1)? }
+            } else {
+                Claim::Miss
+            };
+            (Case::Plane(ray, Plane::new(v(6), v(9)), n[12]), claim)
+        }
+    };
+    // The t bound for this case, in ulps of the exact t.
+    let bound = match (&case, opts.t_ulps) {
+        (_, Some(b)) => b,
+        (Case::Box(..), None) => BOX_ULPS,
+        (Case::Triangle(ray, tri, t_max), None) => {
+            exact::ray_triangle(ray, tri, *t_max).map_or(f64::INFINITY, |h| {
+                let probe = TriangleHit {
+                    t: h.t.rounded,
+                    u: h.u.rounded,
+                    v: h.v.rounded,
+                    side: h.side,
+                };
+                let err = rayhit::ray_triangle_error_bounds(ray, tri, &probe)
+                    .t
+                    .to_f64();
+                err / ulp::<V::Scalar>(h.t.rounded.to_f64())
+            })
+        }
+        (Case::Plane(ray, plane, t_max), None) => {
+            exact::ray_plane(ray, plane, *t_max).map_or(f64::INFINITY, |t| {
+                rayhit::ray_plane_t_error(ray, plane, t.rounded).to_f64()
+                    / ulp::<V::Scalar>(t.rounded.to_f64())
+            })
+        }
+    };
+    let mut j = exact::judge(&case, &claim, bound);
+    // Only t, entry and exit count against the bound here.
+    j.outside
+        .retain(|f| matches!(f, Field::T | Field::Enter | Field::Exit));
+    if opts.front_only {
+        if let Case::Triangle(ray, tri, t_max) = &case {
+            if exact::ray_triangle(ray, tri, *t_max).is_some_and(|h| h.side == Side::Back) {
+                // The culling kernel must miss it.
+                j.verdict = if claim.is_hit() {
+                    Verdict::FalseHit
+                } else {
+                    Verdict::Right
+                };
+                j.errors.clear();
+                j.outside.clear();
+            }
+        }
+    }
+    Ok(j)
+}
+
+fn main() -> ExitCode {
+    let mut args = std::env::args().skip(1);
+    let mut opts = Options {
+        front_only: false,
+        t_ulps: None,
+    };
+    let mut file = None;
+    while let Some(a) = args.next() {
+        match a.as_str() {
+            "--front-only" => opts.front_only = true,
+            "--t-ulps" => match args.next().and_then(|s| s.parse::<f64>().ok()) {
+                Some(b) if b >= 0.0 => opts.t_ulps = Some(b),
+                _ => {
+                    eprintln!("--t-ulps needs a number of ulps");
+                    return ExitCode::from(2);
+                }
+            },
+            _ if file.is_none() => file = Some(a),
+            _ => {
+                eprintln!("usage: check [--front-only] [--t-ulps N] FILE");
+                return ExitCode::from(2);
+            }
+        }
+    }
+    let Some(file) = file else {
+        eprintln!("usage: check [--front-only] [--t-ulps N] FILE");
+        return ExitCode::from(2);
+    };
+    let mut text = String::new();
+    let read = if file == "-" {
+        std::io::stdin().read_to_string(&mut text).map(|_| ())
+    } else {
+        std::fs::read_to_string(&file).map(|t| text = t)
+    };
+    if let Err(e) = read {
+        eprintln!("cannot read {file}: {e}");
+        return ExitCode::from(2);
+    }
+
+    match run(&opts, &text) {
+        Ok((table, failed)) => {
+            print!("{table}");
+            if failed {
+                ExitCode::FAILURE
+            } else {
+                ExitCode::SUCCESS
+            }
+        }
+        Err(e) => {
+            eprintln!("{e}");
+            ExitCode::from(2)
+        }
+    }
+}
+
+/// Judges every line of `text`: the table and worst cases as text, and
+/// whether anything counts against the kernel.
+pub(crate) fn run(opts: &Options, text: &str) -> Result<(String, bool), String> {
+    let mut out = String::new();
+    let mut rows: BTreeMap<(String, String, String), Tally> = BTreeMap::new();
+    let (mut wrong, mut over): (Worst, Worst) = (Vec::new(), Vec::new());
+    for (number, line) in text.lines().enumerate() {
+        let line = line.trim();
+        if line.is_empty() || line.starts_with('#') {
+            continue;
+        }
+        let parts: Vec<&str> = line.split('|').map(str::trim).collect();
+        let head: Vec<&str> = parts[0].split_whitespace().collect();
+        if parts.len() < 3 || head.len() != 3 {
+            return Err(format!(
+                "line {}: expected `KIND PRECISION FAMILY | INPUTS | ANSWER [| BAND]`",
+                number + 1
+            ));
+        }
+        let inputs: Vec<&str> = parts[1].split_whitespace().collect();
+        let answer: Vec<&str> = parts[2].split_whitespace().collect();
+        let j = match head[1] {
+            "f32" => judge_line::<Vec3>(head[0], &inputs, &answer, opts),
+            "f64" => judge_line::<DVec3>(head[0], &inputs, &answer, opts),
+            p => Err(format!("unknown precision {p}")),
+        };
+        let j = match j {
+            Ok(j) => j,
+            Err(e) => return Err(format!("line {}: {e}", number + 1)),
+        };
+        if j.verdict != Verdict::Right && j.band == exact::Band::Clear {
+            wrong.push((j.distance_ulps, line.to_string()));
+        }
+        if !j.outside.is_empty() {
+            over.push((j.worst_t_error(), line.to_string()));
+        }
+        rows.entry((head[0].into(), head[1].into(), head[2].into()))
+            .or_default()
+            .add(&j);
+    }
+
+    writeln!(
+        out,
+        "{:<9} {:<4} {:<14} {:>8} {:>10} {:>7} {:>12} {:>7} {:>14} {:>14} {:>10}",
+        "kind",
+        "prec",
+        "family",
+        "cases",
+        "false hits",
+        "clear",
+        "false misses",
+        "clear",
+        "worst (ulps)",
+        "worst t (ulps)",
+        "over bound"
+    )
+    .unwrap();
+    let mut failed = false;
+    for ((kind, prec, family), t) in &rows {
+        writeln!(
+            out,
+            "{kind:<9} {prec:<4} {family:<14} {:>8} {:>10} {:>7} {:>12} {:>7} {:>14.3e} {:>14.2} {:>10}",
+            t.cases,
+            t.false_hits,
+            t.clear_false_hits,
+            t.false_misses,
+            t.clear_false_misses,
+            t.worst_false_hit_ulps.max(t.worst_false_miss_ulps),
+            t.worst_t_error,
+            t.outside_bound
+        )
+        .unwrap();
+        failed |= t.failed();
+    }
+    // The farthest from the boundary first: the least excusable.
+    for (title, mut list) in [
+        ("wrong on clear cases", wrong),
+        ("t beyond the bound", over),
+    ] {
+        if list.is_empty() {
+            continue;
+        }
+        list.sort_by(|a, b| b.0.total_cmp(&a.0));
+        writeln!(out, "\nworst {title} ({} in all):", list.len()).unwrap();
+        for (_, line) in list.iter().take(5) {
+            writeln!(out, "{line}").unwrap();
+        }
+    }
+    Ok((out, failed))
+}
