@@ -29,12 +29,21 @@
 //!
 //! # Speed
 //!
-//! Exact arithmetic is slow: see the table in the crate's `BENCHMARKS.md`
-//! section "Exact oracle" (measured with `cargo run --release --example
-//! check -- --speed`). As a guide, on one core of a 2020s x86-64 machine
-//! it decides tens of thousands of random box and plane cases per second
-//! and roughly ten thousand triangle cases per second; judging (which adds
-//! the rounding band) costs a few times more.
+//! Exact arithmetic is slow. Cases per second on one thread (an x86-64
+//! core shared with other work, generated cases from the crate's test
+//! generators; `cargo test --test exact_speed -- --ignored --nocapture` in
+//! the repository measures it):
+//!
+//! | kernel   | f32: decide | f32: [`judge`] | f64: decide | f64: [`judge`] |
+//! |----------|------------:|---------------:|------------:|---------------:|
+//! | box      |      45 000 |         18 000 |      31 000 |         10 000 |
+//! | triangle |      13 000 |          2 100 |       6 400 |          1 000 |
+//! | plane    |      61 000 |         16 000 |      30 000 |          8 000 |
+//!
+//! Judging costs more than deciding because it also places the case in or
+//! out of the rounding band ([`band`]) and measures its distance from the
+//! boundary ([`distance_ulps`]). A fuzzer or property test running a few
+//! thousand cases per second per core is typical.
 //!
 //! The dependencies are re-exported, so a dependent needs no version of its
 //! own: [`num_bigint`], [`num_rational`], [`num_traits`].
