@@ -539,3 +539,45 @@ fn hex_round_trips() {
     assert_eq!(hex(-0.0f32), "80000000");
     assert_eq!(hex(1.0f64), "3ff0000000000000");
 }
+
+/// The corpus embedded in `rayhit::exact` (`exact::corpus()`): about a
+/// thousand cases, each a line of `tests/data` as it is, judged right with
+/// every value within half an ulp of the exact one and the same band.
+#[test]
+fn embedded_corpus_agrees_with_tests_data() {
+    let dir = concat!(env!("CARGO_MANIFEST_DIR"), "/tests/data");
+    let embedded_dir = concat!(env!("CARGO_MANIFEST_DIR"), "/src/exact/data");
+    let mut lines = 0;
+    for name in [
+        "box_f32",
+        "box_f64",
+        "triangle_f32",
+        "triangle_f64",
+        "plane_f32",
+        "plane_f64",
+    ] {
+        let full = std::fs::read_to_string(format!("{dir}/{name}.txt")).unwrap();
+        let all: std::collections::HashSet<&str> = full.lines().collect();
+        let small = std::fs::read_to_string(format!("{embedded_dir}/{name}.txt")).unwrap();
+        for l in small.lines().filter(|l| !l.starts_with('#')) {
+            assert!(all.contains(l), "{name}: not in tests/data: {l}");
+            lines += 1;
+        }
+    }
+    let mut count = 0;
+    fn check<V: Vector>(e: &exact::CorpusEntry<V>) {
+        let j = exact::judge(&e.case, &e.answer, 0.5);
+        assert_eq!(j.verdict, exact::Verdict::Right, "{e:?}");
+        assert!(j.outside.is_empty(), "{e:?}: {j:?}");
+        assert_eq!(j.band, e.band, "{e:?}");
+    }
+    for case in exact::corpus() {
+        match case {
+            exact::CorpusCase::F32(e) => check(&e),
+            exact::CorpusCase::F64(e) => check(&e),
+        }
+        count += 1;
+    }
+    assert_eq!(count, lines);
+    assert!((900..=1200).contains(&count), "{count}");
+}

@@ -142,8 +142,11 @@ pub use num_bigint;
 pub use num_rational;
 pub use num_traits;
 
+mod corpus;
 pub mod oracle;
 mod verdict;
+
+pub use corpus::{CorpusCase, CorpusEntry, corpus};
 
 pub use verdict::{
     Band, Case, Claim, Field, Judgement, Tally, Verdict, band, distance_ulps, judge,
