@@ -46,9 +46,9 @@ use std::fmt::Write as _;
 use std::io::Read;
 use std::process::ExitCode;
 
-use rayhit::exact::{self, Case, Claim, Field, Judgement, Tally, Verdict};
+use rayhit::exact::{self, Case, Field, Judgement, Tally, Verdict};
 use rayhit::glam::{DVec3, Vec3};
-use rayhit::{Aabb, Plane, Ray, Scalar, Side, Triangle, TriangleHit, Vector};
+use rayhit::{Scalar, Side, TriangleHit, Vector};
 
 /// The documented box bound used by default, in ulps.
 const BOX_ULPS: f64 = 16.0;
@@ -60,19 +60,6 @@ pub(crate) struct Options {
 
 /// A worst case: how bad, and the line.
 type Worst = Vec<(f64, String)>;
-
-fn hex<F: Scalar>(s: &str) -> Result<F, String> {
-    let bad = || format!("not a bit pattern: {s}");
-    match s.len() {
-        8 => Ok(F::from_f64(f64::from(f32::from_bits(
-            u32::from_str_radix(s, 16).map_err(|_| bad())?,
-        )))),
-        16 => Ok(F::from_f64(f64::from_bits(
-            u64::from_str_radix(s, 16).map_err(|_| bad())?,
-        ))),
-        _ => Err(bad()),
-    }
-}
 
 fn ulp<F: Scalar>(x: f64) -> f64 {
     let a = F::from_f64(x.abs());
@@ -86,60 +73,7 @@ fn judge_line<V: Vector>(
     answer: &[&str],
     opts: &Options,
 ) -> Result<Judgement, String> {
-    let n: Vec<V::Scalar> = inputs.iter().map(|s| hex(s)).collect::<Result<_, _>>()?;
-    let want = match kind {
-        "box" | "plane" => 13,
-        "triangle" => 16,
-        _ => return Err(format!("unknown kind {kind}")),
-    };
-    if n.len() != want {
-        return Err(format!("{kind} needs {want} numbers, got {}", n.len()));
-    }
-    let v = |i: usize| V::new(n[i], n[i + 1], n[i + 2]);
-    let ray = Ray::new(v(0), v(3));
-    let hit = answer.first() == Some(&"hit");
-    if !hit && answer.first() != Some(&"miss") {
-        return Err("the answer is neither `hit` nor `miss`".into());
-    }
-    let a = |i: usize| -> Result<V::Scalar, String> {
-        hex(answer.get(i).ok_or("too few numbers in the answer")?)
-    };
-    let (case, claim) = match kind {
-        "box" => {
-            let claim = if hit {
-                Claim::Box {
-                    enter: a(1)?,
-                    exit: a(2)?,
-                }
-            } else {
-                Claim::Miss
-            };
-            (Case::Box(ray, Aabb::new(v(6), v(9)), n[12]), claim)
-        }
-        "triangle" => {
-            let claim = if hit {
-                Claim::Triangle {
-                    t: a(1)?,
-                    u: a(2)?,
-                    v: a(3)?,
-                }
-            } else {
-                Claim::Miss
-            };
-            (
-                Case::Triangle(ray, Triangle::new(v(6), v(9), v(12)), n[15]),
-                claim,
-            )
-        }
-        _ => {
-            let claim = if hit {
-                Claim::Plane { t: a(1)? }
-            } else {
-                Claim::Miss
-            };
-            (Case::Plane(ray, Plane::new(v(6), v(9)), n[12]), claim)
-        }
-    };
+    let (case, claim) = exact::parse_case::<V>(kind, &inputs.join(" "), &answer.join(" "))?;
     // The t bound for this case, in ulps of the exact t.
     let bound = match (&case, opts.t_ulps) {
         (_, Some(b)) => b,

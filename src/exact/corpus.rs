@@ -1,5 +1,7 @@
 //! The embedded regression corpus.
 
+use std::format;
+use std::string::String;
 use std::vec::Vec;
 
 use super::{Band, Case, Claim};
@@ -42,31 +44,68 @@ const FILES: [(&str, &str); 6] = [
     ("plane", include_str!("data/plane_f64.txt")),
 ];
 
-fn hex<F: Scalar>(s: &str) -> Option<F> {
-    Some(match s.len() {
-        8 => F::from_f64(f64::from(f32::from_bits(u32::from_str_radix(s, 16).ok()?))),
-        _ => F::from_f64(f64::from_bits(u64::from_str_radix(s, 16).ok()?)),
+fn hex<F: Scalar>(s: &str) -> Result<F, String> {
+    let bad = || format!("not an f32 or f64 bit pattern in hex: {s}");
+    Ok(match s.len() {
+        8 => F::from_f64(f64::from(f32::from_bits(
+            u32::from_str_radix(s, 16).map_err(|_| bad())?,
+        ))),
+        16 => F::from_f64(f64::from_bits(
+            u64::from_str_radix(s, 16).map_err(|_| bad())?,
+        )),
+        _ => return Err(bad()),
     })
 }
 
-fn entry<V: Vector>(kind: &'static str, line: &str) -> Option<CorpusEntry<V>> {
-    let mut parts = line.split('|').map(str::trim);
-    let n: Vec<V::Scalar> = parts
-        .next()?
+/// Reads a case and an answer in the corpus's text form: `kind` is `box`,
+/// `triangle` or `plane`; `inputs` the case's floats as IEEE bit patterns
+/// in hex (box: origin, dir, min, max, `t_max`; triangle: origin, dir, a,
+/// b, c, `t_max`; plane: origin, dir, point, normal, `t_max`); `answer`
+/// `miss`, or `hit` and the values (box: entry, exit; triangle: `t`, `u`,
+/// `v`; plane: `t`) in hex, any further words ignored. An error says what
+/// is wrong.
+///
+/// ```
+/// use rayhit::{exact::{self, Case, Claim}, glam::Vec3};
+/// let (case, claim) = exact::parse_case::<Vec3>(
+///     "plane",
+///     "00000000 3f800000 00000000 00000000 bf800000 00000000 \
+///      00000000 00000000 00000000 00000000 3f800000 00000000 7f800000",
+///     "hit 3f800000",
+/// )
+/// .unwrap();
+/// assert!(matches!(case, Case::Plane(..)));
+/// assert_eq!(claim, Claim::Plane { t: 1.0 });
+/// ```
+pub fn parse_case<V: Vector>(
+    kind: &str,
+    inputs: &str,
+    answer: &str,
+) -> Result<(Case<V>, Claim<V::Scalar>), String> {
+    let n: Vec<V::Scalar> = inputs
         .split_whitespace()
         .map(hex)
-        .collect::<Option<_>>()?;
-    let a: Vec<&str> = parts.next()?.split_whitespace().collect();
-    let band = if parts.next()? == "clear" {
-        Band::Clear
-    } else {
-        Band::Edge
+        .collect::<Result<_, _>>()?;
+    let want = match kind {
+        "box" | "plane" => 13,
+        "triangle" => 16,
+        _ => return Err(format!("unknown kind {kind}")),
+    };
+    if n.len() != want {
+        return Err(format!("{kind} needs {want} numbers, got {}", n.len()));
+    }
+    let a: Vec<&str> = answer.split_whitespace().collect();
+    let hit = match a.first() {
+        Some(&"hit") => true,
+        Some(&"miss") => false,
+        _ => return Err("the answer is neither `hit` nor `miss`".into()),
+    };
+    let x = |i: usize| -> Result<V::Scalar, String> {
+        hex(a.get(i).ok_or("too few numbers in the answer")?)
     };
     let v = |i: usize| V::new(n[i], n[i + 1], n[i + 2]);
-    let x = |i: usize| a.get(i).and_then(|s| hex::<V::Scalar>(s));
-    let hit = a.first() == Some(&"hit");
     let ray = Ray::new(v(0), v(3));
-    let (case, answer) = match kind {
+    Ok(match kind {
         "box" => (
             Case::Box(ray, Aabb::new(v(6), v(9)), n[12]),
             if hit {
@@ -98,7 +137,18 @@ fn entry<V: Vector>(kind: &'static str, line: &str) -> Option<CorpusEntry<V>> {
                 Claim::Miss
             },
         ),
+    })
+}
+
+fn entry<V: Vector>(kind: &'static str, line: &str) -> Option<CorpusEntry<V>> {
+    let mut parts = line.split('|').map(str::trim);
+    let (inputs, answer) = (parts.next()?, parts.next()?);
+    let band = if parts.next()? == "clear" {
+        Band::Clear
+    } else {
+        Band::Edge
     };
+    let (case, answer) = parse_case(kind, inputs, answer).ok()?;
     Some(CorpusEntry {
         kind,
         case,

@@ -146,7 +146,7 @@ mod corpus;
 pub mod oracle;
 mod verdict;
 
-pub use corpus::{CorpusCase, CorpusEntry, corpus};
+pub use corpus::{CorpusCase, CorpusEntry, corpus, parse_case};
 
 pub use verdict::{
     Band, Case, Claim, Field, Judgement, Tally, Verdict, band, distance_ulps, judge,
