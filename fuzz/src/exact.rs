@@ -1,4 +1,4 @@
-//! Exact-arithmetic helpers: the shared oracle's (tests/support), under the
+//! Exact-arithmetic helpers: rayhit::exact's oracle (through tests/support), under the
 //! short names the checks use, and one of the fuzzer's own.
 
 use rayhit::Vector;
