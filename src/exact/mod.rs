@@ -201,8 +201,9 @@ fn round_bits(x: &Rational, p: i64, emin: i64, emax: i64) -> f64 {
     // m <= 2^p, so it converts exactly; m 2^q overflows exactly when the
     // rounded value exceeds the largest finite float.
     let m = num_traits::ToPrimitive::to_f64(&m).unwrap_or(f64::INFINITY);
-    let top = (m.log2().floor() as i64) + q;
-    let mag = if top > emax {
+    let mag = if m == 0.0 {
+        0.0
+    } else if (m.log2().floor() as i64) + q > emax {
         f64::INFINITY
     } else {
         // Exact: multiply in two power-of-two steps, each representable.
@@ -480,4 +481,47 @@ pub fn ray_plane<V: Vector>(
         return None;
     }
     oracle::plane_hit(ray, plane, t_max).map(Exact::new)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn q(m: i64, e: i32) -> Rational {
+        oracle::dyadic(m, e)
+    }
+
+    #[test]
+    fn round_is_to_nearest_ties_to_even() {
+        // Ties between 1 and its neighbours: to the even significand.
+        assert_eq!(round::<f32>(&(q(1, 0) + q(1, -24))), 1.0);
+        assert_eq!(
+            round::<f32>(&(q(1, 0) + q(3, -24))),
+            1.0 + f32::EPSILON * 2.0
+        );
+        assert_eq!(round::<f64>(&(q(1, 0) + q(1, -53))), 1.0);
+        assert_eq!(
+            round::<f64>(&-(q(1, 0) + q(3, -53))),
+            -(1.0 + f64::EPSILON * 2.0)
+        );
+        // Not a tie: just above half an ulp rounds up.
+        assert_eq!(
+            round::<f32>(&(q(1, 0) + q(1, -24) + q(1, -60))),
+            1.0 + f32::EPSILON
+        );
+        // Subnormals: the tie between 0 and the smallest goes to 0, 3/2 of it to 2.
+        assert_eq!(round::<f32>(&q(1, -150)).to_bits(), 0);
+        assert_eq!(round::<f32>(&q(3, -150)).to_bits(), 2);
+        assert_eq!(round::<f64>(&q(3, -1075)).to_bits(), 2);
+        // Overflow (IEEE 754): from MAX + half an ulp (2^103 for f32) up,
+        // infinity; a little less, MAX.
+        let max32 = oracle::r(f32::MAX);
+        assert_eq!(round::<f32>(&(&max32 + q(1, 103))), f32::INFINITY);
+        assert_eq!(round::<f32>(&(&max32 + q(1, 102))), f32::MAX);
+        assert_eq!(round::<f64>(&Rational::new(1.into(), 3.into())), 1.0 / 3.0);
+        assert_eq!(
+            round::<f32>(&Rational::new((-2).into(), 3.into())),
+            -2.0f32 / 3.0
+        );
+    }
 }
