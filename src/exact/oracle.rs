@@ -505,8 +505,13 @@ pub fn plane_clear<V: Vector>(ray: &Ray<V>, plane: &Plane<V>, t_max: V::Scalar) 
     let resolved = dot(&d, &n).abs() > int(4) * gamma::<V::Scalar>(3) * mag;
     resolved
         && plane_t(ray, plane).is_none_or(|t| {
-            let err =
-                r(crate::ray_plane_t_error(ray, plane, V::Scalar::from_f64(to_f64(&t))).next_up());
+            let bound =
+                crate::ray_plane_t_error(ray, plane, V::Scalar::from_f64(to_f64(&t))).next_up();
+            // An unbounded error (an overflow) decides nothing.
+            if !bound.is_finite() {
+                return false;
+            }
+            let err = r(bound);
             let limit = limit(t_max);
             t.abs() > err && limit.is_none_or(|m| (m - &t).abs() > err)
         })

@@ -1,0 +1,108 @@
+//! `rayhit::exact` on raw float bits (NaN, infinities, subnormals, huge and
+//! tiny values mixed): never a panic, never a NaN distance, invalid input a
+//! miss; and its answers agree with its own verdicts.
+
+mod support;
+
+use rayhit::exact::{self, Case, Claim, Verdict};
+use rayhit::glam::{DVec3, Vec3};
+use rayhit::{Aabb, Plane, Ray, Scalar, Triangle, Vector};
+use support::Pcg32;
+
+/// A float from raw bits, biased towards the interesting ones.
+fn raw<F: Scalar>(rng: &mut Pcg32) -> F {
+    let pick = rng.below(8);
+    let bits = (u64::from(rng.next_u32()) << 32) | u64::from(rng.next_u32());
+    let x = match pick {
+        0 => f64::from(f32::from_bits(bits as u32)),
+        1 => f64::from_bits(bits),
+        2 => [0.0, -0.0, 1.0, -1.0, f64::INFINITY, f64::NAN][rng.below(6) as usize],
+        _ => rng.range(-4.0, 4.0).round(),
+    };
+    F::from_f64(x)
+}
+
+fn vec<V: Vector>(rng: &mut Pcg32) -> V {
+    V::new(raw(rng), raw(rng), raw(rng))
+}
+
+fn run<V: Vector>(n: usize) {
+    let mut rng = Pcg32::new(99);
+    for _ in 0..n {
+        let ray = Ray::new(vec::<V>(&mut rng), vec::<V>(&mut rng));
+        let t_max: V::Scalar = raw(&mut rng);
+        let cases = [
+            Case::Box(ray, Aabb::new(vec(&mut rng), vec(&mut rng)), t_max),
+            Case::Triangle(
+                ray,
+                Triangle::new(vec(&mut rng), vec(&mut rng), vec(&mut rng)),
+                t_max,
+            ),
+            Case::Plane(ray, Plane::new(vec(&mut rng), vec(&mut rng)), t_max),
+        ];
+        for case in &cases {
+            // The exact answer, as a claim: judged right, values within half an ulp.
+            let answer = match case {
+                Case::Box(r, b, t) => exact::ray_aabb(r, b, *t).map(|h| Claim::Box {
+                    enter: h.enter.rounded,
+                    exit: h.exit.rounded,
+                }),
+                Case::Triangle(r, tri, t) => {
+                    exact::ray_triangle(r, tri, *t).map(|h| Claim::Triangle {
+                        t: h.t.rounded,
+                        u: h.u.rounded,
+                        v: h.v.rounded,
+                    })
+                }
+                Case::Plane(r, p, t) => {
+                    exact::ray_plane(r, p, *t).map(|t| Claim::Plane { t: t.rounded })
+                }
+            };
+            let valid = ray.is_valid() && !t_max.is_nan_like();
+            assert!(valid || answer.is_none(), "{case:?}");
+            let claim = answer.unwrap_or(Claim::Miss);
+            let j = exact::judge(case, &claim, 0.5);
+            assert_eq!(j.verdict, Verdict::Right, "{case:?}");
+            assert!(!j.distance_ulps.is_nan(), "{case:?}");
+            // Overflowing roundings (an exact t beyond MAX) are infinitely off.
+            assert!(
+                j.outside.is_empty() || j.errors.iter().any(|e| e.1.is_infinite()),
+                "{case:?}: {j:?}"
+            );
+            // The opposite claim is wrong the right way.
+            let other = if claim.is_hit() {
+                Claim::Miss
+            } else {
+                Claim::Plane { t: V::Scalar::ONE }
+            };
+            let flipped = exact::judge(case, &other, 0.5).verdict;
+            assert_eq!(
+                flipped,
+                if claim.is_hit() {
+                    Verdict::FalseMiss
+                } else {
+                    Verdict::FalseHit
+                }
+            );
+        }
+    }
+}
+
+trait NanLike {
+    fn is_nan_like(self) -> bool;
+}
+impl<F: Scalar> NanLike for F {
+    fn is_nan_like(self) -> bool {
+        self.partial_cmp(&self).is_none()
+    }
+}
+
+#[test]
+fn raw_bits_f32() {
+    run::<Vec3>(1500);
+}
+
+#[test]
+fn raw_bits_f64() {
+    run::<DVec3>(1500);
+}
