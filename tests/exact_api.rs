@@ -58,7 +58,7 @@ fn run<V: Vector>(n: usize) {
                     exact::ray_plane(r, p, *t).map(|t| Claim::Plane { t: t.rounded })
                 }
             };
-            let valid = ray.is_valid() && !t_max.is_nan_like();
+            let valid = ray.is_valid() && t_max.partial_cmp(&t_max).is_some();
             assert!(valid || answer.is_none(), "{case:?}");
             let claim = answer.unwrap_or(Claim::Miss);
             let j = exact::judge(case, &claim, 0.5);
@@ -85,15 +85,6 @@ fn run<V: Vector>(n: usize) {
                 }
             );
         }
-    }
-}
-
-trait NanLike {
-    fn is_nan_like(self) -> bool;
-}
-impl<F: Scalar> NanLike for F {
-    fn is_nan_like(self) -> bool {
-        self.partial_cmp(&self).is_none()
     }
 }
 
