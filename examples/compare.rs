@@ -131,10 +131,10 @@ fn main() {
         let reference =
             ray_triangle(&ray, &tri, f32::INFINITY).filter(|h| h.side == rayhit::Side::Front);
         let theirs = their_ray_triangle(ray.origin, ray.dir, tri.a, tri.b, tri.c);
-        if let (Some(t), Some(h)) = (theirs, reference) {
-            if (t - h.t).abs() > ray_triangle_error_bounds(&ray, &tri, &h).t {
-                beyond_bound += 1;
-            }
+        if let (Some(t), Some(h)) = (theirs, reference)
+            && (t - h.t).abs() > ray_triangle_error_bounds(&ray, &tri, &h).t
+        {
+            beyond_bound += 1;
         }
         row.add(theirs, reference.map(|h| h.t));
     }
