@@ -8,8 +8,8 @@ use num_traits::Zero;
 use proptest::prelude::*;
 use rayhit::glam::{DVec3, Vec3};
 use rayhit::{
-    Ray, Scalar, Side, SurfacePoint, Triangle, Vector, ray_triangle, ray_triangle_error_bounds,
-    ray_triangle_one_hit,
+    PreparedRay, Ray, Scalar, Side, SurfacePoint, Triangle, TriangleBatch, Vector, ray_triangle,
+    ray_triangle_batch, ray_triangle_error_bounds, ray_triangle_one_hit,
 };
 use support::{Pcg32, R, R3, cross, dot, rv, sub};
 
@@ -240,6 +240,7 @@ fn t_junctions<V: Vector>() {
             Triangle::new(pa, pm, pb),
         ];
         assert!(tris[3].is_degenerate() && !tris[0].is_degenerate());
+        let batch = TriangleBatch::<V, 8>::from_slice(&tris);
         for _ in 0..100 {
             // Aim at an interior point of A B from either side, not grazing,
             // from near (some corners behind the origin) and far.
@@ -273,6 +274,20 @@ fn t_junctions<V: Vector>() {
             }
             let found = tris.map(|tri| ray_triangle(&ray, &tri, S::<V>::INFINITY));
             let hits = found.map(|h| h.is_some());
+            // The batch (the filler's lane marked zero-area when stored)
+            // gives the scalar answers, bit for bit.
+            let lanes =
+                batch.map(|b| ray_triangle_batch(&PreparedRay::new(&ray), &b, S::<V>::INFINITY));
+            for (k, h) in found.iter().enumerate() {
+                assert_eq!(
+                    lanes
+                        .as_ref()
+                        .and_then(|l| l.get(k))
+                        .map(|x| (x.t, x.u, x.v, x.side)),
+                    h.map(|x| (x.t, x.u, x.v, x.side)),
+                    "lane {k}: {ray:?} {tris:?}"
+                );
+            }
             assert!(
                 hits.iter().any(|&h| h),
                 "a ray slipped through: {ray:?} {tris:?}"
