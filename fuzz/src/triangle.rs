@@ -9,8 +9,8 @@
 
 use arbitrary::{Arbitrary, Unstructured};
 use rayhit::{
-    Ray, Scalar, Side, Triangle, TriangleHit, Vector, ray_triangle, ray_triangle_error_bounds,
-    ray_triangle_mt, ray_triangle_one_hit,
+    Ray, Scalar, Side, SurfacePoint, Triangle, TriangleHit, Vector, ray_triangle,
+    ray_triangle_error_bounds, ray_triangle_mt, ray_triangle_one_hit,
 };
 
 use crate::exact::{R, abs, cross, dot, int, rv, sub};
@@ -27,8 +27,10 @@ use crate::{
 /// documented precondition holds (finite, corners within `2^63` (`f32`) or
 /// `2^511` (`f64`) of the origin, checked exactly): a hit has an exact
 /// crossing, `t`, `u`, `v` within `ray_triangle_error_bounds` of it, the
-/// exact side where the bound is finite, and away from the rounding band the
-/// hit or miss is exact arithmetic's. Structured inputs also: the
+/// exact side where the bound is finite (for a zero-area triangle, `t`
+/// within its bound of where the ray passes the segment), rays spawned from
+/// the hit finite, and away from the rounding band the hit or miss is exact
+/// arithmetic's. Structured inputs also: the
 /// barycentric point and `ray.at(t)` agree within their bounds; a ray from
 /// inside a closed tetrahedron hits at least one face with the closed rule
 /// and exactly one with the one-hit rule, and a ray from outside hits an
@@ -167,6 +169,7 @@ pub fn check<V: Vector>(ray: &Ray<V>, tri: &Triangle<V>, t_max: S<V>, detailed: 
     }
     let exact = oracle::triangle(ray, tri);
     if let Some(h) = wt {
+        spawns_are_finite(tri, &h, ray, &ctx);
         check_hit(ray, tri, &h, &exact, detailed, &ctx);
     }
     agreement(ray, tri, t_max, &exact, wt, None, &ctx);
@@ -192,6 +195,19 @@ fn check_hit<V: Vector>(
     // An infinite bound says the determinant's sign is not certain: the ray
     // can even be exactly parallel (tests/fuzz_regressions.rs).
     if !err.t.is_finite() {
+        return;
+    }
+    if tri.is_degenerate() {
+        // Zero area: `t` is where the ray passes the segment.
+        let t_exact = segment_crossing(ray, tri);
+        assert!(
+            oracle::close(h.t, &t_exact, err.t),
+            "zero-area hit: t {:?}, the segment's crossing {}, bound {:?}: {}",
+            h.t,
+            crate::exact::f(&t_exact),
+            err.t,
+            ctx()
+        );
         return;
     }
     let t_exact = exact.t.as_ref().unwrap_or_else(|| {
@@ -240,6 +256,79 @@ fn check_hit<V: Vector>(
             ctx()
         );
     }
+}
+
+/// A hit is safe to spawn from: the surface point and rays leaving it along
+/// the incoming direction, against it and along the normal are finite (for
+/// a zero-area triangle the normal is zero and the ray starts at the point).
+fn spawns_are_finite<V: Vector>(
+    tri: &Triangle<V>,
+    h: &TriangleHit<S<V>>,
+    ray: &Ray<V>,
+    ctx: &dyn Fn() -> String,
+) {
+    let surface = SurfacePoint::on_triangle(tri, h);
+    if !(tri.a.is_finite() && tri.b.is_finite() && tri.c.is_finite()) {
+        return;
+    }
+    let n = surface.normal;
+    for dir in [ray.dir, -ray.dir, n, -n] {
+        let spawned = surface.spawn(dir);
+        assert!(
+            !surface.point.is_finite() || spawned.origin.is_finite(),
+            "spawned origin {:?} from point {:?}: {}",
+            spawned.origin,
+            surface.point,
+            ctx()
+        );
+    }
+}
+
+/// Where the ray passes the segment of a zero-area triangle, exactly: in
+/// the ray's sheared frame (main axis the direction's largest component,
+/// the kernel's tie rule; `x`, `y` the next two cyclically), the depth of
+/// the point of the segment between the two corners farthest apart nearest
+/// the ray, clamped to the segment.
+fn segment_crossing<V: Vector>(ray: &Ray<V>, tri: &Triangle<V>) -> R {
+    let d = ray.dir.abs();
+    let k = if d.x() > d.y() && d.x() > d.z() {
+        0
+    } else if d.y() > d.z() {
+        1
+    } else {
+        2
+    };
+    let (kx, ky) = ((k + 1) % 3, (k + 2) % 3);
+    let (o, dir) = (rv(ray.origin), rv(ray.dir));
+    let corners = [rv(tri.a), rv(tri.b), rv(tri.c)];
+    let dist2 = |i: usize, j: usize| {
+        let e = sub(&corners[j], &corners[i]);
+        dot(&e, &e)
+    };
+    let (mut i, mut j) = (0, 1);
+    for (a, b) in [(1, 2), (2, 0)] {
+        if dist2(a, b) > dist2(i, j) {
+            (i, j) = (a, b);
+        }
+    }
+    let frame = |w: &[R; 3]| -> [R; 3] {
+        let w = sub(w, &o);
+        let z = &w[k] / &dir[k];
+        [&w[kx] - &dir[kx] * &z, &w[ky] - &dir[ky] * &z, z]
+    };
+    let (p, q) = (frame(&corners[i]), frame(&corners[j]));
+    let (ex, ey) = (&q[0] - &p[0], &q[1] - &p[1]);
+    let den = &ex * &ex + &ey * &ey;
+    let s = -(&p[0] * &ex + &p[1] * &ey) / den;
+    let (zero, one) = (int(0), int(1));
+    let s = if s < zero {
+        zero
+    } else if s > one {
+        one
+    } else {
+        s
+    };
+    &p[2] + s * (&q[2] - &p[2])
 }
 
 /// Raw inputs: the watertight test's bounds are relative-error arguments,
