@@ -1077,6 +1077,42 @@ pub fn with_simd<W: SimdWork>(work: W) -> W::Output {
     work.run(TargetSimd)
 }
 
+/// The kernels a SIMD copy compiles for its instruction set (`$features`,
+/// the `#[target_feature]` list): [`with_simd`]'s entry point and the box
+/// kernels, the same source as the target's own copy.
+#[cfg(all(feature = "std", target_arch = "x86_64", not(target_feature = "avx2")))]
+macro_rules! simd_copy {
+    ($token:ty, $features:literal) => {
+        /// `work.run(simd)`, compiled for this instruction set (see
+        /// [`with_simd`]).
+        #[target_feature(enable = $features)]
+        #[inline]
+        pub(super) fn run<W: SimdWork>(work: W, simd: $token) -> W::Output {
+            work.run(simd)
+        }
+
+        #[target_feature(enable = $features)]
+        #[inline]
+        pub(super) fn aabb<V: Vector, const N: usize>(
+            ray: &PreparedRay<V>,
+            batch: &AabbBatch<V, N>,
+            t_max: S<V>,
+        ) -> AabbBatchHits<S<V>, N> {
+            aabb_batch_body::<<S<V> as Scalar>::Lanes8Avx2, V, N>(ray, batch, t_max)
+        }
+
+        #[target_feature(enable = $features)]
+        #[inline]
+        pub(super) fn quantized(
+            ray: &PreparedRay,
+            node: &QuantizedChildren<'_>,
+            t_max: f32,
+        ) -> AabbBatchHits<f32, 8> {
+            quantized_body::<<f32 as Scalar>::Lanes8Avx2>(ray, node, t_max)
+        }
+    };
+}
+
 /// The batch kernels compiled a second time with AVX2 enabled, for x86-64
 /// builds whose target does not already have it (the default one has only
 /// SSE2): the same source, so the same answers bit for bit (Rust never
@@ -1087,32 +1123,7 @@ pub fn with_simd<W: SimdWork>(work: W) -> W::Output {
 mod avx2 {
     use super::*;
 
-    /// `work.run(simd)`, compiled with AVX2 (see [`with_simd`]).
-    #[target_feature(enable = "avx2")]
-    #[inline]
-    pub(super) fn run<W: SimdWork>(work: W, simd: Avx2) -> W::Output {
-        work.run(simd)
-    }
-
-    #[target_feature(enable = "avx2")]
-    #[inline]
-    pub(super) fn aabb<V: Vector, const N: usize>(
-        ray: &PreparedRay<V>,
-        batch: &AabbBatch<V, N>,
-        t_max: S<V>,
-    ) -> AabbBatchHits<S<V>, N> {
-        aabb_batch_body::<<S<V> as Scalar>::Lanes8Avx2, V, N>(ray, batch, t_max)
-    }
-
-    #[target_feature(enable = "avx2")]
-    #[inline]
-    pub(super) fn quantized(
-        ray: &PreparedRay,
-        node: &QuantizedChildren<'_>,
-        t_max: f32,
-    ) -> AabbBatchHits<f32, 8> {
-        quantized_body::<<f32 as Scalar>::Lanes8Avx2>(ray, node, t_max)
-    }
+    simd_copy!(Avx2, "avx2");
 
     #[target_feature(enable = "avx2")]
     #[inline]
@@ -1125,36 +1136,13 @@ mod avx2 {
     }
 }
 
+/// The box kernels compiled a third time, with AVX-512 (F and VL) enabled:
+/// the same eight lanes, twice the registers.
 #[cfg(all(feature = "std", target_arch = "x86_64", not(target_feature = "avx2")))]
 mod avx512 {
     use super::*;
 
-    /// `work.run(simd)`, compiled with AVX-512 (see [`with_simd`]).
-    #[target_feature(enable = "avx2,avx512f,avx512vl")]
-    #[inline]
-    pub(super) fn run<W: SimdWork>(work: W, simd: Avx512) -> W::Output {
-        work.run(simd)
-    }
-
-    #[target_feature(enable = "avx2,avx512f,avx512vl")]
-    #[inline]
-    pub(super) fn aabb<V: Vector, const N: usize>(
-        ray: &PreparedRay<V>,
-        batch: &AabbBatch<V, N>,
-        t_max: S<V>,
-    ) -> AabbBatchHits<S<V>, N> {
-        aabb_batch_body::<<S<V> as Scalar>::Lanes8Avx2, V, N>(ray, batch, t_max)
-    }
-
-    #[target_feature(enable = "avx2,avx512f,avx512vl")]
-    #[inline]
-    pub(super) fn quantized(
-        ray: &PreparedRay,
-        node: &QuantizedChildren<'_>,
-        t_max: f32,
-    ) -> AabbBatchHits<f32, 8> {
-        quantized_body::<<f32 as Scalar>::Lanes8Avx2>(ray, node, t_max)
-    }
+    simd_copy!(Avx512, "avx2,avx512f,avx512vl");
 
     /// The AVX2 triangle batch, kept out of line so that it is not
     /// inlined into (and recompiled for) the AVX-512 caller.
