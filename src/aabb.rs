@@ -808,7 +808,7 @@ mod tests {
         *state ^= *state << 13;
         *state ^= *state >> 7;
         *state ^= *state << 17;
-        if *state % 4 == 0 {
+        if (*state).is_multiple_of(4) {
             let m = ((*state >> 11) % (1 << 20)) as f64 / (1 << 20) as f64;
             (m - 0.5) * 2f64.powi(((*state >> 40) % 200) as i32 - 100)
         } else {

@@ -421,6 +421,10 @@ pub struct TriangleBatch<V: Vector = Vec3, const N: usize = 8> {
     p: [[[S<V>; N]; 3]; 3],
     /// The lanes that hold a triangle.
     used: u32,
+    /// The lanes whose triangle has zero area ([`Triangle::is_degenerate`]),
+    /// decided once when stored: their hits take the scalar code's route
+    /// for `t`.
+    degenerate: u32,
 }
 
 impl<V: Vector, const N: usize> TriangleBatch<V, N> {
@@ -436,6 +440,7 @@ impl<V: Vector, const N: usize> TriangleBatch<V, N> {
         Self {
             p: [[[nan; N]; 3]; 3],
             used: 0,
+            degenerate: 0,
         }
     }
 
@@ -468,6 +473,11 @@ impl<V: Vector, const N: usize> TriangleBatch<V, N> {
             }
         }
         self.used |= 1 << lane;
+        if tri.is_degenerate() {
+            self.degenerate |= 1 << lane;
+        } else {
+            self.degenerate &= !(1 << lane);
+        }
     }
 
     /// Empties `lane`.
@@ -485,6 +495,7 @@ impl<V: Vector, const N: usize> TriangleBatch<V, N> {
             }
         }
         self.used &= !(1 << lane);
+        self.degenerate &= !(1 << lane);
     }
 
     /// The triangle in `lane`, if it holds one.
@@ -668,9 +679,7 @@ fn triangle_batch_body<W: Lanes8<F = S<V>>, V: Vector, const N: usize>(
     let (sx, sy, sz) = (splat(sh.sx), splat(sh.sy), splat(sh.sz));
     let (ox, oy, oz) = (splat(ox), splat(oy), splat(oz));
     let (g4, up1) = (splat(S::<V>::gamma_n(4)), splat(bound_up(one, 1)));
-    let c = |n: u32| splat(S::<V>::from_u32(n) * S::<V>::UNIT_ROUNDOFF);
-    let (c72u, c160u) = (c(72), c(160));
-    let dz_ray = splat(sh.dz.abs());
+
     let top_max = splat(if t_max < S::<V>::MAX {
         t_max
     } else {
@@ -741,23 +750,17 @@ fn triangle_batch_body<W: Lanes8<F = S<V>>, V: Vector, const N: usize>(
         // test of `u` and `v` is always passed here and is not repeated.
         let u = e1.mul(inv_det).min(ones);
         let v = e2.mul(inv_det).min(ones);
-        // A determinant whose sign rounding cannot have changed (the
-        // scalar `well_conditioned`, lane by lane; `z_max` is `max |z_i|`
-        // wherever `ahead` holds); else the scalar code takes `t` from the
-        // longest edge.
-        let m = x0
-            .abs()
-            .max(y0.abs())
-            .max(x1.abs().max(y1.abs()))
-            .max(x2.abs().max(y2.abs()));
-        let w = dz_ray.mul(z_max);
-        let q = m.add(w).mul(c72u.mul(m).add(c160u.mul(w)));
-        let sure = W::and(ahead, q.lt(det.abs()));
-        let hit_c = W::and(W::and_not(pass, zero_edge), sure);
+        let hit_c = W::and(W::and_not(pass, zero_edge), ahead);
         let shift = 8 * c;
-        hit |= W::bits(hit_c) << shift;
+        // A zero-area triangle's hit goes to the scalar code, which takes
+        // its `t` from the segment (the scalar kernels find such hits by a
+        // conditioning test; here the lanes were marked when stored).
+        let degenerate = (batch.degenerate >> shift) & 0xff;
+        hit |= (W::bits(hit_c) & !degenerate) << shift;
         let rejected = W::and_not(unsettled, pass);
-        slow |= W::bits(W::or(W::or(zero_edge, W::and_not(pass, sure)), rejected)) << shift;
+        slow |= (W::bits(W::or(W::or(zero_edge, W::and_not(pass, ahead)), rejected))
+            | (W::bits(hit_c) & degenerate))
+            << shift;
         front |= W::bits(lo.lt(det)) << shift;
         put(&mut out.t, c, W::select(hit_c, t, splat(inf)));
         put(&mut out.u, c, W::select(hit_c, u, lo));
@@ -774,6 +777,8 @@ fn triangle_batch_body<W: Lanes8<F = S<V>>, V: Vector, const N: usize>(
         let l = slow.trailing_zeros() as usize;
         slow &= slow - 1;
         let tri = batch.lane(l);
+        // (A lane can arrive here with the plain answer already written.)
+        (out.t[l], out.u[l], out.v[l]) = (inf, zero, zero);
         if let Some(h) = watertight_sheared(ray.origin(), &sh, &tri, t_max, EdgeRule::Closed) {
             out.mask |= 1 << l;
             if h.side == Side::Front {
@@ -1072,6 +1077,42 @@ pub fn with_simd<W: SimdWork>(work: W) -> W::Output {
     work.run(TargetSimd)
 }
 
+/// The kernels a SIMD copy compiles for its instruction set (`$features`,
+/// the `#[target_feature]` list): [`with_simd`]'s entry point and the box
+/// kernels, the same source as the target's own copy.
+#[cfg(all(feature = "std", target_arch = "x86_64", not(target_feature = "avx2")))]
+macro_rules! simd_copy {
+    ($token:ty, $features:literal) => {
+        /// `work.run(simd)`, compiled for this instruction set (see
+        /// [`with_simd`]).
+        #[target_feature(enable = $features)]
+        #[inline]
+        pub(super) fn run<W: SimdWork>(work: W, simd: $token) -> W::Output {
+            work.run(simd)
+        }
+
+        #[target_feature(enable = $features)]
+        #[inline]
+        pub(super) fn aabb<V: Vector, const N: usize>(
+            ray: &PreparedRay<V>,
+            batch: &AabbBatch<V, N>,
+            t_max: S<V>,
+        ) -> AabbBatchHits<S<V>, N> {
+            aabb_batch_body::<<S<V> as Scalar>::Lanes8Avx2, V, N>(ray, batch, t_max)
+        }
+
+        #[target_feature(enable = $features)]
+        #[inline]
+        pub(super) fn quantized(
+            ray: &PreparedRay,
+            node: &QuantizedChildren<'_>,
+            t_max: f32,
+        ) -> AabbBatchHits<f32, 8> {
+            quantized_body::<<f32 as Scalar>::Lanes8Avx2>(ray, node, t_max)
+        }
+    };
+}
+
 /// The batch kernels compiled a second time with AVX2 enabled, for x86-64
 /// builds whose target does not already have it (the default one has only
 /// SSE2): the same source, so the same answers bit for bit (Rust never
@@ -1082,32 +1123,7 @@ pub fn with_simd<W: SimdWork>(work: W) -> W::Output {
 mod avx2 {
     use super::*;
 
-    /// `work.run(simd)`, compiled with AVX2 (see [`with_simd`]).
-    #[target_feature(enable = "avx2")]
-    #[inline]
-    pub(super) fn run<W: SimdWork>(work: W, simd: Avx2) -> W::Output {
-        work.run(simd)
-    }
-
-    #[target_feature(enable = "avx2")]
-    #[inline]
-    pub(super) fn aabb<V: Vector, const N: usize>(
-        ray: &PreparedRay<V>,
-        batch: &AabbBatch<V, N>,
-        t_max: S<V>,
-    ) -> AabbBatchHits<S<V>, N> {
-        aabb_batch_body::<<S<V> as Scalar>::Lanes8Avx2, V, N>(ray, batch, t_max)
-    }
-
-    #[target_feature(enable = "avx2")]
-    #[inline]
-    pub(super) fn quantized(
-        ray: &PreparedRay,
-        node: &QuantizedChildren<'_>,
-        t_max: f32,
-    ) -> AabbBatchHits<f32, 8> {
-        quantized_body::<<f32 as Scalar>::Lanes8Avx2>(ray, node, t_max)
-    }
+    simd_copy!(Avx2, "avx2");
 
     #[target_feature(enable = "avx2")]
     #[inline]
@@ -1120,36 +1136,13 @@ mod avx2 {
     }
 }
 
+/// The box kernels compiled a third time, with AVX-512 (F and VL) enabled:
+/// the same eight lanes, twice the registers.
 #[cfg(all(feature = "std", target_arch = "x86_64", not(target_feature = "avx2")))]
 mod avx512 {
     use super::*;
 
-    /// `work.run(simd)`, compiled with AVX-512 (see [`with_simd`]).
-    #[target_feature(enable = "avx2,avx512f,avx512vl")]
-    #[inline]
-    pub(super) fn run<W: SimdWork>(work: W, simd: Avx512) -> W::Output {
-        work.run(simd)
-    }
-
-    #[target_feature(enable = "avx2,avx512f,avx512vl")]
-    #[inline]
-    pub(super) fn aabb<V: Vector, const N: usize>(
-        ray: &PreparedRay<V>,
-        batch: &AabbBatch<V, N>,
-        t_max: S<V>,
-    ) -> AabbBatchHits<S<V>, N> {
-        aabb_batch_body::<<S<V> as Scalar>::Lanes8Avx2, V, N>(ray, batch, t_max)
-    }
-
-    #[target_feature(enable = "avx2,avx512f,avx512vl")]
-    #[inline]
-    pub(super) fn quantized(
-        ray: &PreparedRay,
-        node: &QuantizedChildren<'_>,
-        t_max: f32,
-    ) -> AabbBatchHits<f32, 8> {
-        quantized_body::<<f32 as Scalar>::Lanes8Avx2>(ray, node, t_max)
-    }
+    simd_copy!(Avx512, "avx2,avx512f,avx512vl");
 
     /// The AVX2 triangle batch, kept out of line so that it is not
     /// inlined into (and recompiled for) the AVX-512 caller.

@@ -44,8 +44,12 @@
 //! # Precision
 //!
 //! Every type and function is generic over the vector type: [`glam::Vec3`]
-//! (`f32`, the default type parameter, so `Ray` means `Ray<Vec3>`) or
-//! [`glam::DVec3`] (`f64`). The `f64` types also have glam-style names:
+//! (`f32`, the default type parameter, so `Ray` means `Ray<Vec3>`),
+//! [`glam::Vec3A`] (`f32` in a 16-byte SIMD register, as BVH crates such as
+//! `obvhs` store their geometry: no conversion needed) or [`glam::DVec3`]
+//! (`f64`). Every vector type of a precision gives the same answers, bit for
+//! bit (the kernels do the same arithmetic on each). The `f64` types also
+//! have glam-style names:
 //! [`DRay`], [`DAabb`], [`DPreparedRay`], [`DAabbBatch`],
 //! [`DTriangleBatch`], [`DPlane`], [`DTriangle`], [`DTriangleHit`],
 //! [`DTriangleHitError`], [`DPinholeCamera`], [`DSurfacePoint`]. Functions

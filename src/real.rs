@@ -18,6 +18,7 @@ mod sealed {
     impl Sealed for f32 {}
     impl Sealed for f64 {}
     impl Sealed for glam::Vec3 {}
+    impl Sealed for glam::Vec3A {}
     impl Sealed for glam::DVec3 {}
 }
 
@@ -497,13 +498,20 @@ macro_rules! impl_vector {
             fn z(self) -> $f {
                 self.z
             }
+            // The products below are written out, in the order glam's `Vec3`
+            // and `DVec3` use, so that every vector type of a precision gives
+            // the same bits (glam's SIMD types may order a sum differently).
             #[inline]
             fn dot(self, rhs: Self) -> $f {
-                <$V>::dot(self, rhs)
+                (self.x * rhs.x) + (self.y * rhs.y) + (self.z * rhs.z)
             }
             #[inline]
             fn cross(self, rhs: Self) -> Self {
-                <$V>::cross(self, rhs)
+                <$V>::new(
+                    self.y * rhs.z - rhs.y * self.z,
+                    self.z * rhs.x - rhs.z * self.x,
+                    self.x * rhs.y - rhs.x * self.y,
+                )
             }
             #[inline]
             fn abs(self) -> Self {
@@ -519,11 +527,16 @@ macro_rules! impl_vector {
             }
             #[inline]
             fn length(self) -> $f {
-                <$V>::length(self)
+                <$f as Scalar>::sqrt(Vector::dot(self, self))
             }
             #[inline]
             fn normalize_or_zero(self) -> Self {
-                <$V>::normalize_or_zero(self)
+                let rcp = 1.0 / Vector::length(self);
+                if rcp.is_finite() && rcp > 0.0 {
+                    self * rcp
+                } else {
+                    <$V>::ZERO
+                }
             }
         }
     };
@@ -533,6 +546,9 @@ macro_rules! impl_vector {
 // NaN, as `<=` is), and `all` one `movmskps`.
 impl_vector!(Vec3, f32, |a: Vec3, b: Vec3| glam::Vec3A::from(a)
     .cmple(glam::Vec3A::from(b))
+    .all());
+impl_vector!(glam::Vec3A, f32, |a: glam::Vec3A, b: glam::Vec3A| a
+    .cmple(b)
     .all());
 impl_vector!(DVec3, f64, |a: DVec3, b: DVec3| a.cmple(b).all());
 

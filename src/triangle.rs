@@ -1460,7 +1460,7 @@ mod tests {
         *state ^= *state << 13;
         *state ^= *state >> 7;
         *state ^= *state << 17;
-        if *state % 4 == 0 {
+        if (*state).is_multiple_of(4) {
             let m = ((*state >> 11) % (1 << 20)) as f64 / (1 << 20) as f64;
             (m - 0.5) * 2f64.powi(((*state >> 40) % 40) as i32 - 20)
         } else {
@@ -1603,7 +1603,7 @@ mod tests {
                 ];
                 let c = |state: &mut u64| {
                     let x = coordinate(state);
-                    if *state % 97 == 0 {
+                    if (*state).is_multiple_of(97) {
                         special[(*state >> 9) as usize % 4]
                     } else {
                         S::<V>::from_f64(x)
@@ -1613,7 +1613,7 @@ mod tests {
             };
             let tri = Triangle::new(v(), v(), v());
             let (origin, other) = (v(), v());
-            let dir = if *state % 2 == 0 {
+            let dir = if (*state).is_multiple_of(2) {
                 (tri.a + tri.b + tri.c) * (S::<V>::ONE / S::<V>::from_u32(3)) - origin
             } else {
                 other

@@ -8,10 +8,10 @@ use num_traits::Zero;
 use proptest::prelude::*;
 use rayhit::glam::{DVec3, Vec3};
 use rayhit::{
-    Ray, Scalar, Side, SurfacePoint, Triangle, Vector, ray_triangle, ray_triangle_error_bounds,
-    ray_triangle_one_hit,
+    PreparedRay, Ray, Scalar, Side, SurfacePoint, Triangle, TriangleBatch, Vector, ray_triangle,
+    ray_triangle_batch, ray_triangle_error_bounds, ray_triangle_one_hit,
 };
-use support::{Pcg32, R, R3, cross, dot, rv, sub};
+use support::{Pcg32, cross, rv, sub};
 
 type S<V> = <V as Vector>::Scalar;
 
@@ -240,6 +240,7 @@ fn t_junctions<V: Vector>() {
             Triangle::new(pa, pm, pb),
         ];
         assert!(tris[3].is_degenerate() && !tris[0].is_degenerate());
+        let batch = TriangleBatch::<V, 8>::from_slice(&tris);
         for _ in 0..100 {
             // Aim at an interior point of A B from either side, not grazing,
             // from near (some corners behind the origin) and far.
@@ -273,6 +274,20 @@ fn t_junctions<V: Vector>() {
             }
             let found = tris.map(|tri| ray_triangle(&ray, &tri, S::<V>::INFINITY));
             let hits = found.map(|h| h.is_some());
+            // The batch (the filler's lane marked zero-area when stored)
+            // gives the scalar answers, bit for bit.
+            let lanes =
+                batch.map(|b| ray_triangle_batch(&PreparedRay::new(&ray), &b, S::<V>::INFINITY));
+            for (k, h) in found.iter().enumerate() {
+                assert_eq!(
+                    lanes
+                        .as_ref()
+                        .and_then(|l| l.get(k))
+                        .map(|x| (x.t, x.u, x.v, x.side)),
+                    h.map(|x| (x.t, x.u, x.v, x.side)),
+                    "lane {k}: {ray:?} {tris:?}"
+                );
+            }
             assert!(
                 hits.iter().any(|&h| h),
                 "a ray slipped through: {ray:?} {tris:?}"
@@ -289,7 +304,7 @@ fn t_junctions<V: Vector>() {
                 }
                 let err = ray_triangle_error_bounds(&ray, tri, &hit);
                 let exact = if k == 3 {
-                    segment_crossing(&ray, tri.a, tri.c)
+                    support::segment_crossing(&ray, tri)
                 } else {
                     support::triangle(&ray, tri).t.expect("not parallel")
                 };
@@ -332,41 +347,4 @@ fn t_junctions_closed_by_a_zero_area_filler_leak_nothing_f32() {
 #[test]
 fn t_junctions_closed_by_a_zero_area_filler_leak_nothing_f64() {
     t_junctions::<DVec3>();
-}
-
-/// Where the ray passes the segment `p q`, exactly, as the watertight test
-/// defines it for a zero-area triangle: in the ray's sheared frame (main
-/// axis `k` the direction's largest component, the test's tie rule; `x`,
-/// `y` the next two cyclically), the depth `t` of the segment's point
-/// nearest the ray.
-fn segment_crossing<V: Vector>(ray: &Ray<V>, p: V, q: V) -> R {
-    let d = ray.dir.abs();
-    let k = if d.x() > d.y() && d.x() > d.z() {
-        0
-    } else if d.y() > d.z() {
-        1
-    } else {
-        2
-    };
-    let (kx, ky) = ((k + 1) % 3, (k + 2) % 3);
-    let (o, dir) = (rv(ray.origin), rv(ray.dir));
-    let frame = |v: V| -> R3 {
-        let w = sub(&rv(v), &o);
-        let z = &w[k] / &dir[k];
-        [&w[kx] - &dir[kx] * &z, &w[ky] - &dir[ky] * &z, z]
-    };
-    let (p, q) = (frame(p), frame(q));
-    let zero = R::zero();
-    let flat = |v: &R3| -> R3 { [v[0].clone(), v[1].clone(), zero.clone()] };
-    let e = sub(&flat(&q), &flat(&p));
-    let s = -dot(&flat(&p), &e) / dot(&e, &e);
-    let one = R::from_integer(1.into());
-    let s = if s < zero {
-        zero
-    } else if s > one {
-        one
-    } else {
-        s
-    };
-    &p[2] + s * (&q[2] - &p[2])
 }

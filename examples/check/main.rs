@@ -103,19 +103,18 @@ fn judge_line<V: Vector>(
     // Only t, entry and exit count against the bound here.
     j.outside
         .retain(|f| matches!(f, Field::T | Field::Enter | Field::Exit));
-    if opts.front_only {
-        if let Case::Triangle(ray, tri, t_max) = &case {
-            if exact::ray_triangle(ray, tri, *t_max).is_some_and(|h| h.side == Side::Back) {
-                // The culling kernel must miss it.
-                j.verdict = if claim.is_hit() {
-                    Verdict::FalseHit
-                } else {
-                    Verdict::Right
-                };
-                j.errors.clear();
-                j.outside.clear();
-            }
-        }
+    if opts.front_only
+        && let Case::Triangle(ray, tri, t_max) = &case
+        && exact::ray_triangle(ray, tri, *t_max).is_some_and(|h| h.side == Side::Back)
+    {
+        // The culling kernel must miss it.
+        j.verdict = if claim.is_hit() {
+            Verdict::FalseHit
+        } else {
+            Verdict::Right
+        };
+        j.errors.clear();
+        j.outside.clear();
     }
     Ok(j)
 }

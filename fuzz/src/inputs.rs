@@ -161,12 +161,25 @@ fn offset<V: Vector>(u: &mut Unstructured) -> [f64; 3] {
 
 /// A triangle: centre in `[-64, 64]^3`, corners at offsets of length
 /// `2^-3` to `2^3`; one time in eight a sliver (the third corner within 1%
-/// of the first edge). May be degenerate after rounding; the checks cope.
+/// of the first edge), and one in sixteen exactly collinear corners (on a
+/// grid of `1/64`, the third corner the midpoint of the first two or the
+/// first reflected through the second: a T-junction filler). May be
+/// degenerate after rounding; the checks cope.
 pub fn triangle<V: Vector>(u: &mut Unstructured) -> Triangle<V> {
     let centre = c(point::<V>(u, 64.0));
     let (oa, ob, oc) = (offset::<V>(u), offset::<V>(u), offset::<V>(u));
     let at = |o: [f64; 3]| [0, 1, 2].map(|k| centre[k] + o[k]);
     let (a, b, mut cc) = (at(oa), at(ob), at(oc));
+    if index(u, 16) == 0 {
+        let grid = |p: [f64; 3]| p.map(|x| (x * 64.0).round() / 64.0);
+        let (a, b) = (grid(a), grid(b));
+        let cc = if index(u, 2) == 0 {
+            [0, 1, 2].map(|k| (a[k] + b[k]) / 2.0)
+        } else {
+            [0, 1, 2].map(|k| 2.0 * b[k] - a[k])
+        };
+        return Triangle::new(v::<V>(a), v::<V>(b), v::<V>(cc));
+    }
     if index(u, 8) == 0 {
         let along = unit(u);
         let across = range(u, -0.01, 0.01);

@@ -9,8 +9,8 @@
 
 use arbitrary::{Arbitrary, Unstructured};
 use rayhit::{
-    Ray, Scalar, Side, Triangle, TriangleHit, Vector, ray_triangle, ray_triangle_error_bounds,
-    ray_triangle_mt, ray_triangle_one_hit,
+    Ray, Scalar, Side, SurfacePoint, Triangle, TriangleHit, Vector, ray_triangle,
+    ray_triangle_error_bounds, ray_triangle_mt, ray_triangle_one_hit,
 };
 
 use crate::exact::{R, abs, cross, dot, int, rv, sub};
@@ -27,8 +27,10 @@ use crate::{
 /// documented precondition holds (finite, corners within `2^63` (`f32`) or
 /// `2^511` (`f64`) of the origin, checked exactly): a hit has an exact
 /// crossing, `t`, `u`, `v` within `ray_triangle_error_bounds` of it, the
-/// exact side where the bound is finite, and away from the rounding band the
-/// hit or miss is exact arithmetic's. Structured inputs also: the
+/// exact side where the bound is finite (for a zero-area triangle, `t`
+/// within its bound of where the ray passes the segment), rays spawned from
+/// the hit finite, and away from the rounding band the hit or miss is exact
+/// arithmetic's. Structured inputs also: the
 /// barycentric point and `ray.at(t)` agree within their bounds; a ray from
 /// inside a closed tetrahedron hits at least one face with the closed rule
 /// and exactly one with the one-hit rule, and a ray from outside hits an
@@ -167,6 +169,7 @@ pub fn check<V: Vector>(ray: &Ray<V>, tri: &Triangle<V>, t_max: S<V>, detailed: 
     }
     let exact = oracle::triangle(ray, tri);
     if let Some(h) = wt {
+        spawns_are_finite(tri, &h, ray, &ctx);
         check_hit(ray, tri, &h, &exact, detailed, &ctx);
     }
     agreement(ray, tri, t_max, &exact, wt, None, &ctx);
@@ -192,6 +195,19 @@ fn check_hit<V: Vector>(
     // An infinite bound says the determinant's sign is not certain: the ray
     // can even be exactly parallel (tests/fuzz_regressions.rs).
     if !err.t.is_finite() {
+        return;
+    }
+    if tri.is_degenerate() {
+        // Zero area: `t` is where the ray passes the segment.
+        let t_exact = oracle::segment_crossing(ray, tri);
+        assert!(
+            oracle::close(h.t, &t_exact, err.t),
+            "zero-area hit: t {:?}, the segment's crossing {}, bound {:?}: {}",
+            h.t,
+            crate::exact::f(&t_exact),
+            err.t,
+            ctx()
+        );
         return;
     }
     let t_exact = exact.t.as_ref().unwrap_or_else(|| {
@@ -237,6 +253,32 @@ fn check_hit<V: Vector>(
         assert!(
             axis.is_none(),
             "barycentric point and ray.at(t) differ on axis {axis:?}: {}",
+            ctx()
+        );
+    }
+}
+
+/// A hit is safe to spawn from: the surface point and rays leaving it along
+/// the incoming direction, against it and along the normal are finite (for
+/// a zero-area triangle the normal is zero and the ray starts at the point).
+fn spawns_are_finite<V: Vector>(
+    tri: &Triangle<V>,
+    h: &TriangleHit<S<V>>,
+    ray: &Ray<V>,
+    ctx: &dyn Fn() -> String,
+) {
+    let surface = SurfacePoint::on_triangle(tri, h);
+    if !(tri.a.is_finite() && tri.b.is_finite() && tri.c.is_finite()) {
+        return;
+    }
+    let n = surface.normal;
+    for dir in [ray.dir, -ray.dir, n, -n] {
+        let spawned = surface.spawn(dir);
+        assert!(
+            !surface.point.is_finite() || spawned.origin.is_finite(),
+            "spawned origin {:?} from point {:?}: {}",
+            spawned.origin,
+            surface.point,
             ctx()
         );
     }

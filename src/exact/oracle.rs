@@ -208,6 +208,53 @@ pub fn box_face<V: Vector>(ray: &Ray<V>, b: &Aabb<V>) -> (Option<BoxFace>, bool)
     )
 }
 
+/// Where the ray passes the segment of a zero-area triangle, exactly: in
+/// the ray's sheared frame (main axis the direction's largest component,
+/// the kernel's tie rule; `x`, `y` the next two cyclically), the depth of
+/// the point of the segment between the two corners farthest apart nearest
+/// the ray, clamped to the segment.
+pub fn segment_crossing<V: Vector>(ray: &Ray<V>, tri: &Triangle<V>) -> R {
+    let d = ray.dir.abs();
+    let k = if d.x() > d.y() && d.x() > d.z() {
+        0
+    } else if d.y() > d.z() {
+        1
+    } else {
+        2
+    };
+    let (kx, ky) = ((k + 1) % 3, (k + 2) % 3);
+    let (o, dir) = (rv(ray.origin), rv(ray.dir));
+    let corners = [rv(tri.a), rv(tri.b), rv(tri.c)];
+    let dist2 = |i: usize, j: usize| {
+        let e = sub(&corners[j], &corners[i]);
+        dot(&e, &e)
+    };
+    let (mut i, mut j) = (0, 1);
+    for (a, b) in [(1, 2), (2, 0)] {
+        if dist2(a, b) > dist2(i, j) {
+            (i, j) = (a, b);
+        }
+    }
+    let frame = |w: &[R; 3]| -> [R; 3] {
+        let w = sub(w, &o);
+        let z = &w[k] / &dir[k];
+        [&w[kx] - &dir[kx] * &z, &w[ky] - &dir[ky] * &z, z]
+    };
+    let (p, q) = (frame(&corners[i]), frame(&corners[j]));
+    let (ex, ey) = (&q[0] - &p[0], &q[1] - &p[1]);
+    let den = &ex * &ex + &ey * &ey;
+    let s = -(&p[0] * &ex + &p[1] * &ey) / den;
+    let (zero, one) = (R::zero(), int(1));
+    let s = if s < zero {
+        zero
+    } else if s > one {
+        one
+    } else {
+        s
+    };
+    &p[2] + s * (&q[2] - &p[2])
+}
+
 /// Exact interval `[enter, exit]` of `t` in `[0, t_max]` with the ray inside
 /// the closed box, or `None` when it is empty.
 pub fn box_interval<V: Vector>(ray: &Ray<V>, b: &Aabb<V>, t_max: V::Scalar) -> Option<(R, R)> {

@@ -44,7 +44,12 @@ fn cpu_now() -> Duration {
 
 use nalgebra::{Point3, Vector3};
 use parry3d::query::RayCast;
-use rayhit::glam::Vec3;
+use rayhit::glam::{Vec3, Vec3A};
+
+/// A ray in `glam::Vec3A`.
+fn ray_a(r: &Ray) -> Ray<Vec3A> {
+    Ray::new(r.origin.into(), r.dir.into())
+}
 use rayhit::{
     Aabb, AabbBatch, PreparedRay, Ray, Side, Simd, SimdWork, Triangle, TriangleBatch,
     TriangleBatchHits, ray_aabb, ray_aabb_batch, ray_aabb_prepared, ray_triangle,
@@ -177,6 +182,9 @@ struct BoxData {
     rays: Vec<Ray>,
     boxes: Vec<Aabb>,
     prepared: Vec<PreparedRay>,
+    /// The same rays and boxes in `glam::Vec3A`.
+    prepared_a: Vec<PreparedRay<Vec3A>>,
+    boxes_a: Vec<Aabb<Vec3A>>,
     plain: Vec<PlainRay>,
     bvh_rays: Vec<bvh::ray::Ray<f32, 3>>,
     bvh_boxes: Vec<bvh::aabb::Aabb<f32, 3>>,
@@ -189,6 +197,11 @@ impl BoxData {
         Self {
             name,
             prepared: rays.iter().map(PreparedRay::new).collect(),
+            prepared_a: rays.iter().map(|r| PreparedRay::new(&ray_a(r))).collect(),
+            boxes_a: boxes
+                .iter()
+                .map(|b| Aabb::new(b.min.into(), b.max.into()))
+                .collect(),
             plain: rays.iter().map(PlainRay::new).collect(),
             bvh_rays: rays.iter().map(bvh_ray).collect(),
             bvh_boxes: boxes.iter().map(bvh_box).collect(),
@@ -205,6 +218,9 @@ struct TriData {
     rays: Vec<Ray>,
     tris: Vec<Triangle>,
     prepared: Vec<PreparedRay>,
+    /// The same rays and triangles in `glam::Vec3A`.
+    prepared_a: Vec<PreparedRay<Vec3A>>,
+    tris_a: Vec<Triangle<Vec3A>>,
     bvh_rays: Vec<bvh::ray::Ray<f32, 3>>,
     bvh_tris: Vec<BvhTri>,
     parry_rays: Vec<parry3d::query::Ray>,
@@ -216,6 +232,11 @@ impl TriData {
         Self {
             name,
             prepared: rays.iter().map(PreparedRay::new).collect(),
+            prepared_a: rays.iter().map(|r| PreparedRay::new(&ray_a(r))).collect(),
+            tris_a: tris
+                .iter()
+                .map(|t| Triangle::new(t.a.into(), t.b.into(), t.c.into()))
+                .collect(),
             bvh_rays: rays.iter().map(bvh_ray).collect(),
             bvh_tris: tris.iter().map(bvh_tri).collect(),
             parry_rays: rays.iter().map(parry_ray).collect(),
@@ -519,6 +540,16 @@ fn box_kernels<'a>(d: &'a BoxData, out: &mut Vec<Kernel<'a>>) {
         ),
         kernel(
             sec,
+            "rayhit ray_aabb_prepared, Vec3A",
+            w,
+            n,
+            None,
+            chunked(&d.prepared_a, &d.boxes_a, 1, move |r, b| {
+                hit(ray_aabb_prepared(r, b, INF))
+            }),
+        ),
+        kernel(
+            sec,
             "textbook plain slab",
             w,
             n,
@@ -593,6 +624,16 @@ fn triangle_kernels<'a>(d: &'a TriData, out: &mut Vec<Kernel<'a>>) {
             n,
             None,
             chunked(&d.prepared, &d.tris, 1, |r, t| {
+                t_sum(ray_triangle_prepared(r, t, INF).map(|h| h.t))
+            }),
+        ),
+        kernel(
+            sec,
+            "rayhit ray_triangle_prepared, Vec3A",
+            w,
+            n,
+            None,
+            chunked(&d.prepared_a, &d.tris_a, 1, |r, t| {
                 t_sum(ray_triangle_prepared(r, t, INF).map(|h| h.t))
             }),
         ),
