@@ -1,4 +1,4 @@
-//! The README's, `docs-exact-section.md`'s and the `exact` module docs'
+//! The README's and the `exact` module docs'
 //! snippets for dependents: the property test below is the snippet itself
 //! (run here), the fuzz body is the fuzz target `exact_judge`, and every
 //! copy must match them.
@@ -69,7 +69,6 @@ fn snippet_copies_match() {
     assert!(prop.len() > 500 && fuzz.len() > 500);
     for (name, text) in [
         ("README.md", read("README.md")),
-        ("docs-exact-section.md", read("docs-exact-section.md")),
         ("src/exact/mod.rs", module_docs()),
     ] {
         assert!(
