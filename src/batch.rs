@@ -26,7 +26,7 @@ use crate::aabb::{Aabb, PreparedRay, exit_slack, exit_widening};
 use crate::lanes::{Lanes, Lanes8};
 use crate::quantized::{QuantizedChildren, quantized_body};
 use crate::ray::t_max_ok;
-use crate::real::{S, Scalar, Vector, bound_up};
+use crate::real::{S, Scalar, Vector};
 use crate::triangle::{EdgeRule, Side, Triangle, TriangleHit, watertight_sheared};
 
 /// Checks `1 <= N <= 32` at compile time (the hit masks are `u32`).
@@ -678,7 +678,6 @@ fn triangle_batch_body<W: Lanes8<F = S<V>>, V: Vector, const N: usize>(
     let (lo, top, ones) = (splat(zero), splat(t_max), splat(one));
     let (sx, sy, sz) = (splat(sh.sx), splat(sh.sy), splat(sh.sz));
     let (ox, oy, oz) = (splat(ox), splat(oy), splat(oz));
-    let (g4, up1) = (splat(S::<V>::gamma_n(4)), splat(bound_up(one, 1)));
 
     let top_max = splat(if t_max < S::<V>::MAX {
         t_max
@@ -726,23 +725,16 @@ fn triangle_batch_body<W: Lanes8<F = S<V>>, V: Vector, const N: usize>(
         let t_ok = W::and(lo.lt(t), t.le(top_max));
         let pass = W::and(W::and_not(W::or(ahead_range, behind_range), outside), t_ok);
         // The first sufficient test for t > 0 (see `watertight_sheared`):
-        // every `z_i > dz = bound_up(gamma(4) * max |z_i|, 1)`. Where it
-        // matters (`pass` and no zero edge function), every `z_i` is finite
-        // (a NaN or infinite one makes `det` or `t` fail above), and then
-        // `min z_i > bound_up(gamma(4) * max z_i, 1)` is the same test: if
-        // all `z_i > 0`, `max z_i` is `max |z_i|`, and if some `z_i <= 0`
-        // both tests fail (the bound of a positive maximum is positive; that
-        // of a maximum `<= 0` is at least the maximum, itself at least the
-        // minimum).
-        let (z_min, z_max) = (z0.min(z1.min(z2)), z0.max(z1.max(z2)));
-        let dz = z_max.mul(g4).mul(up1);
-        let ahead = dz.lt(z_min);
-        // Every corner behind the origin, the scalar test's `z_i < -dz`: for
-        // `z_min < 0` that `dz` is `-(z_min g4 up1)` (rounding is symmetric),
-        // and otherwise both are false. A lane the plain test rejects with
+        // every `z_i > 0`, that is `min z_i > 0` (where it matters, `pass`
+        // and no zero edge function, every `z_i` is finite: a NaN or
+        // infinite one makes `det` or `t` fail above). Every corner behind
+        // the origin is `max z_i < 0`. A lane the plain test rejects with
         // its corners neither all in front nor all behind goes to the
-        // scalar code, as in `watertight_lanes`.
-        let behind = z_max.lt(z_min.mul(g4).mul(up1));
+        // scalar code, as in `watertight_lanes` (a NaN depth can make the
+        // lane look settled here: both answers are then a miss).
+        let (z_min, z_max) = (z0.min(z1.min(z2)), z0.max(z1.max(z2)));
+        let ahead = lo.lt(z_min);
+        let behind = z_max.lt(lo);
         let unsettled = W::and_not(W::and_not(W::and_not(all, outside), ahead), behind);
         // u and v: finite whenever `pass` holds and no edge function is
         // zero (each `|e_i| <= |det|`, as the `e_i` share a sign, and

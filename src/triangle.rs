@@ -459,12 +459,9 @@ fn watertight_every_axis<V: Vector>(
     let ahead_range = zero.lt(det) & zero.lt(t_scaled) & t_scaled.le(limit);
     let behind_range = det.lt(zero) & t_scaled.lt(zero) & limit.le(t_scaled);
     // Every corner in front, or every corner behind (see
-    // `watertight_lanes`).
-    let max_z = z[0].abs().max(z[1].abs().max(z[2].abs()));
-    let dz = bound_up_lanes(max_z.mul(splat(S::<V>::gamma_n(4))), 1);
-    let ahead = dz.lt(z[0]) & dz.lt(z[1]) & dz.lt(z[2]) & bit != 0;
-    let back = dz.neg();
-    let settled = ahead || z[0].lt(back) & z[1].lt(back) & z[2].lt(back) & bit != 0;
+    // `watertight_sheared`: the signs of the depths are exact).
+    let ahead = zero.lt(z[0]) & zero.lt(z[1]) & zero.lt(z[2]) & bit != 0;
+    let settled = ahead || z[0].lt(zero) & z[1].lt(zero) & z[2].lt(zero) & bit != 0;
     let inv_det = one.div(det);
     let t = t_scaled.mul(inv_det);
     // (`t > 0` makes `is_finite` the same as `t <= MAX`.)
@@ -475,14 +472,13 @@ fn watertight_every_axis<V: Vector>(
     }
     // The first sufficient test for t > 0 (see `watertight_sheared`), and
     // a well-conditioned determinant (see `watertight_lanes`).
-    let m = x[0]
-        .abs()
-        .max(y[0].abs())
-        .max(x[1].abs().max(y[1].abs()))
-        .max(x[2].abs().max(y[2].abs()));
-    let w = d.abs().mul(max_z);
-    let c = |n: u32| splat(S::<V>::from_u32(n) * S::<V>::UNIT_ROUNDOFF);
-    let q = m.add(w).mul(m.mul(c(72)).add(w.mul(c(160))));
+    let ad = d.abs();
+    let k = (0..3)
+        .map(|c| x[c].abs().max(y[c].abs()).max(ad.mul(z[c].abs())))
+        .fold(zero, |a, b| a.max(b));
+    let q = k
+        .mul(k)
+        .mul(splat(S::<V>::from_u32(464) * S::<V>::UNIT_ROUNDOFF));
     if !(ahead && q.lt(det.abs()) & bit != 0) {
         return slow();
     }
@@ -502,14 +498,6 @@ fn watertight_every_axis<V: Vector>(
         v: pick(v),
         side,
     })
-}
-
-/// [`bound_up`] on every lane.
-#[inline(always)]
-fn bound_up_lanes<T: Lanes>(value: T, roundings: u32) -> T {
-    value.mul(T::splat(
-        (T::F::ONE + T::F::gamma_n(roundings + 1)).next_up(),
-    ))
 }
 
 /// The closed watertight test for a valid ray and a `t_max >= 0`, with the
@@ -561,11 +549,12 @@ pub(crate) fn watertight_lanes<V: Vector>(
         false
     };
     // Every corner in front of the origin, or every corner behind, in
-    // exact arithmetic (see `watertight_sheared`); otherwise the plain
-    // answer may be wrong either way, and the definition decides.
-    let max_z = z.abs().max_all().x();
-    let dz = L::<V>::splat(bound_up(S::<V>::gamma_n(4) * max_z, 1));
-    let settled = || dz.lt(z) == 0b111 || z.lt(dz.neg()) == 0b111;
+    // exact arithmetic (the depths' signs are exact: see
+    // `watertight_sheared`); otherwise the plain answer may be wrong either
+    // way, and the definition decides.
+    let lanes_zero = L::<V>::splat(zero);
+    let ahead = lanes_zero.lt(z);
+    let settled = || ahead == 0b111 || z.lt(lanes_zero) == 0b111;
     let inv_det = one / det;
     let t = t_scaled * inv_det;
     // (`t > 0` makes `is_finite` the same as `t <= MAX`, which compiles to
@@ -573,15 +562,20 @@ pub(crate) fn watertight_lanes<V: Vector>(
     if !(in_range && t > zero && t <= t_max && t <= S::<V>::MAX) {
         return if settled() { None } else { slow() };
     }
-    // The first sufficient test for t > 0 (every corner in front; see
-    // `watertight_sheared`), and a determinant whose sign rounding cannot
-    // have changed (`well_conditioned`, lane by lane: it increases with
-    // each corner's `max(|x_i|, |y_i|)`); else the definition decides.
-    let a = x.abs().max(y.abs());
-    let w = L::<V>::splat(shear.dz.abs() * max_z);
-    let c = |n: u32| L::<V>::splat(S::<V>::from_u32(n) * S::<V>::UNIT_ROUNDOFF);
-    let q = a.add(w).mul(a.mul(c(72)).add(w.mul(c(160))));
-    if dz.lt(z) & q.lt(L::<V>::splat(det.abs())) != 0b111 {
+    // The first sufficient test for t > 0 (every corner in front), and a
+    // determinant whose sign rounding cannot have changed: with `k` the
+    // largest of every corner's `|x_i|`, `|y_i|` and `|d_z z_i|`, `|det| >
+    // 464 u k^2` implies `well_conditioned` (its `m` and `w` are at most
+    // `k`, and `(2k)(232k) = 464 k^2`), tested lane by lane (the bound
+    // grows with each corner's share); else the definition decides.
+    let k = x
+        .abs()
+        .max(y.abs())
+        .max(L::<V>::splat(shear.dz.abs()).mul(z.abs()));
+    let q = k
+        .mul(k)
+        .mul(L::<V>::splat(S::<V>::from_u32(464) * S::<V>::UNIT_ROUNDOFF));
+    if ahead & q.lt(L::<V>::splat(det.abs())) != 0b111 {
         return slow();
     }
     // u and v: lanes 1 and 2 of `min(e * inv_det, 1)`, finite here: each
@@ -673,7 +667,10 @@ pub(crate) fn watertight_sheared<V: Vector>(
     // t > 0 decided conservatively, by any of three sufficient tests, in
     // order of cost:
     // - every corner lies in front of the origin in exact arithmetic
-    //   (z_i > dz): any crossing of the triangle is a convex combination of
+    //   (z_i > 0: the sign of z_i = fl(fl(c_z - o_z) fl(1 / d_z)) is exact,
+    //   as a rounded difference is zero only when the operands are equal
+    //   and rounding keeps signs; an underflow to zero only makes the test
+    //   fail): any crossing of the triangle is a convex combination of
     //   them, so it is in front too, however thin the triangle looks from
     //   the ray (this keeps small triangles far away, where the next two are
     //   too pessimistic, and a crack would open if they were the only ones);
@@ -684,10 +681,9 @@ pub(crate) fn watertight_sheared<V: Vector>(
     // The first test needs only the bound on z, so the other bounds are
     // computed only when it fails (they are pure functions of the same
     // values, so the order changes no answer). Every corner behind the
-    // origin (z_i < -dz) likewise means no hit.
-    let (_, dz) = z_error(&z);
-    let ahead = z[0] > dz && z[1] > dz && z[2] > dz;
-    let behind = z[0] < -dz && z[1] < -dz && z[2] < -dz;
+    // origin (z_i < 0) likewise means no hit.
+    let ahead = z[0] > zero && z[1] > zero && z[2] > zero;
+    let behind = z[0] < zero && z[1] < zero && z[2] < zero;
     let (mz, _) = z_error(&z);
     let m = max2(max3(&f.x), max3(&f.y));
     let t = if plain_ok && ahead && well_conditioned(det, m, shear.dz.abs() * mz) {
