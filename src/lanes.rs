@@ -447,14 +447,6 @@ pub(crate) mod sse {
         op2x2!(div, _mm_div_ps);
         op2x2!(max, _mm_max_ps);
         op2x2!(min, _mm_min_ps);
-        #[inline(always)]
-        fn abs(self) -> Self {
-            // SAFETY: see the module docs (SSE, no memory access).
-            Self(
-                self.0
-                    .map(|v| unsafe { _mm_andnot_ps(_mm_set1_ps(-0.0), v) }),
-            )
-        }
         cmpx2!(lt, _mm_cmplt_ps);
         cmpx2!(le, _mm_cmple_ps);
         cmpx2!(eq, _mm_cmpeq_ps);
@@ -521,8 +513,6 @@ pub trait Lanes8: Copy {
     fn max(self, o: Self) -> Self;
     /// Lane-wise `if self < o { self } else { o }`.
     fn min(self, o: Self) -> Self;
-    /// Lane-wise absolute value.
-    fn abs(self) -> Self;
     /// Lane-wise `self < o`.
     fn lt(self, o: Self) -> Self::Mask;
     /// Lane-wise `self <= o`.
@@ -599,10 +589,6 @@ impl<F: Scalar> Lanes8 for Portable8<F> {
     #[inline(always)]
     fn min(self, o: Self) -> Self {
         self.map2(o, |a, b| if a < b { a } else { b })
-    }
-    #[inline(always)]
-    fn abs(self) -> Self {
-        Self(self.0.map(F::abs))
     }
     #[inline(always)]
     fn lt(self, o: Self) -> [bool; 8] {
@@ -741,11 +727,6 @@ pub(crate) mod avx {
         // greater (less), NaN included, as MAXPS does.
         op2!(max, _mm256_max_ps);
         op2!(min, _mm256_min_ps);
-        #[inline(always)]
-        fn abs(self) -> Self {
-            // SAFETY: see the module docs (AVX, no memory access).
-            Self(unsafe { _mm256_andnot_ps(_mm256_set1_ps(-0.0), self.0) })
-        }
         cmp!(lt, _CMP_LT_OQ);
         cmp!(le, _CMP_LE_OQ);
         cmp!(eq, _CMP_EQ_OQ);
@@ -907,7 +888,6 @@ mod tests {
         for (p, w) in ops {
             assert_eq!(pout(p(pa, pb)), out(w(wa, wb)), "{a:?} {b:?}");
         }
-        assert_eq!(pout(pa.abs()), out(wa.abs()));
         let bytes = a.map(|x| x.to_bits() as u8);
         assert_eq!(
             pout(Portable8::from_bytes(&bytes)),
