@@ -563,11 +563,8 @@ pub(crate) fn watertight_lanes<V: Vector>(
         return if settled() { None } else { slow() };
     }
     // The first sufficient test for t > 0 (every corner in front), and a
-    // determinant whose sign rounding cannot have changed: with `k` the
-    // largest of every corner's `|x_i|`, `|y_i|` and `|d_z z_i|`, `|det| >
-    // 464 u k^2` implies `well_conditioned` (its `m` and `w` are at most
-    // `k`, and `(2k)(232k) = 464 k^2`), tested lane by lane (the bound
-    // grows with each corner's share); else the definition decides.
+    // determinant whose sign rounding cannot have changed
+    // (`well_conditioned`, lane by lane); else the definition decides.
     let k = x
         .abs()
         .max(y.abs())
@@ -678,15 +675,14 @@ pub(crate) fn watertight_sheared<V: Vector>(
     //   test): the exact numerator has the sign of det;
     // - where the determinant is well conditioned, t exceeds its own error
     //   bound: the exact crossing is at t > 0.
-    // The first test needs only the bound on z, so the other bounds are
-    // computed only when it fails (they are pure functions of the same
+    // The first test needs no bound, so the other bounds are computed only
+    // when it fails (they are pure functions of the same
     // values, so the order changes no answer). Every corner behind the
     // origin (z_i < 0) likewise means no hit.
     let ahead = z[0] > zero && z[1] > zero && z[2] > zero;
     let behind = z[0] < zero && z[1] < zero && z[2] < zero;
-    let (mz, _) = z_error(&z);
-    let m = max2(max3(&f.x), max3(&f.y));
-    let t = if plain_ok && ahead && well_conditioned(det, m, shear.dz.abs() * mz) {
+    let k = max2(max2(max3(&f.x), max3(&f.y)), shear.dz.abs() * max3(&z));
+    let t = if plain_ok && ahead && well_conditioned(det, k) {
         // (The common case, and the fast paths' answer: the full test
         // below would give the same, as the determinant's sign is known.)
         plain
@@ -829,10 +825,12 @@ pub(crate) fn max3<F: Scalar>(v: &[F; 3]) -> F {
 }
 
 /// A cheap sufficient condition for the determinant's sign to be known
-/// (for [`HitCondition::new`] to be `Some`): `|det| > u (m + w) (72 m +
-/// 160 w)`, with `m` the largest `|x_i|`, `|y_i|` and `w = |d_z| max
-/// |z_i|`, which exceeds `u (64 m^2 + 128 m w + 256 u (m + w)^2)` for any
-/// `u <= 1/32`.
+/// (for [`HitCondition::new`] to be `Some`): `|det| > 464 u k^2`, with `k`
+/// the largest of every corner's `|x_i|`, `|y_i|` and `|d_z z_i|`. With `m`
+/// the largest `|x_i|`, `|y_i|` and `w = |d_z| max |z_i|` (both at most
+/// `k`), `464 k^2 >= (m + w)(72 m + 160 w) >= 64 m^2 + 128 m w + 256 u (m +
+/// w)^2` for any `u <= 1/32`, which is the bound derived below. The fast
+/// paths evaluate it lane by lane (the bound grows with each corner's `k`).
 ///
 /// Why: `|p_z| <= |z| |d_z| (1 + 3u)`, and `|s_x|, |s_y| <= 1`, so each
 /// shear product `|s_x p_z|` is at most about `w`, and each `|p_x|`,
@@ -843,10 +841,8 @@ pub(crate) fn max3<F: Scalar>(v: &[F; 3]) -> F {
 /// the rounding of the threshold itself; then the lower bound of
 /// [`HitCondition`] is positive. NaN or infinite input fails it.
 #[inline(always)]
-fn well_conditioned<F: Scalar>(det: F, m: F, w: F) -> bool {
-    let u = F::UNIT_ROUNDOFF;
-    let c = |n: u32| F::from_u32(n) * u;
-    det.abs() > (m + w) * (c(72) * m + c(160) * w)
+fn well_conditioned<F: Scalar>(det: F, k: F) -> bool {
+    det.abs() > k * k * (F::from_u32(464) * F::UNIT_ROUNDOFF)
 }
 
 /// `(max |z_i|, dz)` with `dz` the bound on `|z_i - Z_i|` of
