@@ -727,15 +727,9 @@ fn triangle_batch_body<W: Lanes8<F = S<V>>, V: Vector, const N: usize>(
         // The first sufficient test for t > 0 (see `watertight_sheared`):
         // every `z_i > 0`, that is `min z_i > 0` (where it matters, `pass`
         // and no zero edge function, every `z_i` is finite: a NaN or
-        // infinite one makes `det` or `t` fail above). Every corner behind
-        // the origin is `max z_i < 0`. A lane the plain test rejects with
-        // its corners neither all in front nor all behind goes to the
-        // scalar code, as in `watertight_lanes` (a NaN depth can make the
-        // lane look settled here: both answers are then a miss).
+        // infinite one makes `det` or `t` fail above).
         let (z_min, z_max) = (z0.min(z1.min(z2)), z0.max(z1.max(z2)));
         let ahead = lo.lt(z_min);
-        let behind = z_max.lt(lo);
-        let unsettled = W::and_not(W::and_not(W::and_not(all, outside), ahead), behind);
         // u and v: finite whenever `pass` holds and no edge function is
         // zero (each `|e_i| <= |det|`, as the `e_i` share a sign, and
         // `1 / det` is finite, as `t` is), so the definition's finiteness
@@ -744,15 +738,24 @@ fn triangle_batch_body<W: Lanes8<F = S<V>>, V: Vector, const N: usize>(
         let v = e2.mul(inv_det).min(ones);
         let hit_c = W::and(W::and_not(pass, zero_edge), ahead);
         let shift = 8 * c;
-        // A zero-area triangle's hit goes to the scalar code, which takes
-        // its `t` from the segment (the scalar kernels find such hits by a
-        // conditioning test; here the lanes were marked when stored).
+        hit |= W::bits(hit_c) << shift;
+        slow |= W::bits(W::or(zero_edge, W::and_not(pass, ahead))) << shift;
+        // Zero-area triangles (marked when stored; most batches have none):
+        // a hit goes to the scalar code, which takes its `t` from the
+        // segment (the scalar kernels find such hits by a conditioning
+        // test), and so does a plain miss inside the triangle with some
+        // corner in front of the origin (`max z_i > 0`), which the
+        // definition may turn into a hit; for any other triangle the plain
+        // miss is the definition's answer (see `watertight_lanes`; a NaN
+        // depth leaves the lane to the plain miss, which is then the
+        // answer).
         let degenerate = (batch.degenerate >> shift) & 0xff;
-        hit |= (W::bits(hit_c) & !degenerate) << shift;
-        let rejected = W::and_not(unsettled, pass);
-        slow |= (W::bits(W::or(W::or(zero_edge, W::and_not(pass, ahead)), rejected))
-            | (W::bits(hit_c) & degenerate))
-            << shift;
+        if degenerate != 0 {
+            let inside = W::and_not(all, outside);
+            let reconsider = W::and(W::and_not(inside, pass), lo.lt(z_max));
+            hit &= !(degenerate << shift);
+            slow |= (W::bits(W::or(hit_c, reconsider)) & degenerate) << shift;
+        }
         front |= W::bits(lo.lt(det)) << shift;
         put(&mut out.t, c, W::select(hit_c, t, splat(inf)));
         put(&mut out.u, c, W::select(hit_c, u, lo));
@@ -830,10 +833,10 @@ pub trait Simd: Copy + core::fmt::Debug + sealed::Sealed {
     /// [`ray_quantized_children`](crate::ray_quantized_children), compiled
     /// for this instruction set.
     #[must_use]
-    fn ray_quantized_children(
+    fn ray_quantized_children<V: Vector<Scalar = f32>>(
         self,
-        ray: &PreparedRay,
-        node: &QuantizedChildren<'_>,
+        ray: &PreparedRay<V>,
+        node: &QuantizedChildren<'_, V>,
         t_max: f32,
     ) -> AabbBatchHits<f32, 8>;
 }
@@ -869,13 +872,13 @@ impl Simd for TargetSimd {
     }
 
     #[inline(always)]
-    fn ray_quantized_children(
+    fn ray_quantized_children<V: Vector<Scalar = f32>>(
         self,
-        ray: &PreparedRay,
-        node: &QuantizedChildren<'_>,
+        ray: &PreparedRay<V>,
+        node: &QuantizedChildren<'_, V>,
         t_max: f32,
     ) -> AabbBatchHits<f32, 8> {
-        quantized_body::<<f32 as Scalar>::Lanes8>(ray, node, t_max)
+        quantized_body::<<f32 as Scalar>::Lanes8, V>(ray, node, t_max)
     }
 }
 
@@ -927,10 +930,10 @@ impl Simd for Avx2 {
     }
 
     #[inline(always)]
-    fn ray_quantized_children(
+    fn ray_quantized_children<V: Vector<Scalar = f32>>(
         self,
-        ray: &PreparedRay,
-        node: &QuantizedChildren<'_>,
+        ray: &PreparedRay<V>,
+        node: &QuantizedChildren<'_, V>,
         t_max: f32,
     ) -> AabbBatchHits<f32, 8> {
         // SAFETY: as above.
@@ -995,10 +998,10 @@ impl Simd for Avx512 {
     }
 
     #[inline(always)]
-    fn ray_quantized_children(
+    fn ray_quantized_children<V: Vector<Scalar = f32>>(
         self,
-        ray: &PreparedRay,
-        node: &QuantizedChildren<'_>,
+        ray: &PreparedRay<V>,
+        node: &QuantizedChildren<'_, V>,
         t_max: f32,
     ) -> AabbBatchHits<f32, 8> {
         // SAFETY: as above.
@@ -1095,12 +1098,12 @@ macro_rules! simd_copy {
 
         #[target_feature(enable = $features)]
         #[inline]
-        pub(super) fn quantized(
-            ray: &PreparedRay,
-            node: &QuantizedChildren<'_>,
+        pub(super) fn quantized<V: Vector<Scalar = f32>>(
+            ray: &PreparedRay<V>,
+            node: &QuantizedChildren<'_, V>,
             t_max: f32,
         ) -> AabbBatchHits<f32, 8> {
-            quantized_body::<<f32 as Scalar>::Lanes8Avx2>(ray, node, t_max)
+            quantized_body::<<f32 as Scalar>::Lanes8Avx2, V>(ray, node, t_max)
         }
     };
 }

@@ -56,6 +56,15 @@
 //! need no second name: `ray_triangle(&ray, &tri, f64::INFINITY)` takes a
 //! `DRay` and a `DTriangle`.
 //!
+//! The glam above is the one this crate re-exports, [`glam`] 0.34. A crate
+//! on an older glam turns on that release's feature (`glam-0_29`,
+//! `glam-0_30`, `glam-0_31`, `glam-0_32` or `glam-0_33`) and passes its own
+//! `Vec3`, `Vec3A` or `DVec3` to every kernel, with the same answers bit for
+//! bit; the hits come back in its own types. Import by name or with
+//! [`prelude`]: a glob import of the crate root brings in `rayhit::glam`
+//! too, which is ambiguous next to your own `glam`. For other math crates,
+//! the `mint` feature adds `from_mint` constructors (see the `mint` module).
+//!
 //! The kernels are written once, against the sealed [`Vector`] and
 //! [`Scalar`] traits, and each error bound is derived in terms of the unit
 //! roundoff `u` of the precision in use (`2^-24` for `f32`, `2^-53` for
@@ -269,6 +278,12 @@
 //! - `libm`: float math from the `libm` crate, for `no_std` targets
 //!   (`default-features = false, features = ["libm"]`). One of the two must
 //!   be on.
+//! - `glam-0_29` to `glam-0_33`: glam's `Vec3`, `Vec3A` and `DVec3` of that
+//!   release as vector types (see "Precision").
+//! - `mint`: `from_mint` constructors for [`Ray`], [`Aabb`], [`Triangle`]
+//!   and [`Plane`] (see the `mint` module), and glam's own mint conversions.
+//! - `exact`: the public `exact` module, exact answers to every kernel's
+//!   question and verdicts on claimed answers (turns on `std`).
 //! - `approx`: `approx`'s `AbsDiffEq`, `RelativeEq` and `UlpsEq` for the
 //!   public types and triangle hits (see the `approx` module for what each
 //!   comparison means).
@@ -305,6 +320,9 @@ mod camera;
 #[cfg_attr(docsrs, doc(cfg(feature = "exact")))]
 pub mod exact;
 mod lanes;
+#[cfg(feature = "mint")]
+#[cfg_attr(docsrs, doc(cfg(feature = "mint")))]
+pub mod mint;
 mod plane;
 mod quantized;
 mod ray;
@@ -362,6 +380,37 @@ pub use triangle::{
     Side, Triangle, TriangleHit, TriangleHitError, ray_triangle, ray_triangle_error_bounds,
     ray_triangle_mt, ray_triangle_one_hit, ray_triangle_prepared, triangle_hit_point,
 };
+
+/// Every type, trait and function of the crate root except the re-exported
+/// `glam`, for `use rayhit::prelude::*;`.
+///
+/// A glob import of the crate root itself (`use rayhit::*;`) brings in
+/// `rayhit::glam` too, which is ambiguous (E0659) next to a crate's own
+/// `glam` dependency; this module is the glob-import that is not.
+///
+/// ```
+/// use glam::Vec3; // your own glam
+/// use rayhit::prelude::*;
+/// let ray = Ray::new(Vec3::new(0.25, 0.25, 1.0), Vec3::NEG_Z);
+/// let tri = Triangle::new(Vec3::ZERO, Vec3::X, Vec3::Y);
+/// assert!(ray_triangle(&ray, &tri, f32::INFINITY).is_some());
+/// ```
+pub mod prelude {
+    pub use crate::{
+        Aabb, AabbBatch, AabbBatchHits, BoxFace, BoxHit, CameraError, DAabb, DAabbBatch,
+        DPinholeCamera, DPlane, DPreparedRay, DRay, DSurfacePoint, DTriangle, DTriangleBatch,
+        DTriangleHit, DTriangleHitError, PinholeCamera, Plane, PreparedRay, QuantizedChildren, Ray,
+        Scalar, Side, Simd, SimdWork, SurfacePoint, TargetSimd, Triangle, TriangleBatch,
+        TriangleBatchHits, TriangleHit, TriangleHitError, Vector, aabb_entry_face,
+        offset_ray_origin, quantize_bounds, ray_aabb, ray_aabb_batch, ray_aabb_face,
+        ray_aabb_naive, ray_aabb_prepared, ray_aabb_prepared_face, ray_plane, ray_plane_hit_point,
+        ray_plane_t_error, ray_quantized_children, ray_triangle, ray_triangle_batch,
+        ray_triangle_error_bounds, ray_triangle_mt, ray_triangle_one_hit, ray_triangle_prepared,
+        triangle_hit_point, with_simd,
+    };
+    #[cfg(all(feature = "std", target_arch = "x86_64", not(target_feature = "avx2")))]
+    pub use crate::{Avx2, Avx512};
+}
 
 /// The README's code blocks, compiled and run as doc tests.
 #[cfg(doctest)]

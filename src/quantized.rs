@@ -7,6 +7,7 @@ use crate::aabb::{Aabb, PreparedRay};
 use crate::batch::{AabbBatch, AabbBatchHits, Slab8};
 use crate::lanes::Lanes8;
 use crate::ray::t_max_ok;
+use crate::real::Vector;
 
 /// The eight child boxes of a compressed wide BVH node, read in place:
 /// the quantized format of Ylitie, Karras and Laine ("Efficient Incoherent
@@ -45,9 +46,10 @@ use crate::ray::t_max_ok;
 /// assert!(b.min.x <= 2.0 && b.min.x > 2.0 - 1e-4 && b.max.z >= 5.0 && b.max.z < 5.0 + 1e-4);
 /// ```
 #[derive(Clone, Copy, Debug)]
-pub struct QuantizedChildren<'a> {
-    /// The corner the children's bounds are measured from.
-    pub origin: Vec3,
+pub struct QuantizedChildren<'a, V = Vec3> {
+    /// The corner the children's bounds are measured from (any `f32`
+    /// [`Vector`](crate::Vector)).
+    pub origin: V,
     /// Per axis, the biased exponent of the grid step.
     pub exponents: [u8; 3],
     /// Per axis, the eight children's lower bounds, in grid steps.
@@ -91,12 +93,13 @@ fn widening(p: f32, s: f32) -> f32 {
     m * f32::from_bits(0x3480_0000) + 2.0 * f32::from_bits(1)
 }
 
-impl QuantizedChildren<'_> {
+impl<V: Vector<Scalar = f32>> QuantizedChildren<'_, V> {
     /// The grid step `2^(e - 127)` of each axis.
     #[inline]
     #[must_use]
-    pub fn step(&self) -> Vec3 {
-        Vec3::from_array(self.exponents.map(step_of))
+    pub fn step(&self) -> V {
+        let [x, y, z] = self.exponents.map(step_of);
+        V::new(x, y, z)
     }
 
     /// True when the origin is finite, no exponent is 255, and every
@@ -117,7 +120,7 @@ impl QuantizedChildren<'_> {
     /// rounded outward, so that it contains the exact one; `None` for an
     /// invalid node, an empty child (`min > max` on an axis) or `child >= 8`.
     #[must_use]
-    pub fn child_box(&self, child: usize) -> Option<Aabb> {
+    pub fn child_box(&self, child: usize) -> Option<Aabb<V>> {
         if child >= 8 || !self.is_valid() {
             return None;
         }
@@ -133,7 +136,10 @@ impl QuantizedChildren<'_> {
             lo[k] = (s * f32::from(a) + p) - w;
             hi[k] = (s * f32::from(b) + p) + w;
         }
-        Some(Aabb::new(Vec3::from_array(lo), Vec3::from_array(hi)))
+        Some(Aabb::new(
+            V::new(lo[0], lo[1], lo[2]),
+            V::new(hi[0], hi[1], hi[2]),
+        ))
     }
 
     /// The eight boxes of [`QuantizedChildren::child_box`] as a batch
@@ -141,7 +147,7 @@ impl QuantizedChildren<'_> {
     /// [`ray_aabb_batch`](crate::ray_aabb_batch) on it gives, bit for bit,
     /// what [`ray_quantized_children`] gives on the node.
     #[must_use]
-    pub fn boxes(&self) -> AabbBatch<Vec3, 8> {
+    pub fn boxes(&self) -> AabbBatch<V, 8> {
         let mut batch = AabbBatch::empty();
         for child in 0..8 {
             if let Some(b) = self.child_box(child) {
@@ -246,9 +252,9 @@ pub fn quantize_bounds(origin: f32, exponent: u8, min: f32, max: f32) -> Option<
 /// ```
 #[inline]
 #[must_use]
-pub fn ray_quantized_children(
-    ray: &PreparedRay,
-    node: &QuantizedChildren<'_>,
+pub fn ray_quantized_children<V: Vector<Scalar = f32>>(
+    ray: &PreparedRay<V>,
+    node: &QuantizedChildren<'_, V>,
     t_max: f32,
 ) -> AabbBatchHits<f32, 8> {
     #[cfg(all(feature = "std", target_arch = "x86_64", not(target_feature = "avx2")))]
@@ -262,7 +268,10 @@ pub fn ray_quantized_children(
 /// and upper planes, and which children are not empty on that axis.
 /// (A function, not a closure: the AVX2 copy must be inlined whole.)
 #[inline(always)]
-fn decode<W: Lanes8<F = f32>>(node: &QuantizedChildren<'_>, k: usize) -> (W, W, W::Mask) {
+fn decode<W: Lanes8<F = f32>, V: Vector<Scalar = f32>>(
+    node: &QuantizedChildren<'_, V>,
+    k: usize,
+) -> (W, W, W::Mask) {
     let (p, s) = (node.origin[k], step_of(node.exponents[k]));
     let w = widening(p, s);
     let (a, b) = (W::from_bytes(node.min[k]), W::from_bytes(node.max[k]));
@@ -272,18 +281,18 @@ fn decode<W: Lanes8<F = f32>>(node: &QuantizedChildren<'_>, k: usize) -> (W, W, 
 
 /// The body of [`ray_quantized_children`] with the eight-lane type `W`.
 #[inline(always)]
-pub(crate) fn quantized_body<W: Lanes8<F = f32>>(
-    ray: &PreparedRay,
-    node: &QuantizedChildren<'_>,
+pub(crate) fn quantized_body<W: Lanes8<F = f32>, V: Vector<Scalar = f32>>(
+    ray: &PreparedRay<V>,
+    node: &QuantizedChildren<'_, V>,
     t_max: f32,
 ) -> AabbBatchHits<f32, 8> {
     let mut enter = [f32::INFINITY; 8];
     if !(t_max_ok(t_max) && node.is_valid()) {
         return AabbBatchHits { mask: 0, enter };
     }
-    let (x0, x1, ox) = decode::<W>(node, 0);
-    let (y0, y1, oy) = decode::<W>(node, 1);
-    let (z0, z1, oz) = decode::<W>(node, 2);
+    let (x0, x1, ox) = decode::<W, V>(node, 0);
+    let (y0, y1, oy) = decode::<W, V>(node, 1);
+    let (z0, z1, oz) = decode::<W, V>(node, 2);
     let slab = Slab8::<W>::new(ray, t_max);
     let (hit, e) = slab.test([x0, y0, z0], [x1, y1, z1]);
     let hit = W::and(hit, W::and(ox, W::and(oy, oz)));

@@ -1,7 +1,7 @@
 //! The two precisions behind one source.
 //!
 //! Every kernel in the crate is written once, generically over [`Vector`]
-//! (implemented by [`glam::Vec3`] and [`glam::DVec3`]) and its [`Scalar`]
+//! (implemented by glam's `Vec3`, `Vec3A` and `DVec3`) and its [`Scalar`]
 //! (`f32` and `f64`). Each error bound is derived in terms of the unit
 //! roundoff `u` of the scalar type (`2^-24` for `f32`, `2^-53` for `f64`), so
 //! the same derivation serves both precisions and neither is a copy of the
@@ -11,15 +11,10 @@
 use core::fmt::Debug;
 use core::ops::{Add, Div, Index, Mul, Neg, Sub};
 
-use glam::{DVec3, Vec3};
-
 mod sealed {
     pub trait Sealed {}
     impl Sealed for f32 {}
     impl Sealed for f64 {}
-    impl Sealed for glam::Vec3 {}
-    impl Sealed for glam::Vec3A {}
-    impl Sealed for glam::DVec3 {}
 }
 
 /// A floating-point scalar the kernels run in: `f32` or `f64`.
@@ -167,12 +162,15 @@ pub trait Scalar:
     fn two_diff(a: Self, b: Self) -> (Self, Self);
 }
 
-/// A 3-component vector the kernels run on: [`glam::Vec3`] or
-/// [`glam::DVec3`].
+/// A 3-component vector the kernels run on: glam's `Vec3` and `Vec3A`
+/// (`f32`) and `DVec3` (`f64`), of the glam this crate re-exports and of
+/// every older glam release whose feature is on (`glam-0_29` to
+/// `glam-0_33`).
 ///
-/// Sealed; see [`Scalar`]. The operations are glam's own, so a kernel written
-/// against this trait compiles to the same code as one written against
-/// `Vec3` directly.
+/// Sealed; see [`Scalar`]. The operations are glam's own or written out in
+/// the order glam's `Vec3` uses, so every vector type of a precision gives
+/// the same answers bit for bit, and a kernel written against this trait
+/// compiles to the same code as one written against `Vec3` directly.
 pub trait Vector:
     sealed::Sealed
     + Copy
@@ -468,6 +466,8 @@ mod exact_sign {
 
 macro_rules! impl_vector {
     ($V:ty, $f:ty, $all_le:expr) => {
+        impl sealed::Sealed for $V {}
+
         impl Vector for $V {
             type Scalar = $f;
             const ZERO: Self = <$V>::ZERO;
@@ -542,15 +542,35 @@ macro_rules! impl_vector {
     };
 }
 
-// `Vec3A` is glam's SIMD vector: `cmple` is one `cmpleps` on x86 (false for
-// NaN, as `<=` is), and `all` one `movmskps`.
-impl_vector!(Vec3, f32, |a: Vec3, b: Vec3| glam::Vec3A::from(a)
-    .cmple(glam::Vec3A::from(b))
-    .all());
-impl_vector!(glam::Vec3A, f32, |a: glam::Vec3A, b: glam::Vec3A| a
-    .cmple(b)
-    .all());
-impl_vector!(DVec3, f64, |a: DVec3, b: DVec3| a.cmple(b).all());
+/// `Vec3`, `Vec3A` and `DVec3` of the glam crate `$glam` (the default one or
+/// an older release under its renamed dependency). `Vec3A` is glam's SIMD
+/// vector: `cmple` is one `cmpleps` on x86 (false for NaN, as `<=` is), and
+/// `all` one `movmskps`; `Vec3` goes through it for the same reason.
+macro_rules! impl_glam {
+    ($glam:ident) => {
+        impl_vector!($glam::Vec3, f32, |a: $glam::Vec3, b: $glam::Vec3| {
+            $glam::Vec3A::from(a).cmple($glam::Vec3A::from(b)).all()
+        });
+        impl_vector!($glam::Vec3A, f32, |a: $glam::Vec3A, b: $glam::Vec3A| a
+            .cmple(b)
+            .all());
+        impl_vector!($glam::DVec3, f64, |a: $glam::DVec3, b: $glam::DVec3| a
+            .cmple(b)
+            .all());
+    };
+}
+
+impl_glam!(glam);
+#[cfg(feature = "glam-0_29")]
+impl_glam!(glam029);
+#[cfg(feature = "glam-0_30")]
+impl_glam!(glam030);
+#[cfg(feature = "glam-0_31")]
+impl_glam!(glam031);
+#[cfg(feature = "glam-0_32")]
+impl_glam!(glam032);
+#[cfg(feature = "glam-0_33")]
+impl_glam!(glam033);
 
 /// Makes an error bound that was evaluated in floating point an upper bound
 /// of the same expression evaluated exactly.
@@ -686,6 +706,7 @@ pub(crate) fn min2<F: Scalar>(a: F, b: F) -> F {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use glam::{DVec3, Vec3};
 
     #[test]
     fn gamma_is_an_upper_bound() {

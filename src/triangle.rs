@@ -424,7 +424,7 @@ fn watertight_every_axis<V: Vector>(
     let (o, d) = (lanes(ray.origin), lanes(ray.dir));
     let kz = largest_axis(d.abs().to_array());
     let bit = 1 << kz;
-    let slow = || watertight_slow(ray.origin, &Shear::new(&ray.dir), tri, t_max);
+    let slow = || per_call_slow(ray, tri, t_max);
     // The three candidate shears: lane k holds -d[k+1] / d[k],
     // -d[k+2] / d[k] and 1 / d[k].
     let sx = d.rot1().neg().div(d);
@@ -458,28 +458,41 @@ fn watertight_every_axis<V: Vector>(
     let limit = splat(t_max).mul(det);
     let ahead_range = zero.lt(det) & zero.lt(t_scaled) & t_scaled.le(limit);
     let behind_range = det.lt(zero) & t_scaled.lt(zero) & limit.le(t_scaled);
-    // Every corner in front, or every corner behind (see
-    // `watertight_sheared`: the signs of the depths are exact).
-    let ahead = zero.lt(z[0]) & zero.lt(z[1]) & zero.lt(z[2]) & bit != 0;
-    let settled = ahead || z[0].lt(zero) & z[1].lt(zero) & z[2].lt(zero) & bit != 0;
-    let inv_det = one.div(det);
-    let t = t_scaled.mul(inv_det);
-    // (`t > 0` makes `is_finite` the same as `t <= MAX`.)
-    let big = splat(S::<V>::MAX);
-    let t_ok = zero.lt(t) & t.le(splat(t_max)) & t.le(big);
-    if (ahead_range | behind_range) & t_ok & bit == 0 {
-        return if settled { None } else { slow() };
-    }
+    // A plain miss stands where no corner is in front of the origin or the
+    // determinant is well conditioned (see `watertight_lanes`). (Lane k is
+    // the frame with kz = k, so the maxima over the corners are lane-wise
+    // here.)
+    let front = [0, 1, 2].map(|c| zero.lt(z[c]));
+    let ahead = front[0] & front[1] & front[2] & bit != 0;
+    let conditioned = || {
+        let m = (0..3)
+            .map(|c| x[c].abs().max(y[c].abs()))
+            .fold(zero, |a, b| a.max(b));
+        let w = d.abs().mul(z[0].abs().max(z[1].abs()).max(z[2].abs()));
+        roughly_conditioned(det, m.max(w)) & bit != 0
+            || well_conditioned_lanes(det, m, w) & bit != 0
+    };
+    // (Most misses are decided before the division.)
+    let plain = if (ahead_range | behind_range) & bit != 0 {
+        let inv_det = one.div(det);
+        let t = t_scaled.mul(inv_det);
+        // (`t > 0` makes `is_finite` the same as `t <= MAX`.)
+        let big = splat(S::<V>::MAX);
+        let t_ok = zero.lt(t) & t.le(splat(t_max)) & t.le(big);
+        (t_ok & bit != 0).then_some((t, inv_det))
+    } else {
+        None
+    };
+    let Some((t, inv_det)) = plain else {
+        return if (front[0] | front[1] | front[2]) & bit == 0 || conditioned() {
+            None
+        } else {
+            slow()
+        };
+    };
     // The first sufficient test for t > 0 (see `watertight_sheared`), and
     // a well-conditioned determinant (see `watertight_lanes`).
-    let ad = d.abs();
-    let k = (0..3)
-        .map(|c| x[c].abs().max(y[c].abs()).max(ad.mul(z[c].abs())))
-        .fold(zero, |a, b| a.max(b));
-    let q = k
-        .mul(k)
-        .mul(splat(S::<V>::from_u32(464) * S::<V>::UNIT_ROUNDOFF));
-    if !(ahead && q.lt(det.abs()) & bit != 0) {
+    if !(ahead && conditioned()) {
         return slow();
     }
     // u and v, finite here (see `watertight_lanes`).
@@ -500,35 +513,26 @@ fn watertight_every_axis<V: Vector>(
     })
 }
 
-/// The closed watertight test for a valid ray and a `t_max >= 0`, with the
-/// three corners in the lanes of one register: the same operations as
-/// [`watertight_sheared`], lane by lane, so the same bits. The two rare
-/// cases go to [`watertight_sheared`] itself: an edge function that
-/// rounds to zero (its sign must be recomputed exactly), and a crossing
+/// The closed watertight test for a valid prepared ray and a `t_max >= 0`,
+/// with the three corners in the lanes of one register: the same
+/// operations as [`watertight_sheared`], lane by lane, so the same bits.
+/// The rare cases go to [`watertight_sheared`] itself: an edge function
+/// that rounds to zero (its sign must be recomputed exactly), a crossing
 /// for which the cheapest sufficient test for `t > 0` (every corner in
-/// front of the origin) fails: `slow` is that call. `origin_lanes` is
-/// [`Shear::origin_lanes`] of the ray's origin.
+/// front of the origin) fails or whose determinant's sign is not surely
+/// known, and a plain miss that only the definition can settle.
 #[inline(always)]
 pub(crate) fn watertight_lanes<V: Vector>(
-    slow: impl Fn() -> Option<TriangleHit<S<V>>>,
-    origin_lanes: &[L<V>; 3],
-    shear: &Shear<S<V>>,
+    ray: &PreparedRay<V>,
     tri: &Triangle<V>,
     t_max: S<V>,
 ) -> Option<TriangleHit<S<V>>> {
     let (zero, one) = (S::<V>::ZERO, S::<V>::ONE);
-    let corners = |k: Axis| L::<V>::new(tri.a.get(k), tri.b.get(k), tri.c.get(k));
-    let [sx, sy, sz] = shear.lanes;
-    let [ox, oy, oz] = *origin_lanes;
-    // Translate, permute (the corners' coordinates are read in the ray's
-    // axis order), shear.
-    let px = corners(shear.kx).sub(ox);
-    let py = corners(shear.ky).sub(oy);
-    let pz = corners(shear.kz).sub(oz);
-    let x = px.add(sx.mul(pz));
-    let y = py.add(sy.mul(pz));
-    // Edge functions: lane i is x[i+1] y[i+2] - y[i+1] x[i+2].
-    let e = x.rot1().mul(y.rot2()).sub(y.rot1().mul(x.rot2()));
+    let shear = &ray.shear;
+    // (The definition is called with what this function was given, so that
+    // no closure's environment is built on the common paths.)
+    let slow = || prepared_slow(ray, tri, t_max);
+    let (x, y, pz, e) = frame_lanes(&ray.origin_lanes, shear, tri);
     let lanes_zero = L::<V>::splat(zero);
     let (neg, pos) = (e.lt(lanes_zero), lanes_zero.lt(e));
     if neg != 0 && pos != 0 {
@@ -539,7 +543,7 @@ pub(crate) fn watertight_lanes<V: Vector>(
         return slow();
     }
     let det = e.sum3();
-    let z = pz.mul(sz);
+    let z = pz.mul(shear.lanes[2]);
     let t_scaled = e.mul(z).sum3();
     let in_range = if det > zero {
         t_scaled > zero && t_scaled <= t_max * det
@@ -548,31 +552,33 @@ pub(crate) fn watertight_lanes<V: Vector>(
     } else {
         false
     };
-    // Every corner in front of the origin, or every corner behind, in
-    // exact arithmetic (the depths' signs are exact: see
-    // `watertight_sheared`); otherwise the plain answer may be wrong either
-    // way, and the definition decides.
-    let lanes_zero = L::<V>::splat(zero);
+    // The definition's answer to a plain miss is a miss too, except for a
+    // zero-area triangle whose determinant's sign is unknown, when it takes
+    // `t` from the segment: so a miss stands where no corner is in front of
+    // the origin (the depths' signs are exact: see `watertight_sheared`),
+    // or where the determinant is well conditioned
+    // (`corners_conditioned`); otherwise the definition decides. (Decided
+    // before the division, which most misses need not pay for.)
     let ahead = lanes_zero.lt(z);
-    let settled = || ahead == 0b111 || z.lt(lanes_zero) == 0b111;
-    let inv_det = one / det;
-    let t = t_scaled * inv_det;
-    // (`t > 0` makes `is_finite` the same as `t <= MAX`, which compiles to
-    // one comparison.)
-    if !(in_range && t > zero && t <= t_max && t <= S::<V>::MAX) {
-        return if settled() { None } else { slow() };
-    }
+    let plain = if in_range {
+        let inv_det = one / det;
+        let t = t_scaled * inv_det;
+        // (`t > 0` makes `is_finite` the same as `t <= MAX`, which compiles
+        // to one comparison.)
+        (t > zero && t <= t_max && t <= S::<V>::MAX).then_some((t, inv_det))
+    } else {
+        None
+    };
+    let Some((t, inv_det)) = plain else {
+        return if ahead == 0 {
+            None
+        } else {
+            plain_miss_lanes(ray, tri, t_max)
+        };
+    };
     // The first sufficient test for t > 0 (every corner in front), and a
-    // determinant whose sign rounding cannot have changed
-    // (`well_conditioned`, lane by lane); else the definition decides.
-    let k = x
-        .abs()
-        .max(y.abs())
-        .max(L::<V>::splat(shear.dz.abs()).mul(z.abs()));
-    let q = k
-        .mul(k)
-        .mul(L::<V>::splat(S::<V>::from_u32(464) * S::<V>::UNIT_ROUNDOFF));
-    if ahead & q.lt(L::<V>::splat(det.abs())) != 0b111 {
+    // well-conditioned determinant; else the definition decides.
+    if !(ahead == 0b111 && corners_conditioned(x, y, pz, det)) {
         return slow();
     }
     // u and v: lanes 1 and 2 of `min(e * inv_det, 1)`, finite here: each
@@ -588,16 +594,34 @@ pub(crate) fn watertight_lanes<V: Vector>(
     Some(TriangleHit { t, u, v, side })
 }
 
-/// [`watertight_sheared`] with the closed rule, out of the hot path.
+/// [`watertight_sheared`] with the closed rule for a prepared ray, out of
+/// the hot path.
 #[cold]
 #[inline(never)]
-fn watertight_slow<V: Vector>(
-    origin: V,
-    shear: &Shear<S<V>>,
+fn prepared_slow<V: Vector>(
+    ray: &PreparedRay<V>,
     tri: &Triangle<V>,
     t_max: S<V>,
 ) -> Option<TriangleHit<S<V>>> {
-    watertight_sheared(origin, shear, tri, t_max, EdgeRule::Closed)
+    watertight_sheared(ray.origin(), &ray.shear, tri, t_max, EdgeRule::Closed)
+}
+
+/// [`watertight_sheared`] with the closed rule for a ray not prepared, out
+/// of the hot path.
+#[cold]
+#[inline(never)]
+fn per_call_slow<V: Vector>(
+    ray: &Ray<V>,
+    tri: &Triangle<V>,
+    t_max: S<V>,
+) -> Option<TriangleHit<S<V>>> {
+    watertight_sheared(
+        ray.origin,
+        &Shear::new(&ray.dir),
+        tri,
+        t_max,
+        EdgeRule::Closed,
+    )
 }
 
 /// The watertight test for a valid ray, given its origin and shear, and a
@@ -677,12 +701,13 @@ pub(crate) fn watertight_sheared<V: Vector>(
     //   bound: the exact crossing is at t > 0.
     // The first test needs no bound, so the other bounds are computed only
     // when it fails (they are pure functions of the same
-    // values, so the order changes no answer). Every corner behind the
-    // origin (z_i < 0) likewise means no hit.
+    // values, so the order changes no answer). No corner in front of the
+    // origin (every z_i <= 0, or NaN) likewise means no hit: every crossing
+    // is at t <= 0.
     let ahead = z[0] > zero && z[1] > zero && z[2] > zero;
-    let behind = z[0] < zero && z[1] < zero && z[2] < zero;
-    let k = max2(max2(max3(&f.x), max3(&f.y)), shear.dz.abs() * max3(&z));
-    let t = if plain_ok && ahead && well_conditioned(det, k) {
+    let behind = !(z[0] > zero || z[1] > zero || z[2] > zero);
+    let (m, w) = (max2(max3(&f.x), max3(&f.y)), max3(&f.pz));
+    let t = if plain_ok && ahead && well_conditioned(det, m, w) {
         // (The common case, and the fast paths' answer: the full test
         // below would give the same, as the determinant's sign is known.)
         plain
@@ -824,25 +849,121 @@ pub(crate) fn max3<F: Scalar>(v: &[F; 3]) -> F {
     max2(v[0].abs(), max2(v[1].abs(), v[2].abs()))
 }
 
-/// A cheap sufficient condition for the determinant's sign to be known
-/// (for [`HitCondition::new`] to be `Some`): `|det| > 464 u k^2`, with `k`
-/// the largest of every corner's `|x_i|`, `|y_i|` and `|d_z z_i|`. With `m`
-/// the largest `|x_i|`, `|y_i|` and `w = |d_z| max |z_i|` (both at most
-/// `k`), `464 k^2 >= (m + w)(72 m + 160 w) >= 64 m^2 + 128 m w + 256 u (m +
-/// w)^2` for any `u <= 1/32`, which is the bound derived below. The fast
-/// paths evaluate it lane by lane (the bound grows with each corner's `k`).
+/// A sufficient condition for the determinant's sign to be known (for
+/// [`HitCondition::new`] to be `Some`), from `m`, the largest `|x_i|` and
+/// `|y_i|` of the corners, and `w = max |p_z,i|`, their largest depth before
+/// scaling (or `|d_z| max |z_i|`, which differs from it by at most `2u`
+/// relative, well within the margin below):
+/// `|det| > u (64 m (m + 2w) + 256 u (m + w)^2)`. For a hit, `m` is about
+/// the triangle's size and `w` its distance, so the test asks for
+/// `det`, about the squared size, to exceed about `128 u` times size times
+/// distance: only slivers seen edge-on fail it.
 ///
-/// Why: `|p_z| <= |z| |d_z| (1 + 3u)`, and `|s_x|, |s_y| <= 1`, so each
+/// Why: `|s_x|, |s_y| <= 1`, so each
 /// shear product `|s_x p_z|` is at most about `w`, and each `|p_x|`,
 /// `|p_y|` at most about `m + w`. Then [`ErrorBounds`] gives `dx, dy <=
-/// u (2m + 5w)` and `de <= u (12 m^2 + 20 m w) + 8 u^2 (2m + 5w)^2`
-/// (to first order in the `(1 + k u)` factors), so `4 de` is below the
-/// threshold by a factor of at least 1.3, which covers those factors and
-/// the rounding of the threshold itself; then the lower bound of
+/// u (2m + 5w)` and `de <= u (12 m^2 + 20 m w) + 2 u^2 (2m + 5w)^2`
+/// (to first order in the `(1 + k u)` factors), so `4 de`, at most
+/// `u (48 m^2 + 80 m w) + 200 u^2 (m + w)^2`, is below the threshold by a
+/// factor of at least 1.28, which covers those factors and the few
+/// roundings of the threshold itself; then the lower bound of
 /// [`HitCondition`] is positive. NaN or infinite input fails it.
 #[inline(always)]
-fn well_conditioned<F: Scalar>(det: F, k: F) -> bool {
-    det.abs() > k * k * (F::from_u32(464) * F::UNIT_ROUNDOFF)
+fn well_conditioned<F: Scalar>(det: F, m: F, w: F) -> bool {
+    let splat = F::Lanes::splat;
+    well_conditioned_lanes(splat(det), splat(m), splat(w)) & 1 != 0
+}
+
+/// [`well_conditioned`] for the corners in the lanes of `x`, `y` and `pz`
+/// (the prepared test's form).
+///
+/// First [`roughly_conditioned`], lane by lane with no maximum across
+/// lanes, with each corner's `k_i = max(|x_i|, |y_i|, |p_z,i|)` (every
+/// lane passing is the test for the largest `k_i`, which is `max(m, w)`).
+/// It fails only for triangles small next to their distance, which take
+/// the exact threshold, out of line.
+#[inline(always)]
+fn corners_conditioned<W: Lanes>(x: W, y: W, pz: W, det: W::F) -> bool {
+    let k = x.abs().max(y.abs()).max(pz.abs());
+    roughly_conditioned(W::splat(det), k) == 0b111 || corners_conditioned_exactly(x, y, pz, det)
+}
+
+/// The cheaper sufficient test behind [`well_conditioned`], lane by lane:
+/// `|det| > 200 u k^2` for a `k` at least `m` and `w`. With `M = max(m,
+/// w) <= k`, the threshold is at most `u M^2 (192 + 1024 u)`, below
+/// `193 u M^2`, and rounding the product twice keeps it above that.
+#[inline(always)]
+fn roughly_conditioned<W: Lanes>(det: W, k: W) -> u32 {
+    let bound = W::splat(W::F::from_u32(200) * W::F::UNIT_ROUNDOFF);
+    k.mul(k).mul(bound).lt(det.abs())
+}
+
+/// The corners of `tri` in the frame of the ray with origin lanes
+/// `origin_lanes` and shear `shear`, a corner per lane: the sheared `x` and
+/// `y`, the unscaled depth `p_z`, and the edge functions.
+#[inline(always)]
+fn frame_lanes<V: Vector>(
+    origin_lanes: &[L<V>; 3],
+    shear: &Shear<S<V>>,
+    tri: &Triangle<V>,
+) -> (L<V>, L<V>, L<V>, L<V>) {
+    let corners = |k: Axis| L::<V>::new(tri.a.get(k), tri.b.get(k), tri.c.get(k));
+    let [sx, sy, _] = shear.lanes;
+    let [ox, oy, oz] = *origin_lanes;
+    // Translate, permute (the corners' coordinates are read in the ray's
+    // axis order), shear.
+    let px = corners(shear.kx).sub(ox);
+    let py = corners(shear.ky).sub(oy);
+    let pz = corners(shear.kz).sub(oz);
+    let x = px.add(sx.mul(pz));
+    let y = py.add(sy.mul(pz));
+    // Edge functions: lane i is x[i+1] y[i+2] - y[i+1] x[i+2].
+    let e = x.rot1().mul(y.rot2()).sub(y.rot1().mul(x.rot2()));
+    (x, y, pz, e)
+}
+
+/// The answer to a plain miss of [`watertight_lanes`] with some corner in
+/// front of the origin: a miss too where the determinant is well
+/// conditioned, else the definition's (`slow`). Out of line, and given
+/// only what the caller was given (it recomputes the frame, bit for bit),
+/// so that the common paths keep no more values alive for it.
+#[cold]
+#[inline(never)]
+fn plain_miss_lanes<V: Vector>(
+    ray: &PreparedRay<V>,
+    tri: &Triangle<V>,
+    t_max: S<V>,
+) -> Option<TriangleHit<S<V>>> {
+    let (x, y, pz, e) = frame_lanes(&ray.origin_lanes, &ray.shear, tri);
+    if corners_conditioned(x, y, pz, e.sum3()) {
+        None
+    } else {
+        prepared_slow(ray, tri, t_max)
+    }
+}
+
+/// The threshold of [`well_conditioned`] itself, for
+/// [`corners_conditioned`].
+#[cold]
+#[inline(never)]
+fn corners_conditioned_exactly<W: Lanes>(x: W, y: W, pz: W, det: W::F) -> bool {
+    let m = x.abs().max(y.abs()).max_all().x();
+    let w = pz.abs().max_all().x();
+    well_conditioned(det, m, w)
+}
+
+/// [`well_conditioned`] on lanes, its one formula: lane `i` tests `det[i]`
+/// against `m[i]` and `w[i]` (the per-call test's lanes are its three
+/// frames).
+#[inline(always)]
+fn well_conditioned_lanes<W: Lanes>(det: W, m: W, w: W) -> u32 {
+    let u = W::F::UNIT_ROUNDOFF;
+    let s = m.add(w);
+    let threshold = m
+        .mul(m.add(w.add(w)))
+        .mul(W::splat(W::F::from_u32(64) * u))
+        .add(s.mul(s).mul(W::splat(W::F::from_u32(256) * u * u)));
+    threshold.lt(det.abs())
 }
 
 /// `(max |z_i|, dz)` with `dz` the bound on `|z_i - Z_i|` of
@@ -1187,8 +1308,7 @@ pub fn ray_triangle_prepared<V: Vector>(
     if !(ray.is_valid() && t_max_ok(t_max)) {
         return None;
     }
-    let slow = || watertight_slow(ray.origin(), &ray.shear, tri, t_max);
-    watertight_lanes(slow, &ray.origin_lanes, &ray.shear, tri, t_max)
+    watertight_lanes(ray, tri, t_max)
 }
 
 /// The watertight test with exactly one hit per crossing of a mesh: each
@@ -1461,12 +1581,17 @@ mod tests {
     }
 
     /// The watertight test on lanes (what `ray_triangle` and
-    /// `ray_triangle_prepared` run) gives, bit for bit, the answer of the
-    /// one-component-at-a-time definition, `watertight_sheared`, in both
-    /// precisions and for any `t_max`.
+    /// `ray_triangle_prepared` run) and the triangle batch give, bit for
+    /// bit, the answer of the one-component-at-a-time definition,
+    /// `watertight_sheared`, in both precisions and for any `t_max`: on
+    /// random triangles, and on zero-area ones (T-junction fillers `a, m, b`
+    /// with `m` the midpoint, and `a, b, a + 2 (b - a)`, all exact on the
+    /// grid) with rays aimed at points of their segment, where the
+    /// definition can hit what the plain test rejects (it takes `t` from the
+    /// segment when the determinant's sign is unknown).
     #[test]
     fn lanes_are_the_definition() {
-        fn check<V: Vector>(state: &mut u64) -> usize {
+        fn check<V: Vector>(state: &mut u64, zero_area: bool) -> usize {
             let mut v = || {
                 V::new(
                     S::<V>::from_f64(coordinate(state)),
@@ -1474,8 +1599,22 @@ mod tests {
                     S::<V>::from_f64(coordinate(state)),
                 )
             };
-            let tri = Triangle::new(v(), v(), v());
-            let origin = v();
+            let (a, b, c, origin) = (v(), v(), v(), v());
+            let (filler, s) = (
+                (*state >> 20).is_multiple_of(2),
+                ((*state >> 24) % 9) as f64 / 8.0,
+            );
+            let (tri, on_segment) = if zero_area {
+                let (half, two) = (S::<V>::HALF, S::<V>::TWO);
+                let tri = if filler {
+                    Triangle::new(a, (a + b) * half, b)
+                } else {
+                    Triangle::new(a, b, a + (b - a) * two)
+                };
+                (tri, Some(a + (b - a) * S::<V>::from_f64(s)))
+            } else {
+                (Triangle::new(a, b, c), None)
+            };
             // Half of the rays aimed at an edge's midpoint or the centroid
             // (rounded), for hits and edge cases.
             let half = S::<V>::HALF;
@@ -1487,9 +1626,10 @@ mod tests {
                     S::<V>::from_f64(coordinate(state)),
                 )
             };
-            let dir = match (pick * 4.0) as i64 % 4 {
-                0 => (tri.a + tri.b) * half - origin,
-                1 => (tri.a + tri.b + tri.c) * (S::<V>::ONE / S::<V>::from_u32(3)) - origin,
+            let dir = match (on_segment, (pick * 4.0) as i64 % 4) {
+                (Some(p), _) => p - origin,
+                (None, 0) => (tri.a + tri.b) * half - origin,
+                (None, 1) => (tri.a + tri.b + tri.c) * (S::<V>::ONE / S::<V>::from_u32(3)) - origin,
                 _ => v(),
             };
             let ray = Ray::new(origin, dir);
@@ -1523,16 +1663,35 @@ mod tests {
                     expected,
                     "{ray:?} {tri:?}"
                 );
+                if let Some(batch) = crate::TriangleBatch::<V, 8>::from_slice(&[tri]) {
+                    let h = crate::ray_triangle_batch(&prepared, &batch, t_max);
+                    let lane = (h.mask & 1 != 0).then(|| {
+                        let side = if h.front & 1 != 0 {
+                            Side::Front
+                        } else {
+                            Side::Back
+                        };
+                        (h.t[0].to_f64().to_bits(), side)
+                    });
+                    assert_eq!(lane, expected.map(|e| (e.0, e.3)), "{ray:?} {tri:?}");
+                }
             }
             hits
         }
         let mut state = 0x1234_5678_9abc_def1_u64;
         let mut hits = 0;
         for _ in 0..100_000 {
-            hits += check::<Vec3>(&mut state) + check::<DVec3>(&mut state);
+            hits += check::<Vec3>(&mut state, false) + check::<DVec3>(&mut state, false);
         }
         // Enough hits that the comparison means something (about a third).
         assert!(hits > 100_000, "{hits}");
+        let mut hits = 0;
+        for _ in 0..50_000 {
+            hits += check::<Vec3>(&mut state, true) + check::<DVec3>(&mut state, true);
+        }
+        // Zero-area triangles are hit only where rounding leaves them a
+        // sliver; enough of them that the comparison means something.
+        assert!(hits > 1_000, "{hits}");
     }
 
     /// Moller-Trumbore as written with glam's `cross` and `dot`, one

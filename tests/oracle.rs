@@ -21,7 +21,7 @@
 mod support;
 
 /// The demo's mesh builders (one icosphere for both).
-#[path = "../examples/render/mesh.rs"]
+#[path = "support/mesh.rs"]
 #[allow(dead_code)]
 mod demo_mesh;
 

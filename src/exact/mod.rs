@@ -115,8 +115,8 @@
 //!
 //! Exact arithmetic is slow. Cases per second on one thread (an x86-64
 //! core shared with other work, generated cases from the crate's test
-//! generators; `cargo test --test exact_speed -- --ignored --nocapture` in
-//! the repository measures it):
+//! generators; `cargo run --release --features exact --example
+//! exact_speed` measures it):
 //!
 //! | kernel   | f32: decide | f32: [`judge`] | f64: decide | f64: [`judge`] |
 //! |----------|------------:|---------------:|------------:|---------------:|

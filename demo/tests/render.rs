@@ -1,7 +1,5 @@
-//! The `render` example, run small through its own code (the example's
-//! `mesh.rs` and `scene.rs` are included here by path): each check is
-//! decided from the scene's geometry by the test, not from the picture it
-//! is checking.
+//! The demo, run small through its own code: each check is decided from the
+//! scene's geometry by the test, not from the picture it is checking.
 //!
 //! The demo scene: the centre pixel sees the sphere placed there, a pixel
 //! aimed above everything sees the sky, and a ground point in a box's
@@ -10,21 +8,12 @@
 //! watertight kernel stops every one of them there, and Moller-Trumbore
 //! lets some through (or the scene would prove nothing).
 
-// The example's modules, compiled into this test; it does not use all of
-// them.
-#[allow(dead_code)]
-#[path = "../examples/render/mesh.rs"]
-mod mesh;
-#[allow(dead_code)]
-#[path = "../examples/render/scene.rs"]
-mod scene;
-
 use std::collections::{HashMap, HashSet};
 
-use mesh::{Kernel, Mesh, icosphere, signed_volume, torus};
 use rayhit::glam::Vec3;
 use rayhit::{Aabb, PinholeCamera, PreparedRay, Ray, Side, ray_aabb, ray_plane};
-use scene::{FAR, NEAR, Scene, Shape, demo_scene, leak_scene, render, sky};
+use rayhit_demo::mesh::{Kernel, Mesh, icosphere, signed_volume, torus};
+use rayhit_demo::scene::{self, FAR, NEAR, Scene, Shape, demo_scene, leak_scene, render, sky};
 
 const WIDTH: u32 = 64;
 const HEIGHT: u32 = 36;

@@ -1,11 +1,11 @@
 //! Holding your own ray/triangle function against `rayhit`.
 //!
-//! `cargo run --release --example compare`
+//! `cargo run --release -p rayhit-corpus --example compare`
 //!
 //! `their_ray_triangle` below stands for a renderer's own kernel: a textbook
 //! Moller-Trumbore with an absolute epsilon and back faces dropped, the way
 //! it is often written. It is compared twice:
-//! 1. against the reference corpus (`tests/data/triangle_f32.txt`), whose
+//! 1. against the reference corpus (`corpus/data/triangle_f32.txt`), whose
 //!    answers were decided in exact arithmetic: on the cases marked `clear`
 //!    (outside the rounding band) any disagreement on hit or miss is a bug
 //!    of theirs, and `t` is compared with the exact value;
@@ -16,7 +16,7 @@
 //! Replace `their_ray_triangle` with your own function to get the same table
 //! for it.
 //!
-//! `cargo run --release --example compare -- --dump FILE` also writes every
+//! `cargo run --release -p rayhit-corpus --example compare -- --dump FILE` also writes every
 //! case and the kernel's answer (`t`, `u`, `v`) in the checker's format (see
 //! `examples/check/main.rs`), for
 //! `cargo run --release --features exact --example check -- --front-only FILE`.
@@ -132,8 +132,8 @@ fn main() {
     // 1. The corpus: exact answers. Only front faces count, as the kernel
     // under test drops back faces (a renderer comparing a two-sided kernel
     // would drop this filter).
-    let path = concat!(env!("CARGO_MANIFEST_DIR"), "/tests/data/triangle_f32.txt");
-    let text = std::fs::read_to_string(path).expect("the corpus (tests/data)");
+    let path = concat!(env!("CARGO_MANIFEST_DIR"), "/data/triangle_f32.txt");
+    let text = std::fs::read_to_string(path).expect("the corpus (corpus/data)");
     let (mut clear, mut edge) = (Row::default(), Row::default());
     for line in text.lines().filter(|l| !l.starts_with('#')) {
         let parts: Vec<&str> = line.split(" | ").collect();
@@ -192,7 +192,7 @@ fn main() {
     );
     if let Some(path) = dump_path {
         let mut text = String::from(
-            "# Textbook Moller-Trumbore (examples/compare.rs): cases and its answers.\n",
+            "# Textbook Moller-Trumbore (corpus/examples/compare.rs): cases and its answers.\n",
         );
         for line in &dump {
             text.push_str(line);

@@ -1,7 +1,6 @@
 //! The scenes, the tracer and the render loops, shared by the `render`
-//! example and by `tests/render.rs` (which includes this file and
-//! `mesh.rs` by path), so that the test checks the very code the example
-//! runs.
+//! binary and by `tests/render.rs`, so that the test checks the very code
+//! the demo runs.
 //!
 //! Every geometric question goes to a kernel of `rayhit`: primary rays from
 //! `PinholeCamera`, the ground from `ray_plane`, the boxes from the prepared

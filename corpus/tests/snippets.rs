@@ -44,7 +44,7 @@ fn between(text: &str, start: &str, end: &str) -> String {
 }
 
 fn read(path: &str) -> String {
-    std::fs::read_to_string(format!("{}/{path}", env!("CARGO_MANIFEST_DIR"))).expect(path)
+    std::fs::read_to_string(format!("{}/../{path}", env!("CARGO_MANIFEST_DIR"))).expect(path)
 }
 
 /// The module docs without their `//! ` prefixes.
@@ -59,7 +59,7 @@ fn module_docs() -> String {
 
 #[test]
 fn snippet_copies_match() {
-    let me = read("tests/exact_snippets.rs");
+    let me = read("corpus/tests/snippets.rs");
     let prop = between(
         &me,
         "// snippet: proptest start\n",

@@ -1,7 +1,8 @@
 //! How fast `rayhit::exact` decides and judges cases (the figures quoted in
-//! its module docs): `cargo test --test exact_speed -- --ignored --nocapture`
-//! (the test profile is optimised). Single thread, CPU time of the loop.
+//! its module docs): `cargo run --release --features exact --example
+//! exact_speed`. Single thread, wall time of each loop on a quiet machine.
 
+#[path = "../tests/support/mod.rs"]
 mod support;
 
 use std::time::Instant;
@@ -73,9 +74,7 @@ fn measure<V: Vector>(precision: &str, n: usize) {
     let _ = V::Scalar::ONE;
 }
 
-#[test]
-#[ignore = "timing: cargo test --test exact_speed -- --ignored --nocapture"]
-fn exact_speed() {
+fn main() {
     measure::<Vec3>("f32", 24_000);
     measure::<DVec3>("f64", 24_000);
 }

@@ -1,9 +1,9 @@
 //! The demo: a small ray tracer whose geometry is all `rayhit`.
 //!
 //! ```sh
-//! cargo run --release --example render                 # writes render.png
-//! cargo run --release --example render -- --scene leak # watertight vs Moller-Trumbore
-//! cargo run --release --example render -- --help
+//! cargo run --release -p rayhit-demo                 # writes render.png
+//! cargo run --release -p rayhit-demo -- --scene leak # watertight vs Moller-Trumbore
+//! cargo run --release -p rayhit-demo -- --help
 //! ```
 //!
 //! The `demo` scene: primary rays from `PinholeCamera`, a ground plane,
@@ -20,9 +20,6 @@
 //! triangle reporting it are counted and drawn in red (watertight on the
 //! left, Moller-Trumbore on the right).
 
-mod mesh;
-mod scene;
-
 use std::error::Error;
 use std::fs::File;
 use std::io::BufWriter;
@@ -31,8 +28,8 @@ use std::time::Instant;
 
 use indicatif::{ProgressBar, ProgressStyle};
 
-use crate::mesh::Kernel;
-use crate::scene::{Shape, demo_scene, leak_scene, render, to_srgb8};
+use rayhit_demo::mesh::Kernel;
+use rayhit_demo::scene::{Shape, demo_scene, leak_scene, render, to_srgb8};
 
 const USAGE: &str = "\
 usage: render [--scene demo|leak] [--width N] [--height N] [--samples N] [--out FILE]

@@ -1,6 +1,6 @@
 //! The reference corpus: checked-in inputs (exact bit patterns, in hex) with
 //! the exactly decided answers, one file per kernel and precision under
-//! `tests/data/`. Every current answer is held to it:
+//! `corpus/data/`. Every current answer is held to it:
 //!
 //! - hit or miss must match the exact answer wherever the case is marked
 //!   `clear` (outside the documented rounding band); the slab test must hit
@@ -13,9 +13,10 @@
 //!   within `ray_triangle_error_bounds`; the plane's `t` within
 //!   `ray_plane_t_error`.
 //!
-//! Regenerate only for a deliberate change of guarantee (see README):
-//! `RAYHIT_REGENERATE_CORPUS=1 cargo test --release --test corpus`.
+//! Regenerate only for a deliberate change of guarantee (see CONTRIBUTING.md):
+//! `RAYHIT_REGENERATE_CORPUS=1 cargo test --release -p rayhit-corpus --test corpus`.
 
+#[path = "../../tests/support/mod.rs"]
 mod support;
 
 use std::fmt::Write as _;
@@ -43,7 +44,7 @@ fn regenerate() -> bool {
 
 fn path(kernel: &str, precision: &str) -> PathBuf {
     PathBuf::from(env!("CARGO_MANIFEST_DIR"))
-        .join("tests/data")
+        .join("data")
         .join(format!("{kernel}_{precision}.txt"))
 }
 
@@ -124,7 +125,7 @@ fn write(kernel: &str, precision: &str, header: &str, lines: &[String]) {
     .unwrap();
     writeln!(
         text,
-        "# guarantee: RAYHIT_REGENERATE_CORPUS=1 cargo test --release --test corpus"
+        "# guarantee: RAYHIT_REGENERATE_CORPUS=1 cargo test --release -p rayhit-corpus --test corpus"
     )
     .unwrap();
     writeln!(
@@ -144,7 +145,7 @@ fn write(kernel: &str, precision: &str, header: &str, lines: &[String]) {
 fn read(kernel: &str, precision: &str) -> Vec<String> {
     let p = path(kernel, precision);
     let text = std::fs::read_to_string(&p).unwrap_or_else(|e| {
-        panic!("{}: {e}; generate it with RAYHIT_REGENERATE_CORPUS=1 cargo test --release --test corpus", p.display())
+        panic!("{}: {e}; generate it with RAYHIT_REGENERATE_CORPUS=1 cargo test --release -p rayhit-corpus --test corpus", p.display())
     });
     text.lines()
         .filter(|l| !l.starts_with('#') && !l.trim().is_empty())
@@ -541,12 +542,12 @@ fn hex_round_trips() {
 }
 
 /// The corpus embedded in `rayhit::exact` (`exact::corpus()`): about a
-/// thousand cases, each a line of `tests/data` as it is, judged right with
+/// thousand cases, each a line of `corpus/data` as it is, judged right with
 /// every value within half an ulp of the exact one and the same band.
 #[test]
 fn embedded_corpus_agrees_with_tests_data() {
-    let dir = concat!(env!("CARGO_MANIFEST_DIR"), "/tests/data");
-    let embedded_dir = concat!(env!("CARGO_MANIFEST_DIR"), "/src/exact/data");
+    let dir = concat!(env!("CARGO_MANIFEST_DIR"), "/data");
+    let embedded_dir = concat!(env!("CARGO_MANIFEST_DIR"), "/../src/exact/data");
     let mut lines = 0;
     for name in [
         "box_f32",
@@ -560,7 +561,7 @@ fn embedded_corpus_agrees_with_tests_data() {
         let all: std::collections::HashSet<&str> = full.lines().collect();
         let small = std::fs::read_to_string(format!("{embedded_dir}/{name}.txt")).unwrap();
         for l in small.lines().filter(|l| !l.starts_with('#')) {
-            assert!(all.contains(l), "{name}: not in tests/data: {l}");
+            assert!(all.contains(l), "{name}: not in corpus/data: {l}");
             lines += 1;
         }
     }
