@@ -1474,6 +1474,30 @@ pub fn ray_triangle_error_bounds<V: Vector>(
     }
 }
 
+/// For the exact oracle's band: the watertight test's bound on `|e_i - E_i|`
+/// (its computed edge functions against the exact ones, `E_i = s_i / d_z`
+/// with `s_i` the exact Plucker product of the ray and the edge opposite
+/// corner `i`, up to one sign shared by the three), and `|d_z|`. Where two
+/// exact products have opposite signs and each exceeds `|d_z|` times the
+/// bound, so do the computed edge functions, and every watertight test
+/// misses. The bound is infinite or NaN where the frame overflows.
+///
+/// `ErrorBounds` is relative; an underflowing product is off by up to one
+/// subnormal `tiny` instead. The products that feed an edge function are
+/// `s p_z` (scaled by the other coordinate, at most `m`), then `x y` (two of
+/// them), so `4 tiny (1 + m + max |p_z|)` covers them, with `m` the largest
+/// sheared coordinate.
+#[cfg(feature = "exact")]
+pub(crate) fn edge_function_error<V: Vector>(ray: &Ray<V>, tri: &Triangle<V>) -> (S<V>, S<V>) {
+    let shear = Shear::new(&ray.dir);
+    let f = Frame::new(ray.origin, tri, &shear);
+    let z = [f.pz[0] * shear.sz, f.pz[1] * shear.sz, f.pz[2] * shear.sz];
+    let m = max2(max3(&f.x), max3(&f.y));
+    let underflow = S::<V>::from_u32(4) * S::<V>::TINY * (S::<V>::ONE + m + max3(&f.pz));
+    let e = ErrorBounds::new(&f, &z, &shear).e + underflow;
+    (e, shear.dz.abs())
+}
+
 /// Moller-Trumbore ray/triangle test: the fast path.
 ///
 /// Moller and Trumbore, "Fast, Minimum Storage Ray/Triangle Intersection",

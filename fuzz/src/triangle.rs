@@ -363,9 +363,13 @@ fn agreement<V: Vector>(
         .as_ref()
         .map_or_else(oracle::no_extra, |(_, b)| b.clone());
     // Parallel (or zero-area) in exact arithmetic, or inside the band: no
-    // claim (a hit on a parallel line is checked in check_hit).
-    let Some(expect) = oracle::triangle_decided(ray, tri, exact, t_max, &extra) else {
-        return;
+    // claim (a hit on a parallel line is checked in check_hit). A line that
+    // crosses the plane outside the triangle by more than the tests'
+    // rounding is a miss for both.
+    let expect = match oracle::triangle_decided(ray, tri, exact, t_max, &extra) {
+        Some(expect) => expect,
+        None if oracle::surely_outside(ray, tri, exact, &extra) => false,
+        None => return,
     };
     let f = |x: &Option<R>| x.as_ref().map(crate::exact::f);
     let (ue, ve) = exact.uv.clone().unzip();

@@ -529,17 +529,55 @@ pub fn box_clear<V: Vector>(ray: &Ray<V>, b: &Aabb<V>, t_max: V::Scalar) -> bool
 }
 
 /// The triangle case is decided outside the watertight test's rounding band
-/// widened by Moller-Trumbore's ([`triangle_decided`] with [`mt_bounds`]);
-/// a line parallel to the plane with no crossing is clear. Valid inputs only.
+/// widened by Moller-Trumbore's: [`triangle_decided`] with [`mt_bounds`], or
+/// a line that crosses the plane outside the triangle by more than both
+/// tests' rounding ([`surely_outside`]). A line parallel to the plane, or a
+/// triangle of zero area, is never clear: a determinant that is zero in exact
+/// arithmetic can round to either sign, and Moller-Trumbore's `u`, `v` and
+/// `t` are then unbounded. Valid inputs only.
 pub fn triangle_clear<V: Vector>(ray: &Ray<V>, tri: &Triangle<V>, t_max: V::Scalar) -> bool {
     let ex = triangle(ray, tri);
-    match (&ex.t, &ex.uv) {
-        (Some(_), Some((ue, ve))) => {
-            let mte = mt_bounds(ray, tri, ue, ve);
-            triangle_decided(ray, tri, &ex, t_max, &mte).is_some()
-        }
-        _ => !ex.line_hits(),
+    let Some((ue, ve)) = &ex.uv else {
+        return false;
+    };
+    let mte = mt_bounds(ray, tri, ue, ve);
+    triangle_decided(ray, tri, &ex, t_max, &mte).is_some() || surely_outside(ray, tri, &ex, &mte)
+}
+
+/// Every watertight test and Moller-Trumbore miss: the line crosses the
+/// plane outside the triangle by more than either's rounding.
+///
+/// - Watertight: two exact edge products `s_i`, `s_j` of opposite signs,
+///   each larger than `|d_z|` times the bound on the computed edge
+///   functions' error (which are `s_i / d_z` exactly, up to one shared
+///   sign): the computed ones then have opposite strict signs too, and the
+///   test rejects on the signs alone, whatever `t`.
+/// - Moller-Trumbore (bounds `eu`, `ev` from [`mt_bounds`]): `u < -eu` or
+///   `v < -ev` makes the computed one negative; `1 - u - v < -(eu + ev) - 2
+///   unit` makes the computed sum exceed `1 + 2 unit`, so its rounding still
+///   exceeds 1.
+pub fn surely_outside<V: Vector>(
+    ray: &Ray<V>,
+    tri: &Triangle<V>,
+    exact: &ExactTriangle,
+    mt: &(R, R, R),
+) -> bool {
+    let Some((ue, ve)) = &exact.uv else {
+        return false;
+    };
+    let (eu, ev) = (&mt.0, &mt.1);
+    let w = int(1) - ue - ve;
+    let slack = int(2) * r(V::Scalar::UNIT_ROUNDOFF);
+    let mt_outside = ue < &-eu.clone() || ve < &-ev.clone() || w < -(eu + ev + slack);
+    let (de, dz) = crate::triangle::edge_function_error(ray, tri);
+    if !(mt_outside && de.is_finite() && dz.is_finite()) {
+        return false;
     }
+    let margin = r(de) * r(dz);
+    let (o, d) = (rv(ray.origin), rv(ray.dir));
+    let p = [rv(tri.a), rv(tri.b), rv(tri.c)].map(|c| sub(&c, &o));
+    let s = [(0, 1), (1, 2), (2, 0)].map(|(i, j)| dot(&cross(&p[i], &p[j]), &d));
+    s.iter().any(|x| x > &margin) && s.iter().any(|x| x < &-margin.clone())
 }
 
 /// The plane case is outside the kernel's rounding band: not within rounding
