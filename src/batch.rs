@@ -692,23 +692,25 @@ fn triangle_batch_body<W: Lanes8<F = S<V>>, V: Vector, const N: usize>(
         let (x0, y0, pz0) = sheared::<W, N>(&batch.p[0], c, k, o, sx, sy);
         let (x1, y1, pz1) = sheared::<W, N>(&batch.p[1], c, k, o, sx, sy);
         let (x2, y2, pz2) = sheared::<W, N>(&batch.p[2], c, k, o, sx, sy);
-        // Edge functions; a zero sends the lane to the scalar code, which
-        // recomputes it with its sign exact.
+        // Edge functions.
         let e0 = x1.mul(y2).sub(y1.mul(x2));
         let e1 = x2.mul(y0).sub(y2.mul(x0));
         let e2 = x0.mul(y1).sub(y0.mul(x1));
-        let zero_edge = W::or(W::or(e0.eq(lo), e1.eq(lo)), e2.eq(lo));
         // Inside test of `EdgeRule::Closed`: not both signs among the edge
         // functions. For non-NaN values "some e_i < 0" is "min e_i < 0",
         // which is cheaper; a NaN edge function makes `det` NaN and the
         // range test below fails, as in the scalar test, whatever this
         // says.
-        let outside = W::and(e0.min(e1.min(e2)).lt(lo), lo.lt(e0.max(e1.max(e2))));
+        let (e_min, e_max) = (e0.min(e1.min(e2)), e0.max(e1.max(e2)));
+        let outside = W::and(e_min.lt(lo), lo.lt(e_max));
+        // A zero edge function sends a lane inside to the scalar code,
+        // which recomputes it with its sign exact (a lane outside stays
+        // outside whatever that sign). Inside, the edge functions share a
+        // sign, so one is zero exactly when the smallest or the largest is.
+        let zero_edge = W::or(e_min.eq(lo), e_max.eq(lo));
         if W::bits(W::and_not(all, outside)) == 0 {
             // Every lane outside (most rays miss most triangles of a leaf):
-            // nothing more to compute for this chunk. (A lane outside
-            // stays outside whatever the exact sign of a zero edge
-            // function.)
+            // nothing more to compute for this chunk.
             continue;
         }
         let det = e0.add(e1).add(e2);
@@ -767,14 +769,33 @@ fn triangle_batch_body<W: Lanes8<F = S<V>>, V: Vector, const N: usize>(
     // A hit is from the front when the sign of its determinant differs
     // from that of the ray's main component (see `watertight_sheared`).
     out.front = if ray_front { !front & hit } else { front & hit };
-    let mut slow = slow & used;
+    let slow = slow & used;
+    if slow != 0 {
+        slow_lanes(ray, batch, t_max, slow, &mut out);
+    }
+    out
+}
+
+/// The lanes in `slow` of [`triangle_batch_body`]'s answer, from the scalar
+/// code. Out of line (they are rare), so that the vector code keeps its
+/// registers.
+#[cold]
+#[inline(never)]
+fn slow_lanes<V: Vector, const N: usize>(
+    ray: &PreparedRay<V>,
+    batch: &TriangleBatch<V, N>,
+    t_max: S<V>,
+    mut slow: u32,
+    out: &mut TriangleBatchHits<S<V>, N>,
+) {
     while slow != 0 {
         let l = slow.trailing_zeros() as usize;
         slow &= slow - 1;
         let tri = batch.lane(l);
         // (A lane can arrive here with the plain answer already written.)
-        (out.t[l], out.u[l], out.v[l]) = (inf, zero, zero);
-        if let Some(h) = watertight_sheared(ray.origin(), &sh, &tri, t_max, EdgeRule::Closed) {
+        (out.t[l], out.u[l], out.v[l]) = (S::<V>::INFINITY, S::<V>::ZERO, S::<V>::ZERO);
+        if let Some(h) = watertight_sheared(ray.origin(), &ray.shear, &tri, t_max, EdgeRule::Closed)
+        {
             out.mask |= 1 << l;
             if h.side == Side::Front {
                 out.front |= 1 << l;
@@ -782,7 +803,6 @@ fn triangle_batch_body<W: Lanes8<F = S<V>>, V: Vector, const N: usize>(
             (out.t[l], out.u[l], out.v[l]) = (h.t, h.u, h.v);
         }
     }
-    out
 }
 
 /// Work that [`with_simd`] runs compiled for the CPU's widest SIMD: a BVH

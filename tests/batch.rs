@@ -267,6 +267,60 @@ proptest! {
     }
 }
 
+/// Rays that start among their triangles' corners' depths: on or within a
+/// few ulps of the plane, or a little in front of or behind it, so that
+/// some corners are behind the origin. Hits there skip the first
+/// sufficient test for `t > 0` (every corner in front); the batch decides
+/// most of them with the second (the scaled distance above its error
+/// bound), and crossings within rounding of `t = 0` go to the scalar code.
+/// Every lane must be the scalar test's answer bit for bit, and both
+/// answers must be common (so that the path is exercised).
+#[test]
+fn rays_starting_among_the_corners_depths() {
+    fn run<V: Vector>(rng: &mut support::Pcg32) -> (usize, usize) {
+        let mut coord = || S::<V>::from_f64(f64::from(rng.below(1 << 16)) / 8192.0 - 4.0);
+        let (mut hits, mut misses) = (0, 0);
+        for _ in 0..3000 {
+            let mut v = || V::new(coord(), coord(), coord());
+            let tri = Triangle::new(v(), v(), v());
+            let dir = v();
+            let (u, w) = (S::<V>::from_f64(0.3), S::<V>::from_f64(0.25));
+            let on_plane = tri.a + (tri.b - tri.a) * u + (tri.c - tri.a) * w;
+            let lanes: Vec<Option<Triangle<V>>> = (0..16)
+                .map(|k: i32| {
+                    // Lane k moves the triangle along the ray by 2^-k of
+                    // the direction (down to a few ulps in f32), or back by
+                    // a little for the last lanes.
+                    let s = if k < 12 {
+                        2f64.powi(-k)
+                    } else {
+                        -(2f64.powi(10 - k))
+                    };
+                    let s = S::<V>::from_f64(s);
+                    let d = dir * s;
+                    Some(Triangle::new(tri.a + d, tri.b + d, tri.c + d))
+                })
+                .collect();
+            let ray = Ray::new(on_plane, dir);
+            check_all_triangle_sizes(&ray, &lanes, S::<V>::INFINITY).unwrap();
+            for t in lanes.iter().flatten() {
+                let depths = [t.a, t.b, t.c].map(|p| (p - ray.origin).dot(dir).to_f64());
+                if depths.iter().any(|&z| z < 0.0) && depths.iter().any(|&z| z > 0.0) {
+                    match ray_triangle(&ray, t, S::<V>::INFINITY) {
+                        Some(_) => hits += 1,
+                        None => misses += 1,
+                    }
+                }
+            }
+        }
+        (hits, misses)
+    }
+    let mut rng = support::Pcg32::new(0x5eed_0001);
+    for (hits, misses) in [run::<Vec3>(&mut rng), run::<DVec3>(&mut rng)] {
+        assert!(hits > 2000 && misses > 2000, "{hits} hits, {misses} misses");
+    }
+}
+
 /// Rays through the shared corners of a grid mesh along the axes: every
 /// edge function through the corner is exactly zero, so these lanes take
 /// the exact-sign path; and rays in the plane of a box face.
