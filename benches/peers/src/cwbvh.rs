@@ -424,12 +424,13 @@ impl Scene {
                 // obvhs's hit mask: each hit child's bits (one for an inner
                 // node, the unary primitive count for a leaf) at its index.
                 let (child_bits8, bit_index8) = node.get_child_and_index_bits(state.oct_inv4);
+                // (Over all eight children, as obvhs does, rather than over
+                // the hit ones: no branch on how many there are.)
                 let mut mask = 0u32;
-                let mut h = hits;
-                while h != 0 {
-                    let c = h.trailing_zeros() as usize;
-                    h &= h - 1;
-                    mask |= extract_byte64(child_bits8, c) << extract_byte64(bit_index8, c);
+                for c in 0..8 {
+                    if hits & (1 << c) != 0 {
+                        mask |= extract_byte64(child_bits8, c) << extract_byte64(bit_index8, c);
+                    }
                 }
                 mask
             },
