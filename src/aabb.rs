@@ -45,6 +45,86 @@ impl<V: Vector> Aabb<V> {
     }
 }
 
+/// A box known to be valid ([`Aabb::is_valid`]): checked once, when it is
+/// made, so that the slab tests ([`ray_aabb_prepared`], [`ray_aabb`]) need
+/// not check it on every call. Store a BVH's node boxes this way.
+///
+/// Its corners can be read, not changed, so the check holds for as long
+/// as the value lives. The tests give the same answers, bit for bit, as for
+/// the [`Aabb`] it holds.
+///
+/// ```
+/// use rayhit::{Aabb, PreparedRay, Ray, ValidAabb, ray_aabb_prepared, glam::Vec3};
+/// let b = Aabb::new(Vec3::ZERO, Vec3::ONE);
+/// let node = ValidAabb::new(b).unwrap();
+/// assert!(ValidAabb::new(Aabb::new(Vec3::ONE, Vec3::ZERO)).is_none());
+/// let ray = PreparedRay::new(&Ray::new(Vec3::new(-1.0, 0.5, 0.5), Vec3::X));
+/// let (enter, exit) = ray_aabb_prepared(&ray, &node, f32::INFINITY).unwrap();
+/// // The exit is widened by its rounding bound (see `ray_aabb`).
+/// assert!(enter == 1.0 && exit >= 2.0 && exit < 2.0001);
+/// assert_eq!(ray_aabb_prepared(&ray, &b, f32::INFINITY), Some((enter, exit)));
+/// ```
+#[derive(Clone, Copy, Debug, PartialEq)]
+#[repr(transparent)]
+pub struct ValidAabb<V = Vec3>(Aabb<V>);
+
+impl<V: Vector> ValidAabb<V> {
+    /// `aabb`, if it is valid ([`Aabb::is_valid`]); `None` otherwise.
+    #[inline]
+    #[must_use]
+    pub fn new(aabb: Aabb<V>) -> Option<Self> {
+        aabb.is_valid().then_some(Self(aabb))
+    }
+
+    /// The box.
+    #[inline]
+    #[must_use]
+    pub const fn aabb(&self) -> &Aabb<V> {
+        &self.0
+    }
+}
+
+impl<V> From<ValidAabb<V>> for Aabb<V> {
+    #[inline]
+    fn from(b: ValidAabb<V>) -> Self {
+        b.0
+    }
+}
+
+mod sealed {
+    pub trait Sealed {}
+}
+
+/// The boxes the slab tests take: an [`Aabb`], whose validity they check on
+/// every call (an invalid box is hit by nothing), or a [`ValidAabb`],
+/// checked once when it was made. Sealed.
+pub trait SlabBox<V: Vector>: sealed::Sealed {
+    /// Whether the tests must check the box's validity.
+    #[doc(hidden)]
+    const CHECK: bool;
+    /// The box.
+    fn corners(&self) -> &Aabb<V>;
+}
+
+impl<V> sealed::Sealed for Aabb<V> {}
+impl<V> sealed::Sealed for ValidAabb<V> {}
+
+impl<V: Vector> SlabBox<V> for Aabb<V> {
+    const CHECK: bool = true;
+    #[inline(always)]
+    fn corners(&self) -> &Aabb<V> {
+        self
+    }
+}
+
+impl<V: Vector> SlabBox<V> for ValidAabb<V> {
+    const CHECK: bool = false;
+    #[inline(always)]
+    fn corners(&self) -> &Aabb<V> {
+        &self.0
+    }
+}
+
 /// `-MAX <= min[k] <= max[k] <= MAX` on every axis: finite and not
 /// inverted (a NaN fails), as three packed comparisons.
 #[inline(always)]
@@ -296,7 +376,7 @@ pub(crate) fn exit_slack<F: Scalar>() -> F {
 #[must_use]
 pub fn ray_aabb_prepared<V: Vector>(
     ray: &PreparedRay<V>,
-    aabb: &Aabb<V>,
+    aabb: &impl SlabBox<V>,
     t_max: S<V>,
 ) -> Option<(S<V>, S<V>)> {
     slab_test(&ray.slab, aabb, t_max)
@@ -315,7 +395,12 @@ pub fn ray_aabb_prepared<V: Vector>(
 /// `enter <= limit && enter <= MAX` as `enter <= min(limit, MAX)`, and the
 /// box's validity, are one mask.
 #[inline(always)]
-fn slab_test<V: Vector>(ray: &SlabRay<V>, aabb: &Aabb<V>, t_max: S<V>) -> Option<(S<V>, S<V>)> {
+fn slab_test<V: Vector, B: SlabBox<V>>(
+    ray: &SlabRay<V>,
+    aabb: &B,
+    t_max: S<V>,
+) -> Option<(S<V>, S<V>)> {
+    let aabb = aabb.corners();
     let splat = L::<V>::splat;
     let lanes = |v: V| L::<V>::new(v.x(), v.y(), v.z());
     let (min, max) = (lanes(aabb.min), lanes(aabb.max));
@@ -345,7 +430,8 @@ fn slab_test<V: Vector>(ray: &SlabRay<V>, aabb: &Aabb<V>, t_max: S<V>) -> Option
     // so widening each exit and then taking the smallest is widening the
     // smallest: the same bits as the definition.)
     let hit = enter.le(capped) & enter.le(capped.rot1()) & enter.le(capped.rot2());
-    let valid = Lanes::ordered(splat(-big), min, max, splat(big));
+    // (A `ValidAabb` was checked when it was made.)
+    let valid = !B::CHECK || Lanes::ordered(splat(-big), min, max, splat(big));
     if !(valid & (hit == 0b111) & t_max_ok(t_max)) {
         return None;
     }
@@ -406,7 +492,11 @@ fn slab_test<V: Vector>(ray: &SlabRay<V>, aabb: &Aabb<V>, t_max: S<V>) -> Option
 /// ```
 #[inline]
 #[must_use]
-pub fn ray_aabb<V: Vector>(ray: &Ray<V>, aabb: &Aabb<V>, t_max: S<V>) -> Option<(S<V>, S<V>)> {
+pub fn ray_aabb<V: Vector>(
+    ray: &Ray<V>,
+    aabb: &impl SlabBox<V>,
+    t_max: S<V>,
+) -> Option<(S<V>, S<V>)> {
     slab_test(&SlabRay::new(ray), aabb, t_max)
 }
 
@@ -800,6 +890,32 @@ pub(crate) mod definition {
 mod tests {
     use super::*;
     use glam::DVec3;
+
+    /// `ValidAabb::new` takes exactly the valid boxes: flat ones in, and
+    /// NaN, infinite and inverted ones (on any axis) out; the slab test on
+    /// it misses nothing the checked test hits, here for a flat box.
+    #[test]
+    fn valid_aabb_takes_exactly_the_valid_boxes() {
+        let flat = Aabb::new(Vec3::ZERO, Vec3::new(1.0, 0.0, 1.0));
+        let valid = ValidAabb::new(flat).unwrap();
+        assert_eq!(valid.aabb(), &flat);
+        let ray = PreparedRay::new(&Ray::new(Vec3::new(0.5, -1.0, 0.5), Vec3::Y));
+        let hit = ray_aabb_prepared(&ray, &valid, f32::INFINITY);
+        assert!(hit.is_some());
+        assert_eq!(hit, ray_aabb_prepared(&ray, &flat, f32::INFINITY));
+        for axis in 0..3 {
+            for bad in [f32::NAN, f32::INFINITY, f32::NEG_INFINITY, 2.0] {
+                let mut min = Vec3::ZERO;
+                min[axis] = bad;
+                let b = Aabb::new(min, Vec3::ONE);
+                assert!(!b.is_valid() && ValidAabb::new(b).is_none(), "{b:?}");
+                let mut max = Vec3::ONE;
+                max[axis] = if bad == 2.0 { -1.0 } else { bad };
+                let b = Aabb::new(Vec3::ZERO, max);
+                assert!(!b.is_valid() && ValidAabb::new(b).is_none(), "{b:?}");
+            }
+        }
+    }
 
     /// A coordinate on a coarse grid (so that face planes, zero direction
     /// components and origins on slab planes are common), or one time in

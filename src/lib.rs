@@ -50,7 +50,7 @@
 //! (`f64`). Every vector type of a precision gives the same answers, bit for
 //! bit (the kernels do the same arithmetic on each). The `f64` types also
 //! have glam-style names:
-//! [`DRay`], [`DAabb`], [`DPreparedRay`], [`DAabbBatch`],
+//! [`DRay`], [`DAabb`], [`DValidAabb`], [`DPreparedRay`], [`DAabbBatch`],
 //! [`DTriangleBatch`], [`DPlane`], [`DTriangle`], [`DTriangleHit`],
 //! [`DTriangleHitError`], [`DPinholeCamera`], [`DSurfacePoint`]. Functions
 //! need no second name: `ray_triangle(&ray, &tri, f64::INFINITY)` takes a
@@ -118,7 +118,7 @@
 //!
 //! | BVH shape | node test | leaves |
 //! | --- | --- | --- |
-//! | binary, boxes as `Aabb` | [`ray_aabb_prepared`] | [`ray_triangle_prepared`] |
+//! | binary, boxes as [`ValidAabb`] (checked once, when built) | [`ray_aabb_prepared`] | [`ray_triangle_prepared`] |
 //! | wide (4 to 16 children), boxes stored as an [`AabbBatch`] | [`ray_aabb_batch`] | [`ray_triangle_batch`] or [`ray_triangle_prepared`] |
 //! | compressed wide (children quantized to bytes, Ylitie et al. 2017) | [`ray_quantized_children`] on the node as stored | the same |
 //!
@@ -130,12 +130,14 @@
 //!
 //! ```
 //! use rayhit::glam::Vec3;
-//! use rayhit::{Aabb, PreparedRay, Ray, Triangle, ray_aabb_prepared, ray_triangle_prepared};
+//! use rayhit::{
+//!     Aabb, PreparedRay, Ray, Triangle, ValidAabb, ray_aabb_prepared, ray_triangle_prepared,
+//! };
 //!
 //! /// A binary BVH node: a box and either two children or a range of triangles.
 //! enum Node {
-//!     Inner { bounds: Aabb, children: [usize; 2] },
-//!     Leaf { bounds: Aabb, triangles: std::ops::Range<usize> },
+//!     Inner { bounds: ValidAabb, children: [usize; 2] },
+//!     Leaf { bounds: ValidAabb, triangles: std::ops::Range<usize> },
 //! }
 //!
 //! /// The nearest hit along `ray`: `(t, triangle index)`.
@@ -170,9 +172,10 @@
 //!     Triangle::new(Vec3::ZERO, Vec3::X, Vec3::Y),
 //!     Triangle::new(Vec3::X, Vec3::new(1.0, 1.0, 0.0), Vec3::Y),
 //! ];
-//! let bounds = |t: &Triangle| Aabb::new(t.a.min(t.b).min(t.c), t.a.max(t.b).max(t.c));
+//! let valid = |b: Aabb| ValidAabb::new(b).expect("finite, not inverted");
+//! let bounds = |t: &Triangle| valid(Aabb::new(t.a.min(t.b).min(t.c), t.a.max(t.b).max(t.c)));
 //! let nodes = [
-//!     Node::Inner { bounds: Aabb::new(Vec3::ZERO, Vec3::new(1.0, 1.0, 0.0)), children: [1, 2] },
+//!     Node::Inner { bounds: valid(Aabb::new(Vec3::ZERO, Vec3::new(1.0, 1.0, 0.0))), children: [1, 2] },
 //!     Node::Leaf { bounds: bounds(&tris[0]), triangles: 0..1 },
 //!     Node::Leaf { bounds: bounds(&tris[1]), triangles: 1..2 },
 //! ];
@@ -333,8 +336,8 @@ pub mod strategies;
 mod triangle;
 
 pub use aabb::{
-    Aabb, BoxFace, BoxHit, PreparedRay, aabb_entry_face, ray_aabb, ray_aabb_face, ray_aabb_naive,
-    ray_aabb_prepared, ray_aabb_prepared_face,
+    Aabb, BoxFace, BoxHit, PreparedRay, SlabBox, ValidAabb, aabb_entry_face, ray_aabb,
+    ray_aabb_face, ray_aabb_naive, ray_aabb_prepared, ray_aabb_prepared_face,
 };
 pub use batch::{
     AabbBatch, AabbBatchHits, Simd, SimdWork, TargetSimd, TriangleBatch, TriangleBatchHits,
@@ -355,6 +358,8 @@ mod f64_names {
     pub type DRay = crate::Ray<DVec3>;
     /// [`Aabb`](crate::Aabb) in `f64`.
     pub type DAabb = crate::Aabb<DVec3>;
+    /// [`ValidAabb`](crate::ValidAabb) in `f64`.
+    pub type DValidAabb = crate::ValidAabb<DVec3>;
     /// [`PreparedRay`](crate::PreparedRay) in `f64`.
     pub type DPreparedRay = crate::PreparedRay<DVec3>;
     /// [`Plane`](crate::Plane) in `f64`.
@@ -399,14 +404,14 @@ pub mod prelude {
     pub use crate::{
         Aabb, AabbBatch, AabbBatchHits, BoxFace, BoxHit, CameraError, DAabb, DAabbBatch,
         DPinholeCamera, DPlane, DPreparedRay, DRay, DSurfacePoint, DTriangle, DTriangleBatch,
-        DTriangleHit, DTriangleHitError, PinholeCamera, Plane, PreparedRay, QuantizedChildren, Ray,
-        Scalar, Side, Simd, SimdWork, SurfacePoint, TargetSimd, Triangle, TriangleBatch,
-        TriangleBatchHits, TriangleHit, TriangleHitError, Vector, aabb_entry_face,
-        offset_ray_origin, quantize_bounds, ray_aabb, ray_aabb_batch, ray_aabb_face,
-        ray_aabb_naive, ray_aabb_prepared, ray_aabb_prepared_face, ray_plane, ray_plane_hit_point,
-        ray_plane_t_error, ray_quantized_children, ray_triangle, ray_triangle_batch,
-        ray_triangle_error_bounds, ray_triangle_mt, ray_triangle_one_hit, ray_triangle_prepared,
-        triangle_hit_point, with_simd,
+        DTriangleHit, DTriangleHitError, DValidAabb, PinholeCamera, Plane, PreparedRay,
+        QuantizedChildren, Ray, Scalar, Side, Simd, SimdWork, SlabBox, SurfacePoint, TargetSimd,
+        Triangle, TriangleBatch, TriangleBatchHits, TriangleHit, TriangleHitError, ValidAabb,
+        Vector, aabb_entry_face, offset_ray_origin, quantize_bounds, ray_aabb, ray_aabb_batch,
+        ray_aabb_face, ray_aabb_naive, ray_aabb_prepared, ray_aabb_prepared_face, ray_plane,
+        ray_plane_hit_point, ray_plane_t_error, ray_quantized_children, ray_triangle,
+        ray_triangle_batch, ray_triangle_error_bounds, ray_triangle_mt, ray_triangle_one_hit,
+        ray_triangle_prepared, triangle_hit_point, with_simd,
     };
     #[cfg(all(feature = "std", target_arch = "x86_64", not(target_feature = "avx2")))]
     pub use crate::{Avx2, Avx512};

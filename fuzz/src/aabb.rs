@@ -6,8 +6,8 @@
 
 use arbitrary::{Arbitrary, Unstructured};
 use rayhit::{
-    Aabb, BoxFace, PreparedRay, Ray, Scalar, Vector, ray_aabb, ray_aabb_face, ray_aabb_naive,
-    ray_aabb_prepared, ray_aabb_prepared_face,
+    Aabb, BoxFace, PreparedRay, Ray, Scalar, ValidAabb, Vector, ray_aabb, ray_aabb_face,
+    ray_aabb_naive, ray_aabb_prepared, ray_aabb_prepared_face,
 };
 
 use crate::exact::{R, abs, gamma, int, r, rv};
@@ -23,8 +23,8 @@ use crate::{Check, Mode, S, far_from_underflow, inputs, oracle, raw};
 /// false miss against the exact oracle, `exit` at least the exact exit, and
 /// a false hit only inside the documented band (exact entry at most the
 /// exact exit times `1 + 16u`, plus two subnormals). The entry face
-/// (`ray_aabb_face`, `ray_aabb_prepared_face`): the same interval bit for
-/// bit, and, where the precondition holds, exactly the documented face (the
+/// (`ray_aabb_face`, `ray_aabb_prepared_face`) and the same box as a
+/// `ValidAabb` where it is valid: the same interval bit for bit, and, where the precondition holds, exactly the documented face (the
 /// largest positive entry-plane distance, the lowest axis on a tie, none
 /// when no entry plane is ahead). Structured inputs also:
 /// `enter` within `gamma(3)` of the exact entry, `exit` at most the band
@@ -165,6 +165,17 @@ pub fn check_slab<V: Vector>(ray: &Ray<V>, b: &Aabb<V>, t_max: S<V>, detailed: b
         "face test {face:?} differs from the slab test {slab:?}: {}",
         ctx()
     );
+    // A valid box checked once (`ValidAabb`): the same answers.
+    if let Some(v) = ValidAabb::new(*b) {
+        assert!(
+            bits(ray_aabb(ray, &v, t_max)) == bits(slab)
+                && bits(ray_aabb_prepared(&PreparedRay::new(ray), &v, t_max)) == bits(slab),
+            "ValidAabb answers differ from the slab test's {slab:?}: {}",
+            ctx()
+        );
+    } else {
+        assert!(!b.is_valid(), "a valid box refused: {}", ctx());
+    }
     if !valid(ray, b, t_max) {
         assert!(slab.is_none(), "slab hit on invalid input: {}", ctx());
         return;
