@@ -89,67 +89,107 @@ impl Mesh {
     }
 }
 
-/// A sphere of `radius` around `centre`: the icosahedron with each face
-/// split into four `subdivisions` times (`20 * 4^subdivisions` triangles),
-/// vertices pushed out to the sphere.
-pub fn icosphere(centre: Vec3, radius: f32, subdivisions: u32) -> Mesh {
-    let g = (1.0 + 5f32.sqrt()) / 2.0;
-    let mut dirs: Vec<Vec3> = [
-        (-1.0, g, 0.0),
-        (1.0, g, 0.0),
-        (-1.0, -g, 0.0),
-        (1.0, -g, 0.0),
-        (0.0, -1.0, g),
-        (0.0, 1.0, g),
-        (0.0, -1.0, -g),
-        (0.0, 1.0, -g),
-        (g, 0.0, -1.0),
-        (g, 0.0, 1.0),
-        (-g, 0.0, -1.0),
-        (-g, 0.0, 1.0),
-    ]
-    .iter()
-    .map(|&(x, y, z)| Vec3::new(x, y, z).normalize())
-    .collect();
-    let mut faces: Vec<[u32; 3]> = vec![
-        [0, 11, 5],
-        [0, 5, 1],
-        [0, 1, 7],
-        [0, 7, 10],
-        [0, 10, 11],
-        [1, 5, 9],
-        [5, 11, 4],
-        [11, 10, 2],
-        [10, 7, 6],
-        [7, 1, 8],
-        [3, 9, 4],
-        [3, 4, 2],
-        [3, 2, 6],
-        [3, 6, 8],
-        [3, 8, 9],
-        [4, 9, 5],
-        [2, 4, 11],
-        [6, 2, 10],
-        [8, 6, 7],
-        [9, 8, 1],
-    ];
-    for _ in 0..subdivisions {
-        // One new vertex per edge, shared by the two faces on either side.
+/// The icosahedron's twelve corners, `(0, +-1, +-g)` and their cyclic
+/// permutations with `g` the golden ratio, coded per coordinate as 0, `+-1`
+/// (for `+-1`) or `+-2` (for `+-g`), so that each user builds them in its
+/// own precision: see [`icosahedron_corner`].
+pub const ICOSAHEDRON_CORNERS: [[i8; 3]; 12] = [
+    [-1, 2, 0],
+    [1, 2, 0],
+    [-1, -2, 0],
+    [1, -2, 0],
+    [0, -1, 2],
+    [0, 1, 2],
+    [0, -1, -2],
+    [0, 1, -2],
+    [2, 0, -1],
+    [2, 0, 1],
+    [-2, 0, -1],
+    [-2, 0, 1],
+];
+
+/// The icosahedron's twenty faces, wound outward.
+pub const ICOSAHEDRON_FACES: [[u32; 3]; 20] = [
+    [0, 11, 5],
+    [0, 5, 1],
+    [0, 1, 7],
+    [0, 7, 10],
+    [0, 10, 11],
+    [1, 5, 9],
+    [5, 11, 4],
+    [11, 10, 2],
+    [10, 7, 6],
+    [7, 1, 8],
+    [3, 9, 4],
+    [3, 4, 2],
+    [3, 2, 6],
+    [3, 6, 8],
+    [3, 8, 9],
+    [4, 9, 5],
+    [2, 4, 11],
+    [6, 2, 10],
+    [8, 6, 7],
+    [9, 8, 1],
+];
+
+/// Corner `code` of [`ICOSAHEDRON_CORNERS`] with the golden ratio `g` of
+/// the caller's precision (`+-1` and `+-g` exactly, as literals would be).
+pub fn icosahedron_corner<F>(code: [i8; 3], g: F) -> [F; 3]
+where
+    F: Copy + From<i8> + core::ops::Mul<Output = F>,
+{
+    code.map(|k| match k.abs() {
+        2 => g * F::from(k.signum()),
+        _ => F::from(k),
+    })
+}
+
+/// Splits every face of `faces` into four, `levels` times: one new vertex
+/// per edge, made by `midpoint` from the edge's two ends, pushed onto
+/// `vertices` and shared by the two faces beside the edge. Each face
+/// `[a, b, c]` becomes `[a, ab, ca]`, `[b, bc, ab]`, `[c, ca, bc]`,
+/// `[ab, bc, ca]`, so the winding is kept.
+pub fn subdivide<P>(
+    vertices: &mut Vec<P>,
+    mut faces: Vec<[u32; 3]>,
+    levels: u32,
+    midpoint: impl Fn(&P, &P) -> P,
+) -> Vec<[u32; 3]> {
+    for _ in 0..levels {
         let mut midpoints: HashMap<(u32, u32), u32> = HashMap::new();
-        let mut midpoint = |a: u32, b: u32| {
+        let mut between = |a: u32, b: u32| {
             *midpoints.entry((a.min(b), a.max(b))).or_insert_with(|| {
-                dirs.push((dirs[a as usize] + dirs[b as usize]).normalize());
-                (dirs.len() - 1) as u32
+                let m = midpoint(&vertices[a as usize], &vertices[b as usize]);
+                vertices.push(m);
+                (vertices.len() - 1) as u32
             })
         };
         faces = faces
             .iter()
             .flat_map(|&[a, b, c]| {
-                let (ab, bc, ca) = (midpoint(a, b), midpoint(b, c), midpoint(c, a));
+                let (ab, bc, ca) = (between(a, b), between(b, c), between(c, a));
                 [[a, ab, ca], [b, bc, ab], [c, ca, bc], [ab, bc, ca]]
             })
             .collect();
     }
+    faces
+}
+
+/// A sphere of `radius` around `centre`: the icosahedron with each face
+/// split into four `subdivisions` times (`20 * 4^subdivisions` triangles),
+/// vertices pushed out to the sphere.
+pub fn icosphere(centre: Vec3, radius: f32, subdivisions: u32) -> Mesh {
+    let g = (1.0 + 5f32.sqrt()) / 2.0;
+    let mut dirs: Vec<Vec3> = ICOSAHEDRON_CORNERS
+        .iter()
+        .map(|&code| Vec3::from_array(icosahedron_corner(code, g)).normalize())
+        .collect();
+    let faces = subdivide(
+        &mut dirs,
+        ICOSAHEDRON_FACES.to_vec(),
+        subdivisions,
+        |a, b| (*a + *b).normalize(),
+    );
     Mesh {
         positions: dirs.iter().map(|&d| centre + d * radius).collect(),
         normals: dirs,

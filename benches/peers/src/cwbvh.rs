@@ -10,8 +10,13 @@
 //! through its target, where only rounding decides which triangles around
 //! it report the hit.
 
-use std::collections::HashMap;
 use std::time::Duration;
+
+// The icosahedron and its subdivision, shared with the tests and the demo
+// (the rest of the file is theirs).
+#[path = "../../../tests/support/mesh.rs"]
+#[allow(dead_code)]
+mod mesh;
 
 use obvhs::cwbvh::CwBvh;
 use obvhs::cwbvh::builder::build_cwbvh_from_tris;
@@ -74,67 +79,18 @@ impl Mesh {
     /// An icosphere of radius 1.5, `levels` times subdivided (20 4^levels
     /// triangles).
     pub fn icosphere(levels: u32) -> Self {
-        let t = (1.0 + 5f64.sqrt()) / 2.0;
-        let mut v: Vec<[f64; 3]> = vec![
-            [-1.0, t, 0.0],
-            [1.0, t, 0.0],
-            [-1.0, -t, 0.0],
-            [1.0, -t, 0.0],
-            [0.0, -1.0, t],
-            [0.0, 1.0, t],
-            [0.0, -1.0, -t],
-            [0.0, 1.0, -t],
-            [t, 0.0, -1.0],
-            [t, 0.0, 1.0],
-            [-t, 0.0, -1.0],
-            [-t, 0.0, 1.0],
-        ];
-        let mut faces: Vec<[u32; 3]> = vec![
-            [0, 11, 5],
-            [0, 5, 1],
-            [0, 1, 7],
-            [0, 7, 10],
-            [0, 10, 11],
-            [1, 5, 9],
-            [5, 11, 4],
-            [11, 10, 2],
-            [10, 7, 6],
-            [7, 1, 8],
-            [3, 9, 4],
-            [3, 4, 2],
-            [3, 2, 6],
-            [3, 6, 8],
-            [3, 8, 9],
-            [4, 9, 5],
-            [2, 4, 11],
-            [6, 2, 10],
-            [8, 6, 7],
-            [9, 8, 1],
-        ];
-        for _ in 0..levels {
-            let mut mid: HashMap<(u32, u32), u32> = HashMap::new();
-            let mut next = Vec::new();
-            let mut middle = |a: u32, b: u32, v: &mut Vec<[f64; 3]>| {
-                *mid.entry((a.min(b), a.max(b))).or_insert_with(|| {
-                    let (p, q) = (v[a as usize], v[b as usize]);
-                    v.push([
-                        (p[0] + q[0]) / 2.0,
-                        (p[1] + q[1]) / 2.0,
-                        (p[2] + q[2]) / 2.0,
-                    ]);
-                    (v.len() - 1) as u32
-                })
-            };
-            for [a, b, c] in faces {
-                let (ab, bc, ca) = (
-                    middle(a, b, &mut v),
-                    middle(b, c, &mut v),
-                    middle(c, a, &mut v),
-                );
-                next.extend([[a, ab, ca], [b, bc, ab], [c, ca, bc], [ab, bc, ca]]);
-            }
-            faces = next;
-        }
+        let g = (1.0 + 5f64.sqrt()) / 2.0;
+        let mut v: Vec<[f64; 3]> = mesh::ICOSAHEDRON_CORNERS
+            .iter()
+            .map(|&code| mesh::icosahedron_corner(code, g))
+            .collect();
+        let faces = mesh::subdivide(&mut v, mesh::ICOSAHEDRON_FACES.to_vec(), levels, |p, q| {
+            [
+                (p[0] + q[0]) / 2.0,
+                (p[1] + q[1]) / 2.0,
+                (p[2] + q[2]) / 2.0,
+            ]
+        });
         let vertices = v
             .iter()
             .map(|p| {
