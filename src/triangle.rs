@@ -1482,18 +1482,21 @@ pub fn ray_triangle_error_bounds<V: Vector>(
 /// bound, so do the computed edge functions, and every watertight test
 /// misses. The bound is infinite or NaN where the frame overflows.
 ///
-/// `ErrorBounds` is relative; an underflowing product is off by up to one
-/// subnormal `tiny` instead. The products that feed an edge function are
-/// `s p_z` (scaled by the other coordinate, at most `m`), then `x y` (two of
-/// them), so `4 tiny (1 + m + max |p_z|)` covers them, with `m` the largest
-/// sheared coordinate.
+/// `ErrorBounds` is relative; an underflowing result is off by up to half a
+/// subnormal `tiny` instead. For an edge function `x_1 y_2 - y_1 x_2`: its
+/// two products (`tiny`); the shear products `s p_z` in `x` and `y` (half a
+/// `tiny` each, times the other factor, at most `m`); and a shear factor
+/// `s` that underflowed (half a `tiny`, times `|p_z|` and then `m`). With
+/// `m` the largest sheared coordinate, `4 tiny (1 + m)(1 + max |p_z|)`
+/// covers them all.
 #[cfg(feature = "exact")]
 pub(crate) fn edge_function_error<V: Vector>(ray: &Ray<V>, tri: &Triangle<V>) -> (S<V>, S<V>) {
     let shear = Shear::new(&ray.dir);
     let f = Frame::new(ray.origin, tri, &shear);
     let z = [f.pz[0] * shear.sz, f.pz[1] * shear.sz, f.pz[2] * shear.sz];
     let m = max2(max3(&f.x), max3(&f.y));
-    let underflow = S::<V>::from_u32(4) * S::<V>::TINY * (S::<V>::ONE + m + max3(&f.pz));
+    let one = S::<V>::ONE;
+    let underflow = S::<V>::from_u32(4) * S::<V>::TINY * (one + m) * (one + max3(&f.pz));
     let e = ErrorBounds::new(&f, &z, &shear).e + underflow;
     (e, shear.dz.abs())
 }
