@@ -24,9 +24,10 @@ use crate::{Check, Mode, S, far_from_underflow, inputs, oracle, raw};
 /// a false hit only inside the documented band (exact entry at most the
 /// exact exit times `1 + 16u`, plus two subnormals). The entry face
 /// (`ray_aabb_face`, `ray_aabb_prepared_face`) and the same box as a
-/// `ValidAabb` where it is valid: the same interval bit for bit, and, where the precondition holds, exactly the documented face (the
-/// largest positive entry-plane distance, the lowest axis on a tie, none
-/// when no entry plane is ahead). Structured inputs also:
+/// `ValidAabb` where it is valid: the same interval bit for bit, and, where
+/// the precondition holds, exactly the documented face (the largest
+/// positive entry-plane distance, the lowest axis on a tie, none when no
+/// entry plane is ahead). Structured inputs also:
 /// `enter` within `gamma(3)` of the exact entry, `exit` at most the band
 /// above the exact exit, and the entry point on the box surface.
 #[derive(Debug)]
