@@ -295,6 +295,17 @@ impl<V: Vector> SlabRay<V> {
 
     /// The rare case of [`SlabRay::new`]: some reciprocal is subnormal or
     /// has overflowed.
+    ///
+    /// A subnormal reciprocal `r = fl(1/d)` is within half a subnormal
+    /// `tiny` of `1/d`, so each step is within `1.5 tiny`, that is within
+    /// `1.5 tiny |d| <= 1.5 tiny MAX < 12u` relative (`u` the unit
+    /// roundoff: `2^-21 1.5 = 12 2^-24` in `f32`, `2^-50 1.5 = 12 2^-53` in
+    /// `f64`). An entry distance through that slab is then at least `E (1 -
+    /// u)^2 (1 - 12u)` and an exit at most `X (1 + u)^2 (1 + 12u)`, so the
+    /// `exit_slack` argument gives a false-hit factor of `(1 + u)^3 (1 +
+    /// 12u) W / ((1 - u)^2 (1 - 12u))`, about `1 + 37u`: the documented
+    /// `1 + 40u`. The reported entry stays within `(1 - u)^2 (1 - 12u)`, so
+    /// within `15u`.
     #[cold]
     #[inline(never)]
     fn stepped(origin: L<V>, dir: V) -> Self {
@@ -462,17 +473,20 @@ fn slab_test<V: Vector, B: SlabBox<V>>(
 ///   `t_max`) by less than a factor `1 + 16u` plus four subnormals (`u` the
 ///   unit roundoff, so a few ulps): the ray passes within a few ulps of an
 ///   edge or corner; and the reported exit is at most that factor above the
-///   exact one. Both hold when every nonzero direction component has a
-///   finite reciprocal (`|d_i| >= 1/MAX`). A smaller component's reciprocal
+///   exact one. Where a direction component is so large that its
+///   reciprocal is subnormal (`|d_i| > 2^126` in `f32`, `2^1022` in `f64`),
+///   the factor is `1 + 40u`: the reciprocal then carries up to `12u` of
+///   relative error. Both hold when every nonzero direction component has
+///   a finite reciprocal (`|d_i| >= 1/MAX`). A smaller component's reciprocal
 ///   overflows, its exit distance comes out infinite, and the reported exit
 ///   can be far too large, and its entry distance (computed with `MAX` for
 ///   the reciprocal) far too small; a false hit then passes the box at a
 ///   distance below `enter / (MAX (1 - u)^2)` along that axis (the computed
 ///   entry through that slab is at least `|b - o| MAX (1 - u)^2`, and a ray
 ///   already past the slab is at most `enter |d_i|` beyond it).
-/// - `enter` is within three roundings of the exact entry when no
-///   reciprocal overflows (else it can be far below it); it is not a lower
-///   bound. To cull against a closest hit so far, pass that as `t_max`,
+/// - `enter` is within three roundings of the exact entry when every
+///   reciprocal is a normal float, within `15u` when one is subnormal, and
+///   can be far below it when one overflows; it is not a lower bound. To cull against a closest hit so far, pass that as `t_max`,
 ///   which the test honours conservatively.
 /// - Invalid input (NaN or infinite coordinates, zero direction, inverted
 ///   box, NaN or negative `t_max`) gives `None`. Never panics.

@@ -707,3 +707,34 @@ fn triangle_miss_outside_is_clear() {
         Band::Edge
     );
 }
+
+/// `aabb` (raw): direction components near `3.4e38`, whose reciprocals are
+/// subnormal (`|d| > 2^126`), and a box `1.5e16` out. The test reported a
+/// hit that exact arithmetic misses by about `26u` relative, past the
+/// documented `16u`. The docs were at fault: a subnormal reciprocal is
+/// within `1.5` subnormals of `1/d` after the conservative step, up to
+/// `12u` relative, so the band is `40u` there (derived at
+/// `SlabRay::stepped`); the docs and the fuzzer's check now say so.
+#[test]
+fn aabb_false_hit_band_with_subnormal_reciprocals() {
+    let ray = Ray::new(
+        Vec3::new(3.2412e-41, 2.2959e-41, 0.0),
+        Vec3::new(2.538_825_5e38, 3.396_146e38, 3.396_151_4e38),
+    );
+    let b = Aabb::new(
+        Vec3::new(9_218_305_000_000_000.0, 1.536_522_2e16, 1.536_522_2e16),
+        Vec3::splat(1.536_522_2e16),
+    );
+    let t_max = 3.396_151_4e38;
+    assert!((1.0 / ray.dir.x).abs() < f32::MIN_POSITIVE);
+    let (ee, xx) = support::box_raw(&ray, &b, t_max).expect("moves along every axis");
+    assert!(ee > xx, "exact arithmetic misses");
+    assert!(ray_aabb(&ray, &b, t_max).is_some(), "the reported false hit");
+    let u = r(f32::EPSILON / 2.0);
+    let band = |k: i64| {
+        &xx * (R::from_integer(1.into()) + R::from_integer(k.into()) * &u)
+            + r(f32::from_bits(1)) * R::from_integer(4.into())
+    };
+    assert!(ee > band(16), "beyond the band without subnormal reciprocals");
+    assert!(ee <= band(40), "within the band with them");
+}

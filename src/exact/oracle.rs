@@ -506,10 +506,12 @@ fn dir_normal<V: Vector>(dir: V) -> bool {
 }
 
 /// The box case is outside the slab test's rounding band: the exact
-/// interval is more than `32u` (relative to the larger of entry and exit)
-/// plus four subnormals over the slowest moving direction component from
-/// empty, or an axis the ray does not move along rules it out; and no
-/// nonzero direction component is subnormal. Valid inputs only.
+/// interval is more than `32u` (relative to the larger of entry and exit;
+/// `80u` where a direction component's reciprocal is subnormal, twice the
+/// test's `40u` there) plus four subnormals over the slowest moving
+/// direction component from empty, or an axis the ray does not move along
+/// rules it out; and no nonzero direction component is subnormal. Valid
+/// inputs only.
 pub fn box_clear<V: Vector>(ray: &Ray<V>, b: &Aabb<V>, t_max: V::Scalar) -> bool {
     dir_normal(ray.dir)
         && match box_raw(ray, b, t_max) {
@@ -523,7 +525,13 @@ pub fn box_clear<V: Vector>(ray: &Ray<V>, b: &Aabb<V>, t_max: V::Scalar) -> bool
                     .min()
                     .expect("a valid ray moves");
                 let absolute = r(V::Scalar::TINY) * int(4) / dmin;
-                (x - e).abs() > int(32) * r(V::Scalar::UNIT_ROUNDOFF) * scale + absolute
+                let wide = [ray.dir.x(), ray.dir.y(), ray.dir.z()]
+                    .into_iter()
+                    .any(|d| {
+                        d != V::Scalar::ZERO && (V::Scalar::ONE / d).abs() < V::Scalar::MIN_POSITIVE
+                    });
+                let k = if wide { 80 } else { 32 };
+                (x - e).abs() > int(k) * r(V::Scalar::UNIT_ROUNDOFF) * scale + absolute
             }
         }
 }

@@ -228,9 +228,10 @@ pub fn distance_ulps<V: Vector>(case: &Case<V>) -> f64 {
 /// documented rounding band of the crate's kernel for it, `Edge` otherwise
 /// (and for invalid input, which every kernel must miss: `Clear`).
 ///
-/// - box: the exact interval is more than `32u` (relative, plus four
-///   subnormals over the slowest direction component) from empty, and no
-///   direction component is subnormal;
+/// - box: the exact interval is more than `32u` (`80u` where a direction
+///   component's reciprocal is subnormal; relative, plus four subnormals
+///   over the slowest direction component) from empty, and no direction
+///   component is subnormal;
 /// - triangle: a hit or a miss behind the origin or past `t_max` decided
 ///   outside the watertight test's error bounds
 ///   ([`ray_triangle_error_bounds`](crate::ray_triangle_error_bounds)) widened
