@@ -220,7 +220,8 @@
 //!   so small that their reciprocal overflows. The reported exit is at least
 //!   the exact exit. False hits only within a factor `1 + 16u` (plus four
 //!   subnormals) of the boundary: the ray passes within a few ulps of an
-//!   edge.
+//!   edge (`1 + 40u` where a direction component above `2^126` in `f32`,
+//!   `2^1022` in `f64`, has a subnormal reciprocal).
 //! - **Naive box test** ([`ray_aabb_naive`]). The reference: agrees with the
 //!   slab test on hit or miss wherever the exact interval is not within
 //!   `32u` (relative) of empty, with distances within two roundings; never
