@@ -729,12 +729,18 @@ fn aabb_false_hit_band_with_subnormal_reciprocals() {
     assert!((1.0 / ray.dir.x).abs() < f32::MIN_POSITIVE);
     let (ee, xx) = support::box_raw(&ray, &b, t_max).expect("moves along every axis");
     assert!(ee > xx, "exact arithmetic misses");
-    assert!(ray_aabb(&ray, &b, t_max).is_some(), "the reported false hit");
+    assert!(
+        ray_aabb(&ray, &b, t_max).is_some(),
+        "the reported false hit"
+    );
     let u = r(f32::EPSILON / 2.0);
     let band = |k: i64| {
         &xx * (R::from_integer(1.into()) + R::from_integer(k.into()) * &u)
             + r(f32::from_bits(1)) * R::from_integer(4.into())
     };
-    assert!(ee > band(16), "beyond the band without subnormal reciprocals");
+    assert!(
+        ee > band(16),
+        "beyond the band without subnormal reciprocals"
+    );
     assert!(ee <= band(40), "within the band with them");
 }
