@@ -307,6 +307,13 @@ struct Frame<F> {
 }
 
 impl<F: Scalar> Frame<F> {
+    /// The corners' depths along the ray in units of `t`: `p_z / d_z`,
+    /// computed as `p_z fl(1 / d_z)`.
+    #[inline(always)]
+    fn scaled_z(&self, shear: &Shear<F>) -> [F; 3] {
+        self.pz.map(|p| p * shear.sz)
+    }
+
     #[inline(always)]
     fn new<V: Vector<Scalar = F>>(origin: V, tri: &Triangle<V>, shear: &Shear<F>) -> Self {
         let mut f = Frame {
@@ -673,7 +680,7 @@ pub(crate) fn watertight_sheared<V: Vector>(
 
     // Distance: interpolate the scaled z with the edge functions, and compare
     // against t_max * det before paying for the division.
-    let z = [f.pz[0] * shear.sz, f.pz[1] * shear.sz, f.pz[2] * shear.sz];
+    let z = f.scaled_z(&shear);
     let t_scaled = e0 * z[0] + e1 * z[1] + e2 * z[2];
     let in_range = if det > zero {
         t_scaled > zero && t_scaled <= t_max * det
@@ -1454,7 +1461,7 @@ pub fn ray_triangle_error_bounds<V: Vector>(
     }
     let shear = Shear::new(&ray.dir);
     let f = Frame::new(ray.origin, tri, &shear);
-    let z = [f.pz[0] * shear.sz, f.pz[1] * shear.sz, f.pz[2] * shear.sz];
+    let z = f.scaled_z(&shear);
     let b = ErrorBounds::new(&f, &z, &shear);
     let det = f.e[0] + f.e[1] + f.e[2];
     let zero = S::<V>::ZERO;
@@ -1493,7 +1500,7 @@ pub fn ray_triangle_error_bounds<V: Vector>(
 pub(crate) fn edge_function_error<V: Vector>(ray: &Ray<V>, tri: &Triangle<V>) -> (S<V>, S<V>) {
     let shear = Shear::new(&ray.dir);
     let f = Frame::new(ray.origin, tri, &shear);
-    let z = [f.pz[0] * shear.sz, f.pz[1] * shear.sz, f.pz[2] * shear.sz];
+    let z = f.scaled_z(&shear);
     let m = max2(max3(&f.x), max3(&f.y));
     let one = S::<V>::ONE;
     let underflow = S::<V>::from_u32(4) * S::<V>::TINY * (one + m) * (one + max3(&f.pz));

@@ -641,6 +641,17 @@ fn triangle_scaled_distance_overflows() {
     }
 }
 
+/// The exact judgement of a kernel that claims a hit (at `t = 1`, `u =
+/// 0.5`, `v = 0.25`; these tests look only at the verdict and the band).
+fn judge_a_claimed_hit(case: &rayhit::exact::Case<Vec3>) -> rayhit::exact::Judgement {
+    let claim = rayhit::exact::Claim::Triangle {
+        t: 1.0,
+        u: 0.5,
+        v: 0.25,
+    };
+    rayhit::exact::judge(case, &claim, f64::INFINITY)
+}
+
 /// `exact_judge` (the README's fuzz snippet, with the textbook
 /// Moller-Trumbore as the kernel under test): a triangle of zero area
 /// (`b == c`) whose segment's line the ray's line meets behind the origin.
@@ -654,7 +665,7 @@ fn triangle_scaled_distance_overflows() {
 /// unless all zero, and a zero determinant is a miss.
 #[test]
 fn zero_area_triangle_is_never_clear() {
-    use rayhit::exact::{self, Band, Case, Claim, Verdict};
+    use rayhit::exact::{self, Band, Case, Verdict};
     let ray = Ray::new(Vec3::splat(-477.875), Vec3::splat(-477.875));
     let tri = Triangle::new(
         Vec3::new(-477.875, 130.125, 128.5),
@@ -666,12 +677,7 @@ fn zero_area_triangle_is_never_clear() {
     assert!(ray_triangle(&ray, &tri, f32::INFINITY).is_none());
     // What the snippet's kernel claimed: a hit, which exact arithmetic
     // rejects (the line meets the segment at t < 0), inside the band.
-    let claim = Claim::Triangle {
-        t: 1.0,
-        u: 0.5,
-        v: 0.25,
-    };
-    let j = exact::judge(&case, &claim, f64::INFINITY);
+    let j = judge_a_claimed_hit(&case);
     assert_eq!((j.verdict, j.band), (Verdict::FalseHit, Band::Edge));
 }
 
@@ -681,18 +687,13 @@ fn zero_area_triangle_is_never_clear() {
 /// bug). A kernel that claimed it is judged wrong outside the band.
 #[test]
 fn triangle_miss_outside_is_clear() {
-    use rayhit::exact::{self, Band, Case, Claim, Verdict};
+    use rayhit::exact::{self, Band, Case, Verdict};
     let tri = Triangle::new(Vec3::ZERO, Vec3::X, Vec3::Y);
     // Crosses z = 0 at (2, 0.25): u = 2, v = 0.25, and past edge b-c.
     let ray = Ray::new(Vec3::new(2.0, 0.25, -1.0), Vec3::Z);
     let case = Case::Triangle(ray, tri, f32::INFINITY);
     assert_eq!(exact::band(&case), Band::Clear);
-    let claim = Claim::Triangle {
-        t: 1.0,
-        u: 0.5,
-        v: 0.25,
-    };
-    let j = exact::judge(&case, &claim, f64::INFINITY);
+    let j = judge_a_claimed_hit(&case);
     assert_eq!((j.verdict, j.band), (Verdict::FalseHit, Band::Clear));
     // Just outside edge b-c (by 2^-16 in u + v, more than either test's
     // rounding at this scale): still clear; on the edge: not clear.
@@ -726,7 +727,7 @@ fn aabb_false_hit_band_with_subnormal_reciprocals() {
         Vec3::splat(1.536_522_2e16),
     );
     let t_max = 3.396_151_4e38;
-    assert!((1.0 / ray.dir.x).abs() < f32::MIN_POSITIVE);
+    assert!(support::reciprocal_subnormal(ray.dir));
     let (ee, xx) = support::box_raw(&ray, &b, t_max).expect("moves along every axis");
     assert!(ee > xx, "exact arithmetic misses");
     assert!(

@@ -106,33 +106,6 @@ fn in_range<V: Vector>(
     }
 }
 
-/// Outside the band's documented condition (tests/fuzz_regressions.rs): a
-/// direction component so small that its reciprocal overflows
-/// (`0 < |d| < 1 / MAX`). The slab test then uses `MAX` and `inf` for the
-/// reciprocal, which bracket the exact one but are far from it: the
-/// computed entry can be far below the exact entry and the exit infinite,
-/// so false hits can lie far outside the relative band (the docs bound them
-/// by `enter / MAX` along that axis instead), and an origin exactly on that
-/// axis's slab plane reads `0 * inf = NaN` as "lies in the face plane". The
-/// fuzzer still checks "no false miss", a finite entry and `exit` at least
-/// the exact exit there; it skips the band, accuracy and agreement checks.
-fn overflowing_reciprocal<V: Vector>(ray: &Ray<V>) -> bool {
-    (0..3).any(|k| {
-        let d = ray.dir[k];
-        d != S::<V>::ZERO && !(S::<V>::ONE / d).is_finite()
-    })
-}
-
-/// True when some direction component is so large that its reciprocal is
-/// subnormal (`|d| > 2^126` in `f32`, `2^1022` in `f64`): the documented
-/// bands are then `40u` and `15u` instead of `16u` and three roundings.
-fn subnormal_reciprocal<V: Vector>(ray: &Ray<V>) -> bool {
-    (0..3).any(|k| {
-        let d = ray.dir[k];
-        d != S::<V>::ZERO && (S::<V>::ONE / d).abs() < S::<V>::MIN_POSITIVE
-    })
-}
-
 /// The documented precondition of the slab test's guarantees, decided
 /// exactly: every `min - o` and `max - o` rounds to a finite value and every
 /// exact axis distance `(b - o) / d` is at most `MAX / 2` in magnitude.
@@ -210,7 +183,19 @@ pub fn check_slab<V: Vector>(ray: &Ray<V>, b: &Aabb<V>, t_max: S<V>, detailed: b
         ctx()
     );
     let Some((e, x)) = slab else { return };
-    let wide = subnormal_reciprocal(ray);
+    // The bands' documented conditions (tests/fuzz_regressions.rs): a
+    // direction component so large that its reciprocal is subnormal widens
+    // them (`wide`: 40u and 15u instead of 16u and three roundings). One so
+    // small that its reciprocal overflows (`0 < |d| < 1 / MAX`) leaves them:
+    // the slab test then uses `MAX` and `inf` for the reciprocal, which
+    // bracket the exact one but are far from it, so the computed entry can
+    // be far below the exact entry and the exit infinite (the docs bound
+    // such false hits by `enter / MAX` along that axis instead), and an
+    // origin exactly on that axis's slab plane reads `0 * inf = NaN` as
+    // "lies in the face plane". There the fuzzer still checks "no false
+    // miss", a finite entry and `exit` at least the exact exit, and skips
+    // the band, accuracy and agreement checks.
+    let wide = oracle::reciprocal_subnormal(ray.dir);
     if face_precondition(ray, b) {
         let got = face.and_then(|h| h.face);
         let want = exact_face(ray, b);
@@ -225,7 +210,7 @@ pub fn check_slab<V: Vector>(ray: &Ray<V>, b: &Aabb<V>, t_max: S<V>, detailed: b
                 crate::exact::f(xx),
                 ctx()
             );
-            if detailed && !overflowing_reciprocal(ray) {
+            if detailed && !oracle::reciprocal_overflows(ray.dir) {
                 // Three roundings per axis distance (15u with a subnormal
                 // reciprocal); min and max are exact.
                 let enter_band = if wide {
@@ -250,7 +235,7 @@ pub fn check_slab<V: Vector>(ray: &Ray<V>, b: &Aabb<V>, t_max: S<V>, detailed: b
                 }
             }
         }
-        None if overflowing_reciprocal(ray) => {}
+        None if oracle::reciprocal_overflows(ray.dir) => {}
         None => {
             let (ee, xx) = raw
                 .as_ref()
@@ -369,7 +354,7 @@ pub fn check_slab_vs_naive<V: Vector>(ray: &Ray<V>, b: &Aabb<V>, t_max: S<V>) {
         // Excused for the slab test where a reciprocal overflows (outside the
         // band's documented condition).
         assert!(
-            (slab.is_none() || overflowing_reciprocal(ray)) && naive.is_none(),
+            (slab.is_none() || oracle::reciprocal_overflows(ray.dir)) && naive.is_none(),
             "hit through an axis the ray does not move along: {}",
             ctx()
         );
@@ -384,7 +369,7 @@ pub fn check_slab_vs_naive<V: Vector>(ray: &Ray<V>, b: &Aabb<V>, t_max: S<V>) {
         abs(&xx)
     };
     if abs(&(&xx - &ee)) > int(32) * &u * &scale
-        && !overflowing_reciprocal(ray)
+        && !oracle::reciprocal_overflows(ray.dir)
         && naive_in_normal_range(ray, b)
         && crossings_away_from_edges(ray, b)
     {

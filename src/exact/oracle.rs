@@ -497,6 +497,15 @@ pub fn reciprocal_overflows<V: Vector>(dir: V) -> bool {
         .any(|d| d != V::Scalar::ZERO && !(V::Scalar::ONE / d).is_finite())
 }
 
+/// True when some direction component is so large that its reciprocal is
+/// subnormal (`|d_i| > 2^126` in `f32`, `2^1022` in `f64`): the slab test's
+/// false-hit band is then `40u` instead of `16u` (see `ray_aabb`).
+pub fn reciprocal_subnormal<V: Vector>(dir: V) -> bool {
+    [dir.x(), dir.y(), dir.z()]
+        .into_iter()
+        .any(|d| d != V::Scalar::ZERO && (V::Scalar::ONE / d).abs() < V::Scalar::MIN_POSITIVE)
+}
+
 /// True when no nonzero direction component is subnormal (where the slab
 /// test's bands stop being relative).
 fn dir_normal<V: Vector>(dir: V) -> bool {
@@ -525,12 +534,11 @@ pub fn box_clear<V: Vector>(ray: &Ray<V>, b: &Aabb<V>, t_max: V::Scalar) -> bool
                     .min()
                     .expect("a valid ray moves");
                 let absolute = r(V::Scalar::TINY) * int(4) / dmin;
-                let wide = [ray.dir.x(), ray.dir.y(), ray.dir.z()]
-                    .into_iter()
-                    .any(|d| {
-                        d != V::Scalar::ZERO && (V::Scalar::ONE / d).abs() < V::Scalar::MIN_POSITIVE
-                    });
-                let k = if wide { 80 } else { 32 };
+                let k = if reciprocal_subnormal(ray.dir) {
+                    80
+                } else {
+                    32
+                };
                 (x - e).abs() > int(k) * r(V::Scalar::UNIT_ROUNDOFF) * scale + absolute
             }
         }
