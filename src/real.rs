@@ -160,6 +160,23 @@ pub trait Scalar:
     #[doc(hidden)]
     #[must_use]
     fn two_diff(a: Self, b: Self) -> (Self, Self);
+
+    /// A triangle test's answer in a form that a function returns in
+    /// registers (`u128` for `f32`; `f64`'s answer is too large, and stays
+    /// as it is). The triangle tests' rare paths, out of line, return it:
+    /// returned through memory, their answer made the inlined common path
+    /// write its own answer through memory as well. An implementation
+    /// detail.
+    #[doc(hidden)]
+    type PackedHit: Copy;
+    /// See [`Scalar::PackedHit`].
+    #[doc(hidden)]
+    #[must_use]
+    fn pack_hit(hit: Option<crate::TriangleHit<Self>>) -> Self::PackedHit;
+    /// The inverse of [`Scalar::pack_hit`], bit for bit.
+    #[doc(hidden)]
+    #[must_use]
+    fn unpack_hit(packed: Self::PackedHit) -> Option<crate::TriangleHit<Self>>;
 }
 
 /// A 3-component vector the kernels run on: glam's `Vec3` and `Vec3A`
@@ -245,9 +262,20 @@ pub(crate) type S<V> = <V as Vector>::Scalar;
 pub(crate) type L<V> = <S<V> as Scalar>::Lanes;
 
 macro_rules! impl_scalar {
-    ($f:ident, $lanes:ty, $lanes8:ty, $lanes8_avx2:ty, $libm_tan:ident, $libm_sqrt:ident) => {
+    (
+        $f:ident,
+        $lanes:ty,
+        $lanes8:ty,
+        $lanes8_avx2:ty,
+        $libm_tan:ident,
+        $libm_sqrt:ident,
+        $packed:ty,
+        $pack:path,
+        $unpack:path
+    ) => {
         impl Scalar for $f {
             type Lanes = $lanes;
+            type PackedHit = $packed;
             type Lanes8 = $lanes8;
             #[cfg(all(feature = "std", target_arch = "x86_64", not(target_feature = "avx2")))]
             type Lanes8Avx2 = $lanes8_avx2;
@@ -331,6 +359,14 @@ macro_rules! impl_scalar {
                 let bb = s - a;
                 (s, (a - (s - bb)) - (b + bb))
             }
+            #[inline(always)]
+            fn pack_hit(hit: Option<crate::TriangleHit<Self>>) -> $packed {
+                $pack(hit)
+            }
+            #[inline(always)]
+            fn unpack_hit(packed: $packed) -> Option<crate::TriangleHit<Self>> {
+                $unpack(packed)
+            }
         }
     };
 }
@@ -341,7 +377,10 @@ impl_scalar!(
     crate::lanes::F32Lanes8,
     crate::lanes::avx::F32x8,
     tanf,
-    sqrtf
+    sqrtf,
+    u128,
+    packed_hit::pack_f32,
+    packed_hit::unpack_f32
 );
 impl_scalar!(
     f64,
@@ -349,8 +388,46 @@ impl_scalar!(
     crate::lanes::Portable8<f64>,
     crate::lanes::Portable8<f64>,
     tan,
-    sqrt
+    sqrt,
+    Option<crate::TriangleHit<f64>>,
+    core::convert::identity,
+    core::convert::identity
 );
+
+/// [`Scalar::pack_hit`] for `f32`: `t`, `u` and `v` in bits 0, 32 and 64,
+/// and above them 0 for a miss, 1 for a hit from the front, 2 from the
+/// back.
+mod packed_hit {
+    use crate::{Side, TriangleHit};
+
+    #[inline(always)]
+    pub(super) fn pack_f32(hit: Option<TriangleHit<f32>>) -> u128 {
+        let Some(h) = hit else { return 0 };
+        let side: u128 = match h.side {
+            Side::Front => 1,
+            Side::Back => 2,
+        };
+        let bits = |x: f32| u128::from(x.to_bits());
+        bits(h.t) | bits(h.u) << 32 | bits(h.v) << 64 | side << 96
+    }
+
+    #[inline(always)]
+    pub(super) fn unpack_f32(packed: u128) -> Option<TriangleHit<f32>> {
+        let side = match packed >> 96 {
+            0 => return None,
+            1 => Side::Front,
+            _ => Side::Back,
+        };
+        // (Truncating to the low 32 bits is the point.)
+        let field = |shift: u32| f32::from_bits((packed >> shift) as u32);
+        Some(TriangleHit {
+            t: field(0),
+            u: field(32),
+            v: field(64),
+            side,
+        })
+    }
+}
 
 /// The sign-exact `a*b - c*d` for each precision (see
 /// [`Scalar::diff_of_products_exact_sign`]).

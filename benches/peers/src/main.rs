@@ -483,7 +483,9 @@ fn textbook_mt(r: &Ray, tri: &Triangle) -> Option<f32> {
 /// The watertight test of Woop, Benthin and Wald (JCGT 2013) as the paper
 /// lays it out, with the ray's shear computed per call (as `ray_triangle`
 /// must): permute so the ray runs along its largest axis, shear, three 2-D
-/// edge functions with the sign test, then `t` from the scaled depths,
+/// edge functions with the sign test, then `t` from the scaled depths
+/// times the reciprocal of the determinant (the paper's arithmetic: the
+/// same reciprocal scales the edge functions into the barycentrics),
 /// two-sided, no exact-sign fallback, no conservative `t > 0` tests, no
 /// input checks. The floor against which `ray_triangle` is measured: the
 /// operations the watertight guarantee needs beyond Moller-Trumbore.
@@ -515,7 +517,9 @@ fn textbook_watertight(r: &Ray, tri: &Triangle) -> Option<f32> {
     if det == 0.0 {
         return None;
     }
-    let t = (u * az + v * bz + w * cz) / det;
+    // (The paper's arithmetic: one reciprocal of the determinant, which
+    // also scales the edge functions into the barycentrics.)
+    let t = (u * az + v * bz + w * cz) * (1.0 / det);
     (t > 0.0).then_some(t)
 }
 
@@ -526,8 +530,9 @@ fn textbook_watertight(r: &Ray, tri: &Triangle) -> Option<f32> {
 /// recomputation; `t > 0` is decided on the corners' depths (all in front:
 /// sure; none: no hit) and anything else leaves for the full decision; a
 /// hit must pass the cheap test that the determinant's sign is known
-/// (`|det| > 200 u k^2`, `k` the largest sheared coordinate or depth).
-/// The rare paths are stubs out of line (`rare`): what is measured is the
+/// (`|det| > 200 u k^2`, `k` the largest sheared coordinate or depth);
+/// `t` must be finite (`t <= MAX`, one comparison with `t_max`'s). The
+/// rare paths are stubs out of line (`rare`): what is measured is the
 /// common path. `t` only, like the textbook test. (Its frame is written out
 /// again rather than shared with [`textbook_watertight`]: a shared helper
 /// cost this floor 10 instructions per test under callgrind, which would
@@ -589,8 +594,8 @@ fn floor_watertight(r: &Ray, tri: &Triangle, t_max: f32) -> Option<f32> {
     if !(ahead && det.abs() > k * k * (200.0 * f32::EPSILON * 0.5)) {
         return rare();
     }
-    let t = t_scaled / det;
-    (t > 0.0 && t <= t_max).then_some(t)
+    let t = t_scaled * (1.0 / det);
+    (t > 0.0 && t <= t_max.min(f32::MAX)).then_some(t)
 }
 
 /// A ray as the watertight test of Woop, Benthin and Wald (JCGT 2013)
@@ -633,8 +638,9 @@ impl FloorRay {
 /// beyond it: the ray's validity and `t_max`; an edge function of exactly
 /// zero leaves for an exact recomputation; `t > 0` decided on the corners'
 /// depths (all in front: sure; none: no hit; else the full decision); the
-/// cheap test that the determinant's sign is known (`|det| > 200 u k^2`).
-/// The rare paths are stubs out of line. `t` and the side, of which the
+/// cheap test that the determinant's sign is known (`|det| > 200 u k^2`);
+/// a finite `t`. `t` is the scaled depth times the reciprocal of the
+/// determinant, as in the paper. The rare paths are stubs out of line. `t` and the side, of which the
 /// rows keep `t` only, like the other floors: returning the side as well
 /// compiled the checked form to 5 fewer instructions per aimed test under
 /// callgrind (122 against 127), and a floor should be the fastest form.
@@ -694,8 +700,9 @@ fn floor_watertight_prepared<const CHECKS: bool>(
             return rare();
         }
     }
-    let t = t_scaled / det;
-    (t > 0.0 && t <= t_max).then_some((t, (det > 0.0) != (r.dz > 0.0)))
+    let t = t_scaled * (1.0 / det);
+    let t_limit = if CHECKS { t_max.min(f32::MAX) } else { t_max };
+    (t > 0.0 && t <= t_limit).then_some((t, (det > 0.0) != (r.dz > 0.0)))
 }
 
 fn box_kernels<'a>(d: &'a BoxData, out: &mut Vec<Kernel<'a>>) {
