@@ -800,6 +800,37 @@ mod tests {
     }
 
     #[test]
+    fn packed_hits_come_back_bit_for_bit() {
+        use crate::{Side, TriangleHit};
+        let odd = [0.0, -0.0, f32::from_bits(1), 1.0, f32::MAX, f32::INFINITY];
+        let mut hits = [None; 13];
+        for (i, &t) in odd.iter().enumerate() {
+            let (u, v) = (odd[(i + 1) % odd.len()], odd[(i + 2) % odd.len()]);
+            for (j, side) in [Side::Front, Side::Back].into_iter().enumerate() {
+                hits[1 + 2 * i + j] = Some(TriangleHit { t, u, v, side });
+            }
+        }
+        let key = |h: Option<TriangleHit<f32>>| {
+            h.map(|h| (h.t.to_bits(), h.u.to_bits(), h.v.to_bits(), h.side))
+        };
+        let mut packed = hits.map(f32::pack_hit);
+        for (h, p) in hits.iter().zip(packed) {
+            assert_eq!(key(f32::unpack_hit(p)), key(*h));
+        }
+        // Distinct answers pack to distinct integers (a miss is not a hit
+        // at t = u = v = 0, on either side).
+        packed.sort_unstable();
+        assert!(packed.windows(2).all(|w| w[0] < w[1]));
+        let h = Some(TriangleHit {
+            t: 2.5,
+            u: 0.25,
+            v: 0.5,
+            side: Side::Back,
+        });
+        assert_eq!(f64::unpack_hit(f64::pack_hit(h)), h);
+    }
+
+    #[test]
     fn exact_sign_f32_sees_what_f32_cannot() {
         // 1.1 * 1.1 and 1.21 round to nearby f32 values whose products in
         // f32 tie; only the exact products tell them apart.
