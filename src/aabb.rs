@@ -223,8 +223,9 @@ impl<V: Vector> PreparedRay<V> {
     #[inline]
     #[must_use]
     pub fn new(ray: &Ray<V>) -> Self {
-        // An invalid ray's shear is never used (see `is_valid`); that of
-        // `+z` stands in, so that equal invalid rays prepare equal.
+        // An invalid ray's shear is never used (the triangle tests find no
+        // crossing for it, see below); that of `+z` stands in, so that
+        // equal invalid rays prepare equal.
         let z = S::<V>::ZERO;
         let dir = if ray.is_valid() {
             ray.dir
@@ -232,9 +233,18 @@ impl<V: Vector> PreparedRay<V> {
             V::new(z, z, S::<V>::ONE)
         };
         let shear = Shear::new(&dir);
+        // An invalid ray's origin lanes are NaN: the prepared triangle test
+        // then finds no crossing without a test of its own (see
+        // `watertight_lanes`).
+        let nan = S::<V>::NAN;
+        let origin = if ray.is_valid() {
+            ray.origin
+        } else {
+            V::new(nan, nan, nan)
+        };
         Self {
             slab: SlabRay::new(ray),
-            origin_lanes: shear.origin_lanes(ray.origin),
+            origin_lanes: shear.origin_lanes(origin),
             shear,
             dir: if ray.is_valid() { ray.dir } else { V::ZERO },
         }

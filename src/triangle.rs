@@ -520,14 +520,21 @@ fn watertight_every_axis<V: Vector>(
     })
 }
 
-/// The closed watertight test for a valid prepared ray and a `t_max >= 0`,
-/// with the three corners in the lanes of one register: the same
-/// operations as [`watertight_sheared`], lane by lane, so the same bits.
-/// The rare cases go to [`watertight_sheared`] itself: an edge function
-/// that rounds to zero (its sign must be recomputed exactly), a crossing
-/// for which the cheapest sufficient test for `t > 0` (every corner in
-/// front of the origin) fails or whose determinant's sign is not surely
-/// known, and a plain miss that only the definition can settle.
+/// The closed watertight test for a prepared ray and a `t_max >= 0`, with
+/// the three corners in the lanes of one register: the same operations as
+/// [`watertight_sheared`], lane by lane, so the same bits. The rare cases
+/// go to [`watertight_sheared`] itself: an edge function that rounds to
+/// zero (its sign must be recomputed exactly), a crossing for which the
+/// cheapest sufficient test for `t > 0` (every corner in front of the
+/// origin) fails or whose determinant's sign is not surely known, and a
+/// plain miss that only the definition can settle.
+///
+/// An invalid ray needs no test of its own: its origin lanes are NaN
+/// (`PreparedRay::new`), so every sheared coordinate, edge function and
+/// depth is NaN, and every comparison below is false: no two edge
+/// functions of opposite signs, none zero, the determinant out of range,
+/// no corner in front. That is a plain miss with no corner in front, so
+/// `None`, and no rare path is taken.
 #[inline(always)]
 pub(crate) fn watertight_lanes<V: Vector>(
     ray: &PreparedRay<V>,
@@ -585,9 +592,9 @@ pub(crate) fn watertight_lanes<V: Vector>(
     let inv_det = one / det;
     let t = t_scaled * inv_det;
     // A plain miss with a well-conditioned determinant, as above. (`t > 0`
-    // makes `is_finite` the same as `t <= MAX`, and `t_max` is not NaN, so
-    // the two upper limits are one comparison.)
-    if !(t > zero && t <= min2(t_max, S::<V>::MAX)) {
+    // makes `is_finite` the same as `t <= MAX`, so the two upper limits are
+    // one comparison.)
+    if !(t > zero && t <= min2(S::<V>::MAX, t_max)) {
         return None;
     }
     // u and v: lanes 1 and 2 of `min(e * inv_det, 1)`, finite here: each
@@ -1321,7 +1328,7 @@ pub fn ray_triangle_prepared<V: Vector>(
     tri: &Triangle<V>,
     t_max: S<V>,
 ) -> Option<TriangleHit<S<V>>> {
-    if !(ray.is_valid() && t_max_ok(t_max)) {
+    if !t_max_ok(t_max) {
         return None;
     }
     watertight_lanes(ray, tri, t_max)
@@ -1576,8 +1583,10 @@ pub fn ray_triangle_mt<V: Vector>(
         return None;
     }
     let t = e2.mul(q).sum3() * inv_det;
-    // (`t > 0` makes `is_finite` the same as `t <= MAX`.)
-    if !(t > zero && t <= t_max && t <= S::<V>::MAX) {
+    // (`t > 0` makes `is_finite` the same as `t <= MAX`, so the two upper
+    // limits are one comparison; `min2` returns its second argument when
+    // the comparison fails, so a NaN `t_max` stays NaN and fails it.)
+    if !(t > zero && t <= min2(S::<V>::MAX, t_max)) {
         return None;
     }
     // The determinant's sign must be certain, or the ray is taken as
