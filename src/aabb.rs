@@ -3,7 +3,7 @@
 
 use glam::Vec3;
 
-use crate::lanes::Lanes;
+use crate::lanes::{Axis, Lanes};
 use crate::ray::{Ray, t_max_ok};
 use crate::real::{L, S, Scalar, Vector, at_most, max2, min2, scale_to_one};
 use crate::triangle::Shear;
@@ -161,19 +161,34 @@ pub struct PreparedRay<V: Vector = Vec3> {
     /// directed reciprocals. The triangle tests use the origin too (only
     /// for a valid ray, where it is the ray's).
     pub(crate) slab: SlabRay<V>,
-    /// The triangle tests' shear of the ray's direction.
-    pub(crate) shear: Shear<S<V>>,
+    /// True when every reciprocal is a normal float (so the two of `slab`
+    /// are equal, and no distance is NaN for a valid box): the batch
+    /// kernels then take each axis' near and far plane from the sign of
+    /// the direction instead of ordering each pair (see `batch`).
+    pub(crate) simple: bool,
+    /// The triangle tests' shear factors `sx`, `sy`, `sz` (see `Shear`),
+    /// each in every lane.
+    pub(crate) shear_lanes: [L<V>; 3],
     /// The origin's coordinates in the shear's axis order, each in every
-    /// lane (see `Shear::origin_lanes`).
+    /// lane (see `Shear::origin_lanes`); NaN for an invalid ray.
     pub(crate) origin_lanes: [L<V>; 3],
-    /// The ray's direction (zero for an invalid ray), for the entry face.
+    /// The shear's axis order, `kx`, `ky`, `kz`.
+    pub(crate) axes: [Axis; 3],
+    /// The ray's direction (zero for an invalid ray), for the entry face
+    /// and the shear's `d_z`.
     pub(crate) dir: V,
 }
+// (The shear is stored only as the hot paths read it, and `Shear` rebuilt
+// from it where the rest is needed: where each test has its own ray, the
+// prepared ray is read once per test, and a smaller one costs less memory
+// traffic. 160 bytes for `Vec3`; storing `Shear` whole, with its scalars
+// and padding, took 208, and cost `ray_triangle_prepared` about 8% on the
+// pairwise rows of `benches/peers`.)
 
 impl<V: Vector> PartialEq for PreparedRay<V> {
     fn eq(&self, o: &Self) -> bool {
-        // `origin_lanes` is a function of the other two.
-        self.slab == o.slab && self.shear == o.shear
+        // The rest is a function of these two.
+        self.slab == o.slab && self.shear() == o.shear()
     }
 }
 
@@ -185,11 +200,6 @@ pub(crate) struct SlabRay<V: Vector> {
     pub(crate) inv_to_min: L<V>,
     /// Per axis, the reciprocal used for the distance to the `max` plane.
     pub(crate) inv_to_max: L<V>,
-    /// True when every reciprocal is a normal float (so the two above are
-    /// equal, and no distance is NaN for a valid box): the batch kernels
-    /// then take each axis' near and far plane from the sign of the
-    /// direction instead of ordering each pair (see `batch`).
-    pub(crate) simple: bool,
 }
 
 impl<V: Vector> PartialEq for SlabRay<V> {
@@ -232,7 +242,7 @@ impl<V: Vector> PreparedRay<V> {
         } else {
             V::new(z, z, S::<V>::ONE)
         };
-        let shear = Shear::new(&dir);
+        let shear = Shear::<S<V>>::new(&dir);
         // An invalid ray's origin lanes are NaN: the prepared triangle test
         // then finds no crossing without a test of its own (see
         // `watertight_lanes`).
@@ -242,11 +252,31 @@ impl<V: Vector> PreparedRay<V> {
         } else {
             V::new(nan, nan, nan)
         };
+        let (slab, simple) = SlabRay::new(ray);
         Self {
-            slab: SlabRay::new(ray),
+            slab,
+            simple,
+            shear_lanes: shear.lanes(),
             origin_lanes: shear.origin_lanes(origin),
-            shear,
+            axes: [shear.kx, shear.ky, shear.kz],
             dir: if ray.is_valid() { ray.dir } else { V::ZERO },
+        }
+    }
+
+    /// The triangle tests' shear, as [`PreparedRay::new`] computed it (its
+    /// `d_z` is zero for an invalid ray, whose shear no test uses).
+    #[inline(always)]
+    pub(crate) fn shear(&self) -> Shear<S<V>> {
+        let [kx, ky, kz] = self.axes;
+        let [sx, sy, sz] = self.shear_lanes.map(|l| l.x());
+        Shear {
+            kx,
+            ky,
+            kz,
+            sx,
+            sy,
+            sz,
+            dz: self.dir.get(kz),
         }
     }
 
@@ -267,9 +297,10 @@ impl<V: Vector> PreparedRay<V> {
 }
 
 impl<V: Vector> SlabRay<V> {
-    /// See [`PreparedRay::new`].
+    /// See [`PreparedRay::new`]; and whether every reciprocal is a normal
+    /// float (`PreparedRay::simple`).
     #[inline(always)]
-    pub(crate) fn new(ray: &Ray<V>) -> Self {
+    pub(crate) fn new(ray: &Ray<V>) -> (Self, bool) {
         let lanes = |v: V| L::<V>::new(v.x(), v.y(), v.z());
         let (one, zero) = (L::<V>::splat(S::<V>::ONE), L::<V>::splat(S::<V>::ZERO));
         let (origin, dir) = (lanes(ray.origin), lanes(ray.dir));
@@ -279,12 +310,12 @@ impl<V: Vector> SlabRay<V> {
         if !(finite && dir.eq(zero) != 0b111) {
             // An origin at +inf puts every box at t = -inf: a miss for every
             // valid box, with no flag to test in the hot loop.
-            return Self {
+            let slab = Self {
                 origin: L::<V>::splat(S::<V>::INFINITY),
                 inv_to_min: one,
                 inv_to_max: one,
-                simple: false,
             };
+            return (slab, false);
         }
         let r = one.div(dir);
         // Where every reciprocal is a normal float (or an exact infinity,
@@ -293,14 +324,14 @@ impl<V: Vector> SlabRay<V> {
         let normal =
             L::<V>::splat(S::<V>::MIN_POSITIVE).le(a) & a.lt(L::<V>::splat(S::<V>::INFINITY));
         if normal | dir.eq(zero) == 0b111 {
-            return Self {
+            let slab = Self {
                 origin,
                 inv_to_min: r,
                 inv_to_max: r,
-                simple: normal == 0b111,
             };
+            return (slab, normal == 0b111);
         }
-        Self::stepped(origin, ray.dir)
+        (Self::stepped(origin, ray.dir), false)
     }
 
     /// The rare case of [`SlabRay::new`]: some reciprocal is subnormal or
@@ -341,7 +372,6 @@ impl<V: Vector> SlabRay<V> {
             origin,
             inv_to_min: L::<V>::new(x0, y0, z0),
             inv_to_max: L::<V>::new(x1, y1, z1),
-            simple: false,
         }
     }
 }
@@ -521,7 +551,7 @@ pub fn ray_aabb<V: Vector>(
     aabb: &impl SlabBox<V>,
     t_max: S<V>,
 ) -> Option<(S<V>, S<V>)> {
-    slab_test(&SlabRay::new(ray), aabb, t_max)
+    slab_test(&SlabRay::new(ray).0, aabb, t_max)
 }
 
 /// A face of a box: one axis's `min` or `max` side.
@@ -914,6 +944,16 @@ pub(crate) mod definition {
 mod tests {
     use super::*;
     use glam::DVec3;
+
+    /// The prepared ray holds nine registers of four `f32` lanes (the
+    /// slab test's origin and two reciprocals, the triangle test's shear
+    /// factors and permuted origin, each of the last two in three
+    /// registers), the direction (12 bytes) and four one-byte fields: 160
+    /// bytes, with nothing lost to padding.
+    #[test]
+    fn prepared_ray_is_160_bytes() {
+        assert_eq!(core::mem::size_of::<PreparedRay<Vec3>>(), 9 * 16 + 12 + 4);
+    }
 
     /// `ValidAabb::new` takes exactly the valid boxes: flat ones in, and
     /// NaN, infinite and inverted ones (on any axis) out; the slab test on

@@ -97,7 +97,7 @@ impl<W: Lanes8> Slab8<W> {
             inv_to_max: [W::splat(bx), W::splat(by), W::splat(bz)],
             lo: W::splat(W::F::ZERO),
             hi: W::splat(t_max),
-            simple: ray.slab.simple,
+            simple: ray.simple,
         }
     }
 
@@ -666,7 +666,7 @@ fn triangle_batch_body<W: Lanes8<F = S<V>>, V: Vector, const N: usize>(
     if !(ray.is_valid() && t_max_ok(t_max)) {
         return out;
     }
-    let sh = ray.shear;
+    let sh = ray.shear();
     // The permuted axes: x, y, z of the ray's frame.
     let (kx, ky, kz) = (sh.kx as usize, sh.ky as usize, sh.kz as usize);
     // The origin in the ray's axis order, from the prepared lanes (indexing
@@ -794,7 +794,8 @@ fn slow_lanes<V: Vector, const N: usize>(
         let tri = batch.lane(l);
         // (A lane can arrive here with the plain answer already written.)
         (out.t[l], out.u[l], out.v[l]) = (S::<V>::INFINITY, S::<V>::ZERO, S::<V>::ZERO);
-        if let Some(h) = watertight_sheared(ray.origin(), &ray.shear, &tri, t_max, EdgeRule::Closed)
+        if let Some(h) =
+            watertight_sheared(ray.origin(), &ray.shear(), &tri, t_max, EdgeRule::Closed)
         {
             out.mask |= 1 << l;
             if h.side == Side::Front {

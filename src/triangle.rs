@@ -220,8 +220,6 @@ pub(crate) struct Shear<F: Scalar> {
     pub(crate) sz: F,
     /// `d_z` itself, for the side of a hit.
     pub(crate) dz: F,
-    /// `sx`, `sy`, `sz`, each in every lane.
-    pub(crate) lanes: [F::Lanes; 3],
 }
 
 impl<F: Scalar> PartialEq for Shear<F> {
@@ -267,12 +265,18 @@ impl<F: Scalar> Shear<F> {
             sy,
             sz,
             dz,
-            lanes: [
-                F::Lanes::splat(sx),
-                F::Lanes::splat(sy),
-                F::Lanes::splat(sz),
-            ],
         }
+    }
+
+    /// `sx`, `sy`, `sz`, each in every lane: what the lanes form of the
+    /// test multiplies by.
+    #[inline(always)]
+    pub(crate) fn lanes(&self) -> [F::Lanes; 3] {
+        [
+            F::Lanes::splat(self.sx),
+            F::Lanes::splat(self.sy),
+            F::Lanes::splat(self.sz),
+        ]
     }
 
     /// `(v[kx], v[ky], v[kz])`.
@@ -542,11 +546,10 @@ pub(crate) fn watertight_lanes<V: Vector>(
     t_max: S<V>,
 ) -> Option<TriangleHit<S<V>>> {
     let (zero, one) = (S::<V>::ZERO, S::<V>::ONE);
-    let shear = &ray.shear;
     // (The definition is called with what this function was given, so that
     // no closure's environment is built on the common paths.)
     let slow = || S::<V>::unpack_hit(prepared_slow(ray, tri, t_max));
-    let (x, y, pz, e) = frame_lanes(&ray.origin_lanes, shear, tri);
+    let (x, y, pz, e) = frame_lanes(&ray.origin_lanes, &ray.shear_lanes, &ray.axes, tri);
     let lanes_zero = L::<V>::splat(zero);
     let (neg, pos) = (e.lt(lanes_zero), lanes_zero.lt(e));
     if neg != 0 && pos != 0 {
@@ -557,7 +560,8 @@ pub(crate) fn watertight_lanes<V: Vector>(
         return slow();
     }
     let det = e.sum3();
-    let z = pz.mul(shear.lanes[2]);
+    let sz = ray.shear_lanes[2];
+    let z = pz.mul(sz);
     let t_scaled = e.mul(z).sum3();
     let in_range = if det > zero {
         t_scaled > zero && t_scaled <= t_max * det
@@ -602,7 +606,9 @@ pub(crate) fn watertight_lanes<V: Vector>(
     // (else `t` would be infinite).
     let w = e.mul(L::<V>::splat(inv_det)).min(L::<V>::splat(one));
     let [_, u, v] = w.to_array();
-    let side = if (det > zero) != (shear.dz > zero) {
+    // (`sz = 1 / d_z` has the sign of `d_z`, and is not zero: `|d_z| <=
+    // MAX`.)
+    let side = if (det > zero) != (sz.x() > zero) {
         Side::Front
     } else {
         Side::Back
@@ -621,7 +627,7 @@ type PackedHit<V> = <S<V> as Scalar>::PackedHit;
 fn prepared_slow<V: Vector>(ray: &PreparedRay<V>, tri: &Triangle<V>, t_max: S<V>) -> PackedHit<V> {
     S::<V>::pack_hit(watertight_sheared(
         ray.origin(),
-        &ray.shear,
+        &ray.shear(),
         tri,
         t_max,
         EdgeRule::Closed,
@@ -922,17 +928,19 @@ fn roughly_conditioned<W: Lanes>(det: W, k: W) -> u32 {
 #[inline(always)]
 fn frame_lanes<V: Vector>(
     origin_lanes: &[L<V>; 3],
-    shear: &Shear<S<V>>,
+    shear_lanes: &[L<V>; 3],
+    axes: &[Axis; 3],
     tri: &Triangle<V>,
 ) -> (L<V>, L<V>, L<V>, L<V>) {
     let corners = |k: Axis| L::<V>::new(tri.a.get(k), tri.b.get(k), tri.c.get(k));
-    let [sx, sy, _] = shear.lanes;
+    let [sx, sy, _] = *shear_lanes;
     let [ox, oy, oz] = *origin_lanes;
+    let [kx, ky, kz] = *axes;
     // Translate, permute (the corners' coordinates are read in the ray's
     // axis order), shear.
-    let px = corners(shear.kx).sub(ox);
-    let py = corners(shear.ky).sub(oy);
-    let pz = corners(shear.kz).sub(oz);
+    let px = corners(kx).sub(ox);
+    let py = corners(ky).sub(oy);
+    let pz = corners(kz).sub(oz);
     let x = px.add(sx.mul(pz));
     let y = py.add(sy.mul(pz));
     // Edge functions: lane i is x[i+1] y[i+2] - y[i+1] x[i+2].
@@ -952,7 +960,7 @@ fn plain_miss_lanes<V: Vector>(
     tri: &Triangle<V>,
     t_max: S<V>,
 ) -> PackedHit<V> {
-    let (x, y, pz, e) = frame_lanes(&ray.origin_lanes, &ray.shear, tri);
+    let (x, y, pz, e) = frame_lanes(&ray.origin_lanes, &ray.shear_lanes, &ray.axes, tri);
     if corners_conditioned(x, y, pz, e.sum3()) {
         S::<V>::pack_hit(None)
     } else {
