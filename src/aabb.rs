@@ -183,7 +183,7 @@ pub struct PreparedRay<V: Vector = Vec3> {
 // prepared ray is read once per test, and a smaller one costs less memory
 // traffic. 160 bytes for `Vec3`; storing `Shear` whole, with its scalars
 // and padding, took 208, and cost `ray_triangle_prepared` about 8% on the
-// pairwise rows of `benches/peers`.)
+// camera rows of `benches/peers`, where each test reads a ray of its own.)
 
 impl<V: Vector> PartialEq for PreparedRay<V> {
     fn eq(&self, o: &Self) -> bool {
