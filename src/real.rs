@@ -161,6 +161,13 @@ pub trait Scalar:
     #[must_use]
     fn two_diff(a: Self, b: Self) -> (Self, Self);
 
+    /// `0 <= self <= 1`, as one comparison of the bits and a test for
+    /// `-0` (which the bits put above 1), so that it compiles to one
+    /// branch. False for NaN. An implementation detail.
+    #[doc(hidden)]
+    #[must_use]
+    fn in_unit_interval(self) -> bool;
+
     /// A triangle test's answer in a form that a function returns in
     /// registers (`u128` for `f32`; `f64`'s answer is too large, and stays
     /// as it is). The triangle tests' rare paths, out of line, return it:
@@ -358,6 +365,13 @@ macro_rules! impl_scalar {
                 let s = a - b;
                 let bb = s - a;
                 (s, (a - (s - bb)) - (b + bb))
+            }
+            #[inline(always)]
+            fn in_unit_interval(self) -> bool {
+                // The bits of a non-negative float (NaN aside) order as
+                // its value, and every negative one's sign bit puts it
+                // above 1's: so the first test is `+0 <= self <= 1`.
+                (self.to_bits() <= (1.0 as $f).to_bits()) | (self == 0.0)
             }
             #[inline(always)]
             fn pack_hit(hit: Option<crate::TriangleHit<Self>>) -> $packed {
@@ -797,6 +811,47 @@ mod tests {
         let g = f64::gamma_n(3);
         assert!(g > 3.0 * 2f64.powi(-53));
         assert!(g < 3.0001 * 2f64.powi(-53));
+    }
+
+    #[test]
+    fn in_unit_interval_is_the_two_comparisons() {
+        fn check<F: Scalar + core::fmt::Debug>(values: &[F]) {
+            for &x in values {
+                let expected = x >= F::ZERO && x <= F::ONE;
+                assert_eq!(x.in_unit_interval(), expected, "{x:?}");
+            }
+        }
+        let one = 1.0f32;
+        check(&[
+            0.0,
+            -0.0,
+            f32::from_bits(1),
+            -f32::from_bits(1),
+            0.5,
+            one.next_down(),
+            one,
+            one.next_up(),
+            -one,
+            f32::MAX,
+            f32::INFINITY,
+            f32::NEG_INFINITY,
+            f32::NAN,
+            -f32::NAN,
+        ]);
+        let one = 1.0f64;
+        check(&[
+            0.0,
+            -0.0,
+            f64::from_bits(1),
+            -f64::from_bits(1),
+            one.next_down(),
+            one,
+            one.next_up(),
+            -one,
+            f64::INFINITY,
+            f64::NAN,
+            -f64::NAN,
+        ]);
     }
 
     #[test]

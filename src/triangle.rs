@@ -1581,7 +1581,10 @@ pub fn ray_triangle_mt<V: Vector>(
     let inv_det = one / det;
     let s = lanes(ray.origin).sub(a);
     let u = s.mul(p).sum3() * inv_det;
-    if !(u >= zero && u <= one) {
+    // (One branch for both of `u`'s limits: on rays that mostly miss, `u`
+    // falls on either side about equally, and two branches were each
+    // unpredictable where one is not.)
+    if !u.in_unit_interval() {
         return None;
     }
     // q = s x e1.
