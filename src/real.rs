@@ -815,43 +815,32 @@ mod tests {
 
     #[test]
     fn in_unit_interval_is_the_two_comparisons() {
-        fn check<F: Scalar + core::fmt::Debug>(values: &[F]) {
-            for &x in values {
-                let expected = x >= F::ZERO && x <= F::ONE;
+        fn check<F: Scalar>() {
+            let (zero, one, tiny) = (F::ZERO, F::ONE, F::TINY);
+            let (inf, nan) = (F::INFINITY, F::NAN);
+            let values = [
+                zero,
+                -zero,
+                tiny,
+                -tiny,
+                F::HALF,
+                one.next_down(),
+                one,
+                one.next_up(),
+                -one,
+                F::MAX,
+                inf,
+                -inf,
+                nan,
+                -nan,
+            ];
+            for x in values {
+                let expected = x >= zero && x <= one;
                 assert_eq!(x.in_unit_interval(), expected, "{x:?}");
             }
         }
-        let one = 1.0f32;
-        check(&[
-            0.0,
-            -0.0,
-            f32::from_bits(1),
-            -f32::from_bits(1),
-            0.5,
-            one.next_down(),
-            one,
-            one.next_up(),
-            -one,
-            f32::MAX,
-            f32::INFINITY,
-            f32::NEG_INFINITY,
-            f32::NAN,
-            -f32::NAN,
-        ]);
-        let one = 1.0f64;
-        check(&[
-            0.0,
-            -0.0,
-            f64::from_bits(1),
-            -f64::from_bits(1),
-            one.next_down(),
-            one,
-            one.next_up(),
-            -one,
-            f64::INFINITY,
-            f64::NAN,
-            -f64::NAN,
-        ]);
+        check::<f32>();
+        check::<f64>();
     }
 
     #[test]
