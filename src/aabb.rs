@@ -454,7 +454,12 @@ fn slab_test<V: Vector, B: SlabBox<V>>(
     let aabb = aabb.corners();
     let splat = L::<V>::splat;
     let lanes = |v: V| L::<V>::new(v.x(), v.y(), v.z());
-    let (min, max) = (lanes(aabb.min), lanes(aabb.max));
+    // (Lane 3 is never read. Where the corners are packed, filling the
+    // minimum's with the maximum's `x`, stored next to it, lets the four
+    // lanes come from one load.)
+    let (x, y, z) = (aabb.min.x(), aabb.min.y(), aabb.min.z());
+    let min = L::<V>::new4(x, y, z, if V::PACKED { aabb.max.x() } else { z });
+    let max = lanes(aabb.max);
     let big = S::<V>::MAX;
     let (zero, limit) = (splat(S::<V>::ZERO), splat(t_max));
     let t0 = min.sub(ray.origin).mul(ray.inv_to_min);
@@ -473,21 +478,27 @@ fn slab_test<V: Vector, B: SlabBox<V>>(
     // zero, or so small that every distance overflows): a miss even when
     // the limit is infinite too, hence the `MAX`.
     let widened = exit.mul(splat(exit_widening())).add(splat(exit_slack()));
-    let capped = widened.min(splat(big));
-    // The box is hit when the largest entry is at most the smallest widened
-    // exit, that is, when every axis's entry is at most every axis's widened
-    // exit: three lane-wise comparisons against the exits rotated, fewer
-    // operations than the two reductions. (Widening rounds monotonically,
-    // so widening each exit and then taking the smallest is widening the
-    // smallest: the same bits as the definition.)
-    let hit = enter.le(capped) & enter.le(capped.rot1()) & enter.le(capped.rot2());
-    // (A `ValidAabb` was checked when it was made.)
-    let valid = !B::CHECK || Lanes::ordered(splat(-big), min, max, splat(big));
-    if !(valid & (hit == 0b111) & t_max_ok(t_max)) {
+    // The box is hit when the last entry is at most every widened exit and
+    // at most `MAX`. The last entry, in every lane, is ready before the
+    // exits are widened, so the test waits on one comparison after the
+    // widening. (Widening rounds monotonically, so widening each exit and
+    // then taking the smallest is widening the smallest: the same bits as
+    // the definition. Nothing here is NaN, unless `t_max` is, which fails
+    // below.)
+    let enter = enter.max_all();
+    let miss = widened.lt(enter) | splat(big).lt(enter);
+    // The box must be valid: `-MAX <= min <= max <= MAX` on every axis, a
+    // NaN failing. (A `ValidAabb` was checked when it was made.)
+    let invalid = if B::CHECK {
+        splat(-big).nle(min) | min.nle(max) | max.nle(splat(big))
+    } else {
+        0
+    };
+    if (miss | invalid) != 0 || !t_max_ok(t_max) {
         return None;
     }
     let exit = at_most(widened.min_all().x(), t_max);
-    Some((at_most(enter.max_all().x(), exit), exit))
+    Some((at_most(enter.x(), exit), exit))
 }
 
 /// The slab test: the part of `[0, t_max]` that `ray` spends inside the

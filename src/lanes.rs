@@ -56,6 +56,10 @@ pub trait Lanes: Copy + Debug + Send + Sync + 'static {
     type F: Scalar;
     /// `(x, y, z)`; lane 3 repeats `z`.
     fn new(x: Self::F, y: Self::F, z: Self::F) -> Self;
+    /// `(x, y, z)`, with `w` in lane 3 (any value: lane 3 is computed
+    /// along and never read). Where `w` is the value stored next to `z`, the
+    /// four lanes can come from one load.
+    fn new4(x: Self::F, y: Self::F, z: Self::F, w: Self::F) -> Self;
     /// `v` in every lane.
     fn splat(v: Self::F) -> Self;
     /// Lanes 0, 1, 2.
@@ -102,11 +106,9 @@ pub trait Lanes: Copy + Debug + Send + Sync + 'static {
     }
     /// `(x + y) + z`, in that order.
     fn sum3(self) -> Self::F;
-    /// True when `lo <= min` and `min <= max` and `max <= hi` on every axis
-    /// (false for NaN): the box test's validity, in one go.
-    fn ordered(lo: Self, min: Self, max: Self, hi: Self) -> bool {
-        lo.le(min) & min.le(max) & max.le(hi) == 0b111
-    }
+    /// Bit `k` set when `self[k] <= o[k]` fails (NaN included): `!le` on
+    /// lanes 0 to 2, one comparison.
+    fn nle(self, o: Self) -> u32;
 }
 
 /// The lanes as an array, each operation a loop over it: the definition of
@@ -133,6 +135,10 @@ impl<F: Scalar> Lanes for Portable<F> {
     #[inline(always)]
     fn new(x: F, y: F, z: F) -> Self {
         Self([x, y, z, z])
+    }
+    #[inline(always)]
+    fn new4(x: F, y: F, z: F, w: F) -> Self {
+        Self([x, y, z, w])
     }
     #[inline(always)]
     fn splat(v: F) -> Self {
@@ -189,6 +195,10 @@ impl<F: Scalar> Lanes for Portable<F> {
     #[inline(always)]
     fn eq(self, o: Self) -> u32 {
         self.mask(o, |a, b| a == b)
+    }
+    #[inline(always)]
+    fn nle(self, o: Self) -> u32 {
+        self.mask(o, |a, b| !(a <= b))
     }
     #[inline(always)]
     fn rot1(self) -> Self {
@@ -296,6 +306,11 @@ pub(crate) mod sse {
             Self(unsafe { _mm_set_ps(z, z, y, x) })
         }
         #[inline(always)]
+        fn new4(x: f32, y: f32, z: f32, w: f32) -> Self {
+            // SAFETY: see the module docs (SSE, no memory access).
+            Self(unsafe { _mm_set_ps(w, z, y, x) })
+        }
+        #[inline(always)]
         fn splat(v: f32) -> Self {
             // SAFETY: see the module docs (SSE, no memory access).
             Self(unsafe { _mm_set1_ps(v) })
@@ -337,6 +352,7 @@ pub(crate) mod sse {
         cmp!(lt, _mm_cmplt_ps);
         cmp!(le, _mm_cmple_ps);
         cmp!(eq, _mm_cmpeq_ps);
+        cmp!(nle, _mm_cmpnle_ps);
         #[inline(always)]
         fn rot1(self) -> Self {
             // (y, z, x, w): lanes 1, 2, 0, 3.
@@ -356,17 +372,6 @@ pub(crate) mod sse {
                 let xy = _mm_add_ss(self.0, lane1(self.0));
                 _mm_cvtss_f32(_mm_add_ss(xy, lane2(self.0)))
             }
-        }
-        #[inline(always)]
-        fn ordered(lo: Self, min: Self, max: Self, hi: Self) -> bool {
-            // SAFETY: see the module docs (SSE, no memory access).
-            let mask = unsafe {
-                let a = _mm_cmple_ps(lo.0, min.0);
-                let b = _mm_cmple_ps(min.0, max.0);
-                let c = _mm_cmple_ps(max.0, hi.0);
-                _mm_movemask_ps(_mm_and_ps(_mm_and_ps(a, b), c))
-            };
-            mask & 0b111 == 0b111
         }
     }
 
@@ -831,24 +836,12 @@ mod tests {
             assert_eq!(pa.lt(pb), fa.lt(fb));
             assert_eq!(pa.le(pb), fa.le(fb));
             assert_eq!(pa.eq(pb), fa.eq(fb));
+            assert_eq!(pa.nle(pb), fa.nle(fb));
             for (p, f) in [(pa.max_all(), fa.max_all()), (pa.min_all(), fa.min_all())] {
                 assert!(same(p.to_array(), f.to_array()), "{a:?}");
             }
             assert_eq!(pa.sum3().to_bits(), fa.sum3().to_bits(), "{a:?}");
             assert_eq!(pa.x().to_bits(), fa.x().to_bits());
-            let (c, d) = (v(), v());
-            let (pc, pd) = (
-                Portable::new(c[0], c[1], c[2]),
-                Portable::new(d[0], d[1], d[2]),
-            );
-            let (fc, fd) = (
-                F32Lanes::new(c[0], c[1], c[2]),
-                F32Lanes::new(d[0], d[1], d[2]),
-            );
-            assert_eq!(
-                Lanes::ordered(pa, pb, pc, pd),
-                Lanes::ordered(fa, fb, fc, fd)
-            );
         }
     }
 
