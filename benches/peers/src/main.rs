@@ -25,6 +25,7 @@ mod workloads;
 
 mod cwbvh;
 
+use std::cell::Cell;
 use std::hint::black_box;
 use std::time::{Duration, Instant};
 
@@ -179,6 +180,8 @@ fn bits(x: f32) -> u64 {
 
 struct BoxData {
     name: &'static str,
+    /// The orders of the pairwise rows' passes.
+    order: Orders,
     rays: Vec<Ray>,
     boxes: Vec<Aabb>,
     prepared: Vec<PreparedRay>,
@@ -196,9 +199,10 @@ struct BoxData {
 }
 
 impl BoxData {
-    fn new(name: &'static str, rays: Vec<Ray>, boxes: Vec<Aabb>) -> Self {
+    fn new(name: &'static str, rays: Vec<Ray>, boxes: Vec<Aabb>, shuffle: bool) -> Self {
         Self {
             name,
+            order: Orders::new(rays.len(), shuffle),
             prepared: rays.iter().map(PreparedRay::new).collect(),
             valid: boxes
                 .iter()
@@ -222,6 +226,8 @@ impl BoxData {
 
 struct TriData {
     name: &'static str,
+    /// The orders of the pairwise rows' passes.
+    order: Orders,
     rays: Vec<Ray>,
     tris: Vec<Triangle>,
     prepared: Vec<PreparedRay>,
@@ -237,9 +243,10 @@ struct TriData {
 }
 
 impl TriData {
-    fn new(name: &'static str, rays: Vec<Ray>, tris: Vec<Triangle>) -> Self {
+    fn new(name: &'static str, rays: Vec<Ray>, tris: Vec<Triangle>, shuffle: bool) -> Self {
         Self {
             name,
+            order: Orders::new(rays.len(), shuffle),
             prepared: rays.iter().map(PreparedRay::new).collect(),
             floor_rays: rays.iter().map(FloorRay::new).collect(),
             prepared_a: rays.iter().map(|r| PreparedRay::new(&ray_a(r))).collect(),
@@ -271,6 +278,103 @@ fn chunked<'a, R, X>(
         for (r, g) in rays.iter().zip(shapes.chunks(per_ray)) {
             for x in g {
                 c += f(r, x);
+            }
+        }
+        c
+    }
+}
+
+/// The orders in which a pairwise row visits its workload's ray/shape
+/// pairs: each call of the row's loop (one pass) takes the next, in turn.
+///
+/// A pass that visits the same pairs in the same order every time is a
+/// sequence of branch outcomes that the CPU's branch predictor learns over
+/// the passes of a round: on the aimed rays, where about half of the tests
+/// hit, the textbook Moller-Trumbore then ran twice as fast as on rays it
+/// had not seen, and how much of a pass the predictor held changed with
+/// where the code landed in memory. A renderer's rays do not repeat like
+/// that. So the triangle pairs whose order carries no meaning (`random`,
+/// `aimed`, `axis`) are visited in a fresh order on each pass: one of
+/// [`ORDERS`] permutations, drawn once, each shuffling the pairs within
+/// consecutive blocks of [`BLOCK`] (so that the data still streams through
+/// the caches block by block). Camera rays keep their scanline order: the
+/// coherence of neighbouring pixels is what that workload is about.
+///
+/// The box pairs keep their stored order: every box test in the table is
+/// decided without a branch on its outcome (`bvh`'s branches only on
+/// NaN), so there is little for the predictor to learn, and a
+/// shuffled order only adds the cost of fetching each pair's ray from the
+/// level-2 cache (the most for a 160-byte prepared ray, which a traversal
+/// reuses instead). `--shuffle-all` shuffles them too, `--same-order`
+/// nothing.
+struct Orders {
+    orders: Vec<Vec<u16>>,
+    next: Cell<usize>,
+}
+
+/// How many shuffled orders a workload's passes cycle through.
+const ORDERS: usize = 16;
+
+/// The pairs are shuffled within consecutive blocks of this many.
+const BLOCK: usize = 64;
+
+impl Orders {
+    fn new(pairs: usize, shuffle: bool) -> Self {
+        let stored: Vec<u16> = (0..pairs)
+            .map(|i| u16::try_from(i).expect("at most 65536 pairs"))
+            .collect();
+        let orders = if !shuffle {
+            vec![stored]
+        } else {
+            let mut rng = Pcg32::with_stream(31, 7);
+            (0..ORDERS)
+                .map(|_| {
+                    let mut o = stored.clone();
+                    // Fisher-Yates, within each block.
+                    for block in o.chunks_mut(BLOCK) {
+                        for i in (1..block.len()).rev() {
+                            let j = rng.below(i as u32 + 1) as usize;
+                            block.swap(i, j);
+                        }
+                    }
+                    o
+                })
+                .collect()
+        };
+        Self {
+            orders,
+            next: Cell::new(0),
+        }
+    }
+
+    /// The order for the next pass.
+    fn take(&self) -> &[u16] {
+        let k = self.next.get();
+        self.next.set((k + 1) % self.orders.len());
+        &self.orders[k]
+    }
+}
+
+/// A pairwise row's loop: ray `i` against shape `i`, for `i` in the next
+/// of `order`'s orders (a plain loop where there is only the stored
+/// order); the sum of `f`'s answers.
+fn pairwise<'a, R, X>(
+    order: &'a Orders,
+    rays: &'a [R],
+    shapes: &'a [X],
+    f: impl Fn(&R, &X) -> u64 + 'a,
+) -> impl Fn() -> u64 + 'a {
+    move || {
+        let mut c = 0;
+        if order.orders.len() == 1 {
+            // The stored order: a plain loop over the pairs.
+            for (r, x) in rays.iter().zip(shapes) {
+                c += f(r, x);
+            }
+        } else {
+            for &i in order.take() {
+                let i = usize::from(i);
+                c += f(&rays[i], &shapes[i]);
             }
         }
         c
@@ -421,6 +525,36 @@ impl PlainRay {
     }
 }
 
+/// `if a < b { a } else { b }`, as one `minss` on x86-64. (Written as that
+/// `if`, the slab test's selects were vectorized two axes at a time and
+/// compiled to branches on the comparisons' mask, which the order of the
+/// rays then made or broke; the instruction keeps the test branchless.)
+#[inline(always)]
+fn min_ss(a: f32, b: f32) -> f32 {
+    #[cfg(target_arch = "x86_64")]
+    // SAFETY: SSE is part of every x86-64 target, and these intrinsics
+    // only compute on registers (no memory access).
+    unsafe {
+        use std::arch::x86_64::{_mm_cvtss_f32, _mm_min_ss, _mm_set_ss};
+        _mm_cvtss_f32(_mm_min_ss(_mm_set_ss(a), _mm_set_ss(b)))
+    }
+    #[cfg(not(target_arch = "x86_64"))]
+    if a < b { a } else { b }
+}
+
+/// `if a > b { a } else { b }`, as one `maxss` on x86-64.
+#[inline(always)]
+fn max_ss(a: f32, b: f32) -> f32 {
+    #[cfg(target_arch = "x86_64")]
+    // SAFETY: as in `min_ss`.
+    unsafe {
+        use std::arch::x86_64::{_mm_cvtss_f32, _mm_max_ss, _mm_set_ss};
+        _mm_cvtss_f32(_mm_max_ss(_mm_set_ss(a), _mm_set_ss(b)))
+    }
+    #[cfg(not(target_arch = "x86_64"))]
+    if a > b { a } else { b }
+}
+
 /// The plain branchless `f32` slab test the way it is usually written
 /// (Williams et al. 2005 without the sign table; Barnes 2022's loop), with
 /// each `min`/`max` a single comparison so that it compiles to one
@@ -431,9 +565,9 @@ fn plain_slab(r: &PlainRay, b: &Aabb) -> bool {
     for k in 0..3 {
         let t1 = (b.min[k] - r.origin[k]) * r.inv[k];
         let t2 = (b.max[k] - r.origin[k]) * r.inv[k];
-        let (near, far) = if t1 < t2 { (t1, t2) } else { (t2, t1) };
-        lo = if near > lo { near } else { lo };
-        hi = if far < hi { far } else { hi };
+        let (near, far) = (min_ss(t1, t2), max_ss(t1, t2));
+        lo = max_ss(near, lo);
+        hi = min_ss(far, hi);
     }
     lo <= hi
 }
@@ -775,7 +909,9 @@ fn box_kernels<'a>(d: &'a BoxData, out: &mut Vec<Kernel<'a>>) {
             w,
             n,
             None,
-            chunked(&d.rays, &d.boxes, 1, move |r, b| hit(ray_aabb(r, b, INF))),
+            pairwise(&d.order, &d.rays, &d.boxes, move |r, b| {
+                hit(ray_aabb(r, b, INF))
+            }),
         ),
         kernel(
             sec,
@@ -783,7 +919,7 @@ fn box_kernels<'a>(d: &'a BoxData, out: &mut Vec<Kernel<'a>>) {
             w,
             n,
             None,
-            chunked(&d.prepared, &d.boxes, 1, move |r, b| {
+            pairwise(&d.order, &d.prepared, &d.boxes, move |r, b| {
                 hit(ray_aabb_prepared(r, b, INF))
             }),
         ),
@@ -793,7 +929,7 @@ fn box_kernels<'a>(d: &'a BoxData, out: &mut Vec<Kernel<'a>>) {
             w,
             n,
             None,
-            chunked(&d.prepared, &d.valid, 1, move |r, b| {
+            pairwise(&d.order, &d.prepared, &d.valid, move |r, b| {
                 hit(ray_aabb_prepared(r, b, INF))
             }),
         ),
@@ -803,7 +939,7 @@ fn box_kernels<'a>(d: &'a BoxData, out: &mut Vec<Kernel<'a>>) {
             w,
             n,
             None,
-            chunked(&d.prepared_a, &d.boxes_a, 1, move |r, b| {
+            pairwise(&d.order, &d.prepared_a, &d.boxes_a, move |r, b| {
                 hit(ray_aabb_prepared(r, b, INF))
             }),
         ),
@@ -813,7 +949,9 @@ fn box_kernels<'a>(d: &'a BoxData, out: &mut Vec<Kernel<'a>>) {
             w,
             n,
             Some(plain_agree),
-            chunked(&d.plain, &d.boxes, 1, |r, b| u64::from(plain_slab(r, b))),
+            pairwise(&d.order, &d.plain, &d.boxes, |r, b| {
+                u64::from(plain_slab(r, b))
+            }),
         ),
         kernel(
             sec,
@@ -821,7 +959,7 @@ fn box_kernels<'a>(d: &'a BoxData, out: &mut Vec<Kernel<'a>>) {
             w,
             n,
             Some(bvh_agree),
-            chunked(&d.bvh_rays, &d.bvh_boxes, 1, |r, b| {
+            pairwise(&d.order, &d.bvh_rays, &d.bvh_boxes, |r, b| {
                 u64::from(r.intersects_aabb(b))
             }),
         ),
@@ -831,7 +969,7 @@ fn box_kernels<'a>(d: &'a BoxData, out: &mut Vec<Kernel<'a>>) {
             w,
             n,
             Some(parry_agree),
-            chunked(&d.parry_rays, &d.parry_boxes, 1, |r, b| {
+            pairwise(&d.order, &d.parry_rays, &d.parry_boxes, |r, b| {
                 u64::from(b.cast_local_ray(r, f32::MAX, true).is_some())
             }),
         ),
@@ -883,7 +1021,7 @@ fn triangle_kernels<'a>(d: &'a TriData, out: &mut Vec<Kernel<'a>>) {
             w,
             n,
             None,
-            chunked(&d.rays, &d.tris, 1, |r, t| {
+            pairwise(&d.order, &d.rays, &d.tris, |r, t| {
                 t_sum(ray_triangle(r, t, INF).map(|h| h.t))
             }),
         ),
@@ -893,7 +1031,7 @@ fn triangle_kernels<'a>(d: &'a TriData, out: &mut Vec<Kernel<'a>>) {
             w,
             n,
             None,
-            chunked(&d.prepared, &d.tris, 1, |r, t| {
+            pairwise(&d.order, &d.prepared, &d.tris, |r, t| {
                 t_sum(ray_triangle_prepared(r, t, INF).map(|h| h.t))
             }),
         ),
@@ -903,7 +1041,7 @@ fn triangle_kernels<'a>(d: &'a TriData, out: &mut Vec<Kernel<'a>>) {
             w,
             n,
             None,
-            chunked(&d.prepared_a, &d.tris_a, 1, |r, t| {
+            pairwise(&d.order, &d.prepared_a, &d.tris_a, |r, t| {
                 t_sum(ray_triangle_prepared(r, t, INF).map(|h| h.t))
             }),
         ),
@@ -913,7 +1051,7 @@ fn triangle_kernels<'a>(d: &'a TriData, out: &mut Vec<Kernel<'a>>) {
             w,
             n,
             None,
-            chunked(&d.rays, &d.tris, 1, |r, t| {
+            pairwise(&d.order, &d.rays, &d.tris, |r, t| {
                 t_sum(ray_triangle_mt(r, t, INF).map(|h| h.t))
             }),
         ),
@@ -923,7 +1061,7 @@ fn triangle_kernels<'a>(d: &'a TriData, out: &mut Vec<Kernel<'a>>) {
             w,
             n,
             Some(mt_agree),
-            chunked(&d.rays, &d.tris, 1, |r, t| t_sum(textbook_mt(r, t))),
+            pairwise(&d.order, &d.rays, &d.tris, |r, t| t_sum(textbook_mt(r, t))),
         ),
         kernel(
             sec,
@@ -931,7 +1069,9 @@ fn triangle_kernels<'a>(d: &'a TriData, out: &mut Vec<Kernel<'a>>) {
             w,
             n,
             Some(floor_mt_agree),
-            chunked(&d.rays, &d.tris, 1, |r, t| t_sum(floor_mt(r, t, INF))),
+            pairwise(&d.order, &d.rays, &d.tris, |r, t| {
+                t_sum(floor_mt(r, t, INF))
+            }),
         ),
         kernel(
             sec,
@@ -939,7 +1079,9 @@ fn triangle_kernels<'a>(d: &'a TriData, out: &mut Vec<Kernel<'a>>) {
             w,
             n,
             Some(woop_agree),
-            chunked(&d.rays, &d.tris, 1, |r, t| t_sum(textbook_watertight(r, t))),
+            pairwise(&d.order, &d.rays, &d.tris, |r, t| {
+                t_sum(textbook_watertight(r, t))
+            }),
         ),
         kernel(
             sec,
@@ -947,7 +1089,7 @@ fn triangle_kernels<'a>(d: &'a TriData, out: &mut Vec<Kernel<'a>>) {
             w,
             n,
             None,
-            chunked(&d.rays, &d.tris, 1, |r, t| {
+            pairwise(&d.order, &d.rays, &d.tris, |r, t| {
                 t_sum(floor_watertight(r, t, INF))
             }),
         ),
@@ -957,7 +1099,7 @@ fn triangle_kernels<'a>(d: &'a TriData, out: &mut Vec<Kernel<'a>>) {
             w,
             n,
             Some(floor_agree),
-            chunked(&d.floor_rays, &d.tris, 1, |r, t| {
+            pairwise(&d.order, &d.floor_rays, &d.tris, |r, t| {
                 t_sum(floor_watertight_prepared::<false>(r, t, INF).map(|h| h.0))
             }),
         ),
@@ -967,7 +1109,7 @@ fn triangle_kernels<'a>(d: &'a TriData, out: &mut Vec<Kernel<'a>>) {
             w,
             n,
             None,
-            chunked(&d.floor_rays, &d.tris, 1, |r, t| {
+            pairwise(&d.order, &d.floor_rays, &d.tris, |r, t| {
                 t_sum(floor_watertight_prepared::<true>(r, t, INF).map(|h| h.0))
             }),
         ),
@@ -977,7 +1119,9 @@ fn triangle_kernels<'a>(d: &'a TriData, out: &mut Vec<Kernel<'a>>) {
             w,
             n,
             Some(bvh_agree),
-            chunked(&d.bvh_rays, &d.bvh_tris, 1, |r, t| t_sum(bvh_hits(r, t))),
+            pairwise(&d.order, &d.bvh_rays, &d.bvh_tris, |r, t| {
+                t_sum(bvh_hits(r, t))
+            }),
         ),
         kernel(
             sec,
@@ -985,7 +1129,7 @@ fn triangle_kernels<'a>(d: &'a TriData, out: &mut Vec<Kernel<'a>>) {
             w,
             n,
             Some(parry_agree),
-            chunked(&d.parry_rays, &d.parry_tris, 1, |r, t| {
+            pairwise(&d.order, &d.parry_rays, &d.parry_tris, |r, t| {
                 t_sum(t.cast_local_ray(r, f32::MAX, true))
             }),
         ),
@@ -1499,17 +1643,25 @@ fn main() {
         print_leaks(&meshes, 200_000);
         return;
     }
+    // `--same-order` and `--shuffle-all` (anywhere among the arguments):
+    // see `Orders`.
+    let mut args: Vec<String> = std::env::args().collect();
+    let flag = |f: &str| args.iter().any(|a| a == f);
+    let (same_order, shuffle_all) = (flag("--same-order"), flag("--shuffle-all"));
+    args.retain(|a| a != "--same-order" && a != "--shuffle-all");
+    let shuffle =
+        |name: &str, boxes: bool| !same_order && (shuffle_all || !boxes) && name != "camera";
     let cwbvh_data: Vec<CwbvhData> = meshes.iter().map(|m| CwbvhData::new(m, 4096)).collect();
     let box_data: Vec<BoxData> = box_workloads()
         .into_iter()
-        .map(|w| BoxData::new(w.name, w.rays, w.boxes))
+        .map(|w| BoxData::new(w.name, w.rays, w.boxes, shuffle(w.name, true)))
         .collect();
     let tri_data: Vec<TriData> = triangle_workloads()
         .into_iter()
-        .map(|w| TriData::new(w.name, w.rays, w.triangles))
+        .map(|w| TriData::new(w.name, w.rays, w.triangles, shuffle(w.name, false)))
         .collect();
     let gb = box_groups();
-    let gb = BoxData::new("groups", gb.rays, gb.boxes);
+    let gb = BoxData::new("groups", gb.rays, gb.boxes, false);
     let bb4: Vec<AabbBatch<Vec3, 4>> = gb
         .boxes
         .chunks(4)
@@ -1521,7 +1673,7 @@ fn main() {
         .map(|c| AabbBatch::from_slice(c).expect("8"))
         .collect();
     let gt = triangle_groups();
-    let gt = TriData::new("groups", gt.rays, gt.triangles);
+    let gt = TriData::new("groups", gt.rays, gt.triangles, false);
     let tb4: Vec<TriangleBatch<Vec3, 4>> = gt
         .tris
         .chunks(4)
@@ -1551,7 +1703,6 @@ fn main() {
     // and stop; under `valgrind --tool=callgrind`, the difference between
     // REPS = 10 and REPS = 0 over 10 x the row's tests is its instructions
     // per test.
-    let args: Vec<String> = std::env::args().collect();
     if let [_, flag, name, workload, reps] = args.as_slice()
         && flag == "--count"
     {
