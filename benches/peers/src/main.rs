@@ -292,9 +292,9 @@ fn chunked<'a, R, X>(
 /// A pass that visits the same pairs in the same order every time is a
 /// sequence of branch outcomes that the CPU's branch predictor learns over
 /// the passes of a round: on the aimed rays, where about half of the tests
-/// hit, the textbook Moller-Trumbore then ran twice as fast as on rays it
-/// had not seen, and how much of a pass the predictor held changed with
-/// where the code landed in memory. A renderer's rays do not repeat like
+/// hit, the textbook Moller-Trumbore then ran 2.5 times as fast as on
+/// rays it had not seen, and how much of a pass the predictor held changed
+/// with where the code landed in memory. A renderer's rays do not repeat like
 /// that. So the triangle pairs whose order carries no meaning (`random`,
 /// `aimed`, `axis`) are visited in a fresh order on each pass: one of
 /// [`ORDERS`] permutations, drawn once, each shuffling the pairs within
@@ -306,9 +306,9 @@ fn chunked<'a, R, X>(
 /// (rayhit's, the plain slab test, `bvh`'s, which branches only on NaN)
 /// do not branch on their outcome, so there is little for the predictor
 /// to learn, and a shuffled order only adds the cost of fetching each
-/// pair's ray from the level-2 cache (the most for a 160-byte prepared ray, which a traversal
-/// reuses instead). `--shuffle-all` shuffles them too, `--same-order`
-/// nothing.
+/// pair's ray from the level-2 cache (the most for a 160-byte prepared
+/// ray, which a traversal reuses instead). `--shuffle-all` shuffles them
+/// too, `--same-order` nothing.
 struct Orders {
     orders: Vec<Vec<u16>>,
     next: Cell<usize>,
