@@ -454,11 +454,13 @@ fn slab_test<V: Vector, B: SlabBox<V>>(
     let aabb = aabb.corners();
     let splat = L::<V>::splat;
     let lanes = |v: V| L::<V>::new(v.x(), v.y(), v.z());
-    // (Lane 3 is never read. Where the corners are packed, filling the
-    // minimum's with the maximum's `x`, stored next to it, lets the four
-    // lanes come from one load.)
+    // (Lane 3 is never read. Where a vector is its three components and
+    // nothing more (`Vec3`, `DVec3`, not `Vec3A`), the maximum's `x` is
+    // stored right after the minimum's `z`: filling lane 3 with it lets the
+    // four lanes come from one load.)
+    let packed = core::mem::size_of::<V>() == 3 * core::mem::size_of::<S<V>>();
     let (x, y, z) = (aabb.min.x(), aabb.min.y(), aabb.min.z());
-    let min = L::<V>::new4(x, y, z, if V::PACKED { aabb.max.x() } else { z });
+    let min = L::<V>::new4(x, y, z, if packed { aabb.max.x() } else { z });
     let max = lanes(aabb.max);
     let big = S::<V>::MAX;
     let (zero, limit) = (splat(S::<V>::ZERO), splat(t_max));

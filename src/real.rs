@@ -217,14 +217,6 @@ pub trait Vector:
     /// All zeros.
     const ZERO: Self;
 
-    /// Whether the three components fill the vector with nothing after
-    /// them (`Vec3`, `DVec3`, but not the 16-byte `Vec3A`), so that in a
-    /// struct of two vectors the second one's `x` is stored right after
-    /// the first one's `z`. (An implementation detail: the box test then
-    /// loads a corner and the next value in one go.)
-    #[doc(hidden)]
-    const PACKED: bool;
-
     /// The component on axis `k`. (An implementation detail: an index the
     /// compiler knows is in range, for the triangle tests' permutation.)
     #[doc(hidden)]
@@ -570,7 +562,6 @@ macro_rules! impl_vector {
         impl Vector for $V {
             type Scalar = $f;
             const ZERO: Self = <$V>::ZERO;
-            const PACKED: bool = core::mem::size_of::<$V>() == 3 * core::mem::size_of::<$f>();
 
             #[inline(always)]
             fn get(&self, k: crate::lanes::Axis) -> $f {

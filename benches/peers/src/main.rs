@@ -527,34 +527,31 @@ impl PlainRay {
     }
 }
 
-/// `if a < b { a } else { b }`, as one `minss` on x86-64. (Written as that
-/// `if`, the slab test's selects were vectorized two axes at a time and
-/// compiled to branches on the comparisons' mask, which the order of the
-/// rays then made or broke; the instruction keeps the test branchless.)
+/// `if a > b { a } else { b }` when `MAX`, else `if a < b { a } else { b }`,
+/// as one `maxss` or `minss` on x86-64. (Written as that `if`, the slab
+/// test's selects were vectorized two axes at a time and compiled to
+/// branches on the comparisons' mask, which the order of the rays then
+/// made or broke; the instruction keeps the test branchless.)
 #[inline(always)]
-fn min_ss(a: f32, b: f32) -> f32 {
+fn min_max_ss<const MAX: bool>(a: f32, b: f32) -> f32 {
     #[cfg(target_arch = "x86_64")]
     // SAFETY: SSE is part of every x86-64 target, and these intrinsics
     // only compute on registers (no memory access).
     unsafe {
-        use std::arch::x86_64::{_mm_cvtss_f32, _mm_min_ss, _mm_set_ss};
-        _mm_cvtss_f32(_mm_min_ss(_mm_set_ss(a), _mm_set_ss(b)))
+        use std::arch::x86_64::{_mm_cvtss_f32, _mm_max_ss, _mm_min_ss, _mm_set_ss};
+        let (a, b) = (_mm_set_ss(a), _mm_set_ss(b));
+        _mm_cvtss_f32(if MAX {
+            _mm_max_ss(a, b)
+        } else {
+            _mm_min_ss(a, b)
+        })
     }
     #[cfg(not(target_arch = "x86_64"))]
-    if a < b { a } else { b }
-}
-
-/// `if a > b { a } else { b }`, as one `maxss` on x86-64.
-#[inline(always)]
-fn max_ss(a: f32, b: f32) -> f32 {
-    #[cfg(target_arch = "x86_64")]
-    // SAFETY: as in `min_ss`.
-    unsafe {
-        use std::arch::x86_64::{_mm_cvtss_f32, _mm_max_ss, _mm_set_ss};
-        _mm_cvtss_f32(_mm_max_ss(_mm_set_ss(a), _mm_set_ss(b)))
+    if (MAX && a > b) || (!MAX && a < b) {
+        a
+    } else {
+        b
     }
-    #[cfg(not(target_arch = "x86_64"))]
-    if a > b { a } else { b }
 }
 
 /// The plain branchless `f32` slab test the way it is usually written
@@ -567,9 +564,10 @@ fn plain_slab(r: &PlainRay, b: &Aabb) -> bool {
     for k in 0..3 {
         let t1 = (b.min[k] - r.origin[k]) * r.inv[k];
         let t2 = (b.max[k] - r.origin[k]) * r.inv[k];
-        let (near, far) = (min_ss(t1, t2), max_ss(t1, t2));
-        lo = max_ss(near, lo);
-        hi = min_ss(far, hi);
+        let (min, max) = (min_max_ss::<false>, min_max_ss::<true>);
+        let (near, far) = (min(t1, t2), max(t1, t2));
+        lo = max(near, lo);
+        hi = min(far, hi);
     }
     lo <= hi
 }
@@ -816,8 +814,8 @@ impl FloorRay {
 /// depths (all in front: sure; none: no hit; else the full decision); the
 /// cheap test that the determinant's sign is known (`|det| > 200 u k^2`);
 /// a finite `t`. `t` is the scaled depth times the reciprocal of the
-/// determinant, as in the paper. The rare paths are stubs out of line. `t` and the side, of which the
-/// rows keep `t` only, like the other floors: returning the side as well
+/// determinant, as in the paper. The rare paths are stubs out of line. `t`
+/// and the side, of which the rows keep `t` only, like the other floors: returning the side as well
 /// compiled the checked form to 5 fewer instructions per aimed test under
 /// callgrind (122 against 127), and a floor should be the fastest form.
 #[inline]
@@ -1837,7 +1835,7 @@ fn main() {
     }
     // Each triangle test against its floor: the textbook test it replaces
     // with only the operations its guarantees need beyond it (within 10%,
-    // 0.91x). For `ray_triangle`, where it misses its goal against
+    // 0.91x): the fallback goal for a test that misses its goal against
     // Moller-Trumbore.
     for (ours, floor) in [
         (
