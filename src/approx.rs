@@ -32,7 +32,7 @@
 
 use approx::{AbsDiffEq, RelativeEq, UlpsEq};
 
-use crate::real::{S, Scalar, Vector};
+use crate::num::{S, Scalar, Vector};
 use crate::{Aabb, Plane, Ray, Triangle, TriangleHit};
 
 /// The three traits for a struct of vector fields, compared field by field.

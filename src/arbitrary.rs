@@ -16,7 +16,7 @@
 
 use ::arbitrary::{Arbitrary, Result, Unstructured, size_hint};
 
-use crate::real::Vector;
+use crate::num::Vector;
 use crate::{Aabb, Plane, Ray, Triangle};
 
 /// A vector from three raw-bit scalars, `x`, `y`, `z`.

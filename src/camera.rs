@@ -5,8 +5,8 @@ use core::fmt;
 
 use glam::Vec3;
 
+use crate::num::{S, Scalar, Vector, unit};
 use crate::ray::Ray;
-use crate::real::{S, Scalar, Vector, unit};
 
 /// Why a [`PinholeCamera`] could not be built.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]

@@ -27,7 +27,7 @@
 
 use mint::{Point3, Vector3};
 
-use crate::real::{S, Vector};
+use crate::num::{S, Vector};
 use crate::{Aabb, Plane, Ray, Triangle};
 
 #[inline]

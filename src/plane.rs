@@ -2,8 +2,9 @@
 
 use glam::Vec3;
 
+use crate::num::round::bound_up;
+use crate::num::{S, Scalar, Vector};
 use crate::ray::{Ray, t_max_ok};
-use crate::real::{S, Scalar, Vector, bound_up};
 
 /// The plane of points `p` with `(p - point) . normal = 0`.
 ///

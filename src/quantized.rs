@@ -1,13 +1,15 @@
-//! The children of a compressed wide BVH node, stored quantized, and the
-//! conservative ray test that reads them where the node keeps them.
+//! A BVH-node form: the children of a compressed wide BVH node, stored
+//! quantized, and the conservative ray test that reads them where the node
+//! keeps them (the box batch's slab test on boxes decoded rounded outward).
+
+use core::marker::PhantomData;
 
 use glam::Vec3;
 
-use crate::aabb::{Aabb, PreparedRay};
-use crate::batch::{AabbBatch, AabbBatchHits, Slab8};
-use crate::lanes::Lanes8;
-use crate::ray::t_max_ok;
-use crate::real::Vector;
+use crate::aabb::{Aabb, AabbBatch, AabbBatchHits, Slab8};
+use crate::num::{Lanes8, Vector};
+use crate::ray::{PreparedRay, t_max_ok};
+use crate::simd::{Isa, Kernel, per_call};
 
 /// The eight child boxes of a compressed wide BVH node, read in place:
 /// the quantized format of Ylitie, Karras and Laine ("Efficient Incoherent
@@ -257,11 +259,28 @@ pub fn ray_quantized_children<V: Vector<Scalar = f32>>(
     node: &QuantizedChildren<'_, V>,
     t_max: f32,
 ) -> AabbBatchHits<f32, 8> {
-    #[cfg(all(feature = "std", target_arch = "x86_64", not(target_feature = "avx2")))]
-    if let Some(simd) = crate::batch::Avx2::detect() {
-        return crate::Simd::ray_quantized_children(simd, ray, node, t_max);
+    per_call::<QuantizedKernel<'_, V>>(ray, node, t_max)
+}
+
+/// [`ray_quantized_children`] as a kernel, for any instruction set (see
+/// `crate::simd`).
+pub(crate) struct QuantizedKernel<'n, V>(PhantomData<&'n V>);
+
+impl<'n, V: Vector<Scalar = f32>> Kernel for QuantizedKernel<'n, V> {
+    type Ray = PreparedRay<V>;
+    type Shapes = QuantizedChildren<'n, V>;
+    type Limit = f32;
+    type Output = AabbBatchHits<f32, 8>;
+
+    #[inline(always)]
+    fn run<I: Isa>(
+        _: I,
+        ray: &PreparedRay<V>,
+        node: &QuantizedChildren<'n, V>,
+        t_max: f32,
+    ) -> Self::Output {
+        quantized_body::<I::W<f32>, V>(ray, node, t_max)
     }
-    crate::Simd::ray_quantized_children(crate::TargetSimd, ray, node, t_max)
 }
 
 /// Axis `k` of the eight children, decoded as `child_box` does: the lower
@@ -281,7 +300,7 @@ fn decode<W: Lanes8<F = f32>, V: Vector<Scalar = f32>>(
 
 /// The body of [`ray_quantized_children`] with the eight-lane type `W`.
 #[inline(always)]
-pub(crate) fn quantized_body<W: Lanes8<F = f32>, V: Vector<Scalar = f32>>(
+fn quantized_body<W: Lanes8<F = f32>, V: Vector<Scalar = f32>>(
     ray: &PreparedRay<V>,
     node: &QuantizedChildren<'_, V>,
     t_max: f32,

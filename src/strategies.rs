@@ -36,7 +36,7 @@
 
 use proptest::prelude::*;
 
-use crate::real::{S, Scalar, Vector};
+use crate::num::{S, Scalar, Vector};
 use crate::{Aabb, Plane, Ray, Triangle};
 
 /// A value uniform in `[-scale, scale]`, rounded to the precision of `V`.

@@ -214,14 +214,7 @@ pub fn box_face<V: Vector>(ray: &Ray<V>, b: &Aabb<V>) -> (Option<BoxFace>, bool)
 /// the point of the segment between the two corners farthest apart nearest
 /// the ray, clamped to the segment.
 pub fn segment_crossing<V: Vector>(ray: &Ray<V>, tri: &Triangle<V>) -> R {
-    let d = ray.dir.abs();
-    let k = if d.x() > d.y() && d.x() > d.z() {
-        0
-    } else if d.y() > d.z() {
-        1
-    } else {
-        2
-    };
+    let k = main_axis(ray.dir);
     let (kx, ky) = ((k + 1) % 3, (k + 2) % 3);
     let (o, dir) = (rv(ray.origin), rv(ray.dir));
     let corners = [rv(tri.a), rv(tri.b), rv(tri.c)];
@@ -563,11 +556,12 @@ pub fn triangle_clear<V: Vector>(ray: &Ray<V>, tri: &Triangle<V>, t_max: V::Scal
 /// Every watertight test and Moller-Trumbore miss: the line crosses the
 /// plane outside the triangle by more than either's rounding.
 ///
-/// - Watertight: two exact edge products `s_i`, `s_j` of opposite signs,
-///   each larger than `|d_z|` times the bound on the computed edge
-///   functions' error (which are `s_i / d_z` exactly, up to one shared
-///   sign): the computed ones then have opposite strict signs too, and the
-///   test rejects on the signs alone, whatever `t`.
+/// - Watertight: two exact Plucker products `s_i`, `s_j` of opposite
+///   signs, each larger than `|d_z|` times the bound on the test's computed
+///   edge functions' error ([`edge_function_bound`]; the exact edge
+///   functions are `s_i / d_z`, up to one shared sign): the computed ones
+///   then have opposite strict signs too, and the test rejects on the signs
+///   alone, whatever `t`.
 /// - Moller-Trumbore (bounds `eu`, `ev` from [`mt_bounds`]): `u < -eu` or
 ///   `v < -ev` makes the computed one negative; `1 - u - v < -(eu + ev) - 2
 ///   unit` makes the computed sum exceed `1 + 2 unit`, so its rounding still
@@ -585,15 +579,95 @@ pub fn surely_outside<V: Vector>(
     let w = int(1) - ue - ve;
     let slack = int(2) * r(V::Scalar::UNIT_ROUNDOFF);
     let mt_outside = ue < &-eu.clone() || ve < &-ev.clone() || w < -(eu + ev + slack);
-    let (de, dz) = crate::triangle::edge_function_error(ray, tri);
-    if !(mt_outside && de.is_finite() && dz.is_finite()) {
+    if !mt_outside {
         return false;
     }
-    let margin = r(de) * r(dz);
+    let Some(margin) = edge_function_bound(ray, tri).map(|(de, dz)| de * dz) else {
+        return false;
+    };
     let (o, d) = (rv(ray.origin), rv(ray.dir));
     let p = [rv(tri.a), rv(tri.b), rv(tri.c)].map(|c| sub(&c, &o));
     let s = [(0, 1), (1, 2), (2, 0)].map(|(i, j)| dot(&cross(&p[i], &p[j]), &d));
     s.iter().any(|x| x > &margin) && s.iter().any(|x| x < &-margin.clone())
+}
+
+/// The watertight test's main axis for a direction, the axis of the
+/// largest `|d_k|`, with the test's rule for ties: `x` if `|d_x| > |d_y|`
+/// and `|d_x| > |d_z|`, else `y` if `|d_y| > |d_z|`, else `z`.
+pub fn main_axis<V: Vector>(dir: V) -> usize {
+    let d = dir.abs();
+    if d.x() > d.y() && d.x() > d.z() {
+        0
+    } else if d.y() > d.z() {
+        1
+    } else {
+        2
+    }
+}
+
+/// A bound on how far the watertight test's computed edge functions can be
+/// from the exact ones, and `|d_z|`: `(de, |d_z|)`, or `None` where the
+/// computed frame overflows.
+///
+/// The test's arithmetic is fixed by its algorithm (Woop, Benthin and
+/// Wald, JCGT 2013), so its rounded values are computed here the way IEEE
+/// arithmetic defines them: in the frame of the main axis `kz`
+/// ([`main_axis`]), `kx`, `ky` the next two cyclically, the shear factors
+/// `s_x = fl(-d_kx / d_kz)`, `s_y` likewise, and per corner
+/// `p = fl(c - o)`, `x = fl(p_kx + fl(s_x p_kz))`, `y` likewise. The edge
+/// function of corners `j`, `k` is `e = fl(fl(x_j y_k) - fl(y_j x_k))`
+/// (where that is zero the test recomputes its sign exactly, which only
+/// brings it closer).
+///
+/// Derivation, with `u` the unit roundoff, `gamma(n) = n u / (1 - n u)`,
+/// `P` the exact translated coordinates, `X = P_kx + S_x P_kz` and `Y` the
+/// exact sheared ones, `m_x = max |x_i|`, `m_y = max |y_i|`, and `m_px`,
+/// `m_py`, `m_pz` the largest `|p|` per axis:
+/// - `x - X = P_kx d_1 + S_x P_kz theta_3 + (p_kx + fl(s_x p_kz)) d_5`
+///   (the translation, the shear factor with its product, the sum), so
+///   `|x - X| <= gamma(1) (m_px + m_x) + gamma(4) |s_x| m_pz = dx`, and `dy`
+///   likewise;
+/// - the edge function's own two roundings add `gamma(2) (|x_j y_k| +
+///   |y_j x_k|) <= 2 gamma(2) m_x m_y`, and replacing the computed
+///   coordinates by the exact ones `2 (m_x dy + m_y dx + dx dy)`;
+/// - where products underflow, each rounding is off by up to half a
+///   subnormal `tiny` instead: the edge function's two products, the shear
+///   products (half a `tiny` each, times the other coordinate, at most
+///   `m = max(m_x, m_y)`) and a shear factor that underflowed (half a
+///   `tiny`, times `m_pz` and then `m`), all within `4 tiny (1 + m)(1 +
+///   m_pz)`.
+///
+/// So `de = 2 (gamma(2) m_x m_y + m_x dy + m_y dx + dx dy) + 4 tiny (1 +
+/// m)(1 + m_pz)`, evaluated here exactly.
+pub fn edge_function_bound<V: Vector>(ray: &Ray<V>, tri: &Triangle<V>) -> Option<(R, R)> {
+    let kz = main_axis(ray.dir);
+    let (kx, ky) = ((kz + 1) % 3, (kz + 2) % 3);
+    let (o, d) = (ray.origin, ray.dir);
+    let (sx, sy) = (-d[kx] / d[kz], -d[ky] / d[kz]);
+    let corners = [tri.a, tri.b, tri.c];
+    let p = |k: usize| corners.map(|c| c[k] - o[k]);
+    let (px, py, pz) = (p(kx), p(ky), p(kz));
+    let x: [V::Scalar; 3] = core::array::from_fn(|i| px[i] + sx * pz[i]);
+    let y: [V::Scalar; 3] = core::array::from_fn(|i| py[i] + sy * pz[i]);
+    let finite = |v: &[V::Scalar; 3]| v.iter().all(|c| c.is_finite());
+    if !([px, py, pz, x, y].iter().all(finite) && sx.is_finite() && sy.is_finite()) {
+        return None;
+    }
+    let largest = |v: &[V::Scalar; 3]| v.iter().map(|c| r(c.abs())).max().expect("three");
+    let (mx, my, mpx, mpy, mpz) = (
+        largest(&x),
+        largest(&y),
+        largest(&px),
+        largest(&py),
+        largest(&pz),
+    );
+    let g = |n: i64| gamma::<V::Scalar>(n);
+    let dx = g(1) * (&mpx + &mx) + g(4) * r(sx.abs()) * &mpz;
+    let dy = g(1) * (&mpy + &my) + g(4) * r(sy.abs()) * &mpz;
+    let m = if mx > my { mx.clone() } else { my.clone() };
+    let rounding = int(2) * (g(2) * &mx * &my + &mx * &dy + &my * &dx + &dx * &dy);
+    let underflow = int(4) * r(V::Scalar::TINY) * (int(1) + m) * (int(1) + mpz);
+    Some((rounding + underflow, r(d[kz].abs())))
 }
 
 /// The plane case is outside the kernel's rounding band: not within rounding

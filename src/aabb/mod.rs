@@ -1,0 +1,156 @@
+//! Axis-aligned boxes.
+//!
+//! - `mod.rs`: [`Aabb`], [`ValidAabb`] and the boxes the tests take.
+//! - `definition.rs`: the slab test's reference definition, one axis at a
+//!   time, and its rounding bounds (the exit's widening and slack).
+//! - `slab.rs`: [`ray_aabb`] and [`ray_aabb_prepared`], the slab test on
+//!   lanes, held to the definition bit for bit.
+//! - `face.rs`: the face a ray enters through, decided exactly.
+//! - `naive.rs`: [`ray_aabb_naive`], the face-by-face reference.
+//! - `batch.rs`: [`AabbBatch`] and [`ray_aabb_batch`], the slab test on
+//!   eight lanes of boxes at a time, held to the definition bit for bit.
+
+mod batch;
+mod definition;
+mod face;
+mod naive;
+mod slab;
+
+use glam::Vec3;
+
+use crate::num::{S, Scalar, Vector};
+
+pub use batch::{AabbBatch, AabbBatchHits, ray_aabb_batch};
+pub(crate) use batch::{AabbBatchKernel, Slab8};
+pub use face::{BoxFace, BoxHit, aabb_entry_face, ray_aabb_face, ray_aabb_prepared_face};
+pub use naive::ray_aabb_naive;
+pub use slab::{ray_aabb, ray_aabb_prepared};
+
+/// The closed box `min <= p <= max` (component-wise).
+///
+/// A box is valid when every coordinate is finite and `min <= max` on every
+/// axis; a box of zero thickness on some axes (a rectangle, a segment, a
+/// point) is valid. An invalid box (inverted on any axis, NaN or infinite)
+/// is hit by nothing.
+///
+/// ```
+/// use rayhit::{Aabb, glam::Vec3};
+/// let b = Aabb::new(Vec3::ZERO, Vec3::ONE);
+/// assert!(b.is_valid());
+/// assert!(!Aabb::new(Vec3::ONE, Vec3::ZERO).is_valid());
+/// ```
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct Aabb<V = Vec3> {
+    /// The corner with the smallest coordinates.
+    pub min: V,
+    /// The corner with the largest coordinates.
+    pub max: V,
+}
+
+impl<V: Vector> Aabb<V> {
+    /// The box from `min` to `max`. Nothing is checked; see [`Aabb::is_valid`].
+    #[inline]
+    #[must_use]
+    pub const fn new(min: V, max: V) -> Self {
+        Self { min, max }
+    }
+
+    /// True when all coordinates are finite and `min <= max` on every axis.
+    #[inline]
+    #[must_use]
+    pub fn is_valid(&self) -> bool {
+        valid_box(self.min, self.max)
+    }
+}
+
+/// A box known to be valid ([`Aabb::is_valid`]): checked once, when it is
+/// made, so that the slab tests ([`ray_aabb_prepared`], [`ray_aabb`]) need
+/// not check it on every call. Store a BVH's node boxes this way.
+///
+/// Its corners can be read, not changed, so the check holds for as long
+/// as the value lives. The tests give the same answers, bit for bit, as for
+/// the [`Aabb`] it holds.
+///
+/// ```
+/// use rayhit::{Aabb, PreparedRay, Ray, ValidAabb, ray_aabb_prepared, glam::Vec3};
+/// let b = Aabb::new(Vec3::ZERO, Vec3::ONE);
+/// let node = ValidAabb::new(b).unwrap();
+/// assert!(ValidAabb::new(Aabb::new(Vec3::ONE, Vec3::ZERO)).is_none());
+/// let ray = PreparedRay::new(&Ray::new(Vec3::new(-1.0, 0.5, 0.5), Vec3::X));
+/// let (enter, exit) = ray_aabb_prepared(&ray, &node, f32::INFINITY).unwrap();
+/// // The exit is widened by its rounding bound (see `ray_aabb`).
+/// assert!(enter == 1.0 && exit >= 2.0 && exit < 2.0001);
+/// assert_eq!(ray_aabb_prepared(&ray, &b, f32::INFINITY), Some((enter, exit)));
+/// ```
+#[derive(Clone, Copy, Debug, PartialEq)]
+#[repr(transparent)]
+pub struct ValidAabb<V = Vec3>(Aabb<V>);
+
+impl<V: Vector> ValidAabb<V> {
+    /// `aabb`, if it is valid ([`Aabb::is_valid`]); `None` otherwise.
+    #[inline]
+    #[must_use]
+    pub fn new(aabb: Aabb<V>) -> Option<Self> {
+        aabb.is_valid().then_some(Self(aabb))
+    }
+
+    /// The box.
+    #[inline]
+    #[must_use]
+    pub const fn aabb(&self) -> &Aabb<V> {
+        &self.0
+    }
+}
+
+impl<V> From<ValidAabb<V>> for Aabb<V> {
+    #[inline]
+    fn from(b: ValidAabb<V>) -> Self {
+        b.0
+    }
+}
+
+mod sealed {
+    /// The seal of [`SlabBox`](super::SlabBox), with what the tests need to
+    /// know of each box type.
+    pub trait Sealed {
+        /// Whether the tests must check the box's validity.
+        const CHECK: bool;
+    }
+}
+
+/// The boxes the slab tests take: an [`Aabb`], whose validity they check on
+/// every call (an invalid box is hit by nothing), or a [`ValidAabb`],
+/// checked once when it was made. Sealed.
+pub trait SlabBox<V: Vector>: sealed::Sealed {
+    /// The box.
+    fn corners(&self) -> &Aabb<V>;
+}
+
+impl<V> sealed::Sealed for Aabb<V> {
+    const CHECK: bool = true;
+}
+impl<V> sealed::Sealed for ValidAabb<V> {
+    const CHECK: bool = false;
+}
+
+impl<V: Vector> SlabBox<V> for Aabb<V> {
+    #[inline(always)]
+    fn corners(&self) -> &Aabb<V> {
+        self
+    }
+}
+
+impl<V: Vector> SlabBox<V> for ValidAabb<V> {
+    #[inline(always)]
+    fn corners(&self) -> &Aabb<V> {
+        &self.0
+    }
+}
+
+/// `-MAX <= min[k] <= max[k] <= MAX` on every axis: finite and not
+/// inverted (a NaN fails), as three packed comparisons.
+#[inline(always)]
+pub(crate) fn valid_box<V: Vector>(min: V, max: V) -> bool {
+    let big = V::splat(S::<V>::MAX);
+    (-big).all_le(min) & min.all_le(max) & max.all_le(big)
+}

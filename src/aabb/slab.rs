@@ -1,0 +1,255 @@
+//! The slab test on lanes: [`ray_aabb`] and [`ray_aabb_prepared`], all three
+//! axes at once, held bit for bit to `super::definition`.
+
+use super::definition::{exit_slack, exit_widening};
+use super::{SlabBox, sealed as sealed_check};
+use crate::num::round::at_most;
+use crate::num::{L, Lanes, S, Scalar, Vector};
+use crate::ray::{PreparedRay, Ray, SlabRay, t_max_ok};
+
+/// The slab test on a prepared ray: the part of `[0, t_max]` the ray spends
+/// inside the closed box, or `None`.
+///
+/// Returns `Some((enter, exit))` with `0 <= enter <= exit <= t_max`, `enter`
+/// finite. See [`ray_aabb`] for the guarantees; this is the same test with
+/// the reciprocal computed once per ray.
+#[inline]
+#[must_use]
+pub fn ray_aabb_prepared<V: Vector>(
+    ray: &PreparedRay<V>,
+    aabb: &impl SlabBox<V>,
+    t_max: S<V>,
+) -> Option<(S<V>, S<V>)> {
+    slab_test(&ray.slab, aabb, t_max)
+}
+
+/// [`ray_aabb_prepared`] on the slab part of a prepared ray (which is all
+/// that [`ray_aabb`] prepares).
+///
+/// All three axes at once, on lanes (see `crate::num::lanes`). The unit
+/// tests hold it, bit for bit, to the same operations written one axis at a
+/// time (`super::definition::slab_definition`), which the box batches also
+/// match: the
+/// per-axis folds are lane-wise; the largest entry and the smallest exit
+/// are taken in every lane (values that are never NaN: the folds see to
+/// that; the entries are never `-0`, and a `-0`/`+0` tie among the exits
+/// widens to the same limit); and the final comparisons, with
+/// `enter <= limit && enter <= MAX` as `enter <= min(limit, MAX)`, and the
+/// box's validity, are one mask.
+#[inline(always)]
+fn slab_test<V: Vector, B: SlabBox<V>>(
+    ray: &SlabRay<V>,
+    aabb: &B,
+    t_max: S<V>,
+) -> Option<(S<V>, S<V>)> {
+    let aabb = aabb.corners();
+    let splat = L::<V>::splat;
+    let lanes = |v: V| L::<V>::new(v.x(), v.y(), v.z());
+    // (Lane 3 is never read. Where a vector is its three components and
+    // nothing more (`Vec3`, `DVec3`, not `Vec3A`), the maximum's `x` is
+    // stored right after the minimum's `z`: filling lane 3 with it lets the
+    // four lanes come from one load.)
+    let packed = core::mem::size_of::<V>() == 3 * core::mem::size_of::<S<V>>();
+    let (x, y, z) = (aabb.min.x(), aabb.min.y(), aabb.min.z());
+    let min = L::<V>::new4(x, y, z, if packed { aabb.max.x() } else { z });
+    let max = lanes(aabb.max);
+    let big = S::<V>::MAX;
+    let (zero, limit) = (splat(S::<V>::ZERO), splat(t_max));
+    let t0 = min.sub(ray.origin).mul(ray.inv_to_min);
+    let t1 = max.sub(ray.origin).mul(ray.inv_to_max);
+    // Each axis folds its two plane distances into the interval [0, t_max]
+    // the way Tavian Barnes does ("Fast, Branchless Ray/Bounding Box
+    // Intersections, Part 3", 2022): `max(t, 0)` and `min(t, t_max)` give
+    // the second operand for a NaN `t` (origin exactly on a slab plane of
+    // an axis the ray does not move along), which leaves the interval
+    // unchanged, as exact arithmetic says of a closed box.
+    let enter = t0.max(zero).min(t1.max(zero));
+    let exit = t0.min(limit).max(t1.min(limit));
+    // Widen the exit by the rounding bound so that no box that exact
+    // arithmetic hits is missed (see `exit_widening`). `enter` is infinite
+    // only for an axis the ray never enters (its direction component is
+    // zero, or so small that every distance overflows): a miss even when
+    // the limit is infinite too, hence the `MAX`.
+    let widened = exit.mul(splat(exit_widening())).add(splat(exit_slack()));
+    // The box is hit when the last entry is at most every widened exit and
+    // at most `MAX`. The last entry, in every lane, is ready before the
+    // exits are widened, so the test waits on one comparison after the
+    // widening. (Widening rounds monotonically, so widening each exit and
+    // then taking the smallest is widening the smallest: the same bits as
+    // the definition. Nothing here is NaN, unless `t_max` is, which fails
+    // below.)
+    let enter = enter.max_all();
+    let miss = widened.lt(enter) | splat(big).lt(enter);
+    // The box must be valid: `-MAX <= min <= max <= MAX` on every axis, a
+    // NaN failing. (A `ValidAabb` was checked when it was made.)
+    let invalid = if <B as sealed_check::Sealed>::CHECK {
+        splat(-big).nle(min) | min.nle(max) | max.nle(splat(big))
+    } else {
+        0
+    };
+    if (miss | invalid) != 0 || !t_max_ok(t_max) {
+        return None;
+    }
+    let exit = at_most(widened.min_all().x(), t_max);
+    Some((at_most(enter.x(), exit), exit))
+}
+
+/// The slab test: the part of `[0, t_max]` that `ray` spends inside the
+/// closed box `aabb`, as `Some((enter, exit))`, or `None`.
+///
+/// Conventions: `t` in units of `ray.dir`; the box is a closed solid, so a
+/// ray starting inside has `enter = 0`, and a ray through a face, edge or
+/// corner, or lying in a face plane, hits. `0 <= enter <= exit <= t_max`
+/// and `enter` is finite; `exit` is `+inf` only if `t_max` is.
+///
+/// Guarantees, for a valid ray and box and `t_max >= 0`:
+/// - **No false miss.** If exact arithmetic on the same inputs says the
+///   closed box meets the ray on `[0, t_max]`, this returns `Some`. This
+///   covers axis-parallel rays, rays in a face plane, zero-thickness boxes,
+///   `-0.0` direction components and components so small that their
+///   reciprocal overflows. The reported `exit` is at least the exact exit
+///   (clipped to `t_max`). Precondition: no difference `min - o`, `max - o`
+///   overflows, and the exact entry and exit distances are below `MAX / 2`
+///   (with a direction component below `1/MAX`, an entry far beyond the
+///   range can otherwise come out as a hit at a huge finite `t`).
+/// - **False hits only at the boundary.** A `Some` for a box exact
+///   arithmetic misses means the exact entry exceeds the exact exit (or
+///   `t_max`) by less than a factor `1 + 16u` plus four subnormals (`u` the
+///   unit roundoff, so a few ulps): the ray passes within a few ulps of an
+///   edge or corner; and the reported exit is at most that factor above the
+///   exact one. Where a direction component is so large that its
+///   reciprocal is subnormal (`|d_i| > 2^126` in `f32`, `2^1022` in `f64`),
+///   the factor is `1 + 40u`: the reciprocal then carries up to `12u` of
+///   relative error. Both hold when every nonzero direction component has
+///   a finite reciprocal (`|d_i| >= 1/MAX`). A smaller component's reciprocal
+///   overflows, its exit distance comes out infinite, and the reported exit
+///   can be far too large, and its entry distance (computed with `MAX` for
+///   the reciprocal) far too small; a false hit then passes the box at a
+///   distance below `enter / (MAX (1 - u)^2)` along that axis (the computed
+///   entry through that slab is at least `|b - o| MAX (1 - u)^2`, and a ray
+///   already past the slab is at most `enter |d_i|` beyond it).
+/// - `enter` is within three roundings of the exact entry when every
+///   reciprocal is a normal float, within `15u` when one is subnormal, and
+///   can be far below it when one overflows; it is not a lower bound. To cull against a closest hit so far, pass that as `t_max`,
+///   which the test honours conservatively.
+/// - Invalid input (NaN or infinite coordinates, zero direction, inverted
+///   box, NaN or negative `t_max`) gives `None`. Never panics.
+///
+/// ```
+/// use rayhit::{Aabb, Ray, ray_aabb, glam::Vec3};
+/// let unit = Aabb::new(Vec3::ZERO, Vec3::ONE);
+/// let ray = Ray::new(Vec3::new(-1.0, 0.5, 0.5), Vec3::new(2.0, 0.0, 0.0));
+/// // x = -1 + 2t is in [0, 1] for t in [0.5, 1]; the exit is widened by a
+/// // few ulps so that no hit is ever lost.
+/// let (enter, exit) = ray_aabb(&ray, &unit, f32::INFINITY).unwrap();
+/// assert_eq!(enter, 0.5);
+/// assert!(exit >= 1.0 && exit <= 1.0 + 8.0 * f32::EPSILON);
+/// // Lying in the face plane y = 1 of the closed box: a hit.
+/// let in_face = Ray::new(Vec3::new(-1.0, 1.0, 0.5), Vec3::X);
+/// assert!(ray_aabb(&in_face, &unit, f32::INFINITY).is_some());
+/// ```
+#[inline]
+#[must_use]
+pub fn ray_aabb<V: Vector>(
+    ray: &Ray<V>,
+    aabb: &impl SlabBox<V>,
+    t_max: S<V>,
+) -> Option<(S<V>, S<V>)> {
+    slab_test(&SlabRay::new(ray).0, aabb, t_max)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::super::definition::slab_definition;
+    use super::*;
+    use crate::num::round::{max2, min2};
+    use crate::testing::Draws;
+    use crate::{Aabb, ValidAabb};
+    use glam::{DVec3, Vec3};
+
+    /// `ValidAabb::new` takes exactly the valid boxes: flat ones in, and
+    /// NaN, infinite and inverted ones (on any axis) out; the slab test on
+    /// it misses nothing the checked test hits, here for a flat box.
+    #[test]
+    fn valid_aabb_takes_exactly_the_valid_boxes() {
+        let flat = Aabb::new(Vec3::ZERO, Vec3::new(1.0, 0.0, 1.0));
+        let valid = ValidAabb::new(flat).unwrap();
+        assert_eq!(valid.aabb(), &flat);
+        let ray = PreparedRay::new(&Ray::new(Vec3::new(0.5, -1.0, 0.5), Vec3::Y));
+        let hit = ray_aabb_prepared(&ray, &valid, f32::INFINITY);
+        assert!(hit.is_some());
+        assert_eq!(hit, ray_aabb_prepared(&ray, &flat, f32::INFINITY));
+        for axis in 0..3 {
+            for bad in [f32::NAN, f32::INFINITY, f32::NEG_INFINITY, 2.0] {
+                let mut min = Vec3::ZERO;
+                min[axis] = bad;
+                let b = Aabb::new(min, Vec3::ONE);
+                assert!(!b.is_valid() && ValidAabb::new(b).is_none(), "{b:?}");
+                let mut max = Vec3::ONE;
+                max[axis] = if bad == 2.0 { -1.0 } else { bad };
+                let b = Aabb::new(Vec3::ZERO, max);
+                assert!(!b.is_valid() && ValidAabb::new(b).is_none(), "{b:?}");
+            }
+        }
+    }
+
+    /// `ray_aabb_prepared` and `ray_aabb` (all axes at once) give, bit for
+    /// bit, the answer of the one-axis-at-a-time definition, in both
+    /// precisions, for valid and invalid boxes and rays and any `t_max`.
+    #[test]
+    fn slab_test_is_the_definition() {
+        fn check<V: Vector>(draws: &mut Draws) -> usize {
+            let mut c = || S::<V>::from_f64(draws.coordinate(200));
+            let ray = Ray::new(V::new(c(), c(), c()), V::new(c(), c(), c()));
+            let (a, b) = (V::new(c(), c(), c()), V::new(c(), c(), c()));
+            // Mostly valid boxes, some inverted.
+            let aabb = if c() > S::<V>::from_f64(-1.5) {
+                Aabb::new(
+                    V::new(min2(a.x(), b.x()), min2(a.y(), b.y()), min2(a.z(), b.z())),
+                    V::new(max2(a.x(), b.x()), max2(a.y(), b.y()), max2(a.z(), b.z())),
+                )
+            } else {
+                Aabb::new(a, b)
+            };
+            let mut hits = 0;
+            for t_max in [c().abs() * S::<V>::TWO, S::<V>::INFINITY, S::<V>::NAN] {
+                let p = PreparedRay::new(&ray);
+                let s = &p.slab;
+                let expected = (ray.is_valid() && aabb.is_valid() && t_max_ok(t_max))
+                    .then(|| {
+                        let [min, max] = [aabb.min, aabb.max].map(|v| [v.x(), v.y(), v.z()]);
+                        let arrays = (
+                            s.origin.to_array(),
+                            s.inv_to_min.to_array(),
+                            s.inv_to_max.to_array(),
+                        );
+                        let (hit, enter, exit) =
+                            slab_definition(arrays.0, arrays.1, arrays.2, min, max, t_max);
+                        hit.then_some((enter, exit))
+                    })
+                    .flatten();
+                let bits = |h: Option<(S<V>, S<V>)>| {
+                    h.map(|(e, x)| (e.to_f64().to_bits(), x.to_f64().to_bits()))
+                };
+                hits += usize::from(expected.is_some());
+                assert_eq!(
+                    bits(ray_aabb_prepared(&p, &aabb, t_max)),
+                    bits(expected),
+                    "{ray:?} {aabb:?}"
+                );
+                assert_eq!(
+                    bits(ray_aabb(&ray, &aabb, t_max)),
+                    bits(expected),
+                    "{ray:?} {aabb:?}"
+                );
+            }
+            hits
+        }
+        let mut draws = Draws(0x0123_4567_89ab_cdef);
+        let mut hits = 0;
+        for _ in 0..100_000 {
+            hits += check::<Vec3>(&mut draws) + check::<DVec3>(&mut draws);
+        }
+        assert!(hits > 20_000, "{hits}");
+    }
+}

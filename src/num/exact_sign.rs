@@ -1,0 +1,176 @@
+//! Exact signs and error-free transformations: the fallbacks that decide
+//! a sign rounding cannot (an edge function that rounds to zero, an entry
+//! face near an edge, whether a triangle has zero area).
+
+use super::Scalar;
+
+/// In `f64` the two products of `f32` values are exact (24 + 24 bits fit
+/// in 53, and exponents from `2^-298` to `2^256` are in range), and a
+/// rounded difference of two floats is zero only when they are equal, so
+/// the `f64` result has the exact sign. Narrowing to `f32` may flush a
+/// tiny nonzero value to zero; it is then replaced by the smallest
+/// subnormal of the same sign, so that the sign survives.
+#[inline]
+pub(crate) fn f32(a: f32, b: f32, c: f32, d: f32) -> f32 {
+    let wide = f64::from(a) * f64::from(b) - f64::from(c) * f64::from(d);
+    let narrow = wide as f32;
+    if narrow == 0.0 && wide != 0.0 {
+        let tiny = f32::from_bits(1);
+        if wide > 0.0 { tiny } else { -tiny }
+    } else {
+        narrow
+    }
+}
+
+/// `a*b = p + e` exactly, with `p = fl(a*b)` and `e = fma(a, b, -p)`, as
+/// long as `e` does not underflow. The rounded difference `fl(p - q)` is
+/// zero only when `p == q`; then `a*b - c*d = e_ab - e_cd` exactly, and
+/// `fl(e_ab - e_cd)` has its sign.
+#[inline]
+pub(crate) fn f64(a: f64, b: f64, c: f64, d: f64) -> f64 {
+    let p = a * b;
+    let q = c * d;
+    let diff = p - q;
+    if diff != 0.0 {
+        return diff;
+    }
+    fma(a, b, -p) - fma(c, d, -q)
+}
+
+/// The products of the pairs, as `f64` terms whose exact sum is the exact
+/// sum of the products: each product's rounded value and its exact error
+/// (at most 16 terms for 8 pairs).
+fn products(terms: &[(f64, f64)]) -> ([f64; 16], usize) {
+    let mut out = [0.0; 16];
+    let mut n = 0;
+    for &(a, b) in terms.iter().take(8) {
+        let p = a * b;
+        out[n] = p;
+        out[n + 1] = fma(a, b, -p);
+        n += 2;
+    }
+    (out, n)
+}
+
+/// The exact sign of the sum of the first `n` terms: they are added one
+/// by one to a nonoverlapping expansion (components of increasing
+/// magnitude, each a two-sum's exact error), dropping zero components;
+/// the sign of an expansion is that of its largest component.
+fn sum_sign((terms, n): ([f64; 16], usize)) -> core::cmp::Ordering {
+    let two_sum = |a: f64, b: f64| {
+        let s = a + b;
+        let bb = s - a;
+        (s, (a - (s - bb)) + (b - bb))
+    };
+    let mut e = [0.0f64; 16];
+    let mut len = 0;
+    for &x in &terms[..n] {
+        let mut q = x;
+        let mut kept = 0;
+        for i in 0..len {
+            let (s, err) = two_sum(q, e[i]);
+            if err != 0.0 {
+                e[kept] = err;
+                kept += 1;
+            }
+            q = s;
+        }
+        if q != 0.0 {
+            e[kept] = q;
+            kept += 1;
+        }
+        len = kept;
+    }
+    if len == 0 {
+        core::cmp::Ordering::Equal
+    } else if e[len - 1] > 0.0 {
+        core::cmp::Ordering::Greater
+    } else {
+        core::cmp::Ordering::Less
+    }
+}
+
+#[inline]
+fn fma(a: f64, b: f64, c: f64) -> f64 {
+    #[cfg(feature = "std")]
+    {
+        a.mul_add(b, c)
+    }
+    #[cfg(not(feature = "std"))]
+    {
+        libm::fma(a, b, c)
+    }
+}
+
+/// `(s, e)` with `s = fl(a - b)` and `s + e = a - b` exactly (Knuth's
+/// two-sum; exact whenever `a - b` does not overflow).
+#[inline]
+pub(crate) fn two_diff<F: Scalar>(a: F, b: F) -> (F, F) {
+    let s = a - b;
+    let bb = s - a;
+    (s, (a - (s - bb)) - (b + bb))
+}
+
+/// The exact sign of `sum a_i * b_i` over at most eight pairs of `f64`.
+///
+/// Each product is split into its rounded value and its exact error by a
+/// fused multiply-add (exact while the products are above `2^-969` or
+/// zero), and the sixteen terms are summed exactly as a floating-point
+/// expansion (Shewchuk, "Adaptive Precision Floating-Point Arithmetic and
+/// Fast Robust Geometric Predicates", 1997: growing a nonoverlapping
+/// expansion with error-free sums), whose sign is that of its largest
+/// component.
+pub(crate) fn sum_of_products_sign(terms: &[(f64, f64)]) -> core::cmp::Ordering {
+    sum_sign(products(terms))
+}
+
+/// `x` times the power of two that brings `m` (positive, finite) into
+/// `[1, 2)`: exact unless the product leaves the normal range.
+pub(crate) fn scale_to_one(x: f64, m: f64) -> f64 {
+    let pow2 = |k: i32| f64::from_bits(((1023 + k) as u64) << 52);
+    let exponent = |m: f64| ((m.to_bits() >> 52) & 0x7ff) as i32 - 1023;
+    // A subnormal `m` (biased exponent 0) is lifted by 2^64 first, and `x`
+    // with it: x 2^-e(m) = (x 2^64) 2^-e(m 2^64).
+    let (x, e) = if exponent(m) == -1023 {
+        (x * pow2(64), exponent(m * pow2(64)))
+    } else {
+        (x, exponent(m))
+    };
+    let half = -e / 2;
+    x * pow2(half) * pow2(-e - half)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn exact_sign_f32_sees_what_f32_cannot() {
+        // 1.1 * 1.1 and 1.21 round to nearby f32 values whose products in
+        // f32 tie; only the exact products tell them apart.
+        let a = 1.0f32 + f32::EPSILON;
+        let c = 1.0f32 + 2.0 * f32::EPSILON;
+        let d = 1.0f32;
+        // a*a = 1 + 2e + e^2 exactly, c*d = 1 + 2e: a*a - c*d = e^2 > 0,
+        // but in f32 both products round to 1 + 2e and the difference is 0.
+        assert_eq!(a * a - c * d, 0.0);
+        assert!(f32::diff_of_products_exact_sign(a, a, c, d) > 0.0);
+        assert!(f32::diff_of_products_exact_sign(c, d, a, a) < 0.0);
+        // A difference too small for f32 keeps its sign.
+        let tiny = f32::from_bits(1);
+        assert!(f32::diff_of_products_exact_sign(tiny, tiny, 0.0, 0.0) > 0.0);
+        assert!(f32::diff_of_products_exact_sign(0.0, 0.0, tiny, tiny) < 0.0);
+        assert_eq!(f32::diff_of_products_exact_sign(2.0, 3.0, 6.0, 1.0), 0.0);
+    }
+
+    #[test]
+    fn exact_sign_f64_sees_what_f64_cannot() {
+        let e = f64::EPSILON;
+        let a = 1.0 + e;
+        let c = 1.0 + 2.0 * e;
+        assert_eq!(a * a - c, 0.0);
+        assert!(f64::diff_of_products_exact_sign(a, a, c, 1.0) > 0.0);
+        assert!(f64::diff_of_products_exact_sign(c, 1.0, a, a) < 0.0);
+        assert_eq!(f64::diff_of_products_exact_sign(2.0, 3.0, 6.0, 1.0), 0.0);
+    }
+}

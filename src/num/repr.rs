@@ -1,0 +1,177 @@
+//! How a precision is represented inside the kernels: the private
+//! supertrait [`Repr`] of [`Scalar`](super::Scalar), which carries only
+//! associated types, each bounded by an interface of this crate's own
+//! (so nothing on it can be called from outside the crate).
+//!
+//! - The lane types ([`Lanes`], [`Lanes8`]): the interfaces are in
+//!   `super::lanes`, the implementations and the choice per target in
+//!   `crate::simd` (which implements `Repr` for `f32` and `f64`).
+//! - The bits ([`Bits`]): the bit-level tricks some hot paths need.
+//!
+//! [`Components`], likewise the private supertrait of
+//! [`Vector`](super::Vector), reads a vector's component by [`Axis`].
+
+use super::lanes::{Axis, Lanes, Lanes8};
+
+/// The kernels' view of a precision: its lane types and its bits.
+pub trait Repr: Sized {
+    /// Four lanes: the three axes or corners of one shape.
+    type L4: Lanes<F = Self>;
+    /// Eight lanes, as the build's target computes them (one lane per shape
+    /// of a batch).
+    type L8: Lanes8<F = Self>;
+    /// Eight lanes, for code compiled with AVX2 (and AVX-512) enabled and
+    /// run only where the CPU has it.
+    #[cfg(rayhit_runtime_avx)]
+    type L8Avx2: Lanes8<F = Self>;
+    /// The precision's bit-level operations.
+    type Bits: Bits<F = Self>;
+}
+
+/// The kernels' view of a vector: its component on an axis.
+pub trait Components {
+    /// The component type.
+    type Elem;
+    /// The component on axis `k`: an index the compiler knows is in range
+    /// (for the triangle tests' permutation), read from the vector's
+    /// storage.
+    fn get(&self, k: Axis) -> Self::Elem;
+}
+
+/// Bit-level operations of a precision.
+pub trait Bits {
+    /// The precision.
+    type F: Copy;
+    /// Three values and a small code, packed so that a function returns
+    /// them in registers (a `u128` for `f32`; `f64`'s do not fit, and stay
+    /// as they are).
+    type Packed: Copy;
+    /// `values` and `code` (below 4) packed.
+    fn pack(values: [Self::F; 3], code: u32) -> Self::Packed;
+    /// The inverse of [`Bits::pack`], bit for bit.
+    fn unpack(packed: Self::Packed) -> ([Self::F; 3], u32);
+    /// `0 <= x <= 1`, as one comparison of the bits and a test for `-0`
+    /// (which the bits put above 1), so that it compiles to one branch.
+    /// False for NaN.
+    fn in_unit_interval(x: Self::F) -> bool;
+}
+
+/// [`Bits`] of `f32`.
+#[derive(Clone, Copy, Debug)]
+pub struct F32Bits;
+
+/// [`Bits`] of `f64`.
+#[derive(Clone, Copy, Debug)]
+pub struct F64Bits;
+
+impl Bits for F32Bits {
+    type F = f32;
+    /// The three values in bits 0, 32 and 64, the code above them.
+    type Packed = u128;
+
+    #[inline(always)]
+    fn pack(values: [f32; 3], code: u32) -> u128 {
+        let bits = |x: f32| u128::from(x.to_bits());
+        bits(values[0]) | bits(values[1]) << 32 | bits(values[2]) << 64 | u128::from(code) << 96
+    }
+
+    #[inline(always)]
+    fn unpack(packed: u128) -> ([f32; 3], u32) {
+        // (Truncating to the low 32 bits is the point.)
+        let field = |shift: u32| (packed >> shift) as u32;
+        (
+            [field(0), field(32), field(64)].map(f32::from_bits),
+            field(96),
+        )
+    }
+
+    #[inline(always)]
+    fn in_unit_interval(x: f32) -> bool {
+        // The bits of a non-negative float (NaN aside) order as its value,
+        // and every negative one's sign bit puts it above 1's: so the first
+        // test is `+0 <= x <= 1`.
+        (x.to_bits() <= 1f32.to_bits()) | (x == 0.0)
+    }
+}
+
+impl Bits for F64Bits {
+    type F = f64;
+    type Packed = ([f64; 3], u32);
+
+    #[inline(always)]
+    fn pack(values: [f64; 3], code: u32) -> ([f64; 3], u32) {
+        (values, code)
+    }
+
+    #[inline(always)]
+    fn unpack(packed: ([f64; 3], u32)) -> ([f64; 3], u32) {
+        packed
+    }
+
+    #[inline(always)]
+    fn in_unit_interval(x: f64) -> bool {
+        // As for `f32`.
+        (x.to_bits() <= 1f64.to_bits()) | (x == 0.0)
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::num::Scalar;
+
+    /// `in_unit_interval` is `0 <= x && x <= 1`, signed zeros, the
+    /// neighbours of 0 and 1, infinities and NaN included.
+    #[test]
+    fn in_unit_interval_is_the_two_comparisons() {
+        fn check<F: Scalar>(in_unit: fn(F) -> bool) {
+            let (zero, one, tiny) = (F::ZERO, F::ONE, F::TINY);
+            let (inf, nan) = (F::INFINITY, F::NAN);
+            let values = [
+                zero,
+                -zero,
+                tiny,
+                -tiny,
+                F::HALF,
+                one.next_down(),
+                one,
+                one.next_up(),
+                -one,
+                F::MAX,
+                inf,
+                -inf,
+                nan,
+                -nan,
+            ];
+            for x in values {
+                let expected = x >= zero && x <= one;
+                assert_eq!(in_unit(x), expected, "{x:?}");
+            }
+        }
+        check::<f32>(F32Bits::in_unit_interval);
+        check::<f64>(F64Bits::in_unit_interval);
+    }
+
+    /// Packed values come back bit for bit, and distinct ones pack apart.
+    #[test]
+    fn packed_values_come_back_bit_for_bit() {
+        let odd = [0.0, -0.0, f32::from_bits(1), 1.0, f32::MAX, f32::INFINITY];
+        let mut packed = std::vec::Vec::new();
+        for (i, &a) in odd.iter().enumerate() {
+            let values = [a, odd[(i + 1) % odd.len()], odd[(i + 2) % odd.len()]];
+            for code in 0..3 {
+                let p = F32Bits::pack(values, code);
+                let (v, c) = F32Bits::unpack(p);
+                assert_eq!((v.map(f32::to_bits), c), (values.map(f32::to_bits), code));
+                packed.push(p);
+            }
+        }
+        packed.sort_unstable();
+        assert!(packed.windows(2).all(|w| w[0] < w[1]));
+        let (v, c) = F64Bits::unpack(F64Bits::pack([2.5, -0.0, 0.5], 2));
+        assert_eq!(
+            (v.map(f64::to_bits), c),
+            ([2.5, -0.0, 0.5].map(f64::to_bits), 2)
+        );
+    }
+}

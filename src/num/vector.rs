@@ -1,0 +1,273 @@
+//! Vectors: [`Vector`], implemented by glam's `Vec3`, `Vec3A` and `DVec3`
+//! of every glam release the crate supports, and the safe normalisation
+//! the camera uses.
+
+use core::fmt::Debug;
+use core::ops::{Add, Index, Mul, Neg, Sub};
+
+use super::lanes::Axis;
+use super::repr::Components;
+use super::round::max2;
+use super::{S, Scalar};
+
+/// A 3-component vector the kernels run on: glam's `Vec3` and `Vec3A`
+/// (`f32`) and `DVec3` (`f64`), of the glam this crate re-exports and of
+/// every older glam release whose feature is on (`glam-0_29` to
+/// `glam-0_33`).
+///
+/// Sealed; see [`Scalar`]. The operations are glam's own or written out in
+/// the order glam's `Vec3` uses, so every vector type of a precision gives
+/// the same answers bit for bit, and a kernel written against this trait
+/// compiles to the same code as one written against `Vec3` directly.
+pub trait Vector:
+    Components<Elem = <Self as Vector>::Scalar>
+    + Copy
+    + PartialEq
+    + Debug
+    + Default
+    + Send
+    + Sync
+    + 'static
+    + Add<Output = Self>
+    + Sub<Output = Self>
+    + Neg<Output = Self>
+    + Mul<Output = Self>
+    + Mul<<Self as Vector>::Scalar, Output = Self>
+    + Index<usize, Output = <Self as Vector>::Scalar>
+{
+    /// The component type.
+    type Scalar: Scalar;
+
+    /// All zeros.
+    const ZERO: Self;
+
+    /// A vector from its components.
+    #[must_use]
+    fn new(x: Self::Scalar, y: Self::Scalar, z: Self::Scalar) -> Self;
+    /// All three components equal to `v`.
+    #[must_use]
+    fn splat(v: Self::Scalar) -> Self;
+    /// The `x` component.
+    #[must_use]
+    fn x(self) -> Self::Scalar;
+    /// The `y` component.
+    #[must_use]
+    fn y(self) -> Self::Scalar;
+    /// The `z` component.
+    #[must_use]
+    fn z(self) -> Self::Scalar;
+    /// Dot product.
+    #[must_use]
+    fn dot(self, rhs: Self) -> Self::Scalar;
+    /// Cross product (right-handed).
+    #[must_use]
+    fn cross(self, rhs: Self) -> Self;
+    /// Component-wise absolute value.
+    #[must_use]
+    fn abs(self) -> Self;
+    /// True when every component is finite.
+    #[must_use]
+    fn is_finite(self) -> bool;
+    /// True when `self[k] <= rhs[k]` for every `k` (a NaN on either side
+    /// makes it false). In `f32` on SIMD targets it is one packed
+    /// comparison.
+    #[must_use]
+    fn all_le(self, rhs: Self) -> bool;
+    /// Euclidean length.
+    #[must_use]
+    fn length(self) -> Self::Scalar;
+    /// `self / |self|`, or zero when the length is zero or not finite.
+    #[must_use]
+    fn normalize_or_zero(self) -> Self;
+}
+
+macro_rules! impl_vector {
+    ($V:ty, $f:ty, $all_le:expr) => {
+        impl Components for $V {
+            type Elem = $f;
+            #[inline(always)]
+            fn get(&self, k: Axis) -> $f {
+                let a: &[$f; 3] = self.as_ref();
+                a[k as usize]
+            }
+        }
+
+        impl Vector for $V {
+            type Scalar = $f;
+            const ZERO: Self = <$V>::ZERO;
+
+            #[inline]
+            fn new(x: $f, y: $f, z: $f) -> Self {
+                <$V>::new(x, y, z)
+            }
+            #[inline]
+            fn splat(v: $f) -> Self {
+                <$V>::splat(v)
+            }
+            #[inline]
+            fn x(self) -> $f {
+                self.x
+            }
+            #[inline]
+            fn y(self) -> $f {
+                self.y
+            }
+            #[inline]
+            fn z(self) -> $f {
+                self.z
+            }
+            // The products below are written out, in the order glam's `Vec3`
+            // and `DVec3` use, so that every vector type of a precision gives
+            // the same bits (glam's SIMD types may order a sum differently).
+            #[inline]
+            fn dot(self, rhs: Self) -> $f {
+                (self.x * rhs.x) + (self.y * rhs.y) + (self.z * rhs.z)
+            }
+            #[inline]
+            fn cross(self, rhs: Self) -> Self {
+                <$V>::new(
+                    self.y * rhs.z - rhs.y * self.z,
+                    self.z * rhs.x - rhs.z * self.x,
+                    self.x * rhs.y - rhs.x * self.y,
+                )
+            }
+            #[inline]
+            fn abs(self) -> Self {
+                <$V>::abs(self)
+            }
+            #[inline]
+            fn is_finite(self) -> bool {
+                <$V>::is_finite(self)
+            }
+            #[inline]
+            fn all_le(self, rhs: Self) -> bool {
+                $all_le(self, rhs)
+            }
+            #[inline]
+            fn length(self) -> $f {
+                <$f as Scalar>::sqrt(Vector::dot(self, self))
+            }
+            #[inline]
+            fn normalize_or_zero(self) -> Self {
+                let rcp = 1.0 / Vector::length(self);
+                if rcp.is_finite() && rcp > 0.0 {
+                    self * rcp
+                } else {
+                    <$V>::ZERO
+                }
+            }
+        }
+    };
+}
+
+/// `Vec3`, `Vec3A` and `DVec3` of the glam crate `$glam` (the default one or
+/// an older release under its renamed dependency). `Vec3A` is glam's SIMD
+/// vector: `cmple` is one `cmpleps` on x86 (false for NaN, as `<=` is), and
+/// `all` one `movmskps`; `Vec3` goes through it for the same reason.
+macro_rules! impl_glam {
+    ($glam:ident) => {
+        impl_vector!($glam::Vec3, f32, |a: $glam::Vec3, b: $glam::Vec3| {
+            $glam::Vec3A::from(a).cmple($glam::Vec3A::from(b)).all()
+        });
+        impl_vector!($glam::Vec3A, f32, |a: $glam::Vec3A, b: $glam::Vec3A| a
+            .cmple(b)
+            .all());
+        impl_vector!($glam::DVec3, f64, |a: $glam::DVec3, b: $glam::DVec3| a
+            .cmple(b)
+            .all());
+    };
+}
+
+impl_glam!(glam);
+#[cfg(feature = "glam-0_29")]
+impl_glam!(glam029);
+#[cfg(feature = "glam-0_30")]
+impl_glam!(glam030);
+#[cfg(feature = "glam-0_31")]
+impl_glam!(glam031);
+#[cfg(feature = "glam-0_32")]
+impl_glam!(glam032);
+#[cfg(feature = "glam-0_33")]
+impl_glam!(glam033);
+
+/// `v / |v|`, computed as `v * (1 / sqrt(v . v))` (glam's `normalize`) on
+/// `v` scaled by a power of two that brings its largest component into
+/// `[1, 2)`, so that `v . v` can neither overflow nor underflow; a NaN
+/// vector when `v` is zero or not finite.
+///
+/// Scaling by a power of two is exact in the normal range, and it scales
+/// `v . v` by the square, its square root and reciprocal by the power
+/// itself, all exactly: so where `v . v` is a normal float the result is bit
+/// for bit `normalize(v)`, and that case skips the scaling. Elsewhere (a
+/// length whose square overflows, such as a camera ray at a focal length of
+/// `1e30` pixels, or underflows) it is the same computation on the scaled
+/// vector, with the same error: components that the scaling pushes below
+/// the normal range are below `2^-126` of the largest and change the
+/// length by less than a rounding.
+pub(crate) fn unit<V: Vector>(v: V) -> V {
+    let one = S::<V>::ONE;
+    let l2 = v.dot(v);
+    if l2 >= S::<V>::MIN_POSITIVE && l2 <= S::<V>::MAX {
+        return v * (one / l2.sqrt());
+    }
+    let a = v.abs();
+    let m = max2(a.x(), max2(a.y(), a.z()));
+    if !(m > S::<V>::ZERO && m <= S::<V>::MAX) {
+        // Zero gives 0 * inf and an infinite component inf * 0: NaN.
+        return v * (one / l2.sqrt());
+    }
+    // A subnormal maximum first goes up by 2^(2p) (p the precision), exactly.
+    let lift = one / (S::<V>::UNIT_ROUNDOFF * S::<V>::UNIT_ROUNDOFF);
+    let (v, m) = if m < S::<V>::MIN_POSITIVE {
+        (v * lift, m * lift)
+    } else {
+        (v, m)
+    };
+    // m is normal: its exponent e, read from its f64 image (exact for both
+    // precisions), and 2^-e applied in two steps whose factors are each
+    // representable (|e| <= 1023 for f64, 127 for f32).
+    let e = ((m.to_f64().to_bits() >> 52) & 0x7ff) as i32 - 1023;
+    let pow2 = |k: i32| S::<V>::from_f64(f64::from_bits(((1023 + k) as u64) << 52));
+    let half = -e / 2;
+    let w = v * pow2(half) * pow2(-e - half);
+    w * (one / w.dot(w).sqrt())
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use glam::{DVec3, Vec3};
+
+    #[test]
+    fn unit_is_normalize_where_that_works_and_unit_where_it_does_not() {
+        // Bit for bit glam's normalize for an ordinary vector (the scaling
+        // argument), in both precisions.
+        let v = Vec3::new(0.3, -1.7, 2.9);
+        assert_eq!(unit(v), v.normalize());
+        let w = DVec3::new(1e-3, 5.0, -7.0);
+        assert_eq!(unit(w), w.normalize());
+        // Squares that underflow or overflow: glam gives zero or NaN, unit
+        // gives the direction. The exact answer is (0.6, 0.8, 0); each
+        // component is within gamma(6) (the camera's documented bound:
+        // 3.6e-7 in f32, 6.7e-16 in f64) of it, plus the rounding of 0.6
+        // and 0.8 themselves, well inside 1e-6 and 1e-15.
+        for s in [1e-42_f32, 1e-30, 1e30, 8e37] {
+            let u = unit(Vec3::new(3.0, 4.0, 0.0) * s);
+            assert!(
+                (u - Vec3::new(0.6, 0.8, 0.0)).abs().max_element() < 1e-6,
+                "{s}: {u}"
+            );
+        }
+        for s in [1e-320_f64, 1e-200, 1e200, 1e307] {
+            let u = unit(DVec3::new(3.0, 4.0, 0.0) * s);
+            assert!(
+                (u - DVec3::new(0.6, 0.8, 0.0)).abs().max_element() < 1e-15,
+                "{s}: {u}"
+            );
+        }
+        // Zero and non-finite vectors give a non-finite result.
+        for bad in [Vec3::ZERO, Vec3::new(f32::INFINITY, 0.0, 0.0), Vec3::NAN] {
+            assert!(!unit(bad).is_finite());
+        }
+    }
+}

@@ -1,0 +1,97 @@
+//! The ray, and its prepared form: what every kernel takes.
+//!
+//! - `mod.rs`: [`Ray`], and the check of a `t_max`.
+//! - `slab.rs`: the box tests' per-ray part, the directed reciprocals.
+//! - `shear.rs`: the watertight triangle test's per-ray part, the axis
+//!   permutation and shear.
+//! - `prepared.rs`: [`PreparedRay`], both parts once per ray, and the one
+//!   encoding of an invalid ray.
+
+mod prepared;
+mod shear;
+mod slab;
+
+use glam::Vec3;
+
+use crate::num::{L, Lanes, S, Scalar, Vector};
+
+pub use prepared::PreparedRay;
+pub(crate) use shear::{Shear, largest_axis};
+pub(crate) use slab::SlabRay;
+
+/// A ray `origin + t * dir` for `t >= 0`.
+///
+/// `dir` need not have unit length: every `t` the crate reports is measured in
+/// multiples of `dir`, so scaling `dir` by `k` divides every `t` by `k` (by
+/// exactly `k` when `k` is a power of two). A ray whose `dir` is zero, or
+/// whose origin or direction has a NaN or infinite component, is not a ray:
+/// every kernel returns `None` for it.
+///
+/// Generic over the precision: `Ray` is `Ray<Vec3>` (`f32`), and
+/// `Ray<DVec3>` is the same ray in `f64`.
+///
+/// ```
+/// use rayhit::{Ray, glam::Vec3};
+/// let ray = Ray::new(Vec3::new(1.0, 2.0, 3.0), Vec3::new(0.0, 0.0, -2.0));
+/// assert_eq!(ray.at(0.5), Vec3::new(1.0, 2.0, 2.0));
+/// ```
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct Ray<V = Vec3> {
+    /// Where the ray starts (`t = 0`).
+    pub origin: V,
+    /// The direction; the ray moves by `dir` per unit of `t`.
+    pub dir: V,
+}
+
+impl<V: Vector> Ray<V> {
+    /// A ray from `origin` along `dir`. Nothing is checked or normalised.
+    #[inline]
+    #[must_use]
+    pub const fn new(origin: V, dir: V) -> Self {
+        Self { origin, dir }
+    }
+
+    /// The point `origin + t * dir`, rounded: each component carries at most
+    /// two roundings (`gamma(2)` relative to `|origin| + |t * dir|`).
+    #[inline]
+    #[must_use]
+    pub fn at(&self, t: S<V>) -> V {
+        self.origin + self.dir * t
+    }
+
+    /// True when the origin and direction are finite and the direction is not
+    /// zero: the rays the kernels can hit anything with.
+    #[inline]
+    #[must_use]
+    pub fn is_valid(&self) -> bool {
+        // `origin.is_finite() && dir.is_finite() && dir != 0`, written as
+        // comparisons on lanes: `|c| <= MAX` is false exactly for the
+        // infinities and NaN.
+        let lanes = |v: V| L::<V>::new(v.x(), v.y(), v.z());
+        let (o, d) = (lanes(self.origin), lanes(self.dir));
+        let big = L::<V>::splat(S::<V>::MAX);
+        let finite = o.abs().le(big) & d.abs().le(big) == 0b111;
+        finite & (d.eq(L::<V>::splat(S::<V>::ZERO)) != 0b111)
+    }
+}
+
+/// Checks that `t_max` is a usable upper limit: `t_max >= 0` (NaN fails).
+/// Infinity is allowed and means no limit.
+#[inline(always)]
+pub(crate) fn t_max_ok<F: Scalar>(t_max: F) -> bool {
+    t_max >= F::ZERO
+}
+
+/// The ray every invalid ray is prepared as: from `(+inf, +inf, +inf)`
+/// along `+z`. This is the one encoding of an invalid ray in a
+/// [`PreparedRay`], and every kernel's miss on it comes from its arithmetic
+/// alone: the slab test puts every box at `t = -inf`; the triangle tests'
+/// shear of `+z` (`s_x = s_y = -0`) makes every sheared coordinate
+/// `-inf + (-0)(-inf) = NaN` (or NaN outright), so no edge function has a
+/// sign and no corner is in front. `PreparedRay::is_valid` reads it back
+/// from the origin.
+#[inline(always)]
+pub(crate) fn invalid_stand_in<V: Vector>() -> Ray<V> {
+    let (zero, one, inf) = (S::<V>::ZERO, S::<V>::ONE, S::<V>::INFINITY);
+    Ray::new(V::splat(inf), V::new(zero, zero, one))
+}

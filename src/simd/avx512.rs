@@ -1,0 +1,83 @@
+//! AVX-512 (F and VL, with AVX2): the [`Avx512`] token and the function
+//! that runs a kernel body compiled with AVX-512 enabled. The lanes are
+//! AVX2's eight (`super::avx2::F32x8`); compiled with AVX-512 they get twice
+//! the vector registers, so a ray's prepared values stay in registers
+//! across a node's boxes, and comparisons into mask registers.
+#![allow(unsafe_code)]
+
+use super::avx2::Avx2;
+use super::{Isa, Kernel, Work};
+use crate::num::{Repr, Scalar};
+
+/// AVX-512 (with its 256-bit forms, AVX-512VL), on a CPU that has it and
+/// AVX2: [`with_simd`](crate::with_simd) makes one only after checking
+/// (the same builds as [`Avx2`]).
+///
+/// The box kernels run on the same eight lanes as with [`Avx2`], compiled
+/// with AVX-512 enabled: twice the vector registers, so a ray's prepared
+/// values stay in registers across a node's boxes, and comparisons into
+/// mask registers. The triangle batch runs its AVX2 copy (compiled with
+/// AVX-512 it comes out slower). The answers are the same bits.
+#[derive(Clone, Copy, Debug)]
+pub struct Avx512(Avx2);
+
+impl Avx512 {
+    /// `Some` when the CPU has AVX2, AVX-512F and AVX-512VL: the one place
+    /// an `Avx512` is made, from the `Avx2` that detection gave.
+    #[inline]
+    pub(crate) fn detect() -> Option<Self> {
+        let avx2 = Avx2::detect()?;
+        (std::is_x86_feature_detected!("avx512f") && std::is_x86_feature_detected!("avx512vl"))
+            .then_some(Avx512(avx2))
+    }
+}
+
+impl Isa for Avx512 {
+    type W<F: Scalar> = <F as Repr>::L8Avx2;
+
+    #[inline(always)]
+    fn kernel<K: Kernel>(self, ray: &K::Ray, shapes: &K::Shapes, t_max: K::Limit) -> K::Output {
+        if K::AVX512 {
+            // SAFETY: the one precondition of calling a function compiled
+            // with `#[target_feature(enable = "avx2,avx512f,avx512vl")]` is
+            // that the CPU has those; an `Avx512` exists only where
+            // `Avx512::detect` found them.
+            unsafe { kernel::<K>(self, ray, shapes, t_max) }
+        } else {
+            avx2_out_of_line::<K>(self.0, ray, shapes, t_max)
+        }
+    }
+
+    #[inline(always)]
+    fn work<B: Work>(self, work: B) -> B::Output {
+        // SAFETY: as above.
+        unsafe { run(self, work) }
+    }
+}
+
+/// Kernel `K`, compiled with AVX-512 enabled (the kernel is inlined, whole,
+/// into this function).
+#[target_feature(enable = "avx2,avx512f,avx512vl")]
+#[inline]
+fn kernel<K: Kernel>(isa: Avx512, ray: &K::Ray, shapes: &K::Shapes, t_max: K::Limit) -> K::Output {
+    K::run(isa, ray, shapes, t_max)
+}
+
+/// `work`, compiled with AVX-512 enabled.
+#[target_feature(enable = "avx2,avx512f,avx512vl")]
+#[inline]
+fn run<B: Work>(isa: Avx512, work: B) -> B::Output {
+    work.run(isa)
+}
+
+/// Kernel `K`'s AVX2 copy, kept out of line so that it is not inlined into
+/// (and recompiled for) an AVX-512 caller.
+#[inline(never)]
+fn avx2_out_of_line<K: Kernel>(
+    isa: Avx2,
+    ray: &K::Ray,
+    shapes: &K::Shapes,
+    t_max: K::Limit,
+) -> K::Output {
+    isa.kernel::<K>(ray, shapes, t_max)
+}

@@ -1,0 +1,45 @@
+//! SIMD lanes: the lane interfaces of `crate::num` implemented once per
+//! instruction set, and the one dispatch module that picks among them.
+//!
+//! | file | what |
+//! | --- | --- |
+//! | `portable.rs` | the lanes as arrays: the definition every register type is tested against, and the implementation for `f64` and targets without registers |
+//! | `sse2.rs` | `f32` in SSE registers: four lanes in one, eight in two (every x86-64 target) |
+//! | `avx2.rs` | `f32` in an AVX register, eight lanes; the [`Avx2`] token where the build picks at run time |
+//! | `avx512.rs` | the [`Avx512`] token: AVX2's lanes compiled with AVX-512 |
+//! | `dispatch.rs` | the lane types each precision uses on the build's target; [`TargetSimd`]; the kernel-body and instruction-set traits; the per-call choice |
+//! | `rows.rs` | a batch's rows, eight lanes at a time |
+//!
+//! Another instruction set (NEON on aarch64, simd128 on wasm32) is a file
+//! here implementing `Lanes` and `Lanes8` for `f32` on its registers, and a
+//! line in `dispatch.rs` choosing it for the target; the tests in
+//! `tests.rs` hold it to `portable.rs` bit for bit. Where an instruction set
+//! is detected at run time, its file also holds a token and the
+//! `#[target_feature]` function that runs a kernel body, as `avx2.rs` does.
+
+mod dispatch;
+mod portable;
+mod rows;
+
+#[cfg(all(
+    target_arch = "x86_64",
+    any(target_feature = "avx2", rayhit_runtime_avx)
+))]
+mod avx2;
+#[cfg(rayhit_runtime_avx)]
+mod avx512;
+#[cfg(all(
+    any(target_arch = "x86", target_arch = "x86_64"),
+    target_feature = "sse2"
+))]
+mod sse2;
+#[cfg(test)]
+mod tests;
+
+#[cfg(rayhit_runtime_avx)]
+pub use avx2::Avx2;
+#[cfg(rayhit_runtime_avx)]
+pub use avx512::Avx512;
+pub use dispatch::TargetSimd;
+pub(crate) use dispatch::{Isa, Kernel, Work, per_call};
+pub(crate) use rows::{check_lanes, lanes_at, put};

@@ -1,0 +1,179 @@
+//! Every register type against the portable definition, bit for bit:
+//! the four lanes and the eight lanes the build's target uses, and the AVX2
+//! lanes where the CPU has AVX2.
+
+use super::portable::{Portable, Portable8};
+use crate::num::{Lanes, Lanes8, Repr};
+use crate::testing::Draws;
+
+/// The `f32` four lanes of this target.
+type F32Lanes = <f32 as Repr>::L4;
+/// The `f32` eight lanes of this target.
+type F32Lanes8 = <f32 as Repr>::L8;
+
+fn same(a: [f32; 3], b: [f32; 3]) -> bool {
+    a.iter().zip(&b).all(|(x, y)| x.to_bits() == y.to_bits())
+}
+
+/// Every operation of the register type gives the portable definition's
+/// bits, NaN, infinities and signed zeros included (lane 3 aside).
+#[test]
+fn registers_match_the_definition() {
+    let mut draws = Draws(0x2545_f491_4f6c_dd1d);
+    for _ in 0..200_000 {
+        let mut v = || {
+            [
+                draws.special_f32(),
+                draws.special_f32(),
+                draws.special_f32(),
+            ]
+        };
+        let (a, b) = (v(), v());
+        let (pa, pb) = (
+            Portable::new(a[0], a[1], a[2]),
+            Portable::new(b[0], b[1], b[2]),
+        );
+        let (fa, fb) = (
+            F32Lanes::new(a[0], a[1], a[2]),
+            F32Lanes::new(b[0], b[1], b[2]),
+        );
+        type Op<L> = fn(L, L) -> L;
+        let ops: [(Op<Portable<f32>>, Op<F32Lanes>); 6] = [
+            (Lanes::add, Lanes::add),
+            (Lanes::sub, Lanes::sub),
+            (Lanes::mul, Lanes::mul),
+            (Lanes::div, Lanes::div),
+            (Lanes::max, Lanes::max),
+            (Lanes::min, Lanes::min),
+        ];
+        for (p, f) in ops {
+            assert!(
+                same(p(pa, pb).to_array(), f(fa, fb).to_array()),
+                "{a:?} {b:?}"
+            );
+        }
+        for (p, f) in [
+            (pa.abs(), fa.abs()),
+            (pa.neg(), fa.neg()),
+            (pa.rot1(), fa.rot1()),
+            (pa.rot2(), fa.rot2()),
+        ] {
+            assert!(same(p.to_array(), f.to_array()), "{a:?}");
+        }
+        assert_eq!(pa.lt(pb), fa.lt(fb));
+        assert_eq!(pa.le(pb), fa.le(fb));
+        assert_eq!(pa.eq(pb), fa.eq(fb));
+        assert_eq!(pa.nle(pb), fa.nle(fb));
+        for (p, f) in [(pa.max_all(), fa.max_all()), (pa.min_all(), fa.min_all())] {
+            assert!(same(p.to_array(), f.to_array()), "{a:?}");
+        }
+        assert_eq!(pa.sum3().to_bits(), fa.sum3().to_bits(), "{a:?}");
+        assert_eq!(pa.x().to_bits(), fa.x().to_bits());
+    }
+}
+
+/// Eight lanes of random specials and ordinary values.
+fn eight(draws: &mut Draws) -> [f32; 8] {
+    core::array::from_fn(|_| draws.special_f32())
+}
+
+/// Every operation of an eight-lane register type gives the portable
+/// definition's bits and masks.
+fn check_lanes8<W: Lanes8<F = f32>>(a: [f32; 8], b: [f32; 8]) {
+    let (pa, pb) = (Portable8::load(&a), Portable8::load(&b));
+    let (wa, wb) = (W::load(&a), W::load(&b));
+    // Bits, with every NaN alike: which NaN's payload an operation
+    // passes on is the hardware's choice (and the compiler may swap
+    // the operands of an addition), and no kernel answer is a NaN.
+    let canonical = |x: f32| if x.is_nan() { u32::MAX } else { x.to_bits() };
+    let out = |w: W| {
+        let mut x = [0.0; 8];
+        w.store(&mut x);
+        x.map(canonical)
+    };
+    let pout = |p: Portable8<f32>| {
+        let mut x = [0.0; 8];
+        p.store(&mut x);
+        x.map(canonical)
+    };
+    type Op<L> = fn(L, L) -> L;
+    let ops: [(Op<Portable8<f32>>, Op<W>); 6] = [
+        (Lanes8::add, Lanes8::add),
+        (Lanes8::sub, Lanes8::sub),
+        (Lanes8::mul, Lanes8::mul),
+        (Lanes8::div, Lanes8::div),
+        (Lanes8::max, Lanes8::max),
+        (Lanes8::min, Lanes8::min),
+    ];
+    for (p, w) in ops {
+        assert_eq!(pout(p(pa, pb)), out(w(wa, wb)), "{a:?} {b:?}");
+    }
+    let bytes = a.map(|x| x.to_bits() as u8);
+    assert_eq!(
+        pout(Portable8::from_bytes(&bytes)),
+        out(W::from_bytes(&bytes))
+    );
+    assert_eq!(pout(Portable8::splat(a[3])), out(W::splat(a[3])));
+    let masks = [
+        (pa.lt(pb), wa.lt(wb)),
+        (pa.le(pb), wa.le(wb)),
+        (pa.eq(pb), wa.eq(wb)),
+    ];
+    for (p, w) in masks {
+        assert_eq!(Portable8::<f32>::bits(p), W::bits(w), "{a:?} {b:?}");
+    }
+    let (pm, pn) = (pa.lt(pb), pb.le(pa));
+    let (wm, wn) = (wa.lt(wb), wb.le(wa));
+    assert_eq!(
+        Portable8::<f32>::bits(Portable8::<f32>::and(pm, pn)),
+        W::bits(W::and(wm, wn))
+    );
+    assert_eq!(
+        Portable8::<f32>::bits(Portable8::<f32>::or(pm, pn)),
+        W::bits(W::or(wm, wn))
+    );
+    assert_eq!(
+        Portable8::<f32>::bits(Portable8::<f32>::and_not(pm, pn)),
+        W::bits(W::and_not(wm, wn))
+    );
+    assert_eq!(
+        pout(Portable8::select(pm, pa, pb)),
+        out(W::select(wm, wa, wb))
+    );
+}
+
+/// The eight-lane types the batch kernels use on this target, and the
+/// AVX one where the CPU has AVX2, match the definition.
+#[test]
+fn eight_lane_registers_match_the_definition() {
+    #[cfg(rayhit_runtime_avx)]
+    #[target_feature(enable = "avx2")]
+    fn with_avx2(a: [f32; 8], b: [f32; 8]) {
+        check_lanes8::<super::avx2::F32x8>(a, b);
+    }
+    let mut draws = Draws(0x9e37_79b9_7f4a_7c15);
+    for _ in 0..50_000 {
+        let (a, b) = (eight(&mut draws), eight(&mut draws));
+        check_lanes8::<F32Lanes8>(a, b);
+        #[cfg(rayhit_runtime_avx)]
+        if std::is_x86_feature_detected!("avx2") {
+            #[allow(unsafe_code)]
+            // SAFETY: AVX2 was just detected.
+            unsafe {
+                with_avx2(a, b)
+            };
+        }
+    }
+}
+
+/// The semantics the slab test relies on, spelled out.
+#[test]
+fn max_and_min_return_the_second_operand_for_nan() {
+    let nan = F32Lanes::splat(f32::NAN);
+    let zero = F32Lanes::splat(0.0);
+    assert_eq!(nan.max(zero).to_array(), [0.0; 3]);
+    assert_eq!(nan.min(zero).to_array(), [0.0; 3]);
+    assert!(zero.max(nan).x().is_nan());
+    // -0 > +0 is false: the second operand.
+    assert_eq!(F32Lanes::splat(-0.0).max(zero).x().to_bits(), 0);
+}

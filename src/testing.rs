@@ -1,0 +1,61 @@
+//! The unit tests' source of inputs (compiled for the tests only): one
+//! small deterministic generator (Marsaglia's xorshift64) and the float
+//! mixes the bit-for-bit tests draw from, aimed at what a kernel's lanes
+//! could get wrong: grid values (so that shared edges, face planes, zero
+//! direction components and exactly zero edge functions are common), wide
+//! random magnitudes, and the special values (signed zeros, infinities,
+//! NaN, subnormals). The integration tests, fuzzers and benches draw from
+//! the test kit instead; the unit tests stay with the published crate, so
+//! they use nothing outside it.
+
+/// A xorshift64 state.
+pub(crate) struct Draws(pub(crate) u64);
+
+impl Draws {
+    /// The next 64 bits.
+    pub(crate) fn next(&mut self) -> u64 {
+        self.0 ^= self.0 << 13;
+        self.0 ^= self.0 >> 7;
+        self.0 ^= self.0 << 17;
+        self.0
+    }
+
+    /// A coordinate on the grid of quarters in `[-2, 2]`, or, one time in
+    /// four, a float with 20 random bits and an exponent uniform in
+    /// `[-spread / 2, spread / 2)`.
+    pub(crate) fn coordinate(&mut self, spread: u64) -> f64 {
+        let s = self.next();
+        if s.is_multiple_of(4) {
+            let m = ((s >> 11) % (1 << 20)) as f64 / (1 << 20) as f64;
+            (m - 0.5) * 2f64.powi(((s >> 40) % spread) as i32 - (spread / 2) as i32)
+        } else {
+            ((s >> 8) % 17) as f64 / 4.0 - 2.0
+        }
+    }
+
+    /// A value on the grid of eighths in `[-4, 4]`.
+    pub(crate) fn eighth(&mut self) -> f32 {
+        ((self.next() % 65) as f32 - 32.0) / 8.0
+    }
+
+    /// A special value (signed zero, infinity, NaN, `MAX`, the smallest
+    /// subnormal, one), a small integer, or a float with random bits.
+    pub(crate) fn special_f32(&mut self) -> f32 {
+        const SPECIAL: [f32; 8] = [
+            0.0,
+            -0.0,
+            f32::INFINITY,
+            f32::NEG_INFINITY,
+            f32::NAN,
+            f32::MAX,
+            f32::from_bits(1),
+            1.0,
+        ];
+        let s = self.next();
+        match s % 4 {
+            0 => SPECIAL[(s >> 8) as usize % 8],
+            1 => ((s >> 16) % 9) as f32 - 4.0,
+            _ => f32::from_bits((s >> 20) as u32),
+        }
+    }
+}

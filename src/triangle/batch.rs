@@ -1,0 +1,453 @@
+//! The watertight test on a batch: [`TriangleBatch`], up to 32 triangles
+//! structure-of-arrays, and [`ray_triangle_batch`], which tests one prepared
+//! ray against eight of them at a time, each lane bit for bit the answer of
+//! [`ray_triangle`](crate::ray_triangle) on its triangle (the definition's
+//! common case, lane by lane; the rare lanes go to the definition itself).
+
+use core::marker::PhantomData;
+
+use glam::Vec3;
+
+use super::definition::{EdgeRule, watertight_definition};
+use super::{Side, Triangle, TriangleHit};
+use crate::num::{Lanes, Lanes8, S, Scalar, Vector};
+use crate::ray::{PreparedRay, t_max_ok};
+use crate::simd::{Isa, Kernel, check_lanes, lanes_at, per_call, put};
+
+/// Up to `N` triangles, structure-of-arrays.
+///
+/// Triangles are stored as given (a non-finite one is a lane that the
+/// watertight test misses, and a zero-area one is hit exactly where the
+/// scalar test hits it); empty lanes hold NaN corners and are masked off.
+///
+/// ```
+/// use rayhit::{PreparedRay, Ray, Triangle, TriangleBatch, ray_triangle_batch, glam::Vec3};
+/// // Four unit right triangles stacked along z at z = 1, 2, 3, 4.
+/// let tris: Vec<Triangle> = (1..=4)
+///     .map(|k| {
+///         let z = k as f32;
+///         Triangle::new(Vec3::new(0.0, 0.0, z), Vec3::new(1.0, 0.0, z), Vec3::new(0.0, 1.0, z))
+///     })
+///     .collect();
+/// let batch = TriangleBatch::<Vec3, 4>::from_slice(&tris).unwrap();
+/// let ray = PreparedRay::new(&Ray::new(Vec3::new(0.25, 0.25, 0.0), Vec3::Z));
+/// let hits = ray_triangle_batch(&ray, &batch, 3.5);
+/// assert_eq!(hits.mask, 0b0111);
+/// let (lane, nearest) = hits.nearest().unwrap();
+/// assert_eq!((lane, nearest.t, nearest.u, nearest.v), (0, 1.0, 0.25, 0.25));
+/// ```
+#[derive(Clone, Copy, Debug, PartialEq)]
+// Aligned as `AabbBatch` is, for the same reason.
+#[repr(C, align(32))]
+pub struct TriangleBatch<V: Vector = Vec3, const N: usize = 8> {
+    /// `p[corner][axis][lane]`, corners `a, b, c`.
+    p: [[[S<V>; N]; 3]; 3],
+    /// The lanes that hold a triangle.
+    used: u32,
+    /// The lanes whose triangle has zero area ([`Triangle::is_degenerate`]),
+    /// decided once when stored: their hits take the scalar code's route
+    /// for `t`.
+    degenerate: u32,
+}
+
+impl<V: Vector, const N: usize> TriangleBatch<V, N> {
+    /// The number of lanes, `N`.
+    pub const LANES: usize = N;
+
+    /// A batch with every lane empty.
+    #[inline]
+    #[must_use]
+    pub fn empty() -> Self {
+        const { check_lanes::<N>() };
+        let nan = S::<V>::NAN;
+        Self {
+            p: [[[nan; N]; 3]; 3],
+            used: 0,
+            degenerate: 0,
+        }
+    }
+
+    /// The batch of `triangles` in lanes `0..triangles.len()`, the rest
+    /// empty, or `None` when there are more than `N` triangles.
+    #[inline]
+    #[must_use]
+    pub fn from_slice(triangles: &[Triangle<V>]) -> Option<Self> {
+        if triangles.len() > N {
+            return None;
+        }
+        let mut batch = Self::empty();
+        for (lane, t) in triangles.iter().enumerate() {
+            batch.set(lane, t);
+        }
+        Some(batch)
+    }
+
+    /// Stores `tri` in `lane`.
+    ///
+    /// # Panics
+    ///
+    /// If `lane >= N`.
+    #[inline]
+    pub fn set(&mut self, lane: usize, tri: &Triangle<V>) {
+        assert!(lane < N, "lane {lane} out of range for a batch of {N}");
+        for (i, corner) in [tri.a, tri.b, tri.c].into_iter().enumerate() {
+            for k in 0..3 {
+                self.p[i][k][lane] = corner[k];
+            }
+        }
+        self.used |= 1 << lane;
+        if tri.is_degenerate() {
+            self.degenerate |= 1 << lane;
+        } else {
+            self.degenerate &= !(1 << lane);
+        }
+    }
+
+    /// Empties `lane`.
+    ///
+    /// # Panics
+    ///
+    /// If `lane >= N`.
+    #[inline]
+    pub fn clear(&mut self, lane: usize) {
+        assert!(lane < N, "lane {lane} out of range for a batch of {N}");
+        let nan = S::<V>::NAN;
+        for corner in &mut self.p {
+            for axis in corner.iter_mut() {
+                axis[lane] = nan;
+            }
+        }
+        self.used &= !(1 << lane);
+        self.degenerate &= !(1 << lane);
+    }
+
+    /// The triangle in `lane`, if it holds one.
+    ///
+    /// # Panics
+    ///
+    /// If `lane >= N`.
+    #[inline]
+    #[must_use]
+    pub fn get(&self, lane: usize) -> Option<Triangle<V>> {
+        assert!(lane < N, "lane {lane} out of range for a batch of {N}");
+        (self.used & (1 << lane) != 0).then(|| self.lane(lane))
+    }
+
+    /// The lanes that hold a triangle, one bit each.
+    #[inline]
+    #[must_use]
+    pub fn mask(&self) -> u32 {
+        self.used
+    }
+
+    #[inline(always)]
+    fn lane(&self, lane: usize) -> Triangle<V> {
+        let corner = |i: usize| V::new(self.p[i][0][lane], self.p[i][1][lane], self.p[i][2][lane]);
+        Triangle::new(corner(0), corner(1), corner(2))
+    }
+}
+
+/// The answer of [`ray_triangle_batch`]: which lanes are hit, where, and
+/// from which side.
+///
+/// For a lane in `mask`, `t`, `u`, `v` and the side (bit set in `front`
+/// for [`Side::Front`]) are those [`ray_triangle`](crate::ray_triangle)
+/// returns for that triangle; other lanes have `t = +inf`, `u = v = 0` and
+/// no `front` bit, so the smallest `t` is the nearest hit.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct TriangleBatchHits<F = f32, const N: usize = 8> {
+    /// Lane `i` is hit when bit `i` is set.
+    pub mask: u32,
+    /// Lanes hit from the front ([`Side::Front`]); a subset of `mask`.
+    pub front: u32,
+    /// Per lane, the distance `t` (`+inf` for a lane not hit).
+    pub t: [F; N],
+    /// Per lane, the barycentric `u`.
+    pub u: [F; N],
+    /// Per lane, the barycentric `v`.
+    pub v: [F; N],
+}
+
+impl<F: Scalar, const N: usize> TriangleBatchHits<F, N> {
+    /// The hit in `lane` as the scalar test returns it; `None` for a lane
+    /// not hit and for `lane >= N`.
+    #[inline]
+    #[must_use]
+    pub fn get(&self, lane: usize) -> Option<TriangleHit<F>> {
+        (lane < N && self.mask & (1 << lane) != 0).then(|| TriangleHit {
+            t: self.t[lane],
+            u: self.u[lane],
+            v: self.v[lane],
+            side: if self.front & (1 << lane) != 0 {
+                Side::Front
+            } else {
+                Side::Back
+            },
+        })
+    }
+
+    /// The nearest hit and its lane: the smallest `t`, the lowest lane
+    /// among equal ones. `None` when no lane is hit.
+    #[inline]
+    #[must_use]
+    pub fn nearest(&self) -> Option<(usize, TriangleHit<F>)> {
+        let mut best: Option<usize> = None;
+        let mut bits = self.mask;
+        while bits != 0 {
+            let l = bits.trailing_zeros() as usize;
+            bits &= bits - 1;
+            if best.is_none_or(|b| self.t[l] < self.t[b]) {
+                best = Some(l);
+            }
+        }
+        best.and_then(|l| self.get(l).map(|h| (l, h)))
+    }
+}
+
+/// One corner of eight triangles in the ray's frame, as `Frame::new`
+/// computes it: translated, its axes in the ray's order `k`, sheared.
+#[inline(always)]
+fn sheared<W: Lanes8, const N: usize>(
+    p: &[[W::F; N]; 3],
+    c: usize,
+    k: [usize; 3],
+    o: [W; 3],
+    sx: W,
+    sy: W,
+) -> (W, W, W)
+where
+    W::F: Scalar,
+{
+    let px = lanes_at::<W, N>(&p[k[0]], c).sub(o[0]);
+    let py = lanes_at::<W, N>(&p[k[1]], c).sub(o[1]);
+    let pz = lanes_at::<W, N>(&p[k[2]], c).sub(o[2]);
+    (px.add(sx.mul(pz)), py.add(sy.mul(pz)), pz)
+}
+
+/// The watertight test ([`ray_triangle`](crate::ray_triangle)) of one
+/// prepared ray against every triangle of a batch.
+///
+/// Lane by lane, the answer is exactly (bit for bit) what
+/// [`ray_triangle`](crate::ray_triangle) returns for the ray the
+/// [`PreparedRay`] was made from and that lane's triangle, so all of its
+/// guarantees hold per lane: watertight across shared edges, `t > 0` in
+/// exact arithmetic, `t`, `u`, `v` within
+/// [`ray_triangle_error_bounds`](crate::ray_triangle_error_bounds).
+///
+/// How: every lane runs the scalar test's arithmetic, in the same order, on
+/// its own triangle. Two rare cases leave the vector path and run the
+/// scalar code itself for their lane: an edge function that rounds to
+/// exactly zero (the exact-sign recomputation), and a crossing inside the
+/// triangle and the `t` range for which the cheapest of the three
+/// sufficient tests for `t > 0` (all corners in front of the origin)
+/// fails, so that the other two must decide. The answer is the same either
+/// way; such a lane costs a scalar call more.
+///
+/// Empty lanes, an invalid ray and a NaN or negative `t_max` give no hits.
+/// Never panics.
+///
+/// ```
+/// use rayhit::{PreparedRay, Ray, Triangle, TriangleBatch, ray_triangle, ray_triangle_batch, glam::Vec3};
+/// let tri = Triangle::new(Vec3::ZERO, Vec3::new(2.0, 0.0, 0.0), Vec3::new(0.0, 2.0, 0.0));
+/// let ray = Ray::new(Vec3::new(0.5, 0.25, 4.0), Vec3::new(0.0, 0.0, -2.0));
+/// let batch = TriangleBatch::<Vec3, 8>::from_slice(&[tri, tri.flipped()]).unwrap();
+/// let hits = ray_triangle_batch(&PreparedRay::new(&ray), &batch, f32::INFINITY);
+/// assert_eq!((hits.mask, hits.front), (0b11, 0b01));
+/// assert_eq!(hits.get(0), ray_triangle(&ray, &tri, f32::INFINITY));
+/// assert_eq!(hits.get(1), ray_triangle(&ray, &tri.flipped(), f32::INFINITY));
+/// ```
+#[inline]
+#[must_use]
+pub fn ray_triangle_batch<V: Vector, const N: usize>(
+    ray: &PreparedRay<V>,
+    batch: &TriangleBatch<V, N>,
+    t_max: S<V>,
+) -> TriangleBatchHits<S<V>, N> {
+    per_call::<TriangleBatchKernel<V, N>>(ray, batch, t_max)
+}
+
+/// [`ray_triangle_batch`] as a kernel, for any instruction set (see
+/// `crate::simd`).
+pub(crate) struct TriangleBatchKernel<V, const N: usize>(PhantomData<V>);
+
+impl<V: Vector, const N: usize> Kernel for TriangleBatchKernel<V, N> {
+    type Ray = PreparedRay<V>;
+    type Shapes = TriangleBatch<V, N>;
+    type Limit = S<V>;
+    type Output = TriangleBatchHits<S<V>, N>;
+    /// Compiled with AVX-512 the triangle batch comes out slower than its
+    /// AVX2 copy, which `Avx512` runs instead.
+    const AVX512: bool = false;
+
+    #[inline(always)]
+    fn run<I: Isa>(
+        _: I,
+        ray: &PreparedRay<V>,
+        batch: &TriangleBatch<V, N>,
+        t_max: S<V>,
+    ) -> Self::Output {
+        triangle_batch_body::<I::W<S<V>>, V, N>(ray, batch, t_max)
+    }
+}
+
+/// The body of [`ray_triangle_batch`] with the eight-lane type `W`, eight
+/// lanes at a time.
+#[inline(always)]
+fn triangle_batch_body<W: Lanes8<F = S<V>>, V: Vector, const N: usize>(
+    ray: &PreparedRay<V>,
+    batch: &TriangleBatch<V, N>,
+    t_max: S<V>,
+) -> TriangleBatchHits<S<V>, N> {
+    const { check_lanes::<N>() };
+    let zero = S::<V>::ZERO;
+    let one = S::<V>::ONE;
+    let inf = S::<V>::INFINITY;
+    let mut out = TriangleBatchHits {
+        mask: 0,
+        front: 0,
+        t: [inf; N],
+        u: [zero; N],
+        v: [zero; N],
+    };
+    if !(ray.is_valid() && t_max_ok(t_max)) {
+        return out;
+    }
+    let sh = ray.shear();
+    // The permuted axes: x, y, z of the ray's frame.
+    let (kx, ky, kz) = (sh.kx as usize, sh.ky as usize, sh.kz as usize);
+    // The origin in the ray's axis order, from the prepared lanes (indexing
+    // the origin by axis would branch on the axis).
+    let [ox, oy, oz] = ray.origin_lanes.map(|l| l.x());
+    let ray_front = sh.dz > zero;
+
+    let splat = W::splat;
+    let (lo, top, ones) = (splat(zero), splat(t_max), splat(one));
+    let (sx, sy, sz) = (splat(sh.sx), splat(sh.sy), splat(sh.sz));
+    let (ox, oy, oz) = (splat(ox), splat(oy), splat(oz));
+
+    let top_max = splat(if t_max < S::<V>::MAX {
+        t_max
+    } else {
+        S::<V>::MAX
+    });
+    let (mut hit, mut slow, mut front) = (0, 0, 0);
+    let all = lo.le(lo);
+    for c in 0..N.div_ceil(8) {
+        // Lanes past N hold NaN, and are not in `batch.used`.
+        let (k, o) = ([kx, ky, kz], [ox, oy, oz]);
+        let (x0, y0, pz0) = sheared::<W, N>(&batch.p[0], c, k, o, sx, sy);
+        let (x1, y1, pz1) = sheared::<W, N>(&batch.p[1], c, k, o, sx, sy);
+        let (x2, y2, pz2) = sheared::<W, N>(&batch.p[2], c, k, o, sx, sy);
+        // Edge functions.
+        let e0 = x1.mul(y2).sub(y1.mul(x2));
+        let e1 = x2.mul(y0).sub(y2.mul(x0));
+        let e2 = x0.mul(y1).sub(y0.mul(x1));
+        // Inside test of `EdgeRule::Closed`: not both signs among the edge
+        // functions. For non-NaN values "some e_i < 0" is "min e_i < 0",
+        // which is cheaper; a NaN edge function makes `det` NaN and the
+        // range test below fails, as in the scalar test, whatever this
+        // says.
+        let (e_min, e_max) = (e0.min(e1.min(e2)), e0.max(e1.max(e2)));
+        let outside = W::and(e_min.lt(lo), lo.lt(e_max));
+        // A zero edge function sends a lane inside to the scalar code,
+        // which recomputes it with its sign exact (a lane outside stays
+        // outside whatever that sign). Inside, the edge functions share a
+        // sign, so one is zero exactly when the smallest or the largest is.
+        let zero_edge = W::or(e_min.eq(lo), e_max.eq(lo));
+        if W::bits(W::and_not(all, outside)) == 0 {
+            // Every lane outside (most rays miss most triangles of a leaf):
+            // nothing more to compute for this chunk.
+            continue;
+        }
+        let det = e0.add(e1).add(e2);
+        // Scaled distance and range test.
+        let (z0, z1, z2) = (pz0.mul(sz), pz1.mul(sz), pz2.mul(sz));
+        let t_scaled = e0.mul(z0).add(e1.mul(z1)).add(e2.mul(z2));
+        let limit = top.mul(det);
+        let ahead_range = W::and(W::and(lo.lt(det), lo.lt(t_scaled)), t_scaled.le(limit));
+        let behind_range = W::and(W::and(det.lt(lo), t_scaled.lt(lo)), limit.le(t_scaled));
+        let inv_det = ones.div(det);
+        let t = t_scaled.mul(inv_det);
+        // (`t > 0` makes `is_finite` the same as `t <= MAX`, and `top_max`
+        // is `min(t_max, MAX)`.)
+        let t_ok = W::and(lo.lt(t), t.le(top_max));
+        let pass = W::and(W::and_not(W::or(ahead_range, behind_range), outside), t_ok);
+        // The first sufficient test for t > 0 (see `watertight_definition`):
+        // every `z_i > 0`, that is `min z_i > 0` (where it matters, `pass`
+        // and no zero edge function, every `z_i` is finite: a NaN or
+        // infinite one makes `det` or `t` fail above).
+        let (z_min, z_max) = (z0.min(z1.min(z2)), z0.max(z1.max(z2)));
+        let ahead = lo.lt(z_min);
+        // u and v: finite whenever `pass` holds and no edge function is
+        // zero (each `|e_i| <= |det|`, as the `e_i` share a sign, and
+        // `1 / det` is finite, as `t` is), so the definition's finiteness
+        // test of `u` and `v` is always passed here and is not repeated.
+        let u = e1.mul(inv_det).min(ones);
+        let v = e2.mul(inv_det).min(ones);
+        let hit_c = W::and(W::and_not(pass, zero_edge), ahead);
+        let shift = 8 * c;
+        hit |= W::bits(hit_c) << shift;
+        slow |= W::bits(W::or(zero_edge, W::and_not(pass, ahead))) << shift;
+        // Zero-area triangles (marked when stored; most batches have none):
+        // a hit goes to the scalar code, which takes its `t` from the
+        // segment (the scalar kernels find such hits by a conditioning
+        // test), and so does a plain miss inside the triangle with some
+        // corner in front of the origin (`max z_i > 0`), which the
+        // definition may turn into a hit; for any other triangle the plain
+        // miss is the definition's answer (see `watertight_lanes`; a NaN
+        // depth leaves the lane to the plain miss, which is then the
+        // answer).
+        let degenerate = (batch.degenerate >> shift) & 0xff;
+        if degenerate != 0 {
+            let inside = W::and_not(all, outside);
+            let reconsider = W::and(W::and_not(inside, pass), lo.lt(z_max));
+            hit &= !(degenerate << shift);
+            slow |= (W::bits(W::or(hit_c, reconsider)) & degenerate) << shift;
+        }
+        front |= W::bits(lo.lt(det)) << shift;
+        put(&mut out.t, c, W::select(hit_c, t, splat(inf)));
+        put(&mut out.u, c, W::select(hit_c, u, lo));
+        put(&mut out.v, c, W::select(hit_c, v, lo));
+    }
+    let used = batch.used;
+    let hit = hit & used;
+    out.mask = hit;
+    // A hit is from the front when the sign of its determinant differs
+    // from that of the ray's main component (see `watertight_definition`).
+    out.front = if ray_front { !front & hit } else { front & hit };
+    let slow = slow & used;
+    if slow != 0 {
+        slow_lanes(ray, batch, t_max, slow, &mut out);
+    }
+    out
+}
+
+/// The lanes in `slow` of [`triangle_batch_body`]'s answer, from the scalar
+/// code. Out of line (they are rare), so that the vector code keeps its
+/// registers.
+#[cold]
+#[inline(never)]
+fn slow_lanes<V: Vector, const N: usize>(
+    ray: &PreparedRay<V>,
+    batch: &TriangleBatch<V, N>,
+    t_max: S<V>,
+    mut slow: u32,
+    out: &mut TriangleBatchHits<S<V>, N>,
+) {
+    while slow != 0 {
+        let l = slow.trailing_zeros() as usize;
+        slow &= slow - 1;
+        let tri = batch.lane(l);
+        // (A lane can arrive here with the plain answer already written.)
+        (out.t[l], out.u[l], out.v[l]) = (S::<V>::INFINITY, S::<V>::ZERO, S::<V>::ZERO);
+        if let Some(h) =
+            watertight_definition(ray.origin(), &ray.shear(), &tri, t_max, EdgeRule::Closed)
+        {
+            out.mask |= 1 << l;
+            if h.side == Side::Front {
+                out.front |= 1 << l;
+            }
+            (out.t[l], out.u[l], out.v[l]) = (h.t, h.u, h.v);
+        }
+    }
+}

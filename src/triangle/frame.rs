@@ -1,0 +1,94 @@
+//! A triangle in a ray's sheared frame: translated to the ray origin,
+//! permuted so that the ray runs mostly along `z`, sheared so that it runs
+//! exactly along `z`; and its three edge functions, with their signs exact.
+
+use super::Triangle;
+use crate::num::{Scalar, Vector};
+use crate::ray::Shear;
+
+/// The triangle in the ray's frame: translated to the ray origin, permuted,
+/// and sheared in `x, y`; the ray is the `+z` axis.
+#[derive(Clone, Copy, Debug)]
+pub(crate) struct Frame<F> {
+    /// Sheared `x` and `y` of the three corners.
+    pub(crate) x: [F; 3],
+    pub(crate) y: [F; 3],
+    /// Translated, permuted, unsheared coordinates (for the error bounds).
+    pub(crate) px: [F; 3],
+    pub(crate) py: [F; 3],
+    pub(crate) pz: [F; 3],
+    /// Edge functions: `e[i]` is the 2-D cross product of the two corners
+    /// other than `i` (in order `i+1, i+2`), with its sign exact.
+    pub(crate) e: [F; 3],
+}
+
+impl<F: Scalar> Frame<F> {
+    /// The corners' depths along the ray in units of `t`: `p_z / d_z`,
+    /// computed as `p_z fl(1 / d_z)`.
+    #[inline(always)]
+    pub(crate) fn scaled_z(&self, shear: &Shear<F>) -> [F; 3] {
+        self.pz.map(|p| p * shear.sz)
+    }
+
+    #[inline(always)]
+    pub(crate) fn new<V: Vector<Scalar = F>>(
+        origin: V,
+        tri: &Triangle<V>,
+        shear: &Shear<F>,
+    ) -> Self {
+        let mut f = Frame {
+            x: [F::ZERO; 3],
+            y: [F::ZERO; 3],
+            px: [F::ZERO; 3],
+            py: [F::ZERO; 3],
+            pz: [F::ZERO; 3],
+            e: [F::ZERO; 3],
+        };
+        for (i, p) in [tri.a, tri.b, tri.c].into_iter().enumerate() {
+            // Translate, permute, shear.
+            let (px, py, pz) = shear.permute(p - origin);
+            f.px[i] = px;
+            f.py[i] = py;
+            f.pz[i] = pz;
+            f.x[i] = px + shear.sx * pz;
+            f.y[i] = py + shear.sy * pz;
+        }
+        // Edge functions. Rounding is monotone, so fl(fl(ab) - fl(cd)) has
+        // the sign of ab - cd or is zero; only a zero needs the exact
+        // recomputation (Woop, Benthin and Wald, JCGT 2013, section 3).
+        for i in 0..3 {
+            let (j, k) = ((i + 1) % 3, (i + 2) % 3);
+            let e = f.x[j] * f.y[k] - f.y[j] * f.x[k];
+            f.e[i] = if e == F::ZERO {
+                F::diff_of_products_exact_sign(f.x[j], f.y[k], f.y[j], f.x[k])
+            } else {
+                e
+            };
+        }
+        f
+    }
+
+    /// The one-hit tie-break for edge `i` (from corner `i+1` to `i+2`) when
+    /// its edge function is exactly zero: the sign the edge function takes
+    /// once the ray is moved by an infinitesimal `(eps1, eps2)` with
+    /// `0 < eps2 << eps1`. Some(true) positive, Some(false) negative, None
+    /// for an edge of zero length in the sheared plane.
+    ///
+    /// For the edge `P -> Q` and a point `X`, the edge function is
+    /// `(P - X) x (Q - X) = P x Q - X_x D_y + X_y D_x` with `D = Q - P`. With
+    /// `P x Q = 0` and `X = (eps1, eps2)` its sign is that of `-D_y`, or of
+    /// `D_x` when `D_y = 0`. Only comparisons are needed, so it is exact.
+    #[inline(always)]
+    pub(crate) fn tie_break(&self, i: usize) -> Option<bool> {
+        let (j, k) = ((i + 1) % 3, (i + 2) % 3);
+        let (py, qy) = (self.y[j], self.y[k]);
+        let (px, qx) = (self.x[j], self.x[k]);
+        if py != qy {
+            Some(py > qy)
+        } else if px != qx {
+            Some(qx > px)
+        } else {
+            None
+        }
+    }
+}

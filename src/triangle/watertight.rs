@@ -1,0 +1,631 @@
+//! The watertight test's fast paths: [`ray_triangle`] (every main axis at
+//! once, on lanes), [`ray_triangle_prepared`] (the three corners in lanes),
+//! and [`ray_triangle_one_hit`]; every rare case goes to the definition, out
+//! of line, and a test holds each to it bit for bit.
+
+use super::conditioning::{
+    det_sign_known_at_corners, det_sign_known_lanes, det_sign_known_roughly,
+};
+use super::definition::{EdgeRule, watertight_definition};
+use super::{Side, Triangle, TriangleHit};
+use crate::num::round::min2;
+use crate::num::{Axis, Bits, L, Lanes, Repr, S, Scalar, Vector};
+use crate::ray::{PreparedRay, Ray, Shear, largest_axis, t_max_ok};
+
+/// The watertight test shared by [`ray_triangle`] and
+/// [`ray_triangle_one_hit`].
+#[inline(always)]
+fn watertight<V: Vector>(
+    ray: &Ray<V>,
+    tri: &Triangle<V>,
+    t_max: S<V>,
+    rule: EdgeRule,
+) -> Option<TriangleHit<S<V>>> {
+    if !(ray.is_valid() && t_max_ok(t_max)) {
+        return None;
+    }
+    match rule {
+        EdgeRule::Closed => watertight_every_axis(ray, tri, t_max),
+        EdgeRule::OneHit => {
+            watertight_definition(ray.origin, &Shear::new(&ray.dir), tri, t_max, rule)
+        }
+    }
+}
+
+/// The closed watertight test for a valid ray (not prepared) and a
+/// `t_max >= 0`, computed for all three choices of the ray's main axis at
+/// once, lane `k` being the test in the frame with `kz = k`, and decided
+/// on the lane of the ray's actual main axis.
+///
+/// Lane `k` runs exactly the operations of [`watertight_definition`] with
+/// `kz = k` (the shear factors `-d[k+1] / d[k]`, `-d[k+2] / d[k]` and
+/// `1 / d[k]`, each one division; the corners translated in their natural
+/// axis order, so that `p[k+1]`, `p[k+2]`, `p[k]` are the permuted `px`,
+/// `py`, `pz`), so on the chosen lane its values are the definition's,
+/// bit for bit. Nothing waits for the choice of the axis: on one ray
+/// against one triangle, that shortens the chain of dependent operations
+/// (the ray's shear is not known in advance) more than the two other
+/// lanes cost. The rare cases go to [`watertight_definition`], as in
+/// [`watertight_lanes`].
+#[inline(always)]
+fn watertight_every_axis<V: Vector>(
+    ray: &Ray<V>,
+    tri: &Triangle<V>,
+    t_max: S<V>,
+) -> Option<TriangleHit<S<V>>> {
+    let splat = L::<V>::splat;
+    let lanes = |v: V| L::<V>::new(v.x(), v.y(), v.z());
+    let (zero, one) = (splat(S::<V>::ZERO), splat(S::<V>::ONE));
+    let (o, d) = (lanes(ray.origin), lanes(ray.dir));
+    let kz = largest_axis(d.abs().to_array());
+    let bit = 1 << kz;
+    // The three candidate shears: lane k holds -d[k+1] / d[k],
+    // -d[k+2] / d[k] and 1 / d[k].
+    let sx = d.rot1().neg().div(d);
+    let sy = d.rot2().neg().div(d);
+    let sz = one.div(d);
+    // Translate; then lane k of `x` is p[k+1] + sx[k] p[k], and so on.
+    let p = [
+        lanes(tri.a).sub(o),
+        lanes(tri.b).sub(o),
+        lanes(tri.c).sub(o),
+    ];
+    let x = p.map(|p| p.rot1().add(sx.mul(p)));
+    let y = p.map(|p| p.rot2().add(sy.mul(p)));
+    let z = p.map(|p| p.mul(sz));
+    let edge = |j: usize, k: usize| x[j].mul(y[k]).sub(y[j].mul(x[k]));
+    let (e0, e1, e2) = (edge(1, 2), edge(2, 0), edge(0, 1));
+    // Both signs among the edge functions: outside. (For values that are
+    // not NaN, "some e_i < 0" is "min e_i < 0"; a NaN edge function, from
+    // overflow, makes `det` NaN and fails the range test below, whatever
+    // this says, as in the definition.)
+    let neg = e0.min(e1).min(e2).lt(zero);
+    let pos = zero.lt(e0.max(e1).max(e2));
+    if neg & pos & bit != 0 {
+        return None;
+    }
+    if (e0.eq(zero) | e1.eq(zero) | e2.eq(zero)) & bit != 0 {
+        return definition_answer(ray, tri, t_max);
+    }
+    let det = e0.add(e1).add(e2);
+    let t_scaled = e0.mul(z[0]).add(e1.mul(z[1])).add(e2.mul(z[2]));
+    let limit = splat(t_max).mul(det);
+    let ahead_range = zero.lt(det) & zero.lt(t_scaled) & t_scaled.le(limit);
+    let behind_range = det.lt(zero) & t_scaled.lt(zero) & limit.le(t_scaled);
+    // A plain miss stands where no corner is in front of the origin or the
+    // determinant is well conditioned (see `watertight_lanes`). (Lane k is
+    // the frame with kz = k, so the maxima over the corners are lane-wise
+    // here.)
+    let front = [0, 1, 2].map(|c| zero.lt(z[c]));
+    let ahead = front[0] & front[1] & front[2] & bit != 0;
+    let conditioned = || {
+        let m = (0..3)
+            .map(|c| x[c].abs().max(y[c].abs()))
+            .fold(zero, |a, b| a.max(b));
+        let w = d.abs().mul(z[0].abs().max(z[1].abs()).max(z[2].abs()));
+        det_sign_known_roughly(det, m.max(w)) & bit != 0
+            || det_sign_known_lanes(det, m, w) & bit != 0
+    };
+    // (Most misses are decided before the division.)
+    let plain = if (ahead_range | behind_range) & bit != 0 {
+        let inv_det = one.div(det);
+        let t = t_scaled.mul(inv_det);
+        // (`t > 0` makes `is_finite` the same as `t <= MAX`.)
+        let big = splat(S::<V>::MAX);
+        let t_ok = zero.lt(t) & t.le(splat(t_max)) & t.le(big);
+        (t_ok & bit != 0).then_some((t, inv_det))
+    } else {
+        None
+    };
+    let Some((t, inv_det)) = plain else {
+        return if (front[0] | front[1] | front[2]) & bit == 0 || conditioned() {
+            None
+        } else {
+            definition_answer(ray, tri, t_max)
+        };
+    };
+    // The first sufficient test for t > 0 (see `watertight_definition`), and
+    // a well-conditioned determinant (see `watertight_lanes`).
+    if !(ahead && conditioned()) {
+        return definition_answer(ray, tri, t_max);
+    }
+    // u and v, finite here (see `watertight_lanes`).
+    let u = e1.mul(inv_det).min(one);
+    let v = e2.mul(inv_det).min(one);
+    let pick = |w: L<V>| -> S<V> { Lanes::to_array(w)[kz] };
+    let det = pick(det);
+    let side = if (det > S::<V>::ZERO) != (pick(d) > S::<V>::ZERO) {
+        Side::Front
+    } else {
+        Side::Back
+    };
+    Some(TriangleHit {
+        t: pick(t),
+        u: pick(u),
+        v: pick(v),
+        side,
+    })
+}
+
+/// The closed watertight test for a prepared ray and a `t_max >= 0`, with
+/// the three corners in the lanes of one register: the same operations as
+/// [`watertight_definition`], lane by lane, so the same bits. The rare cases
+/// go to [`watertight_definition`] itself: an edge function that rounds to
+/// zero (its sign must be recomputed exactly), a crossing for which the
+/// cheapest sufficient test for `t > 0` (every corner in front of the
+/// origin) fails or whose determinant's sign is not surely known, and a
+/// plain miss that only the definition can settle.
+///
+/// An invalid ray needs no test of its own: its origin lanes are NaN
+/// (`PreparedRay::new`), so every sheared coordinate, edge function and
+/// depth is NaN, and every comparison below is false: no two edge
+/// functions of opposite signs, none zero, the determinant out of range,
+/// no corner in front. That is a plain miss with no corner in front, so
+/// `None`, and no rare path is taken.
+#[inline(always)]
+pub(crate) fn watertight_lanes<V: Vector>(
+    ray: &PreparedRay<V>,
+    tri: &Triangle<V>,
+    t_max: S<V>,
+) -> Option<TriangleHit<S<V>>> {
+    let (zero, one) = (S::<V>::ZERO, S::<V>::ONE);
+    let (x, y, pz, e) = frame_lanes(&ray.origin_lanes, &ray.shear_lanes, &ray.axes, tri);
+    let lanes_zero = L::<V>::splat(zero);
+    let (neg, pos) = (e.lt(lanes_zero), lanes_zero.lt(e));
+    if neg != 0 && pos != 0 {
+        // Outside, whatever the exact sign of an edge function of zero.
+        return None;
+    }
+    if e.eq(lanes_zero) != 0 {
+        return definition_answer(ray, tri, t_max);
+    }
+    let det = e.sum3();
+    let sz = ray.shear_lanes[2];
+    let z = pz.mul(sz);
+    let t_scaled = e.mul(z).sum3();
+    let in_range = if det > zero {
+        t_scaled > zero && t_scaled <= t_max * det
+    } else if det < zero {
+        t_scaled < zero && t_scaled >= t_max * det
+    } else {
+        false
+    };
+    // The definition's answer to a plain miss is a miss too, except for a
+    // zero-area triangle whose determinant's sign is unknown, when it takes
+    // `t` from the segment: so a miss stands where no corner is in front of
+    // the origin (the depths' signs are exact: see `watertight_definition`),
+    // or where the determinant is well conditioned
+    // (`det_sign_known_at_corners`); otherwise the definition decides. (Decided
+    // before the division, which most misses need not pay for.)
+    let ahead = lanes_zero.lt(z);
+    if !in_range {
+        return if ahead == 0 {
+            None
+        } else {
+            unpack(plain_miss_lanes(ray, tri, t_max))
+        };
+    }
+    // The first sufficient test for t > 0 (every corner in front), and a
+    // well-conditioned determinant; else the definition decides. (Before
+    // the division, so that no branch waits for it; the definition's tests
+    // are pure functions of the same values, so their order changes no
+    // answer.)
+    if !(ahead == 0b111 && det_sign_known_at_corners(x, y, pz, det)) {
+        return definition_answer(ray, tri, t_max);
+    }
+    let inv_det = one / det;
+    let t = t_scaled * inv_det;
+    // A plain miss with a well-conditioned determinant, as above. (`t > 0`
+    // makes `is_finite` the same as `t <= MAX`, so the two upper limits are
+    // one comparison.)
+    if !(t > zero && t <= min2(S::<V>::MAX, t_max)) {
+        return None;
+    }
+    // u and v: lanes 1 and 2 of `min(e * inv_det, 1)`, finite here: each
+    // `|e_i| <= |det|` (the `e_i` share a sign), and `1 / det` is finite
+    // (else `t` would be infinite).
+    let w = e.mul(L::<V>::splat(inv_det)).min(L::<V>::splat(one));
+    let [_, u, v] = w.to_array();
+    // (`sz = 1 / d_z` has the sign of `d_z`, and is not zero: `|d_z| <=
+    // MAX`.)
+    let side = if (det > zero) != (sz.x() > zero) {
+        Side::Front
+    } else {
+        Side::Back
+    };
+    Some(TriangleHit { t, u, v, side })
+}
+
+/// A triangle test's answer as the rare paths return it: packed so that
+/// it comes back in registers (see `crate::num::repr::Bits`). Returned
+/// through memory, the rare paths' answer made the inlined common path
+/// write its own answer through memory as well.
+type Packed<F> = <<F as Repr>::Bits as Bits>::Packed;
+
+/// `hit` packed: `t`, `u`, `v` and a code, 0 for a miss, 1 for a hit from
+/// the front, 2 from the back.
+#[inline(always)]
+fn pack<F: Scalar>(hit: Option<TriangleHit<F>>) -> Packed<F> {
+    let (values, code) = match hit {
+        None => ([F::ZERO; 3], 0),
+        Some(h) => (
+            [h.t, h.u, h.v],
+            match h.side {
+                Side::Front => 1,
+                Side::Back => 2,
+            },
+        ),
+    };
+    F::Bits::pack(values, code)
+}
+
+/// The inverse of [`pack`], bit for bit.
+#[inline(always)]
+fn unpack<F: Scalar>(packed: Packed<F>) -> Option<TriangleHit<F>> {
+    let ([t, u, v], code) = F::Bits::unpack(packed);
+    let side = match code {
+        0 => return None,
+        1 => Side::Front,
+        _ => Side::Back,
+    };
+    Some(TriangleHit { t, u, v, side })
+}
+
+/// A ray the definition can be run on, from what a fast path was given: its
+/// origin and shear (rebuilt where the fast path kept only its lanes).
+trait DefinitionRay<V: Vector> {
+    fn origin_and_shear(&self) -> (V, Shear<S<V>>);
+}
+
+impl<V: Vector> DefinitionRay<V> for Ray<V> {
+    #[inline(always)]
+    fn origin_and_shear(&self) -> (V, Shear<S<V>>) {
+        (self.origin, Shear::new(&self.dir))
+    }
+}
+
+impl<V: Vector> DefinitionRay<V> for PreparedRay<V> {
+    #[inline(always)]
+    fn origin_and_shear(&self) -> (V, Shear<S<V>>) {
+        (self.origin(), self.shear())
+    }
+}
+
+/// [`definition_out_of_line`]'s answer, unpacked. (Called with what the
+/// fast path was given, where a closure would build its environment on the
+/// common path.)
+#[inline(always)]
+fn definition_answer<V: Vector, R: DefinitionRay<V>>(
+    ray: &R,
+    tri: &Triangle<V>,
+    t_max: S<V>,
+) -> Option<TriangleHit<S<V>>> {
+    unpack(definition_out_of_line(ray, tri, t_max))
+}
+
+/// [`watertight_definition`] with the closed rule, out of the hot path: how
+/// the fast paths answer their rare cases. It takes what the fast path was
+/// given, so that the common path keeps no value alive for it.
+#[cold]
+#[inline(never)]
+fn definition_out_of_line<V: Vector, R: DefinitionRay<V>>(
+    ray: &R,
+    tri: &Triangle<V>,
+    t_max: S<V>,
+) -> Packed<S<V>> {
+    let (origin, shear) = ray.origin_and_shear();
+    pack(watertight_definition(
+        origin,
+        &shear,
+        tri,
+        t_max,
+        EdgeRule::Closed,
+    ))
+}
+
+/// The corners of `tri` in the frame of the ray with origin lanes
+/// `origin_lanes` and shear `shear`, a corner per lane: the sheared `x` and
+/// `y`, the unscaled depth `p_z`, and the edge functions.
+#[inline(always)]
+fn frame_lanes<V: Vector>(
+    origin_lanes: &[L<V>; 3],
+    shear_lanes: &[L<V>; 3],
+    axes: &[Axis; 3],
+    tri: &Triangle<V>,
+) -> (L<V>, L<V>, L<V>, L<V>) {
+    let corners = |k: Axis| L::<V>::new(tri.a.get(k), tri.b.get(k), tri.c.get(k));
+    let [sx, sy, _] = *shear_lanes;
+    let [ox, oy, oz] = *origin_lanes;
+    let [kx, ky, kz] = *axes;
+    // Translate, permute (the corners' coordinates are read in the ray's
+    // axis order), shear.
+    let px = corners(kx).sub(ox);
+    let py = corners(ky).sub(oy);
+    let pz = corners(kz).sub(oz);
+    let x = px.add(sx.mul(pz));
+    let y = py.add(sy.mul(pz));
+    // Edge functions: lane i is x[i+1] y[i+2] - y[i+1] x[i+2].
+    let e = x.rot1().mul(y.rot2()).sub(y.rot1().mul(x.rot2()));
+    (x, y, pz, e)
+}
+
+/// The answer to a plain miss of [`watertight_lanes`] with some corner in
+/// front of the origin: a miss too where the determinant is well
+/// conditioned, else the definition's (`slow`). Out of line, and given
+/// only what the caller was given (it recomputes the frame, bit for bit),
+/// so that the common paths keep no more values alive for it.
+#[cold]
+#[inline(never)]
+fn plain_miss_lanes<V: Vector>(
+    ray: &PreparedRay<V>,
+    tri: &Triangle<V>,
+    t_max: S<V>,
+) -> Packed<S<V>> {
+    let (x, y, pz, e) = frame_lanes(&ray.origin_lanes, &ray.shear_lanes, &ray.axes, tri);
+    if det_sign_known_at_corners(x, y, pz, e.sum3()) {
+        pack::<S<V>>(None)
+    } else {
+        definition_out_of_line(ray, tri, t_max)
+    }
+}
+
+/// The watertight ray/triangle test (closed: edges and corners hit).
+///
+/// Woop, Benthin and Wald, "Watertight Ray/Triangle Intersection", JCGT
+/// 2(1), 2013, as in pbrt-v4: translate the corners to the ray origin,
+/// permute the axes so that the ray runs mostly along `z`, shear so that it
+/// runs exactly along `z`, and decide inside/outside with three 2-D edge
+/// functions; an edge function that rounds to exactly zero is recomputed
+/// with its sign exact (in `f64` for `f32`).
+///
+/// Conventions: two-sided (the [`Side`] is reported); `t` in units of
+/// `ray.dir` with `0 < t <= t_max`; barycentrics as in [`TriangleHit`].
+/// The triangle is closed in the ray's frame: an edge function of exactly
+/// zero counts as inside. (A ray that exact arithmetic puts exactly on the
+/// edge of a lone triangle can still miss it: translating and shearing the
+/// corners rounds them by a few ulps, and the test is exact for the rounded
+/// corners. Where two triangles share the edge, one of them is hit.)
+///
+/// Guarantees:
+/// - **Watertight.** The signs of the edge functions are exact for the
+///   rounded corners in the ray's frame, and two triangles that share an
+///   edge (bit-identical corners) compute that edge's function as exact
+///   negatives. So a ray that crosses a shared edge or corner of a mesh
+///   (locally a proper surface, seen from one side) hits at least one of the
+///   triangles around it: no ray leaks through.
+/// - **`t > 0` decided conservatively**: the reported `t` is positive, and
+///   the hit is in front of the origin in exact arithmetic by one of four
+///   tests: all three corners are in front (so is any crossing), or the
+///   scaled numerator exceeds its rounding error bound (pbrt-v4's test), or
+///   `t` exceeds its error bound, or, for a triangle of zero area (corners
+///   exactly collinear) that rounding leaves a sliver, the depth of the
+///   point of its longest edge nearest the ray (where the ray passes the
+///   segment, and then the reported `t`) exceeds its own error bound. Where
+///   every corner is behind the origin there is no hit. A ray spawned from the triangle with
+///   [`offset_ray_origin`](crate::offset_ray_origin) does not hit it again.
+/// - `t`, `u` and `v` are within [`ray_triangle_error_bounds`](crate::ray_triangle_error_bounds) of the
+///   exact crossing (where that bound is finite); `t` always lies between
+///   the nearest and farthest corner's depth along the ray, up to rounding.
+/// - Triangles of zero area in the ray's sheared frame (after rounding),
+///   non-finite triangles, invalid rays and NaN or negative `t_max` give
+///   `None`; never panics, never NaN. A triangle of exactly zero area can
+///   still be hit where rounding leaves it a sliver (see [`Triangle`]).
+/// - Precondition for all of the above: coordinates relative to the ray
+///   origin small enough that the edge-function products do not overflow
+///   (`|coordinate| < 2^63` in `f32`, `2^511` in `f64`).
+///
+/// ```
+/// use rayhit::{Ray, Side, Triangle, ray_triangle, glam::Vec3};
+/// let tri = Triangle::new(Vec3::ZERO, Vec3::new(2.0, 0.0, 0.0), Vec3::new(0.0, 2.0, 0.0));
+/// let ray = Ray::new(Vec3::new(0.5, 0.25, 4.0), Vec3::new(0.0, 0.0, -2.0));
+/// let hit = ray_triangle(&ray, &tri, f32::INFINITY).unwrap();
+/// assert_eq!((hit.t, hit.u, hit.v, hit.side), (2.0, 0.25, 0.125, Side::Front));
+/// // On the edge from b to c: closed, so a hit.
+/// let edge = Ray::new(Vec3::new(1.0, 1.0, 4.0), Vec3::new(0.0, 0.0, -1.0));
+/// assert!(ray_triangle(&edge, &tri, f32::INFINITY).is_some());
+/// ```
+#[inline]
+#[must_use]
+pub fn ray_triangle<V: Vector>(
+    ray: &Ray<V>,
+    tri: &Triangle<V>,
+    t_max: S<V>,
+) -> Option<TriangleHit<S<V>>> {
+    watertight(ray, tri, t_max, EdgeRule::Closed)
+}
+
+/// [`ray_triangle`] on a [`PreparedRay`]: the same answer, bit for bit,
+/// without recomputing the ray's shear (three divisions) per triangle.
+///
+/// ```
+/// use rayhit::{PreparedRay, Ray, Triangle, ray_triangle, ray_triangle_prepared, glam::Vec3};
+/// let tri = Triangle::new(Vec3::ZERO, Vec3::new(2.0, 0.0, 0.0), Vec3::new(0.0, 2.0, 0.0));
+/// let ray = Ray::new(Vec3::new(0.5, 0.25, 4.0), Vec3::new(0.0, 0.0, -2.0));
+/// let prepared = PreparedRay::new(&ray);
+/// assert_eq!(
+///     ray_triangle_prepared(&prepared, &tri, f32::INFINITY),
+///     ray_triangle(&ray, &tri, f32::INFINITY),
+/// );
+/// ```
+// (Always inlined: it is the body of a traversal's inner loop, and its rare
+// paths are out of line. Left to the inliner, a program that calls it from
+// several places got one shared copy, which paid a call and returned its
+// answer through memory; BENCHMARKS.md has the measurement.)
+#[inline(always)]
+#[must_use]
+pub fn ray_triangle_prepared<V: Vector>(
+    ray: &PreparedRay<V>,
+    tri: &Triangle<V>,
+    t_max: S<V>,
+) -> Option<TriangleHit<S<V>>> {
+    if !t_max_ok(t_max) {
+        return None;
+    }
+    watertight_lanes(ray, tri, t_max)
+}
+
+/// The watertight test with exactly one hit per crossing of a mesh: each
+/// point of a shared edge or corner belongs to exactly one of the triangles
+/// around it.
+///
+/// Same test and guarantees as [`ray_triangle`], except for an edge function
+/// of exactly zero (the ray crosses the edge's line in the sheared plane).
+/// Instead of counting as inside, it is decided as if the ray were moved by
+/// an infinitesimal `(eps1, eps2)`, `0 < eps2 << eps1`, in its sheared plane
+/// (simulation of simplicity, Edelsbrunner and Mucke, 1990; the rasteriser's
+/// top-left rule is the same idea in screen space). The moved ray lies on no
+/// edge line, so every triangle's answer is the exact answer for the same
+/// moved ray.
+///
+/// What that gives: where a consistently wound mesh is, around the crossing
+/// point, a surface seen from one side (every interior edge shared by two
+/// triangles with bit-identical corners, and opposite directions), the ray
+/// hits exactly one triangle, so counting crossings gives the right parity
+/// for inside/outside tests and CSG. For a closed mesh the count is even
+/// for every ray line (up to the `t` range), even grazing a silhouette.
+///
+/// What it gives up: a point on the mesh's open boundary, or on the edge of
+/// a lone triangle, belongs to a triangle only if the perturbed ray is
+/// inside it, so about half of the boundary points hit nothing. Use
+/// [`ray_triangle`] for a lone triangle.
+///
+/// ```
+/// use rayhit::{Ray, Triangle, ray_triangle_one_hit, glam::Vec3};
+/// // Two triangles of the unit square, sharing the diagonal from (1,0) to (0,1).
+/// let (p00, p10, p01, p11) = (Vec3::ZERO, Vec3::X, Vec3::Y, Vec3::new(1.0, 1.0, 0.0));
+/// let mesh = [Triangle::new(p00, p10, p01), Triangle::new(p10, p11, p01)];
+/// // Straight down through the middle of the shared diagonal.
+/// let ray = Ray::new(Vec3::new(0.5, 0.5, 1.0), Vec3::new(0.0, 0.0, -1.0));
+/// let hits = mesh.iter().filter(|t| ray_triangle_one_hit(&ray, t, 10.0).is_some()).count();
+/// assert_eq!(hits, 1);
+/// ```
+#[inline]
+#[must_use]
+pub fn ray_triangle_one_hit<V: Vector>(
+    ray: &Ray<V>,
+    tri: &Triangle<V>,
+    t_max: S<V>,
+) -> Option<TriangleHit<S<V>>> {
+    watertight(ray, tri, t_max, EdgeRule::OneHit)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::testing::Draws;
+    use glam::{DVec3, Vec3};
+
+    /// The watertight test on lanes (what `ray_triangle` and
+    /// `ray_triangle_prepared` run) and the triangle batch give, bit for
+    /// bit, the answer of the one-component-at-a-time definition,
+    /// `watertight_definition`, in both precisions and for any `t_max`: on
+    /// random triangles, and on zero-area ones (T-junction fillers `a, m, b`
+    /// with `m` the midpoint, and `a, b, a + 2 (b - a)`, all exact on the
+    /// grid) with rays aimed at points of their segment, where the
+    /// definition can hit what the plain test rejects (it takes `t` from the
+    /// segment when the determinant's sign is unknown).
+    #[test]
+    fn fast_paths_are_the_definition() {
+        fn check<V: Vector>(draws: &mut Draws, zero_area: bool) -> usize {
+            let mut v = || {
+                V::new(
+                    S::<V>::from_f64(draws.coordinate(40)),
+                    S::<V>::from_f64(draws.coordinate(40)),
+                    S::<V>::from_f64(draws.coordinate(40)),
+                )
+            };
+            let (a, b, c, origin) = (v(), v(), v(), v());
+            let (filler, s) = (
+                (draws.0 >> 20).is_multiple_of(2),
+                ((draws.0 >> 24) % 9) as f64 / 8.0,
+            );
+            let (tri, on_segment) = if zero_area {
+                let (half, two) = (S::<V>::HALF, S::<V>::TWO);
+                let tri = if filler {
+                    Triangle::new(a, (a + b) * half, b)
+                } else {
+                    Triangle::new(a, b, a + (b - a) * two)
+                };
+                (tri, Some(a + (b - a) * S::<V>::from_f64(s)))
+            } else {
+                (Triangle::new(a, b, c), None)
+            };
+            // Half of the rays aimed at an edge's midpoint or the centroid
+            // (rounded), for hits and edge cases.
+            let half = S::<V>::HALF;
+            let pick = draws.coordinate(40);
+            let mut v = || {
+                V::new(
+                    S::<V>::from_f64(draws.coordinate(40)),
+                    S::<V>::from_f64(draws.coordinate(40)),
+                    S::<V>::from_f64(draws.coordinate(40)),
+                )
+            };
+            let dir = match (on_segment, (pick * 4.0) as i64 % 4) {
+                (Some(p), _) => p - origin,
+                (None, 0) => (tri.a + tri.b) * half - origin,
+                (None, 1) => (tri.a + tri.b + tri.c) * (S::<V>::ONE / S::<V>::from_u32(3)) - origin,
+                _ => v(),
+            };
+            let ray = Ray::new(origin, dir);
+            let t_max = S::<V>::from_f64(draws.coordinate(40).abs() * 4.0);
+            let mut hits = 0;
+            for t_max in [t_max, S::<V>::INFINITY] {
+                let expected = (ray.is_valid() && t_max_ok(t_max)).then(|| {
+                    let shear = Shear::new(&ray.dir);
+                    watertight_definition(ray.origin, &shear, &tri, t_max, EdgeRule::Closed)
+                });
+                let bits = |h: Option<TriangleHit<S<V>>>| {
+                    h.map(|h| {
+                        (
+                            h.t.to_f64().to_bits(),
+                            h.u.to_f64().to_bits(),
+                            h.v.to_f64().to_bits(),
+                            h.side,
+                        )
+                    })
+                };
+                let expected = bits(expected.flatten());
+                hits += usize::from(expected.is_some());
+                assert_eq!(
+                    bits(ray_triangle(&ray, &tri, t_max)),
+                    expected,
+                    "{ray:?} {tri:?}"
+                );
+                let prepared = PreparedRay::new(&ray);
+                assert_eq!(
+                    bits(ray_triangle_prepared(&prepared, &tri, t_max)),
+                    expected,
+                    "{ray:?} {tri:?}"
+                );
+                if let Some(batch) = crate::TriangleBatch::<V, 8>::from_slice(&[tri]) {
+                    let h = crate::ray_triangle_batch(&prepared, &batch, t_max);
+                    let lane = (h.mask & 1 != 0).then(|| {
+                        let side = if h.front & 1 != 0 {
+                            Side::Front
+                        } else {
+                            Side::Back
+                        };
+                        (h.t[0].to_f64().to_bits(), side)
+                    });
+                    assert_eq!(lane, expected.map(|e| (e.0, e.3)), "{ray:?} {tri:?}");
+                }
+            }
+            hits
+        }
+        let mut draws = Draws(0x1234_5678_9abc_def1);
+        let mut hits = 0;
+        for _ in 0..100_000 {
+            hits += check::<Vec3>(&mut draws, false) + check::<DVec3>(&mut draws, false);
+        }
+        // Enough hits that the comparison means something (about a third).
+        assert!(hits > 100_000, "{hits}");
+        let mut hits = 0;
+        for _ in 0..50_000 {
+            hits += check::<Vec3>(&mut draws, true) + check::<DVec3>(&mut draws, true);
+        }
+        // Zero-area triangles are hit only where rounding leaves them a
+        // sliver; enough of them that the comparison means something.
+        assert!(hits > 1_000, "{hits}");
+    }
+}
