@@ -1,14 +1,12 @@
-//! Throughput of every kernel on the fixed-seed workloads of
-//! `benches/workloads` (see there for what each one is and its hit rate,
-//! which this bench prints first).
+//! Throughput of every kernel on the test kit's fixed-seed workloads
+//! (`rayhit_testkit::workloads`: see there for what each one is and its hit
+//! rate, which this bench prints first).
 //!
 //! `cargo bench --bench kernels` runs it all in a few minutes on 2 cores;
 //! `cargo bench --bench kernels -- box/` runs one group. Criterion reports
 //! time per iteration and elements per second; one element is one ray/shape
 //! test, so nanoseconds per test are the reciprocal of the throughput.
 //! Peers (`bvh`, `parry3d`) are timed on the same data by `benches/peers`.
-
-mod workloads;
 
 use std::hint::black_box;
 use std::time::Duration;
@@ -20,7 +18,7 @@ use rayhit::{
     ray_aabb_batch, ray_aabb_naive, ray_aabb_prepared, ray_plane, ray_triangle, ray_triangle_batch,
     ray_triangle_mt, ray_triangle_prepared,
 };
-use workloads::*;
+use rayhit_testkit::workloads::*;
 
 type Group<'a> = BenchmarkGroup<'a, criterion::measurement::WallTime>;
 

@@ -23,6 +23,12 @@
 //! - origins: the target minus `s * dir` with `s` from `2^-4` to `2^6`;
 //! - `t_max`: infinite half the time, else uniform in `[0, 128]`.
 //!
+//! Every choice among cases is made from uniform floats and booleans, never
+//! by drawing an integer in a range (which rejects and redraws), so the
+//! strategies also run on a fuzzer's bytes through proptest's
+//! `RngAlgorithm::PassThrough`, which hands out the bytes as they are and
+//! then zeros.
+//!
 //! ```
 //! use proptest::prelude::*;
 //! use rayhit::{Aabb, Ray, ray_aabb, glam::Vec3, strategies};
@@ -56,7 +62,33 @@ pub fn point<V: Vector>(scale: f64) -> impl Strategy<Value = V> + Clone {
 
 /// `2^k` for `k` uniform in `[lo, hi]`: an exact scale factor.
 pub fn power_of_two(lo: i32, hi: i32) -> impl Strategy<Value = f64> + Clone {
-    (lo..=hi).prop_map(|k| 2f64.powi(k))
+    index(lo.abs_diff(hi) as usize + 1).prop_map(move |k| 2f64.powi(lo.min(hi) + k as i32))
+}
+
+/// An index uniform in `[0, n)`, from one uniform float (for `n >= 1`).
+fn index(n: usize) -> impl Strategy<Value = usize> + Clone {
+    (0.0..1.0f64).prop_map(move |x| ((x * n as f64) as usize).min(n - 1))
+}
+
+/// One of `weights.len()` cases, case `i` with probability `weights[i] /
+/// sum`, from one uniform float.
+fn case<const N: usize>(weights: [u32; N]) -> impl Strategy<Value = usize> + Clone {
+    let total: u32 = weights.iter().sum();
+    (0.0..1.0f64).prop_map(move |x| {
+        let mut below = x * f64::from(total);
+        for (i, &w) in weights.iter().enumerate() {
+            if below < f64::from(w) {
+                return i;
+            }
+            below -= f64::from(w);
+        }
+        N - 1
+    })
+}
+
+/// `+0.0` or `-0.0`.
+fn signed_zero(negative: bool) -> f64 {
+    if negative { -0.0 } else { 0.0 }
 }
 
 /// A nonzero direction: random orientation (6 in 8), axis-parallel (1 in 8,
@@ -64,38 +96,41 @@ pub fn power_of_two(lo: i32, hi: i32) -> impl Strategy<Value = f64> + Clone {
 /// `+0.0` or `-0.0` (1 in 8); length `2^k` times a factor in `[0.2, 1]` for
 /// the random ones, `k` in `[-6, 6]`.
 pub fn direction<V: Vector>() -> impl Strategy<Value = V> + Clone {
-    let cube = (-1.0..=1.0f64, -1.0..=1.0f64, -1.0..=1.0f64)
-        .prop_filter("direction too short", |(x, y, z)| {
-            x * x + y * y + z * z > 0.04
-        });
-    let signed_zero = prop_oneof![Just(0.0f64), Just(-0.0f64)];
-    let general = (cube.clone(), power_of_two(-6, 6))
-        .prop_map(|((x, y, z), s)| V::new(cv::<V>(x * s), cv::<V>(y * s), cv::<V>(z * s)));
-    let axis = (
-        0..3usize,
-        prop::bool::ANY,
-        signed_zero.clone(),
-        signed_zero.clone(),
+    let cube = (-1.0..=1.0f64, -1.0..=1.0f64, -1.0..=1.0f64);
+    (
+        case([6, 1, 1]),
+        cube,
+        index(3),
+        any::<[bool; 3]>(),
         power_of_two(-6, 6),
     )
-        .prop_map(|(k, neg, z1, z2, s)| {
-            let mut c = [z1, z2, 0.0];
-            c.rotate_right(k + 1);
-            c[k] = if neg { -s } else { s };
-            V::new(cv::<V>(c[0]), cv::<V>(c[1]), cv::<V>(c[2]))
-        });
-    let flat = (cube, 0..3usize, signed_zero, power_of_two(-6, 6))
-        .prop_filter("direction too short", |((x, y, z), k, _, _)| {
-            let c = [*x, *y, *z];
-            let (a, b) = (c[(k + 1) % 3], c[(k + 2) % 3]);
-            a * a + b * b > 0.04
+        .prop_filter_map("direction too short", |(kind, (x, y, z), k, b, s)| {
+            let c = match kind {
+                0 => {
+                    if x * x + y * y + z * z <= 0.04 {
+                        return None;
+                    }
+                    [x * s, y * s, z * s]
+                }
+                1 => {
+                    let mut c = [signed_zero(b[1]), signed_zero(b[2]), 0.0];
+                    c.rotate_right(k + 1);
+                    c[k] = if b[0] { -s } else { s };
+                    c
+                }
+                _ => {
+                    let c = [x, y, z];
+                    let (a, d) = (c[(k + 1) % 3], c[(k + 2) % 3]);
+                    if a * a + d * d <= 0.04 {
+                        return None;
+                    }
+                    let mut c = c.map(|x| x * s);
+                    c[k] = signed_zero(b[1]);
+                    c
+                }
+            };
+            Some(V::new(cv::<V>(c[0]), cv::<V>(c[1]), cv::<V>(c[2])))
         })
-        .prop_map(|((x, y, z), k, zero, s)| {
-            let mut c = [x * s, y * s, z * s];
-            c[k] = zero;
-            V::new(cv::<V>(c[0]), cv::<V>(c[1]), cv::<V>(c[2]))
-        });
-    prop_oneof![6 => general, 1 => axis, 1 => flat]
 }
 
 fn cv<V: Vector>(x: f64) -> S<V> {
@@ -112,13 +147,15 @@ pub fn ray_through<V: Vector>(target: V) -> impl Strategy<Value = Ray<V>> + Clon
 
 /// `t_max`: `+inf` half the time, else uniform in `[0, 128]`.
 pub fn t_max<V: Vector>() -> impl Strategy<Value = S<V>> + Clone {
-    prop_oneof![Just(S::<V>::INFINITY), (0.0..=128.0f64).prop_map(cv::<V>)]
+    (any::<bool>(), 0.0..=128.0f64)
+        .prop_map(|(inf, x)| if inf { S::<V>::INFINITY } else { cv::<V>(x) })
 }
 
 /// A valid box: centre in `[-64, 64]^3`, half extent per axis `2^k` with
 /// `k` uniform in `[-4, 4]`, or zero thickness on an axis one time in eight.
 pub fn aabb<V: Vector>() -> impl Strategy<Value = Aabb<V>> + Clone {
-    let half = prop_oneof![7 => (-4.0..=4.0f64).prop_map(|k| 2f64.powf(k)), 1 => Just(0.0)];
+    let half = (case([7, 1]), -4.0..=4.0f64)
+        .prop_map(|(kind, k)| if kind == 0 { 2f64.powf(k) } else { 0.0 });
     (point::<V>(64.0), half.clone(), half.clone(), half).prop_map(|(c, hx, hy, hz)| {
         let h = V::new(cv::<V>(hx), cv::<V>(hy), cv::<V>(hz));
         // Round min down and max up by construction: c - h and c + h are
@@ -140,28 +177,27 @@ pub fn aabb_target<V: Vector>(b: Aabb<V>) -> impl Strategy<Value = V> + Clone {
         V::new(c(0), c(1), c(2))
     };
     let frac = -0.5..=1.5f64;
-    let inner = (frac.clone(), frac.clone(), frac).prop_map(move |(x, y, z)| lerp([x, y, z]));
-    let side = prop_oneof![Just(0.0f64), Just(1.0f64)];
-    // Fix 1, 2 or 3 coordinates to a side: a face, an edge, a corner.
-    let on_boundary = (
-        1..=3usize,
-        0..3usize,
-        side.clone(),
-        side.clone(),
-        side,
-        0.0..=1.0f64,
-        0.0..=1.0f64,
+    // Inside (3 in 4); else 1, 2 or 3 coordinates fixed to a side: a face,
+    // an edge, a corner.
+    (
+        case([3, 1]),
+        (frac.clone(), frac.clone(), frac),
+        index(3),
+        index(3),
+        any::<[bool; 3]>(),
+        (0.0..=1.0f64, 0.0..=1.0f64),
     )
-        .prop_map(move |(fixed, k, s0, s1, s2, f1, f2)| {
+        .prop_map(move |(kind, (x, y, z), fixed, k, sides, (f1, f2))| {
+            if kind == 0 {
+                return lerp([x, y, z]);
+            }
             let mut f = [f1, f2, 0.5];
             f.rotate_right(k);
-            let sides = [s0, s1, s2];
-            for i in 0..fixed {
-                f[(k + i) % 3] = sides[i];
+            for (i, side) in sides.iter().enumerate().take(fixed + 1) {
+                f[(k + i) % 3] = if *side { 1.0 } else { 0.0 };
             }
             lerp(f)
-        });
-    prop_oneof![3 => inner, 1 => on_boundary]
+        })
 }
 
 /// A box and a ray aimed at it by [`aabb_target`] and [`ray_through`].
@@ -177,21 +213,18 @@ pub fn triangle<V: Vector>() -> impl Strategy<Value = Triangle<V>> + Clone {
         let len = d.length().to_f64();
         d * cv::<V>(s / len)
     });
-    let general = (
+    (
+        case([7, 1]),
         point::<V>(64.0),
-        offset.clone(),
-        offset.clone(),
-        offset.clone(),
-    )
-        .prop_map(|(c, a, b, d)| Triangle::new(c + a, c + b, c + d));
-    let thin = (
-        point::<V>(64.0),
-        offset.clone(),
-        offset,
+        (offset.clone(), offset.clone(), offset),
         0.0..=1.0f64,
         -0.01..=0.01f64,
     )
-        .prop_map(|(c, a, b, along, across)| {
+        .prop_map(|(kind, c, (a, b, d), along, across)| {
+            if kind == 0 {
+                return Triangle::new(c + a, c + b, c + d);
+            }
+            // Long and thin: the third corner within 1% of the first edge.
             let (pa, pb) = (c + a, c + b);
             let e = pb - pa;
             let side = e.cross(V::new(cv::<V>(0.6), cv::<V>(0.8), cv::<V>(0.0)));
@@ -206,11 +239,11 @@ pub fn triangle<V: Vector>() -> impl Strategy<Value = Triangle<V>> + Clone {
                 pb,
                 pa + e * cv::<V>(along) + side * cv::<V>(across * scale),
             )
-        });
-    prop_oneof![7 => general, 1 => thin].prop_filter("degenerate triangle", |t| {
-        let n = t.normal();
-        n.is_finite() && n.length().to_f64() > 0.0
-    })
+        })
+        .prop_filter("degenerate triangle", |t| {
+            let n = t.normal();
+            n.is_finite() && n.length().to_f64() > 0.0
+        })
 }
 
 /// A target for a ray at `t`: a point `a + u (b - a) + v (c - a)` with `u, v`
@@ -224,18 +257,23 @@ pub fn triangle_target<V: Vector>(t: Triangle<V>) -> impl Strategy<Value = V> + 
         };
         V::new(c(0), c(1), c(2))
     };
-    let inner = (-0.25..=1.0f64, -0.25..=1.0f64).prop_map(move |(u, v)| at(u, v));
-    let edge = (0..3usize, 0.0..=1.0f64).prop_map(move |(e, s)| match e {
-        0 => at(s, 0.0),
-        1 => at(0.0, s),
-        _ => at(s, 1.0 - s),
-    });
-    let corner = (0..3usize).prop_map(move |k| match k {
-        0 => at(0.0, 0.0),
-        1 => at(1.0, 0.0),
-        _ => at(0.0, 1.0),
-    });
-    prop_oneof![6 => inner, 1 => edge, 1 => corner]
+    // Inside or near (6 in 8), on an edge (1 in 8), at a corner (1 in 8).
+    (
+        case([6, 1, 1]),
+        -0.25..=1.0f64,
+        -0.25..=1.0f64,
+        index(3),
+        0.0..=1.0f64,
+    )
+        .prop_map(move |(kind, u, v, k, s)| match (kind, k) {
+            (0, _) => at(u, v),
+            (1, 0) => at(s, 0.0),
+            (1, 1) => at(0.0, s),
+            (1, _) => at(s, 1.0 - s),
+            (_, 0) => at(0.0, 0.0),
+            (_, 1) => at(1.0, 0.0),
+            _ => at(0.0, 1.0),
+        })
 }
 
 /// A triangle and a ray aimed at it by [`triangle_target`] and

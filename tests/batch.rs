@@ -10,11 +10,9 @@
 //! Inputs: the crate's aimed strategies, with the other lanes filled by
 //! copies of the aimed shape moved along the ray (several hits per batch,
 //! at different `t`), reversed copies, unrelated shapes, invalid shapes
-//! (inverted, NaN, infinite, zero-area) and empty lanes; and
-//! [`differential`], the body of the differential fuzz target, over
-//! arbitrary bit patterns.
-
-mod support;
+//! (inverted, NaN, infinite, zero-area) and empty lanes. (The `batch` fuzz
+//! target's check runs on arbitrary bit patterns in the test kit's
+//! `fuzz_replay` test.)
 
 use proptest::prelude::*;
 use rayhit::glam::{DVec3, Vec3};
@@ -23,6 +21,8 @@ use rayhit::{
     Aabb, AabbBatch, PreparedRay, Ray, Scalar, Triangle, TriangleBatch, TriangleHit, Vector,
     ray_aabb_batch, ray_aabb_prepared, ray_triangle, ray_triangle_batch, ray_triangle_prepared,
 };
+use rayhit_testkit::bits::{bits, hit_bits};
+use rayhit_testkit::source::Source;
 
 type S<V> = <V as Vector>::Scalar;
 
@@ -30,28 +30,6 @@ fn config() -> ProptestConfig {
     ProptestConfig {
         cases: 1024,
         ..ProptestConfig::default()
-    }
-}
-
-/// A float's bits, for comparisons that tell `-0.0` from `0.0`.
-fn bits<F: Scalar>(x: F) -> u64 {
-    x.to_f64().to_bits()
-}
-
-fn same_enter<F: Scalar>(a: Option<F>, b: Option<F>) -> bool {
-    a.map(bits) == b.map(bits)
-}
-
-fn same_hit<F: Scalar>(a: &Option<TriangleHit<F>>, b: &Option<TriangleHit<F>>) -> bool {
-    match (a, b) {
-        (None, None) => true,
-        (Some(a), Some(b)) => {
-            bits(a.t) == bits(b.t)
-                && bits(a.u) == bits(b.u)
-                && bits(a.v) == bits(b.v)
-                && a.side == b.side
-        }
-        _ => false,
     }
 }
 
@@ -78,7 +56,7 @@ fn check_boxes<V: Vector, const N: usize>(
             _ => None,
         };
         let got = hits.get(lane);
-        if !same_enter(got, expected) {
+        if got.map(bits) != expected.map(bits) {
             return Err(format!(
                 "lane {lane} of {N}: batch {got:?}, scalar {expected:?}; ray {ray:?}, box {:?}, t_max {t_max:?}",
                 boxes.get(lane)
@@ -165,7 +143,7 @@ fn check_triangles<V: Vector, const N: usize>(
             _ => None,
         };
         let got = hits.get(lane);
-        if !same_hit(&got, &expected) {
+        if hit_bits(got) != hit_bits(expected) {
             return Err(format!(
                 "lane {lane} of {N}: batch {got:?}, scalar {expected:?}; ray {ray:?}, triangle {:?}, t_max {t_max:?}",
                 tris.get(lane)
@@ -173,7 +151,7 @@ fn check_triangles<V: Vector, const N: usize>(
         }
         if let Some(Some(t)) = tris.get(lane) {
             let prepared_hit = ray_triangle_prepared(&prepared, t, t_max);
-            if !same_hit(&prepared_hit, &expected) {
+            if hit_bits(prepared_hit) != hit_bits(expected) {
                 return Err(format!(
                     "ray_triangle_prepared {prepared_hit:?} != ray_triangle {expected:?}"
                 ));
@@ -190,7 +168,7 @@ fn check_triangles<V: Vector, const N: usize>(
     let got = hits.nearest();
     let same_nearest = match (got, nearest) {
         (None, None) => true,
-        (Some((a, x)), Some((b, y))) => a == b && same_hit(&Some(x), &Some(y)),
+        (Some((a, x)), Some((b, y))) => a == b && hit_bits(Some(x)) == hit_bits(Some(y)),
         _ => false,
     };
     if !same_nearest {
@@ -277,7 +255,7 @@ proptest! {
 /// answers must be common (so that the path is exercised).
 #[test]
 fn rays_starting_among_the_corners_depths() {
-    fn run<V: Vector>(rng: &mut support::Pcg32) -> (usize, usize) {
+    fn run<V: Vector>(rng: &mut Source) -> (usize, usize) {
         let mut coord = || S::<V>::from_f64(f64::from(rng.below(1 << 16)) / 8192.0 - 4.0);
         let (mut hits, mut misses) = (0, 0);
         for _ in 0..3000 {
@@ -315,7 +293,7 @@ fn rays_starting_among_the_corners_depths() {
         }
         (hits, misses)
     }
-    let mut rng = support::Pcg32::new(0x5eed_0001);
+    let mut rng = Source::seeded(0x5eed_0001);
     for (hits, misses) in [run::<Vec3>(&mut rng), run::<DVec3>(&mut rng)] {
         assert!(hits > 2000 && misses > 2000, "{hits} hits, {misses} misses");
     }
@@ -379,93 +357,6 @@ fn exact_zero_edge_functions_and_face_planes() {
                 "a ray in a face plane of the closed box hits"
             );
         }
-    }
-}
-
-// ------------------------------------------------- the differential target
-
-/// Reads floats from arbitrary bytes: all bit patterns, NaN, infinities,
-/// subnormals and `-0.0` included, and, one time in four, a small integer
-/// (so that shapes share coordinates with the ray and edge functions come
-/// out exactly zero).
-struct Bytes<'a>(&'a [u8]);
-
-impl Bytes<'_> {
-    fn byte(&mut self) -> u8 {
-        let (first, rest) = self.0.split_first().unwrap_or((&0, &[]));
-        self.0 = rest;
-        *first
-    }
-
-    fn f64(&mut self, wide: bool) -> f64 {
-        let tag = self.byte();
-        if tag & 3 == 0 {
-            return f64::from(i32::from(tag as i8) >> 2);
-        }
-        if wide {
-            let mut b = [0u8; 8];
-            b.iter_mut().for_each(|x| *x = self.byte());
-            f64::from_le_bytes(b)
-        } else {
-            let mut b = [0u8; 4];
-            b.iter_mut().for_each(|x| *x = self.byte());
-            f64::from(f32::from_le_bytes(b))
-        }
-    }
-
-    fn scalar<V: Vector>(&mut self) -> S<V> {
-        let wide = S::<V>::UNIT_ROUNDOFF.to_f64() < 1e-10;
-        S::<V>::from_f64(self.f64(wide))
-    }
-
-    fn vector<V: Vector>(&mut self) -> V {
-        V::new(self.scalar::<V>(), self.scalar::<V>(), self.scalar::<V>())
-    }
-}
-
-/// Decodes a ray, `t_max` and up to 16 boxes and triangles from arbitrary
-/// bytes, in both precisions, and panics if any lane of a batch differs
-/// from the scalar kernel in any bit (or if `ray_triangle_prepared` differs
-/// from `ray_triangle`): the `batch` fuzz target's check (fuzz/src/batch.rs,
-/// which reads its inputs through the `arbitrary` feature instead), run by
-/// `cargo test` on fixed bytes.
-fn differential(data: &[u8]) {
-    differential_in::<Vec3>(data);
-    differential_in::<DVec3>(data);
-}
-
-fn differential_in<V: Vector>(data: &[u8]) {
-    let mut bytes = Bytes(data);
-    let ray = Ray::new(bytes.vector::<V>(), bytes.vector::<V>());
-    let t_max = bytes.scalar::<V>();
-    let count = usize::from(bytes.byte() % 17);
-    let boxes: Vec<Option<Aabb<V>>> = (0..count)
-        .map(|_| Some(Aabb::new(bytes.vector::<V>(), bytes.vector::<V>())))
-        .collect();
-    let tris: Vec<Option<Triangle<V>>> = (0..count)
-        .map(|_| {
-            Some(Triangle::new(
-                bytes.vector::<V>(),
-                bytes.vector::<V>(),
-                bytes.vector::<V>(),
-            ))
-        })
-        .collect();
-    if count > 0 {
-        check_all_box_sizes(&ray, &boxes, t_max).unwrap();
-        check_all_triangle_sizes(&ray, &tris, t_max).unwrap();
-    }
-}
-
-/// Runs [`differential`] on pseudo-random bytes (a fixed seed), so that
-/// `cargo test` exercises the fuzz target's body on every bit pattern
-/// class, not only on the strategies' well-formed shapes.
-#[test]
-fn differential_on_random_bytes() {
-    let mut rng = support::Pcg32::new(0x5eed_ba7c);
-    for len in (0..2048).map(|i| i % 700) {
-        let data: Vec<u8> = (0..len).map(|_| rng.next_u32() as u8).collect();
-        differential(&data);
     }
 }
 

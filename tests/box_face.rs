@@ -8,17 +8,17 @@
 //! suite, both precisions; rays aimed at every face; properties; and the
 //! spawned ray from the face point.
 
-mod support;
-
 use proptest::prelude::*;
+use rayhit::exact::oracle;
 use rayhit::glam::{DVec3, Vec3};
 use rayhit::strategies as strat;
 use rayhit::{
     Aabb, AabbBatch, BoxFace, PreparedRay, Ray, Scalar, SurfacePoint, Vector, aabb_entry_face,
     ray_aabb, ray_aabb_batch, ray_aabb_face, ray_aabb_prepared, ray_aabb_prepared_face,
 };
-use support::Pcg32;
-use support::generators::box_generators;
+use rayhit_testkit::cases;
+use rayhit_testkit::cases::boxes;
+use rayhit_testkit::source::Source;
 
 type S<V> = <V as Vector>::Scalar;
 
@@ -27,8 +27,8 @@ type S<V> = <V as Vector>::Scalar;
 /// and `aabb_entry_face` agree.
 fn check_generators<V: Vector>(cases: usize) -> (usize, usize, usize) {
     let (mut hits, mut faces, mut ties) = (0, 0, 0);
-    for (name, seed, generate) in box_generators::<V>() {
-        let mut rng = Pcg32::new(seed ^ 0xface);
+    for (name, seed, generate) in boxes::generators::<V>() {
+        let mut rng = Source::seeded(seed ^ 0xface);
         for _ in 0..cases {
             let (aabb, ray, t_max) = generate(&mut rng);
             let got = ray_aabb_face(&ray, &aabb, t_max);
@@ -50,7 +50,7 @@ fn check_generators<V: Vector>(cases: usize) -> (usize, usize, usize) {
             );
             let Some(hit) = got else { continue };
             hits += 1;
-            let (expected, tie) = support::box_face(&ray, &aabb);
+            let (expected, tie) = oracle::box_face(&ray, &aabb);
             assert_eq!(hit.face, expected, "{name}: {ray:?} {aabb:?}");
             faces += usize::from(expected.is_some());
             ties += usize::from(tie);
@@ -88,11 +88,11 @@ fn faces_are_exact_on_every_generator_f64() {
 /// edges and at its corners) report that face, or, at an edge or corner,
 /// the lowest axis among the faces that meet there.
 fn every_face_is_reported<V: Vector>() {
-    let mut rng = Pcg32::new(77);
+    let mut rng = Source::seeded(77);
     let mut seen = [0usize; 6];
     for _ in 0..3_000 {
-        let (lo, hi) = support::generators::grid_box(&mut rng);
-        let aabb = support::generators::to_box::<V>(lo, hi);
+        let (lo, hi) = boxes::grid_box(&mut rng);
+        let aabb = boxes::to_box::<V>(lo, hi);
         let face = BoxFace::new(rng.below(3) as usize, rng.below(2) == 1).expect("axis < 3");
         let k = face.axis();
         // A point of the face: inside it, or on its border.
@@ -106,10 +106,10 @@ fn every_face_is_reported<V: Vector>() {
             target[i] = lo[i] + (hi[i] - lo[i]) * u;
         }
         target[k] = if face.is_max() { hi[k] } else { lo[k] };
-        let target = support::generators::v::<V>(target);
+        let target = cases::v::<V>(target);
         // From outside the face's side, within 60 degrees of its normal.
         let n: V = face.normal();
-        let mut dir = support::generators::v::<V>(rng.direction());
+        let mut dir = cases::v::<V>(rng.direction());
         if dir.dot(n) > S::<V>::ZERO {
             dir = -dir;
         }
@@ -119,10 +119,10 @@ fn every_face_is_reported<V: Vector>() {
         let Some(hit) = ray_aabb_face(&ray, &aabb, S::<V>::INFINITY) else {
             // A target rounded off a grazing corner can miss; the exact
             // oracle says so.
-            assert!(support::box_interval(&ray, &aabb, S::<V>::INFINITY).is_none());
+            assert!(oracle::box_interval(&ray, &aabb, S::<V>::INFINITY).is_none());
             continue;
         };
-        let (expected, _) = support::box_face(&ray, &aabb);
+        let (expected, _) = oracle::box_face(&ray, &aabb);
         assert_eq!(hit.face, expected, "{ray:?} {aabb:?}");
         if let Some(f) = hit.face {
             seen[f as usize] += 1;
@@ -214,14 +214,14 @@ proptest! {
     #[test]
     fn face_is_exact_f32((aabb, ray) in strat::aabb_and_ray::<Vec3>()) {
         if let Some(hit) = ray_aabb_face(&ray, &aabb, f32::INFINITY) {
-            prop_assert_eq!(hit.face, support::box_face(&ray, &aabb).0);
+            prop_assert_eq!(hit.face, oracle::box_face(&ray, &aabb).0);
         }
     }
 
     #[test]
     fn face_is_exact_f64((aabb, ray) in strat::aabb_and_ray::<DVec3>()) {
         if let Some(hit) = ray_aabb_face(&ray, &aabb, f64::INFINITY) {
-            prop_assert_eq!(hit.face, support::box_face(&ray, &aabb).0);
+            prop_assert_eq!(hit.face, oracle::box_face(&ray, &aabb).0);
         }
     }
 

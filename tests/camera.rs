@@ -2,14 +2,13 @@
 //! symmetry, agreement with glam's view and projection matrices, and one
 //! error per bad input.
 
-mod support;
-
 use num_traits::Signed;
 use proptest::prelude::*;
+use rayhit::exact::oracle;
+use rayhit::exact::oracle::{R, gamma, rv};
 use rayhit::glam::{DMat4, DVec3, DVec4, Vec3};
 use rayhit::strategies as strat;
 use rayhit::{CameraError, PinholeCamera, Scalar, Vector};
-use support::{R, gamma, rv};
 
 type S<V> = <V as Vector>::Scalar;
 
@@ -54,12 +53,12 @@ fn camera<V: Vector>() -> impl Strategy<Value = PinholeCamera<V>> {
 fn check_unit<V: Vector>(cam: PinholeCamera<V>, x: f64, y: f64) -> Result<(), TestCaseError> {
     let ray = cam.ray(S::<V>::from_f64(x), S::<V>::from_f64(y));
     let d = rv(ray.dir);
-    let len2 = support::dot(&d, &d);
+    let len2 = oracle::dot(&d, &d);
     let g = gamma::<S<V>>(6);
     prop_assert!(
         (&len2 - one()).abs() <= R::from_integer(2.into()) * &g + &g * &g,
         "length^2 = {}",
-        support::to_f64(&len2)
+        oracle::to_f64(&len2)
     );
     prop_assert_eq!(ray.origin, cam.eye());
     Ok(())
@@ -81,12 +80,12 @@ fn check_centre<V: Vector>(view: V, eye: V, up: V, w: u32, h: u32) -> Result<(),
     };
     let dir = rv(cam.pixel_ray(w, h).dir);
     let v = rv(view);
-    prop_assert!(support::dot(&dir, &v) > R::from_integer(0.into()));
-    let c = support::cross(&dir, &v);
+    prop_assert!(oracle::dot(&dir, &v) > R::from_integer(0.into()));
+    let c = oracle::cross(&dir, &v);
     let (g3, g6) = (gamma::<S<V>>(3), gamma::<S<V>>(6));
     let k = &g3 * (one() + &g6) / (one() - &g3);
     prop_assert!(
-        support::dot(&c, &c) <= &k * &k * support::dot(&v, &v),
+        oracle::dot(&c, &c) <= &k * &k * oracle::dot(&v, &v),
         "centre pixel off the view direction"
     );
     Ok(())
@@ -115,16 +114,16 @@ fn check_mirror<V: Vector>(cam: PinholeCamera<V>, i: u32, j: u32) -> Result<(), 
     let b = rv(cam.pixel_ray(w - 1 - i, j).dir);
     let (f, rt, u) = (rv(cam.forward()), rv(cam.right()), rv(cam.up()));
     let skew = [
-        support::dot(&f, &rt),
-        support::dot(&u, &rt),
-        support::dot(&f, &u),
+        oracle::dot(&f, &rt),
+        oracle::dot(&u, &rt),
+        oracle::dot(&f, &u),
     ]
     .into_iter()
     .map(|x| x.abs())
     .max()
     .unwrap();
     let bound = R::from_integer(4.into()) * gamma::<S<V>>(15) + R::from_integer(8.into()) * skew;
-    let dot = support::dot;
+    let dot = oracle::dot;
     prop_assert!(
         (dot(&a, &rt) + dot(&b, &rt)).abs() <= bound,
         "right components are not opposite"

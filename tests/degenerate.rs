@@ -2,16 +2,17 @@
 //! hits on them safe to use (no NaN in the hit point, the normal, its
 //! error bound or a spawned ray).
 
-mod support;
-
 use num_traits::Zero;
 use proptest::prelude::*;
+use rayhit::exact::oracle;
+use rayhit::exact::oracle::{cross, rv, sub};
 use rayhit::glam::{DVec3, Vec3};
 use rayhit::{
     PreparedRay, Ray, Scalar, Side, SurfacePoint, Triangle, TriangleBatch, Vector, ray_triangle,
     ray_triangle_batch, ray_triangle_error_bounds, ray_triangle_one_hit,
 };
-use support::{Pcg32, cross, rv, sub};
+use rayhit_testkit::cases;
+use rayhit_testkit::source::Source;
 
 type S<V> = <V as Vector>::Scalar;
 
@@ -31,14 +32,14 @@ fn exactly_degenerate<V: Vector>(t: &Triangle<V>) -> bool {
 /// above zero is the smallest subnormal, whose products with the other
 /// differences underflow: `is_degenerate` documents that it is exact only
 /// where they do not, as the `f64` exact-sign fallback does).
-fn triangle<V: Vector>(rng: &mut Pcg32) -> Triangle<V> {
+fn triangle<V: Vector>(rng: &mut Source) -> Triangle<V> {
     let scale = 2f64.powi(rng.below(114) as i32 - 60);
-    let grid = |rng: &mut Pcg32| (f64::from(rng.below(2048) as i32 - 1024) / 16.0) * scale;
+    let grid = |rng: &mut Source| (f64::from(rng.below(2048) as i32 - 1024) / 16.0) * scale;
     let (a, b) = (
         [grid(rng), grid(rng), grid(rng)],
         [grid(rng), grid(rng), grid(rng)],
     );
-    let f = |p: [f64; 3]| support::generators::v::<V>(p);
+    let f = |p: [f64; 3]| cases::v::<V>(p);
     let k = f64::from(rng.below(9) as i32 - 4) / 2.0;
     let c = [0, 1, 2].map(|i| a[i] + k * (b[i] - a[i]));
     match rng.below(6) {
@@ -74,7 +75,7 @@ fn triangle<V: Vector>(rng: &mut Pcg32) -> Triangle<V> {
 }
 
 fn is_degenerate_is_exact<V: Vector>() {
-    let mut rng = Pcg32::new(41);
+    let mut rng = Source::seeded(41);
     let (mut yes, mut no) = (0, 0);
     for _ in 0..50_000 {
         let t = triangle::<V>(&mut rng);
@@ -103,7 +104,7 @@ fn is_degenerate_is_exact_f64() {
 /// it is finite (the normal is zero or meaningless, and says so by its
 /// error bound), and a ray spawned from it in any direction is finite.
 fn hits_are_safe<V: Vector>() {
-    let mut rng = Pcg32::new(43);
+    let mut rng = Source::seeded(43);
     let mut hits = 0;
     for _ in 0..100_000 {
         let t = triangle::<V>(&mut rng);
@@ -111,9 +112,9 @@ fn hits_are_safe<V: Vector>() {
             continue;
         }
         // Aim at a point of the segment, from a random side.
-        let w = support::generators::v::<V>([rng.unit(), rng.unit(), rng.unit()]);
+        let w = cases::v::<V>([rng.unit(), rng.unit(), rng.unit()]);
         let target = t.a + (t.b - t.a) * w.x();
-        let origin = target + support::generators::v::<V>(rng.direction()) * (t.b - t.a).length();
+        let origin = target + cases::v::<V>(rng.direction()) * (t.b - t.a).length();
         let ray = Ray::new(origin, target - origin);
         let Some(hit) = ray_triangle(&ray, &t, S::<V>::INFINITY) else {
             continue;
@@ -149,12 +150,7 @@ fn hits_are_safe<V: Vector>() {
         assert!(n.is_finite() && err.is_finite(), "{t:?}");
         let surface = SurfacePoint::on_triangle(&t, &hit);
         assert!(surface.point.is_finite() && surface.point_error.is_finite());
-        for dir in [
-            ray.dir,
-            -ray.dir,
-            n,
-            support::generators::v::<V>(rng.direction()),
-        ] {
+        for dir in [ray.dir, -ray.dir, n, cases::v::<V>(rng.direction())] {
             let spawned = surface.spawn(dir);
             assert!(spawned.origin.is_finite(), "{t:?} {hit:?} {dir:?}");
         }
@@ -192,14 +188,14 @@ proptest! {
 /// filler covers, and some rays go through it. The one-hit test counts the
 /// crossing exactly once, with its side, the filler included.
 fn t_junctions<V: Vector>() {
-    let mut rng = Pcg32::new(47);
-    let f = |p: [f64; 3]| support::generators::v::<V>(p);
+    let mut rng = Source::seeded(47);
+    let f = |p: [f64; 3]| cases::v::<V>(p);
     let (mut rays, mut only_filler) = (0u32, 0u32);
     for _ in 0..4_000 {
         // Integer corners (exact in both precisions), `B - A` even and on
         // no axis, so that `M` is exact; a random power-of-two scale.
         let scale = 2f64.powi(rng.below(40) as i32 - 20);
-        let int = |rng: &mut Pcg32, n: u32| f64::from(rng.below(2 * n + 1) as i32 - n as i32);
+        let int = |rng: &mut Source, n: u32| f64::from(rng.below(2 * n + 1) as i32 - n as i32);
         let a = [int(&mut rng, 512), int(&mut rng, 512), int(&mut rng, 512)];
         let mut k = [0.0; 3];
         for kk in &mut k {
@@ -304,15 +300,15 @@ fn t_junctions<V: Vector>() {
                 }
                 let err = ray_triangle_error_bounds(&ray, tri, &hit);
                 let exact = if k == 3 {
-                    support::segment_crossing(&ray, tri)
+                    oracle::segment_crossing(&ray, tri)
                 } else {
-                    support::triangle(&ray, tri).t.expect("not parallel")
+                    oracle::triangle(&ray, tri).t.expect("not parallel")
                 };
                 assert!(
-                    support::close(hit.t, &exact, err.t),
+                    oracle::close(hit.t, &exact, err.t),
                     "triangle {k}: t = {:?}, exact {}, bound {:?}: {ray:?} {tris:?}",
                     hit.t,
-                    support::to_f64(&exact),
+                    oracle::to_f64(&exact),
                     err.t
                 );
             }

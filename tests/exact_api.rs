@@ -2,17 +2,15 @@
 //! tiny values mixed): never a panic, never a NaN distance, invalid input a
 //! miss; and its answers agree with its own verdicts.
 
-mod support;
-
 use rayhit::exact::{self, Case, Claim, Verdict};
 use rayhit::glam::{DVec3, Vec3};
 use rayhit::{Aabb, Plane, Ray, Scalar, Triangle, Vector};
-use support::Pcg32;
+use rayhit_testkit::source::Source;
 
 /// A float from raw bits, biased towards the interesting ones.
-fn raw<F: Scalar>(rng: &mut Pcg32) -> F {
+fn raw<F: Scalar>(rng: &mut Source) -> F {
     let pick = rng.below(8);
-    let bits = (u64::from(rng.next_u32()) << 32) | u64::from(rng.next_u32());
+    let bits = rng.bits();
     let x = match pick {
         0 => f64::from(f32::from_bits(bits as u32)),
         1 => f64::from_bits(bits),
@@ -22,12 +20,12 @@ fn raw<F: Scalar>(rng: &mut Pcg32) -> F {
     F::from_f64(x)
 }
 
-fn vec<V: Vector>(rng: &mut Pcg32) -> V {
+fn vec<V: Vector>(rng: &mut Source) -> V {
     V::new(raw(rng), raw(rng), raw(rng))
 }
 
 fn run<V: Vector>(n: usize) {
-    let mut rng = Pcg32::new(99);
+    let mut rng = Source::seeded(99);
     for _ in 0..n {
         let ray = Ray::new(vec::<V>(&mut rng), vec::<V>(&mut rng));
         let t_max: V::Scalar = raw(&mut rng);

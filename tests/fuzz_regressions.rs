@@ -8,15 +8,14 @@
 //! shows that the input is outside the precondition the docs now state, and
 //! that the answer is still safe (no panic, no NaN, in range).
 
-mod support;
-
+use rayhit::exact::oracle;
+use rayhit::exact::oracle::{R, r};
 use rayhit::glam::{DVec3, Vec3};
 use rayhit::{
     Aabb, PinholeCamera, Plane, Ray, Side, Triangle, TriangleHit, ray_aabb, ray_aabb_naive,
     ray_plane, ray_plane_hit_point, ray_plane_t_error, ray_triangle, ray_triangle_error_bounds,
     ray_triangle_mt,
 };
-use support::{R, r};
 
 fn bits(x: [u32; 3]) -> Vec3 {
     Vec3::from_array(x.map(f32::from_bits))
@@ -56,7 +55,7 @@ fn aabb_diagonal_through_two_corners() {
     let b = Aabb::new(Vec3::splat(-27.662_565), Vec3::splat(-27.051_16));
     let t_max = 36.643_14;
     let (enter, exit) = ray_aabb(&ray, &b, t_max).expect("slab hit");
-    let (ee, xx) = support::box_interval(&ray, &b, t_max).expect("exact hit");
+    let (ee, xx) = oracle::box_interval(&ray, &b, t_max).expect("exact hit");
     assert!(r(exit) >= xx);
     assert!(r(enter) <= xx && ee > R::from_integer(0.into()));
     assert!(ray_aabb_naive(&ray, &b, t_max).is_some());
@@ -127,12 +126,12 @@ fn plane_hit_point_bound_with_underflow() {
     // Still safe: a finite point and bound.
     assert!(p.is_finite() && err.is_finite() && err.min_element() >= 0.0);
     // Where no product underflows, the bound holds.
-    let exact = support::plane_t(&ray, &plane).unwrap();
-    let (o, d) = (support::rv(ray.origin), support::rv(ray.dir));
+    let exact = oracle::plane_t(&ray, &plane).unwrap();
+    let (o, d) = (oracle::rv(ray.origin), oracle::rv(ray.dir));
     for j in (0..3).filter(|&j| !underflows(j)) {
         let star = &o[j] + &exact * &d[j];
         assert!(
-            support::abs_diff(&r(p[j]), &star) <= r(err[j]),
+            oracle::abs_diff(&r(p[j]), &star) <= r(err[j]),
             "axis {j}: point {p}, bound {err}"
         );
     }
@@ -184,7 +183,7 @@ fn aabb_false_hit_band_in_the_subnormal_range() {
     let b = Aabb::new(Vec3::ZERO, Vec3::new(0.0, 0.0, 4.316_268e-39));
     let t_max = 0.0;
     if ray_aabb(&ray, &b, t_max).is_some() {
-        let (ee, xx) = support::box_raw(&ray, &b, t_max).expect("moves along x");
+        let (ee, xx) = oracle::box_raw(&ray, &b, t_max).expect("moves along x");
         let u = r(f32::EPSILON / 2.0);
         let one = R::from_integer(1.into());
         let band = &xx * (one + R::from_integer(16.into()) * u)
@@ -210,7 +209,7 @@ fn aabb_naive_distances_underflow() {
         Vec3::new(-7.534_539e-14, 2.578_511_8e-9, 8.8e-44),
     );
     let t_max = 1e-45;
-    let (ee, xx) = support::box_interval(&ray, &b, t_max).expect("exact hit");
+    let (ee, xx) = oracle::box_interval(&ray, &b, t_max).expect("exact hit");
     let (enter, exit) = ray_aabb(&ray, &b, t_max).expect("slab hit");
     assert!(r(exit) >= xx && r(enter) <= xx && ee >= R::from_integer(0.into()));
     let (e, x) = ray_aabb_naive(&ray, &b, t_max).expect("naive hit");
@@ -235,8 +234,8 @@ fn spawn_from_plane_nearly_parallel_goes_to_the_wrong_side() {
     let point = Vec3::new(-73.8551, 71.525_24, -76.1841);
     let point_error = Vec3::new(5.660_092_6e-5, 4.233_192e-5, 5.687_856_5e-5);
     let dir = Vec3::new(-0.707_102_2, 0.707_111_3, -9.107_16e-6);
-    let n = support::rv(plane.normal);
-    let heading = support::dot(&support::rv(dir), &n);
+    let n = oracle::rv(plane.normal);
+    let heading = oracle::dot(&oracle::rv(dir), &n);
     assert!(
         heading > R::from_integer(0.into()),
         "dir points to the + side"
@@ -245,14 +244,14 @@ fn spawn_from_plane_nearly_parallel_goes_to_the_wrong_side() {
     assert!(computed < 0.0, "the rounded dot product has the wrong sign");
     let magnitude: R = (0..3)
         .map(|i| {
-            support::abs_diff(
+            oracle::abs_diff(
                 &(r(dir[i]) * r(plane.normal[i])),
                 &R::from_integer(0.into()),
             )
         })
         .sum();
     assert!(
-        r(computed.abs()) <= support::gamma::<f32>(3) * magnitude,
+        r(computed.abs()) <= oracle::gamma::<f32>(3) * magnitude,
         "outside the documented precondition"
     );
     let origin = rayhit::offset_ray_origin(point, point_error, plane.normal, Vec3::ZERO, dir);
@@ -291,7 +290,7 @@ fn spawn_from_plane_hit_at_subnormal_t() {
 fn aabb_infinite_entry_with_overflowing_reciprocal() {
     let ray = Ray::new(Vec3::new(-1.0, 1.0, 0.5), Vec3::new(0.0, 1.9013e-41, 0.0));
     let b = Aabb::new(Vec3::ZERO, Vec3::ONE);
-    assert_eq!(support::box_interval(&ray, &b, f32::INFINITY), None);
+    assert_eq!(oracle::box_interval(&ray, &b, f32::INFINITY), None);
     if let Some((enter, exit)) = ray_aabb(&ray, &b, f32::INFINITY) {
         assert!(enter.is_finite() && enter <= exit, "({enter}, {exit})");
     }
@@ -303,7 +302,7 @@ fn aabb_infinite_entry_with_overflowing_reciprocal() {
         Vec3::new(0.0, -0.0, 1.78e-43),
     );
     let b = Aabb::new(Vec3::ZERO, Vec3::ZERO);
-    assert_eq!(support::box_interval(&ray, &b, f32::INFINITY), None);
+    assert_eq!(oracle::box_interval(&ray, &b, f32::INFINITY), None);
     assert_eq!(ray_aabb(&ray, &b, f32::INFINITY), None);
     // And without an overflowing reciprocal (found by the 10-minute run):
     // the y exit `(1.8e19 - 0.5) / 5.9e-39` overflows as a product.
@@ -312,7 +311,7 @@ fn aabb_infinite_entry_with_overflowing_reciprocal() {
         Vec3::new(0.0, 5.871_732e-39, 0.0),
     );
     let b = Aabb::new(Vec3::ZERO, Vec3::new(1.175_494_4e-38, 1.848_221e19, 1.0));
-    assert_eq!(support::box_interval(&ray, &b, f32::INFINITY), None);
+    assert_eq!(oracle::box_interval(&ray, &b, f32::INFINITY), None);
     assert_eq!(ray_aabb(&ray, &b, f32::INFINITY), None);
 }
 
@@ -348,7 +347,7 @@ fn triangle_subnormal_lift_outside_the_error_band() {
         DVec3::new(2.0, 0.0, 0.0),
         DVec3::new(0.0, 2.0, 0.0),
     );
-    let exact = support::triangle(&ray, &tri);
+    let exact = oracle::triangle(&ray, &tri);
     assert!(exact.interior() && exact.hits(&None));
     let probe = TriangleHit {
         t: 2.470_825_195_312_5,
@@ -389,7 +388,7 @@ fn aabb_origin_on_slab_plane_with_overflowing_reciprocal() {
         Vec3::splat(1.212_387_3e-25),
     );
     let t_max = 0.000_488_281_25;
-    let (ee, xx) = support::box_raw(&ray, &b, t_max).expect("moves along every axis");
+    let (ee, xx) = oracle::box_raw(&ray, &b, t_max).expect("moves along every axis");
     assert!(ee > xx, "exact miss");
     assert!(overflows(ray.dir.x), "outside the band's condition");
     overflow_false_hit_is_close(&ray, &b, t_max);
@@ -438,7 +437,7 @@ fn aabb_false_hit_with_overflowing_reciprocals() {
     );
     let b = Aabb::new(Vec3::ZERO, Vec3::new(9.1835e-41, 5.9e-44, 1.726_507_3e-38));
     let t_max = 1.766_275_7e21;
-    let (ee, xx) = support::box_raw(&ray, &b, t_max).expect("moves along every axis");
+    let (ee, xx) = oracle::box_raw(&ray, &b, t_max).expect("moves along every axis");
     assert!(
         ee > &xx * R::from_integer(3.into()),
         "exact miss by a factor of 3"
@@ -458,7 +457,7 @@ fn aabb_false_hit_with_overflowing_reciprocals() {
         DVec3::new(0.0, 0.0, 1.265e-321),
         DVec3::new(1.61895e-319, 1.0, 3.645_561_009_778_199e-304),
     );
-    assert_eq!(support::box_raw(&ray, &b, f64::MAX), None, "exact miss");
+    assert_eq!(oracle::box_raw(&ray, &b, f64::MAX), None, "exact miss");
     assert_eq!(ray_aabb(&ray, &b, f64::MAX), None);
 }
 
@@ -480,7 +479,7 @@ fn aabb_naive_false_hit_by_underflow() {
         Vec3::new(2.911_449e-11, 7.106_625e-15, 0.0),
     );
     let t_max = 2.238_725_5e29;
-    assert_eq!(support::box_interval(&ray, &b, t_max), None);
+    assert_eq!(oracle::box_interval(&ray, &b, t_max), None);
     assert_eq!(ray_aabb(&ray, &b, t_max), None);
     // The naive answer (a hit, today) is allowed; it must be in range.
     if let Some((e, x)) = ray_aabb_naive(&ray, &b, t_max) {
@@ -533,7 +532,7 @@ fn triangle_underflowing_shear_factor() {
 fn aabb_infinite_exit_with_infinite_t_max() {
     let b = Aabb::new(Vec3::ZERO, bits([0x0000_a300, 0x0000_4000, 0x3f80_0000]));
     let ray = Ray::new(Vec3::ZERO, bits([0x0000_0000, 0x0000_3f00, 0x0000_0000]));
-    let (ee, xx) = support::box_interval(&ray, &b, f32::INFINITY).expect("exact hit");
+    let (ee, xx) = oracle::box_interval(&ray, &b, f32::INFINITY).expect("exact hit");
     let (enter, exit) = ray_aabb(&ray, &b, f32::INFINITY).expect("no false miss");
     assert_eq!(r(enter), ee);
     assert!(!exit.is_finite() || r(exit) >= xx);
@@ -556,15 +555,15 @@ fn triangle_conservative_t_rejection_near_the_origin() {
         Vec3::new(63.422_65, 63.422_65, -64.077_354),
         Vec3::new(63.430_725, 63.431_56, -64.077_774),
     );
-    let exact = support::triangle(&ray, &tri);
+    let exact = oracle::triangle(&ray, &tri);
     let t_exact = exact.t.clone().expect("not parallel");
     assert!(exact.interior() && exact.hits(&None));
     if ray_triangle(&ray, &tri, f32::INFINITY).is_none() {
         let (u, v) = exact.uv.clone().unwrap();
         let probe = TriangleHit {
-            t: support::to_f64(&t_exact) as f32,
-            u: support::to_f64(&u) as f32,
-            v: support::to_f64(&v) as f32,
+            t: oracle::to_f64(&t_exact) as f32,
+            u: oracle::to_f64(&u) as f32,
+            v: oracle::to_f64(&v) as f32,
             side: Side::Back,
         };
         let err = ray_triangle_error_bounds(&ray, &tri, &probe);
@@ -604,7 +603,7 @@ fn triangle_hit_parallel_to_the_plane_has_infinite_bounds() {
             63.700_347_906_593_805,
         ),
     );
-    let exact = support::triangle(&ray, &tri);
+    let exact = oracle::triangle(&ray, &tri);
     assert!(exact.t.is_none(), "exactly parallel");
     if let Some(hit) = ray_triangle(&ray, &tri, f64::INFINITY) {
         assert!(hit.t > 0.0 && hit.t.is_finite());
@@ -631,7 +630,7 @@ fn triangle_scaled_distance_overflows() {
         Vec3::new(2.0, 0.0, 4.5918e-41),
         Vec3::new(0.0, 2.0, 5.9e-44),
     );
-    let exact = support::triangle(&ray, &tri);
+    let exact = oracle::triangle(&ray, &tri);
     assert!(exact.interior() && exact.hits(&None));
     // Outside the precondition: e_0 z_0 overflows.
     let z0 = (tri.a.z - ray.origin.z) * (1.0 / ray.dir.z);
@@ -727,8 +726,8 @@ fn aabb_false_hit_band_with_subnormal_reciprocals() {
         Vec3::splat(1.536_522_2e16),
     );
     let t_max = 3.396_151_4e38;
-    assert!(support::reciprocal_subnormal(ray.dir));
-    let (ee, xx) = support::box_raw(&ray, &b, t_max).expect("moves along every axis");
+    assert!(oracle::reciprocal_subnormal(ray.dir));
+    let (ee, xx) = oracle::box_raw(&ray, &b, t_max).expect("moves along every axis");
     assert!(ee > xx, "exact arithmetic misses");
     assert!(
         ray_aabb(&ray, &b, t_max).is_some(),

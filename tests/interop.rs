@@ -11,18 +11,17 @@
 //! `cargo test --test interop --features glam-0_29,glam-0_30,glam-0_31,glam-0_32,glam-0_33`
 //! runs every type (CI does).
 
-mod support;
-
 use rayhit::glam::Vec3;
 use rayhit::{
     Aabb, AabbBatch, PinholeCamera, Plane, PreparedRay, Ray, Scalar, SurfacePoint, Triangle,
-    TriangleBatch, TriangleHit, Vector, ray_aabb, ray_aabb_batch, ray_aabb_face, ray_aabb_naive,
+    TriangleBatch, Vector, ray_aabb, ray_aabb_batch, ray_aabb_face, ray_aabb_naive,
     ray_aabb_prepared, ray_aabb_prepared_face, ray_plane, ray_plane_hit_point, ray_plane_t_error,
     ray_triangle, ray_triangle_batch, ray_triangle_error_bounds, ray_triangle_mt,
     ray_triangle_one_hit, ray_triangle_prepared, triangle_hit_point,
 };
-use support::Pcg32;
-use support::generators::{box_generators, gen_plane, triangle_generators};
+use rayhit_testkit::bits::{bits, hit_bits, interval_bits, vector_bits};
+use rayhit_testkit::cases::{boxes, planes, triangles};
+use rayhit_testkit::source::Source;
 
 type S<V> = <V as Vector>::Scalar;
 
@@ -35,41 +34,15 @@ fn ray<W: Vector, V: Vector<Scalar = S<W>>>(r: &Ray<V>) -> Ray<W> {
     Ray::new(to(r.origin), to(r.dir))
 }
 
-/// The bits of a float (widened to `f64`, which is exact), every NaN as one
-/// pattern: the payload of a NaN produced by arithmetic is not specified
-/// (x86 SIMD and scalar code pass on different operands' payloads), only
-/// that it is NaN.
-fn fbits<F: Scalar>(x: F) -> u64 {
-    let x = x.to_f64();
-    if x.is_nan() { u64::MAX } else { x.to_bits() }
-}
-
-fn bits<V: Vector>(v: V) -> [u64; 3] {
-    [v.x(), v.y(), v.z()].map(fbits)
-}
-
-fn hit_bits<F: Scalar>(h: Option<TriangleHit<F>>) -> Option<([u64; 3], bool)> {
-    h.map(|h| {
-        (
-            [fbits(h.t), fbits(h.u), fbits(h.v)],
-            h.side == rayhit::Side::Front,
-        )
-    })
-}
-
-fn interval_bits<F: Scalar>(x: Option<(F, F)>) -> Option<(u64, u64)> {
-    x.map(|(e, x)| (fbits(e), fbits(x)))
-}
-
 /// Raw bit patterns of a precision, half the time a special value.
 trait Raw: Scalar {
-    fn raw(rng: &mut Pcg32) -> Self;
+    fn raw(rng: &mut Source) -> Self;
 }
 
 macro_rules! raw {
     ($f:ty, $bits:expr) => {
         impl Raw for $f {
-            fn raw(rng: &mut Pcg32) -> Self {
+            fn raw(rng: &mut Source) -> Self {
                 const SPECIAL: [$f; 8] = [
                     0.0,
                     -0.0,
@@ -89,11 +62,10 @@ macro_rules! raw {
         }
     };
 }
-raw!(f32, |rng: &mut Pcg32| rng.next_u32());
-raw!(f64, |rng: &mut Pcg32| (u64::from(rng.next_u32()) << 32)
-    | u64::from(rng.next_u32()));
+raw!(f32, |rng: &mut Source| rng.bits() as u32);
+raw!(f64, |rng: &mut Source| rng.bits());
 
-fn raw_v<V: Vector>(rng: &mut Pcg32) -> V
+fn raw_v<V: Vector>(rng: &mut Source) -> V
 where
     S<V>: Raw,
 {
@@ -125,14 +97,20 @@ fn check_box<V: Vector, W: Vector<Scalar = S<V>>>(b: &Aabb<V>, r: &Ray<V>, t_max
             SurfacePoint::on_box(r, b, &f),
             SurfacePoint::on_box(&ra, &ba, &fa),
         );
-        assert_eq!(s.map(|s| bits(s.point)), sa.map(|s| bits(s.point)));
+        assert_eq!(
+            s.map(|s| vector_bits(s.point)),
+            sa.map(|s| vector_bits(s.point))
+        );
         if let (Some(s), Some(sa)) = (s, sa) {
             let d = V::new(
                 S::<V>::from_f64(0.3),
                 S::<V>::from_f64(-0.5),
                 S::<V>::from_f64(0.8),
             );
-            assert_eq!(bits(s.spawn(d).origin), bits(sa.spawn(to(d)).origin));
+            assert_eq!(
+                vector_bits(s.spawn(d).origin),
+                vector_bits(sa.spawn(to(d)).origin)
+            );
         }
     }
     if let (Some(batch), Some(batch_a)) = (
@@ -144,7 +122,7 @@ fn check_box<V: Vector, W: Vector<Scalar = S<V>>>(b: &Aabb<V>, r: &Ray<V>, t_max
             ray_aabb_batch(&pa, &batch_a, t_max),
         );
         assert_eq!(h.mask, ha.mask);
-        assert_eq!(h.enter.map(fbits::<S<V>>), ha.enter.map(fbits::<S<V>>));
+        assert_eq!(h.enter.map(bits::<S<V>>), ha.enter.map(bits::<S<V>>));
     }
     got.is_some()
 }
@@ -177,23 +155,29 @@ fn check_triangle<V: Vector, W: Vector<Scalar = S<V>>>(
     );
     assert_eq!(t.is_degenerate(), ta.is_degenerate());
     let (n, na) = (t.normal_with_error(), ta.normal_with_error());
-    assert_eq!((bits(n.0), bits(n.1)), (bits(na.0), bits(na.1)));
+    assert_eq!(
+        (vector_bits(n.0), vector_bits(n.1)),
+        (vector_bits(na.0), vector_bits(na.1))
+    );
     if let Some(h) = got {
         let (e, ea) = (
             ray_triangle_error_bounds(r, t, &h),
             ray_triangle_error_bounds(&ra, &ta, &h),
         );
-        assert_eq!([e.t, e.u, e.v].map(fbits), [ea.t, ea.u, ea.v].map(fbits));
+        assert_eq!([e.t, e.u, e.v].map(bits), [ea.t, ea.u, ea.v].map(bits));
         let (q, qa) = (triangle_hit_point(t, &h), triangle_hit_point(&ta, &h));
-        assert_eq!((bits(q.0), bits(q.1)), (bits(qa.0), bits(qa.1)));
+        assert_eq!(
+            (vector_bits(q.0), vector_bits(q.1)),
+            (vector_bits(qa.0), vector_bits(qa.1))
+        );
         let d = V::new(
             S::<V>::from_f64(-0.2),
             S::<V>::from_f64(0.9),
             S::<V>::from_f64(0.4),
         );
         assert_eq!(
-            bits(SurfacePoint::on_triangle(t, &h).spawn(d).origin),
-            bits(SurfacePoint::on_triangle(&ta, &h).spawn(to(d)).origin)
+            vector_bits(SurfacePoint::on_triangle(t, &h).spawn(d).origin),
+            vector_bits(SurfacePoint::on_triangle(&ta, &h).spawn(to(d)).origin)
         );
     }
     if let (Some(batch), Some(batch_a)) = (
@@ -205,7 +189,7 @@ fn check_triangle<V: Vector, W: Vector<Scalar = S<V>>>(
             ray_triangle_batch(&pa, &batch_a, t_max),
         );
         assert_eq!((h.mask, h.front), (ha.mask, ha.front));
-        assert_eq!(h.t.map(fbits::<S<V>>), ha.t.map(fbits::<S<V>>));
+        assert_eq!(h.t.map(bits::<S<V>>), ha.t.map(bits::<S<V>>));
     }
     got.is_some()
 }
@@ -218,19 +202,22 @@ fn check_plane<V: Vector, W: Vector<Scalar = S<V>>>(
     let (pa, ra) = (Plane::<W>::new(to(pl.point), to(pl.normal)), ray::<W, V>(r));
     let got = ray_plane(r, pl, t_max);
     assert_eq!(
-        got.map(fbits::<S<V>>),
-        ray_plane(&ra, &pa, t_max).map(fbits::<S<V>>)
+        got.map(bits::<S<V>>),
+        ray_plane(&ra, &pa, t_max).map(bits::<S<V>>)
     );
     if let Some(t) = got {
         assert_eq!(
-            fbits(ray_plane_t_error(r, pl, t)),
-            fbits(ray_plane_t_error(&ra, &pa, t))
+            bits(ray_plane_t_error(r, pl, t)),
+            bits(ray_plane_t_error(&ra, &pa, t))
         );
         let (q, qa) = (
             ray_plane_hit_point(r, pl, t),
             ray_plane_hit_point(&ra, &pa, t),
         );
-        assert_eq!((bits(q.0), bits(q.1)), (bits(qa.0), bits(qa.1)));
+        assert_eq!(
+            (vector_bits(q.0), vector_bits(q.1)),
+            (vector_bits(qa.0), vector_bits(qa.1))
+        );
     }
     got.is_some()
 }
@@ -239,23 +226,23 @@ fn check_plane<V: Vector, W: Vector<Scalar = S<V>>>(
 fn same_bits_on_the_generators<V: Vector, W: Vector<Scalar = S<V>>>() {
     let (mut hits, mut misses) = (0, 0);
     let mut count = |hit: bool| if hit { hits += 1 } else { misses += 1 };
-    for (_, seed, generate) in box_generators::<V>() {
-        let mut rng = Pcg32::new(seed ^ 0xa11);
+    for (_, seed, generate) in boxes::generators::<V>() {
+        let mut rng = Source::seeded(seed ^ 0xa11);
         for _ in 0..2_000 {
             let (b, r, t_max) = generate(&mut rng);
             count(check_box::<V, W>(&b, &r, t_max));
         }
     }
-    for (_, seed, generate) in triangle_generators::<V>() {
-        let mut rng = Pcg32::new(seed ^ 0xa11);
+    for (_, seed, generate) in triangles::generators::<V>() {
+        let mut rng = Source::seeded(seed ^ 0xa11);
         for _ in 0..2_000 {
             let (t, r, t_max) = generate(&mut rng);
             count(check_triangle::<V, W>(&t, &r, t_max));
         }
     }
-    let mut rng = Pcg32::new(0xa11);
+    let mut rng = Source::seeded(0xa11);
     for _ in 0..4_000 {
-        let (pl, r, t_max) = gen_plane::<V>(&mut rng);
+        let (pl, r, t_max) = planes::plane::<V>(&mut rng);
         count(check_plane::<V, W>(&pl, &r, t_max));
     }
     // Both answers are common, so agreement means something.
@@ -270,7 +257,7 @@ fn same_bits_on_raw_bit_patterns<V: Vector, W: Vector<Scalar = S<V>>>()
 where
     S<V>: Raw,
 {
-    let mut rng = Pcg32::new(0xb175);
+    let mut rng = Source::seeded(0xb175);
     for _ in 0..20_000 {
         let r = Ray::new(raw_v::<V>(&mut rng), raw_v::<V>(&mut rng));
         let t_max = if rng.one_in(2) {
@@ -301,8 +288,8 @@ fn same_camera_rays<V: Vector, W: Vector<Scalar = S<V>>>() {
         for i in 0..64 {
             let (r, rw) = (cam.pixel_ray(i, j), cam_w.pixel_ray(i, j));
             assert_eq!(
-                (bits(r.origin), bits(r.dir)),
-                (bits(rw.origin), bits(rw.dir))
+                (vector_bits(r.origin), vector_bits(r.dir)),
+                (vector_bits(rw.origin), vector_bits(rw.dir))
             );
         }
     }

@@ -18,23 +18,21 @@
 //! `cargo test --release --test oracle -- --ignored --nocapture`.
 //! `ORACLE_CASES=n` overrides both.
 
-mod support;
-
-/// The demo's mesh builders (one icosphere for both).
-#[path = "support/mesh.rs"]
-#[allow(dead_code)]
-mod demo_mesh;
-
 use std::fmt;
 
 use num_traits::{Signed, Zero};
+use rayhit::exact::oracle::{self, R, r, rv};
 use rayhit::glam::{DVec3, Vec3};
 use rayhit::{
     Aabb, Ray, Scalar, Triangle, Vector, ray_aabb, ray_aabb_naive, ray_plane, ray_plane_t_error,
     ray_triangle, ray_triangle_error_bounds, ray_triangle_mt, ray_triangle_one_hit,
 };
-use support::generators::*;
-use support::{Pcg32, R, r, rv};
+use rayhit_testkit::cases::boxes::{self, BoxCase};
+use rayhit_testkit::cases::planes;
+use rayhit_testkit::cases::triangles::{self, TriCase};
+use rayhit_testkit::cases::{aimed, v};
+use rayhit_testkit::mesh as demo_mesh;
+use rayhit_testkit::source::Source;
 
 type S<V> = <V as Vector>::Scalar;
 
@@ -49,7 +47,7 @@ fn cases(default: usize) -> usize {
 }
 
 fn f(x: &R) -> f64 {
-    support::to_f64(x)
+    oracle::to_f64(x)
 }
 
 // ---------------------------------------------------------------- tallies
@@ -118,13 +116,13 @@ fn precision<V: Vector>() -> &'static str {
 // ------------------------------------------------------------------ boxes
 
 /// How far a ray passes from a box it misses (or how deep it goes into one
-/// it hits), in ulps of the largest coordinate (see `support::box_gap`).
+/// it hits), in ulps of the largest coordinate (see `oracle::box_gap`).
 fn box_gap_ulps<V: Vector>(ray: &Ray<V>, b: &Aabb<V>, t_max: S<V>) -> f64 {
     rayhit::exact::distance_ulps(&rayhit::exact::Case::Box(*ray, *b, t_max))
 }
 
-fn run_boxes<V: Vector>(name: &str, seed: u64, n: usize, generator: fn(&mut Pcg32) -> BoxCase<V>) {
-    let mut rng = Pcg32::new(seed);
+fn run_boxes<V: Vector>(name: &str, seed: u64, n: usize, generator: fn(&mut Source) -> BoxCase<V>) {
+    let mut rng = Source::seeded(seed);
     let (mut slab, mut naive) = (Tally::default(), Tally::default());
     let mut beyond_range = 0usize;
     for i in 0..n {
@@ -132,13 +130,13 @@ fn run_boxes<V: Vector>(name: &str, seed: u64, n: usize, generator: fn(&mut Pcg3
         if !(ray.is_valid() && b.is_valid()) {
             continue;
         }
-        let interval = support::box_interval(&ray, &b, t_max);
+        let interval = oracle::box_interval(&ray, &b, t_max);
         // The documented precondition: exact distances below MAX / 2. Beyond
         // it a hit cannot be reported in this precision, and a direction
         // component below 1/MAX (whose reciprocal overflows) can make the
         // slab test report a "hit" that exact arithmetic places beyond MAX.
         let half_max = r(S::<V>::MAX) / R::from_integer(2.into());
-        if support::box_raw(&ray, &b, t_max).is_some_and(|(e, x)| e > half_max || x > half_max) {
+        if oracle::box_raw(&ray, &b, t_max).is_some_and(|(e, x)| e > half_max || x > half_max) {
             beyond_range += 1;
             continue;
         }
@@ -167,7 +165,7 @@ fn run_boxes<V: Vector>(name: &str, seed: u64, n: usize, generator: fn(&mut Pcg3
 }
 
 fn all_boxes<V: Vector>(n: usize) {
-    for (name, seed, generator) in box_generators::<V>() {
+    for (name, seed, generator) in boxes::generators::<V>() {
         run_boxes::<V>(name, seed, n, generator);
     }
 }
@@ -198,9 +196,9 @@ fn run_triangles<V: Vector>(
     name: &str,
     seed: u64,
     n: usize,
-    generator: fn(&mut Pcg32) -> TriCase<V>,
+    generator: fn(&mut Source) -> TriCase<V>,
 ) {
-    let mut rng = Pcg32::new(seed);
+    let mut rng = Source::seeded(seed);
     let mut tallies = TriTallies::default();
     for i in 0..n {
         let (tri, ray, t_max) = generator(&mut rng);
@@ -208,8 +206,8 @@ fn run_triangles<V: Vector>(
         if !(ray.is_valid() && nrm.is_finite() && nrm != V::ZERO) {
             continue;
         }
-        let ex = support::triangle(&ray, &tri);
-        let exact = ex.hits(&support::limit(t_max));
+        let ex = oracle::triangle(&ray, &tri);
+        let exact = ex.hits(&oracle::limit(t_max));
         let gap = || tri_gap_ulps(&ray, &tri, t_max);
         let wt = ray_triangle(&ray, &tri, t_max);
         tallies.watertight.record(wt.is_some(), exact, gap);
@@ -232,9 +230,9 @@ fn run_triangles<V: Vector>(
                 tallies.worst_t_ratio = tallies.worst_t_ratio.max(actual / err.t.to_f64());
                 tallies.worst_t_ulps = tallies
                     .worst_t_ulps
-                    .max(actual / support::ulp::<S<V>>(h.t.to_f64()));
+                    .max(actual / oracle::ulp::<S<V>>(h.t.to_f64()));
                 assert!(
-                    support::close(h.t, t, err.t),
+                    oracle::close(h.t, t, err.t),
                     "{name} case {i}: t {:?} exact {} bound {:?}",
                     h.t,
                     f(t),
@@ -268,7 +266,7 @@ fn run_triangles<V: Vector>(
 }
 
 fn all_triangles<V: Vector>(n: usize) {
-    for (name, seed, generator) in triangle_generators::<V>() {
+    for (name, seed, generator) in triangles::generators::<V>() {
         run_triangles::<V>(name, seed, n, generator);
     }
 }
@@ -276,17 +274,17 @@ fn all_triangles<V: Vector>(n: usize) {
 // ----------------------------------------------------------------- planes
 
 fn run_planes<V: Vector>(n: usize) {
-    let mut rng = Pcg32::new(21);
+    let mut rng = Source::seeded(21);
     let mut tally = Tally::default();
     let mut worst_t_err_ulps = 0.0f64;
     let mut parallel = 0usize;
     let mut worst_ratio = 0.0f64;
     for i in 0..n {
-        let (plane, ray, t_max) = gen_plane::<V>(&mut rng);
+        let (plane, ray, t_max) = planes::plane::<V>(&mut rng);
         if !ray.is_valid() {
             continue;
         }
-        let exact = support::plane_hit(&ray, &plane, t_max);
+        let exact = oracle::plane_hit(&ray, &plane, t_max);
         let got = ray_plane(&ray, &plane, t_max);
         // The documented miss: within rounding of parallel, |d . n| <=
         // 2 gamma(3) sum |d_i n_i| as computed; exactly, that is at most
@@ -294,7 +292,7 @@ fn run_planes<V: Vector>(n: usize) {
         // of the exact ones). Such misses are counted apart.
         if got.is_none() && exact.is_some() {
             let (d, n) = (rv(ray.dir), rv(plane.normal));
-            let dn = support::dot(&d, &n).abs();
+            let dn = oracle::dot(&d, &n).abs();
             let mag: R = (0..3).map(|k| (&d[k] * &n[k]).abs()).sum();
             let g3 = R::from_float(3.0 * S::<V>::gamma_n(3).to_f64()).unwrap();
             if dn <= g3 * mag {
@@ -304,15 +302,15 @@ fn run_planes<V: Vector>(n: usize) {
         }
         let ulps = || rayhit::exact::distance_ulps(&rayhit::exact::Case::Plane(ray, plane, t_max));
         tally.record(got.is_some(), exact.is_some(), ulps);
-        if let (Some(t), Some(te)) = (got, support::plane_t(&ray, &plane)) {
+        if let (Some(t), Some(te)) = (got, oracle::plane_t(&ray, &plane)) {
             let err = ray_plane_t_error(&ray, &plane, t);
             assert!(
-                support::close(t, &te, err),
+                oracle::close(t, &te, err),
                 "plane case {i}: t {t:?} exact {} bound {err:?}",
                 f(&te)
             );
             let actual = (t.to_f64() - f(&te)).abs();
-            worst_t_err_ulps = worst_t_err_ulps.max(actual / support::ulp::<S<V>>(t.to_f64()));
+            worst_t_err_ulps = worst_t_err_ulps.max(actual / oracle::ulp::<S<V>>(t.to_f64()));
             worst_ratio = worst_ratio.max(actual / err.to_f64());
         }
     }
@@ -410,7 +408,7 @@ impl Mesh {
 
 /// A random similarity: a rotation (from a random orthonormal frame),
 /// scale 2^-4..2^4 and offset in [-64, 64]^3.
-fn placement(rng: &mut Pcg32) -> impl Fn([f64; 3]) -> [f64; 3] + use<> {
+fn placement(rng: &mut Source) -> impl Fn([f64; 3]) -> [f64; 3] + use<> {
     let a = rng.direction();
     let mut b = rng.direction();
     let ab = a[0] * b[0] + a[1] * b[1] + a[2] * b[2];
@@ -429,7 +427,7 @@ fn placement(rng: &mut Pcg32) -> impl Fn([f64; 3]) -> [f64; 3] + use<> {
 
 /// An n x n grid over [-1, 1]^2 with random heights, two triangles per
 /// cell, wound counter-clockwise seen from +z.
-fn grid_mesh(rng: &mut Pcg32) -> Mesh {
+fn grid_mesh(rng: &mut Source) -> Mesh {
     let n = 8usize;
     let place = placement(rng);
     let bump = rng.range(0.0, 0.5);
@@ -463,7 +461,7 @@ fn grid_mesh(rng: &mut Pcg32) -> Mesh {
 }
 
 /// An octahedron, placed at random; closed and convex, wound outwards.
-fn octahedron(rng: &mut Pcg32) -> Mesh {
+fn octahedron(rng: &mut Source) -> Mesh {
     let place = placement(rng);
     let vertices: Vec<_> = [
         [1.0, 0.0, 0.0],
@@ -496,7 +494,7 @@ fn octahedron(rng: &mut Pcg32) -> Mesh {
 /// An icosahedron subdivided once (80 triangles; the demo's icosphere),
 /// each vertex pushed in or out by up to 10%, placed at random: closed,
 /// wound outwards, and not quite convex.
-fn icosphere(rng: &mut Pcg32) -> Mesh {
+fn icosphere(rng: &mut Source) -> Mesh {
     let sphere = demo_mesh::icosphere(Vec3::ZERO, 1.0, 1);
     let place = placement(rng);
     let vertices: Vec<_> = sphere
@@ -519,7 +517,7 @@ fn icosphere(rng: &mut Pcg32) -> Mesh {
 
 /// A fan of 3 to 12 triangles around one vertex: neighbours at random
 /// angles and distances, heights from flat to a steep cone.
-fn fan(rng: &mut Pcg32) -> Mesh {
+fn fan(rng: &mut Source) -> Mesh {
     let k = 3 + rng.below(10) as usize;
     let place = placement(rng);
     let mut angles: Vec<f64> = (0..k)
@@ -573,17 +571,17 @@ struct MeshTally {
 /// one-to-one and exactly one of its triangles must claim the crossing.
 fn one_sided<V: Vector>(ray: &Ray<V>, tris: &[Triangle<V>]) -> bool {
     let d = rv(ray.dir);
-    let dd = support::dot(&d, &d);
+    let dd = oracle::dot(&d, &d);
     let mut sign = 0i32;
     for t in tris {
-        let n = support::cross(
-            &support::sub(&rv(t.b), &rv(t.a)),
-            &support::sub(&rv(t.c), &rv(t.a)),
+        let n = oracle::cross(
+            &oracle::sub(&rv(t.b), &rv(t.a)),
+            &oracle::sub(&rv(t.c), &rv(t.a)),
         );
-        let dn = support::dot(&d, &n);
-        let nn = support::dot(&n, &n);
+        let dn = oracle::dot(&d, &n);
+        let nn = oracle::dot(&n, &n);
         // sin^2 > 2^-20  <=>  (d.n)^2 > 2^-20 |d|^2 |n|^2
-        if dn.clone() * &dn <= support::dyadic(1, -20) * &dd * &nn {
+        if dn.clone() * &dn <= oracle::dyadic(1, -20) * &dd * &nn {
             return false;
         }
         let s = if dn.is_positive() { 1 } else { -1 };
@@ -595,8 +593,8 @@ fn one_sided<V: Vector>(ray: &Ray<V>, tris: &[Triangle<V>]) -> bool {
     true
 }
 
-fn run_mesh<V: Vector>(name: &str, seed: u64, n: usize, build: fn(&mut Pcg32) -> Mesh) {
-    let mut rng = Pcg32::new(seed);
+fn run_mesh<V: Vector>(name: &str, seed: u64, n: usize, build: fn(&mut Source) -> Mesh) {
+    let mut rng = Source::seeded(seed);
     let mut tally = MeshTally::default();
     let mut mesh = build(&mut rng);
     for i in 0..n {
@@ -672,7 +670,7 @@ fn run_mesh<V: Vector>(name: &str, seed: u64, n: usize, build: fn(&mut Pcg32) ->
         // (The exact check is needed only when some kernel did not answer
         // exactly one hit; it is costly, so it is skipped otherwise.)
         let answered = wt >= 1 && one == 1 && mt >= 1;
-        let crossed = || answered || tris.iter().any(|t| support::triangle(&ray, t).hits(&None));
+        let crossed = || answered || tris.iter().any(|t| oracle::triangle(&ray, t).hits(&None));
         if one_sided(&ray, &tris) && crossed() {
             tally.one_sided += 1;
             if wt == 0 {

@@ -4,10 +4,10 @@
 //! Bounds in these tests are evaluated exactly (as big rationals), so the
 //! test adds no rounding of its own; each is derived in a comment.
 
-mod support;
-
 use num_traits::Zero;
 use proptest::prelude::*;
+use rayhit::exact::oracle;
+use rayhit::exact::oracle::{R, gamma, r, rv};
 use rayhit::glam::{DVec3, Vec3};
 use rayhit::strategies as strat;
 use rayhit::{
@@ -15,7 +15,6 @@ use rayhit::{
     ray_aabb, ray_aabb_naive, ray_aabb_prepared, ray_plane, ray_plane_hit_point, ray_plane_t_error,
     ray_triangle, ray_triangle_error_bounds, ray_triangle_mt, triangle_hit_point,
 };
-use support::{R, gamma, r, rv};
 
 type S<V> = <V as Vector>::Scalar;
 
@@ -36,7 +35,7 @@ fn abs(x: &R) -> R {
 
 fn check_plane<V: Vector>(plane: Plane<V>, ray: Ray<V>, t_max: S<V>) -> Result<(), TestCaseError> {
     let got = ray_plane(&ray, &plane, t_max);
-    let exact = support::plane_t(&ray, &plane);
+    let exact = oracle::plane_t(&ray, &plane);
     if let Some(t) = got {
         prop_assert!(
             t > S::<V>::ZERO && t <= t_max && t.is_finite(),
@@ -47,9 +46,9 @@ fn check_plane<V: Vector>(plane: Plane<V>, ray: Ray<V>, t_max: S<V>) -> Result<(
             .expect("a hit on a plane the ray is parallel to");
         let err = ray_plane_t_error(&ray, &plane, t);
         prop_assert!(
-            support::close(t, exact, err),
+            oracle::close(t, exact, err),
             "t = {t:?}, exact {}, bound {err:?}",
-            support::to_f64(exact)
+            oracle::to_f64(exact)
         );
 
         // The hit point lies on the plane within its bound. With p* the
@@ -58,7 +57,7 @@ fn check_plane<V: Vector>(plane: Plane<V>, ray: Ray<V>, t_max: S<V>) -> Result<(
         // |(p - point) . n| <= sum_j |n_j| (err |d_j| + gamma(2)(|o_j| + |t d_j|)).
         let p = rv(ray.at(t));
         let (o, d, n) = (rv(ray.origin), rv(ray.dir), rv(plane.normal));
-        let residual = abs(&support::dot(&support::sub(&p, &rv(plane.point)), &n));
+        let residual = abs(&oracle::dot(&oracle::sub(&p, &rv(plane.point)), &n));
         let (tr, er, g2) = (r(t), r(err), gamma::<S<V>>(2));
         let bound: R = (0..3)
             .map(|j| abs(&n[j]) * (&er * abs(&d[j]) + &g2 * (abs(&o[j]) + &tr * abs(&d[j]))))
@@ -66,15 +65,15 @@ fn check_plane<V: Vector>(plane: Plane<V>, ray: Ray<V>, t_max: S<V>) -> Result<(
         prop_assert!(
             residual <= bound,
             "hit point off the plane by {} > {}",
-            support::to_f64(&residual),
-            support::to_f64(&bound)
+            oracle::to_f64(&residual),
+            oracle::to_f64(&bound)
         );
     } else if let Some(exact) = exact {
         // A miss where exact arithmetic hits is allowed only within the
         // error bound of 0 or t_max (the range tests run on rounded t).
-        let limit = support::limit(t_max);
+        let limit = oracle::limit(t_max);
         if exact > R::from_integer(0.into()) && limit.as_ref().is_none_or(|m| &exact <= m) {
-            let t = S::<V>::from_f64(support::to_f64(&exact));
+            let t = S::<V>::from_f64(oracle::to_f64(&exact));
             let err = r(ray_plane_t_error(&ray, &plane, t).next_up());
             let near_zero = exact <= err;
             let near_max = limit.as_ref().is_some_and(|m| m - &exact <= err);
@@ -82,7 +81,7 @@ fn check_plane<V: Vector>(plane: Plane<V>, ray: Ray<V>, t_max: S<V>) -> Result<(
             prop_assert!(
                 near_zero || near_max || overflow,
                 "false miss at t = {}",
-                support::to_f64(&exact)
+                oracle::to_f64(&exact)
             );
         }
     }
@@ -106,7 +105,7 @@ fn check_box<V: Vector>(aabb: Aabb<V>, ray: Ray<V>, t_max: S<V>) -> Result<(), T
     let p = ray_aabb_prepared(&PreparedRay::new(&ray), &valid, t_max);
     prop_assert_eq!(bits(p), bits(slab));
     let naive = ray_aabb_naive(&ray, &aabb, t_max);
-    let raw = support::box_raw(&ray, &aabb, t_max);
+    let raw = oracle::box_raw(&ray, &aabb, t_max);
     let exact = raw.clone().filter(|(e, x)| e <= x);
     let u = r(S::<V>::UNIT_ROUNDOFF);
 
@@ -124,7 +123,7 @@ fn check_box<V: Vector>(aabb: Aabb<V>, ray: Ray<V>, t_max: S<V>) -> Result<(), T
         "slab false miss, exact {:?}",
         exact
             .as_ref()
-            .map(|(e, x)| (support::to_f64(e), support::to_f64(x)))
+            .map(|(e, x)| (oracle::to_f64(e), oracle::to_f64(x)))
     );
     // ... and hits whenever the naive test does.
     prop_assert!(naive.is_none() || slab.is_some(), "naive hits, slab misses");
@@ -137,22 +136,18 @@ fn check_box<V: Vector>(aabb: Aabb<V>, ray: Ray<V>, t_max: S<V>) -> Result<(), T
                 // exact exit (the widening), and at most W-widened (1 + 10u)
                 // times three roundings plus the slack: below X (1 + 16u) + 2 tiny.
                 prop_assert!(
-                    support::reciprocal_overflows(ray.dir)
+                    oracle::reciprocal_overflows(ray.dir)
                         || abs(&(r(e) - ee)) <= gamma::<S<V>>(3) * ee,
                     "enter {e:?} vs exact {}",
-                    support::to_f64(ee)
+                    oracle::to_f64(ee)
                 );
-                prop_assert!(
-                    &r(x) >= xx,
-                    "exit {x:?} below exact {}",
-                    support::to_f64(xx)
-                );
+                prop_assert!(&r(x) >= xx, "exit {x:?} below exact {}", oracle::to_f64(xx));
                 let cap = xx * (R::from_integer(1.into()) + R::from_integer(16.into()) * &u)
                     + r(S::<V>::TINY) * R::from_integer(2.into());
                 prop_assert!(
-                    support::reciprocal_overflows(ray.dir) || r(x) <= cap,
+                    oracle::reciprocal_overflows(ray.dir) || r(x) <= cap,
                     "exit {x:?} widened beyond the bound, exact {}",
-                    support::to_f64(xx)
+                    oracle::to_f64(xx)
                 );
                 if e > zero {
                     entry_point_on_surface(&ray, &aabb, e)?;
@@ -167,10 +162,10 @@ fn check_box<V: Vector>(aabb: Aabb<V>, ray: Ray<V>, t_max: S<V>) -> Result<(), T
                 let cap = xx * (R::from_integer(1.into()) + R::from_integer(16.into()) * &u)
                     + r(S::<V>::TINY) * R::from_integer(2.into());
                 prop_assert!(
-                    support::reciprocal_overflows(ray.dir) || ee <= &cap,
+                    oracle::reciprocal_overflows(ray.dir) || ee <= &cap,
                     "false hit beyond the band: enter {} exit {}",
-                    support::to_f64(ee),
-                    support::to_f64(xx)
+                    oracle::to_f64(ee),
+                    oracle::to_f64(xx)
                 );
             }
         }
@@ -194,7 +189,7 @@ fn check_box<V: Vector>(aabb: Aabb<V>, ray: Ray<V>, t_max: S<V>) -> Result<(), T
             // the exact entry or exit is within the band of another face
             // (near an edge), it may have taken that face instead.
             let (gap_in, gap_out) =
-                support::box_face_margins(&ray, &aabb, t_max).expect("raw exists");
+                oracle::box_face_margins(&ray, &aabb, t_max).expect("raw exists");
             let band = R::from_integer(32.into()) * &u;
             let unambiguous = gap_in > &band * abs(ee) && gap_out > &band * abs(xx);
             if let (true, Some((e, x)), Some((ee, xx))) = (unambiguous, naive, &exact) {
@@ -267,7 +262,7 @@ fn check_triangle<V: Vector>(
             );
         }
     }
-    let exact = support::triangle(&ray, &tri);
+    let exact = oracle::triangle(&ray, &tri);
     let mut unbounded = false;
     if let Some(h) = wt {
         let err = ray_triangle_error_bounds(&ray, &tri, &h);
@@ -283,18 +278,18 @@ fn check_triangle<V: Vector>(
             ("v", h.v, v_exact, err.v),
         ] {
             prop_assert!(
-                unbounded || support::close(got, exact, bound),
+                unbounded || oracle::close(got, exact, bound),
                 "{name} = {got:?}, exact {}, bound {bound:?}",
-                support::to_f64(exact)
+                oracle::to_f64(exact)
             );
         }
 
         // The barycentric point equals ray.at(t) within the bound (see
-        // support::hit_point_disagreement).
+        // oracle::hit_point_disagreement).
         let (a, b, c) = (rv(tri.a), rv(tri.b), rv(tri.c));
         let d = rv(ray.dir);
         if !unbounded {
-            let axis = support::hit_point_disagreement(&ray, &tri, &h, &err);
+            let axis = oracle::hit_point_disagreement(&ray, &tri, &h, &err);
             prop_assert!(
                 axis.is_none(),
                 "barycentric point and ray.at(t) differ on axis {axis:?}"
@@ -305,8 +300,8 @@ fn check_triangle<V: Vector>(
         // finite (an infinite bound says the sign is not certain; proptest
         // found such a sliver, nearly collinear corners seen from 250 units,
         // reported Front where exact arithmetic says Back).
-        let n = support::cross(&support::sub(&b, &a), &support::sub(&c, &a));
-        let dn = support::dot(&d, &n);
+        let n = oracle::cross(&oracle::sub(&b, &a), &oracle::sub(&c, &a));
+        let dn = oracle::dot(&d, &n);
         let side = if dn < R::from_integer(0.into()) {
             Side::Front
         } else {
@@ -319,12 +314,12 @@ fn check_triangle<V: Vector>(
         );
     }
 
-    // Outside the rounding band (support::triangle_decided: the
+    // Outside the rounding band (oracle::triangle_decided: the
     // watertight test's bounds at the exact crossing, widened by
     // Moller-Trumbore's), both agree with exact arithmetic, and on the side.
     if let (Some(_), Some((ue, ve))) = (&exact.t, &exact.uv) {
-        let mte = support::mt_bounds(&ray, &tri, ue, ve);
-        if let Some(expect) = support::triangle_decided(&ray, &tri, &exact, t_max, &mte) {
+        let mte = oracle::mt_bounds(&ray, &tri, ue, ve);
+        if let Some(expect) = oracle::triangle_decided(&ray, &tri, &exact, t_max, &mte) {
             prop_assert_eq!(
                 wt.is_some(),
                 expect,
@@ -593,10 +588,10 @@ fn check_spawn<V: Vector>(tri: Triangle<V>, ray: Ray<V>, w: V) -> Result<(), Tes
     );
     // Exactly: the crossing with the triangle's plane is behind the origin.
     let (a, b, c) = (rv(tri.a), rv(tri.b), rv(tri.c));
-    let nn = support::cross(&support::sub(&b, &a), &support::sub(&c, &a));
+    let nn = oracle::cross(&oracle::sub(&b, &a), &oracle::sub(&c, &a));
     let (o, d) = (rv(spawned.origin), rv(spawned.dir));
-    let num = support::dot(&support::sub(&a, &o), &nn);
-    let den = support::dot(&d, &nn);
+    let num = oracle::dot(&oracle::sub(&a, &o), &nn);
+    let den = oracle::dot(&d, &nn);
     prop_assert!(
         den.is_zero() || (num / den) < R::from_integer(0.into()),
         "exact crossing in front of the spawned origin"
@@ -621,7 +616,7 @@ fn check_spawn_plane<V: Vector>(plane: Plane<V>, ray: Ray<V>, w: V) -> Result<()
         ray_plane(&spawned, &plane, inf).is_none(),
         "spawned ray re-hit its plane"
     );
-    let t = support::plane_t(&spawned, &plane).expect("not parallel");
+    let t = oracle::plane_t(&spawned, &plane).expect("not parallel");
     prop_assert!(
         t < R::from_integer(0.into()),
         "exact crossing in front of the spawned origin"

@@ -9,15 +9,15 @@
 //! - `quantize_bounds` gives the tightest bytes whose decoded box contains
 //!   the bounds it was given.
 
-mod support;
-
 use num_traits::{One, Signed, Zero};
+use rayhit::exact::oracle;
+use rayhit::exact::oracle::{R, r};
 use rayhit::glam::Vec3;
 use rayhit::{
     AabbBatchHits, PreparedRay, QuantizedChildren, Ray, Simd, SimdWork, TargetSimd,
     quantize_bounds, ray_aabb_batch, ray_quantized_children, with_simd,
 };
-use support::{Pcg32, R, r};
+use rayhit_testkit::source::Source;
 
 /// `2^k` exactly.
 fn pow2(k: i32) -> R {
@@ -40,7 +40,7 @@ struct Node {
 }
 
 impl Node {
-    fn random(rng: &mut Pcg32) -> Self {
+    fn random(rng: &mut Source) -> Self {
         let mut coordinate = || {
             let m = rng.range(0.5, 1.0) * rng.log2_range(-30.0, 30.0);
             (if rng.one_in(2) { -m } else { m }) as f32
@@ -96,7 +96,7 @@ impl Node {
 
 #[test]
 fn decoded_boxes_contain_the_exact_quantized_boxes() {
-    let mut rng = Pcg32::new(11);
+    let mut rng = Source::seeded(11);
     let mut children = 0;
     for _ in 0..4_000 {
         let node = Node::random(&mut rng);
@@ -156,7 +156,7 @@ impl SimdWork for ViaWithSimd<'_> {
 
 #[test]
 fn node_test_is_the_box_batch_on_the_decoded_boxes() {
-    let mut rng = Pcg32::new(12);
+    let mut rng = Source::seeded(12);
     let mut hits = 0;
     for i in 0..20_000 {
         let node = Node::random(&mut rng);
@@ -204,7 +204,7 @@ fn node_test_is_the_box_batch_on_the_decoded_boxes() {
 /// The exact interval of `t >= 0` in which the ray is inside an exact box,
 /// or `None` when it is empty.
 fn exact_hit(ray: &Ray, lo: &[R; 3], hi: &[R; 3]) -> bool {
-    let (o, d) = (support::rv(ray.origin), support::rv(ray.dir));
+    let (o, d) = (oracle::rv(ray.origin), oracle::rv(ray.dir));
     let (mut enter, mut exit): (R, Option<R>) = (R::zero(), None);
     for k in 0..3 {
         if d[k].is_zero() {
@@ -223,7 +223,7 @@ fn exact_hit(ray: &Ray, lo: &[R; 3], hi: &[R; 3]) -> bool {
 
 #[test]
 fn no_false_miss_against_the_exact_quantized_boxes() {
-    let mut rng = Pcg32::new(13);
+    let mut rng = Source::seeded(13);
     let (mut exact_hits, mut checked) = (0, 0);
     for _ in 0..10_000 {
         let node = Node::random(&mut rng);
@@ -239,14 +239,14 @@ fn no_false_miss_against_the_exact_quantized_boxes() {
         );
         // Aim at the nearest float to a corner, an edge point or the centre
         // of the exact box, from a random point around it.
-        let pick = |k: usize, rng: &mut Pcg32| -> f32 {
+        let pick = |k: usize, rng: &mut Source| -> f32 {
             let w = match rng.below(3) {
                 0 => R::zero(),
                 1 => R::one(),
                 _ => R::new(1.into(), 2.into()),
             };
             let x = &lo[k] + (&hi[k] - &lo[k]) * w;
-            support::to_f64(&x) as f32
+            oracle::to_f64(&x) as f32
         };
         let target = Vec3::new(pick(0, &mut rng), pick(1, &mut rng), pick(2, &mut rng));
         let span = (view.step() * 255.0)
@@ -278,14 +278,14 @@ fn no_false_miss_against_the_exact_quantized_boxes() {
 
 #[test]
 fn quantize_bounds_is_tight_and_conservative() {
-    let mut rng = Pcg32::new(14);
+    let mut rng = Source::seeded(14);
     let mut some = 0;
     for _ in 0..50_000 {
         let node = Node::random(&mut rng);
         let (p, e) = (node.origin.x, node.exponents[0]);
         let s = f32::from_bits(u32::from(e) << 23);
         // Bounds inside (mostly) or around the node's extent.
-        let x = |rng: &mut Pcg32| p + s * rng.range(-8.0, 263.0) as f32;
+        let x = |rng: &mut Source| p + s * rng.range(-8.0, 263.0) as f32;
         let (a, b) = (x(&mut rng), x(&mut rng));
         let (min, max) = (a.min(b), a.max(b));
         let decoded = |q: (u8, u8)| {

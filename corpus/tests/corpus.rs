@@ -16,22 +16,25 @@
 //! Regenerate only for a deliberate change of guarantee (see CONTRIBUTING.md):
 //! `RAYHIT_REGENERATE_CORPUS=1 cargo test --release -p rayhit-corpus --test corpus`.
 
-#[path = "../../tests/support/mod.rs"]
-mod support;
-
 use std::fmt::Write as _;
 use std::path::PathBuf;
 
 use num_traits::Signed;
 use rayhit::exact;
+use rayhit::exact::oracle;
+use rayhit::exact::oracle::{R, gamma, r, rv};
 use rayhit::glam::{DVec3, Vec3};
 use rayhit::{
     Aabb, BoxFace, Plane, Ray, Scalar, Side, Triangle, Vector, ray_aabb, ray_aabb_face,
     ray_aabb_naive, ray_plane, ray_plane_t_error, ray_triangle, ray_triangle_error_bounds,
     ray_triangle_mt, ray_triangle_one_hit,
 };
-use support::generators::*;
-use support::{Pcg32, R, gamma, r, rv};
+use rayhit_testkit::cases::Generator;
+use rayhit_testkit::cases::boxes;
+use rayhit_testkit::cases::boxes::BoxCase;
+use rayhit_testkit::cases::planes;
+use rayhit_testkit::cases::triangles::{self, TriCase};
+use rayhit_testkit::source::Source;
 
 type S<V> = <V as Vector>::Scalar;
 
@@ -99,7 +102,7 @@ impl Fields<'_> {
 
 /// The float of precision `F` nearest to an exact value.
 fn nearest<F: Scalar>(x: &R) -> F {
-    let c = F::from_f64(support::to_f64(x));
+    let c = F::from_f64(oracle::to_f64(x));
     [c.next_down(), c, c.next_up()]
         .into_iter()
         .filter(|y| y.is_finite())
@@ -155,9 +158,9 @@ fn read(kernel: &str, precision: &str) -> Vec<String> {
 
 /// Draws `CASES` cases round-robin from the generators.
 fn draw<C>(generators: &[Generator<C>]) -> Vec<C> {
-    let mut rngs: Vec<Pcg32> = generators
+    let mut rngs: Vec<Source> = generators
         .iter()
-        .map(|(_, seed, _)| Pcg32::new(seed * 1000 + 7))
+        .map(|(_, seed, _)| Source::seeded(seed * 1000 + 7))
         .collect();
     (0..CASES)
         .map(|i| {
@@ -213,7 +216,7 @@ fn box_line<V: Vector>((b, ray, t_max): &BoxCase<V>) -> Option<String> {
     if !(ray.is_valid() && b.is_valid()) {
         return None;
     }
-    let raw = support::box_raw(ray, b, *t_max);
+    let raw = oracle::box_raw(ray, b, *t_max);
     // The precondition of the slab test's guarantees (see the oracle suite).
     let half_max = r(S::<V>::MAX) / R::from_integer(2.into());
     if raw
@@ -222,12 +225,12 @@ fn box_line<V: Vector>((b, ray, t_max): &BoxCase<V>) -> Option<String> {
     {
         return None;
     }
-    let answer = match support::box_interval(ray, b, *t_max) {
+    let answer = match oracle::box_interval(ray, b, *t_max) {
         Some((e, x)) => format!(
             "hit {} {} {}",
             hex(nearest::<S<V>>(&e)),
             hex(nearest::<S<V>>(&x)),
-            face_name(support::box_face(ray, b).0)
+            face_name(oracle::box_face(ray, b).0)
         ),
         None => "miss".into(),
     };
@@ -288,7 +291,7 @@ fn check_boxes<V: Vector>(lines: &[String]) -> Failures {
             let half = |y: S<V>| ulp(y) / R::from_integer(2.into());
             let entry_ok =
                 (r(e) - r(ee)).abs() <= gamma::<S<V>>(3) * (r(ee).abs() + half(ee)) + half(ee);
-            let banded = !support::reciprocal_overflows(ray.dir);
+            let banded = !oracle::reciprocal_overflows(ray.dir);
             fail.check(!banded || entry_ok, i, || {
                 format!("slab entry {e:?} vs exact {ee:?}")
             });
@@ -315,13 +318,13 @@ fn tri_line<V: Vector>((tri, ray, t_max): &TriCase<V>) -> Option<String> {
     if !(ray.is_valid() && n.is_finite() && n != V::ZERO) {
         return None;
     }
-    let ex = support::triangle(ray, tri);
-    let limit = support::limit(*t_max);
+    let ex = oracle::triangle(ray, tri);
+    let limit = oracle::limit(*t_max);
     let answer = if ex.hits(&limit) {
         let (t, (u, v)) = (ex.t.clone().unwrap(), ex.uv.clone().unwrap());
         let (a, b, c) = (rv(tri.a), rv(tri.b), rv(tri.c));
-        let nn = support::cross(&support::sub(&b, &a), &support::sub(&c, &a));
-        let side = if support::dot(&rv(ray.dir), &nn).is_negative() {
+        let nn = oracle::cross(&oracle::sub(&b, &a), &oracle::sub(&c, &a));
+        let side = if oracle::dot(&rv(ray.dir), &nn).is_negative() {
             "front"
         } else {
             "back"
@@ -417,7 +420,7 @@ fn plane_line<V: Vector>((plane, ray, t_max): &(Plane<V>, Ray<V>, S<V>)) -> Opti
     if !ray.is_valid() {
         return None;
     }
-    let exact = support::plane_hit(ray, plane, *t_max);
+    let exact = oracle::plane_hit(ray, plane, *t_max);
     let answer = match &exact {
         Some(t) => format!("hit {}", hex(nearest::<S<V>>(t))),
         None => "miss".into(),
@@ -469,18 +472,18 @@ fn check_planes<V: Vector>(lines: &[String]) -> Failures {
 fn corpus<V: Vector>() {
     let p = precision::<V>();
     if regenerate() {
-        let boxes: Vec<String> = draw(&box_generators::<V>())
+        let boxes: Vec<String> = draw(&boxes::generators::<V>())
             .iter()
             .filter_map(box_line)
             .collect();
         write("box", p, BOX_HEADER, &boxes);
-        let tris: Vec<String> = draw(&triangle_generators::<V>())
+        let tris: Vec<String> = draw(&triangles::generators::<V>())
             .iter()
             .filter_map(tri_line)
             .collect();
         write("triangle", p, TRI_HEADER, &tris);
         let planes: Vec<String> =
-            draw::<(Plane<V>, Ray<V>, S<V>)>(&[("plane", 21, gen_plane::<V>)])
+            draw::<(Plane<V>, Ray<V>, S<V>)>(&[("plane", 21, planes::plane::<V>)])
                 .iter()
                 .filter_map(plane_line)
                 .collect();

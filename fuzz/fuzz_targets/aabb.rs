@@ -1,4 +1,4 @@
-//! Fuzz target `aabb`: see `rayhit_fuzz::targets::aabb` for the input layout and the checks.
+//! Fuzz target `aabb`: see `rayhit_testkit::fuzz::targets::aabb` for the input layout and the checks.
 #![no_main]
 
-libfuzzer_sys::fuzz_target!(|data: &[u8]| rayhit_fuzz::targets::aabb(data));
+libfuzzer_sys::fuzz_target!(|data: &[u8]| rayhit_testkit::fuzz::targets::aabb(data));

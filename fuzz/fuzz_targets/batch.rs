@@ -1,4 +1,4 @@
-//! Fuzz target `batch`: see `rayhit_fuzz::targets::batch` for the input layout and the checks.
+//! Fuzz target `batch`: see `rayhit_testkit::fuzz::targets::batch` for the input layout and the checks.
 #![no_main]
 
-libfuzzer_sys::fuzz_target!(|data: &[u8]| rayhit_fuzz::targets::batch(data));
+libfuzzer_sys::fuzz_target!(|data: &[u8]| rayhit_testkit::fuzz::targets::batch(data));

@@ -1,4 +1,4 @@
-//! Fuzz target `camera`: see `rayhit_fuzz::targets::camera` for the input layout and the checks.
+//! Fuzz target `camera`: see `rayhit_testkit::fuzz::targets::camera` for the input layout and the checks.
 #![no_main]
 
-libfuzzer_sys::fuzz_target!(|data: &[u8]| rayhit_fuzz::targets::camera(data));
+libfuzzer_sys::fuzz_target!(|data: &[u8]| rayhit_testkit::fuzz::targets::camera(data));

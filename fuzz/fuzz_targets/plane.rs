@@ -1,4 +1,4 @@
-//! Fuzz target `plane`: see `rayhit_fuzz::targets::plane` for the input layout and the checks.
+//! Fuzz target `plane`: see `rayhit_testkit::fuzz::targets::plane` for the input layout and the checks.
 #![no_main]
 
-libfuzzer_sys::fuzz_target!(|data: &[u8]| rayhit_fuzz::targets::plane(data));
+libfuzzer_sys::fuzz_target!(|data: &[u8]| rayhit_testkit::fuzz::targets::plane(data));

@@ -1,4 +1,4 @@
-//! Fuzz target `spawn`: see `rayhit_fuzz::targets::spawn` for the input layout and the checks.
+//! Fuzz target `spawn`: see `rayhit_testkit::fuzz::targets::spawn` for the input layout and the checks.
 #![no_main]
 
-libfuzzer_sys::fuzz_target!(|data: &[u8]| rayhit_fuzz::targets::spawn(data));
+libfuzzer_sys::fuzz_target!(|data: &[u8]| rayhit_testkit::fuzz::targets::spawn(data));

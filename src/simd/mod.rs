@@ -41,5 +41,7 @@ pub use avx2::Avx2;
 #[cfg(rayhit_runtime_avx)]
 pub use avx512::Avx512;
 pub use dispatch::TargetSimd;
-pub(crate) use dispatch::{Isa, Kernel, Work, per_call};
+#[cfg(rayhit_runtime_avx)]
+pub(crate) use dispatch::Work;
+pub(crate) use dispatch::{Isa, Kernel, per_call};
 pub(crate) use rows::{check_lanes, lanes_at, put};

@@ -11,10 +11,7 @@
 //!
 //! The traversal itself is `Scene::rayhit_closest` in `src/cwbvh.rs`.
 
-// The module also holds the benchmark's pieces, which this example does not use.
-#[allow(dead_code)]
-#[path = "../src/cwbvh.rs"]
-mod cwbvh;
+use rayhit_peers::cwbvh;
 
 fn main() {
     for mesh in [cwbvh::Mesh::torus(250, 200), cwbvh::Mesh::icosphere(6)] {

@@ -12,11 +12,9 @@
 
 use std::time::Duration;
 
-// The icosahedron and its subdivision, shared with the tests and the demo
-// (the rest of the file is theirs).
-#[path = "../../../tests/support/mesh.rs"]
-#[allow(dead_code)]
-mod mesh;
+// The icosahedron and its subdivision, shared with the tests and the demo.
+use rayhit_testkit::mesh;
+use rayhit_testkit::rng::Pcg32;
 
 use obvhs::cwbvh::CwBvh;
 use obvhs::cwbvh::builder::build_cwbvh_from_tris;
@@ -136,7 +134,7 @@ pub struct LeakRays {
 impl LeakRays {
     /// `count` rays of each kind, from the mesh's vertices and edge midpoints.
     pub fn new(mesh: &Mesh, count: usize, seed: u64) -> Self {
-        let mut rng = workloads_rng(seed);
+        let mut rng = Pcg32::new(seed);
         // Every vertex's star (the faces around it).
         let mut star: Vec<Vec<u32>> = vec![Vec::new(); mesh.vertices.len()];
         for (i, f) in mesh.faces.iter().enumerate() {
@@ -144,16 +142,16 @@ impl LeakRays {
                 star[v as usize].push(i as u32);
             }
         }
-        let interior = |target: Vec3, rng: &mut rand_like::Rng| -> Vec3 {
+        let interior = |target: Vec3, rng: &mut Pcg32| -> Vec3 {
             // A point inside the solid near the target: on the torus's core
             // circle, or inside the sphere, on the grid.
             let t = target.as_dvec3();
             if mesh.name == "torus" {
                 let a = t.y.atan2(t.x);
-                let j = rng.unit() * 0.2 - 0.1;
+                let j = f64::from(rng.unit()) * 0.2 - 0.1;
                 snap3(2.0 * a.cos() + j, 2.0 * a.sin() - j, j)
             } else {
-                let s = 0.2 + 0.5 * rng.unit();
+                let s = 0.2 + 0.5 * f64::from(rng.unit());
                 snap3(t.x * s, t.y * s, t.z * s)
             }
         };
@@ -177,7 +175,7 @@ impl LeakRays {
                     .map(|&i| mesh.normal(mesh.faces[i as usize]))
                     .fold([0.0; 3], |s, n| [s[0] + n[0], s[1] + n[1], s[2] + n[2]]);
                 let len = (n[0] * n[0] + n[1] * n[1] + n[2] * n[2]).sqrt();
-                let j = |rng: &mut rand_like::Rng| 0.3 * (rng.unit() - 0.5);
+                let j = |rng: &mut Pcg32| 0.3 * (f64::from(rng.unit()) - 0.5);
                 let t = target.as_dvec3();
                 let o = snap3(
                     t.x + n[0] / len + j(&mut rng),
@@ -197,37 +195,6 @@ impl LeakRays {
         }
         LeakRays { inside, outside }
     }
-}
-
-/// A tiny PCG for the ray generator (the workloads' is behind `#[path]` in
-/// main.rs; this module stands alone).
-mod rand_like {
-    pub struct Rng(u64);
-    impl Rng {
-        pub fn new(seed: u64) -> Self {
-            Rng(seed
-                .wrapping_mul(6_364_136_223_846_793_005)
-                .wrapping_add(1_442_695_040_888_963_407))
-        }
-        pub fn next(&mut self) -> u32 {
-            self.0 = self
-                .0
-                .wrapping_mul(6_364_136_223_846_793_005)
-                .wrapping_add(1_442_695_040_888_963_407);
-            let x = (((self.0 >> 18) ^ self.0) >> 27) as u32;
-            x.rotate_right((self.0 >> 59) as u32)
-        }
-        pub fn below(&mut self, n: u32) -> u32 {
-            ((u64::from(self.next()) * u64::from(n)) >> 32) as u32
-        }
-        pub fn unit(&mut self) -> f64 {
-            f64::from(self.next()) / 4_294_967_296.0
-        }
-    }
-}
-
-fn workloads_rng(seed: u64) -> rand_like::Rng {
-    rand_like::Rng::new(seed)
 }
 
 /// A mesh's CWBVH, built by obvhs, and its triangles in both crates' types.

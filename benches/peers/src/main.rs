@@ -22,11 +22,6 @@
 //! triangle test, which drops back faces, that is rayhit's hits from the
 //! front side; for every other kernel rayhit's two-sided answer.
 
-#[path = "../../workloads/mod.rs"]
-mod workloads;
-
-mod cwbvh;
-
 use std::cell::Cell;
 use std::hint::black_box;
 use std::time::{Duration, Instant};
@@ -58,7 +53,9 @@ use rayhit::{
     TriangleBatchHits, ValidAabb, ray_aabb, ray_aabb_batch, ray_aabb_prepared, ray_triangle,
     ray_triangle_batch, ray_triangle_mt, ray_triangle_prepared, with_simd,
 };
-use workloads::*;
+use rayhit_peers::cwbvh;
+use rayhit_testkit::rng::Pcg32;
+use rayhit_testkit::workloads::*;
 
 const INF: f32 = f32::INFINITY;
 const ROUNDS: usize = 31;

@@ -5,9 +5,9 @@
 //! lanes, and how many lanes are filled (0 to all); then `t_max` and the
 //! ray, then one shape per filled lane. Raw mode: every float a raw bit
 //! pattern (most shapes invalid, so most lanes empty). Structured mode: the
-//! ray is aimed at the first shape ([`inputs::aabb_and_ray`],
-//! [`inputs::triangle_and_ray`]) and the other shapes are drawn near it, so
-//! that several lanes hit at once.
+//! ray is aimed at the first shape ([`cases::boxes::uniform`],
+//! [`cases::triangles::with_fillers`]) and the other shapes are drawn near
+//! it, so that several lanes hit at once.
 //!
 //! Checks: each lane's answer is bit for bit the scalar kernel's on that
 //! lane's shape (`ray_aabb_prepared`'s entry for boxes; `ray_triangle` and
@@ -15,42 +15,45 @@
 //! lanes never hit, the batch stores each valid shape as given, and
 //! `nearest` is the smallest `t` (lowest lane among equals).
 
-use arbitrary::{Arbitrary, Unstructured};
+use arbitrary::Arbitrary;
 use rayhit::{
-    Aabb, AabbBatch, PreparedRay, Ray, Scalar, Triangle, TriangleBatch, TriangleHit, Vector,
-    ray_aabb_batch, ray_aabb_prepared, ray_triangle, ray_triangle_batch, ray_triangle_prepared,
+    Aabb, AabbBatch, PreparedRay, Ray, Scalar, Triangle, TriangleBatch, Vector, ray_aabb_batch,
+    ray_aabb_prepared, ray_triangle, ray_triangle_batch, ray_triangle_prepared,
 };
 
-use crate::{Check, Mode, S, inputs, raw};
+use super::{Check, Input, S, raw};
+use crate::bits::{bits, hit_bits};
+use crate::cases;
+use crate::source::Source;
+use rayhit::strategies;
 
 /// The `batch` target.
 #[derive(Debug)]
 pub struct Batch;
 
 impl Check for Batch {
-    fn run<'a, V>(u: &mut Unstructured<'a>, mode: Mode)
+    fn run<'a, V>(input: &mut Input<'a>)
     where
         V: Vector,
         S<V>: Arbitrary<'a> + Scalar,
     {
-        let layout = raw::<u8>(u);
+        let layout = match input {
+            Input::Raw(u) => raw::<u8>(u),
+            Input::Structured(src) => src.below(256) as u8,
+        };
         let triangles = layout & 1 != 0;
         let sixteen = layout & 2 != 0;
         let lanes = if sixteen { 16 } else { 8 };
         let filled = usize::from(layout >> 2) % (lanes + 1);
-        let t_max = match mode {
-            Mode::Raw => raw::<S<V>>(u),
-            Mode::Structured => inputs::t_max::<V>(u),
-        };
         if triangles {
-            let (ray, tris) = triangle_inputs::<V>(u, mode, filled);
+            let (ray, tris, t_max) = triangle_inputs::<V>(input, filled);
             if sixteen {
                 check_triangles::<V, 16>(&ray, &tris, t_max);
             } else {
                 check_triangles::<V, 8>(&ray, &tris, t_max);
             }
         } else {
-            let (ray, boxes) = box_inputs::<V>(u, mode, filled);
+            let (ray, boxes, t_max) = box_inputs::<V>(input, filled);
             if sixteen {
                 check_boxes::<V, 16>(&ray, &boxes, t_max);
             } else {
@@ -60,85 +63,79 @@ impl Check for Batch {
     }
 }
 
-/// A ray and `n` shapes: raw bit patterns, or (structured) the first shape
-/// with a ray aimed at it from `first`, and each further one from
-/// `next(u, first, previous)`.
+/// A ray, `n` shapes and `t_max`: raw bit patterns, or (structured) the
+/// first shape with a ray aimed at it and `t_max` from `first`, and each
+/// further one from `next(src, first, previous)`.
 fn shapes<'a, V, T>(
-    u: &mut Unstructured<'a>,
-    mode: Mode,
+    input: &mut Input<'a>,
     n: usize,
-    first: impl FnOnce(&mut Unstructured<'a>) -> (T, Ray<V>),
-    next: impl Fn(&mut Unstructured<'a>, &T, &T) -> T,
-) -> (Ray<V>, Vec<T>)
+    first: impl FnOnce(&mut Source) -> (T, Ray<V>, S<V>),
+    next: impl Fn(&mut Source, &T, &T) -> T,
+) -> (Ray<V>, Vec<T>, S<V>)
 where
     V: Vector,
     S<V>: Arbitrary<'a> + Scalar,
     T: Arbitrary<'a> + Default + Copy,
 {
-    match mode {
-        Mode::Raw => {
-            let ray = raw::<Ray<V>>(u);
-            (ray, (0..n).map(|_| raw::<T>(u)).collect())
+    match input {
+        Input::Raw(u) => {
+            let (t_max, ray) = (raw::<S<V>>(u), raw::<Ray<V>>(u));
+            (ray, (0..n).map(|_| raw::<T>(u)).collect(), t_max)
         }
-        Mode::Structured => {
-            let (head, ray) = first(u);
+        Input::Structured(src) => {
+            let (head, ray, t_max) = first(src);
             let mut all = vec![head];
             while all.len() < n {
-                let shape = next(u, &head, &all[all.len() - 1]);
+                let shape = next(src, &head, &all[all.len() - 1]);
                 all.push(shape);
             }
             all.truncate(n);
-            (ray, all)
+            (ray, all, t_max)
         }
     }
 }
 
-/// A ray and `n` boxes: raw, or the first box with a ray aimed at it and
-/// the others moved to within their own size of it.
-fn box_inputs<'a, V>(u: &mut Unstructured<'a>, mode: Mode, n: usize) -> (Ray<V>, Vec<Aabb<V>>)
+/// A ray, `n` boxes and `t_max`: raw, or the first box with a ray aimed at
+/// it and the others moved to within their own size of it.
+fn box_inputs<'a, V>(input: &mut Input<'a>, n: usize) -> (Ray<V>, Vec<Aabb<V>>, S<V>)
 where
     V: Vector,
     S<V>: Arbitrary<'a> + Scalar,
 {
-    shapes(u, mode, n, inputs::aabb_and_ray::<V>, |u, first, _| {
-        let b = inputs::aabb::<V>(u);
-        near(u, &first.min, &b.min, &b.max).unwrap_or(b)
+    shapes(input, n, cases::boxes::uniform::<V>, |src, first, _| {
+        let b = src.draw(&strategies::aabb::<V>()).unwrap_or(*first);
+        near(src, &first.min, &b.min, &b.max).unwrap_or(b)
     })
 }
 
 /// `b` translated so that its `min` lands within its size of `anchor`, or
 /// `None` if that rounds it out of shape.
-fn near<V: Vector>(u: &mut Unstructured, anchor: &V, min: &V, max: &V) -> Option<Aabb<V>> {
-    let size = inputs::c(*max - *min);
-    let a = inputs::c(*anchor);
-    let shift: [f64; 3] = [0, 1, 2].map(|k| a[k] + inputs::range(u, -size[k], size[k]));
-    let lo = inputs::v::<V>(shift);
-    let hi = inputs::v::<V>([0, 1, 2].map(|k| shift[k] + size[k]));
+fn near<V: Vector>(src: &mut Source, anchor: &V, min: &V, max: &V) -> Option<Aabb<V>> {
+    let size = cases::c(*max - *min);
+    let a = cases::c(*anchor);
+    let shift: [f64; 3] = [0, 1, 2].map(|k| a[k] + src.range(-size[k], size[k]));
+    let lo = cases::v::<V>(shift);
+    let hi = cases::v::<V>([0, 1, 2].map(|k| shift[k] + size[k]));
     let b = Aabb::new(lo, hi);
     b.is_valid().then_some(b)
 }
 
-/// A ray and `n` triangles: raw, or the first triangle with a ray aimed at
-/// it and the others continuing a fan around its first corner or the
-/// previous triangle's edge (so that lanes tie at shared edges and
+/// A ray, `n` triangles and `t_max`: raw, or the first triangle with a ray
+/// aimed at it and the others continuing a fan around its first corner or
+/// the previous triangle's edge (so that lanes tie at shared edges and
 /// corners, bit for bit), or drawn anew.
-fn triangle_inputs<'a, V>(
-    u: &mut Unstructured<'a>,
-    mode: Mode,
-    n: usize,
-) -> (Ray<V>, Vec<Triangle<V>>)
+fn triangle_inputs<'a, V>(input: &mut Input<'a>, n: usize) -> (Ray<V>, Vec<Triangle<V>>, S<V>)
 where
     V: Vector,
     S<V>: Arbitrary<'a> + Scalar,
 {
     shapes(
-        u,
-        mode,
+        input,
         n,
-        inputs::triangle_and_ray::<V>,
-        |u, first, prev| {
-            let t = inputs::triangle::<V>(u);
-            match inputs::index(u, 3) {
+        cases::triangles::with_fillers::<V>,
+        |src, first, prev| {
+            let t = cases::triangles::any_triangle::<V>(src);
+            match src.index(3) {
                 0 => Triangle::new(first.a, prev.c, t.c),
                 1 => Triangle::new(prev.b, prev.a, t.c),
                 _ => t,
@@ -158,7 +155,7 @@ fn check_boxes<V: Vector, const N: usize>(ray: &Ray<V>, boxes: &[Aabb<V>], t_max
             .and_then(|b| ray_aabb_prepared(&prepared, b, t_max))
             .map(|(enter, _)| enter);
         assert!(
-            bits(hits.get(lane)) == bits(scalar),
+            hits.get(lane).map(bits) == scalar.map(bits),
             "lane {lane}: batch {:?}, scalar {scalar:?}: {}",
             hits.get(lane),
             ctx()
@@ -195,22 +192,7 @@ fn check_triangles<V: Vector, const N: usize>(ray: &Ray<V>, tris: &[Triangle<V>]
             nearest = Some((lane, h.t));
         }
     }
-    let found = hits
-        .nearest()
-        .map(|(lane, h)| (lane, h.t.to_f64().to_bits()));
-    let expected = nearest.map(|(lane, t)| (lane, t.to_f64().to_bits()));
+    let found = hits.nearest().map(|(lane, h)| (lane, bits(h.t)));
+    let expected = nearest.map(|(lane, t)| (lane, bits(t)));
     assert_eq!(found, expected, "nearest: {}", ctx());
-}
-
-fn bits<F: Scalar>(x: Option<F>) -> Option<u64> {
-    x.map(|x| x.to_f64().to_bits())
-}
-
-fn hit_bits<F: Scalar>(h: Option<TriangleHit<F>>) -> Option<([u64; 3], bool)> {
-    h.map(|h| {
-        (
-            [h.t, h.u, h.v].map(|x| x.to_f64().to_bits()),
-            h.side == rayhit::Side::Front,
-        )
-    })
 }

@@ -3,8 +3,8 @@
 //!
 //! Input: raw mode, a `Triangle`, a `Ray` and a new direction as raw bits
 //! (then a plane, a ray and a direction, then five raw vectors for a direct
-//! call); structured mode, [`inputs::triangle_and_ray`] or
-//! [`inputs::plane_and_ray`] and a new direction: random (3 in 4) or nearly in
+//! call); structured mode, [`cases::triangles::with_fillers`] or
+//! [`cases::planes::plane`] and a new direction: random (3 in 4) or nearly in
 //! the surface (an edge direction plus `2^-k` times the normal, `k` up to
 //! 40), to press on the precondition.
 //!
@@ -13,32 +13,35 @@
 //! input returns the point unchanged (bit for bit); and where the documented
 //! precondition holds (`|dir . normal| > sum |dir_i| normal_error_i`, decided
 //! exactly, and the origin moved; for planes also the dot product's own
-//! rounding, see [`precondition`]): the new origin lies strictly on the side
+//! rounding, see `precondition`): the new origin lies strictly on the side
 //! of the exact plane that `dir` points into (exactly), and the new ray
 //! never hits the triangle again, with either the closed or the one-hit rule.
 
-use arbitrary::{Arbitrary, Unstructured};
+use arbitrary::Arbitrary;
 use rayhit::{
     Plane, Ray, Scalar, Triangle, Vector, offset_ray_origin, ray_plane, ray_plane_hit_point,
     ray_triangle, ray_triangle_one_hit, triangle_hit_point,
 };
 
-use crate::exact::{R, abs, cross, dot, gamma, int, rv, sub};
-use crate::{Check, Mode, S, inputs, product_far_from_underflow, raw, raw_vec};
+use super::exact::{R, abs, cross, dot, gamma, int, rv, sub};
+use super::{Check, Input, S, product_far_from_underflow, raw, raw_vec};
+use crate::bits::payload_bits;
+use crate::cases;
+use crate::source::Source;
 
 /// The `spawn` target.
 #[derive(Debug)]
 pub struct Spawn;
 
 impl Check for Spawn {
-    fn run<'a, V>(u: &mut Unstructured<'a>, mode: Mode)
+    fn run<'a, V>(input: &mut Input<'a>)
     where
         V: Vector,
         S<V>: Arbitrary<'a> + Scalar,
     {
         let inf = S::<V>::INFINITY;
-        match mode {
-            Mode::Raw => {
+        match input {
+            Input::Raw(u) => {
                 let (tri, ray, dir) = (
                     raw::<Triangle<V>>(u),
                     raw::<rayhit::Ray<V>>(u),
@@ -60,7 +63,7 @@ impl Check for Spawn {
                 );
                 if let Some(t) = ray_plane(&ray, &plane, inf) {
                     let (p, perr) = ray_plane_hit_point(&ray, &plane, t);
-                    let bounded = crate::plane::no_underflow(&ray, &plane)
+                    let bounded = super::plane::no_underflow(&ray, &plane)
                         && in_normal_range(&[plane.point, plane.normal, p, perr, dir]);
                     spawn_plane(&plane, p, perr, dir, bounded);
                 }
@@ -78,27 +81,31 @@ impl Check for Spawn {
                     && ne.is_finite()
                     && d.is_finite())
                 {
-                    assert_eq!(bits(o), bits(p), "non-finite input moved the point");
+                    assert_eq!(
+                        payload_bits(o),
+                        payload_bits(p),
+                        "non-finite input moved the point"
+                    );
                 }
             }
-            Mode::Structured => {
-                if inputs::index(u, 4) == 0 {
-                    let (plane, ray) = inputs::plane_and_ray::<V>(u);
+            Input::Structured(src) => {
+                if src.index(4) == 0 {
+                    let (plane, ray, _) = cases::planes::plane::<V>(src);
                     let Some(t) = ray_plane(&ray, &plane, inf) else {
                         return;
                     };
                     let (p, perr) = ray_plane_hit_point(&ray, &plane, t);
                     // A direction in the plane (rounded): normal x random.
-                    let along = plane.normal.cross(inputs::direction::<V>(u));
-                    let dir = new_dir(u, plane.normal, along);
+                    let along = plane.normal.cross(cases::direction::<V>(src));
+                    let dir = new_dir(src, plane.normal, along);
                     spawn_plane(&plane, p, perr, dir, true);
                 } else {
-                    let (tri, ray) = inputs::triangle_and_ray::<V>(u);
+                    let (tri, ray, _) = cases::triangles::with_fillers::<V>(src);
                     let Some(hit) = ray_triangle(&ray, &tri, inf) else {
                         return;
                     };
                     let (p, perr) = triangle_hit_point(&tri, &hit);
-                    let dir = new_dir(u, tri.normal(), tri.b - tri.a);
+                    let dir = new_dir(src, tri.normal(), tri.b - tri.a);
                     spawn_triangle(&tri, p, perr, dir, true);
                 }
             }
@@ -108,19 +115,15 @@ impl Check for Spawn {
 
 /// A random direction, or one nearly in the surface: `along` (a direction
 /// in the surface, or nearly) plus `2^-k` times the normal, either sign.
-fn new_dir<V: Vector>(u: &mut Unstructured, normal: V, along: V) -> V {
-    if inputs::index(u, 4) != 0 || !(along.length() > S::<V>::ZERO) {
-        return inputs::direction::<V>(u);
+fn new_dir<V: Vector>(src: &mut Source, normal: V, along: V) -> V {
+    if src.index(4) != 0 || !(along.length() > S::<V>::ZERO) {
+        return cases::direction::<V>(src);
     }
-    let k = inputs::index(u, 41) as i32;
-    let sign = if inputs::index(u, 2) == 0 { 1.0 } else { -1.0 };
+    let k = src.index(41) as i32;
+    let sign = src.sign();
     let n = normal * (S::<V>::ONE / normal.length());
     let a = along * (S::<V>::ONE / along.length());
-    a + n * inputs::s::<V>(sign * 2f64.powi(-k))
-}
-
-fn bits<V: Vector>(v: V) -> [u64; 3] {
-    [0, 1, 2].map(|k| v[k].to_f64().to_bits())
+    a + n * S::<V>::from_f64(sign * 2f64.powi(-k))
 }
 
 /// Raw inputs: the bounds of `triangle_hit_point` and `normal_with_error`
@@ -143,7 +146,7 @@ fn in_normal_range<V: Vector>(vs: &[V]) -> bool {
 }
 
 /// The products `triangle_hit_point` and `normal_with_error` form are far
-/// from underflow ([`crate::far_from_underflow`]): `u (b - a)_j`,
+/// from underflow ([`super::far_from_underflow`]): `u (b - a)_j`,
 /// `v (c - a)_j` and `(b - a)_j (c - a)_k`.
 fn triangle_no_underflow<V: Vector>(tri: &Triangle<V>, u: S<V>, v: S<V>) -> bool {
     let (e1, e2) = (tri.b - tri.a, tri.c - tri.a);
@@ -210,16 +213,19 @@ fn offset_to_dir_side<V: Vector>(
             surface()
         )
     };
-    if !crate::exact::all_finite(&[p, perr, n, nerr, dir]) {
+    if !super::exact::all_finite(&[p, perr, n, nerr, dir]) {
         assert_eq!(
-            bits(origin),
-            bits(p),
+            payload_bits(origin),
+            payload_bits(p),
             "non-finite input moved the point: {}",
             ctx()
         );
         return None;
     }
-    if !bounded || !precondition(dir, n, nerr, dot_rounding) || bits(origin) == bits(p) {
+    if !bounded
+        || !precondition(dir, n, nerr, dot_rounding)
+        || payload_bits(origin) == payload_bits(p)
+    {
         return None;
     }
     assert!(

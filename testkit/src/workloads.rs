@@ -18,7 +18,6 @@
 //!   aimed into (a BVH node's children or a leaf's triangles).
 //!
 //! All of it is `f32`.
-#![allow(dead_code)]
 
 use rayhit::glam::Vec3;
 use rayhit::{Aabb, PinholeCamera, Plane, Ray, Triangle};
@@ -28,73 +27,45 @@ pub const PAIRS: usize = 4096;
 /// Shapes per group in the `groups` workloads.
 pub const GROUP: usize = 8;
 
-#[path = "../../tests/support/pcg.rs"]
-mod pcg;
-pub use pcg::Pcg32;
-
-/// The workloads' `f32` draws (the generator is the oracle suite's).
-impl Pcg32 {
-    /// Uniform in `[0, 1)`, 24 random bits.
-    pub fn unit(&mut self) -> f32 {
-        (self.next_u32() >> 8) as f32 * (1.0 / 16_777_216.0)
-    }
-
-    /// Uniform in `[lo, hi)`.
-    pub fn range(&mut self, lo: f32, hi: f32) -> f32 {
-        lo + (hi - lo) * self.unit()
-    }
-
-    /// A point uniform in the cube `[-s, s]^3`.
-    pub fn cube(&mut self, s: f32) -> Vec3 {
-        Vec3::new(self.range(-s, s), self.range(-s, s), self.range(-s, s))
-    }
-
-    /// A unit vector uniform on the sphere.
-    pub fn sphere(&mut self) -> Vec3 {
-        loop {
-            let p = self.cube(1.0);
-            let l2 = p.length_squared();
-            if l2 > 0.01 && l2 <= 1.0 {
-                return p / l2.sqrt();
-            }
-        }
-    }
-
-    /// A unit vector along a random axis, either sign.
-    pub fn axis(&mut self) -> Vec3 {
-        let mut d = Vec3::ZERO;
-        d[self.below(3) as usize] = if self.below(2) == 0 { 1.0 } else { -1.0 };
-        d
-    }
-}
+use crate::rng::Pcg32;
 
 /// A named list of ray/box pairs.
 #[derive(Clone, Debug)]
 pub struct BoxWorkload {
+    /// How the rays relate to the boxes (see the module docs).
     pub name: &'static str,
+    /// The rays, one per pair.
     pub rays: Vec<Ray>,
+    /// The boxes, one per pair.
     pub boxes: Vec<Aabb>,
 }
 
 /// A named list of ray/triangle pairs.
 #[derive(Clone, Debug)]
 pub struct TriangleWorkload {
+    /// How the rays relate to the triangles (see the module docs).
     pub name: &'static str,
+    /// The rays, one per pair.
     pub rays: Vec<Ray>,
+    /// The triangles, one per pair.
     pub triangles: Vec<Triangle>,
 }
 
 /// `groups` workloads: ray `i` against shapes `GROUP * i .. GROUP * (i + 1)`.
 #[derive(Clone, Debug)]
 pub struct BoxGroups {
+    /// The rays.
     pub rays: Vec<Ray>,
+    /// `GROUP` boxes per ray.
     pub boxes: Vec<Aabb>,
 }
 
 /// See [`BoxGroups`].
 #[derive(Clone, Debug)]
 pub struct TriangleGroups {
+    /// The rays.
     pub rays: Vec<Ray>,
+    /// `GROUP` triangles per ray.
     pub triangles: Vec<Triangle>,
 }
 

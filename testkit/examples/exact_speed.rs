@@ -1,33 +1,31 @@
 //! How fast `rayhit::exact` decides and judges cases (the figures quoted in
-//! its module docs): `cargo run --release --features exact --example
-//! exact_speed`. Single thread, wall time of each loop on a quiet machine.
-
-#[path = "../tests/support/mod.rs"]
-mod support;
+//! its module docs): `cargo run --release -p rayhit-testkit --features fuzz
+//! --example exact_speed`. Single thread, wall time of each loop on a quiet
+//! machine, on the oracle suite's case families.
 
 use std::time::Instant;
 
+use rayhit::Vector;
 use rayhit::exact::{self, Case, Claim};
 use rayhit::glam::{DVec3, Vec3};
-use rayhit::{Scalar, Vector};
-use support::Pcg32;
-use support::generators::{box_generators, gen_plane, triangle_generators};
+use rayhit_testkit::cases::{boxes, planes, triangles};
+use rayhit_testkit::source::Source;
 
 fn rate(n: usize, start: Instant) -> f64 {
     n as f64 / start.elapsed().as_secs_f64()
 }
 
 fn measure<V: Vector>(precision: &str, n: usize) {
-    let mut rng = Pcg32::new(1);
-    let boxes: Vec<_> = box_generators::<V>()
+    let mut src = Source::seeded(1);
+    let boxes: Vec<_> = boxes::generators::<V>()
         .iter()
-        .flat_map(|(_, _, g)| (0..n / 8).map(|_| g(&mut rng)).collect::<Vec<_>>())
+        .flat_map(|(_, _, g)| (0..n / 8).map(|_| g(&mut src)).collect::<Vec<_>>())
         .collect();
-    let tris: Vec<_> = triangle_generators::<V>()
+    let tris: Vec<_> = triangles::generators::<V>()
         .iter()
-        .flat_map(|(_, _, g)| (0..n / 6).map(|_| g(&mut rng)).collect::<Vec<_>>())
+        .flat_map(|(_, _, g)| (0..n / 6).map(|_| g(&mut src)).collect::<Vec<_>>())
         .collect();
-    let planes: Vec<_> = (0..n).map(|_| gen_plane::<V>(&mut rng)).collect();
+    let planes: Vec<_> = (0..n).map(|_| planes::plane::<V>(&mut src)).collect();
 
     let s = Instant::now();
     let hits = boxes
@@ -71,7 +69,6 @@ fn measure<V: Vector>(precision: &str, n: usize) {
     println!(
         "{precision}: cases/s decide (judge): box {box_decide:.0} ({box_judge:.0}), triangle {tri_decide:.0} ({tri_judge:.0}), plane {plane_decide:.0} ({plane_judge:.0}); {hits} box hits"
     );
-    let _ = V::Scalar::ONE;
 }
 
 fn main() {

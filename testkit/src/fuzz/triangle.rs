@@ -3,20 +3,23 @@
 //! [`ray_triangle_error_bounds`].
 //!
 //! Input: raw mode, a `Triangle`, a `Ray` and `t_max` as raw bits;
-//! structured mode, [`inputs::triangle_and_ray`] and [`inputs::t_max`], or (in the
+//! structured mode, [`cases::triangles::with_fillers`], or (in the
 //! `triangle` target, one structured input in two) a closed tetrahedron and
 //! a ray from inside or outside it aimed at a vertex, an edge or a face.
 
-use arbitrary::{Arbitrary, Unstructured};
+use arbitrary::Arbitrary;
 use rayhit::{
     Ray, Scalar, Side, SurfacePoint, Triangle, TriangleHit, Vector, ray_triangle,
     ray_triangle_error_bounds, ray_triangle_mt, ray_triangle_one_hit,
 };
 
-use crate::exact::{R, abs, cross, dot, int, rv, sub};
-use crate::{
-    Check, Mode, S, inputs, oracle, product_far_from_underflow, quotient_far_from_underflow, raw,
-};
+use super::exact::{R, abs, cross, dot, int, rv, sub};
+use super::{Check, Input, S, product_far_from_underflow, quotient_far_from_underflow, raw};
+use crate::bits::hit_bits;
+use crate::cases;
+use crate::cases::triangles::{corners, point_on};
+use crate::source::Source;
+use rayhit::exact::oracle;
 
 /// The `triangle` target: the watertight test.
 ///
@@ -44,27 +47,27 @@ pub struct Watertight;
 /// Checks: both in range on any input; where the precondition holds and the
 /// exact crossing is outside both tests' rounding bands (the watertight
 /// test's barycentric and `t` bounds plus Moller-Trumbore's, derived at
-/// [`crate::oracle::mt_bounds`]), both give exact arithmetic's answer, with the same side.
+/// [`rayhit::exact::oracle::mt_bounds`]), both give exact arithmetic's answer, with the same side.
 #[derive(Debug)]
 pub struct WatertightVsMt;
 
 impl Check for Watertight {
-    fn run<'a, V>(u: &mut Unstructured<'a>, mode: Mode)
+    fn run<'a, V>(input: &mut Input<'a>)
     where
         V: Vector,
         S<V>: Arbitrary<'a> + Scalar,
     {
-        match mode {
-            Mode::Raw => {
+        match input {
+            Input::Raw(u) => {
                 let (tri, ray, t_max) = (raw::<Triangle<V>>(u), raw::<Ray<V>>(u), raw::<S<V>>(u));
                 check(&ray, &tri, t_max, false);
             }
-            Mode::Structured => {
-                if inputs::index(u, 2) == 0 {
-                    tetrahedron::<V>(u);
+            Input::Structured(src) => {
+                if src.index(2) == 0 {
+                    tetrahedron::<V>(src);
                 } else {
-                    let (tri, ray) = inputs::triangle_and_ray::<V>(u);
-                    check(&ray, &tri, inputs::t_max::<V>(u), true);
+                    let (tri, ray, t_max) = cases::triangles::with_fillers::<V>(src);
+                    check(&ray, &tri, t_max, true);
                 }
             }
         }
@@ -72,17 +75,14 @@ impl Check for Watertight {
 }
 
 impl Check for WatertightVsMt {
-    fn run<'a, V>(u: &mut Unstructured<'a>, mode: Mode)
+    fn run<'a, V>(input: &mut Input<'a>)
     where
         V: Vector,
         S<V>: Arbitrary<'a> + Scalar,
     {
-        let (tri, ray, t_max) = match mode {
-            Mode::Raw => (raw::<Triangle<V>>(u), raw::<Ray<V>>(u), raw::<S<V>>(u)),
-            Mode::Structured => {
-                let (tri, ray) = inputs::triangle_and_ray::<V>(u);
-                (tri, ray, inputs::t_max::<V>(u))
-            }
+        let (tri, ray, t_max) = match input {
+            Input::Raw(u) => (raw::<Triangle<V>>(u), raw::<Ray<V>>(u), raw::<S<V>>(u)),
+            Input::Structured(src) => cases::triangles::with_fillers::<V>(src),
         };
         check_vs_mt(&ray, &tri, t_max);
     }
@@ -122,7 +122,7 @@ pub fn precondition<V: Vector>(ray: &Ray<V>, tri: &Triangle<V>) -> bool {
     if !(ray.is_valid() && tri.a.is_finite() && tri.b.is_finite() && tri.c.is_finite()) {
         return false;
     }
-    let limit = crate::exact::pow2(if S::<V>::UNIT_ROUNDOFF.to_f64() > 1e-10 {
+    let limit = super::exact::pow2(if S::<V>::UNIT_ROUNDOFF.to_f64() > 1e-10 {
         63
     } else {
         511
@@ -145,7 +145,7 @@ pub fn check<V: Vector>(ray: &Ray<V>, tri: &Triangle<V>, t_max: S<V>, detailed: 
     in_range("mt", mt, t_max, &ctx);
     if let Some(h) = one {
         assert!(
-            wt.is_some_and(|w| same(&w, &h)),
+            hit_bits(wt) == hit_bits(Some(h)),
             "one-hit {one:?} but closed {wt:?}: {}",
             ctx()
         );
@@ -175,13 +175,6 @@ pub fn check<V: Vector>(ray: &Ray<V>, tri: &Triangle<V>, t_max: S<V>, detailed: 
     agreement(ray, tri, t_max, &exact, wt, None, &ctx);
 }
 
-fn same<F: Scalar>(a: &TriangleHit<F>, b: &TriangleHit<F>) -> bool {
-    a.t.to_f64().to_bits() == b.t.to_f64().to_bits()
-        && a.u.to_f64().to_bits() == b.u.to_f64().to_bits()
-        && a.v.to_f64().to_bits() == b.v.to_f64().to_bits()
-        && a.side == b.side
-}
-
 /// A watertight hit against the exact crossing.
 fn check_hit<V: Vector>(
     ray: &Ray<V>,
@@ -204,7 +197,7 @@ fn check_hit<V: Vector>(
             oracle::close(h.t, &t_exact, err.t),
             "zero-area hit: t {:?}, the segment's crossing {}, bound {:?}: {}",
             h.t,
-            crate::exact::f(&t_exact),
+            super::exact::f(&t_exact),
             err.t,
             ctx()
         );
@@ -217,7 +210,7 @@ fn check_hit<V: Vector>(
         )
     });
     let (u_exact, v_exact) = exact.uv.as_ref().expect("not parallel");
-    let f = crate::exact::f;
+    let f = super::exact::f;
     assert!(
         oracle::close(h.t, t_exact, err.t),
         "t {:?} exact {} bound {:?}: {}",
@@ -249,7 +242,7 @@ fn check_hit<V: Vector>(
     let side = if dn < int(0) { Side::Front } else { Side::Back };
     assert_eq!(h.side, side, "side: {}", ctx());
     if detailed {
-        let axis = crate::oracle::hit_point_disagreement(ray, tri, h, &err);
+        let axis = rayhit::exact::oracle::hit_point_disagreement(ray, tri, h, &err);
         assert!(
             axis.is_none(),
             "barycentric point and ray.at(t) differ on axis {axis:?}: {}",
@@ -292,7 +285,7 @@ fn spawns_are_finite<V: Vector>(
 /// `z`, shear by `-d_x / d_z` and `-d_y / d_z`, scale `z` by `1 / d_z`) and
 /// asks that every product it forms (the shear terms, the edge functions'
 /// products, `e_i z_i`) and the quotients `t`, `u`, `v` be zero or far from
-/// underflow ([`crate::far_from_underflow`]), and every one of them finite.
+/// underflow ([`super::far_from_underflow`]), and every one of them finite.
 pub fn frame_in_range<V: Vector>(ray: &Ray<V>, tri: &Triangle<V>) -> bool {
     let (d, a) = (ray.dir, ray.dir.abs());
     let kz = if a.x() > a.y() {
@@ -371,7 +364,7 @@ fn agreement<V: Vector>(
         None if oracle::surely_outside(ray, tri, exact, &extra) => false,
         None => return,
     };
-    let f = |x: &Option<R>| x.as_ref().map(crate::exact::f);
+    let f = |x: &Option<R>| x.as_ref().map(super::exact::f);
     let (ue, ve) = exact.uv.clone().unzip();
     assert_eq!(
         wt.is_some(),
@@ -428,7 +421,7 @@ pub fn check_vs_mt<V: Vector>(ray: &Ray<V>, tri: &Triangle<V>, t_max: S<V>) {
     if wt.is_some() == exact_hit && mt.is_some() == exact_hit && sides_agree {
         return;
     }
-    let bounds = crate::oracle::mt_bounds(ray, tri, &ue, &ve);
+    let bounds = rayhit::exact::oracle::mt_bounds(ray, tri, &ue, &ve);
     agreement(ray, tri, t_max, &exact, wt, Some((mt, bounds)), &ctx);
 }
 
@@ -469,9 +462,9 @@ fn mt_in_normal_range<V: Vector>(ray: &Ray<V>, tri: &Triangle<V>) -> bool {
 /// cube of its longest edge, computed in `f64`), so that rounding its
 /// corners in the ray's frame (relative errors near `2^-20` in `f32`) cannot
 /// fold the surface around the exit point.
-pub fn tetrahedron<V: Vector>(u: &mut Unstructured) {
-    let centre = inputs::c(inputs::point::<V>(u, 64.0));
-    let size = inputs::pow2(u, -3, 3);
+pub fn tetrahedron<V: Vector>(src: &mut Source) {
+    let centre = cases::c(cases::point::<V>(src, 64.0));
+    let size = src.pow2(-3, 3);
     let base = [
         [1.0, 1.0, 1.0],
         [1.0, -1.0, -1.0],
@@ -481,11 +474,11 @@ pub fn tetrahedron<V: Vector>(u: &mut Unstructured) {
     let mut p = [[0.0; 3]; 4];
     for (i, b) in base.iter().enumerate() {
         for k in 0..3 {
-            p[i][k] = centre[k] + size * (b[k] + inputs::range(u, -0.5, 0.5));
+            p[i][k] = centre[k] + size * (b[k] + src.range(-0.5, 0.5));
         }
     }
-    let mut vs: [V; 4] = p.map(inputs::v::<V>);
-    let f = |q: V| inputs::c(q);
+    let mut vs: [V; 4] = p.map(cases::v::<V>);
+    let f = |q: V| cases::c(q);
     let sub3 = |a: [f64; 3], b: [f64; 3]| [a[0] - b[0], a[1] - b[1], a[2] - b[2]];
     let det = |vs: &[V; 4]| {
         let (a, b, c) = (
@@ -517,9 +510,9 @@ pub fn tetrahedron<V: Vector>(u: &mut Unstructured) {
         Triangle::new(vs[0], vs[3], vs[2]),
         Triangle::new(vs[1], vs[2], vs[3]),
     ];
-    let inside = inputs::index(u, 2) == 0;
+    let inside = src.index(2) == 0;
     let origin = if inside {
-        let w = [0; 4].map(|_| inputs::range(u, 1.0, 5.0));
+        let w = [0; 4].map(|_| src.range(1.0, 5.0));
         let sum: f64 = w.iter().sum();
         let mut o = [0.0; 3];
         for i in 0..4 {
@@ -527,29 +520,29 @@ pub fn tetrahedron<V: Vector>(u: &mut Unstructured) {
                 *ok += w[i] / sum * f(vs[i])[k];
             }
         }
-        inputs::v::<V>(o)
+        cases::v::<V>(o)
     } else {
         // Far enough out that every crossing is at t well above 0.
-        let dir = inputs::c(inputs::direction::<V>(u));
+        let dir = cases::c(cases::direction::<V>(src));
         let len = (dir[0] * dir[0] + dir[1] * dir[1] + dir[2] * dir[2]).sqrt();
-        let dist = longest * inputs::range(u, 2.0, 8.0);
-        inputs::v::<V>([0, 1, 2].map(|k| centre[k] + dir[k] / len * dist))
+        let dist = longest * src.range(2.0, 8.0);
+        cases::v::<V>([0, 1, 2].map(|k| centre[k] + dir[k] / len * dist))
     };
-    let face = faces[inputs::index(u, 4)];
-    let target = match inputs::index(u, 4) {
-        0 => [face.a, face.b, face.c][inputs::index(u, 3)],
+    let face = faces[src.index(4)];
+    let target = match src.index(4) {
+        0 => [face.a, face.b, face.c][src.index(3)],
         1 => {
-            let s = inputs::unit(u);
-            match inputs::index(u, 3) {
-                0 => inputs::barycentric(&face, s, 0.0),
-                1 => inputs::barycentric(&face, 0.0, s),
-                _ => inputs::barycentric(&face, s, 1.0 - s),
+            let s = src.unit();
+            match src.index(3) {
+                0 => barycentric(&face, s, 0.0),
+                1 => barycentric(&face, 0.0, s),
+                _ => barycentric(&face, s, 1.0 - s),
             }
         }
-        2 => inputs::barycentric(&face, inputs::unit(u) * 0.5, inputs::unit(u) * 0.5),
-        _ => inputs::v::<V>([0, 1, 2].map(|k| centre[k] + size * inputs::range(u, -2.0, 2.0))),
+        2 => barycentric(&face, src.unit() * 0.5, src.unit() * 0.5),
+        _ => cases::v::<V>([0, 1, 2].map(|k| centre[k] + size * src.range(-2.0, 2.0))),
     };
-    let dir = (target - origin) * inputs::s::<V>(inputs::pow2(u, -6, 6));
+    let dir = (target - origin) * S::<V>::from_f64(src.pow2(-6, 6));
     let ray = Ray::new(origin, dir);
     if !ray.is_valid() {
         return;
@@ -579,4 +572,10 @@ pub fn tetrahedron<V: Vector>(u: &mut Unstructured) {
         );
         assert!(closed >= one, "closed {closed} < one-hit {one}: {}", ctx());
     }
+}
+
+/// The point `a + p (b - a) + q (c - a)` of `t`, computed in `f64` and
+/// rounded once.
+fn barycentric<V: Vector>(t: &Triangle<V>, p: f64, q: f64) -> V {
+    cases::v(point_on(&corners(t), p, q))
 }

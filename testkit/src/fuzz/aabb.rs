@@ -2,16 +2,19 @@
 //! [`ray_aabb_naive`].
 //!
 //! Input: raw mode, an `Aabb`, a `Ray` and `t_max` as raw bits; structured
-//! mode, [`inputs::aabb_and_ray`] and [`inputs::t_max`].
+//! mode, [`cases::boxes::uniform`].
 
-use arbitrary::{Arbitrary, Unstructured};
+use arbitrary::Arbitrary;
 use rayhit::{
     Aabb, BoxFace, PreparedRay, Ray, Scalar, ValidAabb, Vector, ray_aabb, ray_aabb_face,
     ray_aabb_naive, ray_aabb_prepared, ray_aabb_prepared_face,
 };
 
-use crate::exact::{R, abs, gamma, int, r, rv};
-use crate::{Check, Mode, S, far_from_underflow, inputs, oracle, raw};
+use super::exact::{R, abs, gamma, int, r, rv};
+use super::{Check, Input, S, far_from_underflow, raw};
+use crate::bits::interval_bits;
+use crate::cases;
+use rayhit::exact::oracle;
 
 /// The `aabb` target: the slab test.
 ///
@@ -44,38 +47,36 @@ pub struct Slab;
 #[derive(Debug)]
 pub struct SlabVsNaive;
 
-fn input<'a, V>(u: &mut Unstructured<'a>, mode: Mode) -> (Aabb<V>, Ray<V>, S<V>)
+fn input<'a, V>(input: &mut Input<'a>) -> (Aabb<V>, Ray<V>, S<V>)
 where
     V: Vector,
     S<V>: Arbitrary<'a>,
 {
-    match mode {
-        Mode::Raw => (raw::<Aabb<V>>(u), raw::<Ray<V>>(u), raw::<S<V>>(u)),
-        Mode::Structured => {
-            let (b, ray) = inputs::aabb_and_ray::<V>(u);
-            (b, ray, inputs::t_max::<V>(u))
-        }
+    match input {
+        Input::Raw(u) => (raw::<Aabb<V>>(u), raw::<Ray<V>>(u), raw::<S<V>>(u)),
+        Input::Structured(src) => cases::boxes::uniform::<V>(src),
     }
 }
 
 impl Check for Slab {
-    fn run<'a, V>(u: &mut Unstructured<'a>, mode: Mode)
+    fn run<'a, V>(input: &mut Input<'a>)
     where
         V: Vector,
         S<V>: Arbitrary<'a> + Scalar,
     {
-        let (b, ray, t_max) = input::<V>(u, mode);
-        check_slab(&ray, &b, t_max, mode == Mode::Structured);
+        let detailed = input.is_structured();
+        let (b, ray, t_max) = self::input::<V>(input);
+        check_slab(&ray, &b, t_max, detailed);
     }
 }
 
 impl Check for SlabVsNaive {
-    fn run<'a, V>(u: &mut Unstructured<'a>, mode: Mode)
+    fn run<'a, V>(input: &mut Input<'a>)
     where
         V: Vector,
         S<V>: Arbitrary<'a> + Scalar,
     {
-        let (b, ray, t_max) = input::<V>(u, mode);
+        let (b, ray, t_max) = self::input::<V>(input);
         check_slab_vs_naive(&ray, &b, t_max);
     }
 }
@@ -140,14 +141,14 @@ pub fn check_slab<V: Vector>(ray: &Ray<V>, b: &Aabb<V>, t_max: S<V>, detailed: b
     let slab = ray_aabb(ray, b, t_max);
     let prepared = ray_aabb_prepared(&PreparedRay::new(ray), b, t_max);
     assert!(
-        bits(slab) == bits(prepared),
+        interval_bits(slab) == interval_bits(prepared),
         "prepared {prepared:?} and unprepared {slab:?} differ: {}",
         ctx()
     );
     in_range::<V>("slab", slab, t_max, &ctx);
     let face = ray_aabb_face(ray, b, t_max);
     assert!(
-        bits(face.map(|h| (h.enter, h.exit))) == bits(slab)
+        interval_bits(face.map(|h| (h.enter, h.exit))) == interval_bits(slab)
             && face == ray_aabb_prepared_face(&PreparedRay::new(ray), b, t_max),
         "face test {face:?} differs from the slab test {slab:?}: {}",
         ctx()
@@ -155,8 +156,9 @@ pub fn check_slab<V: Vector>(ray: &Ray<V>, b: &Aabb<V>, t_max: S<V>, detailed: b
     // A valid box checked once (`ValidAabb`): the same answers.
     if let Some(v) = ValidAabb::new(*b) {
         assert!(
-            bits(ray_aabb(ray, &v, t_max)) == bits(slab)
-                && bits(ray_aabb_prepared(&PreparedRay::new(ray), &v, t_max)) == bits(slab),
+            interval_bits(ray_aabb(ray, &v, t_max)) == interval_bits(slab)
+                && interval_bits(ray_aabb_prepared(&PreparedRay::new(ray), &v, t_max))
+                    == interval_bits(slab),
             "ValidAabb answers differ from the slab test's {slab:?}: {}",
             ctx()
         );
@@ -174,7 +176,7 @@ pub fn check_slab<V: Vector>(ray: &Ray<V>, b: &Aabb<V>, t_max: S<V>, detailed: b
     let exact = raw.clone().filter(|(e, x)| e <= x);
     let show = |p: &Option<(R, R)>| {
         p.as_ref()
-            .map(|(e, x)| (crate::exact::f(e), crate::exact::f(x)))
+            .map(|(e, x)| (super::exact::f(e), super::exact::f(x)))
     };
     assert!(
         exact.is_none() || slab.is_some(),
@@ -207,7 +209,7 @@ pub fn check_slab<V: Vector>(ray: &Ray<V>, b: &Aabb<V>, t_max: S<V>, detailed: b
             assert!(
                 !x.is_finite() || &r(x) >= xx,
                 "exit {x:?} below exact {}: {}",
-                crate::exact::f(xx),
+                super::exact::f(xx),
                 ctx()
             );
             if detailed && !oracle::reciprocal_overflows(ray.dir) {
@@ -221,13 +223,13 @@ pub fn check_slab<V: Vector>(ray: &Ray<V>, b: &Aabb<V>, t_max: S<V>, detailed: b
                 assert!(
                     abs(&(r(e) - ee)) <= enter_band * ee,
                     "enter {e:?} vs exact {}: {}",
-                    crate::exact::f(ee),
+                    super::exact::f(ee),
                     ctx()
                 );
                 assert!(
                     x.is_finite() && r(x) <= band::<S<V>>(xx, wide),
                     "exit {x:?} widened beyond the band, exact {}: {}",
-                    crate::exact::f(xx),
+                    super::exact::f(xx),
                     ctx()
                 );
                 if e > zero {
@@ -243,8 +245,8 @@ pub fn check_slab<V: Vector>(ray: &Ray<V>, b: &Aabb<V>, t_max: S<V>, detailed: b
             assert!(
                 ee <= &band::<S<V>>(xx, wide),
                 "false hit beyond the band: exact enter {} exit {}: {}",
-                crate::exact::f(ee),
-                crate::exact::f(xx),
+                super::exact::f(ee),
+                super::exact::f(xx),
                 ctx()
             );
         }
@@ -453,7 +455,7 @@ fn crossings_away_from_edges<V: Vector>(ray: &Ray<V>, b: &Aabb<V>) -> bool {
 /// The naive test's relative error argument needs its roundings in the
 /// normal range: every nonzero direction component, face difference
 /// `plane - o`, face distance `t = (plane - o) / d` and product `t d_m` far
-/// from underflow ([`crate::far_from_underflow`]; a quotient or product of
+/// from underflow ([`super::far_from_underflow`]; a quotient or product of
 /// nonzero values must not round to zero) and at most `MAX / 4`.
 fn naive_in_normal_range<V: Vector>(ray: &Ray<V>, b: &Aabb<V>) -> bool {
     let quarter = S::<V>::MAX / S::<V>::from_u32(4);
@@ -475,8 +477,4 @@ fn naive_in_normal_range<V: Vector>(ray: &Ray<V>, b: &Aabb<V>) -> bool {
                     && (0..3).all(|m| ray.dir[m] == S::<V>::ZERO || ok_nonzero(t * ray.dir[m]))
             })
     })
-}
-
-fn bits<F: Scalar>(x: Option<(F, F)>) -> Option<(u64, u64)> {
-    x.map(|(a, b)| (a.to_f64().to_bits(), b.to_f64().to_bits()))
 }

@@ -1,40 +1,39 @@
 //! `plane`: [`ray_plane`], [`ray_plane_t_error`] and [`ray_plane_hit_point`].
 //!
 //! Input: raw mode, a `Ray`, a `Plane` and `t_max` as raw bits; structured
-//! mode, [`inputs::plane_and_ray`] and [`inputs::t_max`].
+//! mode, [`cases::planes::plane`].
 //!
 //! Checks, any input: no panic; `None` or `0 < t <= t_max` with `t` finite;
 //! `None` for a ray that is not valid, a zero or non-finite plane, and a NaN
 //! or negative `t_max`. When every input is finite (and, for raw inputs,
-//! nothing underflows: [`crate::far_from_underflow`]): `t` within
+//! nothing underflows: [`super::far_from_underflow`]): `t` within
 //! `ray_plane_t_error` of the exact crossing, the hit point within
 //! `ray_plane_hit_point`'s bound of the exact crossing, and a miss only where
 //! the exact crossing is within that bound of `0` or `t_max` (or overflows).
 
-use arbitrary::{Arbitrary, Unstructured};
+use arbitrary::Arbitrary;
 use rayhit::{Plane, Ray, Scalar, Vector, ray_plane, ray_plane_hit_point, ray_plane_t_error};
 
-use crate::exact::{abs, int, r, rv};
-use crate::{Check, Mode, S, far_from_underflow, inputs, oracle, product_far_from_underflow, raw};
+use super::exact::{abs, int, r, rv};
+use super::{Check, Input, S, far_from_underflow, product_far_from_underflow, raw};
+use crate::cases;
+use rayhit::exact::oracle;
 
 /// The `plane` target.
 #[derive(Debug)]
 pub struct PlaneCheck;
 
 impl Check for PlaneCheck {
-    fn run<'a, V>(u: &mut Unstructured<'a>, mode: Mode)
+    fn run<'a, V>(input: &mut Input<'a>)
     where
         V: Vector,
         S<V>: Arbitrary<'a> + Scalar,
     {
-        let (plane, ray, t_max) = match mode {
-            Mode::Raw => (raw::<Plane<V>>(u), raw::<Ray<V>>(u), raw::<S<V>>(u)),
-            Mode::Structured => {
-                let (p, r) = inputs::plane_and_ray::<V>(u);
-                (p, r, inputs::t_max::<V>(u))
-            }
+        let (plane, ray, t_max) = match input {
+            Input::Raw(u) => (raw::<Plane<V>>(u), raw::<Ray<V>>(u), raw::<S<V>>(u)),
+            Input::Structured(src) => cases::planes::plane::<V>(src),
         };
-        let guarded = mode == Mode::Structured || no_underflow(&ray, &plane);
+        let guarded = input.is_structured() || no_underflow(&ray, &plane);
         check(&ray, &plane, t_max, guarded);
     }
 }
@@ -88,7 +87,7 @@ pub fn check<V: Vector>(ray: &Ray<V>, plane: &Plane<V>, t_max: S<V>, bounded: bo
         assert!(
             !err.is_finite() || oracle::close(t, &exact, err),
             "t = {t:?}, exact {}, bound {err:?}: {}",
-            crate::exact::f(&exact),
+            super::exact::f(&exact),
             ctx()
         );
         // The hit point is within its per-component bound of the exact
@@ -115,7 +114,7 @@ pub fn check<V: Vector>(ray: &Ray<V>, plane: &Plane<V>, t_max: S<V>, bounded: bo
         // itself overflows.
         let limit = oracle::limit(t_max);
         if exact > int(0) && limit.as_ref().is_none_or(|m| &exact <= m) {
-            let t = S::<V>::from_f64(crate::exact::f(&exact));
+            let t = S::<V>::from_f64(super::exact::f(&exact));
             let err = ray_plane_t_error(ray, plane, t).next_up();
             let unknown = !t.is_finite() || !err.is_finite();
             let near_zero = unknown || exact <= r(err);
@@ -123,7 +122,7 @@ pub fn check<V: Vector>(ray: &Ray<V>, plane: &Plane<V>, t_max: S<V>, bounded: bo
             assert!(
                 near_zero || near_max,
                 "false miss at exact t = {}: {}",
-                crate::exact::f(&exact),
+                super::exact::f(&exact),
                 ctx()
             );
         }

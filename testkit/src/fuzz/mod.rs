@@ -1,13 +1,17 @@
-//! The checks behind rayhit's fuzz targets.
+//! The checks behind rayhit's fuzz targets: `cargo fuzz` runs them on the
+//! inputs libFuzzer makes (`fuzz/fuzz_targets/`, each a one-line wrapper),
+//! and `cargo test` on every checked-in seed and saved crash
+//! (`tests/fuzz_replay.rs`).
 //!
-//! Every target reads its first byte as the mode (`byte % 4`) and the rest
-//! with `arbitrary::Unstructured`:
+//! Every target reads its first byte as the mode (`byte % 4`), and the rest
+//! as raw bits (`arbitrary::Unstructured`) or as the choices of a
+//! [`Source`] (the case generators of [`crate::cases`]):
 //!
 //! | mode | precision | inputs |
 //! | --- | --- | --- |
 //! | 0 | `f32` | raw: every float a raw bit pattern (the crate's `arbitrary` impls) |
 //! | 1 | `f64` | raw |
-//! | 2 | `f32` | structured: realistic ranges, rays aimed at faces, edges and corners ([`inputs`]) |
+//! | 2 | `f32` | structured: realistic ranges, rays aimed at faces, edges and corners ([`crate::cases`]) |
 //! | 3 | `f64` | structured |
 //!
 //! Raw inputs check what holds for any input: no panic, `None` or a finite
@@ -25,35 +29,39 @@ use arbitrary::{Arbitrary, Unstructured};
 use rayhit::glam::{DVec3, Vec3};
 use rayhit::{Scalar, Vector};
 
+use crate::source::Source;
+
 pub mod aabb;
 pub mod batch;
 pub mod camera;
 pub mod exact;
-pub mod inputs;
 pub mod plane;
 pub mod spawn;
 pub mod triangle;
 
-/// The test support (generators, and `rayhit::exact`'s oracle under short names), shared as is.
-#[path = "../../tests/support/mod.rs"]
-pub mod oracle;
-
 /// The scalar of a vector type.
 pub type S<V> = <V as Vector>::Scalar;
 
-/// The input modes (see the crate docs).
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
-pub enum Mode {
+/// A target's input after the mode byte (see the module docs).
+pub enum Input<'a> {
     /// Raw bit patterns.
-    Raw,
-    /// Realistic ranges aimed at boundaries.
-    Structured,
+    Raw(Unstructured<'a>),
+    /// Realistic ranges aimed at boundaries: the choices of the case
+    /// generators, read from the bytes.
+    Structured(Box<Source>),
+}
+
+impl Input<'_> {
+    /// True for structured input.
+    pub fn is_structured(&self) -> bool {
+        matches!(self, Input::Structured(_))
+    }
 }
 
 /// What a target does with one precision: `run::<Vec3>` or `run::<DVec3>`.
 pub trait Check {
-    /// Runs the checks on the input bytes in `u`.
-    fn run<'a, V>(u: &mut Unstructured<'a>, mode: Mode)
+    /// Runs the checks on `input`.
+    fn run<'a, V>(input: &mut Input<'a>)
     where
         V: Vector,
         S<V>: Arbitrary<'a> + Scalar;
@@ -64,12 +72,15 @@ pub fn dispatch<C: Check>(data: &[u8]) {
     let Some((&mode, rest)) = data.split_first() else {
         return;
     };
-    let mut u = Unstructured::new(rest);
-    match mode % 4 {
-        0 => C::run::<Vec3>(&mut u, Mode::Raw),
-        1 => C::run::<DVec3>(&mut u, Mode::Raw),
-        2 => C::run::<Vec3>(&mut u, Mode::Structured),
-        _ => C::run::<DVec3>(&mut u, Mode::Structured),
+    let mut input = if mode % 4 < 2 {
+        Input::Raw(Unstructured::new(rest))
+    } else {
+        Input::Structured(Box::new(Source::from_bytes(rest)))
+    };
+    if mode % 2 == 0 {
+        C::run::<Vec3>(&mut input);
+    } else {
+        C::run::<DVec3>(&mut input);
     }
 }
 

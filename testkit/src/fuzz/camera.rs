@@ -4,7 +4,7 @@
 //! Input: raw mode, eye, view and up as raw-bit vectors, focal length, field
 //! of view and a raster position as raw-bit scalars, width, height and a
 //! pixel as raw `u32`s; structured mode, an eye in `[-64, 64]^3`, view and
-//! up from [`inputs::direction`], an image of 1 to 2048 pixels each way, a
+//! up from [`cases::direction`], an image of 1 to 2048 pixels each way, a
 //! field of view of 10 to 150 degrees and a position in the image.
 //!
 //! Checks: no panic; a camera is built only from valid input, and each
@@ -18,24 +18,26 @@
 //! pixel of an odd-sized image looks along the view direction, within the
 //! tests/camera.rs bound.
 
-use arbitrary::{Arbitrary, Unstructured};
+use arbitrary::Arbitrary;
 use rayhit::{CameraError, PinholeCamera, Scalar, Vector};
 
-use crate::exact::{R, cross, dot, gamma, int, rv};
-use crate::{Check, Mode, S, inputs, raw, raw_vec};
+use super::exact::{R, cross, dot, gamma, int, rv};
+use super::{Check, Input, S, raw, raw_vec};
+use crate::bits::vector_bits;
+use crate::cases;
 
 /// The `camera` target.
 #[derive(Debug)]
 pub struct Camera;
 
 impl Check for Camera {
-    fn run<'a, V>(u: &mut Unstructured<'a>, mode: Mode)
+    fn run<'a, V>(input: &mut Input<'a>)
     where
         V: Vector,
         S<V>: Arbitrary<'a> + Scalar,
     {
-        match mode {
-            Mode::Raw => {
+        match input {
+            Input::Raw(u) => {
                 let (eye, view, up) = (raw_vec::<V>(u), raw_vec::<V>(u), raw_vec::<V>(u));
                 let (focal, fov) = (raw::<S<V>>(u), raw::<S<V>>(u));
                 let (w, h) = (raw::<u32>(u), raw::<u32>(u));
@@ -49,26 +51,19 @@ impl Check for Camera {
                     check_rays(&cam, x, y, i, j);
                 }
             }
-            Mode::Structured => {
-                let eye = inputs::point::<V>(u, 64.0);
-                let (view, up) = (inputs::direction::<V>(u), inputs::direction::<V>(u));
-                let (w, h) = (
-                    1 + inputs::index(u, 256) as u32 * 8 + inputs::index(u, 8) as u32,
-                    1 + inputs::index(u, 256) as u32 * 8 + inputs::index(u, 8) as u32,
-                );
-                let fov = inputs::s::<V>(inputs::range(u, 10.0, 150.0).to_radians());
+            Input::Structured(src) => {
+                let eye = cases::point::<V>(src, 64.0);
+                let (view, up) = (cases::direction::<V>(src), cases::direction::<V>(src));
+                let mut size = || 1 + src.below(256) * 8 + src.below(8);
+                let (w, h) = (size(), size());
+                let fov = S::<V>::from_f64(src.range(10.0, 150.0).to_radians());
                 let Ok(cam) = PinholeCamera::from_fov(eye, view, up, fov, w, h) else {
                     return;
                 };
-                let x = inputs::s::<V>(inputs::range(u, 0.0, f64::from(w)));
-                let y = inputs::s::<V>(inputs::range(u, 0.0, f64::from(h)));
-                check_rays(
-                    &cam,
-                    x,
-                    y,
-                    inputs::index(u, 256) as u32 % w,
-                    inputs::index(u, 256) as u32 % h,
-                );
+                let x = S::<V>::from_f64(src.range(0.0, f64::from(w)));
+                let y = S::<V>::from_f64(src.range(0.0, f64::from(h)));
+                let (i, j) = (src.below(256) % w, src.below(256) % h);
+                check_rays(&cam, x, y, i, j);
                 if w % 2 == 1 && h % 2 == 1 {
                     check_centre(&cam, view);
                 }
@@ -165,17 +160,13 @@ fn check_rays<V: Vector>(cam: &PinholeCamera<V>, x: S<V>, y: S<V>, i: u32, j: u3
     let a = cam.pixel_ray(i, j);
     let b = cam.ray(pi, pj);
     assert!(
-        bits(a.dir) == bits(b.dir) && bits(a.origin) == bits(b.origin),
+        vector_bits(a.dir) == vector_bits(b.dir) && vector_bits(a.origin) == vector_bits(b.origin),
         "pixel_ray {a:?} is not ray(i + 0.5, j + 0.5) {b:?}: {}",
         ctx()
     );
     if normalisable(unnormalised(cam, pi, pj)) {
         unit(a.dir, &ctx);
     }
-}
-
-fn bits<V: Vector>(v: V) -> [u64; 3] {
-    [0, 1, 2].map(|k| v[k].to_f64().to_bits())
 }
 
 /// `|len^2 - 1| <= 2 gamma(6) + gamma(6)^2`: `normalize` computes the
@@ -187,11 +178,11 @@ fn unit<V: Vector>(d: V, ctx: &dyn Fn() -> String) {
     let dv = rv(d);
     let len2 = dot(&dv, &dv);
     let g = gamma::<S<V>>(6);
-    let dev = crate::exact::abs(&(&len2 - int(1)));
+    let dev = super::exact::abs(&(&len2 - int(1)));
     assert!(
         dev <= int(2) * &g + &g * &g,
         "direction {d:?} has squared length {}: {}",
-        crate::exact::f(&len2),
+        super::exact::f(&len2),
         ctx()
     );
 }
