@@ -543,7 +543,7 @@ fn aabb_infinite_exit_with_infinite_t_max() {
 /// that crossing. The watertight test decides `t > 0` conservatively and
 /// rejects the hit, which its docs allow; the fuzzer's band for a required
 /// hit was `t > bound` and is now `t > 2 bound / (1 - 3 err_u)` (derived in
-/// `fuzz/src/triangle.rs`). Moller-Trumbore hits.
+/// `testkit/src/fuzz/triangle.rs`). Moller-Trumbore hits.
 #[test]
 fn triangle_conservative_t_rejection_near_the_origin() {
     let ray = Ray::new(

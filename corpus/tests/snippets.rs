@@ -73,7 +73,7 @@ fn snippet_copies_match() {
     ] {
         assert!(
             text.contains(&prop),
-            "{name}: the proptest snippet differs from tests/exact_snippets.rs"
+            "{name}: the proptest snippet differs from corpus/tests/snippets.rs"
         );
         assert!(
             text.contains(&fuzz),

@@ -29,7 +29,7 @@
 //!
 //! # Holding your kernel to it
 //!
-//! A property test (the crate's `tests/exact_snippets.rs` runs this very
+//! A property test (the repository's `corpus/tests/snippets.rs` runs this very
 //! code; needs the `proptest` feature too):
 //!
 //! ```rust,ignore
@@ -114,8 +114,8 @@
 //! # Speed
 //!
 //! Exact arithmetic is slow. Cases per second on one thread (an x86-64
-//! core shared with other work, generated cases from the crate's test
-//! generators; `cargo run --release --features exact --example
+//! core shared with other work, cases from the repository's test kit
+//! generators; `cargo run --release -p rayhit-testkit --features fuzz --example
 //! exact_speed` measures it):
 //!
 //! | kernel   | f32: decide | f32: [`judge`] | f64: decide | f64: [`judge`] |

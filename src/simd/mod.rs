@@ -10,9 +10,11 @@
 //! | `dispatch.rs` | the lane types each precision uses on the build's target; [`TargetSimd`]; the kernel-body and instruction-set traits; the per-call choice |
 //! | `rows.rs` | a batch's rows, eight lanes at a time |
 //!
-//! Another instruction set (NEON on aarch64, simd128 on wasm32) is a file
-//! here implementing `Lanes` and `Lanes8` for `f32` on its registers, and a
-//! line in `dispatch.rs` choosing it for the target; the tests in
+//! Which of them the build's target uses is the `cfg` value `rayhit_lanes`,
+//! set once in `build.rs`. Another instruction set (NEON on aarch64,
+//! simd128 on wasm32) is a file here implementing `Lanes` and `Lanes8` for
+//! `f32` on its registers, a value of `rayhit_lanes` for the targets that
+//! have it, and its lines in `dispatch.rs`; the tests in
 //! `tests.rs` hold it to `portable.rs` bit for bit. Where an instruction set
 //! is detected at run time, its file also holds a token and the
 //! `#[target_feature]` function that runs a kernel body, as `avx2.rs` does.
@@ -21,17 +23,11 @@ mod dispatch;
 mod portable;
 mod rows;
 
-#[cfg(all(
-    target_arch = "x86_64",
-    any(target_feature = "avx2", rayhit_runtime_avx)
-))]
+#[cfg(any(rayhit_lanes = "avx2", rayhit_runtime_avx))]
 mod avx2;
 #[cfg(rayhit_runtime_avx)]
 mod avx512;
-#[cfg(all(
-    any(target_arch = "x86", target_arch = "x86_64"),
-    target_feature = "sse2"
-))]
+#[cfg(any(rayhit_lanes = "sse2", rayhit_lanes = "avx2"))]
 mod sse2;
 #[cfg(test)]
 mod tests;

@@ -140,12 +140,12 @@ impl Lanes for F32x4 {
     }
 }
 
-#[cfg(not(all(target_arch = "x86_64", target_feature = "avx2")))]
+#[cfg(rayhit_lanes = "sse2")]
 pub use pair::F32x4x2;
 
 /// Eight lanes in two registers: the eight-lane type of x86 targets without
 /// AVX2 (those with it use `super::avx2`'s).
-#[cfg(not(all(target_arch = "x86_64", target_feature = "avx2")))]
+#[cfg(rayhit_lanes = "sse2")]
 mod pair {
     #[cfg(target_arch = "x86")]
     use core::arch::x86::*;

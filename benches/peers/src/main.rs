@@ -1,5 +1,5 @@
 //! rayhit's kernels next to `bvh` 0.13 and `parry3d` 0.31 on identical data
-//! (the workloads of `benches/workloads`), printed as one Markdown table,
+//! (the workloads of the test kit, `testkit/src/workloads.rs`), printed as one Markdown table,
 //! followed by the speed ratios the crate aims for.
 //!
 //! ```sh
