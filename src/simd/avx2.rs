@@ -27,17 +27,6 @@ use {
 #[derive(Clone, Copy, Debug)]
 pub struct F32x8(__m256);
 
-/// A lane-wise operation of two registers.
-macro_rules! op2 {
-    ($name:ident, $intrinsic:ident) => {
-        #[inline(always)]
-        fn $name(self, o: Self) -> Self {
-            // SAFETY: see the module docs (AVX, no memory access).
-            Self(unsafe { $intrinsic(self.0, o.0) })
-        }
-    };
-}
-
 /// A comparison, as a lane mask.
 macro_rules! cmp {
     ($name:ident, $pred:ident) => {

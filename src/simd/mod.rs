@@ -19,6 +19,22 @@
 //! is detected at run time, its file also holds a token and the
 //! `#[target_feature]` function that runs a kernel body, as `avx2.rs` does.
 
+/// A lane-wise operation of a register type that wraps one register: the
+/// intrinsic on both registers. Used by the instruction sets' files, whose
+/// module docs carry the safety argument: the intrinsic needs only the
+/// instruction set, which the file is compiled or called for, and touches
+/// no memory.
+#[cfg(any(rayhit_lanes = "sse2", rayhit_lanes = "avx2", rayhit_runtime_avx))]
+macro_rules! op2 {
+    ($name:ident, $intrinsic:ident) => {
+        #[inline(always)]
+        fn $name(self, o: Self) -> Self {
+            // SAFETY: see the module docs (its instruction set, no memory access).
+            Self(unsafe { $intrinsic(self.0, o.0) })
+        }
+    };
+}
+
 mod dispatch;
 mod portable;
 mod rows;

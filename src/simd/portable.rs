@@ -5,6 +5,39 @@
 
 use crate::num::{Lanes, Lanes8, Scalar};
 
+/// The six arithmetic operations of both widths, lane by lane through the
+/// type's `map2`. `max` and `min` are the comparisons written out: with a
+/// NaN operand the comparison is false and the second operand is the answer
+/// (as SSE's `maxps` and `minps` do).
+macro_rules! arithmetic {
+    () => {
+        #[inline(always)]
+        fn add(self, o: Self) -> Self {
+            self.map2(o, |a, b| a + b)
+        }
+        #[inline(always)]
+        fn sub(self, o: Self) -> Self {
+            self.map2(o, |a, b| a - b)
+        }
+        #[inline(always)]
+        fn mul(self, o: Self) -> Self {
+            self.map2(o, |a, b| a * b)
+        }
+        #[inline(always)]
+        fn div(self, o: Self) -> Self {
+            self.map2(o, |a, b| a / b)
+        }
+        #[inline(always)]
+        fn max(self, o: Self) -> Self {
+            self.map2(o, |a, b| if a > b { a } else { b })
+        }
+        #[inline(always)]
+        fn min(self, o: Self) -> Self {
+            self.map2(o, |a, b| if a < b { a } else { b })
+        }
+    };
+}
+
 /// The lanes as an array, each operation a loop over it: the definition of
 /// the semantics, and the implementation wherever no register type is used.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -46,30 +79,7 @@ impl<F: Scalar> Lanes for Portable<F> {
     fn x(self) -> F {
         self.0[0]
     }
-    #[inline(always)]
-    fn add(self, o: Self) -> Self {
-        self.map2(o, |a, b| a + b)
-    }
-    #[inline(always)]
-    fn sub(self, o: Self) -> Self {
-        self.map2(o, |a, b| a - b)
-    }
-    #[inline(always)]
-    fn mul(self, o: Self) -> Self {
-        self.map2(o, |a, b| a * b)
-    }
-    #[inline(always)]
-    fn div(self, o: Self) -> Self {
-        self.map2(o, |a, b| a / b)
-    }
-    #[inline(always)]
-    fn max(self, o: Self) -> Self {
-        self.map2(o, |a, b| if a > b { a } else { b })
-    }
-    #[inline(always)]
-    fn min(self, o: Self) -> Self {
-        self.map2(o, |a, b| if a < b { a } else { b })
-    }
+    arithmetic!();
     #[inline(always)]
     fn abs(self) -> Self {
         Self(self.0.map(F::abs))
@@ -146,30 +156,7 @@ impl<F: Scalar> Lanes8 for Portable8<F> {
     fn from_bytes(b: &[u8; 8]) -> Self {
         Self(b.map(|x| F::from_u32(u32::from(x))))
     }
-    #[inline(always)]
-    fn add(self, o: Self) -> Self {
-        self.map2(o, |a, b| a + b)
-    }
-    #[inline(always)]
-    fn sub(self, o: Self) -> Self {
-        self.map2(o, |a, b| a - b)
-    }
-    #[inline(always)]
-    fn mul(self, o: Self) -> Self {
-        self.map2(o, |a, b| a * b)
-    }
-    #[inline(always)]
-    fn div(self, o: Self) -> Self {
-        self.map2(o, |a, b| a / b)
-    }
-    #[inline(always)]
-    fn max(self, o: Self) -> Self {
-        self.map2(o, |a, b| if a > b { a } else { b })
-    }
-    #[inline(always)]
-    fn min(self, o: Self) -> Self {
-        self.map2(o, |a, b| if a < b { a } else { b })
-    }
+    arithmetic!();
     #[inline(always)]
     fn lt(self, o: Self) -> [bool; 8] {
         self.test(o, |a, b| a < b)

@@ -41,17 +41,6 @@ fn lane2(v: __m128) -> __m128 {
     unsafe { _mm_shuffle_ps::<0b10_10_10_10>(v, v) }
 }
 
-/// A lane-wise operation of two registers.
-macro_rules! op2 {
-    ($name:ident, $intrinsic:ident) => {
-        #[inline(always)]
-        fn $name(self, o: Self) -> Self {
-            // SAFETY: see the module docs (SSE, no memory access).
-            Self(unsafe { $intrinsic(self.0, o.0) })
-        }
-    };
-}
-
 /// A comparison of two registers, as a mask of lanes 0 to 2.
 macro_rules! cmp {
     ($name:ident, $intrinsic:ident) => {
