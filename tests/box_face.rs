@@ -9,7 +9,6 @@
 //! spawned ray from the face point.
 
 use proptest::prelude::*;
-use rayhit::exact::oracle;
 use rayhit::glam::{DVec3, Vec3};
 use rayhit::strategies as strat;
 use rayhit::{
@@ -18,6 +17,7 @@ use rayhit::{
 };
 use rayhit_testkit::cases;
 use rayhit_testkit::cases::boxes;
+use rayhit_testkit::oracle;
 use rayhit_testkit::source::Source;
 
 type S<V> = <V as Vector>::Scalar;

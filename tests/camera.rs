@@ -4,11 +4,11 @@
 
 use num_traits::Signed;
 use proptest::prelude::*;
-use rayhit::exact::oracle;
-use rayhit::exact::oracle::{R, gamma, rv};
 use rayhit::glam::{DMat4, DVec3, DVec4, Vec3};
 use rayhit::strategies as strat;
 use rayhit::{CameraError, PinholeCamera, Scalar, Vector};
+use rayhit_testkit::oracle;
+use rayhit_testkit::oracle::{R, gamma, rv};
 
 type S<V> = <V as Vector>::Scalar;
 

@@ -4,14 +4,14 @@
 
 use num_traits::Zero;
 use proptest::prelude::*;
-use rayhit::exact::oracle;
-use rayhit::exact::oracle::{cross, rv, sub};
 use rayhit::glam::{DVec3, Vec3};
 use rayhit::{
     PreparedRay, Ray, Scalar, Side, SurfacePoint, Triangle, TriangleBatch, Vector, ray_triangle,
     ray_triangle_batch, ray_triangle_error_bounds, ray_triangle_one_hit,
 };
 use rayhit_testkit::cases;
+use rayhit_testkit::oracle;
+use rayhit_testkit::oracle::{cross, rv, sub};
 use rayhit_testkit::source::Source;
 
 type S<V> = <V as Vector>::Scalar;

@@ -8,14 +8,14 @@
 //! shows that the input is outside the precondition the docs now state, and
 //! that the answer is still safe (no panic, no NaN, in range).
 
-use rayhit::exact::oracle;
-use rayhit::exact::oracle::{R, r};
 use rayhit::glam::{DVec3, Vec3};
 use rayhit::{
     Aabb, PinholeCamera, Plane, Ray, Side, Triangle, TriangleHit, ray_aabb, ray_aabb_naive,
     ray_plane, ray_plane_hit_point, ray_plane_t_error, ray_triangle, ray_triangle_error_bounds,
     ray_triangle_mt,
 };
+use rayhit_testkit::oracle;
+use rayhit_testkit::oracle::{R, r};
 
 fn bits(x: [u32; 3]) -> Vec3 {
     Vec3::from_array(x.map(f32::from_bits))

@@ -21,7 +21,6 @@
 use std::fmt;
 
 use num_traits::{Signed, Zero};
-use rayhit::exact::oracle::{self, R, r, rv};
 use rayhit::glam::{DVec3, Vec3};
 use rayhit::{
     Aabb, Ray, Scalar, Triangle, Vector, ray_aabb, ray_aabb_naive, ray_plane, ray_plane_t_error,
@@ -32,6 +31,7 @@ use rayhit_testkit::cases::planes;
 use rayhit_testkit::cases::triangles::{self, TriCase};
 use rayhit_testkit::cases::{aimed, v};
 use rayhit_testkit::mesh as demo_mesh;
+use rayhit_testkit::oracle::{self, R, r, rv};
 use rayhit_testkit::source::Source;
 
 type S<V> = <V as Vector>::Scalar;

@@ -6,8 +6,6 @@
 
 use num_traits::Zero;
 use proptest::prelude::*;
-use rayhit::exact::oracle;
-use rayhit::exact::oracle::{R, gamma, r, rv};
 use rayhit::glam::{DVec3, Vec3};
 use rayhit::strategies as strat;
 use rayhit::{
@@ -15,6 +13,8 @@ use rayhit::{
     ray_aabb, ray_aabb_naive, ray_aabb_prepared, ray_plane, ray_plane_hit_point, ray_plane_t_error,
     ray_triangle, ray_triangle_error_bounds, ray_triangle_mt, triangle_hit_point,
 };
+use rayhit_testkit::oracle;
+use rayhit_testkit::oracle::{R, gamma, r, rv};
 
 type S<V> = <V as Vector>::Scalar;
 

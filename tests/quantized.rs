@@ -10,13 +10,13 @@
 //!   the bounds it was given.
 
 use num_traits::{One, Signed, Zero};
-use rayhit::exact::oracle;
-use rayhit::exact::oracle::{R, r};
 use rayhit::glam::Vec3;
 use rayhit::{
     AabbBatchHits, PreparedRay, QuantizedChildren, Ray, Simd, SimdWork, TargetSimd,
     quantize_bounds, ray_aabb_batch, ray_quantized_children, with_simd,
 };
+use rayhit_testkit::oracle;
+use rayhit_testkit::oracle::{R, r};
 use rayhit_testkit::source::Source;
 
 /// `2^k` exactly.

@@ -21,8 +21,6 @@ use std::path::PathBuf;
 
 use num_traits::Signed;
 use rayhit::exact;
-use rayhit::exact::oracle;
-use rayhit::exact::oracle::{R, gamma, r, rv};
 use rayhit::glam::{DVec3, Vec3};
 use rayhit::{
     Aabb, BoxFace, Plane, Ray, Scalar, Side, Triangle, Vector, ray_aabb, ray_aabb_face,
@@ -34,6 +32,8 @@ use rayhit_testkit::cases::boxes;
 use rayhit_testkit::cases::boxes::BoxCase;
 use rayhit_testkit::cases::planes;
 use rayhit_testkit::cases::triangles::{self, TriCase};
+use rayhit_testkit::oracle;
+use rayhit_testkit::oracle::{R, gamma, r, rv};
 use rayhit_testkit::source::Source;
 
 type S<V> = <V as Vector>::Scalar;

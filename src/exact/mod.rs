@@ -158,7 +158,7 @@ pub type Rational = num_rational::BigRational;
 /// The exact value of a float, or `None` for an infinity or NaN.
 #[must_use]
 pub fn rational<F: Scalar>(x: F) -> Option<Rational> {
-    x.is_finite().then(|| oracle::r(x))
+    oracle::r(x)
 }
 
 /// `x` rounded to the nearest float of precision `F`, ties to even; values
@@ -291,7 +291,7 @@ pub fn ray_aabb<V: Vector>(
     }
     let slabs = oracle::box_slabs(ray, b)?;
     let (enter, exit) = oracle::box_interval(ray, b, t_max)?;
-    let d = oracle::rv(ray.dir);
+    let d = oracle::rv(ray.dir)?;
     let face = |k: usize, near: bool| {
         let max_side = (d[k] < Rational::zero()) == near;
         BoxFace::new(k, max_side).expect("axis below 3")
@@ -369,7 +369,7 @@ pub fn ray_triangle<V: Vector>(
     {
         return None;
     }
-    let ex = oracle::triangle(ray, tri);
+    let ex = oracle::triangle(ray, tri)?;
     if !ex.hits(&oracle::limit(t_max)) {
         return None;
     }
@@ -385,9 +385,9 @@ pub fn ray_triangle<V: Vector>(
         (false, true, true) => Place::Corner(2),
         (true, false, true) => Place::Corner(0),
     };
-    let (a, b, c) = (oracle::rv(tri.a), oracle::rv(tri.b), oracle::rv(tri.c));
+    let (a, b, c) = (oracle::rv(tri.a)?, oracle::rv(tri.b)?, oracle::rv(tri.c)?);
     let n = oracle::cross(&oracle::sub(&b, &a), &oracle::sub(&c, &a));
-    let side = if oracle::dot(&oracle::rv(ray.dir), &n).is_negative() {
+    let side = if oracle::dot(&oracle::rv(ray.dir)?, &n).is_negative() {
         Side::Front
     } else {
         Side::Back
@@ -515,7 +515,7 @@ mod tests {
         assert_eq!(round::<f64>(&q(3, -1075)).to_bits(), 2);
         // Overflow (IEEE 754): from MAX + half an ulp (2^103 for f32) up,
         // infinity; a little less, MAX.
-        let max32 = oracle::r(f32::MAX);
+        let max32 = oracle::r(f32::MAX).unwrap();
         assert_eq!(round::<f32>(&(&max32 + q(1, 103))), f32::INFINITY);
         assert_eq!(round::<f32>(&(&max32 + q(1, 102))), f32::MAX);
         assert_eq!(round::<f64>(&Rational::new(1.into(), 3.into())), 1.0 / 3.0);

@@ -1,14 +1,35 @@
-//! The exact building blocks: big-rational values of floats, vector
-//! arithmetic on them, and the exact slab, triangle and plane computations
-//! with the crate's conventions.
+//! The exact building blocks, for writing exact checks of your own: the
+//! exact value of a float ([`r`], [`rv`]), vector arithmetic on exact
+//! values, the exact slab, triangle and plane computations with the
+//! crate's conventions (`t` in units of the ray's direction, closed boxes
+//! and triangles, the watertight test's tie rules), and the rounding bands
+//! [`judge`](super::judge) uses to call a case [`Clear`](super::Band::Clear)
+//! or [`Edge`](super::Band::Edge).
 //!
-//! These take *valid* inputs (finite coordinates): [`r`] and [`rv`] panic on
-//! a non-finite float. The checked entry points are the parent module's
+//! Every value here is exact: a big rational computed from the floats' exact
+//! values, with no rounding anywhere. The one rule for bad input: a float
+//! that has no exact value (NaN, an infinity) gives `None`, as does a ray
+//! whose direction is zero where a function needs it to move; predicates
+//! (`*_clear`, [`close`]) answer `false` for such input. Nothing here panics.
+//!
+//! For whole answers with the kernels' conventions (validity, `t_max`,
+//! rounding to a float) use the parent module's checked entry points,
 //! [`ray_aabb`](super::ray_aabb), [`ray_triangle`](super::ray_triangle),
-//! [`ray_plane`](super::ray_plane) and [`judge`](super::judge); this module
-//! is public for the crate's own tests and fuzzers and is not part of the
-//! stable interface.
-#![allow(missing_docs)]
+//! [`ray_plane`](super::ray_plane) and [`judge`](super::judge).
+//!
+//! ```
+//! use rayhit::exact::oracle;
+//! use rayhit::{Plane, Ray, glam::Vec3, ray_plane, ray_plane_t_error};
+//!
+//! let ray = Ray::new(Vec3::new(0.1, 0.2, 0.3), Vec3::new(0.3, 0.7, 1.1));
+//! let plane = Plane::new(Vec3::new(0.0, 0.0, 5.0), Vec3::new(0.1, 0.2, 1.0));
+//! let t = ray_plane(&ray, &plane, f32::INFINITY).unwrap();
+//! // The kernel's t is within its documented bound of the exact crossing.
+//! let exact_t = oracle::plane_t(&ray, &plane).unwrap();
+//! assert!(oracle::close(t, &exact_t, ray_plane_t_error(&ray, &plane, t)));
+//! // Floats without an exact value give None, never a panic.
+//! assert!(oracle::r(f32::NAN).is_none());
+//! ```
 
 use std::vec::Vec;
 
@@ -24,24 +45,34 @@ pub type R = BigRational;
 /// An exact 3-vector.
 pub type R3 = [R; 3];
 
-/// The exact value of a finite float.
-pub fn r<F: Scalar>(x: F) -> R {
-    R::from_float(x.to_f64()).expect("finite input")
+/// The exact value of a float (every finite float is a dyadic rational),
+/// or `None` for NaN and the infinities.
+pub fn r<F: Scalar>(x: F) -> Option<R> {
+    R::from_float(x.to_f64())
 }
 
-/// The exact value of a finite vector.
-pub fn rv<V: Vector>(v: V) -> R3 {
-    [r(v.x()), r(v.y()), r(v.z())]
+/// The exact value of a precision's constant (finite by definition, so the
+/// conversion cannot fail).
+fn constant<F: Scalar>(x: F) -> R {
+    R::from_float(x.to_f64()).expect("the precision's constants are finite")
 }
 
+/// The exact components of a vector, or `None` when one is not finite.
+pub fn rv<V: Vector>(v: V) -> Option<R3> {
+    Some([r(v.x())?, r(v.y())?, r(v.z())?])
+}
+
+/// `a - b`, exactly.
 pub fn sub(a: &R3, b: &R3) -> R3 {
     [&a[0] - &b[0], &a[1] - &b[1], &a[2] - &b[2]]
 }
 
+/// `a . b`, exactly.
 pub fn dot(a: &R3, b: &R3) -> R {
     &a[0] * &b[0] + &a[1] * &b[1] + &a[2] * &b[2]
 }
 
+/// `a x b`, exactly.
 pub fn cross(a: &R3, b: &R3) -> R3 {
     [
         &a[1] * &b[2] - &a[2] * &b[1],
@@ -50,47 +81,62 @@ pub fn cross(a: &R3, b: &R3) -> R3 {
     ]
 }
 
-/// `t_max` as an exact bound, `None` for `+inf`.
+/// `t_max` as an exact bound, `None` for no bound (`+inf`; also any other
+/// non-finite value, which the checked entry points reject before they get
+/// here).
 pub fn limit<F: Scalar>(t_max: F) -> Option<R> {
-    if t_max.is_finite() {
-        Some(r(t_max))
-    } else {
-        None
-    }
+    r(t_max)
 }
 
 fn within(t: &R, t_max: &Option<R>) -> bool {
     t_max.as_ref().is_none_or(|m| t <= m)
 }
 
-/// The nearest float of precision `F` to an exact value (for reports).
+/// An exact value as the nearest `f64` (for reports and for scales): a
+/// value beyond `f64`'s range gives an infinity of its sign, one too small
+/// for it `0.0` or a subnormal, as the conversion of `num-rational` rounds
+/// it; NaN only if that conversion fails.
 pub fn to_f64(x: &R) -> f64 {
     x.to_f64().unwrap_or(f64::NAN)
 }
 
-/// `|a - b|` as an `f64` (for comparing against a bound given as a float:
-/// an exact comparison, because a float bound is itself exact).
+/// `|a - b|`, exactly (to compare against a bound given as a float: the
+/// comparison is exact, because a float bound is itself exact).
 pub fn abs_diff(a: &R, b: &R) -> R {
     (a - b).abs()
 }
 
-/// True when the exact `|a - b| <= bound`.
+/// True when a computed value is within `bound` of the exact one, decided
+/// exactly: `|computed - exact| <= bound`. False when `computed` or `bound`
+/// is not finite.
 pub fn close<F: Scalar>(computed: F, exact: &R, bound: F) -> bool {
-    bound.is_finite() && abs_diff(&r(computed), exact) <= r(bound)
+    match (r(computed), r(bound)) {
+        (Some(c), Some(b)) => abs_diff(&c, exact) <= b,
+        _ => false,
+    }
 }
 
-/// Exact ray/plane: the crossing `t` (any sign), or `None` when the ray is
-/// parallel to the plane (or the normal is zero).
+/// The exact origin and direction of a ray that moves: `None` when a
+/// coordinate is not finite or the direction is zero.
+fn moving<V: Vector>(ray: &Ray<V>) -> Option<(R3, R3)> {
+    let (o, d) = (rv(ray.origin)?, rv(ray.dir)?);
+    d.iter().any(|x| !x.is_zero()).then_some((o, d))
+}
+
+/// Exact ray/plane: the `t` where the ray's line crosses the plane (any
+/// sign), or `None` when the ray is parallel to the plane (or the normal or
+/// the direction is zero) or a coordinate is not finite.
 pub fn plane_t<V: Vector>(ray: &Ray<V>, plane: &Plane<V>) -> Option<R> {
-    let n = rv(plane.normal);
-    let den = dot(&rv(ray.dir), &n);
+    let n = rv(plane.normal)?;
+    let den = dot(&rv(ray.dir)?, &n);
     if den.is_zero() {
         return None;
     }
-    Some(dot(&sub(&rv(plane.point), &rv(ray.origin)), &n) / den)
+    Some(dot(&sub(&rv(plane.point)?, &rv(ray.origin)?), &n) / den)
 }
 
-/// Exact ray/plane answer with the kernel's conventions: `0 < t <= t_max`.
+/// Exact ray/plane answer with the kernel's conventions: the crossing `t`
+/// when `0 < t <= t_max`, else `None` (as for [`plane_t`]).
 pub fn plane_hit<V: Vector>(ray: &Ray<V>, plane: &Plane<V>, t_max: V::Scalar) -> Option<R> {
     let t = plane_t(ray, plane)?;
     (t.is_positive() && within(&t, &limit(t_max))).then_some(t)
@@ -99,9 +145,10 @@ pub fn plane_hit<V: Vector>(ray: &Ray<V>, plane: &Plane<V>, t_max: V::Scalar) ->
 /// The exact slab distances of the ray for every axis it moves along:
 /// `(near, far, axis)`, or `None` when an axis it does not move along
 /// already excludes it (a miss that no rounding of the other axes can
-/// change).
+/// change), when the ray does not move, or when a coordinate is not finite.
 pub fn box_slabs<V: Vector>(ray: &Ray<V>, b: &Aabb<V>) -> Option<Vec<(R, R, usize)>> {
-    let (o, d, lo, hi) = (rv(ray.origin), rv(ray.dir), rv(b.min), rv(b.max));
+    let (o, d) = moving(ray)?;
+    let (lo, hi) = (rv(b.min)?, rv(b.max)?);
     let mut slabs = Vec::new();
     for k in 0..3 {
         if d[k].is_zero() {
@@ -127,8 +174,7 @@ pub fn box_raw<V: Vector>(ray: &Ray<V>, b: &Aabb<V>, t_max: V::Scalar) -> Option
         .iter()
         .map(|s| s.1.clone())
         .chain(limit(t_max))
-        .min()
-        .expect("a valid ray moves");
+        .min()?;
     Some((enter, exit))
 }
 
@@ -141,7 +187,7 @@ pub fn box_raw<V: Vector>(ray: &Ray<V>, b: &Aabb<V>, t_max: V::Scalar) -> Option
 /// `None` as for [`box_slabs`].
 pub fn box_gap<V: Vector>(ray: &Ray<V>, b: &Aabb<V>, t_max: V::Scalar) -> Option<R> {
     let slabs = box_slabs(ray, b)?;
-    let d = rv(ray.dir);
+    let d = rv(ray.dir)?;
     let (enter, exit) = box_raw(ray, b, t_max)?;
     // The axes whose near (far) distance is the entry (exit), if any.
     let by_enter = slabs.iter().filter(|s| s.0 == enter).map(|s| d[s.2].abs());
@@ -177,11 +223,11 @@ pub fn box_face_margins<V: Vector>(ray: &Ray<V>, b: &Aabb<V>, t_max: V::Scalar) 
     Some((gap(&nears, n - 1, n - 2), gap(&fars, 0, 1)))
 }
 
-/// The exact answer: the face of the largest positive entry-plane distance,
-/// the lowest axis on a tie, `None` when no entry plane is ahead; and
-/// whether it was a tie.
-pub fn box_face<V: Vector>(ray: &Ray<V>, b: &Aabb<V>) -> (Option<BoxFace>, bool) {
-    let (o, d, lo, hi) = (rv(ray.origin), rv(ray.dir), rv(b.min), rv(b.max));
+/// The exact entry face: the face of the largest positive entry-plane
+/// distance, the lowest axis on a tie, `None` inside when no entry plane is
+/// ahead; and whether it was a tie. `None` when a coordinate is not finite.
+pub fn box_face<V: Vector>(ray: &Ray<V>, b: &Aabb<V>) -> Option<(Option<BoxFace>, bool)> {
+    let (o, d, lo, hi) = (rv(ray.origin)?, rv(ray.dir)?, rv(b.min)?, rv(b.max)?);
     let mut best: Option<(usize, R)> = None;
     let mut tie = false;
     for k in 0..3 {
@@ -202,22 +248,24 @@ pub fn box_face<V: Vector>(ray: &Ray<V>, b: &Aabb<V>) -> (Option<BoxFace>, bool)
             }
         }
     }
-    (
+    Some((
         best.and_then(|(k, _)| BoxFace::new(k, d[k] < R::zero())),
         tie,
-    )
+    ))
 }
 
 /// Where the ray passes the segment of a zero-area triangle, exactly: in
 /// the ray's sheared frame (main axis the direction's largest component,
 /// the kernel's tie rule; `x`, `y` the next two cyclically), the depth of
 /// the point of the segment between the two corners farthest apart nearest
-/// the ray, clamped to the segment.
-pub fn segment_crossing<V: Vector>(ray: &Ray<V>, tri: &Triangle<V>) -> R {
+/// the ray, clamped to the segment. `None` when the ray does not move, a
+/// coordinate is not finite, or the segment is seen end-on (its two
+/// corners at one point of the frame).
+pub fn segment_crossing<V: Vector>(ray: &Ray<V>, tri: &Triangle<V>) -> Option<R> {
     let k = main_axis(ray.dir);
     let (kx, ky) = ((k + 1) % 3, (k + 2) % 3);
-    let (o, dir) = (rv(ray.origin), rv(ray.dir));
-    let corners = [rv(tri.a), rv(tri.b), rv(tri.c)];
+    let (o, dir) = moving(ray)?;
+    let corners = [rv(tri.a)?, rv(tri.b)?, rv(tri.c)?];
     let dist2 = |i: usize, j: usize| {
         let e = sub(&corners[j], &corners[i]);
         dot(&e, &e)
@@ -236,6 +284,9 @@ pub fn segment_crossing<V: Vector>(ray: &Ray<V>, tri: &Triangle<V>) -> R {
     let (p, q) = (frame(&corners[i]), frame(&corners[j]));
     let (ex, ey) = (&q[0] - &p[0], &q[1] - &p[1]);
     let den = &ex * &ex + &ey * &ey;
+    if den.is_zero() {
+        return None;
+    }
     let s = -(&p[0] * &ex + &p[1] * &ey) / den;
     let (zero, one) = (R::zero(), int(1));
     let s = if s < zero {
@@ -245,11 +296,11 @@ pub fn segment_crossing<V: Vector>(ray: &Ray<V>, tri: &Triangle<V>) -> R {
     } else {
         s
     };
-    &p[2] + s * (&q[2] - &p[2])
+    Some(&p[2] + s * (&q[2] - &p[2]))
 }
 
 /// Exact interval `[enter, exit]` of `t` in `[0, t_max]` with the ray inside
-/// the closed box, or `None` when it is empty.
+/// the closed box, or `None` when it is empty (or as for [`box_slabs`]).
 pub fn box_interval<V: Vector>(ray: &Ray<V>, b: &Aabb<V>, t_max: V::Scalar) -> Option<(R, R)> {
     box_raw(ray, b, t_max).filter(|(e, x)| e <= x)
 }
@@ -289,13 +340,14 @@ impl ExactTriangle {
 }
 
 /// Exact ray/triangle: signs of the three edge Plucker products, the plane
-/// crossing `t` and the barycentrics `(u, v)` there.
-pub fn triangle<V: Vector>(ray: &Ray<V>, tri: &Triangle<V>) -> ExactTriangle {
-    let (o, d) = (rv(ray.origin), rv(ray.dir));
+/// crossing `t` and the barycentrics `(u, v)` there; `None` when a
+/// coordinate is not finite.
+pub fn triangle<V: Vector>(ray: &Ray<V>, tri: &Triangle<V>) -> Option<ExactTriangle> {
+    let (o, d) = (rv(ray.origin)?, rv(ray.dir)?);
     let (a, b, c) = (
-        sub(&rv(tri.a), &o),
-        sub(&rv(tri.b), &o),
-        sub(&rv(tri.c), &o),
+        sub(&rv(tri.a)?, &o),
+        sub(&rv(tri.b)?, &o),
+        sub(&rv(tri.c)?, &o),
     );
     let s_ab = dot(&cross(&a, &b), &d);
     let s_bc = dot(&cross(&b, &c), &d);
@@ -304,22 +356,22 @@ pub fn triangle<V: Vector>(ray: &Ray<V>, tri: &Triangle<V>) -> ExactTriangle {
     let signs = [s_ab.cmp(&zero), s_bc.cmp(&zero), s_ca.cmp(&zero)];
     let sum = &s_ab + &s_bc + &s_ca;
     if sum.is_zero() {
-        return ExactTriangle {
+        return Some(ExactTriangle {
             signs,
             t: None,
             uv: None,
-        };
+        });
     }
     // The weight of each corner is the product of the edge opposite it.
     let u = &s_ca / &sum;
     let v = &s_ab / &sum;
     let n = cross(&sub(&b, &a), &sub(&c, &a));
     let t = dot(&a, &n) / dot(&d, &n);
-    ExactTriangle {
+    Some(ExactTriangle {
         signs,
         t: Some(t),
         uv: Some((u, v)),
-    }
+    })
 }
 
 /// An exact dyadic rational `m * 2^e` as an `R` (for building inputs).
@@ -339,9 +391,11 @@ pub fn ulp<F: Scalar>(m: f64) -> f64 {
     (x.next_up().to_f64() - x.to_f64()).max(F::TINY.to_f64())
 }
 
-/// `gamma(n) = n u / (1 - n u)` for precision `F`, exactly.
+/// `gamma(n) = n u / (1 - n u)` for precision `F` (`u` its unit roundoff),
+/// exactly: the bound on the relative error of `n` roundings (Higham,
+/// Accuracy and Stability of Numerical Algorithms, 2002, section 3.1).
 pub fn gamma<F: Scalar>(n: i64) -> R {
-    let nu = int(n) * r(F::UNIT_ROUNDOFF);
+    let nu = int(n) * constant(F::UNIT_ROUNDOFF);
     &nu / (int(1) - &nu)
 }
 
@@ -365,9 +419,10 @@ pub fn abs(x: &R) -> R {
 /// magnitudes `M`. A quotient `N/D` computed as `fl(N) fl(1/det)` is then
 /// within `(dN + |q| dD)/(|D| - dD) + gamma(2)|q|`, which is what this
 /// returns (with `q` the exact quotient), or `2^2000` when `dD >= |D|`.
-pub fn mt_bounds<V: Vector>(ray: &Ray<V>, tri: &Triangle<V>, u: &R, v: &R) -> (R, R, R) {
-    let (o, d) = (rv(ray.origin), rv(ray.dir));
-    let (a, b, c) = (rv(tri.a), rv(tri.b), rv(tri.c));
+/// `None` when a coordinate is not finite.
+pub fn mt_bounds<V: Vector>(ray: &Ray<V>, tri: &Triangle<V>, u: &R, v: &R) -> Option<(R, R, R)> {
+    let (o, d) = (rv(ray.origin)?, rv(ray.dir)?);
+    let (a, b, c) = (rv(tri.a)?, rv(tri.b)?, rv(tri.c)?);
     let (e1, e2, s) = (sub(&b, &a), sub(&c, &a), sub(&o, &a));
     let mag = |x: &[R; 3], y: &[R; 3], z: &[R; 3]| -> R {
         // sum_i |x_i| (|y_j z_k| + |y_k z_j|): the monomials of x . (y x z).
@@ -384,17 +439,17 @@ pub fn mt_bounds<V: Vector>(ray: &Ray<V>, tri: &Triangle<V>, u: &R, v: &R) -> (R
     // Above any bound in either precision (f64's largest is below 2^1024).
     let big = dyadic(1, 2000);
     if abs(&det) <= d_det {
-        return (big.clone(), big.clone(), big);
+        return Some((big.clone(), big.clone(), big));
     }
     let q = cross(&s, &e1);
     let t = dot(&e2, &q) / &det;
     let g2 = gamma::<V::Scalar>(2);
     let quotient = |dn: R, q: &R| (dn + abs(q) * &d_det) / (abs(&det) - &d_det) + &g2 * abs(q);
-    (
+    Some((
         quotient(&g7 * mag(&s, &d, &e2), u),
         quotient(&g7 * mag(&d, &s, &e1), v),
         quotient(&g7 * mag(&e2, &s, &e1), &t),
-    )
+    ))
 }
 
 /// What the watertight test must answer on `ray` and `tri` with limit
@@ -402,8 +457,11 @@ pub fn mt_bounds<V: Vector>(ray: &Ray<V>, tri: &Triangle<V>, u: &R, v: &R) -> (R
 /// band: `Some(hit)`, or `None` inside the band (and for a line parallel to
 /// the triangle's plane). `extra` widens the band by another kernel's
 /// `(u, v, t)` bounds (Moller-Trumbore's, from [`mt_bounds`]), or zeros.
+/// `None` also where a bound is not finite.
 ///
-/// The band is `ray_triangle_error_bounds` evaluated at the exact crossing:
+/// The band is the watertight test's documented error bound
+/// ([`ray_triangle_error_bounds`](crate::ray_triangle_error_bounds), held
+/// to exact arithmetic by the crate's tests) evaluated at the exact crossing:
 /// the edge weight `w = 1 - u - v` gets `err_u + err_v`, and for `t` the
 /// conservative `t > 0` test's band. That test accepts a hit only if its
 /// computed `t` exceeds `T(t)`, the `t` bound evaluated at that `t` (or a
@@ -432,12 +490,13 @@ pub fn triangle_decided<V: Vector>(
     if !(err.u.is_finite() && err.v.is_finite() && err.t.is_finite()) {
         return None;
     }
-    let e_max = if err.u > err.v { r(err.u) } else { r(err.v) };
-    if int(3) * &e_max >= int(1) {
+    let (err_u, err_v, err_t) = (r(err.u)?, r(err.v)?, r(err.t)?);
+    let e_max = if err_u > err_v { &err_u } else { &err_v };
+    if int(3) * e_max >= int(1) {
         return None;
     }
-    let t_band = int(2) * r(err.t) / (int(1) - int(3) * e_max);
-    let (eu, ev, et) = (r(err.u) + &extra.0, r(err.v) + &extra.1, t_band + &extra.2);
+    let t_band = int(2) * err_t / (int(1) - int(3) * e_max);
+    let (eu, ev, et) = (err_u + &extra.0, err_v + &extra.1, t_band + &extra.2);
     let we = &eu + &ev;
     let w = int(1) - ue - ve;
     let inside = ue > &eu && ve > &ev && w > we;
@@ -461,21 +520,32 @@ pub fn no_extra() -> (R, R, R) {
 /// reported `u`, `v`, `|p_bary_j - p*_j| <= err_u |b_j - a_j| + err_v |c_j -
 /// a_j|` (exactly, from the reported barycentrics); `ray.at(t)` adds
 /// `|t - t*| |d_j|` and its own two roundings, `gamma(2) (|o_j| + |t d_j|)`.
+///
+/// A hit must be safe to use, so anything not finite (the inputs, the hit,
+/// its bounds, `ray.at(t)`) counts as a disagreement, on axis 0.
 pub fn hit_point_disagreement<V: Vector>(
     ray: &Ray<V>,
     tri: &Triangle<V>,
     h: &TriangleHit<V::Scalar>,
     err: &TriangleHitError<V::Scalar>,
 ) -> Option<usize> {
-    let (a, b, c) = (rv(tri.a), rv(tri.b), rv(tri.c));
-    let (o, d, p) = (rv(ray.origin), rv(ray.dir), rv(ray.at(h.t)));
-    let (u, v, t) = (r(h.u), r(h.v), r(h.t));
+    let exact = || {
+        Some((
+            [rv(tri.a)?, rv(tri.b)?, rv(tri.c)?],
+            [rv(ray.origin)?, rv(ray.dir)?, rv(ray.at(h.t))?],
+            [r(h.u)?, r(h.v)?, r(h.t)?],
+            [r(err.u)?, r(err.v)?, r(err.t)?],
+        ))
+    };
+    let Some(([a, b, c], [o, d, p], [u, v, t], [eu, ev, et])) = exact() else {
+        return Some(0);
+    };
     let g2 = gamma::<V::Scalar>(2);
     (0..3).find(|&j| {
         let bary = &a[j] + &u * (&b[j] - &a[j]) + &v * (&c[j] - &a[j]);
-        let bound = r(err.u) * abs(&(&b[j] - &a[j]))
-            + r(err.v) * abs(&(&c[j] - &a[j]))
-            + r(err.t) * abs(&d[j])
+        let bound = &eu * abs(&(&b[j] - &a[j]))
+            + &ev * abs(&(&c[j] - &a[j]))
+            + &et * abs(&d[j])
             + &g2 * (abs(&o[j]) + &t * abs(&d[j]));
         abs(&(&bary - &p[j])) > bound
     })
@@ -512,27 +582,30 @@ fn dir_normal<V: Vector>(dir: V) -> bool {
 /// `80u` where a direction component's reciprocal is subnormal, twice the
 /// test's `40u` there) plus four subnormals over the slowest moving
 /// direction component from empty, or an axis the ray does not move along
-/// rules it out; and no nonzero direction component is subnormal. Valid
-/// inputs only.
+/// rules it out; and no nonzero direction component is subnormal. False for
+/// an invalid ray or box (the kernels' answer to those is a miss by rule,
+/// not by arithmetic).
 pub fn box_clear<V: Vector>(ray: &Ray<V>, b: &Aabb<V>, t_max: V::Scalar) -> bool {
+    let dmin = [ray.dir.x(), ray.dir.y(), ray.dir.z()]
+        .into_iter()
+        .filter(|d| *d != V::Scalar::ZERO)
+        .filter_map(|d| r(d.abs()))
+        .min();
+    let Some(dmin) = dmin.filter(|_| ray.is_valid() && b.is_valid()) else {
+        return false;
+    };
     dir_normal(ray.dir)
         && match box_raw(ray, b, t_max) {
             None => true,
             Some((e, x)) => {
                 let scale = if e.abs() > x.abs() { e.abs() } else { x.abs() };
-                let dmin = [ray.dir.x(), ray.dir.y(), ray.dir.z()]
-                    .into_iter()
-                    .filter(|d| *d != V::Scalar::ZERO)
-                    .map(|d| r(d.abs()))
-                    .min()
-                    .expect("a valid ray moves");
-                let absolute = r(V::Scalar::TINY) * int(4) / dmin;
+                let absolute = constant(V::Scalar::TINY) * int(4) / dmin;
                 let k = if reciprocal_subnormal(ray.dir) {
                     80
                 } else {
                     32
                 };
-                (x - e).abs() > int(k) * r(V::Scalar::UNIT_ROUNDOFF) * scale + absolute
+                (x - e).abs() > int(k) * constant(V::Scalar::UNIT_ROUNDOFF) * scale + absolute
             }
         }
 }
@@ -543,13 +616,17 @@ pub fn box_clear<V: Vector>(ray: &Ray<V>, b: &Aabb<V>, t_max: V::Scalar) -> bool
 /// tests' rounding ([`surely_outside`]). A line parallel to the plane, or a
 /// triangle of zero area, is never clear: a determinant that is zero in exact
 /// arithmetic can round to either sign, and Moller-Trumbore's `u`, `v` and
-/// `t` are then unbounded. Valid inputs only.
+/// `t` are then unbounded. False when a coordinate is not finite.
 pub fn triangle_clear<V: Vector>(ray: &Ray<V>, tri: &Triangle<V>, t_max: V::Scalar) -> bool {
-    let ex = triangle(ray, tri);
+    let Some(ex) = triangle(ray, tri) else {
+        return false;
+    };
     let Some((ue, ve)) = &ex.uv else {
         return false;
     };
-    let mte = mt_bounds(ray, tri, ue, ve);
+    let Some(mte) = mt_bounds(ray, tri, ue, ve) else {
+        return false;
+    };
     triangle_decided(ray, tri, &ex, t_max, &mte).is_some() || surely_outside(ray, tri, &ex, &mte)
 }
 
@@ -566,6 +643,8 @@ pub fn triangle_clear<V: Vector>(ray: &Ray<V>, tri: &Triangle<V>, t_max: V::Scal
 ///   `v < -ev` makes the computed one negative; `1 - u - v < -(eu + ev) - 2
 ///   unit` makes the computed sum exceed `1 + 2 unit`, so its rounding still
 ///   exceeds 1.
+///
+/// False when a coordinate is not finite.
 pub fn surely_outside<V: Vector>(
     ray: &Ray<V>,
     tri: &Triangle<V>,
@@ -577,7 +656,7 @@ pub fn surely_outside<V: Vector>(
     };
     let (eu, ev) = (&mt.0, &mt.1);
     let w = int(1) - ue - ve;
-    let slack = int(2) * r(V::Scalar::UNIT_ROUNDOFF);
+    let slack = int(2) * constant(V::Scalar::UNIT_ROUNDOFF);
     let mt_outside = ue < &-eu.clone() || ve < &-ev.clone() || w < -(eu + ev + slack);
     if !mt_outside {
         return false;
@@ -585,8 +664,17 @@ pub fn surely_outside<V: Vector>(
     let Some(margin) = edge_function_bound(ray, tri).map(|(de, dz)| de * dz) else {
         return false;
     };
-    let (o, d) = (rv(ray.origin), rv(ray.dir));
-    let p = [rv(tri.a), rv(tri.b), rv(tri.c)].map(|c| sub(&c, &o));
+    let exact = || {
+        Some((
+            rv(ray.origin)?,
+            rv(ray.dir)?,
+            [rv(tri.a)?, rv(tri.b)?, rv(tri.c)?],
+        ))
+    };
+    let Some((o, d, corners)) = exact() else {
+        return false;
+    };
+    let p = corners.map(|c| sub(&c, &o));
     let s = [(0, 1), (1, 2), (2, 0)].map(|(i, j)| dot(&cross(&p[i], &p[j]), &d));
     s.iter().any(|x| x > &margin) && s.iter().any(|x| x < &-margin.clone())
 }
@@ -607,7 +695,7 @@ pub fn main_axis<V: Vector>(dir: V) -> usize {
 
 /// A bound on how far the watertight test's computed edge functions can be
 /// from the exact ones, and `|d_z|`: `(de, |d_z|)`, or `None` where the
-/// computed frame overflows.
+/// computed frame overflows or an input is not finite.
 ///
 /// The test's arithmetic is fixed by its algorithm (Woop, Benthin and
 /// Wald, JCGT 2013), so its rounded values are computed here the way IEEE
@@ -653,29 +741,31 @@ pub fn edge_function_bound<V: Vector>(ray: &Ray<V>, tri: &Triangle<V>) -> Option
     if !([px, py, pz, x, y].iter().all(finite) && sx.is_finite() && sy.is_finite()) {
         return None;
     }
-    let largest = |v: &[V::Scalar; 3]| v.iter().map(|c| r(c.abs())).max().expect("three");
+    let largest = |v: &[V::Scalar; 3]| v.iter().filter_map(|c| r(c.abs())).max();
     let (mx, my, mpx, mpy, mpz) = (
-        largest(&x),
-        largest(&y),
-        largest(&px),
-        largest(&py),
-        largest(&pz),
+        largest(&x)?,
+        largest(&y)?,
+        largest(&px)?,
+        largest(&py)?,
+        largest(&pz)?,
     );
     let g = |n: i64| gamma::<V::Scalar>(n);
-    let dx = g(1) * (&mpx + &mx) + g(4) * r(sx.abs()) * &mpz;
-    let dy = g(1) * (&mpy + &my) + g(4) * r(sy.abs()) * &mpz;
+    let dx = g(1) * (&mpx + &mx) + g(4) * r(sx.abs())? * &mpz;
+    let dy = g(1) * (&mpy + &my) + g(4) * r(sy.abs())? * &mpz;
     let m = if mx > my { mx.clone() } else { my.clone() };
     let rounding = int(2) * (g(2) * &mx * &my + &mx * &dy + &my * &dx + &dx * &dy);
-    let underflow = int(4) * r(V::Scalar::TINY) * (int(1) + m) * (int(1) + mpz);
-    Some((rounding + underflow, r(d[kz].abs())))
+    let underflow = int(4) * constant(V::Scalar::TINY) * (int(1) + m) * (int(1) + mpz);
+    Some((rounding + underflow, r(d[kz].abs())?))
 }
 
 /// The plane case is outside the kernel's rounding band: not within rounding
 /// of parallel (`|d.n| > 4 gamma(3) sum |d_i n_i|`, twice the kernel's own
 /// threshold), and the crossing farther than its error bound from 0 and
-/// `t_max`. Valid inputs only.
+/// `t_max`. False when a coordinate is not finite.
 pub fn plane_clear<V: Vector>(ray: &Ray<V>, plane: &Plane<V>, t_max: V::Scalar) -> bool {
-    let (d, n) = (rv(ray.dir), rv(plane.normal));
+    let (Some(d), Some(n)) = (rv(ray.dir), rv(plane.normal)) else {
+        return false;
+    };
     let mag: R = (0..3).map(|k| (&d[k] * &n[k]).abs()).sum();
     let resolved = dot(&d, &n).abs() > int(4) * gamma::<V::Scalar>(3) * mag;
     resolved
@@ -683,10 +773,9 @@ pub fn plane_clear<V: Vector>(ray: &Ray<V>, plane: &Plane<V>, t_max: V::Scalar) 
             let bound =
                 crate::ray_plane_t_error(ray, plane, V::Scalar::from_f64(to_f64(&t))).next_up();
             // An unbounded error (an overflow) decides nothing.
-            if !bound.is_finite() {
+            let Some(err) = r(bound) else {
                 return false;
-            }
-            let err = r(bound);
+            };
             let limit = limit(t_max);
             t.abs() > err && limit.is_none_or(|m| (m - &t).abs() > err)
         })

@@ -186,28 +186,33 @@ pub fn distance_ulps<V: Vector>(case: &Case<V>) -> f64 {
                 .map_or(f64::INFINITY, |g| f(&g) / oracle::ulp::<V::Scalar>(scale))
         }
         Case::Triangle(ray, tri, t_max) => {
-            let ex = oracle::triangle(ray, tri);
+            // Valid (checked above), so every exact value exists.
+            let gap = || -> Option<f64> {
+                let ex = oracle::triangle(ray, tri)?;
+                let (o, d) = (oracle::rv(ray.origin)?, oracle::rv(ray.dir)?);
+                let corners = [oracle::rv(tri.a)?, oracle::rv(tri.b)?, oracle::rv(tri.c)?];
+                let mut gap = f64::INFINITY;
+                for k in 0..3 {
+                    let (p, q) = (&corners[k], &corners[(k + 1) % 3]);
+                    let s =
+                        oracle::dot(&oracle::cross(&oracle::sub(p, &o), &oracle::sub(q, &o)), &d);
+                    let m = oracle::cross(&d, &oracle::sub(q, p));
+                    let sine = f(&oracle::dot(&m, &m)).sqrt();
+                    if sine > 0.0 {
+                        gap = gap.min(f(&s).abs() / sine);
+                    }
+                }
+                if let Some(t) = &ex.t {
+                    let dlen = f(&oracle::dot(&d, &d)).sqrt();
+                    gap = gap.min(f(t).abs() * dlen);
+                    if t_max.is_finite() {
+                        gap = gap.min((f(t) - t_max.to_f64()).abs() * dlen);
+                    }
+                }
+                Some(gap)
+            };
             let scale = max_abs(&[ray.origin, tri.a, tri.b, tri.c]);
-            let (o, d) = (oracle::rv(ray.origin), oracle::rv(ray.dir));
-            let corners = [oracle::rv(tri.a), oracle::rv(tri.b), oracle::rv(tri.c)];
-            let mut gap = f64::INFINITY;
-            for k in 0..3 {
-                let (p, q) = (&corners[k], &corners[(k + 1) % 3]);
-                let s = oracle::dot(&oracle::cross(&oracle::sub(p, &o), &oracle::sub(q, &o)), &d);
-                let m = oracle::cross(&d, &oracle::sub(q, p));
-                let sine = f(&oracle::dot(&m, &m)).sqrt();
-                if sine > 0.0 {
-                    gap = gap.min(f(&s).abs() / sine);
-                }
-            }
-            if let Some(t) = &ex.t {
-                let dlen = f(&oracle::dot(&d, &d)).sqrt();
-                gap = gap.min(f(t).abs() * dlen);
-                if t_max.is_finite() {
-                    gap = gap.min((f(t) - t_max.to_f64()).abs() * dlen);
-                }
-            }
-            gap / oracle::ulp::<V::Scalar>(scale)
+            gap().map_or(f64::INFINITY, |g| g / oracle::ulp::<V::Scalar>(scale))
         }
         Case::Plane(ray, plane, t_max) => {
             let scale = max_abs(&[ray.origin, plane.point]);

@@ -10,6 +10,7 @@
 //! | [`rng`], [`workloads`] | the benches' fixed-seed generator and workloads | |
 //! | [`source`] | where test cases' randomness comes from: seeded, or a fuzz input's bytes | `cases` |
 //! | [`cases`] | the case generators, built on `rayhit::strategies` | `cases` |
+//! | [`oracle`] | `rayhit::exact::oracle` for inputs known to be finite | `exact` |
 //! | [`fuzz`] | the fuzz targets' checks, which `cargo fuzz` runs on generated inputs and `cargo test` on the seeds and saved crashes | `fuzz` |
 
 pub mod bits;
@@ -24,3 +25,5 @@ pub mod source;
 
 #[cfg(feature = "fuzz")]
 pub mod fuzz;
+#[cfg(feature = "exact")]
+pub mod oracle;

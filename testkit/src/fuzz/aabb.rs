@@ -14,7 +14,7 @@ use super::exact::{R, abs, gamma, int, r, rv};
 use super::{Check, Input, S, far_from_underflow, raw};
 use crate::bits::interval_bits;
 use crate::cases;
-use rayhit::exact::oracle;
+use crate::oracle;
 
 /// The `aabb` target: the slab test.
 ///

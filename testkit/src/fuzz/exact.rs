@@ -3,9 +3,7 @@
 
 use rayhit::Vector;
 
-pub use rayhit::exact::oracle::{
-    R, R3, abs, cross, dot, dyadic, gamma, int, r, rv, sub, to_f64 as f,
-};
+pub use crate::oracle::{R, R3, abs, cross, dot, dyadic, gamma, int, r, rv, sub, to_f64 as f};
 
 /// `2^k`, exactly.
 pub fn pow2(k: i32) -> R {

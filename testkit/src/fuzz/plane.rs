@@ -17,7 +17,7 @@ use rayhit::{Plane, Ray, Scalar, Vector, ray_plane, ray_plane_hit_point, ray_pla
 use super::exact::{abs, int, r, rv};
 use super::{Check, Input, S, far_from_underflow, product_far_from_underflow, raw};
 use crate::cases;
-use rayhit::exact::oracle;
+use crate::oracle;
 
 /// The `plane` target.
 #[derive(Debug)]

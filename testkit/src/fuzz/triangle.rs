@@ -18,8 +18,8 @@ use super::{Check, Input, S, product_far_from_underflow, quotient_far_from_under
 use crate::bits::hit_bits;
 use crate::cases;
 use crate::cases::triangles::{corners, point_on};
+use crate::oracle;
 use crate::source::Source;
-use rayhit::exact::oracle;
 
 /// The `triangle` target: the watertight test.
 ///
@@ -421,7 +421,7 @@ pub fn check_vs_mt<V: Vector>(ray: &Ray<V>, tri: &Triangle<V>, t_max: S<V>) {
     if wt.is_some() == exact_hit && mt.is_some() == exact_hit && sides_agree {
         return;
     }
-    let bounds = rayhit::exact::oracle::mt_bounds(ray, tri, &ue, &ve);
+    let bounds = oracle::mt_bounds(ray, tri, &ue, &ve);
     agreement(ray, tri, t_max, &exact, wt, Some((mt, bounds)), &ctx);
 }
 
