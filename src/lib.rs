@@ -278,10 +278,11 @@
 //!
 //! # Features
 //!
-//! - `std` (default): float math from the standard library.
-//! - `libm`: float math from the `libm` crate, for `no_std` targets
-//!   (`default-features = false, features = ["libm"]`). One of the two must
-//!   be on.
+//! - `std` (default): float math from the standard library. Without it
+//!   the crate is `no_std` and takes its float math from the `libm` crate,
+//!   so `default-features = false` is all a bare-metal target needs.
+//! - `libm`: does nothing (`libm` is used whenever `std` is off); kept so
+//!   that builds naming it keep working.
 //! - `glam-0_29` to `glam-0_33`: glam's `Vec3`, `Vec3A` and `DVec3` of that
 //!   release as vector types (see "Precision").
 //! - `mint`: `from_mint` constructors for [`Ray`], [`Aabb`], [`Triangle`]
@@ -303,12 +304,6 @@
 
 #[cfg(feature = "std")]
 extern crate std;
-
-#[cfg(not(any(feature = "std", feature = "libm")))]
-compile_error!(
-    "rayhit needs float math from somewhere: enable the `std` feature (the default) \
-     or, for no_std targets, the `libm` feature"
-);
 
 pub use glam;
 
