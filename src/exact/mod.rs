@@ -15,7 +15,10 @@
 //!   box, a zero plane normal, a NaN `t_max`) is a miss, never a panic.
 //!
 //! Each exact value comes with its correctly rounded float ([`Exact`],
-//! rounding to nearest, ties to even).
+//! rounding to nearest, ties to even). The pieces these answers are built
+//! from (exact values of floats, exact vector arithmetic, the slab, triangle
+//! and plane computations, the rounding bands [`judge`] uses) are public in
+//! [`oracle`], for exact checks of your own.
 //!
 //! ```
 //! use rayhit::{Aabb, Ray, glam::Vec3};

@@ -10,7 +10,9 @@
 //! values, with no rounding anywhere. The one rule for bad input: a float
 //! that has no exact value (NaN, an infinity) gives `None`, as does a ray
 //! whose direction is zero where a function needs it to move; predicates
-//! (`*_clear`, [`close`]) answer `false` for such input. Nothing here panics.
+//! (`*_clear`, [`close`], [`surely_outside`], `reciprocal_*`) answer `false`
+//! for such input, and [`hit_point_disagreement`], which looks for trouble,
+//! counts it as a disagreement. Nothing here panics.
 //!
 //! For whole answers with the kernels' conventions (validity, `t_max`,
 //! rounding to a float) use the parent module's checked entry points,
@@ -47,32 +49,37 @@ pub type R3 = [R; 3];
 
 /// The exact value of a float (every finite float is a dyadic rational),
 /// or `None` for NaN and the infinities.
+#[must_use]
 pub fn r<F: Scalar>(x: F) -> Option<R> {
     R::from_float(x.to_f64())
 }
 
-/// The exact value of a precision's constant (finite by definition, so the
-/// conversion cannot fail).
+/// The exact value of a precision's constant (`TINY`, `UNIT_ROUNDOFF`: finite
+/// by definition, so the conversion cannot fail).
 fn constant<F: Scalar>(x: F) -> R {
     R::from_float(x.to_f64()).expect("the precision's constants are finite")
 }
 
 /// The exact components of a vector, or `None` when one is not finite.
+#[must_use]
 pub fn rv<V: Vector>(v: V) -> Option<R3> {
     Some([r(v.x())?, r(v.y())?, r(v.z())?])
 }
 
 /// `a - b`, exactly.
+#[must_use]
 pub fn sub(a: &R3, b: &R3) -> R3 {
     [&a[0] - &b[0], &a[1] - &b[1], &a[2] - &b[2]]
 }
 
 /// `a . b`, exactly.
+#[must_use]
 pub fn dot(a: &R3, b: &R3) -> R {
     &a[0] * &b[0] + &a[1] * &b[1] + &a[2] * &b[2]
 }
 
 /// `a x b`, exactly.
+#[must_use]
 pub fn cross(a: &R3, b: &R3) -> R3 {
     [
         &a[1] * &b[2] - &a[2] * &b[1],
@@ -84,6 +91,7 @@ pub fn cross(a: &R3, b: &R3) -> R3 {
 /// `t_max` as an exact bound, `None` for no bound (`+inf`; also any other
 /// non-finite value, which the checked entry points reject before they get
 /// here).
+#[must_use]
 pub fn limit<F: Scalar>(t_max: F) -> Option<R> {
     r(t_max)
 }
@@ -92,16 +100,19 @@ fn within(t: &R, t_max: &Option<R>) -> bool {
     t_max.as_ref().is_none_or(|m| t <= m)
 }
 
-/// An exact value as the nearest `f64` (for reports and for scales): a
-/// value beyond `f64`'s range gives an infinity of its sign, one too small
-/// for it `0.0` or a subnormal, as the conversion of `num-rational` rounds
-/// it; NaN only if that conversion fails.
+/// An exact value as the nearest `f64` (for reports and for scales),
+/// rounded to nearest, ties to even: a value beyond `f64`'s range saturates
+/// to an infinity of its sign, one too small for it gives a subnormal or a
+/// zero of its sign. Never NaN (`num-rational`'s conversion always answers
+/// for a big rational; the NaN fallback is only there to keep this total).
+#[must_use]
 pub fn to_f64(x: &R) -> f64 {
     x.to_f64().unwrap_or(f64::NAN)
 }
 
 /// `|a - b|`, exactly (to compare against a bound given as a float: the
 /// comparison is exact, because a float bound is itself exact).
+#[must_use]
 pub fn abs_diff(a: &R, b: &R) -> R {
     (a - b).abs()
 }
@@ -109,6 +120,7 @@ pub fn abs_diff(a: &R, b: &R) -> R {
 /// True when a computed value is within `bound` of the exact one, decided
 /// exactly: `|computed - exact| <= bound`. False when `computed` or `bound`
 /// is not finite.
+#[must_use]
 pub fn close<F: Scalar>(computed: F, exact: &R, bound: F) -> bool {
     match (r(computed), r(bound)) {
         (Some(c), Some(b)) => abs_diff(&c, exact) <= b,
@@ -126,6 +138,7 @@ fn moving<V: Vector>(ray: &Ray<V>) -> Option<(R3, R3)> {
 /// Exact ray/plane: the `t` where the ray's line crosses the plane (any
 /// sign), or `None` when the ray is parallel to the plane (or the normal or
 /// the direction is zero) or a coordinate is not finite.
+#[must_use]
 pub fn plane_t<V: Vector>(ray: &Ray<V>, plane: &Plane<V>) -> Option<R> {
     let n = rv(plane.normal)?;
     let den = dot(&rv(ray.dir)?, &n);
@@ -137,6 +150,7 @@ pub fn plane_t<V: Vector>(ray: &Ray<V>, plane: &Plane<V>) -> Option<R> {
 
 /// Exact ray/plane answer with the kernel's conventions: the crossing `t`
 /// when `0 < t <= t_max`, else `None` (as for [`plane_t`]).
+#[must_use]
 pub fn plane_hit<V: Vector>(ray: &Ray<V>, plane: &Plane<V>, t_max: V::Scalar) -> Option<R> {
     let t = plane_t(ray, plane)?;
     (t.is_positive() && within(&t, &limit(t_max))).then_some(t)
@@ -146,6 +160,7 @@ pub fn plane_hit<V: Vector>(ray: &Ray<V>, plane: &Plane<V>, t_max: V::Scalar) ->
 /// `(near, far, axis)`, or `None` when an axis it does not move along
 /// already excludes it (a miss that no rounding of the other axes can
 /// change), when the ray does not move, or when a coordinate is not finite.
+#[must_use]
 pub fn box_slabs<V: Vector>(ray: &Ray<V>, b: &Aabb<V>) -> Option<Vec<(R, R, usize)>> {
     let (o, d) = moving(ray)?;
     let (lo, hi) = (rv(b.min)?, rv(b.max)?);
@@ -167,6 +182,7 @@ pub fn box_slabs<V: Vector>(ray: &Ray<V>, b: &Aabb<V>) -> Option<Vec<(R, R, usiz
 /// The exact `(enter, exit)` of the ray against the closed box, clipped to
 /// `[0, t_max]`, whether or not it is empty (`enter > exit` is a miss by
 /// that much), or `None` as for [`box_slabs`].
+#[must_use]
 pub fn box_raw<V: Vector>(ray: &Ray<V>, b: &Aabb<V>, t_max: V::Scalar) -> Option<(R, R)> {
     let slabs = box_slabs(ray, b)?;
     let enter = slabs.iter().map(|s| s.0.clone()).chain([R::zero()]).max()?;
@@ -185,6 +201,7 @@ pub fn box_raw<V: Vector>(ray: &Ray<V>, b: &Aabb<V>, t_max: V::Scalar) -> Option
 /// (likewise at the entry time), whichever is smaller. `t = 0` and `t_max`
 /// count as limits with no axis, and contribute only through the other side.
 /// `None` as for [`box_slabs`].
+#[must_use]
 pub fn box_gap<V: Vector>(ray: &Ray<V>, b: &Aabb<V>, t_max: V::Scalar) -> Option<R> {
     let slabs = box_slabs(ray, b)?;
     let d = rv(ray.dir)?;
@@ -199,8 +216,10 @@ pub fn box_gap<V: Vector>(ray: &Ray<V>, b: &Aabb<V>, t_max: V::Scalar) -> Option
 /// How unambiguous the faces that set the entry and the exit are: the gap
 /// between the exact entry and the next largest lower limit (another axis's
 /// near distance, or 0), and likewise between the exit and the next
-/// smallest upper limit. Near an edge one of them is small and a kernel may
-/// take either face. `None` as for [`box_slabs`].
+/// smallest upper limit (`10^6` when there is none: one moving axis and no
+/// `t_max`). Near an edge one of them is small and a kernel may take either
+/// face. `None` as for [`box_slabs`].
+#[must_use]
 pub fn box_face_margins<V: Vector>(ray: &Ray<V>, b: &Aabb<V>, t_max: V::Scalar) -> Option<(R, R)> {
     let slabs = box_slabs(ray, b)?;
     let mut nears: Vec<R> = slabs
@@ -219,6 +238,7 @@ pub fn box_face_margins<V: Vector>(ray: &Ray<V>, b: &Aabb<V>, t_max: V::Scalar) 
         v.get(j)
             .map_or_else(|| R::from_integer(1_000_000.into()), |x| (x - &v[i]).abs())
     };
+    // The ray moves along some axis, so there is a slab besides the 0.
     let n = nears.len();
     Some((gap(&nears, n - 1, n - 2), gap(&fars, 0, 1)))
 }
@@ -226,6 +246,7 @@ pub fn box_face_margins<V: Vector>(ray: &Ray<V>, b: &Aabb<V>, t_max: V::Scalar) 
 /// The exact entry face: the face of the largest positive entry-plane
 /// distance, the lowest axis on a tie, `None` inside when no entry plane is
 /// ahead; and whether it was a tie. `None` when a coordinate is not finite.
+#[must_use]
 pub fn box_face<V: Vector>(ray: &Ray<V>, b: &Aabb<V>) -> Option<(Option<BoxFace>, bool)> {
     let (o, d, lo, hi) = (rv(ray.origin)?, rv(ray.dir)?, rv(b.min)?, rv(b.max)?);
     let mut best: Option<(usize, R)> = None;
@@ -261,6 +282,7 @@ pub fn box_face<V: Vector>(ray: &Ray<V>, b: &Aabb<V>) -> Option<(Option<BoxFace>
 /// the ray, clamped to the segment. `None` when the ray does not move, a
 /// coordinate is not finite, or the segment is seen end-on (its two
 /// corners at one point of the frame).
+#[must_use]
 pub fn segment_crossing<V: Vector>(ray: &Ray<V>, tri: &Triangle<V>) -> Option<R> {
     let k = main_axis(ray.dir);
     let (kx, ky) = ((k + 1) % 3, (k + 2) % 3);
@@ -276,6 +298,7 @@ pub fn segment_crossing<V: Vector>(ray: &Ray<V>, tri: &Triangle<V>) -> Option<R>
             (i, j) = (a, b);
         }
     }
+    // `dir[k]` is the largest component of a nonzero direction: not zero.
     let frame = |w: &[R; 3]| -> [R; 3] {
         let w = sub(w, &o);
         let z = &w[k] / &dir[k];
@@ -301,6 +324,7 @@ pub fn segment_crossing<V: Vector>(ray: &Ray<V>, tri: &Triangle<V>) -> Option<R>
 
 /// Exact interval `[enter, exit]` of `t` in `[0, t_max]` with the ray inside
 /// the closed box, or `None` when it is empty (or as for [`box_slabs`]).
+#[must_use]
 pub fn box_interval<V: Vector>(ray: &Ray<V>, b: &Aabb<V>, t_max: V::Scalar) -> Option<(R, R)> {
     box_raw(ray, b, t_max).filter(|(e, x)| e <= x)
 }
@@ -319,12 +343,14 @@ pub struct ExactTriangle {
 
 impl ExactTriangle {
     /// The line passes through the closed triangle (not parallel to it).
+    #[must_use]
     pub fn line_hits(&self) -> bool {
         self.t.is_some()
             && !(self.signs.contains(&Ordering::Less) && self.signs.contains(&Ordering::Greater))
     }
 
     /// The kernel's question: the closed triangle is crossed at `0 < t <= t_max`.
+    #[must_use]
     pub fn hits(&self, t_max: &Option<R>) -> bool {
         self.line_hits()
             && self
@@ -334,6 +360,7 @@ impl ExactTriangle {
     }
 
     /// The line crosses the triangle's interior (no edge product is zero).
+    #[must_use]
     pub fn interior(&self) -> bool {
         self.line_hits() && !self.signs.contains(&Ordering::Equal)
     }
@@ -342,6 +369,7 @@ impl ExactTriangle {
 /// Exact ray/triangle: signs of the three edge Plucker products, the plane
 /// crossing `t` and the barycentrics `(u, v)` there; `None` when a
 /// coordinate is not finite.
+#[must_use]
 pub fn triangle<V: Vector>(ray: &Ray<V>, tri: &Triangle<V>) -> Option<ExactTriangle> {
     let (o, d) = (rv(ray.origin)?, rv(ray.dir)?);
     let (a, b, c) = (
@@ -362,11 +390,12 @@ pub fn triangle<V: Vector>(ray: &Ray<V>, tri: &Triangle<V>) -> Option<ExactTrian
             uv: None,
         });
     }
-    // The weight of each corner is the product of the edge opposite it.
+    // The weight of each corner is the product of the edge opposite it, and
+    // the sum of the three is `d . n` with `n = (b - a) x (c - a)`.
     let u = &s_ca / &sum;
     let v = &s_ab / &sum;
     let n = cross(&sub(&b, &a), &sub(&c, &a));
-    let t = dot(&a, &n) / dot(&d, &n);
+    let t = dot(&a, &n) / &sum;
     Some(ExactTriangle {
         signs,
         t: Some(t),
@@ -374,18 +403,25 @@ pub fn triangle<V: Vector>(ray: &Ray<V>, tri: &Triangle<V>) -> Option<ExactTrian
     })
 }
 
-/// An exact dyadic rational `m * 2^e` as an `R` (for building inputs).
+/// An exact dyadic rational `m * 2^e` as an `R` (for building inputs). Any
+/// `e` works; the value takes about `|e|` bits.
+#[must_use]
 pub fn dyadic(m: i64, e: i32) -> R {
-    let m = R::from_integer(BigInt::from(m));
-    let two = R::from_integer(BigInt::from(2));
+    let power = BigInt::from(1) << e.unsigned_abs();
     if e >= 0 {
-        m * num_traits::pow(two, e as usize)
+        R::from_integer(BigInt::from(m) * power)
     } else {
-        m / num_traits::pow(two, (-e) as usize)
+        R::new(BigInt::from(m), power)
     }
 }
 
-/// The spacing of floats of precision `F` at magnitude `m` (one ulp), as f64.
+/// The spacing of floats of precision `F` at magnitude `m` (one ulp), as
+/// `f64`: `|m|` is rounded to `F`, and the answer is the gap from there to
+/// the next float up, at least the smallest subnormal. At the largest finite
+/// float the next one up is the infinity, so the gap is infinite; a
+/// magnitude beyond `F`'s range (and NaN) has no next float and gives the
+/// smallest subnormal.
+#[must_use]
 pub fn ulp<F: Scalar>(m: f64) -> f64 {
     let x = F::from_f64(m.abs());
     (x.next_up().to_f64() - x.to_f64()).max(F::TINY.to_f64())
@@ -394,17 +430,22 @@ pub fn ulp<F: Scalar>(m: f64) -> f64 {
 /// `gamma(n) = n u / (1 - n u)` for precision `F` (`u` its unit roundoff),
 /// exactly: the bound on the relative error of `n` roundings (Higham,
 /// Accuracy and Stability of Numerical Algorithms, 2002, section 3.1).
-pub fn gamma<F: Scalar>(n: i64) -> R {
-    let nu = int(n) * constant(F::UNIT_ROUNDOFF);
+/// Defined for every `n` the type admits: `n u <= 65535 * 2^-24 < 1` (the
+/// formula needs `n u < 1`).
+#[must_use]
+pub fn gamma<F: Scalar>(n: u16) -> R {
+    let nu = int(n.into()) * constant(F::UNIT_ROUNDOFF);
     &nu / (int(1) - &nu)
 }
 
 /// An exact integer.
+#[must_use]
 pub fn int(n: i64) -> R {
     R::from_integer(n.into())
 }
 
 /// `|x|`.
+#[must_use]
 pub fn abs(x: &R) -> R {
     x.abs()
 }
@@ -420,6 +461,7 @@ pub fn abs(x: &R) -> R {
 /// within `(dN + |q| dD)/(|D| - dD) + gamma(2)|q|`, which is what this
 /// returns (with `q` the exact quotient), or `2^2000` when `dD >= |D|`.
 /// `None` when a coordinate is not finite.
+#[must_use]
 pub fn mt_bounds<V: Vector>(ray: &Ray<V>, tri: &Triangle<V>, u: &R, v: &R) -> Option<(R, R, R)> {
     let (o, d) = (rv(ray.origin)?, rv(ray.dir)?);
     let (a, b, c) = (rv(tri.a)?, rv(tri.b)?, rv(tri.c)?);
@@ -457,7 +499,8 @@ pub fn mt_bounds<V: Vector>(ray: &Ray<V>, tri: &Triangle<V>, u: &R, v: &R) -> Op
 /// band: `Some(hit)`, or `None` inside the band (and for a line parallel to
 /// the triangle's plane). `extra` widens the band by another kernel's
 /// `(u, v, t)` bounds (Moller-Trumbore's, from [`mt_bounds`]), or zeros.
-/// `None` also where a bound is not finite.
+/// `None` also where a bound is not finite, and for an invalid ray or a
+/// corner that is not finite.
 ///
 /// The band is the watertight test's documented error bound
 /// ([`ray_triangle_error_bounds`](crate::ray_triangle_error_bounds), held
@@ -471,6 +514,7 @@ pub fn mt_bounds<V: Vector>(ray: &Ray<V>, tri: &Triangle<V>, u: &R, v: &R) -> Op
 /// error over the determinant's lower bound), so
 /// `T(t) <= T(t*) + 3 |t - t*| err_u`, and `T(t) <= T(t*) / (1 - 3 err_u)`.
 /// A rejection thus needs `t* <= 2 T(t*) / (1 - 3 max(err_u, err_v))`.
+#[must_use]
 pub fn triangle_decided<V: Vector>(
     ray: &Ray<V>,
     tri: &Triangle<V>,
@@ -478,6 +522,10 @@ pub fn triangle_decided<V: Vector>(
     t_max: V::Scalar,
     extra: &(R, R, R),
 ) -> Option<bool> {
+    let corners_finite = [tri.a, tri.b, tri.c].iter().all(|c| c.is_finite());
+    if !(ray.is_valid() && corners_finite) {
+        return None;
+    }
     let (te, (ue, ve)) = (exact.t.as_ref()?, exact.uv.as_ref()?);
     let as_s = |x: &R| V::Scalar::from_f64(to_f64(x));
     let probe = TriangleHit {
@@ -508,6 +556,7 @@ pub fn triangle_decided<V: Vector>(
 }
 
 /// No widening: the zeros for [`triangle_decided`]'s `extra`.
+#[must_use]
 pub fn no_extra() -> (R, R, R) {
     (int(0), int(0), int(0))
 }
@@ -523,6 +572,7 @@ pub fn no_extra() -> (R, R, R) {
 ///
 /// A hit must be safe to use, so anything not finite (the inputs, the hit,
 /// its bounds, `ray.at(t)`) counts as a disagreement, on axis 0.
+#[must_use]
 pub fn hit_point_disagreement<V: Vector>(
     ray: &Ray<V>,
     tri: &Triangle<V>,
@@ -553,20 +603,26 @@ pub fn hit_point_disagreement<V: Vector>(
 
 /// True when some nonzero direction component is so small that its
 /// reciprocal overflows (`|d_i| < 1/MAX`): the slab test's exit is then only
-/// an upper bound, not within its relative band (see `ray_aabb`).
+/// an upper bound, not within its relative band (see `ray_aabb`). False
+/// when a component is not finite.
+#[must_use]
 pub fn reciprocal_overflows<V: Vector>(dir: V) -> bool {
-    [dir.x(), dir.y(), dir.z()]
-        .into_iter()
-        .any(|d| d != V::Scalar::ZERO && !(V::Scalar::ONE / d).is_finite())
+    dir.is_finite()
+        && [dir.x(), dir.y(), dir.z()]
+            .into_iter()
+            .any(|d| d != V::Scalar::ZERO && !(V::Scalar::ONE / d).is_finite())
 }
 
 /// True when some direction component is so large that its reciprocal is
 /// subnormal (`|d_i| > 2^126` in `f32`, `2^1022` in `f64`): the slab test's
-/// false-hit band is then `40u` instead of `16u` (see `ray_aabb`).
+/// false-hit band is then `40u` instead of `16u` (see `ray_aabb`). False
+/// when a component is not finite.
+#[must_use]
 pub fn reciprocal_subnormal<V: Vector>(dir: V) -> bool {
-    [dir.x(), dir.y(), dir.z()]
-        .into_iter()
-        .any(|d| d != V::Scalar::ZERO && (V::Scalar::ONE / d).abs() < V::Scalar::MIN_POSITIVE)
+    dir.is_finite()
+        && [dir.x(), dir.y(), dir.z()]
+            .into_iter()
+            .any(|d| d != V::Scalar::ZERO && (V::Scalar::ONE / d).abs() < V::Scalar::MIN_POSITIVE)
 }
 
 /// True when no nonzero direction component is subnormal (where the slab
@@ -585,6 +641,7 @@ fn dir_normal<V: Vector>(dir: V) -> bool {
 /// rules it out; and no nonzero direction component is subnormal. False for
 /// an invalid ray or box (the kernels' answer to those is a miss by rule,
 /// not by arithmetic).
+#[must_use]
 pub fn box_clear<V: Vector>(ray: &Ray<V>, b: &Aabb<V>, t_max: V::Scalar) -> bool {
     let dmin = [ray.dir.x(), ray.dir.y(), ray.dir.z()]
         .into_iter()
@@ -617,6 +674,7 @@ pub fn box_clear<V: Vector>(ray: &Ray<V>, b: &Aabb<V>, t_max: V::Scalar) -> bool
 /// triangle of zero area, is never clear: a determinant that is zero in exact
 /// arithmetic can round to either sign, and Moller-Trumbore's `u`, `v` and
 /// `t` are then unbounded. False when a coordinate is not finite.
+#[must_use]
 pub fn triangle_clear<V: Vector>(ray: &Ray<V>, tri: &Triangle<V>, t_max: V::Scalar) -> bool {
     let Some(ex) = triangle(ray, tri) else {
         return false;
@@ -645,6 +703,7 @@ pub fn triangle_clear<V: Vector>(ray: &Ray<V>, tri: &Triangle<V>, t_max: V::Scal
 ///   exceeds 1.
 ///
 /// False when a coordinate is not finite.
+#[must_use]
 pub fn surely_outside<V: Vector>(
     ray: &Ray<V>,
     tri: &Triangle<V>,
@@ -681,7 +740,9 @@ pub fn surely_outside<V: Vector>(
 
 /// The watertight test's main axis for a direction, the axis of the
 /// largest `|d_k|`, with the test's rule for ties: `x` if `|d_x| > |d_y|`
-/// and `|d_x| > |d_z|`, else `y` if `|d_y| > |d_z|`, else `z`.
+/// and `|d_x| > |d_z|`, else `y` if `|d_y| > |d_z|`, else `z`. Always an
+/// axis, `0..3`: a NaN component loses every comparison.
+#[must_use]
 pub fn main_axis<V: Vector>(dir: V) -> usize {
     let d = dir.abs();
     if d.x() > d.y() && d.x() > d.z() {
@@ -727,6 +788,7 @@ pub fn main_axis<V: Vector>(dir: V) -> usize {
 ///
 /// So `de = 2 (gamma(2) m_x m_y + m_x dy + m_y dx + dx dy) + 4 tiny (1 +
 /// m)(1 + m_pz)`, evaluated here exactly.
+#[must_use]
 pub fn edge_function_bound<V: Vector>(ray: &Ray<V>, tri: &Triangle<V>) -> Option<(R, R)> {
     let kz = main_axis(ray.dir);
     let (kx, ky) = ((kz + 1) % 3, (kz + 2) % 3);
@@ -749,7 +811,7 @@ pub fn edge_function_bound<V: Vector>(ray: &Ray<V>, tri: &Triangle<V>) -> Option
         largest(&py)?,
         largest(&pz)?,
     );
-    let g = |n: i64| gamma::<V::Scalar>(n);
+    let g = |n: u16| gamma::<V::Scalar>(n);
     let dx = g(1) * (&mpx + &mx) + g(4) * r(sx.abs())? * &mpz;
     let dy = g(1) * (&mpy + &my) + g(4) * r(sy.abs())? * &mpz;
     let m = if mx > my { mx.clone() } else { my.clone() };
@@ -762,10 +824,14 @@ pub fn edge_function_bound<V: Vector>(ray: &Ray<V>, tri: &Triangle<V>) -> Option
 /// of parallel (`|d.n| > 4 gamma(3) sum |d_i n_i|`, twice the kernel's own
 /// threshold), and the crossing farther than its error bound from 0 and
 /// `t_max`. False when a coordinate is not finite.
+#[must_use]
 pub fn plane_clear<V: Vector>(ray: &Ray<V>, plane: &Plane<V>, t_max: V::Scalar) -> bool {
     let (Some(d), Some(n)) = (rv(ray.dir), rv(plane.normal)) else {
         return false;
     };
+    if !(ray.origin.is_finite() && plane.point.is_finite()) {
+        return false;
+    }
     let mag: R = (0..3).map(|k| (&d[k] * &n[k]).abs()).sum();
     let resolved = dot(&d, &n).abs() > int(4) * gamma::<V::Scalar>(3) * mag;
     resolved
@@ -779,4 +845,62 @@ pub fn plane_clear<V: Vector>(ray: &Ray<V>, plane: &Plane<V>, t_max: V::Scalar) 
             let limit = limit(t_max);
             t.abs() > err && limit.is_none_or(|m| (m - &t).abs() > err)
         })
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use glam::Vec3;
+
+    #[test]
+    fn non_finite_input_gives_none_or_false() {
+        let (nan, inf) = (f32::NAN, f32::INFINITY);
+        let good = Ray::new(Vec3::new(0.25, 0.25, 1.0), Vec3::NEG_Z);
+        let tri = Triangle::new(Vec3::ZERO, Vec3::X, Vec3::Y);
+        let aabb = Aabb::new(Vec3::ZERO, Vec3::ONE);
+        let plane = Plane::new(Vec3::ZERO, Vec3::Z);
+        assert!(r(nan).is_none() && r(inf).is_none() && rv(Vec3::new(0.0, inf, 0.0)).is_none());
+        for bad in [
+            Ray::new(Vec3::new(nan, 0.25, 1.0), Vec3::NEG_Z),
+            Ray::new(Vec3::new(0.25, 0.25, 1.0), Vec3::new(0.0, inf, -1.0)),
+        ] {
+            assert!(plane_t(&bad, &plane).is_none() && box_slabs(&bad, &aabb).is_none());
+            assert!(box_face(&bad, &aabb).is_none() && triangle(&bad, &tri).is_none());
+            assert!(
+                segment_crossing(&bad, &tri).is_none() && edge_function_bound(&bad, &tri).is_none()
+            );
+            assert!(mt_bounds(&bad, &tri, &int(0), &int(0)).is_none());
+            assert!(!box_clear(&bad, &aabb, inf) && !triangle_clear(&bad, &tri, inf));
+            assert!(!plane_clear(&bad, &plane, inf) && !reciprocal_subnormal(bad.dir));
+            let exact = triangle(&good, &tri).unwrap();
+            assert!(triangle_decided(&bad, &tri, &exact, inf, &no_extra()).is_none());
+            assert!(!surely_outside(&bad, &tri, &exact, &no_extra()));
+        }
+        assert!(!reciprocal_overflows(Vec3::new(nan, 1.0, 1.0)));
+        assert!(!close(nan, &int(0), 1.0) && !close(0.0, &int(0), inf));
+        assert!(close(0.5, &dyadic(1, -1), 0.0));
+        assert_eq!(main_axis(Vec3::new(nan, nan, nan)), 2);
+    }
+
+    #[test]
+    fn a_segment_seen_end_on_has_no_crossing() {
+        let seg = Triangle::new(Vec3::ZERO, Vec3::Z, Vec3::Z * 2.0);
+        let ray = Ray::new(Vec3::new(0.0, 0.0, 5.0), Vec3::NEG_Z);
+        assert!(segment_crossing(&ray, &seg).is_none());
+        let across = Ray::new(Vec3::new(-1.0, 0.0, 1.5), Vec3::X);
+        assert_eq!(segment_crossing(&across, &seg), Some(int(1)));
+    }
+
+    #[test]
+    fn conversions_saturate_and_gamma_is_total() {
+        assert_eq!(to_f64(&dyadic(1, 2000)), f64::INFINITY);
+        assert_eq!(to_f64(&dyadic(-1, 2000)), f64::NEG_INFINITY);
+        assert_eq!(to_f64(&dyadic(-1, -2000)).to_bits(), (-0.0f64).to_bits());
+        assert_eq!(to_f64(&dyadic(3, -1074)), 3.0 * f64::from_bits(1));
+        assert_eq!(to_f64(&r(f64::MAX).unwrap()), f64::MAX);
+        assert_eq!(ulp::<f32>(1.0), f64::from(f32::EPSILON));
+        assert_eq!(ulp::<f32>(f64::from(f32::MAX)), f64::INFINITY);
+        assert_eq!(ulp::<f32>(1e300), f64::from(f32::from_bits(1)));
+        assert!(gamma::<f32>(u16::MAX) < int(1) && gamma::<f64>(1) > int(0));
+    }
 }
