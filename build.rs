@@ -1,31 +1,37 @@
 //! The crate's `cfg` aliases, so that no target predicate is written twice:
 //!
-//! - `rayhit_lanes` names the registers the `f32` lanes use on the build's
-//!   target: `"avx2"` (x86-64 with AVX2 enabled at compile time, as with
-//!   `-C target-cpu=native` on a recent CPU), `"sse2"` (other x86 targets
-//!   with SSE2, the default x86-64 target among them) or `"portable"`
-//!   (arrays; every other target).
+//! - `rayhit_lanes4` and `rayhit_lanes8` name the registers the `f32` lanes
+//!   use on the build's target, four and eight at a time: `"sse2"` on x86
+//!   targets with SSE2 (the default x86-64 target among them), for eight
+//!   lanes `"avx2"` instead where AVX2 is enabled at compile time (as with
+//!   `-C target-cpu=native` on a recent CPU), and `"portable"` (arrays) on
+//!   every other target.
 //! - `rayhit_runtime_avx` is set where the batch kernels pick an AVX2 or
 //!   AVX-512 copy at run time: x86-64 with `std` (for the CPU detection),
 //!   on a target that does not already assume AVX2.
 
 fn main() {
     println!("cargo::rustc-check-cfg=cfg(rayhit_runtime_avx)");
-    println!("cargo::rustc-check-cfg=cfg(rayhit_lanes, values(\"avx2\", \"sse2\", \"portable\"))");
+    println!("cargo::rustc-check-cfg=cfg(rayhit_lanes4, values(\"sse2\", \"portable\"))");
+    println!("cargo::rustc-check-cfg=cfg(rayhit_lanes8, values(\"avx2\", \"sse2\", \"portable\"))");
     println!("cargo::rerun-if-changed=build.rs");
     let arch = std::env::var("CARGO_CFG_TARGET_ARCH").unwrap_or_default();
     let features = std::env::var("CARGO_CFG_TARGET_FEATURE").unwrap_or_default();
     let has = |feature: &str| features.split(',').any(|f| f == feature);
     let std = std::env::var_os("CARGO_FEATURE_STD").is_some();
     let x86 = arch == "x86" || arch == "x86_64";
-    let lanes = if arch == "x86_64" && has("avx2") {
-        "avx2"
-    } else if x86 && has("sse2") {
+    let lanes4 = if x86 && has("sse2") {
         "sse2"
     } else {
         "portable"
     };
-    println!("cargo::rustc-cfg=rayhit_lanes=\"{lanes}\"");
+    let lanes8 = if arch == "x86_64" && has("avx2") {
+        "avx2"
+    } else {
+        lanes4
+    };
+    println!("cargo::rustc-cfg=rayhit_lanes4=\"{lanes4}\"");
+    println!("cargo::rustc-cfg=rayhit_lanes8=\"{lanes8}\"");
     if arch == "x86_64" && std && !has("avx2") {
         println!("cargo::rustc-cfg=rayhit_runtime_avx");
     }

@@ -99,18 +99,18 @@ pub(crate) fn per_call<K: Kernel>(ray: &K::Ray, shapes: &K::Shapes, t_max: K::Li
 
 /// The `f32` four lanes of this target: an SSE register on x86, an array
 /// elsewhere.
-#[cfg(any(rayhit_lanes = "sse2", rayhit_lanes = "avx2"))]
+#[cfg(rayhit_lanes4 = "sse2")]
 type F32Lanes = super::sse2::F32x4;
-#[cfg(rayhit_lanes = "portable")]
+#[cfg(rayhit_lanes4 = "portable")]
 type F32Lanes = Portable<f32>;
 
 /// The `f32` eight lanes of this target: an AVX register where the target
 /// has AVX2, two SSE registers on other x86 targets, an array elsewhere.
-#[cfg(rayhit_lanes = "avx2")]
+#[cfg(rayhit_lanes8 = "avx2")]
 type F32Lanes8 = super::avx2::F32x8;
-#[cfg(rayhit_lanes = "sse2")]
-type F32Lanes8 = super::sse2::F32x4x2;
-#[cfg(rayhit_lanes = "portable")]
+#[cfg(rayhit_lanes8 = "sse2")]
+type F32Lanes8 = super::sse2::pair::F32x4x2;
+#[cfg(rayhit_lanes8 = "portable")]
 type F32Lanes8 = Portable8<f32>;
 
 impl Repr for f32 {

@@ -10,13 +10,14 @@
 //! | `dispatch.rs` | the lane types each precision uses on the build's target; [`TargetSimd`]; the kernel-body and instruction-set traits; the per-call choice |
 //! | `rows.rs` | a batch's rows, eight lanes at a time |
 //!
-//! Which of them the build's target uses is the `cfg` value `rayhit_lanes`,
-//! set once in `build.rs`. Another instruction set (NEON on aarch64,
-//! simd128 on wasm32) is a file here implementing `Lanes` and `Lanes8` for
-//! `f32` on its registers, a value of `rayhit_lanes` for the targets that
-//! have it, and its lines in `dispatch.rs`; the tests in
-//! `tests.rs` hold it to `portable.rs` bit for bit. Where an instruction set
-//! is detected at run time, its file also holds a token and the
+//! Which of them the build's target uses are the `cfg` values
+//! `rayhit_lanes4` and `rayhit_lanes8`, set once in `build.rs`. Another
+//! instruction set (NEON on aarch64, simd128 on wasm32) is a file here
+//! implementing `Lanes` and `Lanes8` for `f32` on its registers, values of
+//! `rayhit_lanes4` and `rayhit_lanes8` for the targets that have it, and its
+//! lines in `dispatch.rs`; the tests in `tests.rs` hold it to
+//! `portable.rs` bit for bit. Where an instruction set is detected at run
+//! time, its file also holds a token and the
 //! `#[target_feature]` function that runs a kernel body, as `avx2.rs` does.
 
 /// A lane-wise operation of a register type that wraps one register: the
@@ -24,7 +25,7 @@
 /// module docs carry the safety argument: the intrinsic needs only the
 /// instruction set, which the file is compiled or called for, and touches
 /// no memory.
-#[cfg(any(rayhit_lanes = "sse2", rayhit_lanes = "avx2", rayhit_runtime_avx))]
+#[cfg(any(rayhit_lanes4 = "sse2", rayhit_runtime_avx))]
 macro_rules! op2 {
     ($name:ident, $intrinsic:ident) => {
         #[inline(always)]
@@ -39,11 +40,11 @@ mod dispatch;
 mod portable;
 mod rows;
 
-#[cfg(any(rayhit_lanes = "avx2", rayhit_runtime_avx))]
+#[cfg(any(rayhit_lanes8 = "avx2", rayhit_runtime_avx))]
 mod avx2;
 #[cfg(rayhit_runtime_avx)]
 mod avx512;
-#[cfg(any(rayhit_lanes = "sse2", rayhit_lanes = "avx2"))]
+#[cfg(rayhit_lanes4 = "sse2")]
 mod sse2;
 #[cfg(test)]
 mod tests;

@@ -129,13 +129,10 @@ impl Lanes for F32x4 {
     }
 }
 
-#[cfg(rayhit_lanes = "sse2")]
-pub use pair::F32x4x2;
-
 /// Eight lanes in two registers: the eight-lane type of x86 targets without
 /// AVX2 (those with it use `super::avx2`'s).
-#[cfg(rayhit_lanes = "sse2")]
-mod pair {
+#[cfg(rayhit_lanes8 = "sse2")]
+pub mod pair {
     #[cfg(target_arch = "x86")]
     use core::arch::x86::*;
     #[cfg(target_arch = "x86_64")]
