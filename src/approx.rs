@@ -1,4 +1,4 @@
-//! `approx` comparisons for the public types (feature `approx`).
+//! `approx` comparisons for the public types (feature `approx-05`).
 //!
 //! [`AbsDiffEq`], [`RelativeEq`] and [`UlpsEq`] for [`Ray`], [`Aabb`],
 //! [`Plane`], [`Triangle`] and [`TriangleHit`], in both precisions, so that a

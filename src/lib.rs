@@ -57,13 +57,13 @@
 //! `DRay` and a `DTriangle`.
 //!
 //! The glam above is the one this crate re-exports, [`glam`] 0.34. A crate
-//! on an older glam turns on that release's feature (`glam-0_29`,
-//! `glam-0_30`, `glam-0_31`, `glam-0_32` or `glam-0_33`) and passes its own
+//! on an older glam turns on that release's feature (`glam-029`,
+//! `glam-030`, `glam-031`, `glam-032` or `glam-033`) and passes its own
 //! `Vec3`, `Vec3A` or `DVec3` to every kernel, with the same answers bit for
 //! bit; the hits come back in its own types. Import by name or with
 //! [`prelude`]: a glob import of the crate root brings in `rayhit::glam`
 //! too, which is ambiguous next to your own `glam`. For other math crates,
-//! the `mint` feature adds `from_mint` constructors (see the `mint` module).
+//! the `mint-05` feature adds `from_mint` constructors (see the `mint` module).
 //!
 //! The kernels are written once, against the sealed [`Vector`] and
 //! [`Scalar`] traits, and each error bound is derived in terms of the unit
@@ -283,13 +283,13 @@
 //!   so `default-features = false` is all a bare-metal target needs.
 //! - `libm`: does nothing (`libm` is used whenever `std` is off); kept so
 //!   that builds naming it keep working.
-//! - `glam-0_29` to `glam-0_33`: glam's `Vec3`, `Vec3A` and `DVec3` of that
+//! - `glam-029` to `glam-033`: glam's `Vec3`, `Vec3A` and `DVec3` of that
 //!   release as vector types (see "Precision").
-//! - `mint`: `from_mint` constructors for [`Ray`], [`Aabb`], [`Triangle`]
+//! - `mint-05`: `from_mint` constructors for [`Ray`], [`Aabb`], [`Triangle`]
 //!   and [`Plane`] (see the `mint` module), and glam's own mint conversions.
 //! - `exact`: the public `exact` module, exact answers to every kernel's
 //!   question and verdicts on claimed answers (turns on `std`).
-//! - `approx`: `approx`'s `AbsDiffEq`, `RelativeEq` and `UlpsEq` for the
+//! - `approx-05`: `approx`'s `AbsDiffEq`, `RelativeEq` and `UlpsEq` for the
 //!   public types and triangle hits (see the `approx` module for what each
 //!   comparison means).
 //! - `proptest`: the public `strategies` module, the generators the
@@ -298,6 +298,11 @@
 //! - `arbitrary`: `arbitrary::Arbitrary` for [`Ray`], [`Aabb`], [`Plane`] and
 //!   [`Triangle`] in both precisions, every coordinate a raw bit pattern (NaN,
 //!   infinities, subnormals and `-0.0` included), for fuzzers.
+//! - `bytemuck`: `Pod` and `Zeroable` for [`Ray`], [`Aabb`], [`Triangle`],
+//!   [`Plane`] and [`TriangleHitError`] over `Vec3` and `DVec3`, and checked
+//!   casts to [`ValidAabb`], for GPU buffers (see the `bytemuck` module).
+//! - `serde`: `Serialize` and `Deserialize` for the rays, shapes and hits,
+//!   every bit kept by binary formats (see the `serde` module).
 
 #![no_std]
 #![cfg_attr(docsrs, feature(doc_cfg))]
@@ -327,17 +332,23 @@ mod with_simd;
 mod camera;
 mod surface;
 
-#[cfg(feature = "approx")]
-#[cfg_attr(docsrs, doc(cfg(feature = "approx")))]
+#[cfg(feature = "approx-05")]
+#[cfg_attr(docsrs, doc(cfg(feature = "approx-05")))]
 pub mod approx;
 #[cfg(feature = "arbitrary")]
 mod arbitrary;
+#[cfg(feature = "bytemuck")]
+#[cfg_attr(docsrs, doc(cfg(feature = "bytemuck")))]
+pub mod bytemuck;
 #[cfg(feature = "exact")]
 #[cfg_attr(docsrs, doc(cfg(feature = "exact")))]
 pub mod exact;
-#[cfg(feature = "mint")]
-#[cfg_attr(docsrs, doc(cfg(feature = "mint")))]
+#[cfg(feature = "mint-05")]
+#[cfg_attr(docsrs, doc(cfg(feature = "mint-05")))]
 pub mod mint;
+#[cfg(feature = "serde")]
+#[cfg_attr(docsrs, doc(cfg(feature = "serde")))]
+pub mod serde;
 #[cfg(feature = "proptest")]
 #[cfg_attr(docsrs, doc(cfg(feature = "proptest")))]
 pub mod strategies;

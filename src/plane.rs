@@ -21,6 +21,8 @@ use crate::ray::{Ray, t_max_ok};
 /// assert_eq!(a.normal, b.normal);
 /// ```
 #[derive(Clone, Copy, Debug, Default, PartialEq)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
+#[repr(C)]
 pub struct Plane<V = Vec3> {
     /// Any point on the plane.
     pub point: V,

@@ -1,6 +1,6 @@
 //! Every vector type of a precision gives the same answers, bit for bit:
 //! glam's `Vec3A` (16 bytes, SIMD) against its `Vec3`, and with the features
-//! `glam-0_29` to `glam-0_33` on, the `Vec3`, `Vec3A` and `DVec3` of each
+//! `glam-029` to `glam-033` on, the `Vec3`, `Vec3A` and `DVec3` of each
 //! older glam against this glam's `Vec3` and `DVec3`, through every public
 //! kernel, on the oracle suite's generators (rays through edges, corners and
 //! faces, slivers, tiny components, far scenes) and on raw bit patterns (NaN,
@@ -8,7 +8,7 @@
 //! all of them (products and sums in the same order), so any difference is a
 //! bug in a vector type's implementation.
 //!
-//! `cargo test --test interop --features glam-0_29,glam-0_30,glam-0_31,glam-0_32,glam-0_33`
+//! `cargo test --test interop --features glam-029,glam-030,glam-031,glam-032,glam-033`
 //! runs every type (CI does).
 
 use rayhit::glam::Vec3;
@@ -333,13 +333,13 @@ macro_rules! older_glam {
 }
 
 same_bits!(vec3a, Vec3, rayhit::glam::Vec3A);
-#[cfg(feature = "glam-0_29")]
+#[cfg(feature = "glam-029")]
 older_glam!(glam_0_29, glam029);
-#[cfg(feature = "glam-0_30")]
+#[cfg(feature = "glam-030")]
 older_glam!(glam_0_30, glam030);
-#[cfg(feature = "glam-0_31")]
+#[cfg(feature = "glam-031")]
 older_glam!(glam_0_31, glam031);
-#[cfg(feature = "glam-0_32")]
+#[cfg(feature = "glam-032")]
 older_glam!(glam_0_32, glam032);
-#[cfg(feature = "glam-0_33")]
+#[cfg(feature = "glam-033")]
 older_glam!(glam_0_33, glam033);

@@ -18,8 +18,8 @@
 //!
 //! `cargo run --release -p rayhit-corpus --example compare -- --dump FILE` also writes every
 //! case and the kernel's answer (`t`, `u`, `v`) in the checker's format (see
-//! `examples/check/main.rs`), for
-//! `cargo run --release --features exact --example check -- --front-only FILE`.
+//! the `rayhit-check` crate in `check/`), for
+//! `cargo run --release -p rayhit-check -- --front-only FILE`.
 
 use proptest::strategy::{Strategy, ValueTree};
 use proptest::test_runner::{Config, TestRng, TestRunner};

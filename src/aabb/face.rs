@@ -8,6 +8,8 @@ use crate::ray::{PreparedRay, Ray};
 
 /// A face of a box: one axis's `min` or `max` side.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
+#[repr(u8)]
 pub enum BoxFace {
     /// The face `x = min.x`, outward normal `-x`.
     MinX,
@@ -86,6 +88,8 @@ impl BoxFace {
 /// [`ray_aabb_prepared`](crate::ray_aabb_prepared)) returns. `face` is decided in exact arithmetic:
 /// see [`ray_aabb_face`].
 #[derive(Clone, Copy, Debug, PartialEq)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
+#[repr(C)]
 pub struct BoxHit<F = f32> {
     /// Where the ray enters the box (0 when it starts inside).
     pub enter: F,

@@ -40,6 +40,8 @@ pub use slab::{ray_aabb, ray_aabb_prepared};
 /// assert!(!Aabb::new(Vec3::ONE, Vec3::ZERO).is_valid());
 /// ```
 #[derive(Clone, Copy, Debug, Default, PartialEq)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
+#[repr(C)]
 pub struct Aabb<V = Vec3> {
     /// The corner with the smallest coordinates.
     pub min: V,

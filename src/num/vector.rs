@@ -12,8 +12,8 @@ use super::{S, Scalar};
 
 /// A 3-component vector the kernels run on: glam's `Vec3` and `Vec3A`
 /// (`f32`) and `DVec3` (`f64`), of the glam this crate re-exports and of
-/// every older glam release whose feature is on (`glam-0_29` to
-/// `glam-0_33`).
+/// every older glam release whose feature is on (`glam-029` to
+/// `glam-033`).
 ///
 /// Sealed; see [`Scalar`]. The operations are glam's own or written out in
 /// the order glam's `Vec3` uses, so every vector type of a precision gives
@@ -179,15 +179,15 @@ macro_rules! impl_glam {
 }
 
 impl_glam!(glam);
-#[cfg(feature = "glam-0_29")]
+#[cfg(feature = "glam-029")]
 impl_glam!(glam029);
-#[cfg(feature = "glam-0_30")]
+#[cfg(feature = "glam-030")]
 impl_glam!(glam030);
-#[cfg(feature = "glam-0_31")]
+#[cfg(feature = "glam-031")]
 impl_glam!(glam031);
-#[cfg(feature = "glam-0_32")]
+#[cfg(feature = "glam-032")]
 impl_glam!(glam032);
-#[cfg(feature = "glam-0_33")]
+#[cfg(feature = "glam-033")]
 impl_glam!(glam033);
 
 /// `v / |v|`, computed as `v * (1 / sqrt(v . v))` (glam's `normalize`) on

@@ -36,6 +36,8 @@ pub(crate) use slab::SlabRay;
 /// assert_eq!(ray.at(0.5), Vec3::new(1.0, 2.0, 2.0));
 /// ```
 #[derive(Clone, Copy, Debug, Default, PartialEq)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
+#[repr(C)]
 pub struct Ray<V = Vec3> {
     /// Where the ray starts (`t = 0`).
     pub origin: V,

@@ -391,6 +391,8 @@ pub fn triangle_hit_point<V: Vector>(tri: &Triangle<V>, hit: &TriangleHit<S<V>>)
 /// crossing of the ray's line with the triangle's plane, computed exactly
 /// from the same inputs. See [`ray_triangle_error_bounds`].
 #[derive(Clone, Copy, Debug, PartialEq)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
+#[repr(C)]
 pub struct TriangleHitError<F = f32> {
     /// Bound on the error of `t`.
     pub t: F,

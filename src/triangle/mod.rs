@@ -68,6 +68,8 @@ pub use watertight::{ray_triangle, ray_triangle_one_hit, ray_triangle_prepared};
 /// assert_eq!(t.normal(), Vec3::Z);
 /// ```
 #[derive(Clone, Copy, Debug, Default, PartialEq)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
+#[repr(C)]
 pub struct Triangle<V = Vec3> {
     /// First corner; barycentric weight `1 - u - v`.
     pub a: V,
@@ -202,6 +204,8 @@ impl<V: Vector> Triangle<V> {
 
 /// Which side of a triangle a ray arrived from.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
+#[repr(u8)]
 pub enum Side {
     /// Against the geometric normal (`dir . normal < 0`): the side the normal
     /// points to, where the winding looks counter-clockwise.
@@ -216,6 +220,8 @@ pub enum Side {
 /// `t` is in units of the ray's `dir`, `0 < t <= t_max`; `u` and `v` are each
 /// in `[0, 1]` (their sum can exceed 1 by a rounding).
 #[derive(Clone, Copy, Debug, PartialEq)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
+#[repr(C)]
 pub struct TriangleHit<F = f32> {
     /// Distance along the ray, in units of `dir`.
     pub t: F,

@@ -1,12 +1,8 @@
-//! The checker (`examples/check`) on hand-made answer files: a right
+//! The checker on hand-made answer files: a right
 //! kernel passes, a wrong answer on a clear case, or a `t` beyond the bound,
 //! fails it, and `--front-only` excuses a culled back face.
 
-#[allow(dead_code)]
-#[path = "../examples/check/main.rs"]
-mod check;
-
-use check::{Options, run};
+use rayhit_check::{Options, run};
 
 /// A triangle in the plane z = 0 and a ray straight down onto its interior
 /// at (0.25, 0.25) from z = 1: exactly t = 1, u = v = 0.25; the ray arrives

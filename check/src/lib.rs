@@ -1,6 +1,10 @@
-//! Judging any kernel's answers against exact arithmetic.
+//! Judging any kernel's answers against exact arithmetic: the library
+//! behind the `rayhit-check` command.
 //!
-//! `cargo run --release --features exact --example check -- [--front-only] [--t-ulps N] FILE`
+//! `rayhit-check [--front-only] [--t-ulps N] FILE`
+//!
+//! Install it with `cargo install rayhit-check` (or, in a clone of the
+//! repository, `cargo install --path check`).
 //!
 //! Reads cases and a kernel's answers from `FILE` (`-` for standard input),
 //! one case a line, and prints, per kind, precision and family, the false
@@ -43,8 +47,6 @@
 
 use std::collections::BTreeMap;
 use std::fmt::Write as _;
-use std::io::Read;
-use std::process::ExitCode;
 
 use rayhit::exact::{self, Case, Field, Judgement, Tally, Verdict};
 use rayhit::glam::{DVec3, Vec3};
@@ -53,9 +55,15 @@ use rayhit::{Scalar, Side, TriangleHit, Vector};
 /// The documented box bound used by default, in ulps.
 const BOX_ULPS: f64 = 16.0;
 
-pub(crate) struct Options {
-    pub(crate) front_only: bool,
-    pub(crate) t_ulps: Option<f64>,
+/// How the answers are judged.
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct Options {
+    /// The kernel culls back faces: an exact hit from the back counts as a
+    /// miss (`--front-only`).
+    pub front_only: bool,
+    /// The bound on `t` (and box entry and exit) in ulps of the exact value
+    /// (`--t-ulps N`); `None` for rayhit's own documented bound per case.
+    pub t_ulps: Option<f64>,
 }
 
 /// A worst case: how bad, and the line.
@@ -119,64 +127,9 @@ fn judge_line<V: Vector>(
     Ok(j)
 }
 
-fn main() -> ExitCode {
-    let mut args = std::env::args().skip(1);
-    let mut opts = Options {
-        front_only: false,
-        t_ulps: None,
-    };
-    let mut file = None;
-    while let Some(a) = args.next() {
-        match a.as_str() {
-            "--front-only" => opts.front_only = true,
-            "--t-ulps" => match args.next().and_then(|s| s.parse::<f64>().ok()) {
-                Some(b) if b >= 0.0 => opts.t_ulps = Some(b),
-                _ => {
-                    eprintln!("--t-ulps needs a number of ulps");
-                    return ExitCode::from(2);
-                }
-            },
-            _ if file.is_none() => file = Some(a),
-            _ => {
-                eprintln!("usage: check [--front-only] [--t-ulps N] FILE");
-                return ExitCode::from(2);
-            }
-        }
-    }
-    let Some(file) = file else {
-        eprintln!("usage: check [--front-only] [--t-ulps N] FILE");
-        return ExitCode::from(2);
-    };
-    let mut text = String::new();
-    let read = if file == "-" {
-        std::io::stdin().read_to_string(&mut text).map(|_| ())
-    } else {
-        std::fs::read_to_string(&file).map(|t| text = t)
-    };
-    if let Err(e) = read {
-        eprintln!("cannot read {file}: {e}");
-        return ExitCode::from(2);
-    }
-
-    match run(&opts, &text) {
-        Ok((table, failed)) => {
-            print!("{table}");
-            if failed {
-                ExitCode::FAILURE
-            } else {
-                ExitCode::SUCCESS
-            }
-        }
-        Err(e) => {
-            eprintln!("{e}");
-            ExitCode::from(2)
-        }
-    }
-}
-
 /// Judges every line of `text`: the table and worst cases as text, and
 /// whether anything counts against the kernel.
-pub(crate) fn run(opts: &Options, text: &str) -> Result<(String, bool), String> {
+pub fn run(opts: &Options, text: &str) -> Result<(String, bool), String> {
     let mut out = String::new();
     let mut rows: BTreeMap<(String, String, String), Tally> = BTreeMap::new();
     let (mut wrong, mut over): (Worst, Worst) = (Vec::new(), Vec::new());
