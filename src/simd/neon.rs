@@ -180,6 +180,7 @@ impl Lanes for F32x4 {
 pub struct F32x4x2([float32x4_t; 2]);
 
 impl F32x4x2 {
+    /// `f` on the low registers and on the high ones.
     #[inline(always)]
     fn map2(self, o: Self, f: impl Fn(float32x4_t, float32x4_t) -> float32x4_t) -> Self {
         Self([f(self.0[0], o.0[0]), f(self.0[1], o.0[1])])
