@@ -88,7 +88,8 @@
 //! [`ray_triangle_batch`]; 8 or 16 lanes are the useful sizes), returning a
 //! hit mask and per-lane distances. They work on eight lanes at a time in
 //! SIMD registers (SSE2 by default; AVX2 where the build or the CPU has it:
-//! with `std` on x86-64 an AVX2 copy is picked at run time), in both
+//! with `std` on x86-64 an AVX2 copy is picked at run time; NEON on
+//! aarch64), in both
 //! precisions, and each lane's answer is bit for bit the scalar kernel's.
 //! [`with_simd`] makes that choice once for a whole traversal instead of
 //! once per batch, and also uses an AVX-512 copy of the box kernels on CPUs

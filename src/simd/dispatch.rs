@@ -65,7 +65,8 @@ pub trait Work {
 }
 
 /// The instruction set the build's target has (SSE2 on the default x86-64
-/// target; AVX2 and more with `-C target-cpu=native` on such a CPU).
+/// target; AVX2 and more with `-C target-cpu=native` on such a CPU; NEON on
+/// aarch64).
 #[derive(Clone, Copy, Debug, Default)]
 pub struct TargetSimd;
 
@@ -97,19 +98,24 @@ pub(crate) fn per_call<K: Kernel>(ray: &K::Ray, shapes: &K::Shapes, t_max: K::Li
     TargetSimd.kernel::<K>(ray, shapes, t_max)
 }
 
-/// The `f32` four lanes of this target: an SSE register on x86, an array
-/// elsewhere.
+/// The `f32` four lanes of this target: an SSE register on x86, a NEON
+/// register on aarch64, an array elsewhere.
 #[cfg(rayhit_lanes4 = "sse2")]
 type F32Lanes = super::sse2::F32x4;
+#[cfg(rayhit_lanes4 = "neon")]
+type F32Lanes = super::neon::F32x4;
 #[cfg(rayhit_lanes4 = "portable")]
 type F32Lanes = Portable<f32>;
 
 /// The `f32` eight lanes of this target: an AVX register where the target
-/// has AVX2, two SSE registers on other x86 targets, an array elsewhere.
+/// has AVX2, two SSE registers on other x86 targets, two NEON registers on
+/// aarch64, an array elsewhere.
 #[cfg(rayhit_lanes8 = "avx2")]
 type F32Lanes8 = super::avx2::F32x8;
 #[cfg(rayhit_lanes8 = "sse2")]
 type F32Lanes8 = super::sse2::pair::F32x4x2;
+#[cfg(rayhit_lanes8 = "neon")]
+type F32Lanes8 = super::neon::F32x4x2;
 #[cfg(rayhit_lanes8 = "portable")]
 type F32Lanes8 = Portable8<f32>;
 

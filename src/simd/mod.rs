@@ -5,6 +5,7 @@
 //! | --- | --- |
 //! | `portable.rs` | the lanes as arrays: the definition every register type is tested against, and the implementation for `f64` and targets without registers |
 //! | `sse2.rs` | `f32` in SSE registers: four lanes in one, eight in two (every x86-64 target) |
+//! | `neon.rs` | `f32` in NEON registers: four lanes in one, eight in two (every aarch64 target) |
 //! | `avx2.rs` | `f32` in an AVX register, eight lanes; the [`Avx2`] token where the build picks at run time |
 //! | `avx512.rs` | the [`Avx512`] token: AVX2's lanes compiled with AVX-512 |
 //! | `dispatch.rs` | the lane types each precision uses on the build's target; [`TargetSimd`]; the kernel-body and instruction-set traits; the per-call choice |
@@ -12,7 +13,7 @@
 //!
 //! Which of them the build's target uses are the `cfg` values
 //! `rayhit_lanes4` and `rayhit_lanes8`, set once in `build.rs`. Another
-//! instruction set (NEON on aarch64, simd128 on wasm32) is a file here
+//! instruction set (simd128 on wasm32, say) is a file here
 //! implementing `Lanes` and `Lanes8` for `f32` on its registers, values of
 //! `rayhit_lanes4` and `rayhit_lanes8` for the targets that have it, and its
 //! lines in `dispatch.rs`; the tests in `tests.rs` hold it to
@@ -25,7 +26,7 @@
 /// module docs carry the safety argument: the intrinsic needs only the
 /// instruction set, which the file is compiled or called for, and touches
 /// no memory.
-#[cfg(any(rayhit_lanes4 = "sse2", rayhit_runtime_avx))]
+#[cfg(any(rayhit_lanes4 = "sse2", rayhit_lanes4 = "neon", rayhit_runtime_avx))]
 macro_rules! op2 {
     ($name:ident, $intrinsic:ident) => {
         #[inline(always)]
@@ -44,6 +45,8 @@ mod rows;
 mod avx2;
 #[cfg(rayhit_runtime_avx)]
 mod avx512;
+#[cfg(rayhit_lanes4 = "neon")]
+mod neon;
 #[cfg(rayhit_lanes4 = "sse2")]
 mod sse2;
 #[cfg(test)]

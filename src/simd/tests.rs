@@ -1,6 +1,6 @@
 //! Every register type against the portable definition, bit for bit:
-//! the four lanes and the eight lanes the build's target uses, and the AVX2
-//! lanes where the CPU has AVX2.
+//! the four lanes and the eight lanes the build's target uses (SSE2 or AVX2
+//! on x86-64, NEON on aarch64), and the AVX2 lanes where the CPU has AVX2.
 
 use super::portable::{Portable, Portable8};
 use crate::num::{Lanes, Lanes8, Repr};
@@ -11,12 +11,30 @@ type F32Lanes = <f32 as Repr>::L4;
 /// The `f32` eight lanes of this target.
 type F32Lanes8 = <f32 as Repr>::L8;
 
+/// The same bits in every lane.
 fn same(a: [f32; 3], b: [f32; 3]) -> bool {
     a.iter().zip(&b).all(|(x, y)| x.to_bits() == y.to_bits())
 }
 
+/// The bits of `x`, with every NaN alike. An arithmetic operation with a
+/// NaN operand gives a NaN whose payload Rust leaves open: the hardware
+/// picks one operand's, and the compiler may swap the operands of an
+/// addition or multiplication (it does, on aarch64, for `sum3`'s second
+/// addition). No kernel answer is a NaN.
+fn canonical(x: f32) -> u32 {
+    if x.is_nan() { u32::MAX } else { x.to_bits() }
+}
+
+/// The same bits in every lane, every NaN alike.
+fn same_value(a: [f32; 3], b: [f32; 3]) -> bool {
+    a.map(canonical) == b.map(canonical)
+}
+
 /// Every operation of the register type gives the portable definition's
-/// bits, NaN, infinities and signed zeros included (lane 3 aside).
+/// bits, NaN, infinities and signed zeros included (lane 3 aside): the
+/// exact bits where the operation picks or moves a value (`max`, `min`,
+/// `abs`, `neg`, the rotations), and any NaN where the portable code
+/// computes a NaN.
 #[test]
 fn registers_match_the_definition() {
     let mut draws = Draws(0x2545_f491_4f6c_dd1d);
@@ -38,15 +56,21 @@ fn registers_match_the_definition() {
             F32Lanes::new(b[0], b[1], b[2]),
         );
         type Op<L> = fn(L, L) -> L;
-        let ops: [(Op<Portable<f32>>, Op<F32Lanes>); 6] = [
+        let arithmetic: [(Op<Portable<f32>>, Op<F32Lanes>); 4] = [
             (Lanes::add, Lanes::add),
             (Lanes::sub, Lanes::sub),
             (Lanes::mul, Lanes::mul),
             (Lanes::div, Lanes::div),
-            (Lanes::max, Lanes::max),
-            (Lanes::min, Lanes::min),
         ];
-        for (p, f) in ops {
+        for (p, f) in arithmetic {
+            assert!(
+                same_value(p(pa, pb).to_array(), f(fa, fb).to_array()),
+                "{a:?} {b:?}"
+            );
+        }
+        let selects: [(Op<Portable<f32>>, Op<F32Lanes>); 2] =
+            [(Lanes::max, Lanes::max), (Lanes::min, Lanes::min)];
+        for (p, f) in selects {
             assert!(
                 same(p(pa, pb).to_array(), f(fa, fb).to_array()),
                 "{a:?} {b:?}"
@@ -67,7 +91,7 @@ fn registers_match_the_definition() {
         for (p, f) in [(pa.max_all(), fa.max_all()), (pa.min_all(), fa.min_all())] {
             assert!(same(p.to_array(), f.to_array()), "{a:?}");
         }
-        assert_eq!(pa.sum3().to_bits(), fa.sum3().to_bits(), "{a:?}");
+        assert_eq!(canonical(pa.sum3()), canonical(fa.sum3()), "{a:?}");
         assert_eq!(pa.x().to_bits(), fa.x().to_bits());
     }
 }
@@ -78,34 +102,37 @@ fn eight(draws: &mut Draws) -> [f32; 8] {
 }
 
 /// Every operation of an eight-lane register type gives the portable
-/// definition's bits and masks.
+/// definition's bits and masks: the exact bits where the operation picks or
+/// moves a value, and any NaN where the portable code computes a NaN (see
+/// `canonical`).
 fn check_lanes8<W: Lanes8<F = f32>>(a: [f32; 8], b: [f32; 8]) {
     let (pa, pb) = (Portable8::load(&a), Portable8::load(&b));
     let (wa, wb) = (W::load(&a), W::load(&b));
-    // Bits, with every NaN alike: which NaN's payload an operation
-    // passes on is the hardware's choice (and the compiler may swap
-    // the operands of an addition), and no kernel answer is a NaN.
-    let canonical = |x: f32| if x.is_nan() { u32::MAX } else { x.to_bits() };
     let out = |w: W| {
         let mut x = [0.0; 8];
         w.store(&mut x);
-        x.map(canonical)
+        x.map(f32::to_bits)
     };
     let pout = |p: Portable8<f32>| {
         let mut x = [0.0; 8];
         p.store(&mut x);
-        x.map(canonical)
+        x.map(f32::to_bits)
     };
+    let value = |bits: [u32; 8]| bits.map(|x| canonical(f32::from_bits(x)));
+    assert_eq!(out(wa), a.map(f32::to_bits));
     type Op<L> = fn(L, L) -> L;
-    let ops: [(Op<Portable8<f32>>, Op<W>); 6] = [
+    let arithmetic: [(Op<Portable8<f32>>, Op<W>); 4] = [
         (Lanes8::add, Lanes8::add),
         (Lanes8::sub, Lanes8::sub),
         (Lanes8::mul, Lanes8::mul),
         (Lanes8::div, Lanes8::div),
-        (Lanes8::max, Lanes8::max),
-        (Lanes8::min, Lanes8::min),
     ];
-    for (p, w) in ops {
+    for (p, w) in arithmetic {
+        assert_eq!(value(pout(p(pa, pb))), value(out(w(wa, wb))), "{a:?} {b:?}");
+    }
+    let selects: [(Op<Portable8<f32>>, Op<W>); 2] =
+        [(Lanes8::max, Lanes8::max), (Lanes8::min, Lanes8::min)];
+    for (p, w) in selects {
         assert_eq!(pout(p(pa, pb)), out(w(wa, wb)), "{a:?} {b:?}");
     }
     let bytes = a.map(|x| x.to_bits() as u8);
@@ -171,9 +198,49 @@ fn eight_lane_registers_match_the_definition() {
 fn max_and_min_return_the_second_operand_for_nan() {
     let nan = F32Lanes::splat(f32::NAN);
     let zero = F32Lanes::splat(0.0);
+    let minus_zero = F32Lanes::splat(-0.0);
     assert_eq!(nan.max(zero).to_array(), [0.0; 3]);
     assert_eq!(nan.min(zero).to_array(), [0.0; 3]);
     assert!(zero.max(nan).x().is_nan());
-    // -0 > +0 is false: the second operand.
-    assert_eq!(F32Lanes::splat(-0.0).max(zero).x().to_bits(), 0);
+    assert!(zero.min(nan).x().is_nan());
+    // -0 > +0 and +0 < -0 are false: the second operand, whichever zero
+    // it is (instructions that order -0 below +0 give -0 for the last two).
+    assert_eq!(minus_zero.max(zero).x().to_bits(), 0);
+    assert_eq!(zero.min(minus_zero).x().to_bits(), (-0.0f32).to_bits());
+    assert_eq!(zero.max(minus_zero).x().to_bits(), (-0.0f32).to_bits());
+    assert_eq!(minus_zero.min(zero).x().to_bits(), 0);
+}
+
+/// The lane types the tests above check are the registers `build.rs`
+/// names for the target: on x86-64 SSE2's (AVX2's for eight lanes where
+/// the target has AVX2), on aarch64 NEON's, and the arrays where the
+/// build asks for them (`--cfg rayhit_portable`).
+#[test]
+#[cfg(any(rayhit_portable, target_arch = "x86_64", target_arch = "aarch64"))]
+fn the_target_uses_its_registers() {
+    use core::any::TypeId;
+    fn is<A: 'static, B: 'static>() -> bool {
+        TypeId::of::<A>() == TypeId::of::<B>()
+    }
+    let registers = (
+        is::<F32Lanes, Portable<f32>>(),
+        is::<F32Lanes8, Portable8<f32>>(),
+    );
+    #[cfg(rayhit_portable)]
+    assert_eq!(registers, (true, true));
+    #[cfg(all(target_arch = "x86_64", not(rayhit_portable)))]
+    {
+        assert_eq!(registers, (false, false));
+        assert!(is::<F32Lanes, super::sse2::F32x4>());
+        #[cfg(target_feature = "avx2")]
+        assert!(is::<F32Lanes8, super::avx2::F32x8>());
+        #[cfg(not(target_feature = "avx2"))]
+        assert!(is::<F32Lanes8, super::sse2::pair::F32x4x2>());
+    }
+    #[cfg(all(target_arch = "aarch64", not(rayhit_portable)))]
+    {
+        assert_eq!(registers, (false, false));
+        assert!(is::<F32Lanes, super::neon::F32x4>());
+        assert!(is::<F32Lanes8, super::neon::F32x4x2>());
+    }
 }
