@@ -1,49 +1,11 @@
 //! The pinhole camera: an orthonormal basis from eye, view and up, and
 //! raster position to primary ray.
 
-use core::fmt;
-
 use glam::Vec3;
 
+use super::{Basis, CameraError, centred, pixel_centre};
 use crate::num::{S, Scalar, Vector, unit};
 use crate::ray::Ray;
-
-/// Why a [`PinholeCamera`] could not be built.
-#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
-#[non_exhaustive]
-pub enum CameraError {
-    /// The eye position has a NaN or infinite component.
-    NonFiniteEye,
-    /// The view direction is zero or has a NaN or infinite component.
-    InvalidViewDir,
-    /// The up vector is zero or has a NaN or infinite component.
-    InvalidUp,
-    /// The up vector is parallel to the view direction (within rounding), so
-    /// it does not say which way is up.
-    UpParallelToView,
-    /// The focal length is not positive and finite.
-    InvalidFocalLength,
-    /// The vertical field of view is not in the open interval `(0, pi)`.
-    InvalidFieldOfView,
-    /// The image width or height is zero.
-    EmptyImage,
-}
-
-impl fmt::Display for CameraError {
-    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
-        f.write_str(match self {
-            Self::NonFiniteEye => "camera eye position is not finite",
-            Self::InvalidViewDir => "camera view direction is zero or not finite",
-            Self::InvalidUp => "camera up vector is zero or not finite",
-            Self::UpParallelToView => "camera up vector is parallel to the view direction",
-            Self::InvalidFocalLength => "camera focal length is not positive and finite",
-            Self::InvalidFieldOfView => "camera vertical field of view is not in (0, pi)",
-            Self::EmptyImage => "camera image width or height is zero",
-        })
-    }
-}
-
-impl core::error::Error for CameraError {}
 
 /// A pinhole camera: turns raster positions into primary rays.
 ///
@@ -113,29 +75,18 @@ impl<V: Vector> PinholeCamera<V> {
         width: u32,
         height: u32,
     ) -> Result<Self, CameraError> {
-        if !eye.is_finite() {
-            return Err(CameraError::NonFiniteEye);
-        }
-        let forward = unit(view_dir);
-        if !forward.is_finite() {
-            return Err(CameraError::InvalidViewDir);
-        }
-        let up_unit = unit(up);
-        if !up_unit.is_finite() {
-            return Err(CameraError::InvalidUp);
-        }
-        let side = forward.cross(up_unit);
-        if !(side.length() > S::<V>::gamma_n(16)) {
-            return Err(CameraError::UpParallelToView);
-        }
+        let Basis {
+            eye,
+            forward,
+            right,
+            up,
+        } = Basis::new(eye, view_dir, up)?;
         if !(focal_length > S::<V>::ZERO && focal_length.is_finite()) {
             return Err(CameraError::InvalidFocalLength);
         }
         if width == 0 || height == 0 {
             return Err(CameraError::EmptyImage);
         }
-        let right = unit(side);
-        let up = unit(right.cross(forward));
         Ok(Self {
             eye,
             forward,
@@ -187,9 +138,7 @@ impl<V: Vector> PinholeCamera<V> {
     #[inline]
     #[must_use]
     pub fn ray(&self, x: S<V>, y: S<V>) -> Ray<V> {
-        let half = S::<V>::HALF;
-        let dx = x - S::<V>::from_u32(self.width) * half;
-        let dy = S::<V>::from_u32(self.height) * half - y;
+        let (dx, dy) = centred(x, y, self.width, self.height);
         let dir = self.forward * self.focal_length + self.right * dx + self.up * dy;
         // A NaN position stays visible as a NaN direction (normalize_or_zero
         // would hide it as a zero one), and a focal length far outside the
@@ -202,8 +151,8 @@ impl<V: Vector> PinholeCamera<V> {
     #[inline]
     #[must_use]
     pub fn pixel_ray(&self, i: u32, j: u32) -> Ray<V> {
-        let half = S::<V>::HALF;
-        self.ray(S::<V>::from_u32(i) + half, S::<V>::from_u32(j) + half)
+        let (x, y) = pixel_centre(i, j);
+        self.ray(x, y)
     }
 
     /// The eye position: where every ray starts.
