@@ -349,7 +349,10 @@ pub use aabb::{
     Aabb, AabbBatch, AabbBatchHits, BoxFace, BoxHit, SlabBox, ValidAabb, aabb_entry_face, ray_aabb,
     ray_aabb_batch, ray_aabb_face, ray_aabb_naive, ray_aabb_prepared, ray_aabb_prepared_face,
 };
-pub use camera::{CameraError, PinholeCamera};
+pub use camera::{
+    CameraError, EqualAreaCamera, EquirectangularCamera, FocusPoint, OrthographicCamera,
+    PinholeCamera, RayCone, RayDifferential, ThinLensCamera,
+};
 pub use num::{Scalar, Vector};
 pub use plane::{Plane, ray_plane, ray_plane_hit_point, ray_plane_t_error};
 pub use quantized::{QuantizedChildren, quantize_bounds, ray_quantized_children};

@@ -4,14 +4,29 @@
 //!   orthonormal basis from eye, view and up, and the raster offset from
 //!   the image centre.
 //! - `pinhole.rs`: [`PinholeCamera`].
+//! - `thin_lens.rs`: [`ThinLensCamera`] and its [`FocusPoint`].
+//! - `orthographic.rs`: [`OrthographicCamera`].
+//! - `equirectangular.rs`: [`EquirectangularCamera`].
+//! - `equal_area.rs`: [`EqualAreaCamera`] (Clarberg's octahedral map).
+//! - `differential.rs`: [`RayDifferential`] and [`RayCone`].
 
+mod differential;
+mod equal_area;
+mod equirectangular;
+mod orthographic;
 mod pinhole;
+mod thin_lens;
 
 use core::fmt;
 
 use crate::num::{S, Scalar, Vector, unit};
 
+pub use differential::{RayCone, RayDifferential};
+pub use equal_area::EqualAreaCamera;
+pub use equirectangular::EquirectangularCamera;
+pub use orthographic::OrthographicCamera;
 pub use pinhole::PinholeCamera;
+pub use thin_lens::{FocusPoint, ThinLensCamera};
 
 /// Why a camera could not be built.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
@@ -32,6 +47,14 @@ pub enum CameraError {
     InvalidFieldOfView,
     /// The image width or height is zero.
     EmptyImage,
+    /// The lens radius is negative, NaN or infinite, or so large that the
+    /// lens's coordinates overflow.
+    InvalidLensRadius,
+    /// The focal distance is not positive and finite, or its ratio to the
+    /// focal length under- or overflows.
+    InvalidFocalDistance,
+    /// The pixel size is not positive and finite.
+    InvalidPixelSize,
 }
 
 impl fmt::Display for CameraError {
@@ -44,6 +67,9 @@ impl fmt::Display for CameraError {
             Self::InvalidFocalLength => "camera focal length is not positive and finite",
             Self::InvalidFieldOfView => "camera vertical field of view is not in (0, pi)",
             Self::EmptyImage => "camera image width or height is zero",
+            Self::InvalidLensRadius => "camera lens radius is negative or not finite",
+            Self::InvalidFocalDistance => "camera focal distance is not positive and finite",
+            Self::InvalidPixelSize => "camera pixel size is not positive and finite",
         })
     }
 }

@@ -3,8 +3,9 @@
 
 use glam::Vec3;
 
-use super::{Basis, CameraError, centred, pixel_centre};
-use crate::num::{S, Scalar, Vector, unit};
+use super::{Basis, CameraError, RayCone, RayDifferential, centred, pixel_centre};
+use crate::num::trig::atan2_turns;
+use crate::num::{S, Scalar, Vector, unit, unit_and_inverse_length};
 use crate::ray::Ray;
 
 /// A pinhole camera: turns raster positions into primary rays.
@@ -138,13 +139,73 @@ impl<V: Vector> PinholeCamera<V> {
     #[inline]
     #[must_use]
     pub fn ray(&self, x: S<V>, y: S<V>) -> Ray<V> {
-        let (dx, dy) = centred(x, y, self.width, self.height);
-        let dir = self.forward * self.focal_length + self.right * dx + self.up * dy;
         // A NaN position stays visible as a NaN direction (normalize_or_zero
         // would hide it as a zero one), and a focal length far outside the
         // usual range (whose squared length overflows) still gives a unit
         // direction.
-        Ray::new(self.eye, unit(dir))
+        Ray::new(self.eye, unit(self.film(x, y)))
+    }
+
+    /// The unnormalised direction towards raster position `(x, y)`:
+    /// `focal * forward + (x - width/2) * right + (height/2 - y) * true_up`.
+    #[inline(always)]
+    pub(crate) fn film(&self, x: S<V>, y: S<V>) -> V {
+        let (dx, dy) = centred(x, y, self.width, self.height);
+        self.forward * self.focal_length + self.right * dx + self.up * dy
+    }
+
+    /// The ray through raster position `(x, y)`, bit for bit
+    /// [`ray(x, y)`](PinholeCamera::ray), with its differentials: the
+    /// origin does not move, and with `p` the unnormalised direction
+    /// (`dir = p / |p|`, `dp/dx = right`, `dp/dy = -true_up`),
+    ///
+    /// `dx_dir = (right - dir (dir . right)) / |p|`,
+    /// `dy_dir = (dir (dir . true_up) - true_up) / |p|`,
+    ///
+    /// the derivatives of the unit direction (`1 / |p|` is the factor the
+    /// normalisation used). `|p| >= focal_length` up to the basis's
+    /// rounding, so each is at most `1 / focal_length` long: a pixel's angle.
+    ///
+    /// Bounds. Second order: with `dp/dx` of length 1, the unit direction's
+    /// second derivative is at most `4 / |p|^2` long (its three terms are
+    /// `2 (p . p') p' / |p|^4`, `p |p'|^2 / |p|^3` and `3 p (p . p')^2 /
+    /// |p|^5`, the last two along `p` and of opposite signs), so
+    /// `ray(x + 1, y).dir` is within `2 / focal_length^2` of `dir + dx_dir`
+    /// (and likewise for `y`). Rounding: `dx_dir` is within `gamma(12) (1 +
+    /// sum |p_i| / |p|) / |p|`, per component, of the exact derivative at
+    /// the camera's (rounded) basis and the given position (derived in
+    /// `tests/camera_differentials.rs`, which holds it to exact
+    /// arithmetic). A NaN or infinite position gives NaN differentials, as
+    /// it gives a NaN direction.
+    #[inline]
+    #[must_use]
+    pub fn ray_differential(&self, x: S<V>, y: S<V>) -> RayDifferential<V> {
+        let (dir, inv) = unit_and_inverse_length(self.film(x, y));
+        let (r, u) = (self.right, self.up);
+        RayDifferential {
+            ray: Ray::new(self.eye, dir),
+            dx_origin: V::ZERO,
+            dx_dir: (r - dir * dir.dot(r)) * inv,
+            dy_origin: V::ZERO,
+            dy_dir: (dir * dir.dot(u) - u) * inv,
+        }
+    }
+
+    /// The ray cone of every ray: zero width at the eye, and the spread
+    /// angle `atan(1 / focal_length)` (the chapter's `atan(2 tan(fov_y / 2)
+    /// / height)`), the angle the centre pixel subtends, to first order.
+    ///
+    /// The arctangent is the crate's own (its error derived in the
+    /// source): within `2 pi gamma(12)` radians in `f32` and `2 pi
+    /// gamma(24)` in `f64`.
+    #[inline]
+    #[must_use]
+    pub fn ray_cone(&self) -> RayCone<S<V>> {
+        let tau = S::<V>::from_f64(core::f64::consts::TAU);
+        RayCone {
+            width: S::<V>::ZERO,
+            spread: atan2_turns(S::<V>::ONE, self.focal_length) * tau,
+        }
     }
 
     /// The ray through the centre of pixel `(i, j)`: `ray(i + 0.5, j + 0.5)`.
