@@ -350,8 +350,8 @@ pub use aabb::{
     ray_aabb_batch, ray_aabb_face, ray_aabb_naive, ray_aabb_prepared, ray_aabb_prepared_face,
 };
 pub use camera::{
-    CameraError, EqualAreaCamera, EquirectangularCamera, FocusPoint, OrthographicCamera,
-    PinholeCamera, RayCone, RayDifferential, ThinLensCamera,
+    CameraError, ClipSpace, Columns, EqualAreaCamera, EquirectangularCamera, FocusPoint,
+    MatrixCamera, OrthographicCamera, PinholeCamera, RayCone, RayDifferential, ThinLensCamera,
 };
 pub use num::{Scalar, Vector};
 pub use plane::{Plane, ray_plane, ray_plane_hit_point, ray_plane_t_error};

@@ -6,6 +6,7 @@
 //! - `pinhole.rs`: [`PinholeCamera`].
 //! - `thin_lens.rs`: [`ThinLensCamera`] and its [`FocusPoint`].
 //! - `orthographic.rs`: [`OrthographicCamera`].
+//! - `matrix.rs`: [`MatrixCamera`], from a rasterizer's matrices.
 //! - `equirectangular.rs`: [`EquirectangularCamera`].
 //! - `equal_area.rs`: [`EqualAreaCamera`] (Clarberg's octahedral map).
 //! - `differential.rs`: [`RayDifferential`] and [`RayCone`].
@@ -13,6 +14,7 @@
 mod differential;
 mod equal_area;
 mod equirectangular;
+mod matrix;
 mod orthographic;
 mod pinhole;
 mod thin_lens;
@@ -24,6 +26,7 @@ use crate::num::{S, Scalar, Vector, unit};
 pub use differential::{RayCone, RayDifferential};
 pub use equal_area::EqualAreaCamera;
 pub use equirectangular::EquirectangularCamera;
+pub use matrix::{ClipSpace, Columns, MatrixCamera};
 pub use orthographic::OrthographicCamera;
 pub use pinhole::PinholeCamera;
 pub use thin_lens::{FocusPoint, ThinLensCamera};
@@ -55,6 +58,11 @@ pub enum CameraError {
     InvalidFocalDistance,
     /// The pixel size is not positive and finite.
     InvalidPixelSize,
+    /// A matrix has a NaN or infinite entry (or their product does).
+    NonFiniteMatrix,
+    /// The matrices do not define a camera: singular within rounding, or
+    /// its eye or rays overflow.
+    SingularMatrix,
 }
 
 impl fmt::Display for CameraError {
@@ -70,6 +78,8 @@ impl fmt::Display for CameraError {
             Self::InvalidLensRadius => "camera lens radius is negative or not finite",
             Self::InvalidFocalDistance => "camera focal distance is not positive and finite",
             Self::InvalidPixelSize => "camera pixel size is not positive and finite",
+            Self::NonFiniteMatrix => "camera matrix is not finite",
+            Self::SingularMatrix => "camera matrices are singular",
         })
     }
 }
