@@ -351,7 +351,9 @@ pub use aabb::{
 };
 pub use camera::{
     CameraError, ClipSpace, Columns, EqualAreaCamera, EquirectangularCamera, FocusPoint,
-    MatrixCamera, OrthographicCamera, PinholeCamera, RayCone, RayDifferential, ThinLensCamera,
+    HitDifferentials, MatrixCamera, OrthographicCamera, PinholeCamera, RayCone, RayDifferential,
+    ThinLensCamera, triangle_cone_width, triangle_hit_differentials,
+    triangle_hit_differentials_error,
 };
 pub use num::{Scalar, Vector};
 pub use plane::{Plane, ray_plane, ray_plane_hit_point, ray_plane_t_error};

@@ -9,7 +9,8 @@
 //! - `matrix.rs`: [`MatrixCamera`], from a rasterizer's matrices.
 //! - `equirectangular.rs`: [`EquirectangularCamera`].
 //! - `equal_area.rs`: [`EqualAreaCamera`] (Clarberg's octahedral map).
-//! - `differential.rs`: [`RayDifferential`] and [`RayCone`].
+//! - `differential.rs`: [`RayDifferential`] and [`RayCone`], and their
+//!   transfer to a triangle hit ([`HitDifferentials`]).
 
 mod differential;
 mod equal_area;
@@ -23,7 +24,10 @@ use core::fmt;
 
 use crate::num::{S, Scalar, Vector, unit};
 
-pub use differential::{RayCone, RayDifferential};
+pub use differential::{
+    HitDifferentials, RayCone, RayDifferential, triangle_cone_width, triangle_hit_differentials,
+    triangle_hit_differentials_error,
+};
 pub use equal_area::EqualAreaCamera;
 pub use equirectangular::EquirectangularCamera;
 pub use matrix::{ClipSpace, Columns, MatrixCamera};
