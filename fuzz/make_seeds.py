@@ -178,3 +178,26 @@ for name, fill in [("zeros", 0x00), ("mid", 0x80), ("ones", 0xFF), ("mixed", 0x5
     for layout in (0x21, 0x22, 0x3F):
         write("batch", f"structured-f32-{name}-{layout:02x}", bytes([2, layout]) + bytes([fill]) * 400)
         write("batch", f"structured-f64-{name}-{layout:02x}", bytes([3, layout]) + bytes([fill]) * 400)
+
+
+# Thin lens: eye, view, up, focal, width, height, radius, focal distance,
+# x, y, then two lens samples (s, t).
+def thin_lens(mode, eye, view, up, focal, w, h, radius, distance, x, y, lens):
+    samples = [c for st in lens for c in st]
+    return raw(mode, *vecs(eye, view, up), focal, ("u32", w), ("u32", h), radius, distance, x, y, *samples)
+
+lenses = {
+    "centre-sample": ((0, 0, 0), (0, 0, -1), (0, 1, 0), 8, 3, 3, 1, 4, 1.5, 1.5, [(0.5, 0.5), (1, 0.5)]),
+    "corners": ((1, 2, 3), (0.3, -1, 0.2), (0, 1, 0), 500, 640, 480, 0.05, 10, 320.5, 0.5, [(0, 0), (0.99999994, 0.99999994)]),
+    "zero-radius": ((0, 0, 0), (0, 0, -1), (0, 1, 0), 100, 64, 64, 0, 3, 10, 10, [(0.1, 0.9), (0.5, 0.5)]),
+    "far-eye": ((1e5, -3e4, 2e5), (1, 0, 0), (0, 0, 1), 1000, 1920, 1080, 0.5, 30, 0.5, 1079.5, [(0.3, 0.7), (0.75, 0.25)]),
+    "focus-near-zero": ((0, 0, 0), (0, 0, -1), (0, 1, 0), 100, 200, 200, 2, 1, 100.5, 100.5, [(0.9, 0.5), (0.5, 0.1)]),
+    "negative-radius": ((0, 0, 0), (0, 0, -1), (0, 1, 0), 1, 3, 3, -1, 1, 1.5, 1.5, [(0.5, 0.5), (0, 0)]),
+    "nan-distance": ((0, 0, 0), (0, 0, -1), (0, 1, 0), 1, 3, 3, 1, NAN, 1.5, 1.5, [(0.5, 0.5), (0, 0)]),
+    "huge-radius": ((0, 0, 0), (0, 0, -1), (0, 1, 0), 1, 3, 3, MAX32, 1, 1.5, 1.5, [(0.2, 0.5), (0, 0)]),
+    "outside-samples": ((0, 0, 0), (0, 0, -1), (0, 1, 0), 10, 8, 8, 1, 5, -3, 20, [(-2, 7), (NAN, 0.5)]),
+}
+for name, args in lenses.items():
+    write("thin_lens", f"raw-f32-{name}", thin_lens(0, *args))
+    write("thin_lens", f"raw-f64-{name}", thin_lens(1, *args))
+structured("thin_lens")

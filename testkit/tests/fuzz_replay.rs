@@ -35,7 +35,7 @@ mod exact_judge {
 type Target = (&'static str, fn(&[u8]));
 
 /// Every target, by the name of its file in `fuzz/fuzz_targets/`.
-const TARGETS: [Target; 9] = [
+const TARGETS: [Target; 10] = [
     ("aabb", targets::aabb),
     ("aabb_slab_vs_naive", targets::aabb_slab_vs_naive),
     ("batch", targets::batch),
@@ -43,6 +43,7 @@ const TARGETS: [Target; 9] = [
     ("exact_judge", exact_judge::run),
     ("plane", targets::plane),
     ("spawn", targets::spawn),
+    ("thin_lens", targets::thin_lens),
     ("triangle", targets::triangle),
     (
         "triangle_watertight_vs_mt",

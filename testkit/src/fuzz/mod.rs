@@ -37,6 +37,7 @@ pub mod camera;
 pub mod exact;
 pub mod plane;
 pub mod spawn;
+pub mod thin_lens;
 pub mod triangle;
 
 /// The scalar of a vector type.
@@ -119,6 +120,10 @@ pub mod targets {
     /// `batch`: [`batch::Batch`].
     pub fn batch(data: &[u8]) {
         dispatch::<batch::Batch>(data);
+    }
+    /// `thin_lens`: [`thin_lens::ThinLens`].
+    pub fn thin_lens(data: &[u8]) {
+        dispatch::<thin_lens::ThinLens>(data);
     }
 }
 

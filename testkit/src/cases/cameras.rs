@@ -1,0 +1,103 @@
+//! Cameras and raster positions: the inputs of the camera checks.
+//!
+//! A frame (eye, view, up, image size) in realistic ranges: the eye near
+//! the origin or far away (where the origins' rounding shows), view and up
+//! from [`direction`](super::direction) (so up is sometimes nearly parallel
+//! to the view, and a camera then refuses), images from 1 to 2048 pixels
+//! each way, odd and even; raster positions on pixel centres, anywhere in
+//! the image, or outside it; lens samples at the centre, on the edges and
+//! corners of `[0, 1)^2`, and anywhere in it.
+
+use rayhit::{Scalar, Vector};
+
+use super::{S, direction, point, v};
+use crate::source::Source;
+
+/// A camera's frame: where it is, where it looks, and its image.
+#[derive(Clone, Copy, Debug)]
+pub struct Frame<V> {
+    /// The eye (or an orthographic camera's centre).
+    pub eye: V,
+    /// The view direction.
+    pub view: V,
+    /// The up vector.
+    pub up: V,
+    /// Image width in pixels.
+    pub width: u32,
+    /// Image height in pixels.
+    pub height: u32,
+}
+
+/// A frame: the eye in `[-64, 64]^3`, or one time in eight `10` to `10^5`
+/// away; view and up from the direction strategy; sizes 1 to 2048.
+pub fn frame<V: Vector>(src: &mut Source) -> Frame<V> {
+    let eye = if src.one_in(8) {
+        v(super::far_offset(src).map(|x| x / 100.0))
+    } else {
+        point::<V>(src, 64.0)
+    };
+    let (view, up) = (direction::<V>(src), direction::<V>(src));
+    let mut size = || 1 + src.below(256) * 8 + src.below(8);
+    let (width, height) = (size(), size());
+    Frame {
+        eye,
+        view,
+        up,
+        width,
+        height,
+    }
+}
+
+/// A raster position: a pixel centre (half the time), anywhere in the
+/// image, or up to one image size outside it.
+pub fn raster<F: Scalar>(src: &mut Source, width: u32, height: u32) -> (F, F) {
+    let (w, h) = (f64::from(width), f64::from(height));
+    let (x, y) = match src.below(4) {
+        0 | 1 => (
+            f64::from(src.below(width)) + 0.5,
+            f64::from(src.below(height)) + 0.5,
+        ),
+        2 => (src.range(0.0, w), src.range(0.0, h)),
+        _ => (src.range(-w, 2.0 * w), src.range(-h, 2.0 * h)),
+    };
+    (F::from_f64(x), F::from_f64(y))
+}
+
+/// A pixel's centre `(i + 0.5, j + 0.5)` and its indices.
+pub fn pixel(src: &mut Source, width: u32, height: u32) -> (u32, u32) {
+    (src.below(width), src.below(height))
+}
+
+/// A lens sample in `[0, 1)^2`: the centre, a corner or edge, or uniform.
+pub fn lens_sample<F: Scalar>(src: &mut Source) -> (F, F) {
+    let below_one = F::ONE.next_down();
+    let edge = |src: &mut Source| match src.below(3) {
+        0 => F::ZERO,
+        1 => below_one,
+        _ => F::from_f64(src.unit()),
+    };
+    match src.below(8) {
+        0 => (F::HALF, F::HALF),
+        1 | 2 => (edge(src), edge(src)),
+        _ => (F::from_f64(src.unit()), F::from_f64(src.unit())),
+    }
+}
+
+/// A lens radius (zero one time in eight, else `2^-10` to `2^3`) and a
+/// focal distance (`2^-3` to `2^10`).
+pub fn lens<V: Vector>(src: &mut Source) -> (S<V>, S<V>) {
+    let radius = if src.one_in(8) {
+        0.0
+    } else {
+        src.log2_range(-10.0, 3.0)
+    };
+    (
+        S::<V>::from_f64(radius),
+        S::<V>::from_f64(src.log2_range(-3.0, 10.0)),
+    )
+}
+
+/// A vertical field of view, 10 to 150 degrees, in radians.
+pub fn fov<F: Scalar>(src: &mut Source) -> F {
+    F::from_f64(src.range(10.0, 150.0).to_radians())
+}
