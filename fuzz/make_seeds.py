@@ -201,3 +201,42 @@ for name, args in lenses.items():
     write("thin_lens", f"raw-f32-{name}", thin_lens(0, *args))
     write("thin_lens", f"raw-f64-{name}", thin_lens(1, *args))
 structured("thin_lens")
+
+
+# Orthographic: centre, view, up, pixel size, width, height, x, y.
+def ortho(mode, centre, view, up, size, w, h, x, y):
+    return raw(mode, *vecs(centre, view, up), size, ("u32", w), ("u32", h), x, y)
+
+orthos = {
+    "down": ((0, 10, 0), (0, -1, 0), (0, 0, -1), 0.5, 4, 2, 0.5, 0.5),
+    "far-centre": ((1e6, 2e6, -3e6), (1, 1, 1), (0, 0, 1), 0.001, 1920, 1080, 960, 540),
+    "zero-size": ((0, 0, 0), (0, 0, -1), (0, 1, 0), 0, 4, 4, 1, 1),
+    "huge-size": ((0, 0, 0), (0, 0, -1), (0, 1, 0), MAX32, 4, 4, -1e30, 1e30),
+    "nan-position": ((0, 0, 0), (0, 0, -1), (0, 1, 0), 1, 4, 4, NAN, INF),
+    "up-parallel": ((0, 0, 0), (0, 0, -1), (0, 0, 2), 1, 4, 4, 1, 1),
+}
+for name, args in orthos.items():
+    write("orthographic", f"raw-f32-{name}", ortho(0, *args))
+    write("orthographic", f"raw-f64-{name}", ortho(1, *args))
+structured("orthographic")
+
+
+# Panoramas: eye, view, up, width, height, x, y, then a direction.
+def pano(mode, eye, view, up, w, h, x, y, d):
+    return raw(mode, *vecs(eye, view, up), ("u32", w), ("u32", h), x, y, *d)
+
+panos = {
+    "centre": ((0, 0, 0), (0, 0, -1), (0, 1, 0), 361, 181, 180.5, 90.5, (0, 0, -1)),
+    "poles": ((1, 2, 3), (1, 0, 0), (0, 1, 0), 360, 180, 0.5, 0.0, (0, 1, 0)),
+    "edges": ((0, 0, 0), (0, 0, -1), (0, 1, 0), 256, 256, 256.0, 256.0, (0, 0, 1)),
+    "outside": ((0, 0, 0), (0, 0, -1), (0, 1, 0), 64, 64, -1e6, 1e7, (1e-30, 0, 0)),
+    "nan": ((0, 0, 0), (0, 0, -1), (0, 1, 0), 64, 32, NAN, 3, (NAN, 0, 1)),
+    "inf": ((0, 0, 0), (0, 0, -1), (0, 1, 0), 64, 32, INF, -INF, (INF, 0, 1)),
+    "zero-dir": ((0, 0, 0), (0, 0, -1), (0, 1, 0), 8, 8, 4, 4, (0, 0, 0)),
+    "empty": ((0, 0, 0), (0, 0, -1), (0, 1, 0), 0, 8, 4, 4, (0, 0, 1)),
+}
+for target in ["equirectangular", "equal_area"]:
+    for name, args in panos.items():
+        write(target, f"raw-f32-{name}", pano(0, *args))
+        write(target, f"raw-f64-{name}", pano(1, *args))
+    structured(target)

@@ -66,3 +66,47 @@ fn thin_lens_by_hand() {
     assert_eq!(err(f32::MAX, 1.0), Some(CameraError::InvalidLensRadius));
     assert_eq!(err(1.0, 1e-45), Some(CameraError::InvalidFocalDistance));
 }
+
+#[test]
+fn orthographic_checks() {
+    structured::<rayhit_testkit::fuzz::orthographic::Orthographic>(0x0e7f);
+}
+
+/// A camera 1000 units up, pixels 1/8 wide: the origins are on the plane
+/// through the centre, exactly here (every product and sum is exact), and
+/// carry the centre's precision, not the height's: the origin of pixel
+/// (0, 0) is `(0.125 * (0.5 - 2), 1000, ...)`.
+#[test]
+fn orthographic_by_hand() {
+    use rayhit::OrthographicCamera;
+    let cam = OrthographicCamera::new(
+        Vec3::new(3.0, 1000.0, -2.0),
+        -Vec3::Y,
+        -Vec3::Z,
+        0.125,
+        4,
+        4,
+    )
+    .unwrap();
+    let ray = cam.pixel_ray(0, 0);
+    assert_eq!(ray.origin, Vec3::new(3.0 - 0.1875, 1000.0, -2.0 - 0.1875));
+    assert_eq!(ray.dir, -Vec3::Y);
+    let diff = cam.ray_differential(0.5, 0.5);
+    assert_eq!(diff.dx_origin, Vec3::new(0.125, 0.0, 0.0));
+    assert_eq!(diff.dy_origin, Vec3::new(0.0, 0.0, 0.125));
+    assert_eq!(cam.ray_cone().width, 0.125);
+    let err = |s: f32| OrthographicCamera::new(Vec3::ZERO, -Vec3::Z, Vec3::Y, s, 4, 4).err();
+    for bad in [0.0, -1.0, f32::NAN, f32::INFINITY] {
+        assert_eq!(err(bad), Some(CameraError::InvalidPixelSize));
+    }
+}
+
+#[test]
+fn equirectangular_checks() {
+    structured::<rayhit_testkit::fuzz::panoramic::Equirectangular>(0x3a11);
+}
+
+#[test]
+fn equal_area_checks() {
+    structured::<rayhit_testkit::fuzz::panoramic::EqualArea>(0xea5e);
+}

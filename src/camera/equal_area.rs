@@ -123,10 +123,15 @@ impl<V: Vector> EqualAreaCamera<V> {
         let (dx, dy) = centred(x, y, self.width, self.height);
         let (kx, ky) = self.scale;
         let half = S::<V>::HALF;
-        let (adx, ady) = (dx.abs(), dy.abs());
+        // Outside the image: its edge (a NaN stays NaN).
+        let (hw, hh) = (
+            S::<V>::from_u32(self.width) * half,
+            S::<V>::from_u32(self.height) * half,
+        );
+        let clamp = |a: S<V>, m: S<V>| if a > m { m } else { a };
+        let (adx, ady) = (clamp(dx.abs(), hw), clamp(dy.abs(), hh));
         let (au, av) = (adx * kx, ady * ky);
-        let cu = (S::<V>::from_u32(self.width) * half - adx) * kx;
-        let cv = (S::<V>::from_u32(self.height) * half - ady) * ky;
+        let (cu, cv) = ((hw - adx) * kx, (hh - ady) * ky);
         let s = au + av;
         let front = s <= S::<V>::ONE;
         let r = if front { s } else { cu + cv };
@@ -167,9 +172,9 @@ impl<V: Vector> EqualAreaCamera<V> {
     /// The ray through raster position `(x, y)`: from the eye along the
     /// octahedral map's direction (see [`EqualAreaCamera`]), normalised.
     ///
-    /// Positions outside the image give some unit direction (the map's
-    /// formulas continued, not a reflection of the sphere); a NaN or
-    /// infinite position gives a NaN direction, which every kernel rejects.
+    /// Positions outside the image give the direction of the nearest point
+    /// of its edge (each coordinate clamped, infinities included); a NaN
+    /// position gives a NaN direction, which every kernel rejects.
     #[inline]
     #[must_use]
     pub fn ray(&self, x: S<V>, y: S<V>) -> Ray<V> {
@@ -188,7 +193,8 @@ impl<V: Vector> EqualAreaCamera<V> {
     /// The ray through `(x, y)`, bit for bit [`ray`](Self::ray), with its
     /// differentials: the origin does not move, and the direction's
     /// derivatives are those of the map in the face of the octahedron the
-    /// position is on (the map is smooth inside each of the eight
+    /// position is on (at the image's edge for a position outside it, where
+    /// the map is clamped; the map is smooth inside each of the eight
     /// triangles the image's centre lines and the diamond cut it into; on
     /// those lines, the one-sided derivative of the side the position is
     /// on, `+0` counting as positive and the diamond as in front; at the
@@ -292,6 +298,9 @@ impl<V: Vector> EqualAreaCamera<V> {
         if !dir.is_finite() || dir == V::ZERO {
             return None;
         }
+        // Unit length first (scaled by a power of two where its square
+        // would under- or overflow), so that no square below does.
+        let dir = unit(dir);
         let b = &self.basis;
         let (a, bb, c) = (dir.dot(b.right), dir.dot(b.up), dir.dot(b.forward));
         let local = V::new(a, bb, c);

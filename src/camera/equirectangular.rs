@@ -189,6 +189,9 @@ impl<V: Vector> EquirectangularCamera<V> {
         if !dir.is_finite() || dir == V::ZERO {
             return None;
         }
+        // Unit length first (scaled by a power of two where its square
+        // would under- or overflow), so that no square below does.
+        let dir = unit(dir);
         let b = &self.basis;
         let (a, c, up) = (dir.dot(b.right), dir.dot(b.forward), dir.dot(b.up));
         let lon = atan2_turns(a, c);

@@ -35,12 +35,15 @@ mod exact_judge {
 type Target = (&'static str, fn(&[u8]));
 
 /// Every target, by the name of its file in `fuzz/fuzz_targets/`.
-const TARGETS: [Target; 10] = [
+const TARGETS: [Target; 13] = [
     ("aabb", targets::aabb),
     ("aabb_slab_vs_naive", targets::aabb_slab_vs_naive),
     ("batch", targets::batch),
     ("camera", targets::camera),
+    ("equal_area", targets::equal_area),
+    ("equirectangular", targets::equirectangular),
     ("exact_judge", exact_judge::run),
+    ("orthographic", targets::orthographic),
     ("plane", targets::plane),
     ("spawn", targets::spawn),
     ("thin_lens", targets::thin_lens),

@@ -35,6 +35,8 @@ pub mod aabb;
 pub mod batch;
 pub mod camera;
 pub mod exact;
+pub mod orthographic;
+pub mod panoramic;
 pub mod plane;
 pub mod spawn;
 pub mod thin_lens;
@@ -120,6 +122,18 @@ pub mod targets {
     /// `batch`: [`batch::Batch`].
     pub fn batch(data: &[u8]) {
         dispatch::<batch::Batch>(data);
+    }
+    /// `equirectangular`: [`panoramic::Equirectangular`].
+    pub fn equirectangular(data: &[u8]) {
+        dispatch::<panoramic::Equirectangular>(data);
+    }
+    /// `equal_area`: [`panoramic::EqualArea`].
+    pub fn equal_area(data: &[u8]) {
+        dispatch::<panoramic::EqualArea>(data);
+    }
+    /// `orthographic`: [`orthographic::Orthographic`].
+    pub fn orthographic(data: &[u8]) {
+        dispatch::<orthographic::Orthographic>(data);
     }
     /// `thin_lens`: [`thin_lens::ThinLens`].
     pub fn thin_lens(data: &[u8]) {
