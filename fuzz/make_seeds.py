@@ -240,3 +240,30 @@ for target in ["equirectangular", "equal_area"]:
         write(target, f"raw-f32-{name}", pano(0, *args))
         write(target, f"raw-f64-{name}", pano(1, *args))
     structured(target)
+
+
+# Matrix camera: view and projection (32 floats, columns), a clip-space
+# byte, width, height, x, y.
+def matrix_cam(mode, view, proj, clip, w, h, x, y):
+    floats = raw(mode, *[c for m in (view, proj) for col in m for c in col])
+    return floats + bytes([clip]) + raw(mode, ("u32", w), ("u32", h), x, y)[1:]
+
+I4 = [(1, 0, 0, 0), (0, 1, 0, 0), (0, 0, 1, 0), (0, 0, 0, 1)]
+# glam's directx perspective_rh(fov = 1, aspect = 1, near 0.1, far 100).
+F = 1 / math.tan(0.5)
+PERSP = [(F, 0, 0, 0), (0, F, 0, 0), (0, 0, 100 / (0.1 - 100), -1), (0, 0, 0.1 * 100 / (0.1 - 100), 0)]
+# directx orthographic_rh(-2, 2, -1, 1, 1, 21).
+ORTHO = [(0.5, 0, 0, 0), (0, 1, 0, 0), (0, 0, 1 / (1 - 21), 0), (0, 0, 1 / (1 - 21), 1)]
+mats = {
+    "perspective": (I4, PERSP, 0, 64, 64, 31.5, 10.5),
+    "orthographic": (I4, ORTHO, 0, 4, 2, 0.5, 0.5),
+    "vulkan": (I4, PERSP, 2, 64, 48, 0.5, 47.5),
+    "zero": (I4, [(0, 0, 0, 0)] * 4, 1, 8, 8, 4, 4),
+    "nan": (I4, [(NAN, 0, 0, 0)] + PERSP[1:], 0, 8, 8, 4, 4),
+    "huge": ([(MAX32, 0, 0, 0), (0, MAX32, 0, 0), (0, 0, MAX32, 0), (0, 0, 0, 1)], PERSP, 0, 8, 8, -1e30, 1e30),
+    "far-outside": (I4, PERSP, 1, 8, 8, 1e38, -3e38),
+}
+for name, args in mats.items():
+    write("matrix_camera", f"raw-f32-{name}", matrix_cam(0, *args))
+    write("matrix_camera", f"raw-f64-{name}", matrix_cam(1, *args))
+structured("matrix_camera")

@@ -110,3 +110,147 @@ fn equirectangular_checks() {
 fn equal_area_checks() {
     structured::<rayhit_testkit::fuzz::panoramic::EqualArea>(0xea5e);
 }
+
+#[test]
+fn matrix_camera_checks() {
+    structured::<rayhit_testkit::fuzz::matrix_camera::MatrixCameraCheck>(0x3a72);
+}
+
+#[test]
+fn pinhole_checks() {
+    structured::<rayhit_testkit::fuzz::camera::Camera>(0x914e);
+}
+
+/// The matrix camera of glam's `f32` look-to and Direct3D perspective
+/// matrices agrees with the pinhole camera of the same eye, view, up and
+/// focal length (`P[1][1] height / 2`, from the matrix itself, rounded
+/// once), within the sum of their distances from the exact camera.
+///
+/// Bound (first order in `u`, as `tests/camera.rs`'s `check_glam`): with
+/// `s` the sine between view and up, each camera's basis vectors are
+/// within `e = max(e_F, e_R, e_U)` of the exact ones (`e_F = sqrt(3)
+/// gamma(6)`, `e_R = (2 e_F + sqrt(2) gamma(2)) / s + sqrt(3) gamma(6)`,
+/// `e_U = e_R + e_F + sqrt(2) gamma(2) + sqrt(3) gamma(6)`; glam's
+/// look-to makes the same normalised vectors, and its `u` unnormalised is
+/// no further). The pinhole ray is then within `2 sqrt(3) (e + sqrt(3)
+/// gamma(3)) + sqrt(3) gamma(6)` of the exact direction. The matrix
+/// camera's exact ray (of the float matrices) uses the inverse of the
+/// view's rotation, whose rows are orthonormal within `2 e` per entry:
+/// `sqrt(3) 6 e` more than the transpose; its focal lengths are the
+/// pinhole's within `2 u` across (`aspect` and `P[0][0]` rounded) and `u`
+/// (the pinhole's focal rounded), moving a ray by at most `3 u (|dx| +
+/// |dy|) / f`; the view's translation (`-eye . s`, three roundings each,
+/// within `gamma(3) sqrt(3) |eye|`) moves the camera centre by at most
+/// `3 gamma(3)` of `|eye| <= sqrt(3) max |eye_i|` through the rotation's
+/// inverse (norm `1 + 6 e`), and the camera's eye is one rounding (and
+/// `f64`'s) from that; and its
+/// computed ray is within `2 (gamma(5) + gamma_64(17)) |K| / |p|` of its
+/// exact one (`K` the linear form's magnitudes, at most `3 |p|` here: `|c|
+/// ~ f`, `|dx a|`, `|dy b|` each at most `|p|`).
+#[test]
+fn matrix_agrees_with_pinhole() {
+    use rayhit::glam::camera::rh::{proj::directx, view};
+    use rayhit::{ClipSpace, MatrixCamera, Scalar};
+    let mut src = Source::seeded(0xa9e5);
+    let u = f64::from(f32::UNIT_ROUNDOFF);
+    let g = |n: u32| f64::from(f32::gamma_n(n));
+    let (r2, r3) = (2f64.sqrt(), 3f64.sqrt());
+    let mut checked = 0;
+    for _ in 0..cases() {
+        let eye = Vec3::new(
+            src.range(-64.0, 64.0) as f32,
+            src.range(-64.0, 64.0) as f32,
+            src.range(-64.0, 64.0) as f32,
+        );
+        let d = src.direction();
+        let up_d = src.direction();
+        let dir = Vec3::new(d[0] as f32, d[1] as f32, d[2] as f32).normalize();
+        let up = Vec3::new(up_d[0] as f32, up_d[1] as f32, up_d[2] as f32).normalize();
+        let s = f64::from(dir.cross(up).length());
+        if s < 0.5 {
+            continue;
+        }
+        let (w, h) = (1 + src.below(2048), 1 + src.below(2048));
+        let fov = src.range(10.0, 150.0).to_radians() as f32;
+        let proj = directx::perspective(fov, w as f32 / h as f32, 0.1, 1000.0);
+        let cam = MatrixCamera::from_mat4(
+            view::look_to_mat4(eye, dir, up),
+            proj,
+            ClipSpace::Direct3D,
+            w,
+            h,
+        )
+        .unwrap();
+        let focal = proj.y_axis.y * (h as f32 * 0.5);
+        let pinhole = PinholeCamera::new(eye, dir, up, focal, w, h).unwrap();
+        let (i, j) = (src.below(w), src.below(h));
+        let (a, b) = (cam.pixel_ray(i, j), pinhole.pixel_ray(i, j));
+        let e_f = r3 * g(6);
+        let e_r = (2.0 * e_f + r2 * g(2)) / s + r3 * g(6);
+        let e = e_r + e_f + r2 * g(2) + r3 * g(6);
+        let pin = 2.0 * r3 * (e + r3 * g(3)) + r3 * g(6);
+        let (dx, dy) = (
+            (f64::from(i) + 0.5 - f64::from(w) / 2.0).abs(),
+            (f64::from(j) + 0.5 - f64::from(h) / 2.0).abs(),
+        );
+        let f = f64::from(focal);
+        let mat =
+            pin + r3 * 6.0 * e + 3.0 * u * (dx + dy) / f + 2.0 * (g(5) + f64::gamma_n(17)) * 3.0;
+        let gap = (a.dir - b.dir).length();
+        assert!(
+            f64::from(gap) <= (pin + mat) * (1.0 + 1e-6),
+            "{gap} > {}: pixel ({i}, {j}) of {w}x{h}, fov {fov}, {cam:?} vs {pinhole:?}",
+            pin + mat
+        );
+        let eye_gap = (a.origin - b.origin).abs().max_element();
+        let eye_bound =
+            (3.0 * r3 * g(3) + 2.0 * u) * (1.0 + 6.0 * e) * f64::from(eye.abs().max_element());
+        assert!(
+            f64::from(eye_gap) <= eye_bound.max(1e-30),
+            "eye {} vs {}: {eye_gap} > {eye_bound}",
+            a.origin,
+            b.origin
+        );
+        checked += 1;
+    }
+    assert!(checked > cases() / 4, "{checked}");
+}
+
+/// Errors, and glam's orthographic matrices by hand: a 4x2 image of the
+/// box `[-2, 2] x [-1, 1]` seen down `-z` from `z = 10`, near 1, far 21:
+/// pixel (0, 0)'s ray starts at `(-1.5, 0.5, 9)` on the near plane and
+/// runs down `-z`; Vulkan's `y` runs the other way.
+#[test]
+fn matrix_camera_by_hand() {
+    use rayhit::glam::camera::rh::{proj::directx, proj::vulkan, view};
+    use rayhit::glam::{Mat4, Vec4};
+    use rayhit::{ClipSpace, MatrixCamera};
+    let v = view::look_to_mat4(Vec3::new(0.0, 0.0, 10.0), -Vec3::Z, Vec3::Y);
+    let p = directx::orthographic(-2.0, 2.0, -1.0, 1.0, 1.0, 21.0);
+    let cam = MatrixCamera::from_mat4(v, p, ClipSpace::Direct3D, 4, 2).unwrap();
+    assert!(cam.is_orthographic());
+    let ray = cam.pixel_ray(0, 0);
+    assert_eq!(ray.origin, Vec3::new(-1.5, 0.5, 9.0));
+    assert_eq!(ray.dir, -Vec3::Z);
+    let pv = vulkan::orthographic(-2.0, 2.0, -1.0, 1.0, 1.0, 21.0);
+    let cam = MatrixCamera::from_mat4(v, pv, ClipSpace::Vulkan, 4, 2).unwrap();
+    assert_eq!(cam.pixel_ray(0, 0).origin, Vec3::new(-1.5, 0.5, 9.0));
+    // One error per bad input.
+    let mut nan = p;
+    nan.x_axis.x = f32::NAN;
+    let err = |v: Mat4, p: Mat4| MatrixCamera::from_mat4(v, p, ClipSpace::Direct3D, 4, 2).err();
+    assert_eq!(err(v, nan), Some(CameraError::NonFiniteMatrix));
+    assert_eq!(err(Mat4::ZERO, p), Some(CameraError::SingularMatrix));
+    let mut flat = p;
+    flat.y_axis = Vec4::ZERO;
+    assert_eq!(err(v, flat), Some(CameraError::SingularMatrix));
+    assert_eq!(
+        MatrixCamera::from_mat4(v, p, ClipSpace::Direct3D, 0, 2).err(),
+        Some(CameraError::EmptyImage)
+    );
+    // The perspective camera's cone: the pinhole's angle, atan(1 / f).
+    let persp = directx::perspective(1.0, 1.0, 0.1, 100.0);
+    let cam = MatrixCamera::from_mat4(v, persp, ClipSpace::Direct3D, 64, 64).unwrap();
+    let f = persp.y_axis.y * 32.0;
+    assert!((cam.ray_cone().spread - (1.0 / f).atan()).abs() < 1e-6);
+}

@@ -373,6 +373,24 @@ impl<V: Vector> MatrixCamera<V> {
         }
     }
 
+    /// The ray's linear form `[c, a, b]`: the direction (perspective,
+    /// before normalising) or the origin (orthographic) of raster position
+    /// `(x, y)` is `c + (x - width/2) a + (height/2 - y) b`, evaluated in
+    /// that order, three roundings per component.
+    #[inline]
+    #[must_use]
+    pub fn linear_form(&self) -> [V; 3] {
+        [self.c, self.a, self.b]
+    }
+
+    /// The eye (perspective: where every ray starts) or the direction of
+    /// every ray (orthographic).
+    #[inline]
+    #[must_use]
+    pub fn fixed(&self) -> V {
+        self.fixed
+    }
+
     /// True for an orthographic projection (parallel rays).
     #[inline]
     #[must_use]

@@ -170,13 +170,15 @@ impl<V: Vector> PinholeCamera<V> {
     /// second derivative is at most `4 / |p|^2` long (its three terms are
     /// `2 (p . p') p' / |p|^4`, `p |p'|^2 / |p|^3` and `3 p (p . p')^2 /
     /// |p|^5`, the last two along `p` and of opposite signs), so
-    /// `ray(x + 1, y).dir` is within `2 / focal_length^2` of `dir + dx_dir`
-    /// (and likewise for `y`). Rounding: `dx_dir` is within `gamma(12) (1 +
-    /// sum |p_i| / |p|) / |p|`, per component, of the exact derivative at
-    /// the camera's (rounded) basis and the given position (derived in
-    /// `tests/camera_differentials.rs`, which holds it to exact
-    /// arithmetic). A NaN or infinite position gives NaN differentials, as
-    /// it gives a NaN direction.
+    /// `ray(x + 1, y).dir` is within `2 / (|p| - 1)^2 <= 2 / (focal_length -
+    /// 1)^2` (roughly) of `dir + dx_dir`, and likewise for `y`. Rounding:
+    /// with `K` the vector of `|focal forward_i| + |dx right_i| + |dy
+    /// up_i|` (`p`'s magnitudes), `dx_dir` is within `(gamma(28) + 5
+    /// gamma(3) |K| / |p|) / |p|` of the exact derivative at the camera's
+    /// (rounded) basis and the given position, as a vector (derived, and
+    /// held to in exact arithmetic, in the test kit's camera checks). A
+    /// NaN or infinite position gives NaN differentials, as it gives a NaN
+    /// direction.
     #[inline]
     #[must_use]
     pub fn ray_differential(&self, x: S<V>, y: S<V>) -> RayDifferential<V> {

@@ -35,6 +35,7 @@ pub mod aabb;
 pub mod batch;
 pub mod camera;
 pub mod exact;
+pub mod matrix_camera;
 pub mod orthographic;
 pub mod panoramic;
 pub mod plane;
@@ -130,6 +131,10 @@ pub mod targets {
     /// `equal_area`: [`panoramic::EqualArea`].
     pub fn equal_area(data: &[u8]) {
         dispatch::<panoramic::EqualArea>(data);
+    }
+    /// `matrix_camera`: [`matrix_camera::MatrixCameraCheck`].
+    pub fn matrix_camera(data: &[u8]) {
+        dispatch::<matrix_camera::MatrixCameraCheck>(data);
     }
     /// `orthographic`: [`orthographic::Orthographic`].
     pub fn orthographic(data: &[u8]) {
