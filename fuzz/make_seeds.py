@@ -267,3 +267,20 @@ for name, args in mats.items():
     write("matrix_camera", f"raw-f32-{name}", matrix_cam(0, *args))
     write("matrix_camera", f"raw-f64-{name}", matrix_cam(1, *args))
 structured("matrix_camera")
+
+
+# Hit differentials: ray direction, dx origin, dx dir, dy origin, dy dir,
+# triangle a, b, c, then t.
+hits = {
+    "floor": ((0, -1, 0), (0, 0, 0), (0.01, 0, 0), (0, 0, 0), (0, 0, 0.01), (-50, -10, 50), (50, -10, 50), (-50, -10, -50), 10),
+    "ortho": ((0, 0, -1), (0.5, 0, 0), (0, 0, 0), (0, -0.5, 0), (0, 0, 0), (0, 0, -3), (4, 0, -3), (0, 4, -3), 3),
+    "parallel": ((1, 0, 0), (0, 0, 0), (0, 1, 0), (0, 0, 0), (0, 0, 1), (0, 0, 0), (1, 0, 0), (0, 1, 0), 1),
+    "degenerate": ((0, 0, -1), (0, 0, 0), (1, 0, 0), (0, 0, 0), (0, 1, 0), (0, 0, 0), (1, 1, 1), (2, 2, 2), 1),
+    "grazing": ((1, 0, -1e-7), (0, 0, 0), (0, 0.001, 0), (0, 0, 0), (0, 0, 0.001), (0, -1, 0), (0, 1, 0), (1000, 0, -1e-4), 5),
+    "nan": ((0, 0, -1), (NAN, 0, 0), (0, 0, 0), (0, 0, 0), (0, 0, 0), (0, 0, -1), (1, 0, -1), (0, 1, -1), INF),
+}
+for name, args in hits.items():
+    *vs, t = args
+    write("hit_differentials", f"raw-f32-{name}", raw(0, *vecs(*vs), t))
+    write("hit_differentials", f"raw-f64-{name}", raw(1, *vecs(*vs), t))
+structured("hit_differentials")

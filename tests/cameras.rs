@@ -254,3 +254,8 @@ fn matrix_camera_by_hand() {
     let f = persp.y_axis.y * 32.0;
     assert!((cam.ray_cone().spread - (1.0 / f).atan()).abs() < 1e-6);
 }
+
+#[test]
+fn hit_differentials_checks() {
+    structured::<rayhit_testkit::fuzz::hit_differentials::HitDifferentialsCheck>(0xd1ff);
+}

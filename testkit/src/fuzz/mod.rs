@@ -35,6 +35,7 @@ pub mod aabb;
 pub mod batch;
 pub mod camera;
 pub mod exact;
+pub mod hit_differentials;
 pub mod matrix_camera;
 pub mod orthographic;
 pub mod panoramic;
@@ -131,6 +132,10 @@ pub mod targets {
     /// `equal_area`: [`panoramic::EqualArea`].
     pub fn equal_area(data: &[u8]) {
         dispatch::<panoramic::EqualArea>(data);
+    }
+    /// `hit_differentials`: [`hit_differentials::HitDifferentialsCheck`].
+    pub fn hit_differentials(data: &[u8]) {
+        dispatch::<hit_differentials::HitDifferentialsCheck>(data);
     }
     /// `matrix_camera`: [`matrix_camera::MatrixCameraCheck`].
     pub fn matrix_camera(data: &[u8]) {
