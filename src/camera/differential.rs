@@ -31,7 +31,7 @@ use crate::ray::Ray;
 /// let next = diff.offset(1.0, 0.0);
 /// assert!((next.dir - cam.ray(101.5, 100.5).dir).length() < 1e-4);
 /// ```
-#[derive(Clone, Copy, Debug, PartialEq)]
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
 pub struct RayDifferential<V = Vec3> {
     /// The ray itself.
     pub ray: Ray<V>,
@@ -76,7 +76,7 @@ impl<V: Vector> RayDifferential<V> {
 /// // One pixel is 1/500 of the distance wide, to first order.
 /// assert!((cone.width_at(1000.0) - 2.0).abs() < 1e-4);
 /// ```
-#[derive(Clone, Copy, Debug, PartialEq)]
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
 pub struct RayCone<F = f32> {
     /// The width at the ray's origin, in world units (zero for cameras whose
     /// rays start at one point).

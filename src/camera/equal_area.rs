@@ -175,7 +175,7 @@ impl<V: Vector> EqualAreaCamera<V> {
     /// Positions outside the image give the direction of the nearest point
     /// of its edge (each coordinate clamped, infinities included); a NaN
     /// position gives a NaN direction, which every kernel rejects.
-    #[inline]
+    #[inline(always)]
     #[must_use]
     pub fn ray(&self, x: S<V>, y: S<V>) -> Ray<V> {
         let (dir, ..) = self.local(&self.square(x, y));
@@ -183,7 +183,7 @@ impl<V: Vector> EqualAreaCamera<V> {
     }
 
     /// The ray through the centre of pixel `(i, j)`: `ray(i + 0.5, j + 0.5)`.
-    #[inline]
+    #[inline(always)]
     #[must_use]
     pub fn pixel_ray(&self, i: u32, j: u32) -> Ray<V> {
         let (x, y) = pixel_centre(i, j);
@@ -217,7 +217,7 @@ impl<V: Vector> EqualAreaCamera<V> {
     /// derivatives stay bounded at the poles (each at most `sqrt(2) pi`
     /// times `2 / width` or `2 / height` long). They are the derivatives
     /// of the exact map's unnormalised direction, whose length is 1.
-    #[inline]
+    #[inline(always)]
     #[must_use]
     pub fn ray_differential(&self, x: S<V>, y: S<V>) -> RayDifferential<V> {
         let q = self.square(x, y);

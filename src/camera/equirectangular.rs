@@ -101,7 +101,7 @@ impl<V: Vector> EquirectangularCamera<V> {
     /// Positions outside the image wrap around in longitude and go over
     /// the pole in latitude (the formula is periodic); a NaN or infinite
     /// position gives a NaN direction, which every kernel rejects.
-    #[inline]
+    #[inline(always)]
     #[must_use]
     pub fn ray(&self, x: S<V>, y: S<V>) -> Ray<V> {
         let [(sl, cl), (sa, ca)] = self.angles(x, y);
@@ -111,7 +111,7 @@ impl<V: Vector> EquirectangularCamera<V> {
     }
 
     /// The ray through the centre of pixel `(i, j)`: `ray(i + 0.5, j + 0.5)`.
-    #[inline]
+    #[inline(always)]
     #[must_use]
     pub fn pixel_ray(&self, i: u32, j: u32) -> Ray<V> {
         let (x, y) = pixel_centre(i, j);
@@ -132,7 +132,7 @@ impl<V: Vector> EquirectangularCamera<V> {
     /// height)^2 / 2` of `dir + dx_dir` and `dir + dy_dir`, plus rounding.
     /// Near the poles a pixel spans little longitude: `dx_dir` shrinks with
     /// `cos(lat)`.
-    #[inline]
+    #[inline(always)]
     #[must_use]
     pub fn ray_differential(&self, x: S<V>, y: S<V>) -> RayDifferential<V> {
         let [(sl, cl), (sa, ca)] = self.angles(x, y);

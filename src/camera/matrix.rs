@@ -292,7 +292,7 @@ impl<V: Vector> MatrixCamera<V> {
     /// project; a position at infinity in NDC has no ray). A NaN or
     /// infinite position gives a non-finite ray, which every kernel
     /// rejects.
-    #[inline]
+    #[inline(always)]
     #[must_use]
     pub fn ray(&self, x: S<V>, y: S<V>) -> Ray<V> {
         let p = self.linear(x, y);
@@ -303,7 +303,7 @@ impl<V: Vector> MatrixCamera<V> {
     }
 
     /// The ray through the centre of pixel `(i, j)`: `ray(i + 0.5, j + 0.5)`.
-    #[inline]
+    #[inline(always)]
     #[must_use]
     pub fn pixel_ray(&self, i: u32, j: u32) -> Ray<V> {
         let (x, y) = pixel_centre(i, j);
@@ -318,7 +318,7 @@ impl<V: Vector> MatrixCamera<V> {
     /// b`; second order within `2 (|a| + |b|)^2 / |p|^2`). Orthographic: the
     /// origin moves by `a` and `-b` per pixel, exactly linearly, and the
     /// direction not at all.
-    #[inline]
+    #[inline(always)]
     #[must_use]
     pub fn ray_differential(&self, x: S<V>, y: S<V>) -> RayDifferential<V> {
         let p = self.linear(x, y);

@@ -100,7 +100,7 @@ impl<V: Vector> OrthographicCamera<V> {
     /// own rounding). Positions outside the image give rays outside the
     /// view; a NaN or infinite position gives a non-finite origin, which
     /// every kernel rejects.
-    #[inline]
+    #[inline(always)]
     #[must_use]
     pub fn ray(&self, x: S<V>, y: S<V>) -> Ray<V> {
         let (dx, dy) = centred(x, y, self.width, self.height);
@@ -110,7 +110,7 @@ impl<V: Vector> OrthographicCamera<V> {
     }
 
     /// The ray through the centre of pixel `(i, j)`: `ray(i + 0.5, j + 0.5)`.
-    #[inline]
+    #[inline(always)]
     #[must_use]
     pub fn pixel_ray(&self, i: u32, j: u32) -> Ray<V> {
         let (x, y) = pixel_centre(i, j);
@@ -122,7 +122,7 @@ impl<V: Vector> OrthographicCamera<V> {
     /// the right and `-pixel_size true_up` per pixel down (one rounding
     /// each; exact second order, the origin being linear in the position),
     /// the direction does not move.
-    #[inline]
+    #[inline(always)]
     #[must_use]
     pub fn ray_differential(&self, x: S<V>, y: S<V>) -> RayDifferential<V> {
         let s = self.pixel_size;

@@ -136,7 +136,7 @@ impl<V: Vector> PinholeCamera<V> {
     /// (height/2 - y) * true_up)`. Positions outside the image give rays
     /// outside the field of view; a NaN or infinite position gives a ray with
     /// a non-finite direction, which every kernel rejects.
-    #[inline]
+    #[inline(always)]
     #[must_use]
     pub fn ray(&self, x: S<V>, y: S<V>) -> Ray<V> {
         // A NaN position stays visible as a NaN direction (normalize_or_zero
@@ -179,7 +179,7 @@ impl<V: Vector> PinholeCamera<V> {
     /// held to in exact arithmetic, in the test kit's camera checks). A
     /// NaN or infinite position gives NaN differentials, as it gives a NaN
     /// direction.
-    #[inline]
+    #[inline(always)]
     #[must_use]
     pub fn ray_differential(&self, x: S<V>, y: S<V>) -> RayDifferential<V> {
         let (dir, inv) = unit_and_inverse_length(self.film(x, y));
@@ -211,7 +211,7 @@ impl<V: Vector> PinholeCamera<V> {
     }
 
     /// The ray through the centre of pixel `(i, j)`: `ray(i + 0.5, j + 0.5)`.
-    #[inline]
+    #[inline(always)]
     #[must_use]
     pub fn pixel_ray(&self, i: u32, j: u32) -> Ray<V> {
         let (x, y) = pixel_centre(i, j);

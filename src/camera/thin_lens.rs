@@ -239,7 +239,7 @@ impl<V: Vector> ThinLensCamera<V> {
     /// ratio and the product and sum (three), and of the grid (at most two
     /// ulps of the larger of the point's and the lens's coordinates). A
     /// NaN or infinite position gives a NaN point.
-    #[inline]
+    #[inline(always)]
     #[must_use]
     pub fn focus(&self, x: S<V>, y: S<V>) -> FocusPoint<V> {
         let film = self.pinhole.film(x, y);
@@ -302,7 +302,7 @@ impl<V: Vector> ThinLensCamera<V> {
     /// at `t = 1`, in exact arithmetic and bit for bit in floating point.
     /// A sample at the lens centre (or a zero lens radius) gives the
     /// pinhole ray of the film point instead, bit for bit.
-    #[inline]
+    #[inline(always)]
     #[must_use]
     pub fn ray_through(&self, focus: &FocusPoint<V>, s: S<V>, t: S<V>) -> Ray<V> {
         match self.lens_offset(s, t) {
@@ -315,7 +315,7 @@ impl<V: Vector> ThinLensCamera<V> {
     /// [`ray_through(&focus(x, y), s, t)`](ThinLensCamera::ray_through).
     /// A renderer taking many lens samples per film point computes the
     /// focus point once and calls `ray_through`.
-    #[inline]
+    #[inline(always)]
     #[must_use]
     pub fn ray(&self, x: S<V>, y: S<V>, s: S<V>, t: S<V>) -> Ray<V> {
         self.ray_through(&self.focus(x, y), s, t)
@@ -323,7 +323,7 @@ impl<V: Vector> ThinLensCamera<V> {
 
     /// The ray through the centre of pixel `(i, j)` for lens sample `(s,
     /// t)`: `ray(i + 0.5, j + 0.5, s, t)`.
-    #[inline]
+    #[inline(always)]
     #[must_use]
     pub fn pixel_ray(&self, i: u32, j: u32, s: S<V>, t: S<V>) -> Ray<V> {
         let (x, y) = super::pixel_centre(i, j);
@@ -339,7 +339,7 @@ impl<V: Vector> ThinLensCamera<V> {
     /// is linear in the raster position; the grid rounding adds at most
     /// `g_i` per component to the difference of neighbouring rays). At the
     /// lens centre, the pinhole camera's differentials.
-    #[inline]
+    #[inline(always)]
     #[must_use]
     pub fn ray_differential(&self, x: S<V>, y: S<V>, s: S<V>, t: S<V>) -> RayDifferential<V> {
         let Some(offset) = self.lens_offset(s, t) else {
