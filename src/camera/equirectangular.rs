@@ -178,12 +178,18 @@ impl<V: Vector> EquirectangularCamera<V> {
     /// `f64`). Straight up or down (`lon` undefined) gives the centre
     /// column.
     ///
-    /// Round trip: `raster_position(ray(x, y).dir)` is `(x, y)` within
-    /// `E w / cos(lat)` pixels in `x` and `E h` in `y`, with `E = gamma(16)`
-    /// in `f32` and `gamma(28)` in `f64`, for positions in the image (the
-    /// longitude is known to an angle over `cos(lat)`, so the columns
-    /// crowd near the poles; derived, and held to, in
-    /// `tests/cameras.rs`).
+    /// Round trip: `raster_position(ray(x, y).dir)` is `(x, y)`, or the
+    /// same direction a turn away in longitude, for positions in the
+    /// image, within `w (theta / (2 pi cos(lat)) + gamma(A) + gamma(2)/2 +
+    /// 2u)` pixels in `x` and `2h ((theta + 2u) / (2 pi) + gamma(A) +
+    /// gamma(2)/4) + 2uh` in `y`, where the direction's angular error is
+    /// `theta = 3 gamma(2T + 15) + 2 sqrt(3) u + sqrt(3) gamma(3) +
+    /// 3 gamma(13)`, with `T = 26` and `A = 12` in `f32`, `T = 42` and
+    /// `A = 24` in `f64`: about `w (40 u / cos(lat) + 15 u)` and `107 u h`
+    /// in `f32`, `w (55 u / cos(lat) + 27 u)` and `161 u h` in `f64`. The
+    /// longitude is known to an angle over `cos(lat)`, so the columns crowd
+    /// near the poles. (Derived, and held to, in the test kit's panorama
+    /// checks.)
     #[must_use]
     pub fn raster_position(&self, dir: V) -> Option<(S<V>, S<V>)> {
         if !dir.is_finite() || dir == V::ZERO {

@@ -90,12 +90,14 @@ enum Projection {
 /// products' magnitudes, with `|m_i|` the rows of `|projection| *
 /// |view|` (absolute values taken entry by entry). For a well-conditioned
 /// camera (glam's perspective and a view whose up vector is well away from
-/// the view direction) that is about `10 u` of the image size in pixels: a
-/// thousandth of a pixel for a 4K image in `f32`. The eye is the camera
-/// centre within a like bound, and an orthographic ray's origin projects
-/// to `(nx, ny)` within the same form with `m_2` in place of `m_3`
-/// (`tests/cameras.rs` derives them and holds the camera to them in exact
-/// arithmetic).
+/// the view direction) that is a few tens of `u` times the image size in
+/// pixels: a few thousandths of a pixel for a 4K image in `f32`. The eye is
+/// the camera centre within a bound of the same kind; an orthographic
+/// ray's origin projects to `(nx, ny)` within its own (Cramer's rule's
+/// magnitudes times `e (1 + kappa)`, `kappa` the determinant's growth
+/// factor), and its direction keeps it there to the vanishing-point form
+/// with `m_2` in place of `m_3` (derived, and held to in exact arithmetic,
+/// in the repository's test kit, `testkit/src/fuzz/matrix_camera.rs`).
 ///
 /// ```
 /// use rayhit::{ClipSpace, MatrixCamera, PinholeCamera, glam::{Mat4, Vec3}};
