@@ -7,7 +7,7 @@ use super::{CameraError, PinholeCamera, RayCone, RayDifferential};
 use crate::num::round::{bound_up, max2};
 use crate::num::trig::{sin_cos_quarter, trig_n};
 use crate::num::{Bits, Repr};
-use crate::num::{S, Scalar, Vector, unit};
+use crate::num::{S, Scalar, Vector};
 use crate::ray::Ray;
 
 /// A thin-lens camera: the rays of one film point start on a lens disc and
@@ -24,9 +24,11 @@ use crate::ray::Ray;
 /// Graphics Tools 2(3), 1997), which keeps stratified samples stratified.
 ///
 /// **The focus point.** [`focus(x, y)`](ThinLensCamera::focus) is computed
-/// once per film point: `eye + (focal_distance / focal_length) * p`, with
-/// `p` the pinhole camera's unnormalised direction towards `(x, y)`, so it
-/// lies on the pinhole ray and on the plane of focus (within rounding). The
+/// once per film point: `eye + focal_distance forward + k ((x - w/2) right
+/// + (h/2 - y) true_up)` with `k = focal_distance / focal_length`, which is
+/// `eye + k p` for `p` the pinhole camera's unnormalised direction towards
+/// `(x, y)`, so it lies on the pinhole ray and on the plane of focus
+/// (within rounding). The
 /// ray of lens point `L` starts at `L` and has direction `F - L`: it
 /// reaches the focus point `F` at `t = 1`.
 ///
@@ -82,6 +84,8 @@ where
     /// `focal_distance / focal_length`: world units per pixel on the plane
     /// of focus.
     scale: S<V>,
+    /// `eye + focal_distance forward`: the centre of the plane of focus.
+    centre: V,
     /// Per component, a bound on `|L_i|` for every lens point.
     lens_bound: V,
 }
@@ -89,13 +93,16 @@ where
 /// The focus point of one film point, with what its rays need: see
 /// [`ThinLensCamera::focus`].
 #[derive(Clone, Copy, Debug, PartialEq)]
-pub struct FocusPoint<V = Vec3> {
+pub struct FocusPoint<V = Vec3>
+where
+    V: Vector,
+{
     point: V,
     /// Per component, `1.5 * 2^(e_i + 2)`: adding and subtracting it
     /// rounds to the grid (zero where no rounding is needed or possible).
     grid: V,
-    /// The pinhole camera's unnormalised direction.
-    film: V,
+    /// The raster position, for the pinhole ray at the lens centre.
+    raster: (S<V>, S<V>),
 }
 
 impl<V: Vector> FocusPoint<V> {
@@ -224,26 +231,33 @@ impl<V: Vector> ThinLensCamera<V> {
             lens_radius,
             focal_distance,
             scale,
+            centre: pinhole.eye() + pinhole.forward() * focal_distance,
             lens_bound,
         })
     }
 
     /// The focus point of raster position `(x, y)`, computed once for all
-    /// its lens samples: `eye + (focal_distance / focal_length) * p` (`p`
-    /// the pinhole camera's unnormalised direction), rounded to the grid
-    /// on which every lens point's difference from it is exact (see
-    /// [`ThinLensCamera`]).
+    /// its lens samples: `(eye + focal_distance forward) + (right (dx k) +
+    /// true_up (dy k))` with `k = focal_distance / focal_length` and `(dx,
+    /// dy)` the offsets from the image centre (`eye + k p`, `p` the pinhole
+    /// camera's unnormalised direction), rounded to the grid on which every
+    /// lens point's difference from it is exact (see [`ThinLensCamera`]).
     ///
-    /// It lies on the plane of focus and on the pinhole ray of `(x, y)`,
-    /// up to the roundings of `p` (as in [`PinholeCamera::ray`]), of the
-    /// ratio and the product and sum (three), and of the grid (at most two
-    /// ulps of the larger of the point's and the lens's coordinates). A
-    /// NaN or infinite position gives a NaN point.
+    /// It lies on the plane of focus and on the pinhole ray of `(x, y)`:
+    /// each component is within `gamma(5) (|eye_i| + focal_distance
+    /// |forward_i| + k |dx right_i| + k |dy up_i|)` of the exact `eye +
+    /// focal_distance forward + k (dx right + dy true_up)` for the camera's
+    /// (rounded) basis (five roundings along the longest path: `k`, the two
+    /// products, the two sums; the plane's centre two, and the last sum),
+    /// and the grid moves it by at most two ulps of the larger of the
+    /// point's and the lens's coordinates. A NaN or infinite position
+    /// gives a NaN point.
     #[inline(always)]
     #[must_use]
     pub fn focus(&self, x: S<V>, y: S<V>) -> FocusPoint<V> {
-        let film = self.pinhole.film(x, y);
-        let f = self.pinhole.eye() + film * self.scale;
+        let (dx, dy) = super::centred(x, y, self.pinhole.width(), self.pinhole.height());
+        let k = self.scale;
+        let f = self.centre + (self.pinhole.right() * (dx * k) + self.pinhole.up() * (dy * k));
         let m = self.lens_bound;
         let grid = V::new(grid(f.x(), m.x()), grid(f.y(), m.y()), grid(f.z(), m.z()));
         FocusPoint {
@@ -253,7 +267,7 @@ impl<V: Vector> ThinLensCamera<V> {
                 snap(f.z(), grid.z()),
             ),
             grid,
-            film,
+            raster: (x, y),
         }
     }
 
@@ -307,7 +321,7 @@ impl<V: Vector> ThinLensCamera<V> {
     pub fn ray_through(&self, focus: &FocusPoint<V>, s: S<V>, t: S<V>) -> Ray<V> {
         match self.lens_offset(s, t) {
             Some(offset) => self.through(focus, offset),
-            None => Ray::new(self.pinhole.eye(), unit(focus.film)),
+            None => self.pinhole.ray(focus.raster.0, focus.raster.1),
         }
     }
 

@@ -124,13 +124,20 @@ pub(crate) fn sin_cos_quarter<F: Scalar>(x: F) -> (F, F) {
 /// swaps and sign changes.
 #[inline(always)]
 pub(crate) fn sin_cos_turns<F: Scalar>(t: F) -> (F, F) {
-    let s = t - round_int(t);
+    // Within half a turn (every angle of a position in a panorama's image)
+    // there are no whole turns: s = t, and k is already in -2..=2.
+    let inside = t.abs() <= F::HALF;
+    let s = if inside { t } else { t - round_int(t) };
     let four_s = s * F::from_u32(4);
     let k = round_int(four_s);
     let r = four_s - k;
     let (sin, cos) = sin_cos_quarter(r * F::from_f64(core::f64::consts::FRAC_PI_2));
     // k modulo 4, in -2..=2 (for |t| beyond 2^(p-2), k may be any integer).
-    let q = k - F::from_u32(4) * round_int(k * F::from_f64(0.25));
+    let q = if inside {
+        k
+    } else {
+        k - F::from_u32(4) * round_int(k * F::from_f64(0.25))
+    };
     quarter_turns(sin, cos, q)
 }
 

@@ -196,18 +196,18 @@ fn check_ray<V: Vector>(cam: &ThinLensCamera<V>, x: S<V>, y: S<V>, s: S<V>, t: S
     }
 }
 
-/// The focus point is within its bound of the exact `eye + k p`, `k =
-/// focal_distance / focal_length` exactly and `p = focal forward + dx right
-/// + dy up` exactly, with the camera's (rounded) basis and offsets.
+/// The focus point is within its bound of the exact `eye + focal_distance
+/// forward + k (dx right + dy up)`, `k = focal_distance / focal_length`
+/// exactly, with the camera's (rounded) basis and offsets.
 ///
-/// Derivation: the camera computes `p` with three roundings per component
-/// (two products' and two sums', the longest path three): within `gamma(3)
-/// m_i`, `m_i = |focal forward_i| + |dx right_i| + |dy up_i|`. Then `fl(p_i
-/// fl(k))` adds two (`k`'s and the product's): within `k (gamma(3) m_i (1 +
-/// gamma(2)) + gamma(2) |p_i|) <= gamma(5) k m_i`; the sum with `eye_i`
-/// one more, relative to `|eye_i| + k m_i` (to first order its result):
-/// `gamma(6) (|eye_i| + k m_i)`. The grid moves it by at most `2^(e + 2 -
-/// p) = 4 u 2^e <= 4 u max(|F_i|, M_i)` (see the camera's `grid`).
+/// Derivation: the camera computes the plane's centre `fl(eye +
+/// fl(focal_distance forward))` once (two roundings), `fl(dx fl(k))` and
+/// `fl(dy fl(k))` (two each), their products with `right` and `up` (one
+/// each), the sum of those (one) and the sum with the centre (one): along
+/// the longest path five roundings, so each component is within `gamma(5)
+/// (|eye_i| + focal_distance |forward_i| + k |dx right_i| + k |dy up_i|)`
+/// of the exact value. The grid moves it by at most `2^(e + 2 - p) = 4 u
+/// 2^e <= 4 u max(|F_i|, M_i)` (see the camera's `grid`).
 pub fn focus_bound<V: Vector>(cam: &ThinLensCamera<V>, x: S<V>, y: S<V>) -> ([R; 3], [R; 3]) {
     let p = cam.pinhole();
     let (w, h) = (p.width(), p.height());
@@ -216,16 +216,18 @@ pub fn focus_bound<V: Vector>(cam: &ThinLensCamera<V>, x: S<V>, y: S<V>) -> ([R;
     let dy = S::<V>::from_u32(h) * half - y;
     let k = r(cam.focal_distance()) / r(p.focal_length());
     let (f, rt, up, eye) = (rv(p.forward()), rv(p.right()), rv(p.up()), rv(p.eye()));
-    let (fl, dxr, dyr) = (r(p.focal_length()), r(dx), r(dy));
+    let (fd, dxr, dyr) = (r(cam.focal_distance()), r(dx), r(dy));
     let focus = cam.focus(x, y).point();
     let u4 = int(4) * r(S::<V>::UNIT_ROUNDOFF);
     let exact =
-        core::array::from_fn(|i| &eye[i] + &k * (&fl * &f[i] + &dxr * &rt[i] + &dyr * &up[i]));
+        core::array::from_fn(|i| &eye[i] + &fd * &f[i] + &k * (&dxr * &rt[i] + &dyr * &up[i]));
     let bound = core::array::from_fn(|i| {
-        let m = abs(&(&fl * &f[i])) + abs(&(&dxr * &rt[i])) + abs(&(&dyr * &up[i]));
+        let m = abs(&eye[i])
+            + abs(&(&fd * &f[i]))
+            + &k * (abs(&(&dxr * &rt[i])) + abs(&(&dyr * &up[i])));
         let reach = R::from_float(lens_reach(cam, i)).expect("finite");
         let big = abs(&r(focus[i])).max(reach) * (int(1) + &u4 * int(2));
-        gamma::<S<V>>(6) * (abs(&eye[i]) + &k * m) + &u4 * big
+        gamma::<S<V>>(5) * m + &u4 * big
     });
     (exact, bound)
 }
