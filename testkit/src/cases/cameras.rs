@@ -8,7 +8,10 @@
 //! the image, or outside it; lens samples at the centre, on the edges and
 //! corners of `[0, 1)^2`, and anywhere in it.
 
-use rayhit::{Scalar, Vector};
+use rayhit::{
+    EquirectangularCamera, OrthographicCamera, PinholeCamera, Ray, RayDifferential, Scalar,
+    ThinLensCamera, Triangle, Vector,
+};
 
 use super::{S, direction, point, v};
 use crate::source::Source;
@@ -100,4 +103,44 @@ pub fn lens<V: Vector>(src: &mut Source) -> (S<V>, S<V>) {
 /// A vertical field of view, 10 to 150 degrees, in radians.
 pub fn fov<F: Scalar>(src: &mut Source) -> F {
     F::from_f64(src.range(10.0, 150.0).to_radians())
+}
+
+/// A camera's ray differential at a raster position in (or near) the
+/// image.
+pub fn differential<V: Vector>(src: &mut Source) -> Option<RayDifferential<V>> {
+    let f = frame::<V>(src);
+    let (x, y) = raster::<S<V>>(src, f.width, f.height);
+    let pinhole = PinholeCamera::from_fov(f.eye, f.view, f.up, fov(src), f.width, f.height);
+    Some(match src.below(4) {
+        0 => pinhole.ok()?.ray_differential(x, y),
+        1 => {
+            let (radius, distance) = lens::<V>(src);
+            let cam = ThinLensCamera::new(pinhole.ok()?, radius, distance).ok()?;
+            let (s, t) = lens_sample::<S<V>>(src);
+            cam.ray_differential(x, y, s, t)
+        }
+        2 => {
+            let size = S::<V>::from_f64(src.log2_range(-8.0, 2.0));
+            OrthographicCamera::new(f.eye, f.view, f.up, size, f.width, f.height)
+                .ok()?
+                .ray_differential(x, y)
+        }
+        _ => EquirectangularCamera::new(f.eye, f.view, f.up, f.width, f.height)
+            .ok()?
+            .ray_differential(x, y),
+    })
+}
+
+/// A triangle whose centroid is a point of the ray `1/2` to `2^7` along
+/// it, its corners `2^-4` to `2^4` away in random directions.
+pub fn triangle_around<V: Vector>(src: &mut Source, ray: &Ray<V>) -> Triangle<V> {
+    let f = |x: S<V>| x.to_f64();
+    let t = src.log2_range(-1.0, 7.0);
+    let p: [f64; 3] = core::array::from_fn(|k| f(ray.origin[k]) + t * f(ray.dir[k]));
+    let size = src.log2_range(-4.0, 4.0);
+    let (d1, d2) = (src.direction(), src.direction());
+    let a: [f64; 3] = core::array::from_fn(|k| p[k] + size * d1[k]);
+    let b: [f64; 3] = core::array::from_fn(|k| p[k] + size * d2[k]);
+    let c: [f64; 3] = core::array::from_fn(|k| 3.0 * p[k] - a[k] - b[k]);
+    Triangle::new(v(a), v(b), v(c))
 }

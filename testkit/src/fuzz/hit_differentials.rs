@@ -20,16 +20,13 @@
 use arbitrary::Arbitrary;
 use rayhit::exact::oracle::hit_differential;
 use rayhit::{
-    EquirectangularCamera, OrthographicCamera, PinholeCamera, Ray, RayDifferential, Scalar,
-    ThinLensCamera, Triangle, Vector, ray_triangle, triangle_hit_differentials,
+    Ray, RayDifferential, Scalar, Triangle, Vector, ray_triangle, triangle_hit_differentials,
     triangle_hit_differentials_error,
 };
 
 use super::exact::{abs, r, rv};
 use super::{Check, Input, S, raw, raw_vec};
-use crate::cases::cameras::{fov, frame, lens, lens_sample, raster};
-use crate::cases::v;
-use crate::source::Source;
+use crate::cases::cameras::{differential, triangle_around};
 
 /// The `hit_differentials` target.
 #[derive(Debug)]
@@ -62,7 +59,7 @@ impl Check for HitDifferentialsCheck {
                 let Some(diff) = differential::<V>(src) else {
                     return;
                 };
-                let tri = around::<V>(src, &diff.ray);
+                let tri = triangle_around::<V>(src, &diff.ray);
                 let Some(hit) = ray_triangle(&diff.ray, &tri, S::<V>::INFINITY) else {
                     return;
                 };
@@ -70,46 +67,6 @@ impl Check for HitDifferentialsCheck {
             }
         }
     }
-}
-
-/// A camera's ray differential at a raster position in (or near) the
-/// image.
-fn differential<V: Vector>(src: &mut Source) -> Option<RayDifferential<V>> {
-    let f = frame::<V>(src);
-    let (x, y) = raster::<S<V>>(src, f.width, f.height);
-    let pinhole = PinholeCamera::from_fov(f.eye, f.view, f.up, fov(src), f.width, f.height);
-    Some(match src.below(4) {
-        0 => pinhole.ok()?.ray_differential(x, y),
-        1 => {
-            let (radius, distance) = lens::<V>(src);
-            let cam = ThinLensCamera::new(pinhole.ok()?, radius, distance).ok()?;
-            let (s, t) = lens_sample::<S<V>>(src);
-            cam.ray_differential(x, y, s, t)
-        }
-        2 => {
-            let size = S::<V>::from_f64(src.log2_range(-8.0, 2.0));
-            OrthographicCamera::new(f.eye, f.view, f.up, size, f.width, f.height)
-                .ok()?
-                .ray_differential(x, y)
-        }
-        _ => EquirectangularCamera::new(f.eye, f.view, f.up, f.width, f.height)
-            .ok()?
-            .ray_differential(x, y),
-    })
-}
-
-/// A triangle whose centroid is a point of the ray `1/2` to `2^7` along
-/// it, its corners `2^-4` to `2^4` away in random directions.
-fn around<V: Vector>(src: &mut Source, ray: &Ray<V>) -> Triangle<V> {
-    let f = |x: S<V>| x.to_f64();
-    let t = src.log2_range(-1.0, 7.0);
-    let p: [f64; 3] = core::array::from_fn(|k| f(ray.origin[k]) + t * f(ray.dir[k]));
-    let size = src.log2_range(-4.0, 4.0);
-    let (d1, d2) = (src.direction(), src.direction());
-    let a: [f64; 3] = core::array::from_fn(|k| p[k] + size * d1[k]);
-    let b: [f64; 3] = core::array::from_fn(|k| p[k] + size * d2[k]);
-    let c: [f64; 3] = core::array::from_fn(|k| 3.0 * p[k] - a[k] - b[k]);
-    Triangle::new(v(a), v(b), v(c))
 }
 
 /// The checks on one input; `exact`: hold the values to their bounds in
