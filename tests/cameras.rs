@@ -9,12 +9,12 @@ use rayhit::{CameraError, PinholeCamera, ThinLensCamera};
 use rayhit_testkit::fuzz::{Check, Input};
 use rayhit_testkit::source::Source;
 
-/// Cases per check and precision: `CAMERA_CASES`, or 1000.
+/// Cases per check and precision: `CAMERA_CASES`, or 400.
 fn cases() -> u64 {
     std::env::var("CAMERA_CASES")
         .ok()
         .and_then(|s| s.parse().ok())
-        .unwrap_or(1000)
+        .unwrap_or(400)
 }
 
 /// Runs `C`'s structured checks on seeded sources, in `f32` and `f64`.
