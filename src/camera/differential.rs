@@ -454,10 +454,17 @@ pub fn triangle_hit_differentials_error<V: Vector>(
 /// angle between the ray and the triangle's normal (the footprint's long
 /// axis on the surface; Ray Tracing Gems, chapter 20, eq. 20.3's `|n .
 /// d|`). `None` for a ray in the triangle's plane or a zero-area
-/// triangle. Rounded: within `gamma(12)`, relative, of the exact value of
-/// the same formula (a dozen roundings, none cancelling: all terms are
-/// non-negative but the dot product, whose absolute value is taken
-/// against its magnitude `|dir| |n|`, and so cancels only near grazing).
+/// triangle (a zero dot product or length), so that nothing divides by
+/// zero.
+///
+/// Rounded: the width, the lengths and the quotient are a dozen roundings
+/// of non-negative quantities (within `gamma(12)` of the same formula on
+/// the computed normal and dot product); the computed normal and `dir .
+/// n` carry the errors [`Triangle::normal_with_error`](crate::Triangle::normal_with_error)
+/// and a dot product's, which grow relative to the result as the triangle
+/// thins and as the ray grazes it (where the footprint itself grows
+/// without bound). It is a filter's width: a few roundings do not matter,
+/// a NaN would, and none comes out of finite input.
 ///
 /// A texture level of detail follows as in the chapter: `log2(width /
 /// texel_size)`, with the texel size in world units at the hit.
