@@ -186,7 +186,12 @@ impl<V: Vector> EquirectangularCamera<V> {
     /// `theta = 3 gamma(2T + 15) + 2 sqrt(3) u + sqrt(3) gamma(3) +
     /// 3 gamma(13)`, with `T = 26` and `A = 12` in `f32`, `T = 42` and
     /// `A = 24` in `f64`: about `w (40 u / cos(lat) + 15 u)` and `107 u h`
-    /// in `f32`, `w (55 u / cos(lat) + 27 u)` and `161 u h` in `f64`. The
+    /// in `f32`, `w (55 u / cos(lat) + 27 u)` and `161 u h` in `f64`. Its
+    /// last term is three times the basis's departure from orthonormal
+    /// (the largest entry of `B^T B - I`), `gamma(13)` when the up vector
+    /// is well away from the view direction; nearly parallel, `right`
+    /// carries its cross product's rounding over the sine of their angle,
+    /// and the bound grows with it. The
     /// longitude is known to an angle over `cos(lat)`, so the columns crowd
     /// near the poles. (Derived, and held to, in the test kit's panorama
     /// checks.)

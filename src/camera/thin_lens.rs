@@ -290,8 +290,13 @@ impl<V: Vector> ThinLensCamera<V> {
     /// lens centre (where the ray is the pinhole ray).
     #[inline(always)]
     fn lens_offset(&self, s: S<V>, t: S<V>) -> Option<(S<V>, S<V>)> {
-        let (a, b) = concentric_disc(s, t);
         let radius = self.lens_radius;
+        // A zero radius is the pinhole camera, whatever the sample (a NaN
+        // one included).
+        if radius == S::<V>::ZERO {
+            return None;
+        }
+        let (a, b) = concentric_disc(s, t);
         let (ra, rb) = (radius * a, radius * b);
         let zero = S::<V>::ZERO;
         (ra != zero || rb != zero).then_some((ra, rb))
