@@ -178,3 +178,109 @@ for name, fill in [("zeros", 0x00), ("mid", 0x80), ("ones", 0xFF), ("mixed", 0x5
     for layout in (0x21, 0x22, 0x3F):
         write("batch", f"structured-f32-{name}-{layout:02x}", bytes([2, layout]) + bytes([fill]) * 400)
         write("batch", f"structured-f64-{name}-{layout:02x}", bytes([3, layout]) + bytes([fill]) * 400)
+
+
+# Thin lens: eye, view, up, focal, width, height, radius, focal distance,
+# x, y, then two lens samples (s, t).
+def thin_lens(mode, eye, view, up, focal, w, h, radius, distance, x, y, lens):
+    samples = [c for st in lens for c in st]
+    return raw(mode, *vecs(eye, view, up), focal, ("u32", w), ("u32", h), radius, distance, x, y, *samples)
+
+lenses = {
+    "centre-sample": ((0, 0, 0), (0, 0, -1), (0, 1, 0), 8, 3, 3, 1, 4, 1.5, 1.5, [(0.5, 0.5), (1, 0.5)]),
+    "corners": ((1, 2, 3), (0.3, -1, 0.2), (0, 1, 0), 500, 640, 480, 0.05, 10, 320.5, 0.5, [(0, 0), (0.99999994, 0.99999994)]),
+    "zero-radius": ((0, 0, 0), (0, 0, -1), (0, 1, 0), 100, 64, 64, 0, 3, 10, 10, [(0.1, 0.9), (0.5, 0.5)]),
+    "far-eye": ((1e5, -3e4, 2e5), (1, 0, 0), (0, 0, 1), 1000, 1920, 1080, 0.5, 30, 0.5, 1079.5, [(0.3, 0.7), (0.75, 0.25)]),
+    "focus-near-zero": ((0, 0, 0), (0, 0, -1), (0, 1, 0), 100, 200, 200, 2, 1, 100.5, 100.5, [(0.9, 0.5), (0.5, 0.1)]),
+    "negative-radius": ((0, 0, 0), (0, 0, -1), (0, 1, 0), 1, 3, 3, -1, 1, 1.5, 1.5, [(0.5, 0.5), (0, 0)]),
+    "nan-distance": ((0, 0, 0), (0, 0, -1), (0, 1, 0), 1, 3, 3, 1, NAN, 1.5, 1.5, [(0.5, 0.5), (0, 0)]),
+    "huge-radius": ((0, 0, 0), (0, 0, -1), (0, 1, 0), 1, 3, 3, MAX32, 1, 1.5, 1.5, [(0.2, 0.5), (0, 0)]),
+    "outside-samples": ((0, 0, 0), (0, 0, -1), (0, 1, 0), 10, 8, 8, 1, 5, -3, 20, [(-2, 7), (NAN, 0.5)]),
+}
+for name, args in lenses.items():
+    write("thin_lens", f"raw-f32-{name}", thin_lens(0, *args))
+    write("thin_lens", f"raw-f64-{name}", thin_lens(1, *args))
+structured("thin_lens")
+
+
+# Orthographic: centre, view, up, pixel size, width, height, x, y.
+def ortho(mode, centre, view, up, size, w, h, x, y):
+    return raw(mode, *vecs(centre, view, up), size, ("u32", w), ("u32", h), x, y)
+
+orthos = {
+    "down": ((0, 10, 0), (0, -1, 0), (0, 0, -1), 0.5, 4, 2, 0.5, 0.5),
+    "far-centre": ((1e6, 2e6, -3e6), (1, 1, 1), (0, 0, 1), 0.001, 1920, 1080, 960, 540),
+    "zero-size": ((0, 0, 0), (0, 0, -1), (0, 1, 0), 0, 4, 4, 1, 1),
+    "huge-size": ((0, 0, 0), (0, 0, -1), (0, 1, 0), MAX32, 4, 4, -1e30, 1e30),
+    "nan-position": ((0, 0, 0), (0, 0, -1), (0, 1, 0), 1, 4, 4, NAN, INF),
+    "up-parallel": ((0, 0, 0), (0, 0, -1), (0, 0, 2), 1, 4, 4, 1, 1),
+}
+for name, args in orthos.items():
+    write("orthographic", f"raw-f32-{name}", ortho(0, *args))
+    write("orthographic", f"raw-f64-{name}", ortho(1, *args))
+structured("orthographic")
+
+
+# Panoramas: eye, view, up, width, height, x, y, then a direction.
+def pano(mode, eye, view, up, w, h, x, y, d):
+    return raw(mode, *vecs(eye, view, up), ("u32", w), ("u32", h), x, y, *d)
+
+panos = {
+    "centre": ((0, 0, 0), (0, 0, -1), (0, 1, 0), 361, 181, 180.5, 90.5, (0, 0, -1)),
+    "poles": ((1, 2, 3), (1, 0, 0), (0, 1, 0), 360, 180, 0.5, 0.0, (0, 1, 0)),
+    "edges": ((0, 0, 0), (0, 0, -1), (0, 1, 0), 256, 256, 256.0, 256.0, (0, 0, 1)),
+    "outside": ((0, 0, 0), (0, 0, -1), (0, 1, 0), 64, 64, -1e6, 1e7, (1e-30, 0, 0)),
+    "nan": ((0, 0, 0), (0, 0, -1), (0, 1, 0), 64, 32, NAN, 3, (NAN, 0, 1)),
+    "inf": ((0, 0, 0), (0, 0, -1), (0, 1, 0), 64, 32, INF, -INF, (INF, 0, 1)),
+    "zero-dir": ((0, 0, 0), (0, 0, -1), (0, 1, 0), 8, 8, 4, 4, (0, 0, 0)),
+    "empty": ((0, 0, 0), (0, 0, -1), (0, 1, 0), 0, 8, 4, 4, (0, 0, 1)),
+}
+for target in ["equirectangular", "equal_area"]:
+    for name, args in panos.items():
+        write(target, f"raw-f32-{name}", pano(0, *args))
+        write(target, f"raw-f64-{name}", pano(1, *args))
+    structured(target)
+
+
+# Matrix camera: view and projection (32 floats, columns), a clip-space
+# byte, width, height, x, y.
+def matrix_cam(mode, view, proj, clip, w, h, x, y):
+    floats = raw(mode, *[c for m in (view, proj) for col in m for c in col])
+    return floats + bytes([clip]) + raw(mode, ("u32", w), ("u32", h), x, y)[1:]
+
+I4 = [(1, 0, 0, 0), (0, 1, 0, 0), (0, 0, 1, 0), (0, 0, 0, 1)]
+# glam's directx perspective_rh(fov = 1, aspect = 1, near 0.1, far 100).
+F = 1 / math.tan(0.5)
+PERSP = [(F, 0, 0, 0), (0, F, 0, 0), (0, 0, 100 / (0.1 - 100), -1), (0, 0, 0.1 * 100 / (0.1 - 100), 0)]
+# directx orthographic_rh(-2, 2, -1, 1, 1, 21).
+ORTHO = [(0.5, 0, 0, 0), (0, 1, 0, 0), (0, 0, 1 / (1 - 21), 0), (0, 0, 1 / (1 - 21), 1)]
+mats = {
+    "perspective": (I4, PERSP, 0, 64, 64, 31.5, 10.5),
+    "orthographic": (I4, ORTHO, 0, 4, 2, 0.5, 0.5),
+    "vulkan": (I4, PERSP, 2, 64, 48, 0.5, 47.5),
+    "zero": (I4, [(0, 0, 0, 0)] * 4, 1, 8, 8, 4, 4),
+    "nan": (I4, [(NAN, 0, 0, 0)] + PERSP[1:], 0, 8, 8, 4, 4),
+    "huge": ([(MAX32, 0, 0, 0), (0, MAX32, 0, 0), (0, 0, MAX32, 0), (0, 0, 0, 1)], PERSP, 0, 8, 8, -1e30, 1e30),
+    "far-outside": (I4, PERSP, 1, 8, 8, 1e38, -3e38),
+}
+for name, args in mats.items():
+    write("matrix_camera", f"raw-f32-{name}", matrix_cam(0, *args))
+    write("matrix_camera", f"raw-f64-{name}", matrix_cam(1, *args))
+structured("matrix_camera")
+
+
+# Hit differentials: ray direction, dx origin, dx dir, dy origin, dy dir,
+# triangle a, b, c, then t.
+hits = {
+    "floor": ((0, -1, 0), (0, 0, 0), (0.01, 0, 0), (0, 0, 0), (0, 0, 0.01), (-50, -10, 50), (50, -10, 50), (-50, -10, -50), 10),
+    "ortho": ((0, 0, -1), (0.5, 0, 0), (0, 0, 0), (0, -0.5, 0), (0, 0, 0), (0, 0, -3), (4, 0, -3), (0, 4, -3), 3),
+    "parallel": ((1, 0, 0), (0, 0, 0), (0, 1, 0), (0, 0, 0), (0, 0, 1), (0, 0, 0), (1, 0, 0), (0, 1, 0), 1),
+    "degenerate": ((0, 0, -1), (0, 0, 0), (1, 0, 0), (0, 0, 0), (0, 1, 0), (0, 0, 0), (1, 1, 1), (2, 2, 2), 1),
+    "grazing": ((1, 0, -1e-7), (0, 0, 0), (0, 0.001, 0), (0, 0, 0), (0, 0, 0.001), (0, -1, 0), (0, 1, 0), (1000, 0, -1e-4), 5),
+    "nan": ((0, 0, -1), (NAN, 0, 0), (0, 0, 0), (0, 0, 0), (0, 0, 0), (0, 0, -1), (1, 0, -1), (0, 1, -1), INF),
+}
+for name, args in hits.items():
+    *vs, t = args
+    write("hit_differentials", f"raw-f32-{name}", raw(0, *vecs(*vs), t))
+    write("hit_differentials", f"raw-f64-{name}", raw(1, *vecs(*vs), t))
+structured("hit_differentials")

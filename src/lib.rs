@@ -1,6 +1,8 @@
-//! Pinhole-camera primary rays and ray/plane, ray/box and ray/triangle
-//! intersection, as small pure functions over [`glam`] vectors, with error
-//! bounds that are derived, documented and tested against exact arithmetic.
+//! Camera rays (pinhole, thin lens, orthographic, panoramic, from a
+//! rasterizer's matrices, with ray differentials and ray cones) and
+//! ray/plane, ray/box and ray/triangle intersection, as small pure functions
+//! over [`glam`] vectors, with error bounds that are derived, documented and
+//! tested against exact arithmetic.
 //!
 //! ```
 //! use rayhit::{Aabb, PinholeCamera, Triangle, ray_aabb, ray_triangle, glam::Vec3};
@@ -33,9 +35,15 @@
 //! - Triangle hits carry barycentrics `(u, v)` with
 //!   `point = (1 - u - v) * a + u * b + v * c`, each in `[0, 1]`, and the
 //!   [`Side`] the ray came from; the tests are two-sided.
-//! - Camera: right-handed world, raster `(0, 0)` at the image's top-left,
+//! - Cameras: right-handed world, raster `(0, 0)` at the image's top-left,
 //!   `x` right, `y` down, pixel `(i, j)` centred at `(i + 0.5, j + 0.5)`,
-//!   `right = normalize(view x up)`; see [`PinholeCamera`].
+//!   `right = normalize(view x up)`; see [`PinholeCamera`]. Every camera
+//!   ([`PinholeCamera`], [`ThinLensCamera`], [`OrthographicCamera`],
+//!   [`MatrixCamera`], [`EquirectangularCamera`], [`EqualAreaCamera`])
+//!   gives the ray of a raster position, the ray with its differentials
+//!   ([`RayDifferential`]: per pixel in `x` and `y`) and its ray cone
+//!   ([`RayCone`]); [`triangle_hit_differentials`] carries the differentials
+//!   to a hit, for texture filtering.
 //! - Bad input (NaN, infinities, zero vectors, zero plane normals, inverted
 //!   boxes, NaN or negative `t_max`) gives `None` or a [`CameraError`];
 //!   nothing panics and no `t` is NaN. Zero-area triangles are hit where
@@ -52,7 +60,10 @@
 //! have glam-style names:
 //! [`DRay`], [`DAabb`], [`DValidAabb`], [`DPreparedRay`], [`DAabbBatch`],
 //! [`DTriangleBatch`], [`DPlane`], [`DTriangle`], [`DTriangleHit`],
-//! [`DTriangleHitError`], [`DPinholeCamera`], [`DSurfacePoint`]. Functions
+//! [`DTriangleHitError`], [`DPinholeCamera`], [`DThinLensCamera`],
+//! [`DOrthographicCamera`], [`DMatrixCamera`], [`DEquirectangularCamera`],
+//! [`DEqualAreaCamera`], [`DRayDifferential`], [`DHitDifferentials`],
+//! [`DSurfacePoint`]. Functions
 //! need no second name: `ray_triangle(&ray, &tri, f64::INFINITY)` takes a
 //! `DRay` and a `DTriangle`.
 //!
@@ -266,6 +277,34 @@
 //! - **Camera** ([`PinholeCamera`]). Unit directions within `gamma(6)`; the
 //!   centre pixel of an odd-sized image looks along the view direction to a
 //!   few ulps; agrees with glam's view and projection matrices.
+//! - **Thin lens** ([`ThinLensCamera`]). The rays of one film point meet at
+//!   its focus point exactly: `origin + dir` is the focus point in exact
+//!   arithmetic and `ray.at(1)` is it bit for bit (lens samples in `[0,
+//!   1]^2`, coordinates below `MAX / 8`); the focus point within `gamma(6)`
+//!   of `|eye_i| + k |p_i|`'s magnitudes plus two ulps of the grid, of the
+//!   exact `eye + (focal_distance / focal_length) p`; the lens centre (and
+//!   a zero radius) gives the pinhole ray bit for bit.
+//! - **Orthographic** ([`OrthographicCamera`]). One direction for every ray,
+//!   bit for bit; each origin within `gamma(4)` of its magnitudes of the
+//!   exact point of the plane through the given centre (no far position is
+//!   ever added).
+//! - **From matrices** ([`MatrixCamera`]). In exact arithmetic on the
+//!   matrices given, a pixel's ray projects back to the pixel within the
+//!   bound its documentation states (about `10 u` of the image size for a
+//!   well-conditioned camera); singular (within rounding) and non-finite
+//!   matrices are errors.
+//! - **Panoramic** ([`EquirectangularCamera`], [`EqualAreaCamera`]). Unit
+//!   directions within `gamma(6)`; the inverse (`raster_position`) returns
+//!   the raster position within a derived bound (equirectangular, in `f32`,
+//!   about `w (40 u / cos(lat) + 15 u)` pixels across, growing towards the
+//!   poles, and `107 u h` down; equal area `225 u` of the image size); the
+//!   equal-area differentials span a pixel's solid angle, `4 pi / (width
+//!   height)`.
+//! - **Differentials** ([`RayDifferential`], [`triangle_hit_differentials`]).
+//!   Each camera's are the derivatives of its rays, within its stated
+//!   second-order term of the difference of neighbouring pixels' rays; at a
+//!   triangle hit, every derivative within
+//!   [`triangle_hit_differentials_error`] of the exact transfer.
 //! - **Exact metamorphic identities**, bit for bit: scaling the direction or
 //!   all positions by a power of two scales every `t` accordingly; mirroring
 //!   an axis and translating on a coarse grid change nothing; reversing a
@@ -273,7 +312,10 @@
 //!
 //! Invalid input (NaN, infinities, zero direction, inverted box, NaN or
 //! negative `t_max`) gives `None` or a [`CameraError`]: never a panic, never
-//! a NaN or negative `t`. Zero-area triangles are not invalid: they can be
+//! a NaN or negative `t`. A camera's bad parameters are errors when it is
+//! made; a NaN raster position gives a NaN ray (which every kernel
+//! rejects), and positions outside the image give finite rays (each
+//! camera says which). Zero-area triangles are not invalid: they can be
 //! hit where rounding leaves them a sliver, which keeps meshes that close
 //! T-junctions with them watertight (see [`Triangle`]).
 //!
@@ -361,7 +403,12 @@ pub use aabb::{
     Aabb, AabbBatch, AabbBatchHits, BoxFace, BoxHit, SlabBox, ValidAabb, aabb_entry_face, ray_aabb,
     ray_aabb_batch, ray_aabb_face, ray_aabb_naive, ray_aabb_prepared, ray_aabb_prepared_face,
 };
-pub use camera::{CameraError, PinholeCamera};
+pub use camera::{
+    CameraError, ClipSpace, Columns, EqualAreaCamera, EquirectangularCamera, FocusPoint,
+    HitDifferentials, MatrixCamera, OrthographicCamera, PinholeCamera, RayCone, RayDifferential,
+    ThinLensCamera, triangle_cone_width, triangle_hit_differentials,
+    triangle_hit_differentials_error,
+};
 pub use num::{Scalar, Vector};
 pub use plane::{Plane, ray_plane, ray_plane_hit_point, ray_plane_t_error};
 pub use quantized::{QuantizedChildren, quantize_bounds, ray_quantized_children};
@@ -403,6 +450,20 @@ mod f64_names {
     pub type DTriangleBatch<const N: usize = 8> = crate::TriangleBatch<DVec3, N>;
     /// [`PinholeCamera`](crate::PinholeCamera) in `f64`.
     pub type DPinholeCamera = crate::PinholeCamera<DVec3>;
+    /// [`ThinLensCamera`](crate::ThinLensCamera) in `f64`.
+    pub type DThinLensCamera = crate::ThinLensCamera<DVec3>;
+    /// [`OrthographicCamera`](crate::OrthographicCamera) in `f64`.
+    pub type DOrthographicCamera = crate::OrthographicCamera<DVec3>;
+    /// [`MatrixCamera`](crate::MatrixCamera) in `f64`.
+    pub type DMatrixCamera = crate::MatrixCamera<DVec3>;
+    /// [`EquirectangularCamera`](crate::EquirectangularCamera) in `f64`.
+    pub type DEquirectangularCamera = crate::EquirectangularCamera<DVec3>;
+    /// [`EqualAreaCamera`](crate::EqualAreaCamera) in `f64`.
+    pub type DEqualAreaCamera = crate::EqualAreaCamera<DVec3>;
+    /// [`RayDifferential`](crate::RayDifferential) in `f64`.
+    pub type DRayDifferential = crate::RayDifferential<DVec3>;
+    /// [`HitDifferentials`](crate::HitDifferentials) in `f64`.
+    pub type DHitDifferentials = crate::HitDifferentials<DVec3>;
     /// [`SurfacePoint`](crate::SurfacePoint) in `f64`.
     pub type DSurfacePoint = crate::SurfacePoint<DVec3>;
 }
@@ -424,16 +485,21 @@ pub use f64_names::*;
 /// ```
 pub mod prelude {
     pub use crate::{
-        Aabb, AabbBatch, AabbBatchHits, BoxFace, BoxHit, CameraError, DAabb, DAabbBatch,
-        DPinholeCamera, DPlane, DPreparedRay, DRay, DSurfacePoint, DTriangle, DTriangleBatch,
-        DTriangleHit, DTriangleHitError, DValidAabb, PinholeCamera, Plane, PreparedRay,
-        QuantizedChildren, Ray, Scalar, Side, Simd, SimdWork, SlabBox, SurfacePoint, TargetSimd,
-        Triangle, TriangleBatch, TriangleBatchHits, TriangleHit, TriangleHitError, ValidAabb,
-        Vector, aabb_entry_face, offset_ray_origin, quantize_bounds, ray_aabb, ray_aabb_batch,
-        ray_aabb_face, ray_aabb_naive, ray_aabb_prepared, ray_aabb_prepared_face, ray_plane,
-        ray_plane_hit_point, ray_plane_t_error, ray_quantized_children, ray_triangle,
-        ray_triangle_batch, ray_triangle_error_bounds, ray_triangle_mt, ray_triangle_one_hit,
-        ray_triangle_prepared, triangle_hit_point, with_simd,
+        Aabb, AabbBatch, AabbBatchHits, BoxFace, BoxHit, CameraError, ClipSpace, Columns, DAabb,
+        DAabbBatch, DEqualAreaCamera, DEquirectangularCamera, DHitDifferentials, DMatrixCamera,
+        DOrthographicCamera, DPinholeCamera, DPlane, DPreparedRay, DRay, DRayDifferential,
+        DSurfacePoint, DThinLensCamera, DTriangle, DTriangleBatch, DTriangleHit, DTriangleHitError,
+        DValidAabb, EqualAreaCamera, EquirectangularCamera, FocusPoint, HitDifferentials,
+        MatrixCamera, OrthographicCamera, PinholeCamera, Plane, PreparedRay, QuantizedChildren,
+        Ray, RayCone, RayDifferential, Scalar, Side, Simd, SimdWork, SlabBox, SurfacePoint,
+        TargetSimd, ThinLensCamera, Triangle, TriangleBatch, TriangleBatchHits, TriangleHit,
+        TriangleHitError, ValidAabb, Vector, aabb_entry_face, offset_ray_origin, quantize_bounds,
+        ray_aabb, ray_aabb_batch, ray_aabb_face, ray_aabb_naive, ray_aabb_prepared,
+        ray_aabb_prepared_face, ray_plane, ray_plane_hit_point, ray_plane_t_error,
+        ray_quantized_children, ray_triangle, ray_triangle_batch, ray_triangle_error_bounds,
+        ray_triangle_mt, ray_triangle_one_hit, ray_triangle_prepared, triangle_cone_width,
+        triangle_hit_differentials, triangle_hit_differentials_error, triangle_hit_point,
+        with_simd,
     };
     #[cfg(rayhit_runtime_avx)]
     pub use crate::{Avx2, Avx512};

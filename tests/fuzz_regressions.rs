@@ -744,3 +744,60 @@ fn aabb_false_hit_band_with_subnormal_reciprocals() {
     );
     assert!(ee <= band(40), "within the band with them");
 }
+
+/// `thin_lens` (raw): a zero lens radius and a NaN lens sample. The ray
+/// went down the lens's path (the offset `0 * NaN` is NaN, not zero) and
+/// came out NaN; the docs say a zero radius is the pinhole camera, bit for
+/// bit, and now it is, whatever the sample.
+#[test]
+fn thin_lens_zero_radius_with_nan_sample_is_the_pinhole() {
+    use rayhit::ThinLensCamera;
+    let pinhole = PinholeCamera::new(Vec3::ZERO, -Vec3::Z, Vec3::Y, 100.0, 64, 64).unwrap();
+    let cam = ThinLensCamera::new(pinhole, 0.0, 3.0).unwrap();
+    for (s, t) in [(0.1, f32::NAN), (f32::NAN, f32::NAN), (f32::INFINITY, 0.3)] {
+        assert_eq!(cam.ray(10.0, 10.0, s, t), pinhole.ray(10.0, 10.0));
+    }
+}
+
+/// `equirectangular` and `equal_area` (structured): an up vector nearly
+/// parallel to the view direction (the sine of their angle just above the
+/// cameras' `gamma(16)` limit) leaves `right` off orthogonal to `forward`
+/// by its cross product's rounding over that sine; the check's round-trip
+/// bound assumed a basis orthonormal within `gamma(13)` and failed on the
+/// centre pixel's round trip. The cameras were right; the bound (and the
+/// docs) now count the basis's measured departure from orthonormal, and
+/// hold here.
+#[test]
+fn panorama_round_trip_with_a_nearly_parallel_up_vector() {
+    use rayhit::{EqualAreaCamera, EquirectangularCamera};
+    use rayhit_testkit::fuzz::panoramic::{
+        basis_skew, equal_area_round_trip, equirectangular_round_trip,
+    };
+    let view = Vec3::new(-0.2036, -0.6923, -0.6923);
+    // Sine 3e-6: up is the view turned by 3e-6 radians.
+    let up = view.normalize() + Vec3::new(0.0, 3e-6, -3e-6) * 0.7;
+    let equi = EquirectangularCamera::new(Vec3::ZERO, view, up, 1, 1).unwrap();
+    let basis = [equi.right(), equi.up(), equi.forward()];
+    let skew = basis_skew(basis);
+    let g13 = f64::from(<f32 as rayhit::Scalar>::gamma_n(13));
+    assert!(skew > 100.0 * g13, "{skew}: not the case the fuzzer found");
+    let (x, y) = equi.raster_position(equi.ray(0.5, 0.5).dir).unwrap();
+    let (ex, ey) = ((x - 0.5).abs() as f64, (y - 0.5).abs() as f64);
+    // Beyond the bound that assumed gamma(13), within the one with the skew.
+    let (bx0, by0) = equirectangular_round_trip::<f32>(1, 1, 0.0, g13);
+    assert!(ex > bx0 || ey > by0, "({ex}, {ey}) within ({bx0}, {by0})");
+    let (bx, by) = equirectangular_round_trip::<f32>(1, 1, 0.0, skew);
+    assert!(ex <= bx && ey <= by, "({ex}, {ey}) beyond ({bx}, {by})");
+    let area = EqualAreaCamera::new(
+        DVec3::new(6.0, -8.0, 0.0),
+        view.as_dvec3(),
+        up.as_dvec3(),
+        1,
+        1,
+    )
+    .unwrap();
+    let skew = basis_skew([area.right(), area.up(), area.forward()]);
+    let (bx, by) = equal_area_round_trip::<f64>(1, 1, skew);
+    let (x, y) = area.raster_position(area.ray(0.5, 0.5).dir).unwrap();
+    assert!((x - 0.5).abs() <= bx && (y - 0.5).abs() <= by);
+}

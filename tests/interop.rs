@@ -274,22 +274,94 @@ where
     }
 }
 
-/// A camera's rays, in `V` and in `W`.
+/// Every camera's rays and differentials (and the panoramas' inverses),
+/// in `V` and in `W`, bit for bit.
 fn same_camera_rays<V: Vector, W: Vector<Scalar = S<V>>>() {
+    use rayhit::{
+        ClipSpace, EqualAreaCamera, EquirectangularCamera, MatrixCamera, OrthographicCamera,
+        RayDifferential, ThinLensCamera,
+    };
     let f = S::<V>::from_f64;
     let (eye, view, up) = (
         V::new(f(0.5), f(2.0), f(7.0)),
         V::new(f(-0.1), f(-0.3), f(-1.0)),
         V::new(f(0.0), f(1.0), f(0.0)),
     );
+    let (eye_w, view_w, up_w) = (to::<W, V>(eye), to::<W, V>(view), to::<W, V>(up));
     let cam = PinholeCamera::from_fov(eye, view, up, f(0.9), 64, 48).unwrap();
-    let cam_w = PinholeCamera::from_fov(to::<W, V>(eye), to(view), to(up), f(0.9), 64, 48).unwrap();
+    let cam_w = PinholeCamera::from_fov(eye_w, view_w, up_w, f(0.9), 64, 48).unwrap();
+    let lens = ThinLensCamera::new(cam, f(0.1), f(5.0)).unwrap();
+    let lens_w = ThinLensCamera::new(cam_w, f(0.1), f(5.0)).unwrap();
+    let ortho = OrthographicCamera::new(eye, view, up, f(0.05), 64, 48).unwrap();
+    let ortho_w = OrthographicCamera::new(eye_w, view_w, up_w, f(0.05), 64, 48).unwrap();
+    let equi = EquirectangularCamera::new(eye, view, up, 64, 48).unwrap();
+    let equi_w = EquirectangularCamera::new(eye_w, view_w, up_w, 64, 48).unwrap();
+    let area = EqualAreaCamera::new(eye, view, up, 64, 48).unwrap();
+    let area_w = EqualAreaCamera::new(eye_w, view_w, up_w, 64, 48).unwrap();
+    let v64 = rayhit::glam::dcamera::rh::view::look_to_mat4(
+        rayhit::glam::DVec3::new(0.5, 2.0, 7.0),
+        rayhit::glam::DVec3::new(-0.1, -0.3, -1.0).normalize(),
+        rayhit::glam::DVec3::Y,
+    );
+    let p64 = rayhit::glam::dcamera::rh::proj::directx::perspective(0.9, 64.0 / 48.0, 0.1, 100.0);
+    let cols = |m: rayhit::glam::DMat4| m.to_cols_array_2d().map(|c| c.map(f));
+    let matrix = MatrixCamera::<V>::new(cols(v64), cols(p64), ClipSpace::Direct3D, 64, 48).unwrap();
+    let matrix_w =
+        MatrixCamera::<W>::new(cols(v64), cols(p64), ClipSpace::Direct3D, 64, 48).unwrap();
+    let ray = |r: rayhit::Ray<V>| (vector_bits(r.origin), vector_bits(r.dir));
+    let ray_w = |r: rayhit::Ray<W>| (vector_bits(r.origin), vector_bits(r.dir));
+    let diff = |d: RayDifferential<V>| {
+        (
+            ray(d.ray),
+            [d.dx_origin, d.dx_dir, d.dy_origin, d.dy_dir].map(vector_bits),
+        )
+    };
+    let diff_w = |d: RayDifferential<W>| {
+        (
+            ray_w(d.ray),
+            [d.dx_origin, d.dx_dir, d.dy_origin, d.dy_dir].map(vector_bits),
+        )
+    };
+    let back = |p: Option<(S<V>, S<V>)>| p.map(|(x, y)| (bits(x), bits(y)));
     for j in 0..48 {
         for i in 0..64 {
-            let (r, rw) = (cam.pixel_ray(i, j), cam_w.pixel_ray(i, j));
+            let (x, y) = (f(f64::from(i) + 0.5), f(f64::from(j) + 0.5));
+            let (s, t) = (f(f64::from(i) / 64.0), f(f64::from(j) / 48.0));
+            assert_eq!(ray(cam.pixel_ray(i, j)), ray_w(cam_w.pixel_ray(i, j)));
             assert_eq!(
-                (vector_bits(r.origin), vector_bits(r.dir)),
-                (vector_bits(rw.origin), vector_bits(rw.dir))
+                diff(cam.ray_differential(x, y)),
+                diff_w(cam_w.ray_differential(x, y))
+            );
+            assert_eq!(ray(lens.ray(x, y, s, t)), ray_w(lens_w.ray(x, y, s, t)));
+            assert_eq!(
+                diff(lens.ray_differential(x, y, s, t)),
+                diff_w(lens_w.ray_differential(x, y, s, t))
+            );
+            assert_eq!(
+                diff(ortho.ray_differential(x, y)),
+                diff_w(ortho_w.ray_differential(x, y))
+            );
+            assert_eq!(
+                diff(matrix.ray_differential(x, y)),
+                diff_w(matrix_w.ray_differential(x, y))
+            );
+            assert_eq!(
+                diff(equi.ray_differential(x, y)),
+                diff_w(equi_w.ray_differential(x, y))
+            );
+            assert_eq!(
+                diff(area.ray_differential(x, y)),
+                diff_w(area_w.ray_differential(x, y))
+            );
+            let d = equi.ray(x, y).dir;
+            assert_eq!(
+                back(equi.raster_position(d)),
+                back(equi_w.raster_position(to(d)))
+            );
+            let d = area.ray(x, y).dir;
+            assert_eq!(
+                back(area.raster_position(d)),
+                back(area_w.raster_position(to(d)))
             );
         }
     }

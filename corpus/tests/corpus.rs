@@ -11,7 +11,10 @@
 //!   exit and at most `1 + 16u` times it; the naive test's within `gamma(2)`
 //!   where its faces are unambiguous; the watertight test's `t`, `u`, `v`
 //!   within `ray_triangle_error_bounds`; the plane's `t` within
-//!   `ray_plane_t_error`.
+//!   `ray_plane_t_error`;
+//! - every transferred ray differential at a triangle hit (each component of
+//!   `dp_dx`, `dp_dy` and `du_dx` ... `dv_dy`) within
+//!   `triangle_hit_differentials_error` of the exact transfer.
 //!
 //! Regenerate only for a deliberate change of guarantee (see CONTRIBUTING.md):
 //! `RAYHIT_REGENERATE_CORPUS=1 cargo test --release -p rayhit-corpus --test corpus`.
@@ -23,9 +26,10 @@ use num_traits::Signed;
 use rayhit::exact;
 use rayhit::glam::{DVec3, Vec3};
 use rayhit::{
-    Aabb, BoxFace, Plane, Ray, Scalar, Side, Triangle, Vector, ray_aabb, ray_aabb_face,
-    ray_aabb_naive, ray_plane, ray_plane_t_error, ray_triangle, ray_triangle_error_bounds,
-    ray_triangle_mt, ray_triangle_one_hit,
+    Aabb, BoxFace, Plane, Ray, RayDifferential, Scalar, Side, Triangle, Vector, ray_aabb,
+    ray_aabb_face, ray_aabb_naive, ray_plane, ray_plane_t_error, ray_triangle,
+    ray_triangle_error_bounds, ray_triangle_mt, ray_triangle_one_hit, triangle_hit_differentials,
+    triangle_hit_differentials_error,
 };
 use rayhit_testkit::cases::Generator;
 use rayhit_testkit::cases::boxes;
@@ -467,6 +471,82 @@ fn check_planes<V: Vector>(lines: &[String]) -> Failures {
     fail
 }
 
+// ---------------------------------------------------- hit differentials
+
+const DIFF_HEADER: &str = "dir dx_origin dx_dir dy_origin dy_dir a b c t | exact transfer (rounded to nearest): dp_dx du_dx dv_dx dp_dy du_dy dv_dy";
+
+/// A camera ray's differentials at a triangle it hits (the test kit's
+/// cameras and triangles), with the exact transfer at the hit's `t`.
+fn diff_line<V: Vector>(src: &mut Source) -> Option<String> {
+    let diff = rayhit_testkit::cases::cameras::differential::<V>(src)?;
+    let tri = rayhit_testkit::cases::cameras::triangle_around::<V>(src, &diff.ray);
+    let t = ray_triangle(&diff.ray, &tri, S::<V>::INFINITY)?.t;
+    let mut answer = Vec::new();
+    for (o, d) in [(diff.dx_origin, diff.dx_dir), (diff.dy_origin, diff.dy_dir)] {
+        let (dp, du, dv) = oracle::hit_differential(diff.ray.dir, o, d, &tri, t)?;
+        for x in dp.iter().chain([&du, &dv]) {
+            answer.push(hex(nearest::<S<V>>(x)));
+        }
+    }
+    Some(format!(
+        "{} {} {} {} {} {} {} {} {} | {}",
+        hex_v(diff.ray.dir),
+        hex_v(diff.dx_origin),
+        hex_v(diff.dx_dir),
+        hex_v(diff.dy_origin),
+        hex_v(diff.dy_dir),
+        hex_v(tri.a),
+        hex_v(tri.b),
+        hex_v(tri.c),
+        hex(t),
+        answer.join(" ")
+    ))
+}
+
+fn check_differentials<V: Vector>(lines: &[String]) -> Failures {
+    let mut fail = Failures::default();
+    for (i, line) in lines.iter().enumerate() {
+        let parts: Vec<&str> = line.split(" | ").collect();
+        let mut f = Fields(parts[0].split_whitespace());
+        let dir = f.v::<V>();
+        let diff = RayDifferential {
+            ray: Ray::new(V::ZERO, dir),
+            dx_origin: f.v(),
+            dx_dir: f.v(),
+            dy_origin: f.v(),
+            dy_dir: f.v(),
+        };
+        let tri = Triangle::new(f.v::<V>(), f.v::<V>(), f.v::<V>());
+        let t: S<V> = f.f();
+        let mut ans = Fields(parts[1].split_whitespace());
+        let exact: Vec<S<V>> = (0..10).map(|_| ans.f()).collect();
+        let Some(got) = triangle_hit_differentials(&diff, &tri, t) else {
+            fail.check(false, i, || "no transfer".into());
+            continue;
+        };
+        let err = triangle_hit_differentials_error(&diff, &tri, t);
+        let values = [
+            (got.dp_dx.x(), err.dp_dx.x()),
+            (got.dp_dx.y(), err.dp_dx.y()),
+            (got.dp_dx.z(), err.dp_dx.z()),
+            (got.du_dx, err.du_dx),
+            (got.dv_dx, err.dv_dx),
+            (got.dp_dy.x(), err.dp_dy.x()),
+            (got.dp_dy.y(), err.dp_dy.y()),
+            (got.dp_dy.z(), err.dp_dy.z()),
+            (got.du_dy, err.du_dy),
+            (got.dv_dy, err.dv_dy),
+        ];
+        for (k, ((value, bound), e)) in values.iter().zip(&exact).enumerate() {
+            let ok = (r(*value) - r(*e)).abs() <= r(*bound) + ulp(*e) / R::from_integer(2.into());
+            fail.check(ok, i, || {
+                format!("value {k}: {value:?} vs exact {e:?}, bound {bound:?}")
+            });
+        }
+    }
+    fail
+}
+
 // ------------------------------------------------------------------ tests
 
 fn corpus<V: Vector>() {
@@ -488,16 +568,23 @@ fn corpus<V: Vector>() {
                 .filter_map(plane_line)
                 .collect();
         write("plane", p, PLANE_HEADER, &planes);
+        let mut src = Source::seeded(0xd1ff_c0de);
+        let diffs: Vec<String> = (0..4 * CASES)
+            .filter_map(|_| diff_line::<V>(&mut src))
+            .take(CASES / 2)
+            .collect();
+        write("hit_differentials", p, DIFF_HEADER, &diffs);
     }
     let files = [
         ("box", check_boxes::<V> as fn(&[String]) -> Failures),
         ("triangle", check_triangles::<V>),
         ("plane", check_planes::<V>),
+        ("hit_differentials", check_differentials::<V>),
     ];
     for (kernel, check) in files {
         let lines = read(kernel, p);
         assert!(
-            lines.len() > CASES / 2,
+            lines.len() >= CASES / 2,
             "{kernel}_{p}: only {} cases",
             lines.len()
         );

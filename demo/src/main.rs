@@ -3,10 +3,16 @@
 //! ```sh
 //! cargo run --release -p rayhit-demo                 # writes render.png
 //! cargo run --release -p rayhit-demo -- --scene leak # watertight vs Moller-Trumbore
+//! cargo run --release -p rayhit-demo -- --lens 0.15,7.4 # depth of field
+//! cargo run --release -p rayhit-demo -- --camera equirect --width 720 --height 360
 //! cargo run --release -p rayhit-demo -- --help
 //! ```
 //!
-//! The `demo` scene: primary rays from `PinholeCamera`, a ground plane,
+//! The `demo` scene: primary rays from `PinholeCamera` (or, with
+//! `--lens`, `--camera ortho` or `--camera equirect`, from
+//! `ThinLensCamera`, `OrthographicCamera` or `EquirectangularCamera` on its
+//! frame), with their ray differentials carried to the checkered ground
+//! to filter its texture (`--filter`), a ground plane,
 //! solid boxes, an icosphere and a torus of a few thousand triangles each
 //! (bounding boxes and a small BVH tested with the prepared slab test before
 //! any triangle), sunlight with soft shadows, sky light with ambient
@@ -28,14 +34,27 @@ use std::time::Instant;
 
 use indicatif::{ProgressBar, ProgressStyle};
 
+use rayhit::glam::Vec3;
+use rayhit::{EquirectangularCamera, OrthographicCamera, ThinLensCamera};
 use rayhit_demo::mesh::Kernel;
-use rayhit_demo::scene::{Shape, demo_scene, leak_scene, render, to_srgb8};
+use rayhit_demo::scene::{Filter, Scene, Shape, View, demo_scene, leak_scene, render, to_srgb8};
 
 const USAGE: &str = "\
-usage: render [--scene demo|leak] [--width N] [--height N] [--samples N] [--out FILE]
+usage: render [--scene demo|leak] [--camera pinhole|ortho|equirect] [--lens RADIUS,FOCUS]
+              [--filter differentials|cones|off] [--width N] [--height N] [--samples N] [--out FILE]
 
   --scene    demo (default): ground, boxes and meshes in soft sunlight
              leak: the watertightness experiment, both triangle kernels
+  --camera   the demo scene's camera (default pinhole): ortho, parallel
+             rays from the pinhole's eye plane; equirect, the whole sphere
+             around the eye
+  --lens     a thin lens on the pinhole camera: its radius and the distance
+             it is focused at, in world units (the scene's sphere is about
+             7.4 away), for depth of field; try --lens 0.15,7.4
+  --filter   the checkered ground's texture filter (default differentials):
+             box-filtered over the pixel's footprint from ray
+             differentials, or from ray cones, or point-sampled (off), which
+             shows moire towards the horizon at one sample per pixel
   --width    image width in pixels (default 640; 4 to 16384)
   --height   image height in pixels (default 360; 4 to 16384)
   --samples  rays per pixel in the demo scene (default 16; the leak scene
@@ -45,10 +64,21 @@ usage: render [--scene demo|leak] [--width N] [--height N] [--samples N] [--out 
 /// The largest width or height accepted.
 const MAX_SIZE: u32 = 16384;
 
+/// Which camera the demo scene is seen through.
+#[derive(Clone, Copy, Debug, PartialEq)]
+enum CameraKind {
+    Pinhole,
+    Orthographic,
+    Equirectangular,
+}
+
 /// The command line.
 #[derive(Debug)]
 struct Options {
     leak: bool,
+    camera: CameraKind,
+    lens: Option<(f32, f32)>,
+    filter: Filter,
     width: u32,
     height: u32,
     samples: u32,
@@ -58,6 +88,9 @@ struct Options {
 fn parse(mut args: impl Iterator<Item = String>) -> Result<Option<Options>, String> {
     let mut options = Options {
         leak: false,
+        camera: CameraKind::Pinhole,
+        lens: None,
+        filter: Filter::Differentials,
         width: 640,
         height: 360,
         samples: 16,
@@ -82,6 +115,37 @@ fn parse(mut args: impl Iterator<Item = String>) -> Result<Option<Options>, Stri
                     _ => return Err(format!("unknown scene {value:?}: demo or leak")),
                 }
             }
+            "--camera" => {
+                options.camera = match value.as_str() {
+                    "pinhole" => CameraKind::Pinhole,
+                    "ortho" => CameraKind::Orthographic,
+                    "equirect" => CameraKind::Equirectangular,
+                    _ => {
+                        return Err(format!(
+                            "unknown camera {value:?}: pinhole, ortho or equirect"
+                        ));
+                    }
+                }
+            }
+            "--lens" => {
+                let bad = || format!("--lens wants RADIUS,FOCUS (two numbers), not {value:?}");
+                let (r, f) = value.split_once(',').ok_or_else(bad)?;
+                let r: f32 = r.trim().parse().map_err(|_| bad())?;
+                let f: f32 = f.trim().parse().map_err(|_| bad())?;
+                options.lens = Some((r, f));
+            }
+            "--filter" => {
+                options.filter = match value.as_str() {
+                    "differentials" => Filter::Differentials,
+                    "cones" => Filter::Cones,
+                    "off" => Filter::Off,
+                    _ => {
+                        return Err(format!(
+                            "unknown filter {value:?}: differentials, cones or off"
+                        ));
+                    }
+                }
+            }
             "--width" => options.width = number(4, MAX_SIZE)?,
             "--height" => options.height = number(4, MAX_SIZE)?,
             "--samples" => options.samples = number(1, 1 << 16)?,
@@ -89,7 +153,49 @@ fn parse(mut args: impl Iterator<Item = String>) -> Result<Option<Options>, Stri
             _ => return Err(format!("unknown flag {flag:?}")),
         }
     }
+    if options.lens.is_some() && options.camera != CameraKind::Pinhole {
+        return Err("--lens goes with the pinhole camera".to_owned());
+    }
     Ok(Some(options))
+}
+
+/// The demo scene's view for the options: the pinhole camera, with a lens,
+/// or an orthographic or equirectangular camera on its frame.
+fn view(scene: &Scene, options: &Options) -> Result<View, String> {
+    let cam = &scene.camera;
+    let err = |e: rayhit::CameraError| format!("camera: {e}");
+    Ok(match (options.camera, options.lens) {
+        (CameraKind::Pinhole, None) => View::Pinhole,
+        (CameraKind::Pinhole, Some((radius, focus))) => {
+            View::ThinLens(ThinLensCamera::new(*cam, radius, focus).map_err(err)?)
+        }
+        (CameraKind::Orthographic, _) => {
+            // The pinhole's view at the target's distance: 4.5 units
+            // across the image's height.
+            let size = 4.5 / cam.height() as f32;
+            View::Orthographic(
+                OrthographicCamera::new(
+                    cam.eye(),
+                    cam.forward(),
+                    Vec3::Y,
+                    size,
+                    cam.width(),
+                    cam.height(),
+                )
+                .map_err(err)?,
+            )
+        }
+        (CameraKind::Equirectangular, _) => View::Equirectangular(
+            EquirectangularCamera::new(
+                cam.eye(),
+                cam.forward(),
+                Vec3::Y,
+                cam.width(),
+                cam.height(),
+            )
+            .map_err(err)?,
+        ),
+    })
 }
 
 fn progress_bar(rows: u32) -> ProgressBar {
@@ -126,7 +232,9 @@ fn report_speed(rays: u64, seconds: f64) {
 
 fn run_demo(options: &Options) -> Result<(), Box<dyn Error>> {
     let file = create(&options.out)?;
-    let scene = demo_scene(options.width, options.height);
+    let mut scene = demo_scene(options.width, options.height);
+    scene.view = view(&scene, options)?;
+    scene.filter = options.filter;
     let objects: Vec<String> = scene
         .objects
         .iter()

@@ -13,8 +13,9 @@
 
 use rayhit::glam::{Mat3, Vec3};
 use rayhit::{
-    Aabb, PinholeCamera, Plane, PreparedRay, Ray, Side, SurfacePoint, ray_aabb_prepared,
-    ray_aabb_prepared_face, ray_plane,
+    Aabb, EquirectangularCamera, OrthographicCamera, PinholeCamera, Plane, PreparedRay, Ray,
+    RayCone, RayDifferential, Side, SurfacePoint, ThinLensCamera, Triangle, ray_aabb_prepared,
+    ray_aabb_prepared_face, ray_plane, triangle_cone_width, triangle_hit_differentials,
 };
 use rayon::prelude::*;
 
@@ -60,6 +61,35 @@ impl Material {
             _ => self.albedo,
         }
     }
+
+    /// The diffuse reflectance averaged over a footprint around `point`:
+    /// the checker box-filtered over `width` (in `x`) by `depth` (in `z`)
+    /// world units, or [`Material::albedo_at`] without a footprint.
+    pub fn albedo_over(&self, point: Vec3, footprint: Option<(f32, f32)>) -> Vec3 {
+        match (self.checker, footprint) {
+            (Some(other), Some((w, d))) => {
+                let odd = checker_box_filtered(point.x, point.z, w, d);
+                self.albedo.lerp(other, odd)
+            }
+            _ => self.albedo_at(point),
+        }
+    }
+}
+
+/// The fraction of a `wx` by `wz` box centred on `(x, z)` covered by the
+/// checker's odd squares (those with `floor(x) + floor(z)` odd): the
+/// checker box-filtered exactly (Inigo Quilez, "Filtering procedural
+/// textures", the `checkersGrad` formula: the integral of each axis's
+/// square wave over the box, multiplied).
+pub fn checker_box_filtered(x: f32, z: f32, wx: f32, wz: f32) -> f32 {
+    // The square wave's average over [a - w/2, a + w/2]: +1 on even unit
+    // intervals, -1 on odd ones, from its integral (a triangle wave).
+    let wave = |a: f32, w: f32| {
+        let w = w.max(1e-4);
+        let tri = |t: f32| ((t / 2.0).rem_euclid(1.0) - 0.5).abs();
+        2.0 * (tri(a - 0.5 * w) - tri(a + 0.5 * w)) / w
+    };
+    0.5 - 0.5 * wave(x, wx) * wave(z, wz)
 }
 
 /// One object of a scene.
@@ -135,11 +165,46 @@ impl Rng {
     }
 }
 
+/// The camera the primary rays come from: the scene's pinhole camera, or
+/// another built on its frame.
+#[derive(Clone, Copy, Debug)]
+pub enum View {
+    /// [`Scene::camera`] itself.
+    Pinhole,
+    /// A lens on it: depth of field.
+    ThinLens(ThinLensCamera),
+    /// Parallel rays from the pinhole's eye plane.
+    Orthographic(OrthographicCamera),
+    /// The whole sphere around the eye.
+    Equirectangular(EquirectangularCamera),
+}
+
+/// How the checkered ground is textured.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Filter {
+    /// Point-sampled at each ray's hit: aliased (moire) far away.
+    Off,
+    /// Box-filtered over the pixel's footprint from the ray differentials
+    /// carried to the hit.
+    Differentials,
+    /// Box-filtered over a square as wide as the ray cone at the hit.
+    Cones,
+}
+
+/// The ground as a triangle whose barycentrics are world `x` and `z`: `a`
+/// at the origin, `b = a + x`, `c = a + z` (the transfer works on its
+/// plane, inside the triangle or not).
+const GROUND: Triangle = Triangle::new(Vec3::ZERO, Vec3::X, Vec3::Z);
+
 /// A scene: a camera, objects, the sun and the triangle kernel.
 #[derive(Debug)]
 pub struct Scene {
-    /// Where the primary rays come from.
+    /// The pinhole camera: the frame and image every view is built on.
     pub camera: PinholeCamera,
+    /// The camera the primary rays come from.
+    pub view: View,
+    /// How the ground's checker is filtered.
+    pub filter: Filter,
     /// Everything that can be hit.
     pub objects: Vec<Object>,
     /// Unit vector towards the centre of the sun.
@@ -218,6 +283,20 @@ impl Scene {
     /// blocked, skylight if a random direction towards the sky is not
     /// blocked nearby (ambient occlusion), and a mirror reflection.
     pub fn shade(&self, ray: &Ray, hit: &Hit, depth: u32, rng: &mut Rng, rays: &mut u64) -> Vec3 {
+        self.shade_over(ray, hit, None, depth, rng, rays)
+    }
+
+    /// [`Scene::shade`] with the texture averaged over `footprint` (the
+    /// widths in world `x` and `z` of the pixel's footprint on the ground).
+    pub fn shade_over(
+        &self,
+        ray: &Ray,
+        hit: &Hit,
+        footprint: Option<(f32, f32)>,
+        depth: u32,
+        rng: &mut Rng,
+        rays: &mut u64,
+    ) -> Vec3 {
         let material = &self.objects[hit.object].material;
         // Both normals, turned to face the incoming ray.
         let flip = |n: Vec3| if n.dot(ray.dir) > 0.0 { -n } else { n };
@@ -249,7 +328,7 @@ impl Scene {
             }
         }
 
-        let mut colour = material.albedo_at(hit.surface.point) * light;
+        let mut colour = material.albedo_over(hit.surface.point, footprint) * light;
         if material.mirror > 0.0 && depth < MAX_DEPTH {
             let mut dir = ray.dir.reflect(shading);
             if dir.dot(geometric) <= 0.0 {
@@ -359,6 +438,8 @@ pub fn demo_scene(width: u32, height: u32) -> Scene {
     ];
     Scene {
         camera,
+        view: View::Pinhole,
+        filter: Filter::Differentials,
         objects,
         sun: Vec3::new(-1.0, 0.9, 0.45).normalize(),
         sun_radius: 0.04,
@@ -402,19 +483,31 @@ pub fn render(scene: &Scene, samples: u32, row_done: &(dyn Fn() + Sync)) -> (Ima
                 let mut rng = Rng::new(u64::from(j * width + i));
                 let mut sum = Vec3::ZERO;
                 for s in 0..samples {
-                    let ray = if s == 0 {
-                        camera.pixel_ray(i, j)
+                    // The first sample through the pixel's centre (and the
+                    // lens's), the others jittered.
+                    let jitter = if s == 0 {
+                        (0.5, 0.5, 0.5, 0.5)
                     } else {
-                        let (dx, dy) = (rng.next_f32(), rng.next_f32());
-                        camera.ray(i as f32 + dx, j as f32 + dy)
+                        (
+                            rng.next_f32(),
+                            rng.next_f32(),
+                            rng.next_f32(),
+                            rng.next_f32(),
+                        )
                     };
+                    let (x, y) = (i as f32 + jitter.0, j as f32 + jitter.1);
+                    let (diff, cone) = scene.primary(x, y, (jitter.2, jitter.3));
+                    let ray = diff.ray;
                     rays += 1;
                     let hit = scene.intersect(&ray, f32::INFINITY);
                     if s == 0 {
                         seen_row[i as usize] = hit.map(|h| h.object);
                     }
                     sum += match hit {
-                        Some(hit) => scene.shade(&ray, &hit, 0, &mut rng, &mut rays),
+                        Some(hit) => {
+                            let footprint = scene.footprint(&diff, &cone, &hit);
+                            scene.shade_over(&ray, &hit, footprint, 0, &mut rng, &mut rays)
+                        }
                         None => sky(ray.dir),
                     };
                 }
@@ -431,6 +524,50 @@ pub fn render(scene: &Scene, samples: u32, row_done: &(dyn Fn() + Sync)) -> (Ima
         seen,
     };
     (image, rays)
+}
+
+impl Scene {
+    /// The primary ray of raster position `(x, y)` and lens sample `lens`,
+    /// with its differentials and its ray cone, from [`Scene::view`].
+    pub fn primary(&self, x: f32, y: f32, lens: (f32, f32)) -> (RayDifferential, RayCone) {
+        match &self.view {
+            View::Pinhole => (self.camera.ray_differential(x, y), self.camera.ray_cone()),
+            View::ThinLens(cam) => (cam.ray_differential(x, y, lens.0, lens.1), cam.ray_cone()),
+            View::Orthographic(cam) => (cam.ray_differential(x, y), cam.ray_cone()),
+            View::Equirectangular(cam) => (cam.ray_differential(x, y), cam.ray_cone()),
+        }
+    }
+
+    /// The footprint of a primary ray's pixel on the checkered ground at
+    /// `hit`, as the widths in world `x` and `z` to filter the checker
+    /// over; `None` for other surfaces, or with filtering off.
+    pub fn footprint(
+        &self,
+        diff: &RayDifferential,
+        cone: &RayCone,
+        hit: &Hit,
+    ) -> Option<(f32, f32)> {
+        let ground = matches!(self.objects[hit.object].shape, Shape::Plane(_))
+            && self.objects[hit.object].material.checker.is_some();
+        if !ground {
+            return None;
+        }
+        match self.filter {
+            Filter::Off => None,
+            Filter::Differentials => {
+                // On GROUND, u is world x and v world z.
+                let d = triangle_hit_differentials(diff, &GROUND, hit.t)?;
+                Some((
+                    d.du_dx.abs().max(d.du_dy.abs()),
+                    d.dv_dx.abs().max(d.dv_dy.abs()),
+                ))
+            }
+            Filter::Cones => {
+                let w = triangle_cone_width(cone, &diff.ray, &GROUND, hit.t)?;
+                Some((w, w))
+            }
+        }
+    }
 }
 
 /// A linear colour as 8-bit sRGB, after a soft exposure curve that keeps

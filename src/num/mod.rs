@@ -10,6 +10,8 @@
 //!   types and bit tricks, and a vector to its components by axis.
 //! - `round`: evaluating error bounds so that they stay bounds.
 //! - `exact_sign`: exact signs and error-free transformations.
+//! - `trig`: sines, cosines and arctangents in turns, with their error
+//!   bounds, for the cameras.
 
 mod lanes;
 mod repr;
@@ -18,12 +20,13 @@ mod vector;
 
 pub(crate) mod exact_sign;
 pub(crate) mod round;
+pub(crate) mod trig;
 
 pub(crate) use lanes::{Axis, Lanes, Lanes8};
 pub(crate) use repr::{Bits, F32Bits, F64Bits, Repr};
 pub use scalar::Scalar;
 pub use vector::Vector;
-pub(crate) use vector::unit;
+pub(crate) use vector::{unit, unit_and_inverse_length};
 
 /// The scalar type of the vector type `V`.
 pub(crate) type S<V> = <V as Vector>::Scalar;

@@ -54,6 +54,13 @@ pub trait Bits {
     /// (which the bits put above 1), so that it compiles to one branch.
     /// False for NaN.
     fn in_unit_interval(x: Self::F) -> bool;
+    /// `|x|` with the sign bit of `sign` (IEEE 754 `copySign`: `-0` and
+    /// NaN's sign bits count).
+    fn copysign(x: Self::F, sign: Self::F) -> Self::F;
+    /// The power of two of `|x|`'s binade (`2^e` with `2^e <= |x| <
+    /// 2^(e+1)`) for normal `x`; zero for zero and subnormals, infinity
+    /// for infinities and NaN: the exponent bits alone.
+    fn binade(x: Self::F) -> Self::F;
 }
 
 /// [`Bits`] of `f32`.
@@ -92,6 +99,16 @@ impl Bits for F32Bits {
         // test is `+0 <= x <= 1`.
         (x.to_bits() <= 1f32.to_bits()) | (x == 0.0)
     }
+
+    #[inline(always)]
+    fn copysign(x: f32, sign: f32) -> f32 {
+        x.copysign(sign)
+    }
+
+    #[inline(always)]
+    fn binade(x: f32) -> f32 {
+        f32::from_bits(x.to_bits() & 0x7f80_0000)
+    }
 }
 
 impl Bits for F64Bits {
@@ -112,6 +129,16 @@ impl Bits for F64Bits {
     fn in_unit_interval(x: f64) -> bool {
         // As for `f32`.
         (x.to_bits() <= 1f64.to_bits()) | (x == 0.0)
+    }
+
+    #[inline(always)]
+    fn copysign(x: f64, sign: f64) -> f64 {
+        x.copysign(sign)
+    }
+
+    #[inline(always)]
+    fn binade(x: f64) -> f64 {
+        f64::from_bits(x.to_bits() & 0x7ff0_0000_0000_0000)
     }
 }
 

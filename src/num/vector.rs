@@ -205,11 +205,33 @@ impl_glam!(glam033);
 /// the normal range are below `2^-126` of the largest and change the
 /// length by less than a rounding.
 pub(crate) fn unit<V: Vector>(v: V) -> V {
+    unit_and_inverse_length(v).0
+}
+
+/// [`unit`] and `1 / |v|`: the factor the normalisation applied, in the
+/// common case bit for bit `1 / sqrt(v . v)`; where the squared length
+/// under- or overflows, `1 / (unit(v) . v)`, which is `1 / |v|` within
+/// `gamma(6)` (`unit(v) . v` is `|v|` times the unit vector's length, which
+/// is 1 within `gamma(6)`, plus the dot product's three roundings),
+/// infinite for a `v` whose length is below `1 / MAX` and zero for one
+/// whose length overflows. A NaN vector gives NaN.
+#[inline(always)]
+pub(crate) fn unit_and_inverse_length<V: Vector>(v: V) -> (V, S<V>) {
     let one = S::<V>::ONE;
     let l2 = v.dot(v);
     if l2 >= S::<V>::MIN_POSITIVE && l2 <= S::<V>::MAX {
-        return v * (one / l2.sqrt());
+        let rcp = one / l2.sqrt();
+        return (v * rcp, rcp);
     }
+    let u = scaled_unit(v, l2);
+    (u, one / u.dot(v))
+}
+
+/// [`unit`] where `v . v` is not a normal float.
+#[cold]
+#[inline(never)]
+fn scaled_unit<V: Vector>(v: V, l2: S<V>) -> V {
+    let one = S::<V>::ONE;
     let a = v.abs();
     let m = max2(a.x(), max2(a.y(), a.z()));
     if !(m > S::<V>::ZERO && m <= S::<V>::MAX) {

@@ -35,14 +35,20 @@ mod exact_judge {
 type Target = (&'static str, fn(&[u8]));
 
 /// Every target, by the name of its file in `fuzz/fuzz_targets/`.
-const TARGETS: [Target; 9] = [
+const TARGETS: [Target; 15] = [
     ("aabb", targets::aabb),
     ("aabb_slab_vs_naive", targets::aabb_slab_vs_naive),
     ("batch", targets::batch),
     ("camera", targets::camera),
+    ("equal_area", targets::equal_area),
+    ("equirectangular", targets::equirectangular),
     ("exact_judge", exact_judge::run),
+    ("hit_differentials", targets::hit_differentials),
+    ("matrix_camera", targets::matrix_camera),
+    ("orthographic", targets::orthographic),
     ("plane", targets::plane),
     ("spawn", targets::spawn),
+    ("thin_lens", targets::thin_lens),
     ("triangle", targets::triangle),
     (
         "triangle_watertight_vs_mt",

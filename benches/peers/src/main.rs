@@ -49,9 +49,11 @@ fn ray_a(r: &Ray) -> Ray<Vec3A> {
     Ray::new(r.origin.into(), r.dir.into())
 }
 use rayhit::{
-    Aabb, AabbBatch, PreparedRay, Ray, Side, Simd, SimdWork, Triangle, TriangleBatch,
-    TriangleBatchHits, ValidAabb, ray_aabb, ray_aabb_batch, ray_aabb_prepared, ray_triangle,
-    ray_triangle_batch, ray_triangle_mt, ray_triangle_prepared, with_simd,
+    Aabb, AabbBatch, ClipSpace, EqualAreaCamera, EquirectangularCamera, MatrixCamera,
+    OrthographicCamera, PinholeCamera, PreparedRay, Ray, RayDifferential, Side, Simd, SimdWork,
+    ThinLensCamera, Triangle, TriangleBatch, TriangleBatchHits, ValidAabb, ray_aabb,
+    ray_aabb_batch, ray_aabb_prepared, ray_triangle, ray_triangle_batch, ray_triangle_mt,
+    ray_triangle_prepared, with_simd,
 };
 use rayhit_peers::cwbvh;
 use rayhit_testkit::rng::Pcg32;
@@ -1504,6 +1506,262 @@ fn sweep_kernels<'a>(s: &'a Sweep, out: &mut Vec<Kernel<'a>>) {
     }
 }
 
+/// The cameras: every camera's ray, and its ray with differentials, over
+/// the 4096 pixel centres of a 64x64 image, in scanline order (coherent:
+/// neighbouring pixels one after the other, as a renderer's tiles visit
+/// them) and in one fixed shuffled order (each pixel's position read from
+/// a permutation: the same arithmetic, no coherence between one ray and the
+/// next). The thin lens takes one lens sample per pixel, drawn once.
+struct CameraData {
+    pinhole: PinholeCamera,
+    thin_lens: ThinLensCamera,
+    ortho: OrthographicCamera,
+    matrix: MatrixCamera,
+    equirect: EquirectangularCamera,
+    equal_area: EqualAreaCamera,
+    /// Raster positions, scanline order and shuffled.
+    scanline: Vec<(f32, f32)>,
+    shuffled: Vec<(f32, f32)>,
+    /// A lens sample per position.
+    lens: Vec<(f32, f32)>,
+}
+
+impl CameraData {
+    fn new() -> Self {
+        let (w, h) = (64u32, 64u32);
+        let (eye, dir, up) = (
+            Vec3::new(1.0, 2.0, 5.0),
+            Vec3::new(0.1, -0.3, -1.0).normalize(),
+            Vec3::Y,
+        );
+        let fov = 60f32.to_radians();
+        let pinhole = PinholeCamera::from_fov(eye, dir, up, fov, w, h).expect("a camera");
+        let view = rayhit::glam::camera::rh::view::look_to_mat4(eye, dir, up);
+        let proj = rayhit::glam::camera::rh::proj::directx::perspective(fov, 1.0, 0.1, 100.0);
+        let scanline: Vec<(f32, f32)> = (0..h)
+            .flat_map(|j| (0..w).map(move |i| (i as f32 + 0.5, j as f32 + 0.5)))
+            .collect();
+        let mut rng = Pcg32::with_stream(25, 3);
+        let mut shuffled = scanline.clone();
+        for i in (1..shuffled.len()).rev() {
+            let j = rng.below(i as u32 + 1) as usize;
+            shuffled.swap(i, j);
+        }
+        let lens = (0..scanline.len())
+            .map(|_| {
+                (
+                    rng.below(1 << 24) as f32 / 16_777_216.0,
+                    rng.below(1 << 24) as f32 / 16_777_216.0,
+                )
+            })
+            .collect();
+        Self {
+            pinhole,
+            thin_lens: ThinLensCamera::new(pinhole, 0.1, 5.0).expect("a lens"),
+            ortho: OrthographicCamera::new(eye, dir, up, 0.05, w, h).expect("a camera"),
+            matrix: MatrixCamera::from_mat4(view, proj, ClipSpace::Direct3D, w, h)
+                .expect("a camera"),
+            equirect: EquirectangularCamera::new(eye, dir, up, w, h).expect("a camera"),
+            equal_area: EqualAreaCamera::new(eye, dir, up, w, h).expect("a camera"),
+            scanline,
+            shuffled,
+            lens,
+        }
+    }
+}
+
+/// A checksum of a ray: its direction's and origin's bits.
+fn ray_sum(r: &Ray) -> u64 {
+    let b = |v: Vec3| {
+        u64::from(v.x.to_bits() ^ v.y.to_bits().rotate_left(7) ^ v.z.to_bits().rotate_left(13))
+    };
+    b(r.dir).wrapping_add(b(r.origin))
+}
+
+/// A checksum of a ray and its differentials.
+fn diff_sum(d: &RayDifferential) -> u64 {
+    let b = |v: Vec3| {
+        u64::from(v.x.to_bits() ^ v.y.to_bits().rotate_left(7) ^ v.z.to_bits().rotate_left(13))
+    };
+    ray_sum(&d.ray)
+        .wrapping_add(b(d.dx_dir) ^ b(d.dy_dir))
+        .wrapping_add(b(d.dx_origin) ^ b(d.dy_origin))
+}
+
+/// The camera rows' names, in the table and the targets.
+const CAMERAS: [&str; 6] = [
+    "PinholeCamera",
+    "ThinLensCamera",
+    "OrthographicCamera",
+    "MatrixCamera",
+    "EquirectangularCamera",
+    "EqualAreaCamera",
+];
+
+/// A camera row's loop: `f` at every position of `order` (with its lens
+/// sample), each result stored in a buffer, as a renderer stores the rays
+/// of a tile or a wavefront before tracing them; then the buffer is handed
+/// to `black_box` (so that no store is left out) and one value of it
+/// returned. Generic, so that the camera's code is inlined into the loop
+/// as a renderer's would be.
+fn over<'a, T: Copy + Default + 'a>(
+    order: &'a [(f32, f32)],
+    lens: &'a [(f32, f32)],
+    f: impl Fn(f32, f32, (f32, f32)) -> T + 'a,
+    sum: fn(&T) -> u64,
+) -> impl Fn() -> u64 + 'a {
+    let buffer = std::cell::RefCell::new(vec![T::default(); order.len()]);
+    move || {
+        let mut out = buffer.borrow_mut();
+        for ((p, l), slot) in order.iter().zip(lens).zip(out.iter_mut()) {
+            *slot = f(p.0, p.1, *l);
+        }
+        black_box(&mut *out);
+        sum(&out[out.len() / 2])
+    }
+}
+
+fn camera_kernels<'a>(d: &'a CameraData, out: &mut Vec<Kernel<'a>>) {
+    for (w, order) in [("scanline", &d.scanline), ("shuffled", &d.shuffled)] {
+        let (n, lens) = (order.len(), &d.lens);
+        out.extend([
+            kernel(
+                "camera",
+                "rayhit PinholeCamera::ray",
+                w,
+                n,
+                None,
+                over(order, lens, move |x, y, _| d.pinhole.ray(x, y), ray_sum),
+            ),
+            kernel(
+                "camera",
+                "rayhit ThinLensCamera::ray",
+                w,
+                n,
+                None,
+                over(
+                    order,
+                    lens,
+                    move |x, y, l| d.thin_lens.ray(x, y, l.0, l.1),
+                    ray_sum,
+                ),
+            ),
+            kernel(
+                "camera",
+                "rayhit OrthographicCamera::ray",
+                w,
+                n,
+                None,
+                over(order, lens, move |x, y, _| d.ortho.ray(x, y), ray_sum),
+            ),
+            kernel(
+                "camera",
+                "rayhit MatrixCamera::ray",
+                w,
+                n,
+                None,
+                over(order, lens, move |x, y, _| d.matrix.ray(x, y), ray_sum),
+            ),
+            kernel(
+                "camera",
+                "rayhit EquirectangularCamera::ray",
+                w,
+                n,
+                None,
+                over(order, lens, move |x, y, _| d.equirect.ray(x, y), ray_sum),
+            ),
+            kernel(
+                "camera",
+                "rayhit EqualAreaCamera::ray",
+                w,
+                n,
+                None,
+                over(order, lens, move |x, y, _| d.equal_area.ray(x, y), ray_sum),
+            ),
+        ]);
+        out.extend([
+            kernel(
+                "camera differentials",
+                "rayhit PinholeCamera::ray_differential",
+                w,
+                n,
+                None,
+                over(
+                    order,
+                    lens,
+                    move |x, y, _| d.pinhole.ray_differential(x, y),
+                    diff_sum,
+                ),
+            ),
+            kernel(
+                "camera differentials",
+                "rayhit ThinLensCamera::ray_differential",
+                w,
+                n,
+                None,
+                over(
+                    order,
+                    lens,
+                    move |x, y, l| d.thin_lens.ray_differential(x, y, l.0, l.1),
+                    diff_sum,
+                ),
+            ),
+            kernel(
+                "camera differentials",
+                "rayhit OrthographicCamera::ray_differential",
+                w,
+                n,
+                None,
+                over(
+                    order,
+                    lens,
+                    move |x, y, _| d.ortho.ray_differential(x, y),
+                    diff_sum,
+                ),
+            ),
+            kernel(
+                "camera differentials",
+                "rayhit MatrixCamera::ray_differential",
+                w,
+                n,
+                None,
+                over(
+                    order,
+                    lens,
+                    move |x, y, _| d.matrix.ray_differential(x, y),
+                    diff_sum,
+                ),
+            ),
+            kernel(
+                "camera differentials",
+                "rayhit EquirectangularCamera::ray_differential",
+                w,
+                n,
+                None,
+                over(
+                    order,
+                    lens,
+                    move |x, y, _| d.equirect.ray_differential(x, y),
+                    diff_sum,
+                ),
+            ),
+            kernel(
+                "camera differentials",
+                "rayhit EqualAreaCamera::ray_differential",
+                w,
+                n,
+                None,
+                over(
+                    order,
+                    lens,
+                    move |x, y, _| d.equal_area.ray_differential(x, y),
+                    diff_sum,
+                ),
+            ),
+        ]);
+    }
+}
+
 /// The rows rayhit is compared against: the other crates and the
 /// textbook kernels written in this file.
 fn is_peer(name: &str) -> bool {
@@ -1682,6 +1940,7 @@ fn main() {
         .map(|c| TriangleBatch::from_slice(c).expect("8"))
         .collect();
     let sweep = Sweep::new();
+    let cameras = CameraData::new();
 
     let mut kernels = Vec::new();
     for d in &box_data {
@@ -1695,6 +1954,7 @@ fn main() {
     for d in &cwbvh_data {
         cwbvh_kernels(d, &mut kernels);
     }
+    camera_kernels(&cameras, &mut kernels);
 
     // `--count NAME WORKLOAD REPS`: run one row's loop REPS times, untimed,
     // and stop; under `valgrind --tool=callgrind`, the difference between
@@ -1911,6 +2171,32 @@ fn main() {
                 .join(", "),
             hi / lo
         );
+    }
+    // Each camera's ray against the pinhole ray, and each camera's ray
+    // with differentials against its ray alone, in the same order.
+    for w in ["scanline", "shuffled"] {
+        let pinhole = find(&kernels, "camera", "rayhit PinholeCamera::ray", w);
+        for name in CAMERAS {
+            let ray = find(&kernels, "camera", &format!("rayhit {name}::ray"), w);
+            let diff = find(
+                &kernels,
+                "camera differentials",
+                &format!("rayhit {name}::ray_differential"),
+                w,
+            );
+            if name != "PinholeCamera" {
+                target(
+                    &format!("{name}::ray vs PinholeCamera::ray, {w}"),
+                    pinhole / ray,
+                    1.0 / 1.5,
+                );
+            }
+            target(
+                &format!("{name}::ray_differential vs {name}::ray, {w}"),
+                ray / diff,
+                0.5,
+            );
+        }
     }
     println!();
     println!(

@@ -12,6 +12,7 @@
 //! to the precision of `V`.
 
 pub mod boxes;
+pub mod cameras;
 pub mod planes;
 pub mod triangles;
 

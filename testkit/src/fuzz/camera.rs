@@ -67,6 +67,7 @@ impl Check for Camera {
                 if w % 2 == 1 && h % 2 == 1 {
                     check_centre(&cam, view);
                 }
+                check_pinhole_differential(&cam, i, j);
             }
         }
     }
@@ -201,4 +202,126 @@ fn check_centre<V: Vector>(cam: &PinholeCamera<V>, view: V) {
         dot(&c, &c) <= &k * &k * dot(&v, &v),
         "centre pixel off the view direction {view:?}: {cam:?}"
     );
+}
+
+/// A ray of a linear camera: its direction is `unit(c + dx a + dy b)`,
+/// evaluated as `(c + a dx) + b dy` (for the pinhole camera `c` is `focal
+/// forward`, whose product is part of the evaluation), and its
+/// differential along `step` (`a`, or `-b` for raster `y`) is `(step - dir
+/// (dir . step)) / |p|` with `1 / |p|` the normalisation's factor.
+#[derive(Clone, Copy, Debug)]
+pub struct Linear<V> {
+    /// The constant term (exactly, as the camera's arithmetic sees it).
+    pub c: [f64; 3],
+    /// The step per unit of `dx`.
+    pub a: V,
+    /// The step per unit of `dy`.
+    pub b: V,
+}
+
+/// The derivative along `step` of the direction at `(dx, dy)`, against
+/// the neighbour's direction one step on, in exact arithmetic on the
+/// computed directions:
+///
+/// `|next - dir - diff| <= t(dir) + t(next) + t_diff + t_2`, where, with
+/// `p~` the exact `c + dx a + dy b`, `K` its magnitudes `|c| + |dx| |a| +
+/// |dy| |b|` and `eta = gamma(4) + gamma(3) |K| / |p~|` (the factor
+/// `1 / |p|`'s error: the squared length's three roundings, the square
+/// root's and the reciprocal's, and the computed `p`'s distance from `p~`,
+/// `gamma(3) |K|`):
+///
+/// - `t = 2 eta + 2 u`: a computed direction is within that of `p~ /
+///   |p~|` (`p`'s error over `|p|`, the factor's, and one rounding per
+///   component);
+/// - `t_diff = (|step| / |p~|) (gamma(28) + 5 gamma(3) |K| / |p~|)`: the
+///   differential's own (the direction's error twice through `dir (dir .
+///   step)`, the dot product's `gamma(3)`, two more roundings, and the
+///   factor's error);
+/// - `t_2 = 2 |step|^2 / (|p~| - |step|)^2`: the second-order term (the
+///   unit direction's second derivative is at most `4 |p'|^2 / |p|^2`
+///   long, and `|p|` stays above `|p~| - |step|` over the step).
+///
+/// The norms are taken in `f64` (a relative `1e-15`, covered by a factor
+/// `1 + 1e-9` on the bound); the comparison is exact.
+#[allow(clippy::too_many_arguments)]
+pub fn check_linear_differential<V: Vector>(
+    lin: &Linear<V>,
+    dx: S<V>,
+    dy: S<V>,
+    step: V,
+    dir: V,
+    next: V,
+    diff: V,
+    ctx: &dyn Fn() -> String,
+) {
+    let f = |x: S<V>| x.to_f64();
+    let v64 = |v: V| [f(v.x()), f(v.y()), f(v.z())];
+    let (a, b) = (v64(lin.a), v64(lin.b));
+    let norm = |v: [f64; 3]| (v[0] * v[0] + v[1] * v[1] + v[2] * v[2]).sqrt();
+    let at = |dx: f64, dy: f64| {
+        let p: [f64; 3] = core::array::from_fn(|k| lin.c[k] + dx * a[k] + dy * b[k]);
+        let k: [f64; 3] = core::array::from_fn(|i| {
+            lin.c[i].abs() + dx.abs() * a[i].abs() + dy.abs() * b[i].abs()
+        });
+        (norm(p), norm(k))
+    };
+    let s = v64(step);
+    let s_len = norm(s);
+    let (p0, k0) = at(f(dx), f(dy));
+    // The neighbour's offsets: one step along `step` (a, or -b).
+    let along_x = s == a;
+    let (p1, k1) = if along_x {
+        at(f(dx) + 1.0, f(dy))
+    } else {
+        at(f(dx), f(dy) - 1.0)
+    };
+    if !(p0 > 2.0 * s_len && p1 > 2.0 * s_len) {
+        return;
+    }
+    let g = |n: u32| S::<V>::gamma_n(n).to_f64();
+    let u = S::<V>::UNIT_ROUNDOFF.to_f64();
+    let t = |p: f64, k: f64| 2.0 * (g(4) + g(3) * k / p) + 2.0 * u;
+    let t_diff = s_len / p0 * (g(28) + 5.0 * g(3) * k0 / p0);
+    let t_2 = 2.0 * s_len * s_len / ((p0 - s_len) * (p0 - s_len));
+    let bound = (t(p0, k0) + t(p1, k1) + t_diff + t_2) * (1.0 + 1e-9);
+    let (d0, d1, dd) = (rv(dir), rv(next), rv(diff));
+    let res: [R; 3] = core::array::from_fn(|k| &d1[k] - &d0[k] - &dd[k]);
+    let b2 = R::from_float(bound * bound).expect("a finite bound");
+    assert!(
+        dot(&res, &res) <= b2,
+        "neighbour off the differential by {} > {bound}: {}",
+        super::exact::f(&dot(&res, &res)).sqrt(),
+        ctx()
+    );
+}
+
+/// The pinhole camera's differentials at a pixel centre, against its
+/// neighbours' rays ([`check_linear_differential`]), and its ray.
+pub fn check_pinhole_differential<V: Vector>(cam: &PinholeCamera<V>, i: u32, j: u32) {
+    let ctx = || format!("{cam:?} at pixel ({i}, {j})");
+    let half = S::<V>::HALF;
+    let (x, y) = (S::<V>::from_u32(i) + half, S::<V>::from_u32(j) + half);
+    let diff = cam.ray_differential(x, y);
+    let ray = cam.ray(x, y);
+    assert!(
+        vector_bits(diff.ray.dir) == vector_bits(ray.dir)
+            && vector_bits(diff.ray.origin) == vector_bits(ray.origin),
+        "{}",
+        ctx()
+    );
+    assert_eq!(vector_bits(diff.dx_origin), vector_bits(V::ZERO));
+    let fl = cam.focal_length().to_f64();
+    let fw = cam.forward();
+    let lin = Linear {
+        c: [0, 1, 2].map(|k| fw[k].to_f64() * fl),
+        a: cam.right(),
+        b: cam.up(),
+    };
+    let dx = x - S::<V>::from_u32(cam.width()) * half;
+    let dy = S::<V>::from_u32(cam.height()) * half - y;
+    let one = S::<V>::ONE;
+    let next_x = cam.ray(x + one, y).dir;
+    let next_y = cam.ray(x, y + one).dir;
+    check_linear_differential(&lin, dx, dy, lin.a, ray.dir, next_x, diff.dx_dir, &ctx);
+    check_linear_differential(&lin, dx, dy, -lin.b, ray.dir, next_y, diff.dy_dir, &ctx);
 }

@@ -35,8 +35,13 @@ pub mod aabb;
 pub mod batch;
 pub mod camera;
 pub mod exact;
+pub mod hit_differentials;
+pub mod matrix_camera;
+pub mod orthographic;
+pub mod panoramic;
 pub mod plane;
 pub mod spawn;
+pub mod thin_lens;
 pub mod triangle;
 
 /// The scalar of a vector type.
@@ -119,6 +124,30 @@ pub mod targets {
     /// `batch`: [`batch::Batch`].
     pub fn batch(data: &[u8]) {
         dispatch::<batch::Batch>(data);
+    }
+    /// `equirectangular`: [`panoramic::Equirectangular`].
+    pub fn equirectangular(data: &[u8]) {
+        dispatch::<panoramic::Equirectangular>(data);
+    }
+    /// `equal_area`: [`panoramic::EqualArea`].
+    pub fn equal_area(data: &[u8]) {
+        dispatch::<panoramic::EqualArea>(data);
+    }
+    /// `hit_differentials`: [`hit_differentials::HitDifferentialsCheck`].
+    pub fn hit_differentials(data: &[u8]) {
+        dispatch::<hit_differentials::HitDifferentialsCheck>(data);
+    }
+    /// `matrix_camera`: [`matrix_camera::MatrixCameraCheck`].
+    pub fn matrix_camera(data: &[u8]) {
+        dispatch::<matrix_camera::MatrixCameraCheck>(data);
+    }
+    /// `orthographic`: [`orthographic::Orthographic`].
+    pub fn orthographic(data: &[u8]) {
+        dispatch::<orthographic::Orthographic>(data);
+    }
+    /// `thin_lens`: [`thin_lens::ThinLens`].
+    pub fn thin_lens(data: &[u8]) {
+        dispatch::<thin_lens::ThinLens>(data);
     }
 }
 

@@ -1,49 +1,12 @@
 //! The pinhole camera: an orthonormal basis from eye, view and up, and
 //! raster position to primary ray.
 
-use core::fmt;
-
 use glam::Vec3;
 
-use crate::num::{S, Scalar, Vector, unit};
+use super::{Basis, CameraError, RayCone, RayDifferential, centred, pixel_centre};
+use crate::num::trig::atan2_turns;
+use crate::num::{S, Scalar, Vector, unit, unit_and_inverse_length};
 use crate::ray::Ray;
-
-/// Why a [`PinholeCamera`] could not be built.
-#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
-#[non_exhaustive]
-pub enum CameraError {
-    /// The eye position has a NaN or infinite component.
-    NonFiniteEye,
-    /// The view direction is zero or has a NaN or infinite component.
-    InvalidViewDir,
-    /// The up vector is zero or has a NaN or infinite component.
-    InvalidUp,
-    /// The up vector is parallel to the view direction (within rounding), so
-    /// it does not say which way is up.
-    UpParallelToView,
-    /// The focal length is not positive and finite.
-    InvalidFocalLength,
-    /// The vertical field of view is not in the open interval `(0, pi)`.
-    InvalidFieldOfView,
-    /// The image width or height is zero.
-    EmptyImage,
-}
-
-impl fmt::Display for CameraError {
-    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
-        f.write_str(match self {
-            Self::NonFiniteEye => "camera eye position is not finite",
-            Self::InvalidViewDir => "camera view direction is zero or not finite",
-            Self::InvalidUp => "camera up vector is zero or not finite",
-            Self::UpParallelToView => "camera up vector is parallel to the view direction",
-            Self::InvalidFocalLength => "camera focal length is not positive and finite",
-            Self::InvalidFieldOfView => "camera vertical field of view is not in (0, pi)",
-            Self::EmptyImage => "camera image width or height is zero",
-        })
-    }
-}
-
-impl core::error::Error for CameraError {}
 
 /// A pinhole camera: turns raster positions into primary rays.
 ///
@@ -113,29 +76,18 @@ impl<V: Vector> PinholeCamera<V> {
         width: u32,
         height: u32,
     ) -> Result<Self, CameraError> {
-        if !eye.is_finite() {
-            return Err(CameraError::NonFiniteEye);
-        }
-        let forward = unit(view_dir);
-        if !forward.is_finite() {
-            return Err(CameraError::InvalidViewDir);
-        }
-        let up_unit = unit(up);
-        if !up_unit.is_finite() {
-            return Err(CameraError::InvalidUp);
-        }
-        let side = forward.cross(up_unit);
-        if !(side.length() > S::<V>::gamma_n(16)) {
-            return Err(CameraError::UpParallelToView);
-        }
+        let Basis {
+            eye,
+            forward,
+            right,
+            up,
+        } = Basis::new(eye, view_dir, up)?;
         if !(focal_length > S::<V>::ZERO && focal_length.is_finite()) {
             return Err(CameraError::InvalidFocalLength);
         }
         if width == 0 || height == 0 {
             return Err(CameraError::EmptyImage);
         }
-        let right = unit(side);
-        let up = unit(right.cross(forward));
         Ok(Self {
             eye,
             forward,
@@ -184,26 +136,86 @@ impl<V: Vector> PinholeCamera<V> {
     /// (height/2 - y) * true_up)`. Positions outside the image give rays
     /// outside the field of view; a NaN or infinite position gives a ray with
     /// a non-finite direction, which every kernel rejects.
-    #[inline]
+    #[inline(always)]
     #[must_use]
     pub fn ray(&self, x: S<V>, y: S<V>) -> Ray<V> {
-        let half = S::<V>::HALF;
-        let dx = x - S::<V>::from_u32(self.width) * half;
-        let dy = S::<V>::from_u32(self.height) * half - y;
-        let dir = self.forward * self.focal_length + self.right * dx + self.up * dy;
         // A NaN position stays visible as a NaN direction (normalize_or_zero
         // would hide it as a zero one), and a focal length far outside the
         // usual range (whose squared length overflows) still gives a unit
         // direction.
-        Ray::new(self.eye, unit(dir))
+        Ray::new(self.eye, unit(self.film(x, y)))
+    }
+
+    /// The unnormalised direction towards raster position `(x, y)`:
+    /// `focal * forward + (x - width/2) * right + (height/2 - y) * true_up`.
+    #[inline(always)]
+    pub(crate) fn film(&self, x: S<V>, y: S<V>) -> V {
+        let (dx, dy) = centred(x, y, self.width, self.height);
+        self.forward * self.focal_length + self.right * dx + self.up * dy
+    }
+
+    /// The ray through raster position `(x, y)`, bit for bit
+    /// [`ray(x, y)`](PinholeCamera::ray), with its differentials: the
+    /// origin does not move, and with `p` the unnormalised direction
+    /// (`dir = p / |p|`, `dp/dx = right`, `dp/dy = -true_up`),
+    ///
+    /// `dx_dir = (right - dir (dir . right)) / |p|`,
+    /// `dy_dir = (dir (dir . true_up) - true_up) / |p|`,
+    ///
+    /// the derivatives of the unit direction (`1 / |p|` is the factor the
+    /// normalisation used). `|p| >= focal_length` up to the basis's
+    /// rounding, so each is at most `1 / focal_length` long: a pixel's angle.
+    ///
+    /// Bounds. Second order: with `dp/dx` of length 1, the unit direction's
+    /// second derivative is at most `4 / |p|^2` long (its three terms are
+    /// `2 (p . p') p' / |p|^4`, `p |p'|^2 / |p|^3` and `3 p (p . p')^2 /
+    /// |p|^5`, the last two along `p` and of opposite signs), so
+    /// `ray(x + 1, y).dir` is within `2 / (|p| - 1)^2 <= 2 / (focal_length -
+    /// 1)^2` (roughly) of `dir + dx_dir`, and likewise for `y`. Rounding:
+    /// with `K` the vector of `|focal forward_i| + |dx right_i| + |dy
+    /// up_i|` (`p`'s magnitudes), `dx_dir` is within `(gamma(28) + 5
+    /// gamma(3) |K| / |p|) / |p|` of the exact derivative at the camera's
+    /// (rounded) basis and the given position, as a vector (derived, and
+    /// held to in exact arithmetic, in the test kit's camera checks). A
+    /// NaN or infinite position gives NaN differentials, as it gives a NaN
+    /// direction.
+    #[inline(always)]
+    #[must_use]
+    pub fn ray_differential(&self, x: S<V>, y: S<V>) -> RayDifferential<V> {
+        let (dir, inv) = unit_and_inverse_length(self.film(x, y));
+        let (r, u) = (self.right, self.up);
+        RayDifferential {
+            ray: Ray::new(self.eye, dir),
+            dx_origin: V::ZERO,
+            dx_dir: (r - dir * dir.dot(r)) * inv,
+            dy_origin: V::ZERO,
+            dy_dir: (dir * dir.dot(u) - u) * inv,
+        }
+    }
+
+    /// The ray cone of every ray: zero width at the eye, and the spread
+    /// angle `atan(1 / focal_length)` (the chapter's `atan(2 tan(fov_y / 2)
+    /// / height)`), the angle the centre pixel subtends, to first order.
+    ///
+    /// The arctangent is the crate's own (its error derived in the
+    /// source): within `2 pi gamma(12)` radians in `f32` and `2 pi
+    /// gamma(24)` in `f64`.
+    #[inline]
+    #[must_use]
+    pub fn ray_cone(&self) -> RayCone<S<V>> {
+        let tau = S::<V>::from_f64(core::f64::consts::TAU);
+        RayCone {
+            width: S::<V>::ZERO,
+            spread: atan2_turns(S::<V>::ONE, self.focal_length) * tau,
+        }
     }
 
     /// The ray through the centre of pixel `(i, j)`: `ray(i + 0.5, j + 0.5)`.
-    #[inline]
+    #[inline(always)]
     #[must_use]
     pub fn pixel_ray(&self, i: u32, j: u32) -> Ray<V> {
-        let half = S::<V>::HALF;
-        self.ray(S::<V>::from_u32(i) + half, S::<V>::from_u32(j) + half)
+        let (x, y) = pixel_centre(i, j);
+        self.ray(x, y)
     }
 
     /// The eye position: where every ray starts.

@@ -1,0 +1,463 @@
+//! The camera of a rasterizer's view and projection matrices.
+
+use glam::{DMat4, DVec3, Mat4, Vec3};
+
+use super::{CameraError, RayCone, RayDifferential, centred, pixel_centre};
+use crate::num::trig::atan2_turns;
+use crate::num::{S, Scalar, Vector, unit, unit_and_inverse_length};
+use crate::ray::Ray;
+
+/// A 4x4 matrix as glam stores it: four columns of four components
+/// (`Mat4::to_cols_array_2d`), acting on column vectors.
+pub type Columns<F> = [[F; 4]; 4];
+
+/// The graphics API's clip-space convention, which the matrices alone do
+/// not tell: which way normalised device `y` points, and where depth
+/// starts (used only for an orthographic projection's ray origins).
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+pub enum ClipSpace {
+    /// `y` up, depth in `[0, 1]`: Direct3D, Metal, WebGPU (wgpu); glam's
+    /// `camera::{rh, lh}::proj::directx` matrices.
+    Direct3D,
+    /// `y` up, depth in `[-1, 1]`: OpenGL, WebGL; glam's `opengl` matrices.
+    OpenGl,
+    /// `y` down, depth in `[0, 1]`: Vulkan; glam's `vulkan` matrices.
+    Vulkan,
+}
+
+impl ClipSpace {
+    /// The near end of the depth range: `-1` for OpenGL, else `0`.
+    fn near_depth(self) -> f64 {
+        match self {
+            Self::OpenGl => -1.0,
+            Self::Direct3D | Self::Vulkan => 0.0,
+        }
+    }
+}
+
+/// How the rays of a [`MatrixCamera`] are made.
+#[derive(Clone, Copy, Debug, PartialEq)]
+enum Projection {
+    /// Every ray starts at the eye: `dir = normalize(c + dx a + dy b)`.
+    Perspective,
+    /// Every ray has the direction `dir`: `origin = c + dx a + dy b`.
+    Orthographic,
+}
+
+/// The camera a rasterizer's view and projection matrices describe: the
+/// ray through a pixel is the set of points that project to it, so a
+/// hybrid renderer's traced rays match its rasterized pixels.
+///
+/// Built from any view matrix and any perspective or orthographic
+/// projection matrix (glam's `camera::{rh, lh}::view` and
+/// `camera::{rh, lh}::proj::{directx, opengl, vulkan}` functions,
+/// `perspective`, `perspective_infinite`, `perspective_infinite_reverse`,
+/// `orthographic`, `frustum`, jittered or off-centre ones), right- or
+/// left-handed, with the [`ClipSpace`] they were made for. Raster
+/// conventions as [`PinholeCamera`](crate::PinholeCamera): `(0, 0)` at the
+/// top-left, `y` down, pixel `(i, j)` centred at `(i + 0.5, j + 0.5)`;
+/// raster `(x, y)` is normalised device coordinates `(2x/width - 1, 1 -
+/// 2y/height)` (`y` the other way for Vulkan).
+///
+/// **The rays.** With `m_i` the `xyz` part of row `i` of `M = projection *
+/// view` and `d_i` its fourth entry, the points of NDC `(nx, ny)` lie on
+/// the planes `(m_0 - nx m_3) . X + d_0 - nx d_3 = 0` and `(m_1 - ny m_3) .
+/// X + d_1 - ny d_3 = 0`, and the ray is their line (the projection's depth
+/// row plays no part). For a perspective projection (`m_3` not zero),
+/// every ray starts at the camera centre, where `m_0`, `m_1` and `m_3`'s
+/// planes meet, and has the direction of the planes' normals' cross
+/// product, `m_0 x m_1 + nx (m_1 x m_3) + ny (m_3 x m_0)`, turned so that
+/// the clip `w` grows along it (the visible side), normalised. For an
+/// orthographic projection (`m_3` zero), every ray has the direction
+/// `normalize(m_0 x m_1)`, turned so that depth grows along it, and starts
+/// on the near plane of the [`ClipSpace`] (depth `0`, or `-1` for OpenGL;
+/// near to far for glam's orthographic matrices). Both are linear in the
+/// raster position: the camera keeps `c`, `a` and `b` (computed once, in
+/// `f64`, and rounded) and makes each ray as a pinhole camera does.
+///
+/// **Reprojection.** The ray through raster position `(x, y)` projects
+/// back to it: for a perspective projection its direction's vanishing
+/// point, `(m_0 . dir / m_3 . dir, m_1 . dir / m_3 . dir)` in exact
+/// arithmetic on the matrices given, is `(nx, ny)` within
+///
+/// `sum_k |n_k| e K_k / (|D| - sum_k |m_3k| e K_k)`
+///
+/// in NDC (times `width / 2` or `height / 2` for pixels), where `n = m_0 -
+/// nx m_3` (or `m_1 - ny m_3` for `ny`), `D = m_0 . (m_1 x m_3)`, `e =
+/// gamma(5) + gamma_64(17)` (`gamma_64` in `f64`'s unit roundoff; for an
+/// `f64` camera the two are the same) and `K_k` the `k`-th component of
+/// `|m_0| x |m_1| + |nx| |m_1| x |m_3| + |ny| |m_3| x |m_0|`, the cross
+/// products' magnitudes, with `|m_i|` the rows of `|projection| *
+/// |view|` (absolute values taken entry by entry). For a well-conditioned
+/// camera (glam's perspective and a view whose up vector is well away from
+/// the view direction) that is a few tens of `u` times the image size in
+/// pixels: a few thousandths of a pixel for a 4K image in `f32`. The eye is
+/// the camera centre within a bound of the same kind; an orthographic
+/// ray's origin projects to `(nx, ny)` within its own (Cramer's rule's
+/// magnitudes times `e (1 + kappa)`, `kappa` the determinant's growth
+/// factor), and its direction keeps it there to the vanishing-point form
+/// with `m_2` in place of `m_3` (derived, and held to in exact arithmetic,
+/// in the repository's test kit, `testkit/src/fuzz/matrix_camera.rs`).
+///
+/// ```
+/// use rayhit::{ClipSpace, MatrixCamera, PinholeCamera, glam::{Mat4, Vec3}};
+/// use rayhit::glam::camera::rh::{proj::directx, view};
+/// let (eye, dir) = (Vec3::new(1.0, 2.0, 5.0), Vec3::new(0.0, -0.3, -1.0).normalize());
+/// let view = view::look_to_mat4(eye, dir, Vec3::Y);
+/// let proj = directx::perspective(1.0, 640.0 / 480.0, 0.1, 100.0);
+/// let cam = MatrixCamera::from_mat4(view, proj, ClipSpace::Direct3D, 640, 480).unwrap();
+/// // The same rays as the pinhole camera of the same eye, view and field of view.
+/// let pinhole = PinholeCamera::from_fov(eye, dir, Vec3::Y, 1.0, 640, 480).unwrap();
+/// let (a, b) = (cam.pixel_ray(10, 400), pinhole.pixel_ray(10, 400));
+/// assert!((a.origin - b.origin).length() < 1e-5 && (a.dir - b.dir).length() < 1e-5);
+/// // The pixel's centre projects back to it.
+/// let p = (proj * view).project_point3(a.at(50.0));
+/// assert!((p.x - (2.0 * 10.5 / 640.0 - 1.0)).abs() < 1e-5);
+/// assert!((p.y - (1.0 - 2.0 * 400.5 / 480.0)).abs() < 1e-5);
+/// ```
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct MatrixCamera<V = Vec3>
+where
+    V: Vector,
+{
+    projection: Projection,
+    /// Perspective: the eye. Orthographic: the direction.
+    fixed: V,
+    c: V,
+    a: V,
+    b: V,
+    width: u32,
+    height: u32,
+}
+
+/// `(x, y, z)` of a row.
+fn xyz(r: [f64; 4]) -> DVec3 {
+    DVec3::new(r[0], r[1], r[2])
+}
+
+impl<V: Vector> MatrixCamera<V> {
+    /// The camera of the view matrix `view` and the projection matrix
+    /// `projection` (each as four columns, glam's `to_cols_array_2d`), for
+    /// the clip space `clip` and an image of `width x height` pixels.
+    ///
+    /// # Errors
+    ///
+    /// [`CameraError::NonFiniteMatrix`] for a NaN or infinite entry;
+    /// [`CameraError::SingularMatrix`] when the matrices do not define a
+    /// camera: the determinant of rows 0, 1 and 3 of `projection * view`
+    /// (perspective) or 0, 1 and 2 (orthographic, row 3 being `(0, 0, 0,
+    /// w)`, `w` not zero) is zero within its rounding (`gamma(16)` of the
+    /// product of the rows' lengths, in the matrices' precision), or the
+    /// eye, origin or directions overflow; [`CameraError::EmptyImage`] for
+    /// a zero width or height.
+    pub fn new(
+        view: Columns<S<V>>,
+        projection: Columns<S<V>>,
+        clip: ClipSpace,
+        width: u32,
+        height: u32,
+    ) -> Result<Self, CameraError> {
+        let finite = |m: &Columns<S<V>>| m.iter().flatten().all(|x| x.is_finite());
+        if !finite(&view) || !finite(&projection) {
+            return Err(CameraError::NonFiniteMatrix);
+        }
+        if width == 0 || height == 0 {
+            return Err(CameraError::EmptyImage);
+        }
+        // M = projection * view, in f64 (exact products for f32 input),
+        // by rows: M[i][j] = sum_k P[i][k] V[k][j], with A[i][j] the
+        // entry of row i, column j (= cols[j][i]).
+        let at = |m: &Columns<S<V>>, i: usize, j: usize| m[j][i].to_f64();
+        let mut rows = [[0.0f64; 4]; 4];
+        for (i, row) in rows.iter_mut().enumerate() {
+            for (j, entry) in row.iter_mut().enumerate() {
+                *entry = (0..4)
+                    .map(|k| at(&projection, i, k) * at(&view, k, j))
+                    .sum();
+            }
+        }
+        if !rows.iter().flatten().all(|x| x.is_finite()) {
+            return Err(CameraError::NonFiniteMatrix);
+        }
+        let (m0, m1, m2, m3) = (xyz(rows[0]), xyz(rows[1]), xyz(rows[2]), xyz(rows[3]));
+        let (d0, d1, d2, d3) = (rows[0][3], rows[1][3], rows[2][3], rows[3][3]);
+        let (kx, ky) = (2.0 / f64::from(width), 2.0 / f64::from(height));
+        let ky = if clip == ClipSpace::Vulkan { -ky } else { ky };
+        // "Zero within rounding": a determinant below gamma(16) of the
+        // product of the rows' lengths (Hadamard's bound on it) in the
+        // matrices' own precision, where rounding the entries alone can
+        // move it by gamma(1) of that times a few.
+        let tiny = |r: [DVec3; 3]| {
+            let det = r[0].dot(r[1].cross(r[2]));
+            let scale = r[0].length() * r[1].length() * r[2].length();
+            (det, !(det.abs() > S::<V>::gamma_n(16).to_f64() * scale))
+        };
+        let (projection_kind, fixed, c, a, b) = if m3 != DVec3::ZERO {
+            let (det, singular) = tiny([m0, m1, m3]);
+            if singular {
+                return Err(CameraError::SingularMatrix);
+            }
+            let (x, y, z) = (m1.cross(m3), m3.cross(m0), m0.cross(m1));
+            let eye = -(x * d0 + y * d1 + z * d3) / det;
+            // Turned so that clip w grows along the ray: m3 . dir = det.
+            let s = det.signum();
+            (
+                Projection::Perspective,
+                eye,
+                z * s,
+                x * (kx * s),
+                y * (ky * s),
+            )
+        } else {
+            if d3 == 0.0 {
+                return Err(CameraError::SingularMatrix);
+            }
+            let (det, singular) = tiny([m0, m1, m2]);
+            if singular {
+                return Err(CameraError::SingularMatrix);
+            }
+            let (x, y, z) = (m1.cross(m2), m2.cross(m0), m0.cross(m1));
+            // The point with m0.X + d0 = nx d3, m1.X + d1 = ny d3 and
+            // m2.X + d2 = z0 d3 (depth z0 at the near plane), by Cramer.
+            let z0 = clip.near_depth();
+            let origin = (x * -d0 + y * -d1 + z * (z0 * d3 - d2)) / det;
+            // Depth (m2.X + d2) / d3 grows along m0 x m1 times det d3's sign.
+            let s = (det * d3).signum();
+            let dir = (z * s).normalize();
+            (
+                Projection::Orthographic,
+                dir,
+                origin,
+                x * (kx * d3 / det),
+                y * (ky * d3 / det),
+            )
+        };
+        let to_v = |p: DVec3| {
+            V::new(
+                S::<V>::from_f64(p.x),
+                S::<V>::from_f64(p.y),
+                S::<V>::from_f64(p.z),
+            )
+        };
+        let (fixed, c, a, b) = (to_v(fixed), to_v(c), to_v(a), to_v(b));
+        if !(fixed.is_finite() && c.is_finite() && a.is_finite() && b.is_finite()) {
+            return Err(CameraError::SingularMatrix);
+        }
+        Ok(Self {
+            projection: projection_kind,
+            fixed,
+            c,
+            a,
+            b,
+            width,
+            height,
+        })
+    }
+
+    /// The camera of one matrix `view_projection = projection * view`:
+    /// the same as [`new`](Self::new) with the identity as the view.
+    ///
+    /// # Errors
+    ///
+    /// As [`new`](Self::new).
+    pub fn from_view_projection(
+        view_projection: Columns<S<V>>,
+        clip: ClipSpace,
+        width: u32,
+        height: u32,
+    ) -> Result<Self, CameraError> {
+        let (zero, one) = (S::<V>::ZERO, S::<V>::ONE);
+        let identity = [
+            [one, zero, zero, zero],
+            [zero, one, zero, zero],
+            [zero, zero, one, zero],
+            [zero, zero, zero, one],
+        ];
+        Self::new(identity, view_projection, clip, width, height)
+    }
+
+    /// `c + dx a + dy b`.
+    #[inline(always)]
+    fn linear(&self, x: S<V>, y: S<V>) -> V {
+        let (dx, dy) = centred(x, y, self.width, self.height);
+        self.c + self.a * dx + self.b * dy
+    }
+
+    /// The ray through raster position `(x, y)`: for a perspective
+    /// projection from the eye with a unit direction, for an orthographic
+    /// one from the near plane with the one unit direction (see
+    /// [`MatrixCamera`] for the rays and their reprojection bound).
+    ///
+    /// Positions outside the image give the rays of points outside the
+    /// view (behind the eye's plane, a perspective ray still looks into
+    /// the half-space of positive clip `w`, which is what the matrices
+    /// project; a position at infinity in NDC has no ray). A NaN or
+    /// infinite position gives a non-finite ray, which every kernel
+    /// rejects.
+    #[inline(always)]
+    #[must_use]
+    pub fn ray(&self, x: S<V>, y: S<V>) -> Ray<V> {
+        let p = self.linear(x, y);
+        match self.projection {
+            Projection::Perspective => Ray::new(self.fixed, unit(p)),
+            Projection::Orthographic => Ray::new(p, self.fixed),
+        }
+    }
+
+    /// The ray through the centre of pixel `(i, j)`: `ray(i + 0.5, j + 0.5)`.
+    #[inline(always)]
+    #[must_use]
+    pub fn pixel_ray(&self, i: u32, j: u32) -> Ray<V> {
+        let (x, y) = pixel_centre(i, j);
+        self.ray(x, y)
+    }
+
+    /// The ray through `(x, y)`, bit for bit [`ray`](Self::ray), with its
+    /// differentials. Perspective: as
+    /// [`PinholeCamera::ray_differential`](crate::PinholeCamera::ray_differential)
+    /// with `a` and `-b` for `right` and `-true_up`, `dx_dir = (a - dir (dir
+    /// . a)) / |p|`, `dy_dir = (dir (dir . b) - b) / |p|` (`p = c + dx a + dy
+    /// b`; second order within `2 (|a| + |b|)^2 / |p|^2`). Orthographic: the
+    /// origin moves by `a` and `-b` per pixel, exactly linearly, and the
+    /// direction not at all.
+    #[inline(always)]
+    #[must_use]
+    pub fn ray_differential(&self, x: S<V>, y: S<V>) -> RayDifferential<V> {
+        let p = self.linear(x, y);
+        let (a, b) = (self.a, self.b);
+        match self.projection {
+            Projection::Perspective => {
+                let (dir, inv) = unit_and_inverse_length(p);
+                RayDifferential {
+                    ray: Ray::new(self.fixed, dir),
+                    dx_origin: V::ZERO,
+                    dx_dir: (a - dir * dir.dot(a)) * inv,
+                    dy_origin: V::ZERO,
+                    dy_dir: (dir * dir.dot(b) - b) * inv,
+                }
+            }
+            Projection::Orthographic => RayDifferential {
+                ray: Ray::new(p, self.fixed),
+                dx_origin: a,
+                dx_dir: V::ZERO,
+                dy_origin: -b,
+                dy_dir: V::ZERO,
+            },
+        }
+    }
+
+    /// The ray cone of every ray. Perspective: zero width, and the angle
+    /// between the image centre's ray and its neighbour one pixel across,
+    /// the larger of the two ways (`atan2(|c x a|, c . a)` and likewise
+    /// with `b`, with the crate's arctangent). Orthographic: the larger of
+    /// `|a|` and `|b|` wide, not spreading.
+    #[inline]
+    #[must_use]
+    pub fn ray_cone(&self) -> RayCone<S<V>> {
+        let zero = S::<V>::ZERO;
+        let max = |p: S<V>, q: S<V>| if p > q { p } else { q };
+        match self.projection {
+            Projection::Perspective => {
+                let tau = S::<V>::from_f64(core::f64::consts::TAU);
+                let angle = |v: V| {
+                    let next = self.c + v;
+                    atan2_turns(self.c.cross(next).length(), self.c.dot(next)) * tau
+                };
+                RayCone {
+                    width: zero,
+                    spread: max(angle(self.a), angle(self.b)),
+                }
+            }
+            Projection::Orthographic => RayCone {
+                width: max(self.a.length(), self.b.length()),
+                spread: zero,
+            },
+        }
+    }
+
+    /// The ray's linear form `[c, a, b]`: the direction (perspective,
+    /// before normalising) or the origin (orthographic) of raster position
+    /// `(x, y)` is `c + (x - width/2) a + (height/2 - y) b`, evaluated in
+    /// that order, three roundings per component.
+    #[inline]
+    #[must_use]
+    pub fn linear_form(&self) -> [V; 3] {
+        [self.c, self.a, self.b]
+    }
+
+    /// The eye (perspective: where every ray starts) or the direction of
+    /// every ray (orthographic).
+    #[inline]
+    #[must_use]
+    pub fn fixed(&self) -> V {
+        self.fixed
+    }
+
+    /// True for an orthographic projection (parallel rays).
+    #[inline]
+    #[must_use]
+    pub fn is_orthographic(&self) -> bool {
+        self.projection == Projection::Orthographic
+    }
+
+    /// The image width in pixels.
+    #[inline]
+    #[must_use]
+    pub fn width(&self) -> u32 {
+        self.width
+    }
+
+    /// The image height in pixels.
+    #[inline]
+    #[must_use]
+    pub fn height(&self) -> u32 {
+        self.height
+    }
+}
+
+impl MatrixCamera<Vec3> {
+    /// [`MatrixCamera::new`] from glam's `Mat4`s. (For `Vec3A` rays, pass
+    /// `to_cols_array_2d()` of each to `new`.)
+    ///
+    /// # Errors
+    ///
+    /// As [`MatrixCamera::new`].
+    pub fn from_mat4(
+        view: Mat4,
+        projection: Mat4,
+        clip: ClipSpace,
+        width: u32,
+        height: u32,
+    ) -> Result<Self, CameraError> {
+        Self::new(
+            view.to_cols_array_2d(),
+            projection.to_cols_array_2d(),
+            clip,
+            width,
+            height,
+        )
+    }
+}
+
+impl MatrixCamera<DVec3> {
+    /// [`MatrixCamera::new`] from glam's `DMat4`s.
+    ///
+    /// # Errors
+    ///
+    /// As [`MatrixCamera::new`].
+    pub fn from_dmat4(
+        view: DMat4,
+        projection: DMat4,
+        clip: ClipSpace,
+        width: u32,
+        height: u32,
+    ) -> Result<Self, CameraError> {
+        Self::new(
+            view.to_cols_array_2d(),
+            projection.to_cols_array_2d(),
+            clip,
+            width,
+            height,
+        )
+    }
+}

@@ -1,0 +1,158 @@
+//! Cameras: raster positions to primary rays.
+//!
+//! - `mod.rs`: [`CameraError`], and what every camera shares: the
+//!   orthonormal basis from eye, view and up, and the raster offset from
+//!   the image centre.
+//! - `pinhole.rs`: [`PinholeCamera`].
+//! - `thin_lens.rs`: [`ThinLensCamera`] and its [`FocusPoint`].
+//! - `orthographic.rs`: [`OrthographicCamera`].
+//! - `matrix.rs`: [`MatrixCamera`], from a rasterizer's matrices.
+//! - `equirectangular.rs`: [`EquirectangularCamera`].
+//! - `equal_area.rs`: [`EqualAreaCamera`] (Clarberg's octahedral map).
+//! - `differential.rs`: [`RayDifferential`] and [`RayCone`], and their
+//!   transfer to a triangle hit ([`HitDifferentials`]).
+
+mod differential;
+mod equal_area;
+mod equirectangular;
+mod matrix;
+mod orthographic;
+mod pinhole;
+mod thin_lens;
+
+use core::fmt;
+
+use crate::num::{S, Scalar, Vector, unit};
+
+pub use differential::{
+    HitDifferentials, RayCone, RayDifferential, triangle_cone_width, triangle_hit_differentials,
+    triangle_hit_differentials_error,
+};
+pub use equal_area::EqualAreaCamera;
+pub use equirectangular::EquirectangularCamera;
+pub use matrix::{ClipSpace, Columns, MatrixCamera};
+pub use orthographic::OrthographicCamera;
+pub use pinhole::PinholeCamera;
+pub use thin_lens::{FocusPoint, ThinLensCamera};
+
+/// Why a camera could not be built.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+#[non_exhaustive]
+pub enum CameraError {
+    /// The eye position has a NaN or infinite component.
+    NonFiniteEye,
+    /// The view direction is zero or has a NaN or infinite component.
+    InvalidViewDir,
+    /// The up vector is zero or has a NaN or infinite component.
+    InvalidUp,
+    /// The up vector is parallel to the view direction (within rounding), so
+    /// it does not say which way is up.
+    UpParallelToView,
+    /// The focal length is not positive and finite.
+    InvalidFocalLength,
+    /// The vertical field of view is not in the open interval `(0, pi)`.
+    InvalidFieldOfView,
+    /// The image width or height is zero.
+    EmptyImage,
+    /// The lens radius is negative, NaN or infinite, or so large that the
+    /// lens's coordinates overflow.
+    InvalidLensRadius,
+    /// The focal distance is not positive and finite, or its ratio to the
+    /// focal length under- or overflows.
+    InvalidFocalDistance,
+    /// The pixel size is not positive and finite.
+    InvalidPixelSize,
+    /// A matrix has a NaN or infinite entry (or their product does).
+    NonFiniteMatrix,
+    /// The matrices do not define a camera: singular within rounding, or
+    /// its eye or rays overflow.
+    SingularMatrix,
+}
+
+impl fmt::Display for CameraError {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        f.write_str(match self {
+            Self::NonFiniteEye => "camera eye position is not finite",
+            Self::InvalidViewDir => "camera view direction is zero or not finite",
+            Self::InvalidUp => "camera up vector is zero or not finite",
+            Self::UpParallelToView => "camera up vector is parallel to the view direction",
+            Self::InvalidFocalLength => "camera focal length is not positive and finite",
+            Self::InvalidFieldOfView => "camera vertical field of view is not in (0, pi)",
+            Self::EmptyImage => "camera image width or height is zero",
+            Self::InvalidLensRadius => "camera lens radius is negative or not finite",
+            Self::InvalidFocalDistance => "camera focal distance is not positive and finite",
+            Self::InvalidPixelSize => "camera pixel size is not positive and finite",
+            Self::NonFiniteMatrix => "camera matrix is not finite",
+            Self::SingularMatrix => "camera matrices are singular",
+        })
+    }
+}
+
+impl core::error::Error for CameraError {}
+
+/// A camera's position and orthonormal frame: `forward` along the view,
+/// `right = normalize(forward x up)`, `up = normalize(right x forward)`.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub(crate) struct Basis<V> {
+    pub(crate) eye: V,
+    pub(crate) forward: V,
+    pub(crate) right: V,
+    pub(crate) up: V,
+}
+
+impl<V: Vector> Basis<V> {
+    /// The frame at `eye` looking along `view_dir` with `up` giving the
+    /// upward direction; the first four checks of every camera, in this
+    /// order: eye, view, up, up parallel to the view.
+    ///
+    /// "Parallel" is decided against the rounding error, as
+    /// [`PinholeCamera::new`] derives: the sine of the angle between the
+    /// normalised vectors must exceed `gamma(16)`.
+    pub(crate) fn new(eye: V, view_dir: V, up: V) -> Result<Self, CameraError> {
+        if !eye.is_finite() {
+            return Err(CameraError::NonFiniteEye);
+        }
+        let forward = unit(view_dir);
+        if !forward.is_finite() {
+            return Err(CameraError::InvalidViewDir);
+        }
+        let up_unit = unit(up);
+        if !up_unit.is_finite() {
+            return Err(CameraError::InvalidUp);
+        }
+        let side = forward.cross(up_unit);
+        if !(side.length() > S::<V>::gamma_n(16)) {
+            return Err(CameraError::UpParallelToView);
+        }
+        let right = unit(side);
+        let up = unit(right.cross(forward));
+        Ok(Self {
+            eye,
+            forward,
+            right,
+            up,
+        })
+    }
+}
+
+/// Raster position `(x, y)` (from the top-left, `y` down) as offsets from
+/// the centre of a `width x height` image: `(x - width/2, height/2 - y)`,
+/// right and up.
+///
+/// `width/2` and `height/2` are exact (halving a float is exact, and the
+/// sizes are below `2^24`), so each offset carries one rounding, and none
+/// for positions on the half-pixel grid of an image below `2^23` pixels
+/// (`i + 0.5 - width/2` is then a float on the same grid).
+#[inline(always)]
+pub(crate) fn centred<F: Scalar>(x: F, y: F, width: u32, height: u32) -> (F, F) {
+    (
+        x - F::from_u32(width) * F::HALF,
+        F::from_u32(height) * F::HALF - y,
+    )
+}
+
+/// The raster position of pixel `(i, j)`'s centre: `(i + 0.5, j + 0.5)`.
+#[inline(always)]
+pub(crate) fn pixel_centre<F: Scalar>(i: u32, j: u32) -> (F, F) {
+    (F::from_u32(i) + F::HALF, F::from_u32(j) + F::HALF)
+}

@@ -1,0 +1,407 @@
+//! The thin-lens camera: a pinhole camera with a lens of some radius,
+//! focused at some distance, for depth of field.
+
+use glam::Vec3;
+
+use super::{CameraError, PinholeCamera, RayCone, RayDifferential};
+use crate::num::round::{bound_up, max2};
+use crate::num::trig::{sin_cos_quarter, trig_n};
+use crate::num::{Bits, Repr};
+use crate::num::{S, Scalar, Vector};
+use crate::ray::Ray;
+
+/// A thin-lens camera: the rays of one film point start on a lens disc and
+/// all pass through one focus point on the plane of focus, so that what
+/// lies there is sharp and the rest is blurred (depth of field).
+///
+/// The model is pbrt's perspective camera with a lens: a
+/// [`PinholeCamera`] (the film, the conventions, the field of view), a
+/// lens of radius `lens_radius` centred on the eye in the plane spanned by
+/// `right` and `true_up`, and a plane of focus `focal_distance` in front of
+/// the eye along the view direction. A lens sample `(s, t)` in `[0, 1)^2`
+/// becomes a point of the lens disc by Shirley and Chiu's concentric
+/// mapping ("A Low Distortion Map Between Disk and Square", Journal of
+/// Graphics Tools 2(3), 1997), which keeps stratified samples stratified.
+///
+/// **The focus point.** [`focus(x, y)`](ThinLensCamera::focus) is computed
+/// once per film point: `eye + focal_distance forward + k ((x - w/2) right
+/// + (h/2 - y) true_up)` with `k = focal_distance / focal_length`, which is
+/// `eye + k p` for `p` the pinhole camera's unnormalised direction towards
+/// `(x, y)`, so it lies on the pinhole ray and on the plane of focus
+/// (within rounding). The
+/// ray of lens point `L` starts at `L` and has direction `F - L`: it
+/// reaches the focus point `F` at `t = 1`.
+///
+/// **Meeting bit for bit.** Every ray of one film point passes through
+/// the same float point `F`, exactly: in exact arithmetic, `origin + 1 *
+/// dir = F`, and in floating point, `ray.at(1.0) == F` bit for bit. That
+/// takes more than `F - L` rounded (whose rounding error moves the ray off
+/// `F`, by up to half an ulp of `F - L`, which is far more than an ulp of
+/// `F` where `|F_i|` is small next to `|L_i|`): per component, `F` and
+/// every lens point are rounded to one grid, the multiples of
+/// `g_i = 2^(e_i + 3 - p)` (`p` the precision, `2^e_i` the binade of
+/// `max(|F_i|, M_i)`, `M_i` a bound on the lens points' `|L_i|`), on which
+/// `F_i - L_i` is a float. So the focus point and the lens points move by
+/// at most `g_i / 2`, two ulps of the larger of the focus point's and the
+/// lens's coordinates. This holds for lens samples in `[0, 1]^2` and
+/// coordinates below `MAX / 8`; beyond, the rays meet only within a
+/// rounding. The rays are finite wherever the focus point is (a position
+/// so far outside the image that it overflows gives a non-finite
+/// direction, which every kernel rejects).
+///
+/// **The lens centre.** A lens sample that maps to the lens centre (`(0.5,
+/// 0.5)`, or any sample when `lens_radius` is zero) gives the pinhole ray,
+/// [`PinholeCamera::ray`], bit for bit: origin the eye, a unit direction.
+/// It passes within a rounding of `F` (both lie on the pinhole ray), not
+/// through it; a zero radius makes the camera the pinhole camera, bit for
+/// bit.
+///
+/// Directions are not unit length (`|dir|` is the distance to the focus
+/// point); `t` is in units of `dir` as for every ray.
+///
+/// ```
+/// use rayhit::{PinholeCamera, ThinLensCamera, glam::Vec3};
+/// let pinhole = PinholeCamera::from_fov(Vec3::new(0.0, 1.0, 5.0), -Vec3::Z, Vec3::Y, 0.7, 320, 240).unwrap();
+/// // A lens of radius 0.1, focused 5 units ahead.
+/// let cam = ThinLensCamera::new(pinhole, 0.1, 5.0).unwrap();
+/// let focus = cam.focus(100.5, 80.5);
+/// for (s, t) in [(0.1, 0.2), (0.9, 0.35), (0.5, 0.99)] {
+///     let ray = cam.ray_through(&focus, s, t);
+///     // Every ray of the film point reaches the focus point at t = 1, bit for bit.
+///     assert_eq!(ray.at(1.0), focus.point());
+/// }
+/// // The lens centre gives the pinhole ray.
+/// assert_eq!(cam.ray(100.5, 80.5, 0.5, 0.5), pinhole.ray(100.5, 80.5));
+/// ```
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct ThinLensCamera<V = Vec3>
+where
+    V: Vector,
+{
+    pinhole: PinholeCamera<V>,
+    lens_radius: S<V>,
+    focal_distance: S<V>,
+    /// `focal_distance / focal_length`: world units per pixel on the plane
+    /// of focus.
+    scale: S<V>,
+    /// `eye + focal_distance forward`: the centre of the plane of focus.
+    centre: V,
+    /// Per component, a bound on `|L_i|` for every lens point.
+    lens_bound: V,
+}
+
+/// The focus point of one film point, with what its rays need: see
+/// [`ThinLensCamera::focus`].
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct FocusPoint<V = Vec3>
+where
+    V: Vector,
+{
+    point: V,
+    /// Per component, `1.5 * 2^(e_i + 2)`: adding and subtracting it
+    /// rounds to the grid (zero where no rounding is needed or possible).
+    grid: V,
+    /// The raster position, for the pinhole ray at the lens centre.
+    raster: (S<V>, S<V>),
+}
+
+impl<V: Vector> FocusPoint<V> {
+    /// The focus point: where every ray of the film point is at `t = 1`.
+    #[inline]
+    #[must_use]
+    pub fn point(&self) -> V {
+        self.point
+    }
+}
+
+/// A lens sample `(s, t)` in `[0, 1]^2` as a point of the unit disc,
+/// Shirley and Chiu's concentric mapping: the square `[-1, 1]^2` (`a = 2s
+/// - 1`, `b = 2t - 1`) is cut into four triangles by its diagonals, and each
+/// triangle's concentric squares go to concentric circles: for `|a| > |b|`
+/// the radius is `a` and the angle `(pi/4)(b/a)`, else the radius `b` and
+/// the angle `pi/2 - (pi/4)(a/b)`. `(0, 0)` for the centre.
+///
+/// Each coordinate is within `|radius| gamma(TRIG + 4)` of the exact map of
+/// the rounded `a`, `b` (`TRIG` is 24 in `f32` and 40 in `f64`: the sine's
+/// and cosine's bound; then the ratio's, `pi/4`'s, the angle's and the
+/// product's roundings), so the point is in the disc to that much; the
+/// rounding of `2s - 1` is at most one, relative.
+#[inline(always)]
+fn concentric_disc<F: Scalar>(s: F, t: F) -> (F, F) {
+    let (zero, one) = (F::ZERO, F::ONE);
+    let a = s * F::TWO - one;
+    let b = t * F::TWO - one;
+    if a == zero && b == zero {
+        return (zero, zero);
+    }
+    let wide = a.abs() > b.abs();
+    let (r, q) = if wide { (a, b / a) } else { (b, a / b) };
+    let (sin, cos) = sin_cos_quarter(q * F::from_f64(core::f64::consts::FRAC_PI_4));
+    if wide {
+        (r * cos, r * sin)
+    } else {
+        (r * sin, r * cos)
+    }
+}
+
+/// The constant that rounds a coordinate to the grid of [`FocusPoint`]:
+/// `c = 6 * 2^e` with `2^e` the binade of `max(|focus|, bound)`.
+///
+/// Every value `x` with `|x| < 2^(e+1)` (the focus point's coordinate and
+/// every lens point's) has `x + c` in `(4 * 2^e, 8 * 2^e)`, one binade,
+/// whose floats are the multiples of `g = 2^(e + 3 - p)`: so `(x + c) - c`
+/// is `x` rounded to a multiple of `g` (the subtraction is exact,
+/// Sterbenz). Two such values differ by less than `2^(e+2) + g < 2^p g`, a
+/// multiple of `g` that is a float: their difference is exact. Zero when the
+/// larger value is zero or subnormal (then every such difference is exact
+/// already: subnormal sums are) or above `MAX / 8` (where `c` would
+/// overflow; no rounding, and no exactness).
+#[inline(always)]
+fn grid<F: Scalar>(focus: F, bound: F) -> F {
+    let binade = <F as Repr>::Bits::binade(max2(focus.abs(), bound));
+    if binade <= F::MAX * F::from_f64(0.125) {
+        binade * F::from_u32(6)
+    } else {
+        F::ZERO
+    }
+}
+
+/// `x` rounded to the grid of `c` (see [`grid`]).
+#[inline(always)]
+fn snap<F: Scalar>(x: F, c: F) -> F {
+    (x + c) - c
+}
+
+impl<V: Vector> ThinLensCamera<V> {
+    /// The pinhole camera `pinhole` with a lens of radius `lens_radius`
+    /// (world units) focused at `focal_distance` (world units in front of
+    /// the eye, along the view direction).
+    ///
+    /// # Errors
+    ///
+    /// [`CameraError::InvalidLensRadius`] for a negative, NaN or infinite
+    /// radius, or one so large that the lens's coordinates overflow;
+    /// [`CameraError::InvalidFocalDistance`] for a focal distance that is
+    /// not positive and finite, or whose ratio to the focal length
+    /// underflows to zero or overflows. A zero radius is the pinhole camera.
+    ///
+    /// ```
+    /// use rayhit::{CameraError, PinholeCamera, ThinLensCamera, glam::Vec3};
+    /// let pinhole = PinholeCamera::new(Vec3::ZERO, -Vec3::Z, Vec3::Y, 100.0, 64, 64).unwrap();
+    /// assert_eq!(ThinLensCamera::new(pinhole, -0.1, 5.0), Err(CameraError::InvalidLensRadius));
+    /// assert_eq!(ThinLensCamera::new(pinhole, 0.1, 0.0), Err(CameraError::InvalidFocalDistance));
+    /// ```
+    pub fn new(
+        pinhole: PinholeCamera<V>,
+        lens_radius: S<V>,
+        focal_distance: S<V>,
+    ) -> Result<Self, CameraError> {
+        let zero = S::<V>::ZERO;
+        if !(lens_radius >= zero && lens_radius.is_finite()) {
+            return Err(CameraError::InvalidLensRadius);
+        }
+        if !(focal_distance > zero && focal_distance.is_finite()) {
+            return Err(CameraError::InvalidFocalDistance);
+        }
+        let scale = focal_distance / pinhole.focal_length();
+        if !(scale > zero && scale.is_finite()) {
+            return Err(CameraError::InvalidFocalDistance);
+        }
+        // A lens point is eye + right (radius x) + up (radius y), with
+        // |x|, |y| <= 1 + gamma(TRIG + 4) (concentric_disc): each product
+        // and sum rounds once (four roundings along the longest path), so
+        // |L_i| <= (|eye_i| + radius (|right_i| + |up_i|)(1 + gamma(TRIG +
+        // 4))) (1 + gamma(4)), which bound_up makes an upper bound after
+        // its own roundings (at most five here).
+        let slack = S::<V>::ONE + S::<V>::gamma_n(trig_n::<S<V>>() + 4);
+        let (eye, r, u) = (pinhole.eye(), pinhole.right(), pinhole.up());
+        let bound = |i: usize| {
+            let reach = lens_radius * (r[i].abs() + u[i].abs()) * slack;
+            bound_up(
+                (eye[i].abs() + reach) * (S::<V>::ONE + S::<V>::gamma_n(4)),
+                5,
+            )
+        };
+        let lens_bound = V::new(bound(0), bound(1), bound(2));
+        if !lens_bound.is_finite() {
+            return Err(CameraError::InvalidLensRadius);
+        }
+        Ok(Self {
+            pinhole,
+            lens_radius,
+            focal_distance,
+            scale,
+            centre: pinhole.eye() + pinhole.forward() * focal_distance,
+            lens_bound,
+        })
+    }
+
+    /// The focus point of raster position `(x, y)`, computed once for all
+    /// its lens samples: `(eye + focal_distance forward) + (right (dx k) +
+    /// true_up (dy k))` with `k = focal_distance / focal_length` and `(dx,
+    /// dy)` the offsets from the image centre (`eye + k p`, `p` the pinhole
+    /// camera's unnormalised direction), rounded to the grid on which every
+    /// lens point's difference from it is exact (see [`ThinLensCamera`]).
+    ///
+    /// It lies on the plane of focus and on the pinhole ray of `(x, y)`:
+    /// each component is within `gamma(5) (|eye_i| + focal_distance
+    /// |forward_i| + k |dx right_i| + k |dy up_i|)` of the exact `eye +
+    /// focal_distance forward + k (dx right + dy true_up)` for the camera's
+    /// (rounded) basis (five roundings along the longest path: `k`, the two
+    /// products, the two sums; the plane's centre two, and the last sum),
+    /// and the grid moves it by at most two ulps of the larger of the
+    /// point's and the lens's coordinates. A NaN or infinite position
+    /// gives a NaN point.
+    #[inline(always)]
+    #[must_use]
+    pub fn focus(&self, x: S<V>, y: S<V>) -> FocusPoint<V> {
+        let (dx, dy) = super::centred(x, y, self.pinhole.width(), self.pinhole.height());
+        let k = self.scale;
+        let f = self.centre + (self.pinhole.right() * (dx * k) + self.pinhole.up() * (dy * k));
+        let m = self.lens_bound;
+        let grid = V::new(grid(f.x(), m.x()), grid(f.y(), m.y()), grid(f.z(), m.z()));
+        FocusPoint {
+            point: V::new(
+                snap(f.x(), grid.x()),
+                snap(f.y(), grid.y()),
+                snap(f.z(), grid.z()),
+            ),
+            grid,
+            raster: (x, y),
+        }
+    }
+
+    /// The point of the lens for sample `(s, t)` in `[0, 1)^2`, before
+    /// rounding to a focus point's grid: `eye + radius (a right + b
+    /// true_up)` with `(a, b)` Shirley and Chiu's concentric map of the
+    /// sample onto the unit disc (each within `gamma(28)` of it in `f32`,
+    /// `gamma(44)` in `f64`, for samples in `[0, 1]^2`). Samples
+    /// outside `[0, 1]^2` map outside the disc; NaN gives NaN.
+    #[inline]
+    #[must_use]
+    pub fn lens_point(&self, s: S<V>, t: S<V>) -> V {
+        let (a, b) = concentric_disc(s, t);
+        let radius = self.lens_radius;
+        self.pinhole.eye()
+            + (self.pinhole.right() * (radius * a) + self.pinhole.up() * (radius * b))
+    }
+
+    /// The lens offset `radius * concentric_disc(s, t)`, or `None` at the
+    /// lens centre (where the ray is the pinhole ray).
+    #[inline(always)]
+    fn lens_offset(&self, s: S<V>, t: S<V>) -> Option<(S<V>, S<V>)> {
+        let radius = self.lens_radius;
+        // A zero radius is the pinhole camera, whatever the sample (a NaN
+        // one included).
+        if radius == S::<V>::ZERO {
+            return None;
+        }
+        let (a, b) = concentric_disc(s, t);
+        let (ra, rb) = (radius * a, radius * b);
+        let zero = S::<V>::ZERO;
+        (ra != zero || rb != zero).then_some((ra, rb))
+    }
+
+    /// The ray from the lens point at offset `(ra, rb)` through `focus`.
+    #[inline(always)]
+    fn through(&self, focus: &FocusPoint<V>, (ra, rb): (S<V>, S<V>)) -> Ray<V> {
+        let lens = self.pinhole.eye() + (self.pinhole.right() * ra + self.pinhole.up() * rb);
+        let g = focus.grid;
+        let origin = V::new(
+            snap(lens.x(), g.x()),
+            snap(lens.y(), g.y()),
+            snap(lens.z(), g.z()),
+        );
+        Ray::new(origin, focus.point - origin)
+    }
+
+    /// The ray of lens sample `(s, t)` (in `[0, 1)^2`) through `focus`:
+    /// from the lens point `L` (rounded to the focus point's grid) along
+    /// `F - L`, which is exact, so that the ray is at the focus point `F`
+    /// at `t = 1`, in exact arithmetic and bit for bit in floating point.
+    /// A sample at the lens centre (or a zero lens radius) gives the
+    /// pinhole ray of the film point instead, bit for bit.
+    #[inline(always)]
+    #[must_use]
+    pub fn ray_through(&self, focus: &FocusPoint<V>, s: S<V>, t: S<V>) -> Ray<V> {
+        match self.lens_offset(s, t) {
+            Some(offset) => self.through(focus, offset),
+            None => self.pinhole.ray(focus.raster.0, focus.raster.1),
+        }
+    }
+
+    /// The ray of raster position `(x, y)` and lens sample `(s, t)`:
+    /// [`ray_through(&focus(x, y), s, t)`](ThinLensCamera::ray_through).
+    /// A renderer taking many lens samples per film point computes the
+    /// focus point once and calls `ray_through`.
+    #[inline(always)]
+    #[must_use]
+    pub fn ray(&self, x: S<V>, y: S<V>, s: S<V>, t: S<V>) -> Ray<V> {
+        self.ray_through(&self.focus(x, y), s, t)
+    }
+
+    /// The ray through the centre of pixel `(i, j)` for lens sample `(s,
+    /// t)`: `ray(i + 0.5, j + 0.5, s, t)`.
+    #[inline(always)]
+    #[must_use]
+    pub fn pixel_ray(&self, i: u32, j: u32, s: S<V>, t: S<V>) -> Ray<V> {
+        let (x, y) = super::pixel_centre(i, j);
+        self.ray(x, y, s, t)
+    }
+
+    /// The ray of `(x, y)` and lens sample `(s, t)`, bit for bit
+    /// [`ray`](ThinLensCamera::ray), with its differentials: for a fixed
+    /// lens point the origin does not move and the direction `F - L`
+    /// moves with the focus point, `dx_dir = (focal_distance /
+    /// focal_length) right` and `dy_dir = -(focal_distance / focal_length)
+    /// true_up` (one rounding each, and exact second order: the focus point
+    /// is linear in the raster position; the grid rounding adds at most
+    /// `g_i` per component to the difference of neighbouring rays). At the
+    /// lens centre, the pinhole camera's differentials.
+    #[inline(always)]
+    #[must_use]
+    pub fn ray_differential(&self, x: S<V>, y: S<V>, s: S<V>, t: S<V>) -> RayDifferential<V> {
+        let Some(offset) = self.lens_offset(s, t) else {
+            return self.pinhole.ray_differential(x, y);
+        };
+        RayDifferential {
+            ray: self.through(&self.focus(x, y), offset),
+            dx_origin: V::ZERO,
+            dx_dir: self.pinhole.right() * self.scale,
+            dy_origin: V::ZERO,
+            dy_dir: -(self.pinhole.up() * self.scale),
+        }
+    }
+
+    /// The ray cone of every ray: the pinhole camera's
+    /// ([`PinholeCamera::ray_cone`]), a cone from the lens point with one
+    /// pixel's angle (the film point's footprint on the plane of focus is
+    /// `focal_distance / focal_length` wide, seen from `focal_distance`
+    /// away).
+    #[inline]
+    #[must_use]
+    pub fn ray_cone(&self) -> RayCone<S<V>> {
+        self.pinhole.ray_cone()
+    }
+
+    /// The pinhole camera: the film, the eye and the basis.
+    #[inline]
+    #[must_use]
+    pub fn pinhole(&self) -> &PinholeCamera<V> {
+        &self.pinhole
+    }
+
+    /// The lens radius, in world units.
+    #[inline]
+    #[must_use]
+    pub fn lens_radius(&self) -> S<V> {
+        self.lens_radius
+    }
+
+    /// The distance of the plane of focus from the eye, along the view.
+    #[inline]
+    #[must_use]
+    pub fn focal_distance(&self) -> S<V> {
+        self.focal_distance
+    }
+}

@@ -1,0 +1,339 @@
+//! Sines, cosines and arctangents for the cameras, with angles in turns
+//! (one turn is `2 pi`), and their error bounds.
+//!
+//! Written here, not taken from `std` or `libm`, for two reasons: their
+//! error is derived below (the cameras' round-trip bounds rest on it), and
+//! they are short polynomials the compiler inlines (a call to `sinf` costs
+//! more than a whole pinhole ray). Angles in turns reduce exactly: `t -
+//! round(t)` and `4 t - round(4 t)` are exact in floating point, so the
+//! only rounding of the argument is the last product by `pi / 2`.
+
+use super::Scalar;
+use super::repr::{Bits, Repr};
+
+/// True for `f32`, false for `f64`; a constant after inlining.
+#[inline(always)]
+fn single<F: Scalar>() -> bool {
+    F::UNIT_ROUNDOFF.to_f64() > 1e-10
+}
+
+/// `x` rounded to an integer: the nearest one (ties to even) for
+/// `|x| < 2^(p-2)` (`p` the precision: 24 or 53 bits), and some integer
+/// within a few ulps of `x` above that (where `x` is a multiple of `1/2`
+/// or coarser). NaN stays NaN; infinities give NaN.
+///
+/// `c = 1.5 * 2^(p-1)`: for `|x| < 2^(p-2)`, `x + c` lies in
+/// `[2^(p-1), 2^p)`, where the floats are the integers, so it rounds `x`
+/// to an integer (ties to the even one, as `c` is even), and subtracting
+/// `c` is exact (Sterbenz). For larger `x` both `x + c` and `c` are
+/// integers, and so is their rounded difference.
+#[inline(always)]
+pub(crate) fn round_int<F: Scalar>(x: F) -> F {
+    let c = if single::<F>() {
+        F::from_f64(12_582_912.0) // 1.5 * 2^23
+    } else {
+        F::from_f64(6_755_399_441_055_744.0) // 1.5 * 2^52
+    };
+    (x + c) - c
+}
+
+/// The bound `gamma(TRIG)` on the absolute error of [`sin_cos_quarter`]:
+/// 24 for `f32`, 40 for `f64` (derived there).
+#[inline(always)]
+pub(crate) fn trig_n<F: Scalar>() -> u32 {
+    if single::<F>() { 24 } else { 40 }
+}
+
+/// Taylor coefficients of `sin(x) / x` in powers of `x^2`.
+const SIN: [f64; 9] = [
+    1.0,
+    -1.0 / 6.0,
+    1.0 / 120.0,
+    -1.0 / 5040.0,
+    1.0 / 362_880.0,
+    -1.0 / 39_916_800.0,
+    1.0 / 6_227_020_800.0,
+    -1.0 / 1_307_674_368_000.0,
+    1.0 / 355_687_428_096_000.0,
+];
+
+/// Taylor coefficients of `cos(x)` in powers of `x^2`.
+const COS: [f64; 9] = [
+    1.0,
+    -1.0 / 2.0,
+    1.0 / 24.0,
+    -1.0 / 720.0,
+    1.0 / 40_320.0,
+    -1.0 / 3_628_800.0,
+    1.0 / 479_001_600.0,
+    -1.0 / 87_178_291_200.0,
+    1.0 / 20_922_789_888_000.0,
+];
+
+/// `sum c[k] z^k` for the first `n` coefficients, by Horner's rule.
+#[inline(always)]
+fn horner<F: Scalar>(c: &[f64], n: usize, z: F) -> F {
+    let mut p = F::from_f64(c[n - 1]);
+    let mut k = n - 1;
+    while k > 0 {
+        k -= 1;
+        p = p * z + F::from_f64(c[k]);
+    }
+    p
+}
+
+/// `(sin x, cos x)` for `|x| <= pi/4` (a rounding beyond is fine), each
+/// within `gamma(TRIG)` ([`trig_n`]) of the exact value, absolutely.
+///
+/// Taylor polynomials, in `z = x^2`: `sin` to `x^9` and `cos` to `x^10`
+/// in `f32`, `sin` to `x^17` and `cos` to `x^16` in `f64`. Truncation:
+/// the first omitted term bounds the rest (alternating, decreasing), at
+/// most `(pi/4)^11 / 11! < 2e-9` and `(pi/4)^12 / 12! < 2e-10` in `f32`
+/// (below `0.04 u`), `(pi/4)^19 / 19! < 1e-19` and `(pi/4)^18 / 18! <
+/// 3e-18` in `f64` (below `0.03 u`). Rounding: with `n` the degree in
+/// `z` (4 and 5 in `f32`, 8 in `f64`), `z` carries one rounding and `z^k`
+/// so at most `n`; each coefficient two (decimal to `f64`, `f64` to
+/// `f32`); Horner's rule two per step (Higham, 5.3). So the computed
+/// polynomial is within `gamma(3n + 2) sum |c_k| z^k` of the exact one,
+/// and `sin` adds the product by `x`: `gamma(3n + 3) sinh|x|` and
+/// `gamma(3n + 2) cosh x`, with `sinh(pi/4) < 0.87`, `cosh(pi/4) < 1.33`.
+/// In `f32`: `0.87 gamma(15)` and `1.33 gamma(17) < gamma(23)`; in `f64`:
+/// `0.87 gamma(27)` and `1.33 gamma(26) < gamma(35)`; with truncation,
+/// `gamma(24)` and `gamma(40)` cover both.
+#[inline(always)]
+pub(crate) fn sin_cos_quarter<F: Scalar>(x: F) -> (F, F) {
+    let z = x * x;
+    let (ns, nc) = if single::<F>() { (5, 6) } else { (9, 9) };
+    (x * horner(&SIN, ns, z), horner(&COS, nc, z))
+}
+
+/// `(sin 2 pi t, cos 2 pi t)`: the sine and cosine of `t` turns.
+///
+/// For `|t| < 2^(p-2)` (4 million turns in `f32`), each is within
+/// `gamma(TRIG + 2)` of the exact value, absolutely; beyond, the pair is
+/// still finite, of length 1 within the same bound (the angle is then a
+/// multiple of a quarter turn or coarser, and which one is not
+/// specified). NaN or infinite `t` gives NaN.
+///
+/// Reduction, exact: `s = t - round(t)` is in `[-1/2, 1/2]` and `t - s`
+/// an integer; `k = round(4 s)` is a quarter-turn count in `-2..=2`, and
+/// `r = 4 s - k` in `[-1/2, 1/2]`, all exact. Then `x = r * fl(pi/2)`,
+/// with `|x - r pi/2| <= (pi/4) gamma(2)`, so that `sin` and `cos` of `x`
+/// (1-Lipschitz) are within `gamma(2)` of those of `r pi/2`, and
+/// [`sin_cos_quarter`] adds `gamma(TRIG)`. The quarter turns are exact
+/// swaps and sign changes.
+#[inline(always)]
+pub(crate) fn sin_cos_turns<F: Scalar>(t: F) -> (F, F) {
+    // Within half a turn (every angle of a position in a panorama's image)
+    // there are no whole turns: s = t, and k is already in -2..=2.
+    let inside = t.abs() <= F::HALF;
+    let s = if inside { t } else { t - round_int(t) };
+    let four_s = s * F::from_u32(4);
+    let k = round_int(four_s);
+    let r = four_s - k;
+    let (sin, cos) = sin_cos_quarter(r * F::from_f64(core::f64::consts::FRAC_PI_2));
+    // k modulo 4, in -2..=2 (for |t| beyond 2^(p-2), k may be any integer).
+    let q = if inside {
+        k
+    } else {
+        k - F::from_u32(4) * round_int(k * F::from_f64(0.25))
+    };
+    quarter_turns(sin, cos, q)
+}
+
+/// `(sin, cos)` of an angle `q` quarter turns on, `q` in `-2..=2`: exact.
+#[inline(always)]
+fn quarter_turns<F: Scalar>(sin: F, cos: F, q: F) -> (F, F) {
+    let zero = F::ZERO;
+    let odd = q.abs() == F::ONE;
+    let (a, b) = if odd { (cos, sin) } else { (sin, cos) };
+    // sin(x + q pi/2): s, c, -s, -c for q = 0, 1, 2 (or -2), -1;
+    // cos(x + q pi/2): c, -s, -c, s.
+    let two = F::TWO;
+    let sin_negative = q < zero || q == two;
+    let cos_negative = q > zero || q == -two;
+    (
+        if sin_negative { -a } else { a },
+        if cos_negative { -b } else { b },
+    )
+}
+
+/// Taylor coefficients of `atan(x) / x` in powers of `x^2`.
+const ATAN: [f64; 21] = [
+    1.0,
+    -1.0 / 3.0,
+    1.0 / 5.0,
+    -1.0 / 7.0,
+    1.0 / 9.0,
+    -1.0 / 11.0,
+    1.0 / 13.0,
+    -1.0 / 15.0,
+    1.0 / 17.0,
+    -1.0 / 19.0,
+    1.0 / 21.0,
+    -1.0 / 23.0,
+    1.0 / 25.0,
+    -1.0 / 27.0,
+    1.0 / 29.0,
+    -1.0 / 31.0,
+    1.0 / 33.0,
+    -1.0 / 35.0,
+    1.0 / 37.0,
+    -1.0 / 39.0,
+    1.0 / 41.0,
+];
+
+/// The bound, in turns, on the absolute error of [`atan2_turns`]:
+/// `gamma(ATAN)` with 12 for `f32` and 24 for `f64` (derived there).
+#[cfg(test)]
+pub(crate) fn atan_n<F: Scalar>() -> u32 {
+    if single::<F>() { 12 } else { 24 }
+}
+
+/// `atan2(y, x) / (2 pi)`: the angle of `(x, y)` in turns, in
+/// `[-1/2, 1/2]`, within `gamma(ATAN)` turns ([`atan_n`]) of the exact
+/// angle of the floats given, absolutely; `0` for `(0, 0)` (either sign),
+/// NaN when either is NaN; an infinite component gives the angle of the
+/// direction it dominates, or NaN for two infinities.
+///
+/// Steps and their errors, in radians before the last conversion:
+///
+/// 1. `m = min / max` of `|x|, |y|`, in `[0, 1]`: one rounding, and
+///    `atan` has slope at most 1, so at most `u m / (1 + m^2) <= u/2`.
+/// 2. For `m > tan(pi/8)`, `r = (m - 1) / (m + 1)` and `atan m = pi/4 +
+///    atan r`, else `r = m`; `|r| <= tan(pi/8) < 0.4143`. Three roundings
+///    of `r`: at most `0.42 gamma(3)`.
+/// 3. `atan r` by its Taylor series in `r^2` to `r^17` (`f32`, 9 terms)
+///    or `r^41` (`f64`, 21 terms): truncation below `0.4143^19 / 19 <
+///    3e-9` and `0.4143^43 / 43 < 8e-19` (under `0.05 u` and `0.01 u`);
+///    rounding, as in [`sin_cos_quarter`], `gamma(3n + 3) atanh(0.4143)`
+///    with `n` 8 or 20, `atanh(0.4143) < 0.45`: `0.45 gamma(27)` and
+///    `0.45 gamma(63)`.
+/// 4. Adding `fl(pi/4)`: its rounding and the sum's, `u (pi/4 + 0.79)`.
+///
+/// In `f32` that is at most `(0.5 + 1.3 + 0.05 + 12.2 + 1.6) u < 16 u`,
+/// in `f64` `(0.5 + 1.3 + 0.01 + 28.4 + 1.6) u < 32 u`. To turns: the
+/// product by `fl(1 / 2 pi)` adds two roundings of a value at most `1/8`
+/// (`u/4`), and then `1/4 - a`, `1/2 - a` and the sign are one rounding
+/// each of a value at most `1/2` (`u/2` each): in total at most
+/// `16 u / 2 pi + 1.25 u < 3.8 u` and `32 u / 2 pi + 1.25 u < 6.4 u`.
+/// `gamma(12)` and `gamma(24)` leave room.
+#[inline]
+pub(crate) fn atan2_turns<F: Scalar>(y: F, x: F) -> F {
+    let (zero, one) = (F::ZERO, F::ONE);
+    let (ax, ay) = (x.abs(), y.abs());
+    if ax == zero && ay == zero {
+        // (0, 0), either sign: 0.
+        return zero;
+    }
+    let steep = ay > ax;
+    let (num, den) = if steep { (ax, ay) } else { (ay, ax) };
+    let m = num / den;
+    let tan_pi_8 = F::from_f64(0.414_213_562_373_095_03);
+    let big = m > tan_pi_8;
+    let r = if big { (m - one) / (m + one) } else { m };
+    let n = if single::<F>() { 9 } else { 21 };
+    let mut a = r * horner(&ATAN, n, r * r);
+    if big {
+        a = a + F::from_f64(core::f64::consts::FRAC_PI_4);
+    }
+    // Radians to turns, then the octant's angle to the quadrant's.
+    let mut turns = a * F::from_f64(1.0 / core::f64::consts::TAU);
+    let quarter = F::from_f64(0.25);
+    if steep {
+        turns = quarter - turns;
+    }
+    if x < zero {
+        turns = F::HALF - turns;
+    }
+    <F as Repr>::Bits::copysign(turns, y)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// Each result of `sin_cos_turns` against the `f64` library's sine and
+    /// cosine (for `f32`, whose bound is `1e9` times that library's error)
+    /// and for `f64` against the same to its own bound plus one `f64` ulp
+    /// of the library (glibc's and libm's documented accuracy).
+    #[test]
+    fn sin_cos_within_their_bound() {
+        fn check<F: Scalar>(ts: &[f64], slack: f64) {
+            let bound = F::gamma_n(trig_n::<F>() + 2).to_f64() + slack;
+            let mut worst = 0.0f64;
+            for &t in ts {
+                let (s, c) = sin_cos_turns(F::from_f64(t));
+                let t = F::from_f64(t).to_f64();
+                let angle = (t - t.round()) * core::f64::consts::TAU;
+                let es = (s.to_f64() - angle.sin()).abs();
+                let ec = (c.to_f64() - angle.cos()).abs();
+                worst = worst.max(es).max(ec);
+                assert!(es <= bound && ec <= bound, "{t}: {s:?} {c:?}");
+            }
+            // The bound is not vacuous: the error is above zero somewhere.
+            assert!(worst > 0.0 && worst < bound);
+        }
+        let mut ts = std::vec::Vec::new();
+        for i in -4000..=4000 {
+            ts.push(f64::from(i) / 1000.0);
+            ts.push(f64::from(i) * 0.000_123_7 + 0.1);
+        }
+        ts.extend([0.0, -0.0, 0.125, -0.125, 0.25, 0.5, -0.5, 1.0, 1e6 + 0.3]);
+        check::<f32>(&ts, 0.0);
+        check::<f64>(&ts, 2.0 * f64::EPSILON);
+    }
+
+    /// Exact cases: quarter turns give exact zeros and ones.
+    #[test]
+    fn quarter_turns_are_exact() {
+        for (t, s, c) in [
+            (0.0, 0.0, 1.0),
+            (0.25, 1.0, 0.0),
+            (0.5, 0.0, -1.0),
+            (-0.25, -1.0, 0.0),
+            (-0.5, 0.0, -1.0),
+            (0.75, -1.0, 0.0),
+            (3.0, 0.0, 1.0),
+        ] {
+            assert_eq!(sin_cos_turns(t as f32), (s as f32, c as f32), "{t}");
+            assert_eq!(sin_cos_turns(t), (s, c), "{t}");
+        }
+        assert!(sin_cos_turns(f32::NAN).0.is_nan());
+        assert!(sin_cos_turns(f64::INFINITY).1.is_nan());
+        // Far beyond the reduction's exact range: finite and unit.
+        let (s, c) = sin_cos_turns(3.0e30f32);
+        assert!((s * s + c * c - 1.0).abs() < 1e-5);
+    }
+
+    #[test]
+    fn atan2_within_its_bound() {
+        fn check<F: Scalar>(slack: f64) {
+            let bound = F::gamma_n(atan_n::<F>()).to_f64() + slack;
+            let mut worst = 0.0f64;
+            for i in 0..20_000 {
+                let a = f64::from(i) * 0.000_314_159_3 * 2.0 - core::f64::consts::PI;
+                for len in [1.0, 3.5e-3, 7e4] {
+                    let (x, y) = (F::from_f64(len * a.cos()), F::from_f64(len * a.sin()));
+                    let got = atan2_turns(y, x).to_f64();
+                    let exact = y.to_f64().atan2(x.to_f64()) / core::f64::consts::TAU;
+                    let e = (got - exact).abs();
+                    worst = worst.max(e);
+                    assert!(e <= bound, "({x:?}, {y:?}): {got} vs {exact}");
+                }
+            }
+            assert!(worst > 0.0);
+        }
+        check::<f32>(0.0);
+        check::<f64>(f64::EPSILON / 8.0);
+        assert_eq!(atan2_turns(0.0f32, 0.0), 0.0);
+        assert_eq!(atan2_turns(0.0f64, -1.0), 0.5);
+        assert_eq!(atan2_turns(-0.0f64, -1.0), -0.5);
+        assert_eq!(atan2_turns(1.0f32, 0.0), 0.25);
+        assert!((atan2_turns(1.0f32, 1.0) - 0.125).abs() < 1e-7);
+        assert!(atan2_turns(f64::NAN, 0.0).is_nan());
+        assert!(atan2_turns(f32::NAN, 1.0).is_nan());
+        assert!(atan2_turns(f32::INFINITY, f32::INFINITY).is_nan());
+        assert_eq!(atan2_turns(f64::INFINITY, 1.0), 0.25);
+    }
+}
