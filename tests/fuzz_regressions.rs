@@ -840,3 +840,11 @@ fn thin_lens_subnormal_radius_meets_the_focus_point() {
 // bound); and a matrix camera of an axis-aligned view stores components
 // in the subnormal range, where a rounding's error is absolute, not
 // relative (now half a subnormal per rounding in the bound).
+
+// `hit_differentials` (structured, f32): a triangle generated around the
+// ray's point with two nearly opposite corner offsets, a sliver whose
+// normal is known to less than its own length; the running error bound
+// was infinite, as it should be (the division by `|n|^2` has no certain
+// room), and the check expected it finite for any hit that was not
+// grazing. The check's fault: it now also exempts slivers (reproducer in
+// fuzz/crashes/hit_differentials).
