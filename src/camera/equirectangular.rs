@@ -125,8 +125,9 @@ impl<V: Vector> EquirectangularCamera<V> {
     /// `dx_dir = (2 pi / width) cos(lat) (cos(lon) right - sin(lon) forward)`,
     /// `dy_dir = (pi / height) (sin(lat) (sin(lon) right + cos(lon) forward) - cos(lat) true_up)`,
     ///
-    /// those of the exact mapping (the normalisation changes the direction
-    /// by a rounding). Second order: the mapping's second derivatives in
+    /// those of the exact mapping before normalising (the normalisation
+    /// changes them by as much as the basis departs from orthonormal, a
+    /// few roundings unless the up vector was nearly parallel to the view). Second order: the mapping's second derivatives in
     /// longitude and latitude are at most 1 long, so the rays of `(x + 1,
     /// y)` and `(x, y + 1)` are within `(2 pi / width)^2 / 2` and `(pi /
     /// height)^2 / 2` of `dir + dx_dir` and `dir + dy_dir`, plus rounding.

@@ -292,14 +292,18 @@ impl<V: Vector> ThinLensCamera<V> {
     fn lens_offset(&self, s: S<V>, t: S<V>) -> Option<(S<V>, S<V>)> {
         let radius = self.lens_radius;
         // A zero radius is the pinhole camera, whatever the sample (a NaN
-        // one included).
-        if radius == S::<V>::ZERO {
+        // one included); so is the sample at the lens centre. Any other
+        // sample takes the lens's path, even where its offset underflows to
+        // zero (a subnormal radius), so that its ray meets the focus point.
+        let zero = S::<V>::ZERO;
+        if radius == zero {
             return None;
         }
         let (a, b) = concentric_disc(s, t);
-        let (ra, rb) = (radius * a, radius * b);
-        let zero = S::<V>::ZERO;
-        (ra != zero || rb != zero).then_some((ra, rb))
+        if a == zero && b == zero {
+            return None;
+        }
+        Some((radius * a, radius * b))
     }
 
     /// The ray from the lens point at offset `(ra, rb)` through `focus`.

@@ -237,10 +237,21 @@ fn e<F: Scalar>() -> R {
 /// `sum_k |n_k| e K_k / (|D| - sum_k |m_k| e K_k)`: the bound on the NDC
 /// of a vector `v* + err` (`|err_k| <= e K_k`) off the exact one, where `n
 /// . v* = 0` and `m . v* = D`; `None` when the denominator is not positive.
-fn ndc_bound(n: &R3, m: &R3, d: &R, k: &R3, e: &R) -> Option<R> {
-    let num: R = (0..3).map(|i| abs(&n[i]) * e * &k[i]).sum();
-    let den = abs(d) - (0..3).map(|i| abs(&m[i]) * e * &k[i]).sum::<R>();
+fn ndc_bound(n: &R3, m: &R3, d: &R, k: &R3, e: &R, tiny: &R) -> Option<R> {
+    let num: R = (0..3).map(|i| abs(&n[i]) * (e * &k[i] + tiny)).sum();
+    let den = abs(d) - (0..3).map(|i| abs(&m[i]) * (e * &k[i] + tiny)).sum::<R>();
     (den > int(0)).then(|| num / den)
+}
+
+/// The absolute error that roundings into the subnormal range add, where
+/// a relative bound says nothing (half the smallest subnormal each): the
+/// stored `c`, `a`, `b` (one each, times `1`, `|dx|`, `|dy|`), the ray's
+/// three products and sums, and the normalisation's product (in the
+/// unnormalised vector's units, times its length), in all
+/// `TINY (4 + |dx| + |dy| + |v|)`. Matrices of an axis-aligned view make
+/// such components (products of the view's tiny off-axis roundings).
+fn subnormal_slack<F: Scalar>(dx: &R, dy: &R, length: &R) -> R {
+    r(F::TINY) * (int(4) + abs(dx) + abs(dy) + length)
 }
 
 /// The NDC of pixel `(i, j)`'s centre: `nx = (2/w) dx`, `ny = +-(2/h) dy`
@@ -264,6 +275,9 @@ fn check_pixel<V: Vector>(cam: &MatrixCamera<V>, ex: &Exact, clip: ClipSpace, i:
     let (a0, a1, a2, a3) = (ex.row_mag(0), ex.row_mag(1), ex.row_mag(2), ex.row_mag(3));
     let d = rv(ray.dir);
     let e = e::<S<V>>();
+    // The raster offsets, |dx| and |dy|.
+    let dx = abs(&(&nx * int(i64::from(w)) / int(2)));
+    let dy = abs(&(&ny * int(i64::from(h)) / int(2)));
     if !cam.is_orthographic() {
         let det = dot(&m0, &cross(&m1, &m3));
         let k = add3(
@@ -275,12 +289,14 @@ fn check_pixel<V: Vector>(cam: &MatrixCamera<V>, ex: &Exact, clip: ClipSpace, i:
         );
         let w_rate = dot(&m3, &d);
         assert!(w_rate > int(0), "looks away from positive w: {}", ctx());
+        let length: R = k.iter().sum();
+        let tiny = subnormal_slack::<S<V>>(&dx, &dy, &length);
         for (coord, n) in [
             ("x", core::array::from_fn(|q| &m0[q] - &nx * &m3[q])),
             ("y", core::array::from_fn(|q| &m1[q] - &ny * &m3[q])),
         ] {
             let n: R3 = n;
-            let bound = ndc_bound(&n, &m3, &det, &k, &e).expect("a well-conditioned camera");
+            let bound = ndc_bound(&n, &m3, &det, &k, &e, &tiny).expect("a well-conditioned camera");
             let off = abs(&(dot(&n, &d) / &w_rate));
             assert!(
                 off <= bound,
@@ -313,11 +329,14 @@ fn check_pixel<V: Vector>(cam: &MatrixCamera<V>, ex: &Exact, clip: ClipSpace, i:
             (coeff(&nx, d0) * &x[q] + coeff(&ny, d1) * &y[q] + coeff(&z0, d2) * &z[q]) / abs(&det)
         });
         let eo = &e * (int(1) + &kappa);
+        let slack = subnormal_slack::<S<V>>(&dx, &dy, &int(0));
+        let length: R = z.iter().sum();
+        let tiny = subnormal_slack::<S<V>>(&int(0), &int(0), &length);
         let o = rv(ray.origin);
         for (coord, mrow, target, dd) in [("x", &m0, &nx, d0), ("y", &m1, &ny, d1)] {
             let value = (dot(mrow, &o) + dd) / &d3;
             let bound: R = (0..3)
-                .map(|q| abs(&mrow[q]) * &eo * &origin_mag[q])
+                .map(|q| abs(&mrow[q]) * (&eo * &origin_mag[q] + &slack))
                 .sum::<R>()
                 / abs(&d3);
             assert!(
@@ -330,7 +349,7 @@ fn check_pixel<V: Vector>(cam: &MatrixCamera<V>, ex: &Exact, clip: ClipSpace, i:
             // m0 x m1 in f64, normalised, rounded: within (u + gamma_64(20))
             // of its magnitudes, as a vector up to its length).
             let ed = r(S::<V>::UNIT_ROUNDOFF) + gamma::<f64>(20);
-            let bound = ndc_bound(mrow, &m2, &det, &z, &ed).expect("well-conditioned");
+            let bound = ndc_bound(mrow, &m2, &det, &z, &ed, &tiny).expect("well-conditioned");
             let drift = abs(&(dot(mrow, &d) / dot(&m2, &d)));
             assert!(
                 drift <= bound,
@@ -393,7 +412,8 @@ fn check_eye<V: Vector>(cam: &MatrixCamera<V>, ex: &Exact) {
     let got = rv(cam.pixel_ray(0, 0).origin);
     let u = r(S::<V>::UNIT_ROUNDOFF);
     for k in 0..3 {
-        let rounding = (gamma::<f64>(1) + &u) * abs(&got[k]) * (int(1) + &u);
+        // A component rounded into the subnormal range: half a subnormal.
+        let rounding = (gamma::<f64>(1) + &u) * abs(&got[k]) * (int(1) + &u) + r(S::<V>::TINY);
         assert!(
             abs(&(&got[k] - &eye[k])) <= &bound[k] + rounding,
             "eye {:?} off the camera centre in component {k}: {cam:?}",

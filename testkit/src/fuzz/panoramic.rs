@@ -436,10 +436,11 @@ fn check_round_trip<V: Vector, C: Panorama<V>>(cam: &C, x: S<V>, y: S<V>, bx: f6
 /// ray, within the second-order term (`(2 pi / w)^2 / 2` across, `(pi /
 /// h)^2 / 2` down: the map's second derivatives are at most 1 long in
 /// radians), both rays' errors (each within `direction_angle + 2 pi
-/// gamma(2) / 2` of its exact place: the angle's rounding) and the
+/// gamma(2) / 2` of its exact place: the angle's rounding), the
 /// differential's own (its sines and cosines within `gamma(TRIG + 2)`,
 /// their products, the basis and the scale: `(2 pi / w) 3 gamma(2T +
-/// 15)`, likewise).
+/// 15)`, likewise), and the normalisation's effect on the derivative
+/// where the basis is not exactly orthonormal (see the code).
 fn check_equirectangular_neighbours<V: Vector>(cam: &EquirectangularCamera<V>, x: S<V>, y: S<V>) {
     // The second-order term assumes an orthonormal basis (to within a
     // rounding's effect on it): skip the rare bases whose up vector was
@@ -462,7 +463,16 @@ fn check_equirectangular_neighbours<V: Vector>(cam: &EquirectangularCamera<V>, x
         (pi / h, x, y + S::<V>::ONE, diff.dy_dir),
     ] {
         let next = cam.ray(nx, ny).dir;
-        let bound = step * step / 2.0 + 2.0 * ray_error + step * 3.0 * g(2 * tr + 15);
+        // The differential is the unnormalised map's derivative; the rays
+        // are normalised. With the basis orthonormal within `skew`, the
+        // map's length is 1 within `2 skew` and its derivative along it at
+        // most `2 skew step`: the normalised derivative is within `5 skew
+        // step` of it, and the second derivative within `1 + 4 skew`.
+        let skew = basis_skew(cam.basis());
+        let bound = step * step / 2.0 * (1.0 + 4.0 * skew)
+            + 5.0 * skew * step
+            + 2.0 * ray_error
+            + step * 3.0 * g(2 * tr + 15);
         let off = (0..3)
             .map(|i| next[i].to_f64() - diff.ray.dir[i].to_f64() - d[i].to_f64())
             .map(|e| e * e)
@@ -476,9 +486,9 @@ fn check_equirectangular_neighbours<V: Vector>(cam: &EquirectangularCamera<V>, x
 }
 
 /// The equal-area differentials against a central difference of the same
-/// map in `f64` (the camera rebuilt in `f64` from this one's `forward`
-/// and `up`, step `1e-4` pixels, away from the map's creases and the
-/// image's edge).
+/// map in `f64` (the octahedral formulas on this camera's own basis,
+/// unnormalised, with the `f64` library's sine and cosine; step `1e-4`
+/// pixels, away from the map's creases and the image's edge).
 ///
 /// Truncation: the central difference is within `step^2 |d'''| / 6` of the
 /// derivative. In a face (say `u, v > 0` in front: `r = u + v`, `phi =
@@ -489,12 +499,13 @@ fn check_equirectangular_neighbours<V: Vector>(cam: &EquirectangularCamera<V>, x
 /// are then at most `13.4 + 5.5 + 21 + 13.4 + 10.5` over `r^2`, `28 / r`
 /// and `30`, below `122 / r^2` (`r <= 1`), likewise behind and along `v`,
 /// so `|d'''| <= 250 / r^2` per unit of `u`, and `250 (2 / w)^3 / r^2` per
-/// pixel. Rounding: the `f64` directions are within `e` =
-/// [`direction_angle`] (in `f64`) of the exact map, so the difference
-/// adds `e / step`. Each camera's differential is within `3 gamma(2T +
-/// 15) |derivative|_1` of the exact map's derivative (its sines and
-/// cosines, products and basis, as a vector), which also covers the two
-/// cameras' bases' difference (a rounding of the smaller precision).
+/// pixel (a numerical survey of the faces away from the creases finds
+/// below `12 / r^2`). Rounding: the `f64` map is within `e` =
+/// [`direction_angle`] (in `f64`; the library's sine and cosine are far
+/// more accurate than the crate's bound) of the exact map, so the
+/// difference adds `e / step`. Each camera's differential is within `3
+/// gamma(2T + 15) |derivative|_1` of the exact map's derivative (its sines
+/// and cosines, products and basis, as a vector).
 /// The two differentials span the pixel's solid angle, `|dx x dy| = 4 pi
 /// / (w h)` (the map is equal-area), within the cross product of those
 /// errors (`2 sqrt(3)` of the relative error times `|dx| |dy|`) and the
@@ -505,14 +516,23 @@ fn check_equal_area_derivatives<V: Vector>(cam: &EqualAreaCamera<V>, x: S<V>, y:
         return;
     }
     let (w, h) = (cam.width(), cam.height());
-    let wide = EqualAreaCamera::<DVec3>::new(
-        DVec3::new(0.0, 0.0, 0.0),
-        c64(cam.forward()),
-        c64(cam.up()),
-        w,
-        h,
-    )
-    .expect("the same frame");
+    // The map in f64 on this camera's own basis (its exact map up to f64's
+    // roundings), unnormalised as the differentials' formulas are.
+    let [rt, up, fw] = cam.basis().map(c64);
+    let map = |x: f64, y: f64| {
+        let (u, v) = (2.0 * x / f64::from(w) - 1.0, 1.0 - 2.0 * y / f64::from(h));
+        let (au, av) = (u.abs(), v.abs());
+        let front = au + av <= 1.0;
+        let (r, p) = if front {
+            (au + av, av)
+        } else {
+            ((1.0 - au) + (1.0 - av), 1.0 - au)
+        };
+        let phi = core::f64::consts::FRAC_PI_2 * p / r;
+        let ring = r * (2.0 - r * r).sqrt();
+        let z = if front { 1.0 - r * r } else { r * r - 1.0 };
+        rt * (phi.cos().copysign(u) * ring) + up * (phi.sin().copysign(v) * ring) + fw * z
+    };
     let (xf, yf) = (x.to_f64(), y.to_f64());
     let (u, v) = (2.0 * xf / f64::from(w) - 1.0, 1.0 - 2.0 * yf / f64::from(h));
     let r = if u.abs() + v.abs() <= 1.0 {
@@ -538,8 +558,7 @@ fn check_equal_area_derivatives<V: Vector>(cam: &EqualAreaCamera<V>, x: S<V>, y:
     let truncation = step * step * 250.0 * scale.powi(3) / (r * r) / 6.0 + e64 / step;
     let diff = cam.ray_differential(x, y);
     for (dx, dy, got) in [(step, 0.0, diff.dx_dir), (0.0, step, diff.dy_dir)] {
-        let a = wide.ray(xf + dx, yf + dy).dir;
-        let b = wide.ray(xf - dx, yf - dy).dir;
+        let (a, b) = (map(xf + dx, yf + dy), map(xf - dx, yf - dy));
         let central = (a - b) / (2.0 * step);
         let got = c64(got);
         let bound = rel * got.abs().element_sum() + truncation;
