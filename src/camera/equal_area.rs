@@ -331,33 +331,7 @@ impl<V: Vector> EqualAreaCamera<V> {
         Some((w * half + u * (w * half), h * half - v * (h * half)))
     }
 
-    /// The eye position: where every ray starts.
-    #[inline]
-    #[must_use]
-    pub fn eye(&self) -> V {
-        self.basis.eye
-    }
-
-    /// The unit view direction: the image centre's direction.
-    #[inline]
-    #[must_use]
-    pub fn forward(&self) -> V {
-        self.basis.forward
-    }
-
-    /// The unit vector to the right.
-    #[inline]
-    #[must_use]
-    pub fn right(&self) -> V {
-        self.basis.right
-    }
-
-    /// The unit vector up, orthogonal to `forward`.
-    #[inline]
-    #[must_use]
-    pub fn up(&self) -> V {
-        self.basis.up
-    }
+    super::basis_accessors!();
 
     /// The image width in pixels.
     #[inline]

@@ -216,33 +216,7 @@ impl<V: Vector> EquirectangularCamera<V> {
         ))
     }
 
-    /// The eye position: where every ray starts.
-    #[inline]
-    #[must_use]
-    pub fn eye(&self) -> V {
-        self.basis.eye
-    }
-
-    /// The unit view direction: the image centre's direction.
-    #[inline]
-    #[must_use]
-    pub fn forward(&self) -> V {
-        self.basis.forward
-    }
-
-    /// The unit vector to the right (longitude a quarter turn).
-    #[inline]
-    #[must_use]
-    pub fn right(&self) -> V {
-        self.basis.right
-    }
-
-    /// The unit vector up (the top row), orthogonal to `forward`.
-    #[inline]
-    #[must_use]
-    pub fn up(&self) -> V {
-        self.basis.up
-    }
+    super::basis_accessors!();
 
     /// The image width in pixels.
     #[inline]

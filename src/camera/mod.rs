@@ -90,6 +90,41 @@ impl fmt::Display for CameraError {
 
 impl core::error::Error for CameraError {}
 
+/// The accessors of a camera's [`Basis`] (a field `basis`): `eye`,
+/// `forward`, `right`, `up`, written once for the cameras that keep one.
+macro_rules! basis_accessors {
+    () => {
+        /// The eye position: where every ray starts.
+        #[inline]
+        #[must_use]
+        pub fn eye(&self) -> V {
+            self.basis.eye
+        }
+
+        /// The unit view direction: the image centre's direction.
+        #[inline]
+        #[must_use]
+        pub fn forward(&self) -> V {
+            self.basis.forward
+        }
+
+        /// The unit vector to the right.
+        #[inline]
+        #[must_use]
+        pub fn right(&self) -> V {
+            self.basis.right
+        }
+
+        /// The unit vector up, orthogonal to `forward`.
+        #[inline]
+        #[must_use]
+        pub fn up(&self) -> V {
+            self.basis.up
+        }
+    };
+}
+use basis_accessors;
+
 /// A camera's position and orthonormal frame: `forward` along the view,
 /// `right = normalize(forward x up)`, `up = normalize(right x forward)`.
 #[derive(Clone, Copy, Debug, PartialEq)]
