@@ -2,17 +2,18 @@
 """Instruction counts of each kernel on aarch64, NEON lanes against the
 portable code (BENCHMARKS.md, "aarch64 (NEON)").
 
-Builds the `kernel_asm` example of the benches package in release mode for
+Builds the `kernel_asm` bench binary of the benches package (release) for
 aarch64-unknown-linux-gnu twice, with the NEON lanes and with
 `--cfg rayhit_portable`, each in its own target directory. For each kernel
 function it counts the instructions of its body in `objdump -d` (every
 path; out-of-line helpers, the kernels' rare slow paths, not included),
-and the instructions executed by the example's one call, helpers included,
+and the instructions executed by the binary's one call, helpers included,
 from qemu's trace of every instruction (`-singlestep -d exec,nochain`).
 Prints a Markdown table. Needs what `.ci/aarch64` installs; run from the
 repository root: `python3 benches/aarch64_counts.py`.
 """
 
+import json
 import os
 import re
 import subprocess
@@ -34,20 +35,26 @@ LOAD_BASE = 0x55_0000_0000
 
 
 def build(name, rustflags):
-    """The example built into target/aarch64-<name>; its path."""
+    """The bench binary built into target/aarch64-<name>; its path."""
     env = dict(os.environ)
     env["CARGO_TARGET_DIR"] = f"target/aarch64-{name}"
     env["CARGO_TARGET_AARCH64_UNKNOWN_LINUX_GNU_LINKER"] = "aarch64-linux-gnu-gcc"
     env["RUSTFLAGS"] = rustflags
-    subprocess.run(
-        ["cargo", "build", "-q", "--release", "-p", "rayhit-benches",
-         "--example", "kernel_asm", "--target", TARGET],
-        check=True, env=env)
-    return f"target/aarch64-{name}/{TARGET}/release/examples/kernel_asm"
+    out = subprocess.run(
+        ["cargo", "bench", "-q", "--no-run", "-p", "rayhit-benches",
+         "--bench", "kernel_asm", "--target", TARGET,
+         "--message-format=json"],
+        check=True, env=env, capture_output=True, text=True).stdout
+    for line in out.splitlines():
+        msg = json.loads(line)
+        if msg.get("reason") == "compiler-artifact" and msg.get("executable") \
+                and msg["target"]["name"] == "kernel_asm":
+            return msg["executable"]
+    raise SystemExit("cargo built no kernel_asm binary")
 
 
 def symbols(binary):
-    """Function name -> (start, size), for the example's own functions."""
+    """Function name -> (start, size), for the binary's own functions."""
     out = subprocess.run(["aarch64-linux-gnu-nm", "-S", "-C", binary],
                          check=True, capture_output=True, text=True).stdout
     found = {}

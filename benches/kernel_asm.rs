@@ -1,6 +1,7 @@
 //! Each kernel as an out-of-line function of its own, so that its machine
 //! code can be read and its instructions counted (BENCHMARKS.md, "aarch64
-//! (NEON)"): in the built example, `objdump -dC` shows the code of
+//! (NEON)"): in the built binary (`cargo bench --no-run --bench
+//! kernel_asm` prints its path), `objdump -dC` shows the code of
 //! `kernel_asm::box_batch_8` and the others under those names. `main`
 //! calls each once on an opaque input, which keeps them in the binary.
 

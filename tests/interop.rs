@@ -8,8 +8,8 @@
 //! all of them (products and sums in the same order), so any difference is a
 //! bug in a vector type's implementation.
 //!
-//! `cargo test --test interop --features glam-029,glam-030,glam-031,glam-032,glam-033`
-//! runs every type (CI does).
+//! The tests turn those features on (the crate's dev-dependency on itself),
+//! so `cargo test --test interop` runs every type.
 
 use rayhit::glam::Vec3;
 use rayhit::{
