@@ -3,7 +3,7 @@
 use glam::Vec3;
 
 use super::{Basis, CameraError, RayCone, RayDifferential, centred, pixel_centre};
-use crate::num::trig::{atan2_turns, sin_cos_turns};
+use crate::num::trig::{atan2_turns, sin_cos_turns_pair};
 use crate::num::{S, Scalar, Vector, unit};
 use crate::ray::Ray;
 
@@ -91,7 +91,7 @@ impl<V: Vector> EquirectangularCamera<V> {
     fn angles(&self, x: S<V>, y: S<V>) -> [(S<V>, S<V>); 2] {
         let (dx, dy) = centred(x, y, self.width, self.height);
         let (tx, ty) = self.turns_per_pixel;
-        [sin_cos_turns(dx * tx), sin_cos_turns(dy * ty)]
+        sin_cos_turns_pair(dx * tx, dy * ty)
     }
 
     /// The ray through raster position `(x, y)`: from the eye, along the

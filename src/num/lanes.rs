@@ -101,6 +101,28 @@ pub trait Lanes: Copy + Debug + Send + Sync + 'static {
     /// Bit `k` set when `self[k] <= o[k]` fails (NaN included): `!le` on
     /// lanes 0 to 2, one comparison.
     fn nle(self, o: Self) -> u32;
+
+    // Four independent lanes (two angles' sines and cosines, say), rather
+    // than a vector's three axes: every lane counts below.
+
+    /// A mask of the four lanes, each set or clear, as the comparisons
+    /// below make it and [`Lanes::select`] reads it.
+    type Mask: Copy;
+    /// All four lanes.
+    fn to_array4(self) -> [Self::F; 4];
+    /// Lane `k` set when `self[k] < o[k]` (false for NaN), all four lanes.
+    fn lt_mask(self, o: Self) -> Self::Mask;
+    /// Lane `k` set when `self[k] <= o[k]` (false for NaN), all four lanes.
+    fn le_mask(self, o: Self) -> Self::Mask;
+    /// Lane `k` set when `self[k] == o[k]` (false for NaN), all four lanes.
+    fn eq_mask(self, o: Self) -> Self::Mask;
+    /// The lanes set in `a` or in `b`.
+    fn or_mask(a: Self::Mask, b: Self::Mask) -> Self::Mask;
+    /// `a`'s lane where `m` is set, `b`'s where it is clear: the bits of
+    /// one operand, unchanged (NaN payloads and zeros' signs included).
+    fn select(m: Self::Mask, a: Self, b: Self) -> Self;
+    /// Lanes `(1, 0, 3, 2)`: each pair of neighbours swapped.
+    fn swap_pairs(self) -> Self;
 }
 
 /// Eight lanes of a scalar type: one lane per shape of a batch. The same

@@ -90,6 +90,17 @@ macro_rules! cmp {
     };
 }
 
+/// A comparison of two registers, as a mask of all four lanes.
+macro_rules! mask {
+    ($name:ident, $intrinsic:ident) => {
+        #[inline(always)]
+        fn $name(self, o: Self) -> uint32x4_t {
+            // SAFETY: see the module docs (NEON, no memory access).
+            unsafe { $intrinsic(self.0, o.0) }
+        }
+    };
+}
+
 impl Lanes for F32x4 {
     type F = f32;
     #[inline(always)]
@@ -172,6 +183,31 @@ impl Lanes for F32x4 {
     fn sum3(self) -> f32 {
         let [x, y, z] = self.to_array();
         (x + y) + z
+    }
+    type Mask = uint32x4_t;
+    #[inline(always)]
+    fn to_array4(self) -> [f32; 4] {
+        let [x, y, z] = self.to_array();
+        // SAFETY: see the module docs (NEON, no memory access).
+        [x, y, z, unsafe { vgetq_lane_f32::<3>(self.0) }]
+    }
+    mask!(lt_mask, vcltq_f32);
+    mask!(le_mask, vcleq_f32);
+    mask!(eq_mask, vceqq_f32);
+    #[inline(always)]
+    fn or_mask(a: uint32x4_t, b: uint32x4_t) -> uint32x4_t {
+        // SAFETY: see the module docs (NEON, no memory access).
+        unsafe { vorrq_u32(a, b) }
+    }
+    #[inline(always)]
+    fn select(m: uint32x4_t, a: Self, b: Self) -> Self {
+        Self(select(m, a.0, b.0))
+    }
+    #[inline(always)]
+    fn swap_pairs(self) -> Self {
+        // REV64 reverses the 32-bit lanes within each 64-bit half.
+        // SAFETY: see the module docs (NEON, no memory access).
+        Self(unsafe { vrev64q_f32(self.0) })
     }
 }
 

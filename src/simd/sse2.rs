@@ -52,6 +52,17 @@ macro_rules! cmp {
     };
 }
 
+/// A comparison of two registers, as a mask of all four lanes.
+macro_rules! mask {
+    ($name:ident, $intrinsic:ident) => {
+        #[inline(always)]
+        fn $name(self, o: Self) -> __m128 {
+            // SAFETY: see the module docs (SSE, no memory access).
+            unsafe { $intrinsic(self.0, o.0) }
+        }
+    };
+}
+
 impl Lanes for F32x4 {
     type F = f32;
     #[inline(always)]
@@ -126,6 +137,32 @@ impl Lanes for F32x4 {
             let xy = _mm_add_ss(self.0, lane1(self.0));
             _mm_cvtss_f32(_mm_add_ss(xy, lane2(self.0)))
         }
+    }
+    type Mask = __m128;
+    #[inline(always)]
+    fn to_array4(self) -> [f32; 4] {
+        let [x, y, z] = self.to_array();
+        // SAFETY: see the module docs (SSE, no memory access).
+        let w = unsafe { _mm_cvtss_f32(_mm_shuffle_ps::<0b11_11_11_11>(self.0, self.0)) };
+        [x, y, z, w]
+    }
+    mask!(lt_mask, _mm_cmplt_ps);
+    mask!(le_mask, _mm_cmple_ps);
+    mask!(eq_mask, _mm_cmpeq_ps);
+    #[inline(always)]
+    fn or_mask(a: __m128, b: __m128) -> __m128 {
+        // SAFETY: see the module docs (SSE, no memory access).
+        unsafe { _mm_or_ps(a, b) }
+    }
+    #[inline(always)]
+    fn select(m: __m128, a: Self, b: Self) -> Self {
+        // SAFETY: see the module docs (SSE, no memory access).
+        Self(unsafe { _mm_or_ps(_mm_and_ps(m, a.0), _mm_andnot_ps(m, b.0)) })
+    }
+    #[inline(always)]
+    fn swap_pairs(self) -> Self {
+        // SAFETY: see the module docs (SSE, no memory access).
+        Self(unsafe { _mm_shuffle_ps::<0b10_11_00_01>(self.0, self.0) })
     }
 }
 

@@ -96,6 +96,65 @@ fn registers_match_the_definition() {
     }
 }
 
+/// The four-lane operations (every lane counts) give the portable
+/// definition's bits: the masks of the comparisons (read through `select`,
+/// whose result is one operand's exact bits), the pair swap, and the
+/// arithmetic on all four lanes (any NaN where the portable code computes a
+/// NaN).
+#[test]
+fn four_lane_operations_match_the_definition() {
+    fn four<L: Lanes<F = f32>>(l: L) -> [u32; 4] {
+        l.to_array4().map(f32::to_bits)
+    }
+    let mut draws = Draws(0x7f4a_7c15_9e37_79b9);
+    for _ in 0..100_000 {
+        let a: [f32; 4] = core::array::from_fn(|_| draws.special_f32());
+        let b: [f32; 4] = core::array::from_fn(|_| draws.special_f32());
+        let (pa, pb) = (
+            Portable::new4(a[0], a[1], a[2], a[3]),
+            Portable::new4(b[0], b[1], b[2], b[3]),
+        );
+        let (fa, fb) = (
+            F32Lanes::new4(a[0], a[1], a[2], a[3]),
+            F32Lanes::new4(b[0], b[1], b[2], b[3]),
+        );
+        assert_eq!(four(pa), a.map(f32::to_bits));
+        assert_eq!(four(fa), a.map(f32::to_bits));
+        let masks = [
+            (pa.lt_mask(pb), fa.lt_mask(fb)),
+            (pa.le_mask(pb), fa.le_mask(fb)),
+            (pa.eq_mask(pb), fa.eq_mask(fb)),
+            (
+                Portable::<f32>::or_mask(pa.lt_mask(pb), pb.eq_mask(pa)),
+                F32Lanes::or_mask(fa.lt_mask(fb), fb.eq_mask(fa)),
+            ),
+        ];
+        for (pm, fm) in masks {
+            assert_eq!(
+                four(Portable::select(pm, pa, pb)),
+                four(F32Lanes::select(fm, fa, fb)),
+                "{a:?} {b:?}"
+            );
+        }
+        assert_eq!(four(pa.swap_pairs()), four(fa.swap_pairs()));
+        assert_eq!(four(pa.neg()), four(fa.neg()));
+        assert_eq!(four(pa.abs()), four(fa.abs()));
+        type Op<L> = fn(L, L) -> L;
+        let arithmetic: [(Op<Portable<f32>>, Op<F32Lanes>); 3] = [
+            (Lanes::add, Lanes::add),
+            (Lanes::sub, Lanes::sub),
+            (Lanes::mul, Lanes::mul),
+        ];
+        for (p, f) in arithmetic {
+            assert_eq!(
+                p(pa, pb).to_array4().map(canonical),
+                f(fa, fb).to_array4().map(canonical),
+                "{a:?} {b:?}"
+            );
+        }
+    }
+}
+
 /// Eight lanes of random specials and ordinary values.
 fn eight(draws: &mut Draws) -> [f32; 8] {
     core::array::from_fn(|_| draws.special_f32())
