@@ -3,7 +3,7 @@
 
 use glam::Vec3;
 
-use super::{Basis, CameraError, RayCone, RayDifferential, centred, pixel_centre};
+use super::{Basis, CameraError, RayCone, RayDifferential, centred};
 use crate::num::trig::{atan2_turns, sin_cos_turns};
 use crate::num::{Bits, Repr, S, Scalar, Vector, unit};
 use crate::ray::Ray;
@@ -182,14 +182,6 @@ impl<V: Vector> EqualAreaCamera<V> {
         Ray::new(self.basis.eye, unit(dir))
     }
 
-    /// The ray through the centre of pixel `(i, j)`: `ray(i + 0.5, j + 0.5)`.
-    #[inline(always)]
-    #[must_use]
-    pub fn pixel_ray(&self, i: u32, j: u32) -> Ray<V> {
-        let (x, y) = pixel_centre(i, j);
-        self.ray(x, y)
-    }
-
     /// The ray through `(x, y)`, bit for bit [`ray`](Self::ray), with its
     /// differentials: the origin does not move, and the direction's
     /// derivatives are those of the map in the face of the octahedron the
@@ -333,17 +325,5 @@ impl<V: Vector> EqualAreaCamera<V> {
 
     super::basis_accessors!();
 
-    /// The image width in pixels.
-    #[inline]
-    #[must_use]
-    pub fn width(&self) -> u32 {
-        self.width
-    }
-
-    /// The image height in pixels.
-    #[inline]
-    #[must_use]
-    pub fn height(&self) -> u32 {
-        self.height
-    }
+    super::film_accessors!();
 }

@@ -2,7 +2,7 @@
 
 use glam::{DMat4, DVec3, Mat4, Vec3};
 
-use super::{CameraError, RayCone, RayDifferential, centred, pixel_centre};
+use super::{CameraError, RayCone, RayDifferential, centred};
 use crate::num::trig::atan2_turns;
 use crate::num::{S, Scalar, Vector, unit, unit_and_inverse_length};
 use crate::ray::Ray;
@@ -304,14 +304,6 @@ impl<V: Vector> MatrixCamera<V> {
         }
     }
 
-    /// The ray through the centre of pixel `(i, j)`: `ray(i + 0.5, j + 0.5)`.
-    #[inline(always)]
-    #[must_use]
-    pub fn pixel_ray(&self, i: u32, j: u32) -> Ray<V> {
-        let (x, y) = pixel_centre(i, j);
-        self.ray(x, y)
-    }
-
     /// The ray through `(x, y)`, bit for bit [`ray`](Self::ray), with its
     /// differentials. Perspective: as
     /// [`PinholeCamera::ray_differential`](crate::PinholeCamera::ray_differential)
@@ -400,19 +392,7 @@ impl<V: Vector> MatrixCamera<V> {
         self.projection == Projection::Orthographic
     }
 
-    /// The image width in pixels.
-    #[inline]
-    #[must_use]
-    pub fn width(&self) -> u32 {
-        self.width
-    }
-
-    /// The image height in pixels.
-    #[inline]
-    #[must_use]
-    pub fn height(&self) -> u32 {
-        self.height
-    }
+    super::film_accessors!();
 }
 
 impl MatrixCamera<Vec3> {

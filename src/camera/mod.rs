@@ -125,6 +125,35 @@ macro_rules! basis_accessors {
 }
 use basis_accessors;
 
+/// What every camera with a `ray(x, y)` and fields `width` and `height`
+/// has: `pixel_ray`, `width` and `height`, written once.
+macro_rules! film_accessors {
+    () => {
+        /// The ray through the centre of pixel `(i, j)`: `ray(i + 0.5, j + 0.5)`.
+        #[inline(always)]
+        #[must_use]
+        pub fn pixel_ray(&self, i: u32, j: u32) -> Ray<V> {
+            let (x, y) = super::pixel_centre(i, j);
+            self.ray(x, y)
+        }
+
+        /// The image width in pixels.
+        #[inline]
+        #[must_use]
+        pub fn width(&self) -> u32 {
+            self.width
+        }
+
+        /// The image height in pixels.
+        #[inline]
+        #[must_use]
+        pub fn height(&self) -> u32 {
+            self.height
+        }
+    };
+}
+use film_accessors;
+
 /// A camera's position and orthonormal frame: `forward` along the view,
 /// `right = normalize(forward x up)`, `up = normalize(right x forward)`.
 #[derive(Clone, Copy, Debug, PartialEq)]

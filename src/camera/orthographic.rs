@@ -2,7 +2,7 @@
 
 use glam::Vec3;
 
-use super::{Basis, CameraError, RayCone, RayDifferential, centred, pixel_centre};
+use super::{Basis, CameraError, RayCone, RayDifferential, centred};
 use crate::num::{S, Scalar, Vector};
 use crate::ray::Ray;
 
@@ -109,14 +109,6 @@ impl<V: Vector> OrthographicCamera<V> {
         Ray::new(b.eye + (b.right * (dx * s) + b.up * (dy * s)), b.forward)
     }
 
-    /// The ray through the centre of pixel `(i, j)`: `ray(i + 0.5, j + 0.5)`.
-    #[inline(always)]
-    #[must_use]
-    pub fn pixel_ray(&self, i: u32, j: u32) -> Ray<V> {
-        let (x, y) = pixel_centre(i, j);
-        self.ray(x, y)
-    }
-
     /// The ray through `(x, y)`, bit for bit [`ray`](Self::ray), with its
     /// differentials: the origin moves by `pixel_size right` per pixel to
     /// the right and `-pixel_size true_up` per pixel down (one rounding
@@ -180,17 +172,5 @@ impl<V: Vector> OrthographicCamera<V> {
         self.pixel_size
     }
 
-    /// The image width in pixels.
-    #[inline]
-    #[must_use]
-    pub fn width(&self) -> u32 {
-        self.width
-    }
-
-    /// The image height in pixels.
-    #[inline]
-    #[must_use]
-    pub fn height(&self) -> u32 {
-        self.height
-    }
+    super::film_accessors!();
 }

@@ -3,7 +3,7 @@
 
 use glam::Vec3;
 
-use super::{Basis, CameraError, RayCone, RayDifferential, centred, pixel_centre};
+use super::{Basis, CameraError, RayCone, RayDifferential, centred};
 use crate::num::trig::atan2_turns;
 use crate::num::{S, Scalar, Vector, unit, unit_and_inverse_length};
 use crate::ray::Ray;
@@ -210,14 +210,6 @@ impl<V: Vector> PinholeCamera<V> {
         }
     }
 
-    /// The ray through the centre of pixel `(i, j)`: `ray(i + 0.5, j + 0.5)`.
-    #[inline(always)]
-    #[must_use]
-    pub fn pixel_ray(&self, i: u32, j: u32) -> Ray<V> {
-        let (x, y) = pixel_centre(i, j);
-        self.ray(x, y)
-    }
-
     /// The eye position: where every ray starts.
     #[inline]
     #[must_use]
@@ -253,17 +245,5 @@ impl<V: Vector> PinholeCamera<V> {
         self.focal_length
     }
 
-    /// The image width in pixels.
-    #[inline]
-    #[must_use]
-    pub fn width(&self) -> u32 {
-        self.width
-    }
-
-    /// The image height in pixels.
-    #[inline]
-    #[must_use]
-    pub fn height(&self) -> u32 {
-        self.height
-    }
+    super::film_accessors!();
 }
