@@ -375,6 +375,8 @@ mod with_simd;
 mod camera;
 mod surface;
 
+mod instance;
+
 #[cfg(feature = "approx-05")]
 #[cfg_attr(docsrs, doc(cfg(feature = "approx-05")))]
 pub mod approx;
@@ -409,6 +411,7 @@ pub use camera::{
     ThinLensCamera, triangle_cone_width, triangle_hit_differentials,
     triangle_hit_differentials_error,
 };
+pub use instance::{Instance, InstanceError, InstanceRayError};
 pub use num::{Scalar, Vector};
 pub use plane::{Plane, ray_plane, ray_plane_hit_point, ray_plane_t_error};
 pub use quantized::{QuantizedChildren, quantize_bounds, ray_quantized_children};
@@ -466,6 +469,8 @@ mod f64_names {
     pub type DHitDifferentials = crate::HitDifferentials<DVec3>;
     /// [`SurfacePoint`](crate::SurfacePoint) in `f64`.
     pub type DSurfacePoint = crate::SurfacePoint<DVec3>;
+    /// [`Instance`](crate::Instance) in `f64`.
+    pub type DInstance = crate::Instance<DVec3>;
 }
 pub use f64_names::*;
 
@@ -486,20 +491,20 @@ pub use f64_names::*;
 pub mod prelude {
     pub use crate::{
         Aabb, AabbBatch, AabbBatchHits, BoxFace, BoxHit, CameraError, ClipSpace, Columns, DAabb,
-        DAabbBatch, DEqualAreaCamera, DEquirectangularCamera, DHitDifferentials, DMatrixCamera,
-        DOrthographicCamera, DPinholeCamera, DPlane, DPreparedRay, DRay, DRayDifferential,
-        DSurfacePoint, DThinLensCamera, DTriangle, DTriangleBatch, DTriangleHit, DTriangleHitError,
-        DValidAabb, EqualAreaCamera, EquirectangularCamera, FocusPoint, HitDifferentials,
-        MatrixCamera, OrthographicCamera, PinholeCamera, Plane, PreparedRay, QuantizedChildren,
-        Ray, RayCone, RayDifferential, Scalar, Side, Simd, SimdWork, SlabBox, SurfacePoint,
-        TargetSimd, ThinLensCamera, Triangle, TriangleBatch, TriangleBatchHits, TriangleHit,
-        TriangleHitError, ValidAabb, Vector, aabb_entry_face, offset_ray_origin, quantize_bounds,
-        ray_aabb, ray_aabb_batch, ray_aabb_face, ray_aabb_naive, ray_aabb_prepared,
-        ray_aabb_prepared_face, ray_plane, ray_plane_hit_point, ray_plane_t_error,
-        ray_quantized_children, ray_triangle, ray_triangle_batch, ray_triangle_error_bounds,
-        ray_triangle_mt, ray_triangle_one_hit, ray_triangle_prepared, triangle_cone_width,
-        triangle_hit_differentials, triangle_hit_differentials_error, triangle_hit_point,
-        with_simd,
+        DAabbBatch, DEqualAreaCamera, DEquirectangularCamera, DHitDifferentials, DInstance,
+        DMatrixCamera, DOrthographicCamera, DPinholeCamera, DPlane, DPreparedRay, DRay,
+        DRayDifferential, DSurfacePoint, DThinLensCamera, DTriangle, DTriangleBatch, DTriangleHit,
+        DTriangleHitError, DValidAabb, EqualAreaCamera, EquirectangularCamera, FocusPoint,
+        HitDifferentials, MatrixCamera, OrthographicCamera, PinholeCamera, Plane, PreparedRay,
+        QuantizedChildren, Ray, RayCone, RayDifferential, Scalar, Side, Simd, SimdWork, SlabBox,
+        SurfacePoint, TargetSimd, ThinLensCamera, Triangle, TriangleBatch, TriangleBatchHits,
+        TriangleHit, TriangleHitError, ValidAabb, Vector, aabb_entry_face, offset_ray_origin,
+        quantize_bounds, ray_aabb, ray_aabb_batch, ray_aabb_face, ray_aabb_naive,
+        ray_aabb_prepared, ray_aabb_prepared_face, ray_plane, ray_plane_hit_point,
+        ray_plane_t_error, ray_quantized_children, ray_triangle, ray_triangle_batch,
+        ray_triangle_error_bounds, ray_triangle_mt, ray_triangle_one_hit, ray_triangle_prepared,
+        triangle_cone_width, triangle_hit_differentials, triangle_hit_differentials_error,
+        triangle_hit_point, with_simd,
     };
     #[cfg(rayhit_runtime_avx)]
     pub use crate::{Avx2, Avx512};
