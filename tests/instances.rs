@@ -47,91 +47,9 @@ fn v<V: Vector>(x: [f64; 3]) -> V {
     )
 }
 
-/// A random object-to-world transform, as `f64` columns and translation:
-/// `M = Rot * Scale * Shear` (each part with some probability), `T` up to
-/// 1e5 in magnitude.
-fn transform(src: &mut Source) -> ([[f64; 3]; 3], [f64; 3]) {
-    let mut m = [[1.0, 0.0, 0.0], [0.0, 1.0, 0.0], [0.0, 0.0, 1.0]]; // rows
-    let mul = |a: [[f64; 3]; 3], b: [[f64; 3]; 3]| {
-        let mut c = [[0.0; 3]; 3];
-        for i in 0..3 {
-            for j in 0..3 {
-                c[i][j] = (0..3).map(|k| a[i][k] * b[k][j]).sum();
-            }
-        }
-        c
-    };
-    if !src.one_in(4) {
-        // Shear: a unit upper triangle.
-        let s = |src: &mut Source| {
-            if src.one_in(2) {
-                src.range(-2.0, 2.0)
-            } else {
-                0.0
-            }
-        };
-        let sh = [[1.0, s(src), s(src)], [0.0, 1.0, s(src)], [0.0, 0.0, 1.0]];
-        m = mul(sh, m);
-    }
-    if !src.one_in(4) {
-        // Scale: uniform or per axis, 1e-3 to 1e3, sometimes mirrored.
-        let uniform = src.one_in(2);
-        let base = src.log2_range(-9.97, 9.97);
-        let sc = [0; 3].map(|_| {
-            let k = if uniform {
-                base
-            } else {
-                src.log2_range(-9.97, 9.97)
-            };
-            if src.one_in(8) { -k } else { k }
-        });
-        let d = [[sc[0], 0.0, 0.0], [0.0, sc[1], 0.0], [0.0, 0.0, sc[2]]];
-        m = mul(d, m);
-    }
-    if !src.one_in(4) {
-        // Rotation from a random unit quaternion.
-        let q = loop {
-            let q = [0; 4].map(|_| src.range(-1.0, 1.0));
-            let l: f64 = q.iter().map(|x| x * x).sum();
-            if l > 0.01 && l <= 1.0 {
-                break q.map(|x| x / l.sqrt());
-            }
-        };
-        let [w, x, y, z] = q;
-        let rot = [
-            [
-                1.0 - 2.0 * (y * y + z * z),
-                2.0 * (x * y - w * z),
-                2.0 * (x * z + w * y),
-            ],
-            [
-                2.0 * (x * y + w * z),
-                1.0 - 2.0 * (x * x + z * z),
-                2.0 * (y * z - w * x),
-            ],
-            [
-                2.0 * (x * z - w * y),
-                2.0 * (y * z + w * x),
-                1.0 - 2.0 * (x * x + y * y),
-            ],
-        ];
-        m = mul(rot, m);
-    }
-    let t = match src.below(4) {
-        0 => [0.0; 3],
-        1 => [0; 3].map(|_| src.range(-1e5, 1e5)),
-        _ => {
-            let mag = src.log2_range(-10.0, 16.6);
-            let d = src.direction();
-            d.map(|x| x * mag)
-        }
-    };
-    let cols = [0, 1, 2].map(|j| [m[0][j], m[1][j], m[2][j]]);
-    (cols, t)
-}
-
-/// The instance of `transform`, in `V`'s precision, with the exact `M`
-/// (rows) and `T` of the floats it was built from.
+/// An instance drawn from `rayhit::strategies::transform`, in `V`'s
+/// precision, with the exact `M` (rows) and `T` of the floats it was built
+/// from.
 struct Case<V> {
     inst: Instance<V>,
     m: [R3; 3],
@@ -142,9 +60,7 @@ struct Case<V> {
 }
 
 fn case<V: Vector>(src: &mut Source) -> Option<Case<V>> {
-    let (cols, t) = transform(src);
-    let cols_v = cols.map(|c| v::<V>(c));
-    let t_v = v::<V>(t);
+    let (cols_v, t_v) = src.draw(&rayhit::strategies::transform::<V>())?;
     let inst = Instance::new(cols_v, t_v).ok()?;
     let m = [0, 1, 2].map(|i| [0, 1, 2].map(|j| r(cols_v[j][i])));
     let mf = [0, 1, 2].map(|i| [0, 1, 2].map(|j| cols_v[j][i].to_f64()));
