@@ -76,9 +76,9 @@ impl Check for InstanceCheck {
                     }
                 };
                 let image = apply(&rv(V::new(pick(0), pick(1), pick(2))));
-                for i in 0..3 {
+                for (i, x) in image.iter().enumerate() {
                     assert!(
-                        r(world.min[i]) <= image[i] && image[i] <= r(world.max[i]),
+                        &r(world.min[i]) <= x && x <= &r(world.max[i]),
                         "world box {world:?} misses corner {k} of {object:?} under {cols:?} {t:?}"
                     );
                 }
@@ -88,7 +88,7 @@ impl Check for InstanceCheck {
             return;
         }
         let err = inst.world_to_object_error(&ray);
-        let nan = |v: V| (0..3).any(|i| v[i] != v[i]);
+        let nan = |v: V| (0..3).any(|i| v[i].partial_cmp(&v[i]).is_none());
         assert!(
             !nan(err.at_origin) && !nan(err.per_t),
             "NaN bound for {ray:?} under {cols:?} {t:?}"
