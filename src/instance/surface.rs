@@ -18,7 +18,8 @@
 //!   ```text
 //!   |n_w - w| <= |fl(A^T n) - A^T n| + |A^T (n - N)| + |R^T w|
 //!             <= g(3) |A^T||n| + |A^T| eta + colsum(Rb) ||w||_inf
-//!   ||w||_inf <= ||A^T N||_inf / (1 - rho) <= max_i (|A^T| (|n| + eta))_i / (1 - rho)
+//!   ||w||_inf <= ||A^T N||_inf / (1 - rho)
+//!             <= max_i (|n_w| + g(3) |A^T||n| + |A^T| eta)_i / (1 - rho)
 //!   ```
 //!
 //!   (`w = A^T N - R^T w`, and `rho = ||R^T||_inf <= 1/2` is checked when
@@ -62,7 +63,11 @@
 //! that is strictly below `D` (it almost always is: the offset is tiny
 //! against `|p_w|`); otherwise it doubles `D` from the new value and tries
 //! again, a few times, then gives up as `offset_ray_origin` does where the
-//! normal is not known: the ray starts at `p_w`, unmoved.
+//! normal is not known: the ray starts at `p_w`, unmoved. Giving up happens
+//! when the round trip's error grows with the origin faster than the
+//! offset does (the world-space `K` of the whole path near or above one:
+//! the product of the path's condition numbers near `1 / u`); a bigger
+//! `D` cannot help there.
 //!
 //! For nested instances the check is the same with the chained `delta`:
 //! mapping `o` through levels `1..k` (outermost first) gives
@@ -135,8 +140,14 @@ impl<V: Vector> Instance<V> {
             self.a_t_row(2).dot(n),
         );
         let na = n.abs();
-        let reach = na + eta;
-        let w = |i: usize| bound_up(self.a_t_abs[i].dot(reach), 4);
+        // |A^T N| <= |n_w| + g(3) |A^T||n| + |A^T| eta: the computed normal
+        // and its rounding, not |A^T| (|n| + eta), which would let the
+        // cancellation in A^T n (a normal along A's small singular
+        // direction) inflate the residual's term by the condition number.
+        let w = |i: usize| {
+            let r = self.a_t_abs[i];
+            bound_up(normal[i].abs() + g3 * r.dot(na) + r.dot(eta), 5)
+        };
         let big_w = {
             let (w0, w1, w2) = (w(0), w(1), w(2));
             let m = if w0 > w1 { w0 } else { w1 };
@@ -211,10 +222,16 @@ impl<V: Vector> Instance<V> {
     /// [`Instance::world_to_object_error`]'s `per_t` for `dir`, dotted with
     /// `|w|`: a few ulps of the angle times the matrix's condition number),
     /// and the normal is known well enough to pick a side (not a sliver).
-    /// Otherwise, or when the check keeps failing (it does not for the
-    /// tested scales, translations up to `1e5` and scales from `1e-3` to
-    /// `1e3`), the ray starts at `world.point`, unmoved. An empty `path`
-    /// is [`SurfacePoint::spawn`]. Never panics.
+    /// And the round trip's error must grow more slowly than the offset:
+    /// the product of the condition numbers of the matrices along `path`
+    /// well below `1 / u`. Where it is not, no offset can help (moving the
+    /// origin by `x` moves the mapped origin's error by about `u` times
+    /// that product times `x`), the check keeps failing, and the ray
+    /// starts at `world.point`, unmoved, as it does where the normal is
+    /// not known; a single instance with scales from `1e-3` to `1e3` is
+    /// well inside, an `f32` nested pair of two such anisotropic scales is
+    /// not always. An empty `path` is [`SurfacePoint::spawn`]. Never
+    /// panics.
     ///
     /// ```
     /// use rayhit::{Instance, Ray, SurfacePoint, Triangle, ray_triangle, glam::{DAffine3, DQuat, DVec3}};
