@@ -284,3 +284,19 @@ for name, args in hits.items():
     write("hit_differentials", f"raw-f32-{name}", raw(0, *vecs(*vs), t))
     write("hit_differentials", f"raw-f64-{name}", raw(1, *vecs(*vs), t))
 structured("hit_differentials")
+
+# Instance: the matrix's columns and translation, an object box (min,
+# max), a world ray (origin, dir).
+BOX = ((-1, -1, -1), (1, 1, 1))
+RAY = ((0.5, 3, 0.25), (0, -1, 0))
+insts = {
+    "identity": ((1, 0, 0), (0, 1, 0), (0, 0, 1), (0, 0, 0)),
+    "far-rotated": ((0.6, 0.8, 0), (-0.8, 0.6, 0), (0, 0, 1), (1e5, -3e4, 7)),
+    "anisotropic-shear": ((1e3, 0, 0), (0.5, 1e-3, 0), (2, 0, 1), (0, 1e4, 0)),
+    "singular": ((1, 2, 3), (2, 4, 6), (0, 0, 1), (0, 0, 0)),
+    "nan": ((NAN, 0, 0), (0, 1, 0), (0, 0, 1), (0, 0, 0)),
+}
+for name, m in insts.items():
+    write("instance", f"raw-f32-{name}", raw(0, *vecs(*m, *BOX, *RAY)))
+    write("instance", f"raw-f64-{name}", raw(1, *vecs(*m, *BOX, *RAY)))
+structured("instance")

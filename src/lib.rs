@@ -196,6 +196,74 @@
 //! assert_eq!(closest(&nodes, &tris, &ray).map(|(t, _)| t), Some(1.0));
 //! ```
 //!
+//! # Instances
+//!
+//! One mesh placed many times: an [`Instance`] holds an object-to-world
+//! affine map `x -> M x + T` (from glam's `Affine3A` or `DAffine3`), its
+//! inverse computed once, and bounds on that inverse's error measured from
+//! the matrix itself (the residual `M A - I`), never assumed. A two-level
+//! BVH uses it like this:
+//!
+//! - the top level stores one box per instance,
+//!   [`Instance::object_to_world_box`] of the mesh's root box: it contains
+//!   the exact image of the object box, so the top level never loses a ray
+//!   the exact transform sends into the instance;
+//! - on reaching an instance's leaf, map the ray once with
+//!   [`Instance::world_to_object`], prepare it once, and traverse the
+//!   mesh's own BVH with it: every triangle of the instance sees the same
+//!   object ray, so the watertight guarantees hold inside the instance.
+//!   `t` is shared between world and object space (the direction is mapped
+//!   linearly), so the closest hit so far carries over as `t_max`;
+//!   [`Instance::world_to_object_error`] bounds the difference between the
+//!   two rays' points at any `t`;
+//! - take the hit to the world with [`Instance::surface_to_world`] of its
+//!   [`SurfacePoint`], and leave it with [`Instance::spawn`]: the new ray,
+//!   mapped back into the same instance through the stored inverse, does
+//!   not meet the surface it left (for a direction not within rounding of
+//!   tangent). Nested instances chain the maps level by level, and
+//!   [`Instance::spawn_through`] and [`InstanceRayError::nested`] carry the
+//!   bounds through the chain.
+//!
+//! Preconditions: the matrix is finite and not singular, and its computed
+//! inverse is good to better than half (a condition number well below
+//! `1 / u`; construction returns an [`InstanceError`] otherwise); every
+//! bound grows with the condition number and the coordinates' magnitude.
+//! What does not hold: two *different* instances meeting at a seam are not
+//! watertight with each other (each sees its own rounded object ray), unless
+//! their transforms are equal.
+//!
+//! ```
+//! use rayhit::{Aabb, Instance, PreparedRay, Ray, SurfacePoint, Triangle, ray_aabb, ray_triangle_prepared, glam::{Affine3A, Quat, Vec3}};
+//! let mesh = [Triangle::new(Vec3::new(-1.0, 0.0, -1.0), Vec3::new(0.0, 0.0, 1.0), Vec3::new(1.0, 0.0, -1.0))];
+//! let mesh_box = Aabb::new(Vec3::new(-1.0, 0.0, -1.0), Vec3::new(1.0, 0.0, 1.0));
+//! let copies = [
+//!     Instance::from_affine3a(Affine3A::from_translation(Vec3::new(2e4, 0.0, 0.0))).unwrap(),
+//!     Instance::from_affine3a(Affine3A::from_scale_rotation_translation(
+//!         Vec3::splat(3.0), Quat::from_rotation_y(1.0), Vec3::new(-2e4, 5.0, 0.0))).unwrap(),
+//! ];
+//! let top: Vec<Aabb> = copies.iter().map(|c| c.object_to_world_box(&mesh_box).unwrap()).collect();
+//! let world = Ray::new(Vec3::new(-2e4 + 0.1, 20.0, 0.2), -Vec3::Y);
+//! let mut best = None;
+//! let mut t_max = f32::INFINITY;
+//! for (copy, bounds) in copies.iter().zip(&top) {
+//!     if ray_aabb(&world, bounds, t_max).is_none() {
+//!         continue;
+//!     }
+//!     let object = PreparedRay::new(&copy.world_to_object(&world)); // once per visit
+//!     for tri in &mesh {
+//!         if let Some(hit) = ray_triangle_prepared(&object, tri, t_max) {
+//!             t_max = hit.t;
+//!             best = Some((copy, *tri, hit));
+//!         }
+//!     }
+//! }
+//! let (copy, tri, hit) = best.unwrap();
+//! assert!((hit.t - 15.0).abs() < 1e-2);
+//! let here = copy.surface_to_world(&SurfacePoint::on_triangle(&tri, &hit));
+//! let bounce = copy.spawn(&here, Vec3::new(0.2, 1.0, 0.1));
+//! assert!(ray_triangle_prepared(&PreparedRay::new(&copy.world_to_object(&bounce)), &tri, f32::INFINITY).is_none());
+//! ```
+//!
 //! # Numerical guarantees
 //!
 //! "Exact" means what real arithmetic says about the same floating-point
@@ -375,6 +443,8 @@ mod with_simd;
 mod camera;
 mod surface;
 
+mod instance;
+
 #[cfg(feature = "approx-05")]
 #[cfg_attr(docsrs, doc(cfg(feature = "approx-05")))]
 pub mod approx;
@@ -409,6 +479,7 @@ pub use camera::{
     ThinLensCamera, triangle_cone_width, triangle_hit_differentials,
     triangle_hit_differentials_error,
 };
+pub use instance::{Instance, InstanceError, InstanceRayError};
 pub use num::{Scalar, Vector};
 pub use plane::{Plane, ray_plane, ray_plane_hit_point, ray_plane_t_error};
 pub use quantized::{QuantizedChildren, quantize_bounds, ray_quantized_children};
@@ -466,6 +537,8 @@ mod f64_names {
     pub type DHitDifferentials = crate::HitDifferentials<DVec3>;
     /// [`SurfacePoint`](crate::SurfacePoint) in `f64`.
     pub type DSurfacePoint = crate::SurfacePoint<DVec3>;
+    /// [`Instance`](crate::Instance) in `f64`.
+    pub type DInstance = crate::Instance<DVec3>;
 }
 pub use f64_names::*;
 
@@ -486,20 +559,20 @@ pub use f64_names::*;
 pub mod prelude {
     pub use crate::{
         Aabb, AabbBatch, AabbBatchHits, BoxFace, BoxHit, CameraError, ClipSpace, Columns, DAabb,
-        DAabbBatch, DEqualAreaCamera, DEquirectangularCamera, DHitDifferentials, DMatrixCamera,
-        DOrthographicCamera, DPinholeCamera, DPlane, DPreparedRay, DRay, DRayDifferential,
-        DSurfacePoint, DThinLensCamera, DTriangle, DTriangleBatch, DTriangleHit, DTriangleHitError,
-        DValidAabb, EqualAreaCamera, EquirectangularCamera, FocusPoint, HitDifferentials,
-        MatrixCamera, OrthographicCamera, PinholeCamera, Plane, PreparedRay, QuantizedChildren,
-        Ray, RayCone, RayDifferential, Scalar, Side, Simd, SimdWork, SlabBox, SurfacePoint,
-        TargetSimd, ThinLensCamera, Triangle, TriangleBatch, TriangleBatchHits, TriangleHit,
-        TriangleHitError, ValidAabb, Vector, aabb_entry_face, offset_ray_origin, quantize_bounds,
-        ray_aabb, ray_aabb_batch, ray_aabb_face, ray_aabb_naive, ray_aabb_prepared,
-        ray_aabb_prepared_face, ray_plane, ray_plane_hit_point, ray_plane_t_error,
-        ray_quantized_children, ray_triangle, ray_triangle_batch, ray_triangle_error_bounds,
-        ray_triangle_mt, ray_triangle_one_hit, ray_triangle_prepared, triangle_cone_width,
-        triangle_hit_differentials, triangle_hit_differentials_error, triangle_hit_point,
-        with_simd,
+        DAabbBatch, DEqualAreaCamera, DEquirectangularCamera, DHitDifferentials, DInstance,
+        DMatrixCamera, DOrthographicCamera, DPinholeCamera, DPlane, DPreparedRay, DRay,
+        DRayDifferential, DSurfacePoint, DThinLensCamera, DTriangle, DTriangleBatch, DTriangleHit,
+        DTriangleHitError, DValidAabb, EqualAreaCamera, EquirectangularCamera, FocusPoint,
+        HitDifferentials, MatrixCamera, OrthographicCamera, PinholeCamera, Plane, PreparedRay,
+        QuantizedChildren, Ray, RayCone, RayDifferential, Scalar, Side, Simd, SimdWork, SlabBox,
+        SurfacePoint, TargetSimd, ThinLensCamera, Triangle, TriangleBatch, TriangleBatchHits,
+        TriangleHit, TriangleHitError, ValidAabb, Vector, aabb_entry_face, offset_ray_origin,
+        quantize_bounds, ray_aabb, ray_aabb_batch, ray_aabb_face, ray_aabb_naive,
+        ray_aabb_prepared, ray_aabb_prepared_face, ray_plane, ray_plane_hit_point,
+        ray_plane_t_error, ray_quantized_children, ray_triangle, ray_triangle_batch,
+        ray_triangle_error_bounds, ray_triangle_mt, ray_triangle_one_hit, ray_triangle_prepared,
+        triangle_cone_width, triangle_hit_differentials, triangle_hit_differentials_error,
+        triangle_hit_point, with_simd,
     };
     #[cfg(rayhit_runtime_avx)]
     pub use crate::{Avx2, Avx512};

@@ -321,3 +321,123 @@ fn unit(a: [f64; 3]) -> [f64; 3] {
     let l = (a[0] * a[0] + a[1] * a[1] + a[2] * a[2]).sqrt();
     [a[0] / l, a[1] / l, a[2] / l]
 }
+
+/// An object-to-world affine transform for an [`Instance`](crate::Instance):
+/// the matrix's columns and the translation, `M = rotation * scale *
+/// shear`, each part present three times in four.
+///
+/// Ranges, and why: rotations from a uniform unit quaternion; per-axis
+/// scales from `1e-3` to `1e3` (uniform or independent per axis, each
+/// mirrored one time in eight), which puts condition numbers up to `1e6`
+/// in reach; shears up to 2 in each upper entry; translations zero, uniform
+/// in `[-1e5, 1e5]^3`, or of magnitude `2^-10` to `1e5` in a random
+/// direction. Build the instance with
+/// [`Instance::new`](crate::Instance::new); these matrices are never
+/// singular.
+///
+/// ```
+/// use proptest::prelude::*;
+/// use rayhit::{Instance, glam::DVec3, strategies};
+///
+/// proptest!(|((cols, t) in strategies::transform::<DVec3>())| {
+///     prop_assert!(Instance::new(cols, t).is_ok());
+/// });
+/// ```
+pub fn transform<V: Vector>() -> impl Strategy<Value = ([V; 3], V)> + Clone {
+    let unit = || 0.0..1.0f64;
+    let sym = || -1.0..=1.0f64;
+    let parts = (unit(), unit(), unit());
+    let quat = (sym(), sym(), sym(), sym());
+    let scale = (
+        unit(),
+        -9.97..=9.97f64,
+        [-9.97..=9.97f64, -9.97..=9.97, -9.97..=9.97],
+        [unit(), unit(), unit()],
+    );
+    let shear = ([unit(), unit(), unit()], [sym(), sym(), sym()]);
+    let translation = (unit(), [sym(), sym(), sym()], -10.0..=16.6f64);
+    (parts, quat, scale, shear, translation).prop_map(
+        |(
+            (p_rot, p_scale, p_shear),
+            q,
+            (uniform, base, exps, mirrors),
+            (shear_on, shears),
+            (mode, dir, mag),
+        )| {
+            type M = [[f64; 3]; 3];
+            let mul = |a: M, b: M| -> M {
+                let mut c = [[0.0; 3]; 3];
+                for (i, row) in c.iter_mut().enumerate() {
+                    for (j, entry) in row.iter_mut().enumerate() {
+                        *entry = (0..3).map(|k| a[i][k] * b[k][j]).sum();
+                    }
+                }
+                c
+            };
+            let mut m: M = [[1.0, 0.0, 0.0], [0.0, 1.0, 0.0], [0.0, 0.0, 1.0]];
+            if p_shear < 0.75 {
+                let s = |k: usize| {
+                    if shear_on[k] < 0.5 {
+                        2.0 * shears[k]
+                    } else {
+                        0.0
+                    }
+                };
+                m = mul([[1.0, s(0), s(1)], [0.0, 1.0, s(2)], [0.0, 0.0, 1.0]], m);
+            }
+            if p_scale < 0.75 {
+                let k = |i: usize| {
+                    let e = if uniform < 0.5 { base } else { exps[i] };
+                    let k = e.exp2();
+                    if mirrors[i] < 0.125 { -k } else { k }
+                };
+                m = mul([[k(0), 0.0, 0.0], [0.0, k(1), 0.0], [0.0, 0.0, k(2)]], m);
+            }
+            let (w, x, y, z) = q;
+            let l = (w * w + x * x + y * y + z * z).sqrt();
+            if p_rot < 0.75 && l > 0.1 {
+                let (w, x, y, z) = (w / l, x / l, y / l, z / l);
+                let rot = [
+                    [
+                        1.0 - 2.0 * (y * y + z * z),
+                        2.0 * (x * y - w * z),
+                        2.0 * (x * z + w * y),
+                    ],
+                    [
+                        2.0 * (x * y + w * z),
+                        1.0 - 2.0 * (x * x + z * z),
+                        2.0 * (y * z - w * x),
+                    ],
+                    [
+                        2.0 * (x * z - w * y),
+                        2.0 * (y * z + w * x),
+                        1.0 - 2.0 * (x * x + y * y),
+                    ],
+                ];
+                m = mul(rot, m);
+            }
+            let t = if mode < 0.25 {
+                [0.0; 3]
+            } else if mode < 0.5 {
+                dir.map(|c| c * 1e5)
+            } else {
+                let len = (dir[0] * dir[0] + dir[1] * dir[1] + dir[2] * dir[2]).sqrt();
+                let s = if len > 1e-3 {
+                    mag.exp2().min(1e5) / len
+                } else {
+                    0.0
+                };
+                dir.map(|c| c * s)
+            };
+            let v = |a: [f64; 3]| {
+                V::new(
+                    S::<V>::from_f64(a[0]),
+                    S::<V>::from_f64(a[1]),
+                    S::<V>::from_f64(a[2]),
+                )
+            };
+            let cols = [0, 1, 2].map(|j| v([m[0][j], m[1][j], m[2][j]]));
+            (cols, v(t))
+        },
+    )
+}

@@ -35,7 +35,7 @@ mod exact_judge {
 type Target = (&'static str, fn(&[u8]));
 
 /// Every target, by the name of its file in `fuzz/fuzz_targets/`.
-const TARGETS: [Target; 15] = [
+const TARGETS: [Target; 16] = [
     ("aabb", targets::aabb),
     ("aabb_slab_vs_naive", targets::aabb_slab_vs_naive),
     ("batch", targets::batch),
@@ -44,6 +44,7 @@ const TARGETS: [Target; 15] = [
     ("equirectangular", targets::equirectangular),
     ("exact_judge", exact_judge::run),
     ("hit_differentials", targets::hit_differentials),
+    ("instance", targets::instance),
     ("matrix_camera", targets::matrix_camera),
     ("orthographic", targets::orthographic),
     ("plane", targets::plane),

@@ -36,6 +36,7 @@ pub mod batch;
 pub mod camera;
 pub mod exact;
 pub mod hit_differentials;
+pub mod instance;
 pub mod matrix_camera;
 pub mod orthographic;
 pub mod panoramic;
@@ -140,6 +141,10 @@ pub mod targets {
     /// `matrix_camera`: [`matrix_camera::MatrixCameraCheck`].
     pub fn matrix_camera(data: &[u8]) {
         dispatch::<matrix_camera::MatrixCameraCheck>(data);
+    }
+    /// `instance`: [`instance::InstanceCheck`].
+    pub fn instance(data: &[u8]) {
+        dispatch::<instance::InstanceCheck>(data);
     }
     /// `orthographic`: [`orthographic::Orthographic`].
     pub fn orthographic(data: &[u8]) {

@@ -1,0 +1,300 @@
+//! Instances: one object placed in the world by an affine map, with the
+//! crate's guarantees carried through the map and back.
+//!
+//! - `mod.rs`: [`Instance`] and [`InstanceError`], the accessors.
+//! - `inverse.rs`: construction: the stored inverse, and the bounds on its
+//!   error derived from the matrix itself (the residual `M A - I`).
+//! - `ray.rs`: a world ray into object space, and [`InstanceRayError`], the
+//!   bound relating the two rays' points at the same `t`.
+//! - `bounds.rs`: an object box to a world box, rounded outward.
+//! - `surface.rs`: an object hit to a world [`SurfacePoint`], and the rays
+//!   that leave it ([`Instance::spawn`], [`Instance::spawn_through`]).
+//!
+//! # Notation, used by every derivation in this module
+//!
+//! The instance maps object space to world space by `F(x) = M x + T`, with
+//! `M` and `T` the float entries the user gave, taken as exact rationals:
+//! `F` is the exact map the instance *means*, and the exact world surface
+//! of an object triangle is `F` of the exact triangle. The stored inverse
+//! `G(x) = A x + b` is computed in floating point and is not exact. Its
+//! quality is measured, never assumed: the residual `R = M A - I` and
+//! `beta = M b + T` (both zero for an exact inverse) are bounded entrywise
+//! from the stored floats when the instance is built (`inverse.rs`). `u`
+//! is the unit roundoff of the precision and `gamma(n) = n u / (1 - n u)`;
+//! `|X|` is the entrywise absolute value, inequalities between vectors hold
+//! per component.
+//!
+//! [`SurfacePoint`]: crate::SurfacePoint
+
+mod bounds;
+mod inverse;
+mod ray;
+mod surface;
+
+use core::fmt;
+
+use glam::{Affine3A, DAffine3, DVec3, Vec3, Vec3A};
+
+use crate::num::Vector;
+
+pub use ray::InstanceRayError;
+
+/// Why an [`Instance`] could not be built.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+#[non_exhaustive]
+pub enum InstanceError {
+    /// A matrix or translation entry is NaN or infinite.
+    NotFinite,
+    /// The matrix is singular: its determinant is zero (or underflows to
+    /// zero), so there is no inverse to trace rays with.
+    Singular,
+    /// The computed inverse is too far from the exact one: the residual
+    /// `M A - I` has a column sum above `1/2` (a condition number near
+    /// `1 / u`), so the normal's error cannot be bounded.
+    IllConditioned,
+    /// The inverse, its translation or an error bound overflows.
+    Overflow,
+}
+
+impl fmt::Display for InstanceError {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        f.write_str(match self {
+            Self::NotFinite => "instance transform is not finite",
+            Self::Singular => "instance transform is singular",
+            Self::IllConditioned => "instance transform is too ill-conditioned to invert",
+            Self::Overflow => "instance transform's inverse or error bounds overflow",
+        })
+    }
+}
+
+impl core::error::Error for InstanceError {}
+
+/// An object-to-world affine transform `x -> M x + T`, with its inverse
+/// computed once and the error of that inverse bounded: what a renderer
+/// needs to trace one mesh placed many times (an instance, or a
+/// bottom-level acceleration structure under a top-level one).
+///
+/// Build it from glam's [`Affine3A`] ([`Instance::from_affine3a`], `f32`)
+/// or [`DAffine3`] ([`Instance::from_daffine3`], `f64`), or from the
+/// matrix's columns and the translation for any [`Vector`] type
+/// ([`Instance::new`]). The matrix and translation are taken as exact: the
+/// guarantees below are about the exact map of the floats given.
+///
+/// What it gives, each with its guarantee in its own docs:
+///
+/// - [`Instance::world_to_object`]: the world ray in object space, once per
+///   instance visit, with [`Instance::world_to_object_error`] bounding, at
+///   every `t`, the distance between the object ray's point mapped exactly
+///   to the world and the world ray's point. Every triangle of the instance
+///   is tested against this one object ray, so the watertight test's
+///   guarantees hold inside the instance exactly as without instances.
+/// - [`Instance::object_to_world_box`]: a world box containing the exact
+///   image of every point of an object box (a conservative top-level box).
+/// - [`Instance::surface_to_world`]: an object-space [`SurfacePoint`] in
+///   the world, with error bounds on the exact world surface.
+/// - [`Instance::spawn`] and [`Instance::spawn_through`]: a ray leaving
+///   that world point which, mapped back into the instance through the
+///   stored inverse as a renderer does, cannot meet the surface it left.
+///
+/// Nested instances (an instance of instances) chain the maps: each level
+/// maps the ray it receives, and the error bounds compose (see
+/// [`InstanceRayError::nested`] and [`Instance::spawn_through`]). Matrices are
+/// never multiplied together, so no rounding of a product needs a bound.
+///
+/// Two *different* instances that meet at a seam (two copies of a tile
+/// placed side by side) are not watertight with each other: each sees its
+/// own rounded object ray, and a ray can pass between them by a rounding.
+/// Copies whose transforms are equal see the same object ray and keep the
+/// mesh's watertightness.
+///
+/// [`SurfacePoint`]: crate::SurfacePoint
+///
+/// ```
+/// use rayhit::{Instance, Ray, Triangle, ray_triangle, glam::{Affine3A, Quat, Vec3}};
+/// let place = Affine3A::from_scale_rotation_translation(
+///     Vec3::splat(2.0), Quat::from_rotation_y(0.5), Vec3::new(1e4, 0.0, 0.0),
+/// );
+/// let instance = Instance::from_affine3a(place).unwrap();
+/// let tri = Triangle::new(Vec3::new(-1.0, -1.0, 0.0), Vec3::new(1.0, -1.0, 0.0), Vec3::new(0.0, 1.0, 0.0));
+/// // A world ray aimed at the instance's origin.
+/// let world = Ray::new(place.transform_point3(Vec3::new(0.0, 0.0, 5.0)), place.transform_vector3(-Vec3::Z));
+/// let object = instance.world_to_object(&world);
+/// let hit = ray_triangle(&object, &tri, f32::INFINITY).unwrap();
+/// assert!((hit.t - 5.0).abs() < 1e-3);
+/// ```
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Instance<V = Vec3> {
+    /// Rows of `M`.
+    m: [V; 3],
+    /// `T`.
+    t: V,
+    /// Rows of the stored inverse's matrix `A`.
+    a: [V; 3],
+    /// The stored inverse's translation `b`.
+    b: V,
+    /// Rows of `|M|`.
+    m_abs: [V; 3],
+    /// Rows of `|A^T|` (the columns of `|A|`).
+    a_t_abs: [V; 3],
+    /// Rows of `K_o`, the origin's error matrix (see `ray.rs`).
+    k_origin: [V; 3],
+    /// `c_o`, the origin's absolute error term.
+    c_origin: V,
+    /// Rows of `K_d`, the direction's error matrix.
+    k_dir: [V; 3],
+    /// `c_d`, the direction's absolute error term (underflow only).
+    c_dir: V,
+    /// Per component, the column sum of the residual bound divided by
+    /// `1 - rho` (see `surface.rs`).
+    normal_residual: V,
+    /// An absolute term covering roundings into the subnormal range of a
+    /// world point: `MIN_POSITIVE (1 + max row sum of |M|)`, in every
+    /// component.
+    tiny_world: V,
+}
+
+impl<V: Vector> Instance<V> {
+    /// The instance with matrix columns `cols` (so `M x = x_0 cols[0] +
+    /// x_1 cols[1] + x_2 cols[2]`, glam's convention) and translation `T`.
+    ///
+    /// Errors: [`InstanceError::NotFinite`] for a NaN or infinite entry,
+    /// [`InstanceError::Singular`] for a zero determinant,
+    /// [`InstanceError::IllConditioned`] when the computed inverse is too
+    /// inaccurate for the bounds (condition number near `1 / u`), and
+    /// [`InstanceError::Overflow`] when the inverse or a bound overflows.
+    /// Never panics.
+    ///
+    /// ```
+    /// use rayhit::{Instance, InstanceError, glam::DVec3};
+    /// let shear = Instance::new([DVec3::X, DVec3::new(0.5, 1.0, 0.0), DVec3::Z], DVec3::new(0.0, 0.0, 1e5)).unwrap();
+    /// assert_eq!(shear.translation(), DVec3::new(0.0, 0.0, 1e5));
+    /// let flat = Instance::new([DVec3::X, DVec3::X, DVec3::Z], DVec3::ZERO);
+    /// assert_eq!(flat, Err(InstanceError::Singular));
+    /// ```
+    pub fn new(cols: [V; 3], translation: V) -> Result<Self, InstanceError> {
+        inverse::build(cols, translation)
+    }
+
+    /// The matrix `M`'s columns, as given.
+    ///
+    /// ```
+    /// use rayhit::{Instance, glam::Vec3};
+    /// let i = Instance::new([Vec3::X, Vec3::Y * 2.0, Vec3::Z], Vec3::ZERO).unwrap();
+    /// assert_eq!(i.matrix_columns()[1], Vec3::new(0.0, 2.0, 0.0));
+    /// ```
+    #[must_use]
+    pub fn matrix_columns(&self) -> [V; 3] {
+        let col = |j: usize| V::new(self.m[0][j], self.m[1][j], self.m[2][j]);
+        [col(0), col(1), col(2)]
+    }
+
+    /// The translation `T`, as given.
+    ///
+    /// ```
+    /// use rayhit::{Instance, glam::Vec3};
+    /// let i = Instance::new([Vec3::X, Vec3::Y, Vec3::Z], Vec3::ONE).unwrap();
+    /// assert_eq!(i.translation(), Vec3::ONE);
+    /// ```
+    #[must_use]
+    pub fn translation(&self) -> V {
+        self.t
+    }
+
+    /// The stored inverse `x -> A x + b`: the columns of `A` and `b`. It is
+    /// the rounded inverse of the exact map, not the exact one; every
+    /// bound of the instance accounts for the difference.
+    ///
+    /// ```
+    /// use rayhit::{Instance, glam::Vec3};
+    /// let i = Instance::new([Vec3::X * 4.0, Vec3::Y, Vec3::Z], Vec3::new(8.0, 0.0, 0.0)).unwrap();
+    /// let (cols, b) = i.inverse();
+    /// assert_eq!((cols[0], b), (Vec3::new(0.25, 0.0, 0.0), Vec3::new(-2.0, 0.0, 0.0)));
+    /// ```
+    #[must_use]
+    pub fn inverse(&self) -> ([V; 3], V) {
+        let col = |j: usize| V::new(self.a[0][j], self.a[1][j], self.a[2][j]);
+        ([col(0), col(1), col(2)], self.b)
+    }
+}
+
+impl Instance<Vec3> {
+    /// The instance of glam's `f32` affine transform (object to world).
+    /// Errors as for [`Instance::new`].
+    ///
+    /// ```
+    /// use rayhit::{Instance, InstanceError, glam::{Affine3A, Vec3}};
+    /// assert!(Instance::from_affine3a(Affine3A::from_translation(Vec3::X)).is_ok());
+    /// assert_eq!(Instance::from_affine3a(Affine3A::from_scale(Vec3::ZERO)), Err(InstanceError::Singular));
+    /// assert_eq!(Instance::from_affine3a(Affine3A::from_scale(Vec3::NAN)), Err(InstanceError::NotFinite));
+    /// ```
+    pub fn from_affine3a(affine: Affine3A) -> Result<Self, InstanceError> {
+        let m = affine.matrix3;
+        Self::new(
+            [m.x_axis.into(), m.y_axis.into(), m.z_axis.into()],
+            affine.translation.into(),
+        )
+    }
+}
+
+impl Instance<Vec3A> {
+    /// The instance of glam's `f32` affine transform, on `Vec3A` (the same
+    /// answers, bit for bit, as on `Vec3`). Errors as for
+    /// [`Instance::new`].
+    ///
+    /// ```
+    /// use rayhit::{Instance, glam::{Affine3A, Vec3A}};
+    /// let i = Instance::<Vec3A>::from_affine3a_simd(Affine3A::from_translation(Vec3A::X.into())).unwrap();
+    /// assert_eq!(i.translation(), Vec3A::X);
+    /// ```
+    pub fn from_affine3a_simd(affine: Affine3A) -> Result<Self, InstanceError> {
+        let m = affine.matrix3;
+        Self::new([m.x_axis, m.y_axis, m.z_axis], affine.translation)
+    }
+}
+
+impl Instance<DVec3> {
+    /// The instance of glam's `f64` affine transform (object to world).
+    /// Errors as for [`Instance::new`].
+    ///
+    /// ```
+    /// use rayhit::{Instance, glam::{DAffine3, DVec3}};
+    /// let i = Instance::from_daffine3(DAffine3::from_scale(DVec3::splat(1e-3))).unwrap();
+    /// assert_eq!(i.matrix_columns()[2], DVec3::new(0.0, 0.0, 1e-3));
+    /// ```
+    pub fn from_daffine3(affine: DAffine3) -> Result<Self, InstanceError> {
+        let m = affine.matrix3;
+        Self::new([m.x_axis, m.y_axis, m.z_axis], affine.translation)
+    }
+}
+
+impl TryFrom<Affine3A> for Instance<Vec3> {
+    type Error = InstanceError;
+    fn try_from(affine: Affine3A) -> Result<Self, InstanceError> {
+        Self::from_affine3a(affine)
+    }
+}
+
+impl TryFrom<Affine3A> for Instance<Vec3A> {
+    type Error = InstanceError;
+    fn try_from(affine: Affine3A) -> Result<Self, InstanceError> {
+        Self::from_affine3a_simd(affine)
+    }
+}
+
+impl TryFrom<DAffine3> for Instance<DVec3> {
+    type Error = InstanceError;
+    fn try_from(affine: DAffine3) -> Result<Self, InstanceError> {
+        Self::from_daffine3(affine)
+    }
+}
+
+/// `sum_j rows[i][j] * v[j] + c[i]` per component for non-negative
+/// `rows`, `v`, `c`, made an upper bound of its exact value: one product
+/// and three additions on the longest path, four roundings
+/// ([`bound_up`](crate::num::round::bound_up)).
+#[inline(always)]
+pub(crate) fn abs_apply_up<V: Vector>(rows: &[V; 3], v: V, c: V) -> V {
+    use crate::num::round::bound_up;
+    let row = |i: usize| bound_up(rows[i].dot(v) + c[i], 4);
+    V::new(row(0), row(1), row(2))
+}

@@ -1,0 +1,311 @@
+//! An object hit in the world, and the rays that leave it.
+//!
+//! # The world point and normal
+//!
+//! An object [`SurfacePoint`] has a point `p` within `e` of a point `q` of
+//! the exact object surface, and a normal `n` within `eta` of a normal
+//! `N` of the exact object plane. Its world form:
+//!
+//! - point `p_w = fl(M p + T)`, a dot product of length four per
+//!   component, so `|p_w - F(q)| <= |M| e + g(4) (|M||p| + |T|) + U`
+//!   (`U` covers roundings into the subnormal range, see `inverse.rs`),
+//!   and `F(q)` is on the exact world surface;
+//! - normal `n_w = fl(A^T n)`. The exact world plane `F(plane)` has the
+//!   normal `w = M^-T N` (for `x` on it, `(x - F(q)) . w = (M^-1 (x - F(q)))
+//!   . N = 0`). From `M A = I + R`, `A^T = M^-T + R^T M^-T`, so
+//!   `A^T N = w + R^T w`, and
+//!
+//!   ```text
+//!   |n_w - w| <= |fl(A^T n) - A^T n| + |A^T (n - N)| + |R^T w|
+//!             <= g(3) |A^T||n| + |A^T| eta + colsum(Rb) ||w||_inf
+//!   ||w||_inf <= ||A^T N||_inf / (1 - rho)
+//!             <= max_i (|n_w| + g(3) |A^T||n| + |A^T| eta)_i / (1 - rho)
+//!   ```
+//!
+//!   (`w = A^T N - R^T w`, and `rho = ||R^T||_inf <= 1/2` is checked when
+//!   the instance is built). `normal_residual = colsum(Rb) / (1 - rho)`.
+//!
+//! So the world [`SurfacePoint`] bounds hold against the exact world
+//! surface, with its normal `w`; a world point of a nested instance is the
+//! outer instance's map of the inner one's, and the bounds hold again, now
+//! against `M_1^-T M_2^-T N`.
+//!
+//! # Leaving the surface through the instance
+//!
+//! A renderer traces the spawned world ray `(o, d)` and, on reaching the
+//! instance again, maps it with the stored inverse: `o' = fl(A o + b)`,
+//! `d' = fl(A d)`, and tests the object triangle with that ray. It must not
+//! report the triangle the ray left. `o'` is not `F^-1(o)`:
+//! `F(o') = o + delta` with `|delta| <= K_o |o| + c_o` (`ray.rs` at `t = 0`).
+//! The proof:
+//!
+//! 1. `offset_ray_origin` with the point error `e_w + D` (the world point's
+//!    own error plus an extra `D`) moves `p_w` across the plane by more than
+//!    `sum (e_w + D)_i (|n_w,i| + eta_w,i)`, measured as `(x - F(q)) . w`;
+//!    the point started at most `sum e_w,i |w_i|` from it, so the origin
+//!    `o` has `s (o - F(q)) . w >= sum D_i |w_i|`, with `s` the side `d`
+//!    points into (the derivation at [`offset_ray_origin`]).
+//! 2. If `D > K_o |o| + c_o >= |delta|` per component, then
+//!    `s (F(o') - F(q)) . w > s (o - F(q)) . w - sum D_i |w_i| >= 0`:
+//!    `F(o')` is strictly on side `s` of the world plane.
+//! 3. Affine maps keep sides: `(F(x) - F(q)) . w = (x - q) . N`. So `o'` is
+//!    strictly on side `s` of the exact object plane.
+//! 4. The direction: `M d' = d + R d + M e_d`, and `d' . N = (M d') . w`,
+//!    so `d' . N` has the sign `s` of `d . w` whenever `|d . w|` exceeds
+//!    `sum (K_d |d| + c_d)_i |w_i|`, the precondition (a few ulps of the
+//!    angle times the condition number). Then the object ray moves away
+//!    from the plane: its exact crossing is at `t < 0`, and the watertight
+//!    test, which decides `t > 0` conservatively, does not report it.
+//!
+//! `D` depends on `o`, which depends on `D`; [`Instance::spawn_through`]
+//! does not guess: it offsets with `D = 2 (K_o |p_w| + c_o)`, evaluates
+//! `K_o |o| + c_o` at the origin it got, and keeps the origin only when
+//! that is strictly below `D` (it almost always is: the offset is tiny
+//! against `|p_w|`); otherwise it doubles `D` from the new value and tries
+//! again, a few times, then gives up as `offset_ray_origin` does where the
+//! normal is not known: the ray starts at `p_w`, unmoved. Giving up happens
+//! when the round trip's error grows with the origin faster than the
+//! offset does (the world-space `K` of the whole path near or above one:
+//! the product of the path's condition numbers near `1 / u`); a bigger
+//! `D` cannot help there.
+//!
+//! For nested instances the check is the same with the chained `delta`:
+//! mapping `o` through levels `1..k` (outermost first) gives
+//! `F_1(...F_k(o_k)) = o + delta_1 + M_1 delta_2 + M_1 M_2 delta_3 ...`,
+//! each `delta_j` bounded at the origin that level actually receives, so
+//! `D` must exceed `K_1 o + c_1 + |M_1| (K_2 |o_1| + c_2 + |M_2| (...))`,
+//! evaluated innermost first.
+//!
+//! [`SurfacePoint`]: crate::SurfacePoint
+//! [`offset_ray_origin`]: crate::offset_ray_origin
+
+use super::{Instance, abs_apply_up};
+use crate::num::round::bound_up;
+use crate::num::{S, Scalar, Vector};
+use crate::{Ray, SurfacePoint, offset_ray_origin};
+
+impl<V: Vector> Instance<V> {
+    /// An object-space surface point in world space: the point `M p + T`
+    /// and the normal `A^T n` (the inverse transpose, with the stored
+    /// inverse), with error bounds against the exact world surface, the
+    /// exact image of the exact object surface (derivation in the source;
+    /// the inverse's own error is part of the normal's bound).
+    ///
+    /// The result is a world surface point like any other: spawning from it
+    /// with [`SurfacePoint::spawn`] is safe against world-space geometry.
+    /// A ray that will re-enter *this* instance (it is traced through the
+    /// stored inverse) needs the extra margin of [`Instance::spawn`].
+    /// Apply it level by level for nested instances, innermost first.
+    /// Non-finite input gives non-finite output (never a panic).
+    ///
+    /// ```
+    /// use rayhit::{Instance, Ray, SurfacePoint, Triangle, ray_triangle, glam::{Affine3A, Quat, Vec3}};
+    /// let place = Affine3A::from_rotation_translation(Quat::from_rotation_x(1.0), Vec3::new(0.0, 3e4, 0.0));
+    /// let inst = Instance::from_affine3a(place).unwrap();
+    /// let tri = Triangle::new(Vec3::ZERO, Vec3::X, Vec3::Y);
+    /// let object_ray = Ray::new(Vec3::new(0.2, 0.3, 1.0), -Vec3::Z);
+    /// let hit = ray_triangle(&object_ray, &tri, f32::INFINITY).unwrap();
+    /// let world = inst.surface_to_world(&SurfacePoint::on_triangle(&tri, &hit));
+    /// let exact_ish = place.transform_point3(Vec3::new(0.2, 0.3, 0.0));
+    /// assert!((world.point - exact_ish).abs().max_element() < 1e-2);
+    /// assert!(world.point_error.max_element() < 1e-2);
+    /// ```
+    #[must_use]
+    pub fn surface_to_world(&self, object: &SurfacePoint<V>) -> SurfacePoint<V> {
+        let (p, e, n, eta) = (
+            object.point,
+            object.point_error.abs(),
+            object.normal,
+            object.normal_error.abs(),
+        );
+        let g3 = S::<V>::gamma_n(3);
+        let g4 = S::<V>::gamma_n(4);
+        let tiny = self.tiny_world[0];
+        // Point: |M| e + g(4) (|M||p| + |T|) + U; at most 7 roundings on a
+        // path of its evaluation.
+        let point = V::new(
+            self.m[0].dot(p) + self.t[0],
+            self.m[1].dot(p) + self.t[1],
+            self.m[2].dot(p) + self.t[2],
+        );
+        let pa = p.abs();
+        let point_error = |i: usize| {
+            let r = self.m_abs[i];
+            bound_up(r.dot(e) + g4 * (r.dot(pa) + self.t[i].abs()) + tiny, 7)
+        };
+        // Normal: g(3) |A^T||n| + |A^T| eta + normal_residual * W.
+        let normal = V::new(
+            self.a_t_row(0).dot(n),
+            self.a_t_row(1).dot(n),
+            self.a_t_row(2).dot(n),
+        );
+        let na = n.abs();
+        // |A^T N| <= |n_w| + g(3) |A^T||n| + |A^T| eta: the computed normal
+        // and its rounding, not |A^T| (|n| + eta), which would let the
+        // cancellation in A^T n (a normal along A's small singular
+        // direction) inflate the residual's term by the condition number.
+        let w = |i: usize| {
+            let r = self.a_t_abs[i];
+            bound_up(normal[i].abs() + g3 * r.dot(na) + r.dot(eta), 5)
+        };
+        let big_w = {
+            let (w0, w1, w2) = (w(0), w(1), w(2));
+            let m = if w0 > w1 { w0 } else { w1 };
+            if m > w2 { m } else { w2 }
+        };
+        let normal_error = |i: usize| {
+            let r = self.a_t_abs[i];
+            bound_up(
+                g3 * r.dot(na) + r.dot(eta) + self.normal_residual[i] * big_w + tiny,
+                7,
+            )
+        };
+        SurfacePoint {
+            point,
+            point_error: V::new(point_error(0), point_error(1), point_error(2)),
+            normal,
+            normal_error: V::new(normal_error(0), normal_error(1), normal_error(2)),
+        }
+    }
+
+    /// Row `i` of `A^T` (column `i` of `A`).
+    #[inline(always)]
+    fn a_t_row(&self, i: usize) -> V {
+        V::new(self.a[0][i], self.a[1][i], self.a[2][i])
+    }
+
+    /// A ray leaving the world surface point `world` (from
+    /// [`Instance::surface_to_world`] of a hit in this instance) along
+    /// `dir`, that cannot meet the surface it left when it is mapped back
+    /// into this instance with [`Instance::world_to_object`] and tested in
+    /// object space, as a renderer does. The same as
+    /// [`Instance::spawn_through`] with this instance alone; see there for
+    /// the guarantee and its precondition.
+    ///
+    /// ```
+    /// use rayhit::{Instance, Ray, SurfacePoint, Triangle, ray_triangle, glam::{Affine3A, Quat, Vec3}};
+    /// let inst = Instance::from_affine3a(Affine3A::from_scale_rotation_translation(
+    ///     Vec3::new(3.0, 0.5, 1e-2), Quat::from_rotation_y(2.0), Vec3::splat(-7e4))).unwrap();
+    /// let tri = Triangle::new(Vec3::ZERO, Vec3::X, Vec3::Y);
+    /// let hit = ray_triangle(&Ray::new(Vec3::new(0.3, 0.3, 1.0), -Vec3::Z), &tri, f32::INFINITY).unwrap();
+    /// let world = inst.surface_to_world(&SurfacePoint::on_triangle(&tri, &hit));
+    /// // A bounce back the way the ray came, and one through the surface.
+    /// for dir in [world.normal, -world.normal + Vec3::X * world.normal.length()] {
+    ///     let again = inst.world_to_object(&inst.spawn(&world, dir));
+    ///     assert!(ray_triangle(&again, &tri, f32::INFINITY).is_none());
+    /// }
+    /// ```
+    #[must_use]
+    pub fn spawn(&self, world: &SurfacePoint<V>, dir: V) -> Ray<V> {
+        Self::spawn_through(&[self], world, dir)
+    }
+
+    /// A ray leaving `world`, a surface point of an object reached through
+    /// the instances `path` (outermost first: `path[0]` maps the world to
+    /// its object space, `path[1]` that space to its own, and so on; the
+    /// point is [`Instance::surface_to_world`] applied innermost first), so
+    /// that the ray mapped back through the same instances with
+    /// [`Instance::world_to_object`] cannot meet the surface it left.
+    ///
+    /// Guarantee: the object ray the renderer computes has its origin
+    /// strictly on the side of the exact object plane that its direction
+    /// points away from, so its exact crossing with the plane is at `t < 0`
+    /// and [`ray_triangle`](crate::ray_triangle) (which decides `t > 0`
+    /// conservatively) does not report the surface. The proof is in the
+    /// source: the origin is offset by [`offset_ray_origin`] with the point
+    /// error widened by the round trip's error through the stored inverses,
+    /// evaluated at the origin actually returned and checked.
+    ///
+    /// Preconditions, as for [`SurfacePoint::spawn`]: `dir` is not within
+    /// rounding of tangent to the surface, where rounding now includes the
+    /// map of the direction (`|dir . w|` above the world ray bound
+    /// [`Instance::world_to_object_error`]'s `per_t` for `dir`, dotted with
+    /// `|w|`: a few ulps of the angle times the matrix's condition number),
+    /// and the normal is known well enough to pick a side (not a sliver).
+    /// And the round trip's error must grow more slowly than the offset:
+    /// the product of the condition numbers of the matrices along `path`
+    /// well below `1 / u`. Where it is not, no offset can help (moving the
+    /// origin by `x` moves the mapped origin's error by about `u` times
+    /// that product times `x`), the check keeps failing, and the ray
+    /// starts at `world.point`, unmoved, as it does where the normal is
+    /// not known; a single instance with scales from `1e-3` to `1e3` is
+    /// well inside, an `f32` nested pair of two such anisotropic scales is
+    /// not always. An empty `path` is [`SurfacePoint::spawn`]. Never
+    /// panics.
+    ///
+    /// ```
+    /// use rayhit::{Instance, Ray, SurfacePoint, Triangle, ray_triangle, glam::{DAffine3, DQuat, DVec3}};
+    /// let outer = Instance::from_daffine3(DAffine3::from_rotation_translation(DQuat::from_rotation_z(0.7), DVec3::new(1e5, 0.0, 0.0))).unwrap();
+    /// let inner = Instance::from_daffine3(DAffine3::from_scale(DVec3::new(1e3, 1e-3, 1.0))).unwrap();
+    /// let tri = Triangle::new(DVec3::ZERO, DVec3::X, DVec3::Y);
+    /// let hit = ray_triangle(&Ray::new(DVec3::new(0.1, 0.6, 2.0), -DVec3::Z), &tri, f64::INFINITY).unwrap();
+    /// let world = outer.surface_to_world(&inner.surface_to_world(&SurfacePoint::on_triangle(&tri, &hit)));
+    /// let ray = Instance::spawn_through(&[&outer, &inner], &world, -world.normal);
+    /// let again = inner.world_to_object(&outer.world_to_object(&ray));
+    /// assert!(ray_triangle(&again, &tri, f64::INFINITY).is_none());
+    /// ```
+    ///
+    /// [`SurfacePoint::spawn`]: crate::SurfacePoint::spawn
+    #[must_use]
+    pub fn spawn_through(path: &[&Self], world: &SurfacePoint<V>, dir: V) -> Ray<V> {
+        let unmoved = Ray::new(world.point, dir);
+        if path.is_empty() {
+            return world.spawn(dir);
+        }
+        let two = S::<V>::TWO;
+        let e = world.point_error.abs();
+        let mut extra = round_trip_bound(path, world.point, dir) * two;
+        for _ in 0..4 {
+            if !extra.is_finite() {
+                return unmoved;
+            }
+            let widened = V::new(
+                bound_up(e[0] + extra[0], 1),
+                bound_up(e[1] + extra[1], 1),
+                bound_up(e[2] + extra[2], 1),
+            );
+            let origin =
+                offset_ray_origin(world.point, widened, world.normal, world.normal_error, dir);
+            if origin == world.point {
+                // Not moved: the normal is not known well enough, or the
+                // input is not finite.
+                return unmoved;
+            }
+            let need = round_trip_bound(path, origin, dir);
+            let below = |i: usize| need[i] < extra[i];
+            if below(0) && below(1) && below(2) {
+                return Ray::new(origin, dir);
+            }
+            extra = need * two;
+        }
+        unmoved
+    }
+}
+
+/// A per-component bound on `|F_1(...F_k(o_k)) - o|`, with `o_k` the origin
+/// `o` mapped through `path` (outermost first) with the stored inverses:
+/// `K_1 |o| + c_1 + |M_1| (K_2 |o_1| + c_2 + |M_2| (...))`, evaluated
+/// innermost first, rounding up.
+fn round_trip_bound<V: Vector>(path: &[&Instance<V>], origin: V, dir: V) -> V {
+    // The origins each level receives.
+    let mut rays = [Ray::new(origin, dir); 8];
+    let levels = path.len().min(8);
+    if path.len() > 8 {
+        // Deeper nesting than the bound is written for: no guarantee.
+        return V::splat(S::<V>::INFINITY);
+    }
+    for k in 1..levels {
+        rays[k] = path[k - 1].world_to_object(&rays[k - 1]);
+    }
+    let mut acc = V::ZERO;
+    for k in (0..levels).rev() {
+        let inst = path[k];
+        let delta = abs_apply_up(&inst.k_origin, rays[k].origin.abs(), inst.c_origin);
+        acc = if k + 1 == levels {
+            delta
+        } else {
+            abs_apply_up(&inst.m_abs, acc, delta)
+        };
+    }
+    acc
+}

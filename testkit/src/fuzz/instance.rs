@@ -1,0 +1,116 @@
+//! `instance`: [`Instance`] construction, [`Instance::object_to_world_box`]
+//! and [`Instance::world_to_object`] with its error bound.
+//!
+//! Input: raw mode, the matrix's three columns and the translation, an
+//! object box and a world ray, every float a raw bit pattern; structured
+//! mode, a transform from [`rayhit::strategies::transform`], a box from
+//! [`rayhit::strategies::aabb`] and a ray aimed at it.
+//!
+//! Checks: no panic; a NaN or infinite entry is an error; for a built
+//! instance, the world box of a valid object box, when there is one,
+//! contains the exact images of the object box's eight corners (so, by
+//! convexity, of the whole box), decided exactly; the ray's error bound is
+//! never NaN for a finite ray; and in structured mode (within the tested
+//! ranges) the bound holds exactly at `t = 0` and `t = 1`:
+//! `|F(object.at(t)) - world.at(t)| <= err.at(t)`.
+
+use arbitrary::Arbitrary;
+use rayhit::{Aabb, Instance, InstanceError, Ray, Scalar, Vector, strategies};
+
+use super::exact::{R3, dot, r, rv};
+use super::{Check, Input, S, raw, raw_vec};
+
+/// The `instance` target.
+#[derive(Debug)]
+pub struct InstanceCheck;
+
+impl Check for InstanceCheck {
+    fn run<'a, V>(input: &mut Input<'a>)
+    where
+        V: Vector,
+        S<V>: Arbitrary<'a> + Scalar,
+    {
+        let structured = input.is_structured();
+        let (cols, t, object, ray) = match input {
+            Input::Raw(u) => {
+                let cols = [raw_vec::<V>(u), raw_vec::<V>(u), raw_vec::<V>(u)];
+                let t = raw_vec::<V>(u);
+                let object = raw::<Aabb<V>>(u);
+                let ray = raw::<Ray<V>>(u);
+                (cols, t, object, ray)
+            }
+            Input::Structured(src) => {
+                let Some((cols, t)) = src.draw(&strategies::transform::<V>()) else {
+                    return;
+                };
+                let Some((object, ray)) = src.draw(&strategies::aabb_and_ray::<V>()) else {
+                    return;
+                };
+                (cols, t, object, ray)
+            }
+        };
+        let finite = cols.iter().all(|c| c.is_finite()) && t.is_finite();
+        let inst = match Instance::new(cols, t) {
+            Ok(inst) => inst,
+            Err(e) => {
+                assert!(
+                    finite || e == InstanceError::NotFinite,
+                    "{cols:?} {t:?}: {e:?}"
+                );
+                return;
+            }
+        };
+        assert!(finite, "built from non-finite {cols:?} {t:?}");
+        let m: [R3; 3] = [0, 1, 2].map(|i| [0, 1, 2].map(|j| r(cols[j][i])));
+        let tr = rv(t);
+        let apply = |x: &R3| -> R3 { [0, 1, 2].map(|i| dot(&m[i], x) + &tr[i]) };
+        if object.is_valid()
+            && let Some(world) = inst.object_to_world_box(&object)
+        {
+            for k in 0..8 {
+                let pick = |i: usize| {
+                    if k >> i & 1 == 1 {
+                        object.max[i]
+                    } else {
+                        object.min[i]
+                    }
+                };
+                let image = apply(&rv(V::new(pick(0), pick(1), pick(2))));
+                for (i, x) in image.iter().enumerate() {
+                    assert!(
+                        &r(world.min[i]) <= x && x <= &r(world.max[i]),
+                        "world box {world:?} misses corner {k} of {object:?} under {cols:?} {t:?}"
+                    );
+                }
+            }
+        }
+        if !(ray.origin.is_finite() && ray.dir.is_finite()) {
+            return;
+        }
+        let err = inst.world_to_object_error(&ray);
+        let nan = |v: V| (0..3).any(|i| v[i].partial_cmp(&v[i]).is_none());
+        assert!(
+            !nan(err.at_origin) && !nan(err.per_t),
+            "NaN bound for {ray:?} under {cols:?} {t:?}"
+        );
+        if !structured {
+            return;
+        }
+        let object_ray = inst.world_to_object(&ray);
+        for t_param in [S::<V>::ZERO, S::<V>::ONE] {
+            let bound = err.at(t_param);
+            let (o, d) = (rv(object_ray.origin), rv(object_ray.dir));
+            let (wo, wd) = (rv(ray.origin), rv(ray.dir));
+            let tp = r(t_param);
+            let mapped = apply(&[0, 1, 2].map(|i| &o[i] + &tp * &d[i]));
+            for i in 0..3 {
+                let diff = &mapped[i] - (&wo[i] + &tp * &wd[i]);
+                let diff = if diff < r(S::<V>::ZERO) { -diff } else { diff };
+                assert!(
+                    diff <= r(bound[i]),
+                    "ray bound {bound:?} fails at t = {t_param:?} for {ray:?} under {cols:?} {t:?}"
+                );
+            }
+        }
+    }
+}
