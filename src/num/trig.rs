@@ -223,11 +223,10 @@ fn round_int_lanes<F: Scalar>(x: L4<F>) -> L4<F> {
     x.add(c).sub(c)
 }
 
-/// [`sin_cos_turns`] of `a` and of `b`, bit for bit, on four
-/// lanes (`a`, `a`, `b`, `b`) at once: each step of
-/// [`sin_cos_turns`] and `quarter_turns` as one lane operation, the choices as selects of one
-/// operand's bits. For the two angles of a panorama's pixel, or one angle
-/// twice.
+/// [`sin_cos_turns`] of `a` and of `b`, bit for bit, on four lanes (`a`,
+/// `a`, `b`, `b`) at once: each step of [`sin_cos_turns`] and
+/// `quarter_turns` as one lane operation, the choices as selects of one
+/// operand's bits. For the two angles of a panorama's pixel.
 #[inline(always)]
 pub(crate) fn sin_cos_turns_pair<F: Scalar>(a: F, b: F) -> [(F, F); 2] {
     let splat = L4::<F>::splat;
