@@ -555,12 +555,18 @@ fn instances_f64() {
     run_all::<DVec3>("f64", 0x1157_0002, cases(300));
 }
 
+/// The long run, about a million spawned rays per precision: one test per
+/// precision, so that the two run on two threads.
 #[test]
 #[ignore = "long: a million spawned rays per precision"]
-fn instances_long() {
-    let n = cases(250_000);
-    run_all::<Vec3>("f32", 0x1157_1001, n);
-    run_all::<DVec3>("f64", 0x1157_1002, n);
+fn instances_long_f32() {
+    run_all::<Vec3>("f32", 0x1157_1001, cases(250_000));
+}
+
+#[test]
+#[ignore = "long: a million spawned rays per precision"]
+fn instances_long_f64() {
+    run_all::<DVec3>("f64", 0x1157_1002, cases(250_000));
 }
 
 /// (d) Singular, NaN and infinite matrices are errors; random bit
