@@ -187,7 +187,7 @@ fn quarter_turns<F: Scalar>(sin: F, cos: F, q: F) -> (F, F) {
 /// non-negative `z` (a NaN stays NaN). The sine lanes are then multiplied
 /// by `x` and the cosine lanes by `1`, which is exact.
 #[inline(always)]
-pub(crate) fn sin_cos_quarter_lanes<F: Scalar>(x: L4<F>) -> L4<F> {
+fn sin_cos_quarter_lanes<F: Scalar>(x: L4<F>) -> L4<F> {
     let z = x.mul(x);
     let (ns, nc) = if single::<F>() { (5, 6) } else { (9, 9) };
     let n = if ns > nc { ns } else { nc };
