@@ -142,8 +142,11 @@ impl<V: Vector> PinholeCamera<V> {
         // A NaN position stays visible as a NaN direction (normalize_or_zero
         // would hide it as a zero one), and a focal length far outside the
         // usual range (whose squared length overflows) still gives a unit
-        // direction.
-        Ray::new(self.eye, unit(self.film(x, y)))
+        // direction. The origin is rebuilt from its components (the same
+        // bits): copied whole, the compiler moves it as integers, and a loop
+        // storing rays then does not vectorise.
+        let e = self.eye;
+        Ray::new(V::new(e.x(), e.y(), e.z()), unit(self.film(x, y)))
     }
 
     /// The unnormalised direction towards raster position `(x, y)`:

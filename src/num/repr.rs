@@ -61,6 +61,14 @@ pub trait Bits {
     /// 2^(e+1)`) for normal `x`; zero for zero and subnormals, infinity
     /// for infinities and NaN: the exponent bits alone.
     fn binade(x: Self::F) -> Self::F;
+    /// `2^-e` for `|x|` in the binade `[2^e, 2^(e+1))`, exactly, so that
+    /// `|x| 2^-e` is in `[1, 2)`; for `|x|` at or above `2^(emax - 1)`,
+    /// `2^(1 - emax)` (the largest `e` whose `2^-e` is normal; `emax` is 127
+    /// or 1023); for zero, subnormals, infinities and NaN (which need no
+    /// exact answer) some power of two: `2^emax` for zero and subnormals,
+    /// `2^(1 - emax)` for the others. Integer operations on the bits only,
+    /// with no branch.
+    fn inverse_binade(x: Self::F) -> Self::F;
 }
 
 /// [`Bits`] of `f32`.
@@ -109,6 +117,14 @@ impl Bits for F32Bits {
     fn binade(x: f32) -> f32 {
         f32::from_bits(x.to_bits() & 0x7f80_0000)
     }
+
+    #[inline(always)]
+    fn inverse_binade(x: f32) -> f32 {
+        // The exponent field E (biased: 2^e has E = e + 127), clamped to
+        // 253 (2^126); 254 - E is the field of 2^-e, in 1..=254.
+        let field = (x.to_bits() & 0x7f80_0000).min(253 << 23);
+        f32::from_bits((254 << 23) - field)
+    }
 }
 
 impl Bits for F64Bits {
@@ -139,6 +155,13 @@ impl Bits for F64Bits {
     #[inline(always)]
     fn binade(x: f64) -> f64 {
         f64::from_bits(x.to_bits() & 0x7ff0_0000_0000_0000)
+    }
+
+    #[inline(always)]
+    fn inverse_binade(x: f64) -> f64 {
+        // As for `f32`: E = e + 1023, clamped to 2045 (2^1022).
+        let field = (x.to_bits() & 0x7ff0_0000_0000_0000).min(2045 << 52);
+        f64::from_bits((2046 << 52) - field)
     }
 }
 

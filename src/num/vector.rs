@@ -6,7 +6,7 @@ use core::fmt::Debug;
 use core::ops::{Add, Index, Mul, Neg, Sub};
 
 use super::lanes::Axis;
-use super::repr::Components;
+use super::repr::{Bits, Components, Repr};
 use super::round::max2;
 use super::{S, Scalar};
 
@@ -190,69 +190,49 @@ impl_glam!(glam032);
 #[cfg(feature = "glam-033")]
 impl_glam!(glam033);
 
-/// `v / |v|`, computed as `v * (1 / sqrt(v . v))` (glam's `normalize`) on
-/// `v` scaled by a power of two that brings its largest component into
-/// `[1, 2)`, so that `v . v` can neither overflow nor underflow; a NaN
-/// vector when `v` is zero or not finite.
+/// `v / |v|`: glam's `normalize` (`v * (1 / sqrt(v . v))`) where `v . v`
+/// is a normal float, and elsewhere the same computation on `w = v 2^-e`,
+/// `2^e` the binade of `v`'s largest component (its largest component
+/// then in `[1, 2)`; see [`Bits::inverse_binade`]), so that `w . w`
+/// neither overflows nor underflows; a NaN vector when `v` is zero or not
+/// finite.
 ///
 /// Scaling by a power of two is exact in the normal range, and it scales
 /// `v . v` by the square, its square root and reciprocal by the power
-/// itself, all exactly: so where `v . v` is a normal float the result is bit
-/// for bit `normalize(v)`, and that case skips the scaling. Elsewhere (a
-/// length whose square overflows, such as a camera ray at a focal length of
-/// `1e30` pixels, or underflows) it is the same computation on the scaled
-/// vector, with the same error: components that the scaling pushes below
-/// the normal range are below `2^-126` of the largest and change the
-/// length by less than a rounding.
+/// itself, all exactly: so the scaled computation has the same error as
+/// the common one. Components that the scaling pushes below the normal
+/// range are below `2^-126` of the largest and change the length by less
+/// than a rounding. (Such lengths come from a camera ray at a focal length
+/// of `1e30` pixels, for instance.)
+///
+/// Both paths are written as selects, not a branch to a cold function, so
+/// that a loop computing many rays can be vectorised by the compiler.
 pub(crate) fn unit<V: Vector>(v: V) -> V {
     unit_and_inverse_length(v).0
 }
 
-/// [`unit`] and `1 / |v|`: the factor the normalisation applied, in the
-/// common case bit for bit `1 / sqrt(v . v)`; where the squared length
-/// under- or overflows, `1 / (unit(v) . v)`, which is `1 / |v|` within
-/// `gamma(6)` (`unit(v) . v` is `|v|` times the unit vector's length, which
-/// is 1 within `gamma(6)`, plus the dot product's three roundings),
-/// infinite for a `v` whose length is below `1 / MAX` and zero for one
-/// whose length overflows. A NaN vector gives NaN.
+/// [`unit`] and `1 / |v|`, the factor the normalisation applied: bit for
+/// bit `1 / sqrt(v . v)` where `v . v` is a normal float, and elsewhere
+/// `2^-e / sqrt(w . w)` (as in [`unit`]), which has the same error except
+/// where the result is subnormal (a length above `2^126`: up to `2^-149`
+/// more, absolutely) or overflows (infinity for a length below `1 /
+/// MAX`). A NaN or zero vector gives NaN or infinity.
 #[inline(always)]
 pub(crate) fn unit_and_inverse_length<V: Vector>(v: V) -> (V, S<V>) {
     let one = S::<V>::ONE;
     let l2 = v.dot(v);
-    if l2 >= S::<V>::MIN_POSITIVE && l2 <= S::<V>::MAX {
-        let rcp = one / l2.sqrt();
-        return (v * rcp, rcp);
-    }
-    let u = scaled_unit(v, l2);
-    (u, one / u.dot(v))
-}
-
-/// [`unit`] where `v . v` is not a normal float.
-#[cold]
-#[inline(never)]
-fn scaled_unit<V: Vector>(v: V, l2: S<V>) -> V {
-    let one = S::<V>::ONE;
+    let normal = l2 >= S::<V>::MIN_POSITIVE && l2 <= S::<V>::MAX;
     let a = v.abs();
     let m = max2(a.x(), max2(a.y(), a.z()));
-    if !(m > S::<V>::ZERO && m <= S::<V>::MAX) {
-        // Zero gives 0 * inf and an infinite component inf * 0: NaN.
-        return v * (one / l2.sqrt());
-    }
-    // A subnormal maximum first goes up by 2^(2p) (p the precision), exactly.
-    let lift = one / (S::<V>::UNIT_ROUNDOFF * S::<V>::UNIT_ROUNDOFF);
-    let (v, m) = if m < S::<V>::MIN_POSITIVE {
-        (v * lift, m * lift)
+    let s = if normal {
+        one
     } else {
-        (v, m)
+        <S<V> as Repr>::Bits::inverse_binade(m)
     };
-    // m is normal: its exponent e, read from its f64 image (exact for both
-    // precisions), and 2^-e applied in two steps whose factors are each
-    // representable (|e| <= 1023 for f64, 127 for f32).
-    let e = ((m.to_f64().to_bits() >> 52) & 0x7ff) as i32 - 1023;
-    let pow2 = |k: i32| S::<V>::from_f64(f64::from_bits(((1023 + k) as u64) << 52));
-    let half = -e / 2;
-    let w = v * pow2(half) * pow2(-e - half);
-    w * (one / w.dot(w).sqrt())
+    let w = v * s;
+    let l2 = if normal { l2 } else { w.dot(w) };
+    let rcp = one / l2.sqrt();
+    (w * rcp, rcp * s)
 }
 
 #[cfg(test)]
@@ -291,5 +271,81 @@ mod tests {
         for bad in [Vec3::ZERO, Vec3::new(f32::INFINITY, 0.0, 0.0), Vec3::NAN] {
             assert!(!unit(bad).is_finite());
         }
+    }
+
+    /// The inverse length, against `1 / |v|` computed in `f64` from the
+    /// `f32` vector (exact squares, a sum and a square root each within half
+    /// an `f64` ulp: far inside the `f32` bound), over lengths from
+    /// subnormal to near overflow. Where `v . v` is normal it is `1 /
+    /// sqrt(v . v)` bit for bit; elsewhere within `gamma(4)` (the dot
+    /// product's three roundings and the square root's, halved, plus the
+    /// division's), or `2^-149` absolutely where it is subnormal.
+    #[test]
+    fn inverse_length_is_one_over_the_length() {
+        let base = [
+            Vec3::new(3.0, 4.0, 0.0),
+            Vec3::new(-1.0, 1e-3, 2.5),
+            Vec3::new(0.1, 0.2, -0.3),
+        ];
+        for v0 in base {
+            for k in -150..=127 {
+                let v = v0 * 2f32.powi(k);
+                if v == Vec3::ZERO || !v.is_finite() {
+                    continue;
+                }
+                let (u, inv) = unit_and_inverse_length(v);
+                let l2 = v.dot(v);
+                if (f32::MIN_POSITIVE..=f32::MAX).contains(&l2) {
+                    assert_eq!(inv, 1.0 / l2.sqrt(), "{v}");
+                    assert_eq!(u, v.normalize(), "{v}");
+                }
+                let exact = 1.0 / v.as_dvec3().length();
+                let got = f64::from(inv);
+                if exact > f64::from(f32::MAX) {
+                    assert!(
+                        inv.is_infinite() || got >= exact * (1.0 - 1e-6),
+                        "{v}: {inv}"
+                    );
+                    continue;
+                }
+                let tol = exact * f64::from(f32::gamma_n(4)) + 2f64.powi(-149);
+                assert!((got - exact).abs() <= tol, "{v}: {got} vs {exact}");
+            }
+        }
+    }
+
+    /// `x inverse_binade(x)` is in `[1, 2)` for every normal `x` below
+    /// `2^126` (so it is `2^-e`, `2^e` the binade, a power of two by
+    /// construction from the bits), and the clamps hold at the ends.
+    #[test]
+    fn inverse_binade_brings_into_one_two() {
+        use crate::num::repr::{F32Bits, F64Bits};
+        let mut x = f32::MIN_POSITIVE;
+        while x < 2f32.powi(126) {
+            for y in [x, x * 1.5, x.next_up(), (2.0 * x).next_down()] {
+                let p = y * F32Bits::inverse_binade(y);
+                assert!((1.0..2.0).contains(&p), "{y}: {p}");
+                assert_eq!(F32Bits::inverse_binade(-y), F32Bits::inverse_binade(y));
+            }
+            x *= 2.0;
+        }
+        for big in [2f32.powi(126), f32::MAX, f32::INFINITY, f32::NAN] {
+            assert_eq!(F32Bits::inverse_binade(big), 2f32.powi(-126), "{big}");
+        }
+        for small in [0.0, -0.0, 1e-45, f32::MIN_POSITIVE.next_down()] {
+            assert_eq!(F32Bits::inverse_binade(small), 2f32.powi(127), "{small}");
+        }
+        let mut x = f64::MIN_POSITIVE;
+        while x < 2f64.powi(1022) {
+            for y in [x, x * 1.5, x.next_up(), (2.0 * x).next_down()] {
+                let p = y * F64Bits::inverse_binade(y);
+                assert!((1.0..2.0).contains(&p), "{y}: {p}");
+            }
+            x *= 2.0;
+        }
+        for big in [2f64.powi(1022), f64::MAX, f64::INFINITY, f64::NAN] {
+            assert_eq!(F64Bits::inverse_binade(big), 2f64.powi(-1022), "{big}");
+        }
+        assert_eq!(F64Bits::inverse_binade(5e-324), 2f64.powi(1023));
     }
 }
