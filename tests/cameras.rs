@@ -259,3 +259,45 @@ fn matrix_camera_by_hand() {
 fn hit_differentials_checks() {
     structured::<rayhit_testkit::fuzz::hit_differentials::HitDifferentialsCheck>(0xd1ff);
 }
+
+/// Every camera's basis (one construction, `PinholeCamera`'s, shared by
+/// all) is orthonormal within `gamma(13)`: each entry of `B^T B - I`, for
+/// random view and up vectors and for up vectors turned from the view by
+/// angles down to the cameras' limit (a sine of `gamma(16)`), where the
+/// cross product alone would leave `right` tilted towards `forward` by its
+/// rounding over that sine. Both precisions.
+#[test]
+fn every_basis_is_orthonormal_within_gamma_13() {
+    use rayhit::Scalar;
+    use rayhit_testkit::fuzz::panoramic::basis_skew;
+    use rayhit_testkit::rng::Pcg32;
+    let mut rng = Pcg32::new(0xba5e);
+    let mut near = [0u32; 2];
+    for i in 0..4000 {
+        let view = rng.sphere().as_dvec3() * f64::from(rng.range(0.01, 100.0));
+        let up = if i % 2 == 0 {
+            rng.sphere().as_dvec3()
+        } else {
+            // The view turned by an angle whose sine is 10^-1 .. 10^-15.
+            let sine = 10f64.powf(-f64::from(rng.range(1.0, 15.0)));
+            let side = view.cross(rng.sphere().as_dvec3()).normalize();
+            view.normalize() + side * sine
+        };
+        if let Ok(c) = PinholeCamera::new(Vec3::ZERO, view.as_vec3(), up.as_vec3(), 1.0, 1, 1) {
+            let g = f64::from(f32::gamma_n(13));
+            let skew = basis_skew([c.right(), c.up(), c.forward()]);
+            assert!(skew <= g + 4.0 * f64::EPSILON, "{view} {up}: {skew}");
+            near[0] += u32::from(
+                i % 2 == 1 && c.forward().cross(up.as_vec3().normalize()).length() < 1e-4,
+            );
+        }
+        if let Ok(c) = PinholeCamera::new(DVec3::ZERO, view, up, 1.0, 1, 1) {
+            let g = f64::gamma_n(13);
+            let skew = basis_skew([c.right(), c.up(), c.forward()]);
+            assert!(skew <= g + 4.0 * f64::EPSILON, "{view} {up}: {skew}");
+            near[1] += u32::from(i % 2 == 1 && c.forward().cross(up.normalize()).length() < 1e-12);
+        }
+    }
+    // Not vacuous: many nearly parallel up vectors were accepted.
+    assert!(near[0] > 100 && near[1] > 50, "{near:?}");
+}

@@ -285,12 +285,10 @@ impl<V: Vector> EqualAreaCamera<V> {
     /// `raster_position(ray(x, y).dir)` is `(x, y)` (or, within that much
     /// of the image's edge, its mirror image across the centre line: the
     /// square's edges fold onto each other) within `225 u` of the width in
-    /// `x` and of the height in `y` in `f32`, `313 u` in `f64`, for a
-    /// basis orthonormal within `gamma(13)` (an up vector well away from
-    /// the view direction; nearly parallel, `right` carries its cross
-    /// product's rounding over the sine of their angle, three times which
-    /// adds to the direction's angular error). Derived, term by term, and
-    /// held to in the test kit's panorama checks.
+    /// `x` and of the height in `y` in `f32`, `313 u` in `f64` (the basis
+    /// being orthonormal within `gamma(13)`, for every up vector the camera
+    /// accepts). Derived, term by term, and held to in the test kit's
+    /// panorama checks.
     #[must_use]
     pub fn raster_position(&self, dir: V) -> Option<(S<V>, S<V>)> {
         if !dir.is_finite() || dir == V::ZERO {

@@ -119,7 +119,7 @@ impl<V: Vector> EquirectangularCamera<V> {
     ///
     /// those of the exact mapping before normalising (the normalisation
     /// changes them by as much as the basis departs from orthonormal, a
-    /// few roundings unless the up vector was nearly parallel to the view). Second order: the mapping's second derivatives in
+    /// few roundings). Second order: the mapping's second derivatives in
     /// longitude and latitude are at most 1 long, so the rays of `(x + 1,
     /// y)` and `(x, y + 1)` are within `(2 pi / width)^2 / 2` and `(pi /
     /// height)^2 / 2` of `dir + dx_dir` and `dir + dy_dir`, plus rounding.
@@ -181,10 +181,8 @@ impl<V: Vector> EquirectangularCamera<V> {
     /// `A = 24` in `f64`: about `w (40 u / cos(lat) + 15 u)` and `107 u h`
     /// in `f32`, `w (55 u / cos(lat) + 27 u)` and `161 u h` in `f64`. Its
     /// last term is three times the basis's departure from orthonormal
-    /// (the largest entry of `B^T B - I`), `gamma(13)` when the up vector
-    /// is well away from the view direction; nearly parallel, `right`
-    /// carries its cross product's rounding over the sine of their angle,
-    /// and the bound grows with it. The
+    /// (the largest entry of `B^T B - I`), at most `gamma(13)` for every up
+    /// vector the camera accepts. The
     /// longitude is known to an angle over `cos(lat)`, so the columns crowd
     /// near the poles. (Derived, and held to, in the test kit's panorama
     /// checks.)

@@ -155,7 +155,9 @@ macro_rules! film_accessors {
 use film_accessors;
 
 /// A camera's position and orthonormal frame: `forward` along the view,
-/// `right = normalize(forward x up)`, `up = normalize(right x forward)`.
+/// `right = normalize(forward x up)` with its component along `forward`
+/// removed once more, `up = normalize(right x forward)`: orthonormal within
+/// `gamma(13)` (each entry of `B^T B - I`) for every up vector accepted.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub(crate) struct Basis<V> {
     pub(crate) eye: V,
@@ -188,7 +190,12 @@ impl<V: Vector> Basis<V> {
         if !(side.length() > S::<V>::gamma_n(16)) {
             return Err(CameraError::UpParallelToView);
         }
-        let right = unit(side);
+        // The cross product's rounding, over the sine of the angle (as
+        // small as gamma(16)), would tilt `right` towards `forward` by up
+        // to a third of a radian; removing the component along `forward`
+        // once more (Gram-Schmidt) leaves only this step's own rounding:
+        // `right . forward` within a few u whatever the angle.
+        let right = unit(side - forward * forward.dot(side));
         let up = unit(right.cross(forward));
         Ok(Self {
             eye,

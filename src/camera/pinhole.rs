@@ -17,7 +17,10 @@ use crate::ray::Ray;
 /// the eye along the normalised view direction, centred on it. The basis is
 /// `forward = normalize(view_dir)`, `right = normalize(forward x up)` (so
 /// the up vector need not be unit or orthogonal to the view; only its
-/// component orthogonal to the view is used) and `true_up = right x forward`.
+/// component orthogonal to the view is used) and `true_up = right x forward`,
+/// orthonormal within `gamma(13)` per entry of `B^T B - I` even for an up
+/// vector nearly parallel to the view (`right` has its rounding's component
+/// along `forward` removed once more).
 /// Width and height may differ; pixels are square.
 ///
 /// Rays start at the eye and have unit-length directions (to a few ulps).

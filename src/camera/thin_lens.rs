@@ -123,9 +123,10 @@ impl<V: Vector> FocusPoint<V> {
 ///
 /// Each coordinate is within `|radius| gamma(TRIG + 4)` of the exact map of
 /// the rounded `a`, `b` (`TRIG` is 24 in `f32` and 40 in `f64`: the sine's
-/// and cosine's bound; then the ratio's, `pi/4`'s, the angle's and the
-/// product's roundings), so the point is in the disc to that much; the
-/// rounding of `2s - 1` is at most one, relative.
+/// and cosine's bound; then the ratio's rounding, which moves the angle by
+/// at most `(pi/4) u`, and the product's: two more would do), so the point
+/// is in the disc to that much; the rounding of `2s - 1` is at most one,
+/// relative. The angle is passed as `q/2` quarter turns, exactly.
 #[inline(always)]
 fn concentric_disc<F: Scalar>(s: F, t: F) -> (F, F) {
     let (zero, one) = (F::ZERO, F::ONE);
@@ -136,7 +137,8 @@ fn concentric_disc<F: Scalar>(s: F, t: F) -> (F, F) {
     }
     let wide = a.abs() > b.abs();
     let (r, q) = if wide { (a, b / a) } else { (b, a / b) };
-    let (sin, cos) = sin_cos_quarter(q * F::from_f64(core::f64::consts::FRAC_PI_4));
+    // (pi/4) q radians are q/2 quarter turns (exact).
+    let (sin, cos) = sin_cos_quarter(q * F::HALF);
     if wide {
         (r * cos, r * sin)
     } else {

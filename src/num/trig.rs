@@ -54,30 +54,33 @@ pub(crate) fn trig_n<F: Scalar>() -> u32 {
     if single::<F>() { 24 } else { 40 }
 }
 
-/// Taylor coefficients of `sin(x) / x` in powers of `x^2`.
+/// Taylor coefficients of `sin(pi r / 2) / r` in powers of `r^2`:
+/// `(-1)^k (pi/2)^(2k+1) / (2k+1)!`, each the `f64` nearest the exact value
+/// (computed in rational arithmetic from 80 digits of `pi`).
 const SIN: [f64; 9] = [
-    1.0,
-    -1.0 / 6.0,
-    1.0 / 120.0,
-    -1.0 / 5040.0,
-    1.0 / 362_880.0,
-    -1.0 / 39_916_800.0,
-    1.0 / 6_227_020_800.0,
-    -1.0 / 1_307_674_368_000.0,
-    1.0 / 355_687_428_096_000.0,
+    core::f64::consts::FRAC_PI_2,
+    -0.645_964_097_506_246_3,
+    0.079_692_626_246_167_05,
+    -0.004_681_754_135_318_688,
+    0.000_160_441_184_787_359_83,
+    -3.598_843_235_212_085e-6,
+    5.692_172_921_967_927e-8,
+    -6.688_035_109_811_468e-10,
+    6.066_935_731_106_195_5e-12,
 ];
 
-/// Taylor coefficients of `cos(x)` in powers of `x^2`.
+/// Taylor coefficients of `cos(pi r / 2)` in powers of `r^2`: `(-1)^k
+/// (pi/2)^(2k) / (2k)!`, as [`SIN`]'s.
 const COS: [f64; 9] = [
     1.0,
-    -1.0 / 2.0,
-    1.0 / 24.0,
-    -1.0 / 720.0,
-    1.0 / 40_320.0,
-    -1.0 / 3_628_800.0,
-    1.0 / 479_001_600.0,
-    -1.0 / 87_178_291_200.0,
-    1.0 / 20_922_789_888_000.0,
+    -1.233_700_550_136_169_7,
+    0.253_669_507_901_048_03,
+    -0.020_863_480_763_352_96,
+    0.000_919_260_274_839_426_6,
+    -2.520_204_237_306_060_7e-5,
+    4.710_874_778_818_172e-7,
+    -6.386_603_083_791_852e-9,
+    6.565_963_114_979_473e-11,
 ];
 
 /// `sum c[k] z^k` for the first `n` coefficients, by Horner's rule.
@@ -92,49 +95,58 @@ fn horner<F: Scalar>(c: &[f64], n: usize, z: F) -> F {
     p
 }
 
-/// `(sin x, cos x)` for `|x| <= pi/4` (a rounding beyond is fine), each
-/// within `gamma(TRIG)` ([`trig_n`]) of the exact value, absolutely.
+/// `(sin(pi r / 2), cos(pi r / 2))`, the sine and cosine of `r` quarter
+/// turns, for `|r| <= 1/2` (an eighth of a turn; a rounding beyond is
+/// fine): each within `3 u` of the exact value, absolutely, and so within
+/// `gamma(TRIG)` ([`trig_n`]), the bound the cameras' derivations use.
 ///
-/// Taylor polynomials, in `z = x^2`: `sin` to `x^9` and `cos` to `x^10`
-/// in `f32`, `sin` to `x^17` and `cos` to `x^16` in `f64`. Truncation:
-/// the first omitted term bounds the rest (alternating, decreasing), at
-/// most `(pi/4)^11 / 11! < 2e-9` and `(pi/4)^12 / 12! < 2e-10` in `f32`
-/// (below `0.04 u`), `(pi/4)^19 / 19! < 1e-19` and `(pi/4)^18 / 18! <
-/// 3e-18` in `f64` (below `0.03 u`). Rounding: with `n` the degree in
-/// `z` (4 and 5 in `f32`, 8 in `f64`), `z` carries one rounding and `z^k`
-/// so at most `n`; each coefficient two (decimal to `f64`, `f64` to
-/// `f32`); Horner's rule two per step (Higham, 5.3). So the computed
-/// polynomial is within `gamma(3n + 2) sum |c_k| z^k` of the exact one,
-/// and `sin` adds the product by `x`: `gamma(3n + 3) sinh|x|` and
-/// `gamma(3n + 2) cosh x`, with `sinh(pi/4) < 0.87`, `cosh(pi/4) < 1.33`.
-/// In `f32`: `0.87 gamma(15)` and `1.33 gamma(17) < gamma(23)`; in `f64`:
-/// `0.87 gamma(27)` and `1.33 gamma(26) < gamma(35)`; with truncation,
-/// `gamma(24)` and `gamma(40)` cover both.
+/// Taylor polynomials in `z = r^2` with `pi/2` in the coefficients ([`SIN`],
+/// [`COS`]), so that the argument is not rounded: `sin` to `r^9` and `cos`
+/// to `r^10` in `f32`, `sin` to `r^17` and `cos` to `r^16` in `f64`, by
+/// Horner's rule. The error, at most where `|r| = 1/2` (each term below
+/// grows with `|r|`):
+///
+/// - truncation: the series alternate with decreasing terms, so the first
+///   omitted term bounds the rest: below `0.03 u` in both precisions;
+/// - coefficients: each rounded once to `f64`, and once more to `f32` (at
+///   most `1.001 u` relative together); the cosine's `1` is exact;
+/// - `z`: one rounding, relative;
+/// - Horner's rule (Higham, *Accuracy and Stability of Numerical
+///   Algorithms*, 2002, section 5.1, first order): the step giving `y_k =
+///   fl(fl(z y_(k+1)) + c_k)` adds `u (|z y_(k+1)| + |y_k|)`, and the errors
+///   before it are multiplied by `z <= 1/4`. Each partial value is an
+///   alternating series with decreasing terms, so `|y_k| <= |c_k|`;
+/// - the sine's product by `r`: one rounding.
+///
+/// Summed (`tests::running_error_bound` recomputes the sums from the
+/// coefficients): below `2.8 u` for the sine and `2.4 u` for the cosine, in
+/// both precisions, with second-order terms below `1e-5 u`. The `f32`
+/// functions are also checked against the `f64` library on every `f32`
+/// argument from `2^-12` to `1/2` (an ignored test; a sample by default).
 ///
 /// [`sin_cos_quarter_lanes`] computes it on four lanes at once, and a test
 /// holds the two to the same bits.
 #[inline(always)]
-pub(crate) fn sin_cos_quarter<F: Scalar>(x: F) -> (F, F) {
-    let z = x * x;
+pub(crate) fn sin_cos_quarter<F: Scalar>(r: F) -> (F, F) {
+    let z = r * r;
     let (ns, nc) = if single::<F>() { (5, 6) } else { (9, 9) };
-    (x * horner(&SIN, ns, z), horner(&COS, nc, z))
+    (r * horner(&SIN, ns, z), horner(&COS, nc, z))
 }
 
 /// `(sin 2 pi t, cos 2 pi t)`: the sine and cosine of `t` turns.
 ///
-/// For `|t| < 2^(p-2)` (4 million turns in `f32`), each is within
-/// `gamma(TRIG + 2)` of the exact value, absolutely; beyond, the pair is
+/// For `|t| < 2^(p-2)` (4 million turns in `f32`), each is within `3 u`
+/// of the exact value, absolutely, and so within `gamma(TRIG + 2)`, the
+/// bound the cameras' derivations use; beyond, the pair is
 /// still finite, of length 1 within the same bound (the angle is then a
 /// multiple of a quarter turn or coarser, and which one is not
 /// specified). NaN or infinite `t` gives NaN.
 ///
 /// Reduction, exact: `s = t - round(t)` is in `[-1/2, 1/2]` and `t - s`
 /// an integer; `k = round(4 s)` is a quarter-turn count in `-2..=2`, and
-/// `r = 4 s - k` in `[-1/2, 1/2]`, all exact. Then `x = r * fl(pi/2)`,
-/// with `|x - r pi/2| <= (pi/4) gamma(2)`, so that `sin` and `cos` of `x`
-/// (1-Lipschitz) are within `gamma(2)` of those of `r pi/2`, and
-/// [`sin_cos_quarter`] adds `gamma(TRIG)`. The quarter turns are exact
-/// swaps and sign changes.
+/// `r = 4 s - k` in `[-1/2, 1/2]`, all exact. [`sin_cos_quarter`] of `r`
+/// then has the only error, and the quarter turns are exact swaps and sign
+/// changes.
 ///
 /// [`sin_cos_turns_pair`] computes it for two angles on four lanes, and a
 /// test holds the two to the same bits.
@@ -147,7 +159,7 @@ pub(crate) fn sin_cos_turns<F: Scalar>(t: F) -> (F, F) {
     let four_s = s * F::from_u32(4);
     let k = round_int(four_s);
     let r = four_s - k;
-    let (sin, cos) = sin_cos_quarter(r * F::from_f64(core::f64::consts::FRAC_PI_2));
+    let (sin, cos) = sin_cos_quarter(r);
     // k modulo 4, in -2..=2 (for |t| beyond 2^(p-2), k may be any integer).
     let q = if inside {
         k
@@ -177,7 +189,7 @@ fn quarter_turns<F: Scalar>(sin: F, cos: F, q: F) -> (F, F) {
 /// [`sin_cos_quarter`] of four lanes at once: the sine of lanes 0 and 2
 /// and the cosine of lanes 1 and 3, each bit for bit what
 /// [`sin_cos_quarter`] gives for that lane's argument (so within
-/// the same bound) wherever `x^2` is finite, which includes the whole range
+/// the same bound) wherever `r^2` is finite, which includes the whole range
 /// it is for (a NaN lane stays NaN).
 ///
 /// Both polynomials are evaluated on every lane, each with its own
@@ -185,10 +197,10 @@ fn quarter_turns<F: Scalar>(sin: F, cos: F, q: F) -> (F, F) {
 /// `f32` the sine has one coefficient fewer than the cosine: its lanes start
 /// one step early from `0`, and `0 z + c = c` exactly for the finite,
 /// non-negative `z` (a NaN stays NaN). The sine lanes are then multiplied
-/// by `x` and the cosine lanes by `1`, which is exact.
+/// by `r` and the cosine lanes by `1`, which is exact.
 #[inline(always)]
-fn sin_cos_quarter_lanes<F: Scalar>(x: L4<F>) -> L4<F> {
-    let z = x.mul(x);
+fn sin_cos_quarter_lanes<F: Scalar>(r: L4<F>) -> L4<F> {
+    let z = r.mul(r);
     let (ns, nc) = if single::<F>() { (5, 6) } else { (9, 9) };
     let n = if ns > nc { ns } else { nc };
     let coefficients = |k: usize| {
@@ -204,7 +216,7 @@ fn sin_cos_quarter_lanes<F: Scalar>(x: L4<F>) -> L4<F> {
     }
     p.mul(L4::<F>::select(
         sine_lanes::<F>(),
-        x,
+        r,
         L4::<F>::splat(F::ONE),
     ))
 }
@@ -236,7 +248,7 @@ pub(crate) fn sin_cos_turns_pair<F: Scalar>(a: F, b: F) -> [(F, F); 2] {
     let four_s = s.mul(splat(F::from_u32(4)));
     let k = round_int_lanes::<F>(four_s);
     let r = four_s.sub(k);
-    let p = sin_cos_quarter_lanes::<F>(r.mul(splat(F::from_f64(core::f64::consts::FRAC_PI_2))));
+    let p = sin_cos_quarter_lanes::<F>(r);
     let whole =
         k.sub(splat(F::from_u32(4)).mul(round_int_lanes::<F>(k.mul(splat(F::from_f64(0.25))))));
     let q = L4::<F>::select(inside, k, whole);
@@ -377,6 +389,136 @@ mod tests {
         ts.extend([0.0, -0.0, 0.125, -0.125, 0.25, 0.5, -0.5, 1.0, 1e6 + 0.3]);
         check::<f32>(&ts, 0.0);
         check::<f64>(&ts, 2.0 * f64::EPSILON);
+    }
+
+    /// The sums of the running error analysis in [`sin_cos_quarter`]'s
+    /// comment, from the coefficients themselves, at `|r| = 1/2`: the
+    /// bounds it states, in units of `u`.
+    #[test]
+    fn running_error_bound() {
+        fn sums(u: f64, ns: usize, nc: usize) -> (f64, f64) {
+            let (r, z) = (0.5, 0.25);
+            // Horner's steps: u (z |c_(k+1)| + |c_k|), carried times z.
+            let horner = |c: &[f64], n: usize| {
+                (0..n - 1)
+                    .rev()
+                    .fold(0.0, |e, k| z * e + u * (z * c[k + 1].abs() + c[k].abs()))
+            };
+            let cu = u * 1.001;
+            let at = |c: &[f64], k: usize| c[k].abs() * z.powi(k as i32);
+            let slope = |c: &[f64], n: usize| {
+                (1..n)
+                    .map(|k| k as f64 * c[k].abs() * z.powi(k as i32 - 1))
+                    .sum::<f64>()
+            };
+            // The first omitted terms (past the arrays' ends in f64): the
+            // next coefficients by the series' ratios, at z.
+            let h2 = core::f64::consts::FRAC_PI_2 * core::f64::consts::FRAC_PI_2;
+            let omitted = |c: &[f64], n: usize, odd: usize| {
+                let m = (2 * n + odd) as f64;
+                (c[n - 1] * h2 / (m * (m - 1.0))).abs() * z.powi(n as i32)
+            };
+            let sin = r
+                * (horner(&SIN, ns)
+                    + cu * (0..ns).map(|k| at(&SIN, k)).sum::<f64>()
+                    + slope(&SIN, ns) * u * z
+                    + omitted(&SIN, ns, 1))
+                + u * r * SIN[0];
+            let cos = horner(&COS, nc)
+                + cu * (1..nc).map(|k| at(&COS, k)).sum::<f64>()
+                + slope(&COS, nc) * u * z
+                + omitted(&COS, nc, 0);
+            // Second-order terms, generously.
+            ((sin / u) * (1.0 + 1e-5), (cos / u) * (1.0 + 1e-5))
+        }
+        for (u, ns, nc) in [(2f64.powi(-24), 5, 6), (2f64.powi(-53), 9, 9)] {
+            let (sin, cos) = sums(u, ns, nc);
+            assert!(sin < 2.8 && cos < 2.4, "{sin} {cos}");
+            // Not vacuous: the sine's last rounding alone is 0.785 u.
+            assert!(sin > 2.0 && cos > 1.5);
+        }
+        // Truncation below 0.03 u: the first omitted terms at r = 1/2.
+        assert!(0.5 * SIN[5] * 0.25f64.powi(5) < 0.03 * 2f64.powi(-24));
+        assert!(COS[6] * 0.25f64.powi(6) < 0.03 * 2f64.powi(-24));
+    }
+
+    /// The coefficients against `(pi/2)^m / m!` computed here in `f64`
+    /// (a few roundings: within `1e-15` relative), so that a mistyped
+    /// digit fails.
+    #[test]
+    fn coefficients_are_the_taylor_series() {
+        let h = core::f64::consts::FRAC_PI_2;
+        let mut term = 1.0; // (pi/2)^m / m!, m = 0
+        for m in 0..18 {
+            let (k, c) = if m % 2 == 0 {
+                (m / 2, COS[m / 2])
+            } else {
+                (m / 2, SIN[m / 2])
+            };
+            let sign = if k % 2 == 0 { 1.0 } else { -1.0 };
+            assert!((c - sign * term).abs() <= 1e-15 * term, "{m}: {c} {term}");
+            term *= h / (m + 1) as f64;
+        }
+    }
+
+    /// The quarter-turn sine and cosine in `f32` against the `f64`
+    /// library's (whose error, with the `f64` product `r pi/2`, is below
+    /// `1e-15`: `1e-8` of the bound) within the `3 u` stated, at every
+    /// `STEP`th `f32` from `2^-12` to `1/2`, and every one with `STEP = 1`
+    /// (`cargo test --release -p rayhit --lib -- --ignored
+    /// every_f32_quarter_turn`, about a minute); below `2^-12`, the cosine
+    /// is `1` within `u / 2` and the sine has only its first term's error.
+    /// The sine is odd and the cosine even, bit for bit, so the negative
+    /// arguments are covered too.
+    fn quarter_turns_f32(step: usize) -> (u64, f64) {
+        let bound = 3.0 * f64::from(f32::UNIT_ROUNDOFF);
+        let (mut r, mut n, mut worst) = (2f32.powi(-12), 0u64, 0f64);
+        while r <= 0.5 {
+            let (s, c) = sin_cos_quarter(r);
+            let (ns, nc) = sin_cos_quarter(-r);
+            assert!(ns == -s && nc.to_bits() == c.to_bits());
+            let x = f64::from(r) * core::f64::consts::FRAC_PI_2;
+            let e = (f64::from(s) - x.sin())
+                .abs()
+                .max((f64::from(c) - x.cos()).abs());
+            assert!(e <= bound, "{r}: {s} {c}: {e}");
+            worst = worst.max(e);
+            n += 1;
+            for _ in 0..step {
+                r = r.next_up();
+            }
+        }
+        (n, worst / f64::from(f32::UNIT_ROUNDOFF))
+    }
+
+    #[test]
+    fn quarter_turns_f32_sample() {
+        let (n, worst) = quarter_turns_f32(997);
+        assert!(n > 90_000 && worst > 0.1, "{n} {worst}");
+    }
+
+    #[test]
+    #[ignore = "every f32 from 2^-12 to 1/2: about a minute in release"]
+    fn every_f32_quarter_turn() {
+        let (n, worst) = quarter_turns_f32(1);
+        std::println!("{n} arguments, largest error {worst} u");
+    }
+
+    /// The `f64` functions against the `f64` library's (within one of its
+    /// ulps, as glibc and libm document) on a grid of `|r| <= 1/2`.
+    #[test]
+    fn quarter_turns_f64() {
+        let bound = 3.0 * f64::UNIT_ROUNDOFF + f64::EPSILON;
+        for i in -50_000..=50_000 {
+            let r = f64::from(i) * 1e-5 + 1.234e-7;
+            let r = if r.abs() > 0.5 { 0.5f64.copysign(r) } else { r };
+            let (s, c) = sin_cos_quarter(r);
+            let x = r * core::f64::consts::FRAC_PI_2;
+            assert!(
+                (s - x.sin()).abs() <= bound && (c - x.cos()).abs() <= bound,
+                "{r}"
+            );
+        }
     }
 
     /// Exact cases: quarter turns give exact zeros and ones.
