@@ -48,7 +48,7 @@
 //! cargo test --release -p rayhit --test instance_meshes -- --ignored --nocapture
 //! ```
 
-use num_traits::Zero;
+use rayhit::exact::{self, AffineMap};
 use rayhit::glam::{DVec3, Vec3};
 use rayhit::{
     Instance, InstanceRayError, PreparedRay, Ray, Scalar, Triangle, Vector, ray_triangle_one_hit,
@@ -56,7 +56,7 @@ use rayhit::{
 };
 use rayhit_testkit::cases::{c, v};
 use rayhit_testkit::mesh;
-use rayhit_testkit::oracle::{R3, dot, r, rv, to_f64};
+use rayhit_testkit::oracle::{R3, r, rv, to_f64};
 use rayhit_testkit::source::Source;
 
 type S<V> = <V as Vector>::Scalar;
@@ -250,55 +250,13 @@ fn tube_distance(x: [f64; 3]) -> f64 {
 
 // ----------------------------------------------------------- placements
 
-/// An exact affine map `x -> M x + T` (rows of `M`).
-#[derive(Clone)]
-struct Exact {
-    m: [R3; 3],
-    t: R3,
-}
-
-impl Exact {
-    fn of<V: Vector>(inst: &Instance<V>) -> Self {
-        let cols = inst.matrix_columns();
-        Exact {
-            m: [0, 1, 2].map(|i| [0, 1, 2].map(|j| r(cols[j][i]))),
-            t: rv(inst.translation()),
-        }
-    }
-    fn apply(&self, x: &R3) -> R3 {
-        [0, 1, 2].map(|i| dot(&self.m[i], x) + &self.t[i])
-    }
-    /// `self` after `inner`.
-    fn then(&self, inner: &Exact) -> Exact {
-        let col = |j: usize| [0, 1, 2].map(|k| inner.m[k][j].clone());
-        let cols = [col(0), col(1), col(2)];
-        Exact {
-            m: [0, 1, 2].map(|i| [0, 1, 2].map(|j| dot(&self.m[i], &cols[j]))),
-            t: self.apply(&inner.t),
-        }
-    }
-    /// The inverse map (the matrices drawn are never singular).
-    fn inverse(&self) -> Exact {
-        let m = &self.m;
-        let cof = |i: usize, j: usize| {
-            let (i1, i2, j1, j2) = ((i + 1) % 3, (i + 2) % 3, (j + 1) % 3, (j + 2) % 3);
-            &m[i1][j1] * &m[i2][j2] - &m[i1][j2] * &m[i2][j1]
-        };
-        let det = &m[0][0] * cof(0, 0) + &m[0][1] * cof(0, 1) + &m[0][2] * cof(0, 2);
-        assert!(!det.is_zero(), "a singular transform");
-        let inv: [R3; 3] = [0, 1, 2].map(|i| [0, 1, 2].map(|j| cof(j, i) / &det));
-        let t = [0, 1, 2].map(|i| -dot(&inv[i], &self.t));
-        Exact { m: inv, t }
-    }
-}
-
 /// One placement of a mesh: the instances from the world inwards, the
 /// exact object-to-world map of the whole path and its inverse, and `f64`
 /// copies for aiming (never for judging).
 struct Placement<V> {
     path: Vec<Instance<V>>,
-    to_world: Exact,
-    to_object: Exact,
+    to_world: AffineMap,
+    to_object: AffineMap,
     /// `|M^-1|` of the whole path, rounded up a little, for carrying the
     /// world-space ray bound into object space.
     inv_abs: [[f64; 3]; 3],
@@ -308,18 +266,17 @@ struct Placement<V> {
 
 impl<V: Vector> Placement<V> {
     fn new(path: Vec<Instance<V>>) -> Self {
-        let to_world = path
-            .iter()
-            .map(Exact::of)
-            .reduce(|outer, inner| outer.then(&inner))
-            .expect("a path of one or two instances");
-        let to_object = to_world.inverse();
+        let levels: Vec<&Instance<V>> = path.iter().collect();
+        let to_world = AffineMap::of_path(&levels).expect("a path of one or two instances");
+        let to_object = to_world
+            .inverse()
+            .expect("the transforms drawn are not singular");
         let inv_abs = to_object
-            .m
+            .matrix
             .clone()
             .map(|row| row.map(|x| to_f64(&x).abs() * (1.0 + 1e-12)));
-        let aim_m = to_world.m.clone().map(|row| row.map(|x| to_f64(&x)));
-        let aim_t = to_world.t.clone().map(|x| to_f64(&x));
+        let aim_m = to_world.matrix.clone().map(|row| row.map(|x| to_f64(&x)));
+        let aim_t = to_world.translation.clone().map(|x| to_f64(&x));
         Placement {
             path,
             to_world,
@@ -498,12 +455,8 @@ fn rays<V: Vector>(solid: &Solid<V>, place: &Placement<V>, src: &mut Source, tal
             // towards a surface point or anywhere.
             2 => {
                 let p: V = v(solid.interior_point(src));
-                let image = place.to_world.apply(&rv(p));
-                let origin = V::new(
-                    rayhit::exact::round(&image[0]),
-                    rayhit::exact::round(&image[1]),
-                    rayhit::exact::round(&image[2]),
-                );
+                let image = exact::instance_point(&place.to_world, p).expect("finite");
+                let origin = V::new(image[0].rounded, image[1].rounded, image[2].rounded);
                 let to = if src.one_in(4) {
                     let d = src.direction();
                     place.aim([0, 1, 2].map(|k| c(p)[k] + d[k]))
