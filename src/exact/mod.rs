@@ -160,7 +160,10 @@ mod instance;
 pub mod oracle;
 mod verdict;
 
-pub use corpus::{CorpusCase, CorpusEntry, corpus, parse_case};
+pub use corpus::{
+    CorpusCase, CorpusEntry, InstanceCorpusCase, InstanceCorpusEntry, InstanceQuestion, corpus,
+    instance_corpus, parse_case,
+};
 
 pub use instance::{
     AffineMap, ImageBox, PointJudgement, WorldBoxJudgement, instance_box, instance_point,
