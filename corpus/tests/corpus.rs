@@ -14,7 +14,13 @@
 //!   `ray_plane_t_error`;
 //! - every transferred ray differential at a triangle hit (each component of
 //!   `dp_dx`, `dp_dy` and `du_dx` ... `dv_dy`) within
-//!   `triangle_hit_differentials_error` of the exact transfer.
+//!   `triangle_hit_differentials_error` of the exact transfer;
+//! - every instance's world box (`Instance::object_to_world_box`) contains
+//!   the exact image of the object box (stored rounded outward, so the
+//!   comparison is exact) and is at most `16 u` of the terms' magnitudes
+//!   wider; every world point of an exact object point
+//!   (`Instance::surface_to_world`) within its `point_error` of the exact
+//!   image (stored rounded to nearest, so half an ulp is added).
 //!
 //! Regenerate only for a deliberate change of guarantee (see CONTRIBUTING.md):
 //! `RAYHIT_REGENERATE_CORPUS=1 cargo test --release -p rayhit-corpus --test corpus`.
@@ -26,14 +32,15 @@ use num_traits::Signed;
 use rayhit::exact;
 use rayhit::glam::{DVec3, Vec3};
 use rayhit::{
-    Aabb, BoxFace, Plane, Ray, RayDifferential, Scalar, Side, Triangle, Vector, ray_aabb,
-    ray_aabb_face, ray_aabb_naive, ray_plane, ray_plane_t_error, ray_triangle,
+    Aabb, BoxFace, Instance, Plane, Ray, RayDifferential, Scalar, Side, SurfacePoint, Triangle,
+    Vector, ray_aabb, ray_aabb_face, ray_aabb_naive, ray_plane, ray_plane_t_error, ray_triangle,
     ray_triangle_error_bounds, ray_triangle_mt, ray_triangle_one_hit, triangle_hit_differentials,
     triangle_hit_differentials_error,
 };
 use rayhit_testkit::cases::Generator;
 use rayhit_testkit::cases::boxes;
 use rayhit_testkit::cases::boxes::BoxCase;
+use rayhit_testkit::cases::instances;
 use rayhit_testkit::cases::planes;
 use rayhit_testkit::cases::triangles::{self, TriCase};
 use rayhit_testkit::oracle;
@@ -547,6 +554,150 @@ fn check_differentials<V: Vector>(lines: &[String]) -> Failures {
     fail
 }
 
+// -------------------------------------------------------------- instances
+
+const INSTANCE_BOX_HEADER: &str = "columns of M (x_axis y_axis z_axis) T object_min object_max | the exact image of the object box under x -> M x + T, rounded outward (the smallest float box containing it): MIN MAX";
+
+/// Reads a transform: the matrix's three columns and the translation.
+fn transform<V: Vector>(f: &mut Fields) -> ([V; 3], V) {
+    ([f.v::<V>(), f.v::<V>(), f.v::<V>()], f.v::<V>())
+}
+
+fn hex_transform<V: Vector>((cols, t): &([V; 3], V)) -> String {
+    format!(
+        "{} {} {} {}",
+        hex_v(cols[0]),
+        hex_v(cols[1]),
+        hex_v(cols[2]),
+        hex_v(*t)
+    )
+}
+
+/// A transform the crate builds an instance of (the inputs of a line, not
+/// its answer) and an object box, with the exact image's box rounded
+/// outward.
+fn instance_box_line<V: Vector>(src: &mut Source) -> Option<String> {
+    let (cols, t) = instances::transform::<V>(src)?;
+    let object = instances::object_box::<V>(src)?;
+    Instance::new(cols, t).ok()?;
+    let map = exact::AffineMap::new(cols, t)?;
+    let image: Aabb<V> = exact::instance_box(&map, &object)?.outward();
+    if !(image.min.is_finite() && image.max.is_finite()) {
+        return None;
+    }
+    Some(format!(
+        "{} {} {} | {} {}",
+        hex_transform(&(cols, t)),
+        hex_v(object.min),
+        hex_v(object.max),
+        hex_v(image.min),
+        hex_v(image.max)
+    ))
+}
+
+/// `object_to_world_box` contains the exact image (it contains the stored
+/// outward rounding, which is the same question for a box of floats) and
+/// is at most `16 u S + 16 TINY` wider on each side, with `S = |T_i| +
+/// sum_j max(|M_ij lo_j|, |M_ij hi_j|)`: each end is six operations
+/// (three products, three sums), each rounded to nearest and stepped one
+/// float outward, so off by at most `1.5` ulps (`3u` relative, or `1.5
+/// TINY` below the normal range) of a value of magnitude at most `S (1 +
+/// 6u)`: `6 * 3u S (1 + 6u) + 9 TINY`, below the bound.
+fn check_instance_boxes<V: Vector>(lines: &[String]) -> Failures {
+    let mut fail = Failures::default();
+    let (u, tiny) = (r(S::<V>::UNIT_ROUNDOFF), r(S::<V>::TINY));
+    let sixteen = R::from_integer(16.into());
+    for (i, line) in lines.iter().enumerate() {
+        let parts: Vec<&str> = line.split(" | ").collect();
+        let mut f = Fields(parts[0].split_whitespace());
+        let (cols, t) = transform::<V>(&mut f);
+        let object = Aabb::new(f.v::<V>(), f.v::<V>());
+        let mut ans = Fields(parts[1].split_whitespace());
+        let (lo, hi) = (ans.v::<V>(), ans.v::<V>());
+        let Ok(inst) = Instance::new(cols, t) else {
+            fail.check(false, i, || format!("no instance: {line}"));
+            continue;
+        };
+        let Some(world) = inst.object_to_world_box(&object) else {
+            fail.check(false, i, || format!("no world box: {line}"));
+            continue;
+        };
+        for k in 0..3 {
+            fail.check(world.min[k] <= lo[k] && hi[k] <= world.max[k], i, || {
+                format!("axis {k}: {world:?} does not contain the exact image [{lo:?}, {hi:?}]")
+            });
+            let s: R = (0..3)
+                .map(|j| {
+                    let m = r(cols[j][k]);
+                    let (a, b) = ((&m * r(object.min[j])).abs(), (m * r(object.max[j])).abs());
+                    if a > b { a } else { b }
+                })
+                .fold(r(t[k]).abs(), |acc, x| acc + x);
+            let allowed = &sixteen * &u * s + &sixteen * &tiny;
+            fail.check(
+                r(lo[k]) - r(world.min[k]) <= allowed && r(world.max[k]) - r(hi[k]) <= allowed,
+                i,
+                || format!("axis {k}: {world:?} wider than its bound around [{lo:?}, {hi:?}]"),
+            );
+        }
+    }
+    fail
+}
+
+const INSTANCE_POINT_HEADER: &str = "columns of M (x_axis y_axis z_axis) T object_point | the exact image M p + T, rounded to nearest";
+
+fn instance_point_line<V: Vector>(src: &mut Source) -> Option<String> {
+    let (cols, t) = instances::transform::<V>(src)?;
+    let p = instances::object_point::<V>(src)?;
+    Instance::new(cols, t).ok()?;
+    let image = exact::instance_point(&exact::AffineMap::new(cols, t)?, p)?;
+    let image = V::new(image[0].rounded, image[1].rounded, image[2].rounded);
+    if !image.is_finite() {
+        return None;
+    }
+    Some(format!(
+        "{} {} | {}",
+        hex_transform(&(cols, t)),
+        hex_v(p),
+        hex_v(image)
+    ))
+}
+
+/// `surface_to_world` of an exact object point (error zero) is within its
+/// `point_error` of the exact image, stored rounded to nearest (so half an
+/// ulp is added).
+fn check_instance_points<V: Vector>(lines: &[String]) -> Failures {
+    let mut fail = Failures::default();
+    for (i, line) in lines.iter().enumerate() {
+        let parts: Vec<&str> = line.split(" | ").collect();
+        let mut f = Fields(parts[0].split_whitespace());
+        let (cols, t) = transform::<V>(&mut f);
+        let p = f.v::<V>();
+        let image = Fields(parts[1].split_whitespace()).v::<V>();
+        let Ok(inst) = Instance::new(cols, t) else {
+            fail.check(false, i, || format!("no instance: {line}"));
+            continue;
+        };
+        let one = S::<V>::ONE;
+        let zero = S::<V>::ZERO;
+        let world = inst.surface_to_world(&SurfacePoint {
+            point: p,
+            point_error: V::ZERO,
+            normal: V::new(zero, zero, one),
+            normal_error: V::ZERO,
+        });
+        for k in 0..3 {
+            let (got, want, bound) = (world.point[k], image[k], world.point_error[k]);
+            let ok = bound.is_finite()
+                && (r(got) - r(want)).abs() <= r(bound) + ulp(want) / R::from_integer(2.into());
+            fail.check(ok, i, || {
+                format!("axis {k}: {got:?} vs exact {want:?}, bound {bound:?}")
+            });
+        }
+    }
+    fail
+}
+
 // ------------------------------------------------------------------ tests
 
 fn corpus<V: Vector>() {
@@ -574,12 +725,26 @@ fn corpus<V: Vector>() {
             .take(CASES / 2)
             .collect();
         write("hit_differentials", p, DIFF_HEADER, &diffs);
+        let mut src = Source::seeded(0x1257_b0c5);
+        let lines: Vec<String> = (0..2 * CASES)
+            .filter_map(|_| instance_box_line::<V>(&mut src))
+            .take(CASES / 2)
+            .collect();
+        write("instance_box", p, INSTANCE_BOX_HEADER, &lines);
+        let mut src = Source::seeded(0x1257_901e);
+        let lines: Vec<String> = (0..2 * CASES)
+            .filter_map(|_| instance_point_line::<V>(&mut src))
+            .take(CASES / 2)
+            .collect();
+        write("instance_point", p, INSTANCE_POINT_HEADER, &lines);
     }
     let files = [
         ("box", check_boxes::<V> as fn(&[String]) -> Failures),
         ("triangle", check_triangles::<V>),
         ("plane", check_planes::<V>),
         ("hit_differentials", check_differentials::<V>),
+        ("instance_box", check_instance_boxes::<V>),
+        ("instance_point", check_instance_points::<V>),
     ];
     for (kernel, check) in files {
         let lines = read(kernel, p);
@@ -671,4 +836,56 @@ fn embedded_corpus_agrees_with_tests_data() {
     }
     assert_eq!(count, lines);
     assert!((900..=1200).contains(&count), "{count}");
+}
+
+/// The instance corpus embedded in `rayhit::exact`
+/// (`exact::instance_corpus()`): each line of `corpus/data` as it is, and
+/// each answer the exact image (boxes rounded outward, points to
+/// nearest), recomputed by the `exact` module.
+#[test]
+fn embedded_instance_corpus_agrees_with_tests_data() {
+    let dir = concat!(env!("CARGO_MANIFEST_DIR"), "/data");
+    let embedded_dir = concat!(env!("CARGO_MANIFEST_DIR"), "/../src/exact/data");
+    let mut lines = 0;
+    for name in [
+        "instance_box_f32",
+        "instance_box_f64",
+        "instance_point_f32",
+        "instance_point_f64",
+    ] {
+        let full = std::fs::read_to_string(format!("{dir}/{name}.txt")).unwrap();
+        let all: std::collections::HashSet<&str> = full.lines().collect();
+        let small = std::fs::read_to_string(format!("{embedded_dir}/{name}.txt")).unwrap();
+        for l in small.lines().filter(|l| !l.starts_with('#')) {
+            assert!(all.contains(l), "{name}: not in corpus/data: {l}");
+            lines += 1;
+        }
+    }
+    fn check<V: Vector>(e: &exact::InstanceCorpusEntry<V>) {
+        assert!(Instance::new(e.columns, e.translation).is_ok(), "{e:?}");
+        let map = exact::AffineMap::new(e.columns, e.translation).expect("finite");
+        match e.question {
+            exact::InstanceQuestion::Box { object, image } => {
+                let exact = exact::instance_box(&map, &object).expect("a valid box");
+                assert_eq!(exact.outward::<V>(), image, "{e:?}");
+            }
+            exact::InstanceQuestion::Point { object, image } => {
+                let exact = exact::instance_point(&map, object).expect("finite");
+                let rounded = V::new(exact[0].rounded, exact[1].rounded, exact[2].rounded);
+                assert_eq!(rounded, image, "{e:?}");
+            }
+            _ => panic!("a question this test does not know: {e:?}"),
+        }
+    }
+    let mut count = 0;
+    for case in exact::instance_corpus() {
+        match case {
+            exact::InstanceCorpusCase::F32(e) => check(&e),
+            exact::InstanceCorpusCase::F64(e) => check(&e),
+            _ => panic!("a precision this test does not know"),
+        }
+        count += 1;
+    }
+    assert_eq!(count, lines);
+    assert!((300..=400).contains(&count), "{count}");
 }

@@ -196,3 +196,128 @@ pub fn corpus() -> impl Iterator<Item = CorpusCase> {
             })
     })
 }
+
+/// One instance question of the embedded corpus, with its exact answer.
+#[derive(Clone, Copy, Debug, PartialEq)]
+#[non_exhaustive]
+pub enum InstanceQuestion<V: Vector> {
+    /// The world box of an object box.
+    Box {
+        /// The object box.
+        object: Aabb<V>,
+        /// The exact image of `object`, rounded outward: the smallest box
+        /// of floats that contains it (see
+        /// [`ImageBox::outward`](super::ImageBox::outward)). A box of
+        /// floats contains the exact image exactly when it contains this
+        /// one.
+        image: Aabb<V>,
+    },
+    /// The world point of an object point.
+    Point {
+        /// The object point.
+        object: V,
+        /// Its exact image `M p + T`, each component rounded to nearest.
+        image: V,
+    },
+}
+
+/// An instance case of the embedded corpus: the transform (the matrix's
+/// columns, glam's convention, and the translation; every one builds an
+/// [`Instance`](crate::Instance)) and the question with its exact answer.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct InstanceCorpusEntry<V: Vector> {
+    /// The columns of `M`.
+    pub columns: [V; 3],
+    /// `T`.
+    pub translation: V,
+    /// The question and its exact answer.
+    pub question: InstanceQuestion<V>,
+}
+
+/// An instance case in either precision.
+#[derive(Clone, Copy, Debug, PartialEq)]
+#[non_exhaustive]
+pub enum InstanceCorpusCase {
+    /// Single precision.
+    F32(InstanceCorpusEntry<Vec3>),
+    /// Double precision.
+    F64(InstanceCorpusEntry<DVec3>),
+}
+
+const INSTANCE_FILES: [(&str, &str); 4] = [
+    ("box", include_str!("data/instance_box_f32.txt")),
+    ("box", include_str!("data/instance_box_f64.txt")),
+    ("point", include_str!("data/instance_point_f32.txt")),
+    ("point", include_str!("data/instance_point_f64.txt")),
+];
+
+fn instance_entry<V: Vector>(kind: &str, line: &str) -> Option<InstanceCorpusEntry<V>> {
+    let (inputs, answer) = line.split_once('|')?;
+    let n: Vec<V::Scalar> = inputs
+        .split_whitespace()
+        .map(hex)
+        .collect::<Result<_, _>>()
+        .ok()?;
+    let a: Vec<V::Scalar> = answer
+        .split_whitespace()
+        .map(hex)
+        .collect::<Result<_, _>>()
+        .ok()?;
+    let v = |x: &[V::Scalar], i: usize| V::new(x[i], x[i + 1], x[i + 2]);
+    let question = match (kind, n.len(), a.len()) {
+        ("box", 18, 6) => InstanceQuestion::Box {
+            object: Aabb::new(v(&n, 12), v(&n, 15)),
+            image: Aabb::new(v(&a, 0), v(&a, 3)),
+        },
+        ("point", 15, 3) => InstanceQuestion::Point {
+            object: v(&n, 12),
+            image: v(&a, 0),
+        },
+        _ => return None,
+    };
+    Some(InstanceCorpusEntry {
+        columns: [v(&n, 0), v(&n, 3), v(&n, 6)],
+        translation: v(&n, 9),
+        question,
+    })
+}
+
+/// The embedded instance corpus: about 340 cases in both precisions (a
+/// sample of the repository's), each a transform (rotations, scales from
+/// `1e-3` to `1e3`, shears, translations up to `1e5`, and exact signed
+/// permutations with power-of-two scales) with an object box (ordinary,
+/// flat, a point, tiny and far away, with `-0.0` corners) or an object
+/// point, and its exact image: the box rounded outward, the point rounded
+/// to nearest. Parsed on each call.
+///
+/// ```
+/// use rayhit::exact::{self, InstanceCorpusCase, InstanceQuestion};
+/// use rayhit::Instance;
+/// let mut boxes = 0;
+/// for case in exact::instance_corpus() {
+///     if let InstanceCorpusCase::F32(e) = case {
+///         let inst = Instance::new(e.columns, e.translation).unwrap();
+///         if let InstanceQuestion::Box { object, image } = e.question {
+///             // The crate's world box contains the exact image.
+///             let world = inst.object_to_world_box(&object).unwrap();
+///             assert!(world.min.cmple(image.min).all() && image.max.cmple(world.max).all());
+///             boxes += 1;
+///         }
+///     }
+/// }
+/// assert!(boxes > 50);
+/// ```
+pub fn instance_corpus() -> impl Iterator<Item = InstanceCorpusCase> {
+    INSTANCE_FILES.into_iter().flat_map(|(kind, text)| {
+        let single = text.contains("_f32.txt");
+        text.lines()
+            .filter(|l| !l.starts_with('#') && !l.trim().is_empty())
+            .filter_map(move |l| {
+                if single {
+                    instance_entry::<Vec3>(kind, l).map(InstanceCorpusCase::F32)
+                } else {
+                    instance_entry::<DVec3>(kind, l).map(InstanceCorpusCase::F64)
+                }
+            })
+    })
+}

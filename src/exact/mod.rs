@@ -14,6 +14,16 @@
 //! - invalid input (a non-finite coordinate, a zero direction, an inverted
 //!   box, a zero plane normal, a NaN `t_max`) is a miss, never a panic.
 //!
+//! The instance questions ([`Instance`](crate::Instance)) are answered for
+//! the exact map `F(x) = M x + T` of the instance's floats ([`AffineMap`],
+//! nested instances composed exactly): the exact image of a point
+//! ([`instance_point`]) and of a box ([`instance_box`]), and how far a
+//! world ray and its object ray are apart at the same `t`
+//! ([`instance_ray_gap`]). [`judge_world_box`] decides whether a claimed
+//! world box contains the exact image, [`judge_world_point`] and
+//! [`judge_ray_map`] whether a claimed point or ray is within its claimed
+//! error bound. Non-finite input gives `None`, never a panic.
+//!
 //! Each exact value comes with its correctly rounded float ([`Exact`],
 //! rounding to nearest, ties to even). The pieces these answers are built
 //! from (exact values of floats, exact vector arithmetic, the slab, triangle
@@ -146,10 +156,19 @@ pub use num_rational;
 pub use num_traits;
 
 mod corpus;
+mod instance;
 pub mod oracle;
 mod verdict;
 
-pub use corpus::{CorpusCase, CorpusEntry, corpus, parse_case};
+pub use corpus::{
+    CorpusCase, CorpusEntry, InstanceCorpusCase, InstanceCorpusEntry, InstanceQuestion, corpus,
+    instance_corpus, parse_case,
+};
+
+pub use instance::{
+    AffineMap, ImageBox, PointJudgement, WorldBoxJudgement, instance_box, instance_point,
+    instance_ray_gap, judge_ray_map, judge_world_box, judge_world_point, round_down, round_up,
+};
 
 pub use verdict::{
     Band, Case, Claim, Field, Judgement, Tally, Verdict, band, distance_ulps, judge,

@@ -13,6 +13,7 @@
 
 pub mod boxes;
 pub mod cameras;
+pub mod instances;
 pub mod planes;
 pub mod triangles;
 

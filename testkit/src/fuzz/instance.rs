@@ -8,16 +8,15 @@
 //!
 //! Checks: no panic; a NaN or infinite entry is an error; for a built
 //! instance, the world box of a valid object box, when there is one,
-//! contains the exact images of the object box's eight corners (so, by
-//! convexity, of the whole box), decided exactly; the ray's error bound is
+//! contains the exact image of the object box (its exact extremes on every
+//! axis, [`rayhit::exact::judge_world_box`]); the ray's error bound is
 //! never NaN for a finite ray; and in structured mode (within the tested
 //! ranges) the bound holds exactly at `t = 0` and `t = 1`:
 //! `|F(object.at(t)) - world.at(t)| <= err.at(t)`.
 
 use arbitrary::Arbitrary;
-use rayhit::{Aabb, Instance, InstanceError, Ray, Scalar, Vector, strategies};
+use rayhit::{Aabb, Instance, InstanceError, Ray, Scalar, Vector, exact, strategies};
 
-use super::exact::{R3, dot, r, rv};
 use super::{Check, Input, S, raw, raw_vec};
 
 /// The `instance` target.
@@ -61,28 +60,15 @@ impl Check for InstanceCheck {
             }
         };
         assert!(finite, "built from non-finite {cols:?} {t:?}");
-        let m: [R3; 3] = [0, 1, 2].map(|i| [0, 1, 2].map(|j| r(cols[j][i])));
-        let tr = rv(t);
-        let apply = |x: &R3| -> R3 { [0, 1, 2].map(|i| dot(&m[i], x) + &tr[i]) };
+        let map = exact::AffineMap::of(&inst);
         if object.is_valid()
             && let Some(world) = inst.object_to_world_box(&object)
         {
-            for k in 0..8 {
-                let pick = |i: usize| {
-                    if k >> i & 1 == 1 {
-                        object.max[i]
-                    } else {
-                        object.min[i]
-                    }
-                };
-                let image = apply(&rv(V::new(pick(0), pick(1), pick(2))));
-                for (i, x) in image.iter().enumerate() {
-                    assert!(
-                        &r(world.min[i]) <= x && x <= &r(world.max[i]),
-                        "world box {world:?} misses corner {k} of {object:?} under {cols:?} {t:?}"
-                    );
-                }
-            }
+            let j = exact::judge_world_box(&map, &object, &world).expect("a valid object box");
+            assert!(
+                j.contains,
+                "world box {world:?} misses the exact image of {object:?} under {cols:?} {t:?}: {j:?}"
+            );
         }
         if !(ray.origin.is_finite() && ray.dir.is_finite()) {
             return;
@@ -99,18 +85,12 @@ impl Check for InstanceCheck {
         let object_ray = inst.world_to_object(&ray);
         for t_param in [S::<V>::ZERO, S::<V>::ONE] {
             let bound = err.at(t_param);
-            let (o, d) = (rv(object_ray.origin), rv(object_ray.dir));
-            let (wo, wd) = (rv(ray.origin), rv(ray.dir));
-            let tp = r(t_param);
-            let mapped = apply(&[0, 1, 2].map(|i| &o[i] + &tp * &d[i]));
-            for i in 0..3 {
-                let diff = &mapped[i] - (&wo[i] + &tp * &wd[i]);
-                let diff = if diff < r(S::<V>::ZERO) { -diff } else { diff };
-                assert!(
-                    diff <= r(bound[i]),
-                    "ray bound {bound:?} fails at t = {t_param:?} for {ray:?} under {cols:?} {t:?}"
-                );
-            }
+            let j =
+                exact::judge_ray_map(&map, &ray, &object_ray, t_param, bound).expect("finite rays");
+            assert!(
+                j.within,
+                "ray bound {bound:?} fails at t = {t_param:?} for {ray:?} under {cols:?} {t:?}: {j:?}"
+            );
         }
     }
 }
