@@ -4,7 +4,7 @@ use glam::Vec3;
 
 use super::{Basis, CameraError, RayCone, RayDifferential, centred};
 use crate::num::trig::{atan2_turns, sin_cos_turns_pair};
-use crate::num::{S, Scalar, Vector, unit};
+use crate::num::{S, Scalar, Vector, unit, unit_near};
 use crate::ray::Ray;
 
 /// An equirectangular panoramic camera: the whole sphere of directions
@@ -31,8 +31,11 @@ use crate::ray::Ray;
 /// crate's own, within `gamma(26)` (`f32`) or `gamma(42)` (`f64`) of the
 /// exact ones; so each component of the unnormalised direction is within
 /// `3 gamma(26) + gamma(3)` (a product of two of them, a product with the
-/// basis and a sum) of its exact value for the camera's basis, and the
-/// returned direction, normalised, has unit length within `gamma(6)`.
+/// basis and a sum) of its exact value for the camera's basis. Its squared
+/// length is therefore already 1 within about `210 u` (the local
+/// components' errors, twice, the basis's departure from orthonormal and
+/// the sum's roundings), so one Newton step brings it to unit length, with
+/// no square root or division: the returned direction is unit within `4 u`.
 ///
 /// ```
 /// use rayhit::{EquirectangularCamera, glam::Vec3};
@@ -107,7 +110,7 @@ impl<V: Vector> EquirectangularCamera<V> {
         let [(sl, cl), (sa, ca)] = self.angles(x, y);
         let b = &self.basis;
         let dir = b.right * (ca * sl) + b.up * sa + b.forward * (ca * cl);
-        Ray::new(b.eye, unit(dir))
+        Ray::new(b.eye, unit_near(dir))
     }
 
     /// The ray through `(x, y)`, bit for bit [`ray`](Self::ray), with its
@@ -130,7 +133,7 @@ impl<V: Vector> EquirectangularCamera<V> {
     pub fn ray_differential(&self, x: S<V>, y: S<V>) -> RayDifferential<V> {
         let [(sl, cl), (sa, ca)] = self.angles(x, y);
         let b = &self.basis;
-        let dir = unit(b.right * (ca * sl) + b.up * sa + b.forward * (ca * cl));
+        let dir = unit_near(b.right * (ca * sl) + b.up * sa + b.forward * (ca * cl));
         let tau = S::<V>::from_f64(core::f64::consts::TAU);
         let (kx, ky) = (
             tau / S::<V>::from_u32(self.width),

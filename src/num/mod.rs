@@ -26,7 +26,7 @@ pub(crate) use lanes::{Axis, Lanes, Lanes8};
 pub(crate) use repr::{Bits, F32Bits, F64Bits, Repr};
 pub use scalar::Scalar;
 pub use vector::Vector;
-pub(crate) use vector::{unit, unit_and_inverse_length};
+pub(crate) use vector::{unit, unit_and_inverse_length, unit_near};
 
 /// The scalar type of the vector type `V`.
 pub(crate) type S<V> = <V as Vector>::Scalar;

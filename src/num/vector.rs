@@ -235,6 +235,23 @@ pub(crate) fn unit_and_inverse_length<V: Vector>(v: V) -> (V, S<V>) {
     (w * rcp, rcp * s)
 }
 
+/// `v` brought to unit length when it is already 1 within `256 u`
+/// (`|v . v - 1| <= 512 u`): one Newton step for `1 / sqrt(v . v)` from
+/// `1`, `v (3 - v . v) / 2`, with no square root and no division.
+///
+/// With `v . v = 1 + e`: `sqrt(1 + e) (1 - e/2) = 1 - (3/8) e^2 + O(e^3)`,
+/// below `0.01 u` here. The dot product's rounding (`gamma(3)`, relative)
+/// moves the factor by half that, the factor's own subtraction and the
+/// products add a rounding each: the result's length is within `4 u` of
+/// 1, and its direction is `v`'s within one rounding per component (the
+/// factor is common). Outside the precondition the length is still finite
+/// for finite `v` but not near 1; NaN stays NaN.
+#[inline(always)]
+pub(crate) fn unit_near<V: Vector>(v: V) -> V {
+    let d = v.dot(v);
+    v * (S::<V>::from_f64(1.5) - S::<V>::HALF * d)
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -312,6 +329,54 @@ mod tests {
                 assert!((got - exact).abs() <= tol, "{v}: {got} vs {exact}");
             }
         }
+    }
+
+    /// `unit_near` on vectors whose squared length is 1 within `512 u`
+    /// (the extremes and between, in every direction drawn): the length
+    /// within `4 u` of 1 (measured in `f64`: exact squares for `f32`), the
+    /// direction within a rounding per component of the input's.
+    #[test]
+    fn unit_near_is_unit_within_four_u() {
+        fn check<V: Vector>(dirs: &[[f64; 3]]) {
+            let u = S::<V>::UNIT_ROUNDOFF.to_f64();
+            let mut worst = 0f64;
+            for d in dirs {
+                let n = (d[0] * d[0] + d[1] * d[1] + d[2] * d[2]).sqrt();
+                for e in [-256.0, -100.0, -1.0, 0.0, 1.0, 100.0, 255.0] {
+                    // Length 1 + e u (squared: 1 + 2 e u, within 512 u).
+                    let k = (1.0 + e * u) / n;
+                    let v = V::new(
+                        S::<V>::from_f64(d[0] * k),
+                        S::<V>::from_f64(d[1] * k),
+                        S::<V>::from_f64(d[2] * k),
+                    );
+                    let w = unit_near(v);
+                    let l = (0..3)
+                        .map(|i| w[i].to_f64() * w[i].to_f64())
+                        .sum::<f64>()
+                        .sqrt();
+                    worst = worst.max((l - 1.0).abs() / u);
+                    assert!((l - 1.0).abs() <= 4.0 * u, "{d:?} {e}: {l}");
+                }
+            }
+            // Not vacuous: rounding shows.
+            assert!(worst > 0.1, "{worst}");
+        }
+        let mut dirs = std::vec::Vec::new();
+        let mut x = 0x2545_f491_4f6c_dd1du64;
+        for _ in 0..2000 {
+            let mut c = [0f64; 3];
+            for v in &mut c {
+                x ^= x << 13;
+                x ^= x >> 7;
+                x ^= x << 17;
+                *v = (x >> 11) as f64 / (1u64 << 53) as f64 * 2.0 - 1.0;
+            }
+            dirs.push(c);
+        }
+        dirs.extend([[1.0, 0.0, 0.0], [0.0, -1.0, 0.0], [1.0, 1.0, 1.0]]);
+        check::<Vec3>(&dirs);
+        check::<DVec3>(&dirs);
     }
 
     /// `x inverse_binade(x)` is in `[1, 2)` for every normal `x` below
