@@ -3,7 +3,7 @@
 
 use glam::Vec3;
 
-use super::{Basis, CameraError, RayCone, RayDifferential, centred};
+use super::{Basis, CameraError, RayCone, RayDifferential, by_components, centred};
 use crate::num::trig::{atan2_turns, sin_cos_turns};
 use crate::num::{Bits, Repr, S, Scalar, Vector, unit, unit_near};
 use crate::ray::Ray;
@@ -181,7 +181,7 @@ impl<V: Vector> EqualAreaCamera<V> {
     #[must_use]
     pub fn ray(&self, x: S<V>, y: S<V>) -> Ray<V> {
         let (dir, ..) = self.local(&self.square(x, y));
-        Ray::new(self.basis.eye, unit_near(dir))
+        Ray::new(by_components(self.basis.eye), unit_near(dir))
     }
 
     /// The ray through `(x, y)`, bit for bit [`ray`](Self::ray), with its
@@ -253,7 +253,7 @@ impl<V: Vector> EqualAreaCamera<V> {
         };
         let (kx, ky) = self.scale;
         RayDifferential {
-            ray: Ray::new(b.eye, unit_near(dir)),
+            ray: Ray::new(by_components(b.eye), unit_near(dir)),
             dx_origin: V::ZERO,
             dx_dir: along_u * (q.su * kx),
             dy_origin: V::ZERO,

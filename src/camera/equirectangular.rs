@@ -2,8 +2,8 @@
 
 use glam::Vec3;
 
-use super::{Basis, CameraError, RayCone, RayDifferential, centred};
-use crate::num::trig::{atan2_turns, sin_cos_turns_pair};
+use super::{Basis, CameraError, RayCone, RayDifferential, by_components, centred};
+use crate::num::trig::{atan2_turns, sin_cos_turns};
 use crate::num::{S, Scalar, Vector, unit, unit_near};
 use crate::ray::Ray;
 
@@ -94,7 +94,7 @@ impl<V: Vector> EquirectangularCamera<V> {
     fn angles(&self, x: S<V>, y: S<V>) -> [(S<V>, S<V>); 2] {
         let (dx, dy) = centred(x, y, self.width, self.height);
         let (tx, ty) = self.turns_per_pixel;
-        sin_cos_turns_pair(dx * tx, dy * ty)
+        [sin_cos_turns(dx * tx), sin_cos_turns(dy * ty)]
     }
 
     /// The ray through raster position `(x, y)`: from the eye, along the
@@ -110,7 +110,7 @@ impl<V: Vector> EquirectangularCamera<V> {
         let [(sl, cl), (sa, ca)] = self.angles(x, y);
         let b = &self.basis;
         let dir = b.right * (ca * sl) + b.up * sa + b.forward * (ca * cl);
-        Ray::new(b.eye, unit_near(dir))
+        Ray::new(by_components(b.eye), unit_near(dir))
     }
 
     /// The ray through `(x, y)`, bit for bit [`ray`](Self::ray), with its
@@ -140,7 +140,7 @@ impl<V: Vector> EquirectangularCamera<V> {
             S::<V>::PI / S::<V>::from_u32(self.height),
         );
         RayDifferential {
-            ray: Ray::new(b.eye, dir),
+            ray: Ray::new(by_components(b.eye), dir),
             dx_origin: V::ZERO,
             dx_dir: (b.right * cl - b.forward * sl) * (ca * kx),
             dy_origin: V::ZERO,

@@ -2,7 +2,7 @@
 
 use glam::{DMat4, DVec3, Mat4, Vec3};
 
-use super::{CameraError, RayCone, RayDifferential, centred};
+use super::{CameraError, RayCone, RayDifferential, by_components, centred};
 use crate::num::trig::atan2_turns;
 use crate::num::{S, Scalar, Vector, unit, unit_and_inverse_length};
 use crate::ray::Ray;
@@ -299,8 +299,8 @@ impl<V: Vector> MatrixCamera<V> {
     pub fn ray(&self, x: S<V>, y: S<V>) -> Ray<V> {
         let p = self.linear(x, y);
         match self.projection {
-            Projection::Perspective => Ray::new(self.fixed, unit(p)),
-            Projection::Orthographic => Ray::new(p, self.fixed),
+            Projection::Perspective => Ray::new(by_components(self.fixed), unit(p)),
+            Projection::Orthographic => Ray::new(p, by_components(self.fixed)),
         }
     }
 
@@ -321,7 +321,7 @@ impl<V: Vector> MatrixCamera<V> {
             Projection::Perspective => {
                 let (dir, inv) = unit_and_inverse_length(p);
                 RayDifferential {
-                    ray: Ray::new(self.fixed, dir),
+                    ray: Ray::new(by_components(self.fixed), dir),
                     dx_origin: V::ZERO,
                     dx_dir: (a - dir * dir.dot(a)) * inv,
                     dy_origin: V::ZERO,
@@ -329,7 +329,7 @@ impl<V: Vector> MatrixCamera<V> {
                 }
             }
             Projection::Orthographic => RayDifferential {
-                ray: Ray::new(p, self.fixed),
+                ray: Ray::new(p, by_components(self.fixed)),
                 dx_origin: a,
                 dx_dir: V::ZERO,
                 dy_origin: -b,

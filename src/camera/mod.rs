@@ -154,6 +154,15 @@ macro_rules! film_accessors {
 }
 use film_accessors;
 
+/// `v` rebuilt from its components: the same bits, moved as floats. A
+/// vector copied whole from the camera into every ray (the eye, a fixed
+/// direction) is moved as integers, and a loop storing rays then does not
+/// vectorise.
+#[inline(always)]
+pub(crate) fn by_components<V: Vector>(v: V) -> V {
+    V::new(v.x(), v.y(), v.z())
+}
+
 /// A camera's position and orthonormal frame: `forward` along the view,
 /// `right = normalize(forward x up)` with its component along `forward`
 /// removed once more, `up = normalize(right x forward)`: orthonormal within

@@ -2,7 +2,7 @@
 
 use glam::Vec3;
 
-use super::{Basis, CameraError, RayCone, RayDifferential, centred};
+use super::{Basis, CameraError, RayCone, RayDifferential, by_components, centred};
 use crate::num::{S, Scalar, Vector};
 use crate::ray::Ray;
 
@@ -106,7 +106,10 @@ impl<V: Vector> OrthographicCamera<V> {
         let (dx, dy) = centred(x, y, self.width, self.height);
         let s = self.pixel_size;
         let b = &self.basis;
-        Ray::new(b.eye + (b.right * (dx * s) + b.up * (dy * s)), b.forward)
+        Ray::new(
+            b.eye + (b.right * (dx * s) + b.up * (dy * s)),
+            by_components(b.forward),
+        )
     }
 
     /// The ray through `(x, y)`, bit for bit [`ray`](Self::ray), with its

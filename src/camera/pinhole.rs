@@ -3,7 +3,7 @@
 
 use glam::Vec3;
 
-use super::{Basis, CameraError, RayCone, RayDifferential, centred};
+use super::{Basis, CameraError, RayCone, RayDifferential, by_components, centred};
 use crate::num::trig::atan2_turns;
 use crate::num::{S, Scalar, Vector, unit, unit_and_inverse_length};
 use crate::ray::Ray;
@@ -145,11 +145,8 @@ impl<V: Vector> PinholeCamera<V> {
         // A NaN position stays visible as a NaN direction (normalize_or_zero
         // would hide it as a zero one), and a focal length far outside the
         // usual range (whose squared length overflows) still gives a unit
-        // direction. The origin is rebuilt from its components (the same
-        // bits): copied whole, the compiler moves it as integers, and a loop
-        // storing rays then does not vectorise.
-        let e = self.eye;
-        Ray::new(V::new(e.x(), e.y(), e.z()), unit(self.film(x, y)))
+        // direction. (by_components: so that a loop of rays vectorises.)
+        Ray::new(by_components(self.eye), unit(self.film(x, y)))
     }
 
     /// The unnormalised direction towards raster position `(x, y)`:
@@ -191,7 +188,7 @@ impl<V: Vector> PinholeCamera<V> {
         let (dir, inv) = unit_and_inverse_length(self.film(x, y));
         let (r, u) = (self.right, self.up);
         RayDifferential {
-            ray: Ray::new(self.eye, dir),
+            ray: Ray::new(by_components(self.eye), dir),
             dx_origin: V::ZERO,
             dx_dir: (r - dir * dir.dot(r)) * inv,
             dy_origin: V::ZERO,

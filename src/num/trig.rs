@@ -9,11 +9,7 @@
 //! only rounding of the argument is the last product by `pi / 2`.
 
 use super::Scalar;
-use super::lanes::Lanes;
 use super::repr::{Bits, Repr};
-
-/// The precision's four lanes.
-type L4<F> = <F as Repr>::L4;
 
 /// True for `f32`, false for `f64`; a constant after inlining.
 #[inline(always)]
@@ -123,9 +119,6 @@ fn horner<F: Scalar>(c: &[f64], n: usize, z: F) -> F {
 /// both precisions, with second-order terms below `1e-5 u`. The `f32`
 /// functions are also checked against the `f64` library on every `f32`
 /// argument from `2^-12` to `1/2` (an ignored test; a sample by default).
-///
-/// [`sin_cos_quarter_lanes`] computes it on four lanes at once, and a test
-/// holds the two to the same bits.
 #[inline(always)]
 pub(crate) fn sin_cos_quarter<F: Scalar>(r: F) -> (F, F) {
     let z = r * r;
@@ -147,9 +140,6 @@ pub(crate) fn sin_cos_quarter<F: Scalar>(r: F) -> (F, F) {
 /// `r = 4 s - k` in `[-1/2, 1/2]`, all exact. [`sin_cos_quarter`] of `r`
 /// then has the only error, and the quarter turns are exact swaps and sign
 /// changes.
-///
-/// [`sin_cos_turns_pair`] computes it for two angles on four lanes, and a
-/// test holds the two to the same bits.
 #[inline(always)]
 pub(crate) fn sin_cos_turns<F: Scalar>(t: F) -> (F, F) {
     // Within half a turn (every angle of a position in a panorama's image)
@@ -184,85 +174,6 @@ fn quarter_turns<F: Scalar>(sin: F, cos: F, q: F) -> (F, F) {
         if sin_negative { -a } else { a },
         if cos_negative { -b } else { b },
     )
-}
-
-/// [`sin_cos_quarter`] of four lanes at once: the sine of lanes 0 and 2
-/// and the cosine of lanes 1 and 3, each bit for bit what
-/// [`sin_cos_quarter`] gives for that lane's argument (so within
-/// the same bound) wherever `r^2` is finite, which includes the whole range
-/// it is for (a NaN lane stays NaN).
-///
-/// Both polynomials are evaluated on every lane, each with its own
-/// coefficients, by Horner's rule in the same order as the scalar code. In
-/// `f32` the sine has one coefficient fewer than the cosine: its lanes start
-/// one step early from `0`, and `0 z + c = c` exactly for the finite,
-/// non-negative `z` (a NaN stays NaN). The sine lanes are then multiplied
-/// by `r` and the cosine lanes by `1`, which is exact.
-#[inline(always)]
-fn sin_cos_quarter_lanes<F: Scalar>(r: L4<F>) -> L4<F> {
-    let z = r.mul(r);
-    let (ns, nc) = if single::<F>() { (5, 6) } else { (9, 9) };
-    let n = if ns > nc { ns } else { nc };
-    let coefficients = |k: usize| {
-        let s = F::from_f64(if k < ns { SIN[k] } else { 0.0 });
-        let c = F::from_f64(if k < nc { COS[k] } else { 0.0 });
-        L4::<F>::new4(s, c, s, c)
-    };
-    let mut p = coefficients(n - 1);
-    let mut k = n - 1;
-    while k > 0 {
-        k -= 1;
-        p = p.mul(z).add(coefficients(k));
-    }
-    p.mul(L4::<F>::select(
-        sine_lanes::<F>(),
-        r,
-        L4::<F>::splat(F::ONE),
-    ))
-}
-
-/// The mask of lanes 0 and 2, the sine lanes.
-#[inline(always)]
-fn sine_lanes<F: Scalar>() -> <L4<F> as Lanes>::Mask {
-    let (zero, one) = (F::ZERO, F::ONE);
-    L4::<F>::new4(one, zero, one, zero).eq_mask(L4::<F>::splat(one))
-}
-
-/// `x` rounded to an integer in every lane: [`round_int`], lane by lane.
-#[inline(always)]
-fn round_int_lanes<F: Scalar>(x: L4<F>) -> L4<F> {
-    let c = L4::<F>::splat(round_int_constant::<F>());
-    x.add(c).sub(c)
-}
-
-/// [`sin_cos_turns`] of `a` and of `b`, bit for bit, on four lanes (`a`,
-/// `a`, `b`, `b`) at once: each step of [`sin_cos_turns`] and
-/// `quarter_turns` as one lane operation, the choices as selects of one
-/// operand's bits. For the two angles of a panorama's pixel.
-#[inline(always)]
-pub(crate) fn sin_cos_turns_pair<F: Scalar>(a: F, b: F) -> [(F, F); 2] {
-    let splat = L4::<F>::splat;
-    let t = L4::<F>::new4(a, a, b, b);
-    let inside = t.abs().le_mask(splat(F::HALF));
-    let s = L4::<F>::select(inside, t, t.sub(round_int_lanes::<F>(t)));
-    let four_s = s.mul(splat(F::from_u32(4)));
-    let k = round_int_lanes::<F>(four_s);
-    let r = four_s.sub(k);
-    let p = sin_cos_quarter_lanes::<F>(r);
-    let whole =
-        k.sub(splat(F::from_u32(4)).mul(round_int_lanes::<F>(k.mul(splat(F::from_f64(0.25))))));
-    let q = L4::<F>::select(inside, k, whole);
-    // quarter_turns: an odd count swaps the sine and the cosine; then the
-    // sine lanes are negated for q < 0 or q = 2 and the cosine lanes for
-    // q > 0 or q = -2, which is the same test of -q: one test of q with
-    // the cosine lanes' sign flipped (exactly).
-    let odd = q.abs().eq_mask(splat(F::ONE));
-    let p = L4::<F>::select(odd, p.swap_pairs(), p);
-    let (one, zero) = (F::ONE, F::ZERO);
-    let signed = q.mul(L4::<F>::new4(one, -one, one, -one));
-    let negative = L4::<F>::or_mask(signed.lt_mask(splat(zero)), signed.eq_mask(splat(F::TWO)));
-    let [sa, ca, sb, cb] = L4::<F>::select(negative, p.neg(), p).to_array4();
-    [(sa, ca), (sb, cb)]
 }
 
 /// Taylor coefficients of `atan(x) / x` in powers of `x^2`.
@@ -522,60 +433,6 @@ mod tests {
     }
 
     /// Exact cases: quarter turns give exact zeros and ones.
-    /// The lanes give the scalar functions' bits: every special value, the
-    /// quarter and half turns and their neighbours, ordinary angles, and
-    /// raw bit patterns, in pairs of every kind (NaN results compared as
-    /// NaN: their payload is not specified).
-    #[test]
-    fn lanes_are_the_scalar_functions_bit_for_bit() {
-        fn same<F: Scalar>(a: (F, F), b: (F, F)) -> bool {
-            #[allow(clippy::eq_op)] // x != x: NaN
-            let bits = |x: F| {
-                if x != x {
-                    u64::MAX
-                } else {
-                    x.to_f64().to_bits()
-                }
-            };
-            bits(a.0) == bits(b.0) && bits(a.1) == bits(b.1)
-        }
-        fn check<F: Scalar>(ts: &[F]) {
-            for (i, &a) in ts.iter().enumerate() {
-                let b = ts[(i * 7 + 3) % ts.len()];
-                let [pa, pb] = sin_cos_turns_pair(a, b);
-                let (da, db) = (sin_cos_turns(a), sin_cos_turns(b));
-                assert!(same(pa, da) && same(pb, db), "{a:?} {b:?}");
-                // The quarter-turn polynomial on its own range and beyond,
-                // wherever x^2 is finite (or NaN).
-                let x = a * F::from_f64(0.785);
-                if !(x * x).is_finite() && x == x {
-                    continue;
-                }
-                let [s0, c0, s1, c1] =
-                    sin_cos_quarter_lanes::<F>(L4::<F>::new4(x, x, -x, -x)).to_array4();
-                assert!(
-                    same((s0, c0), sin_cos_quarter(x)) && same((s1, c1), sin_cos_quarter(-x)),
-                    "{x:?}"
-                );
-            }
-        }
-        let mut draws = crate::testing::Draws(0x9e37_79b9_7f4a_7c15);
-        let mut ts32: std::vec::Vec<f32> = (0..200_000).map(|_| draws.special_f32()).collect();
-        for i in -64..=64 {
-            let t = i as f32 / 16.0;
-            ts32.extend([t, t.next_up(), t.next_down(), -t]);
-        }
-        ts32.extend((0..20_000).map(|i| (i as f32 - 10_000.0) * 1.37e-4));
-        let ts64: std::vec::Vec<f64> = ts32
-            .iter()
-            .map(|&t| f64::from(t))
-            .chain((0..20_000).map(|i| (f64::from(i) - 10_000.0) * 1.370_000_1e-4))
-            .chain([f64::from_bits(1), f64::MAX, 1e300, -2.5e-300])
-            .collect();
-        check(&ts32);
-        check(&ts64);
-    }
-
     #[test]
     fn quarter_turns_are_exact() {
         for (t, s, c) in [
