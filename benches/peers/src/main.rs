@@ -1899,6 +1899,152 @@ fn camera_reference_kernels<'a>(d: &'a CameraData, out: &mut Vec<Kernel<'a>>) {
     }
 }
 
+/// The cameras' rays and differentials again, each camera reached through
+/// a reference the loop's closure captures (section `camera, by
+/// reference`): a renderer whose camera lives behind a pointer, such as a
+/// field `camera: &'a ThinLensCamera`. The compiler cannot tell that
+/// storing rays leaves the camera unchanged, reloads it for every ray and
+/// keeps the loop scalar: the other regime renderers see.
+fn camera_by_reference_kernels<'a>(d: &'a CameraData, out: &mut Vec<Kernel<'a>>) {
+    let section = "camera, by reference";
+    for (w, order) in [("scanline", &d.scanline), ("shuffled", &d.shuffled)] {
+        let (n, lens) = (order.len(), &d.lens);
+        out.extend([
+            kernel(
+                section,
+                "rayhit PinholeCamera::ray",
+                w,
+                n,
+                None,
+                over(order, lens, move |x, y, _| d.pinhole.ray(x, y), ray_sum),
+            ),
+            kernel(
+                section,
+                "rayhit ThinLensCamera::ray",
+                w,
+                n,
+                None,
+                over(
+                    order,
+                    lens,
+                    move |x, y, l| d.thin_lens.ray(x, y, l.0, l.1),
+                    ray_sum,
+                ),
+            ),
+            kernel(
+                section,
+                "rayhit OrthographicCamera::ray",
+                w,
+                n,
+                None,
+                over(order, lens, move |x, y, _| d.ortho.ray(x, y), ray_sum),
+            ),
+            kernel(
+                section,
+                "rayhit MatrixCamera::ray",
+                w,
+                n,
+                None,
+                over(order, lens, move |x, y, _| d.matrix.ray(x, y), ray_sum),
+            ),
+            kernel(
+                section,
+                "rayhit EquirectangularCamera::ray",
+                w,
+                n,
+                None,
+                over(order, lens, move |x, y, _| d.equirect.ray(x, y), ray_sum),
+            ),
+            kernel(
+                section,
+                "rayhit EqualAreaCamera::ray",
+                w,
+                n,
+                None,
+                over(order, lens, move |x, y, _| d.equal_area.ray(x, y), ray_sum),
+            ),
+            kernel(
+                section,
+                "rayhit PinholeCamera::ray_differential",
+                w,
+                n,
+                None,
+                over(
+                    order,
+                    lens,
+                    move |x, y, _| d.pinhole.ray_differential(x, y),
+                    diff_sum,
+                ),
+            ),
+            kernel(
+                section,
+                "rayhit ThinLensCamera::ray_differential",
+                w,
+                n,
+                None,
+                over(
+                    order,
+                    lens,
+                    move |x, y, l| d.thin_lens.ray_differential(x, y, l.0, l.1),
+                    diff_sum,
+                ),
+            ),
+            kernel(
+                section,
+                "rayhit OrthographicCamera::ray_differential",
+                w,
+                n,
+                None,
+                over(
+                    order,
+                    lens,
+                    move |x, y, _| d.ortho.ray_differential(x, y),
+                    diff_sum,
+                ),
+            ),
+            kernel(
+                section,
+                "rayhit MatrixCamera::ray_differential",
+                w,
+                n,
+                None,
+                over(
+                    order,
+                    lens,
+                    move |x, y, _| d.matrix.ray_differential(x, y),
+                    diff_sum,
+                ),
+            ),
+            kernel(
+                section,
+                "rayhit EquirectangularCamera::ray_differential",
+                w,
+                n,
+                None,
+                over(
+                    order,
+                    lens,
+                    move |x, y, _| d.equirect.ray_differential(x, y),
+                    diff_sum,
+                ),
+            ),
+            kernel(
+                section,
+                "rayhit EqualAreaCamera::ray_differential",
+                w,
+                n,
+                None,
+                over(
+                    order,
+                    lens,
+                    move |x, y, _| d.equal_area.ray_differential(x, y),
+                    diff_sum,
+                ),
+            ),
+        ]);
+    }
+}
+
 fn camera_kernels<'a>(d: &'a CameraData, out: &mut Vec<Kernel<'a>>) {
     // Each row's closure owns a copy of its camera, as a renderer's
     // `self.camera` is part of the renderer: the compiler then knows the
@@ -2240,6 +2386,7 @@ fn main() {
     }
     camera_kernels(&cameras, &mut kernels);
     camera_reference_kernels(&cameras, &mut kernels);
+    camera_by_reference_kernels(&cameras, &mut kernels);
 
     // `--count NAME WORKLOAD REPS`: run one row's loop REPS times, untimed,
     // and stop; under `valgrind --tool=callgrind`, the difference between
@@ -2456,6 +2603,33 @@ fn main() {
                 .join(", "),
             hi / lo
         );
+    }
+    // The same, with every camera reached through a reference (every loop
+    // scalar).
+    for w in ["scanline", "shuffled"] {
+        let section = "camera, by reference";
+        let pinhole = find(&kernels, section, "rayhit PinholeCamera::ray", w);
+        for name in CAMERAS {
+            let ray = find(&kernels, section, &format!("rayhit {name}::ray"), w);
+            let diff = find(
+                &kernels,
+                section,
+                &format!("rayhit {name}::ray_differential"),
+                w,
+            );
+            if name != "PinholeCamera" {
+                target(
+                    &format!("{name}::ray vs PinholeCamera::ray, by reference, {w}"),
+                    pinhole / ray,
+                    1.0 / 1.5,
+                );
+            }
+            target(
+                &format!("{name}::ray_differential vs {name}::ray, by reference, {w}"),
+                ray / diff,
+                0.5,
+            );
+        }
     }
     // Each camera's ray against the pinhole ray, and each camera's ray
     // with differentials against its ray alone, in the same order.
