@@ -1506,6 +1506,185 @@ fn sweep_kernels<'a>(s: &'a Sweep, out: &mut Vec<Kernel<'a>>) {
     }
 }
 
+/// Instances: 64 transforms (rotations, scales 0.01 to 100 per axis, shears
+/// of up to 0.5, translations up to 1e4) and 64 world rays, every pair
+/// once (4096 per pass), each result stored in a buffer. The crate's
+/// mapping of a world ray into the instance, with its bound, prepared,
+/// against glam's transforms by the stored inverse plus
+/// `PreparedRay::new`; the crate's hit to world `SurfacePoint` against
+/// glam's transform of the point and of the normal by the inverse
+/// transpose.
+struct InstanceData {
+    instances: Vec<rayhit::Instance>,
+    inverses: Vec<rayhit::glam::Affine3A>,
+    normal_maps: Vec<rayhit::glam::Mat3A>,
+    rays: Vec<Ray>,
+    hits: Vec<rayhit::SurfacePoint>,
+}
+
+impl InstanceData {
+    fn new() -> Self {
+        use rayhit::glam::{Affine3A, Mat3A, Quat};
+        let mut rng = Pcg32::with_stream(24, 5);
+        let mut instances = Vec::new();
+        let mut inverses = Vec::new();
+        let mut normal_maps = Vec::new();
+        while instances.len() < 64 {
+            let q = Quat::from_axis_angle(rng.sphere(), rng.range(0.0, core::f32::consts::TAU));
+            let scale = Vec3::new(
+                10f32.powf(rng.range(-2.0, 2.0)),
+                10f32.powf(rng.range(-2.0, 2.0)),
+                10f32.powf(rng.range(-2.0, 2.0)),
+            );
+            let shear = Mat3A::from_cols(
+                Vec3A::X,
+                Vec3A::new(rng.range(-0.5, 0.5), 1.0, 0.0),
+                Vec3A::new(rng.range(-0.5, 0.5), rng.range(-0.5, 0.5), 1.0),
+            );
+            let m = Mat3A::from_quat(q) * shear * Mat3A::from_diagonal(scale);
+            let place = Affine3A::from_mat3_translation(m.into(), rng.cube(1e4));
+            if let Ok(inst) = rayhit::Instance::from_affine3a(place) {
+                instances.push(inst);
+                inverses.push(place.inverse());
+                normal_maps.push(place.matrix3.inverse().transpose());
+            }
+        }
+        let rays = (0..64)
+            .map(|_| Ray::new(rng.cube(1e4), rng.sphere()))
+            .collect();
+        let hits = (0..64)
+            .map(|_| {
+                let tri = Triangle::new(rng.cube(1.0), rng.cube(1.0), rng.cube(1.0));
+                let hit = rayhit::TriangleHit {
+                    t: 1.0,
+                    u: 0.25,
+                    v: 0.5,
+                    side: Side::Front,
+                };
+                rayhit::SurfacePoint::on_triangle(&tri, &hit)
+            })
+            .collect();
+        Self {
+            instances,
+            inverses,
+            normal_maps,
+            rays,
+            hits,
+        }
+    }
+}
+
+/// Every (instance, item) pair through `f`, stored in a buffer; one
+/// value's checksum returned.
+fn over_pairs<'a, I: 'a, X: 'a, T: 'a>(
+    instances: &'a [I],
+    items: &'a [X],
+    f: impl Fn(&I, &X) -> T + 'a,
+    sum: fn(&T) -> u64,
+) -> impl Fn() -> u64 + 'a {
+    // (Cleared and refilled each pass, within its capacity: the same
+    // for every row.)
+    let buffer = std::cell::RefCell::new(Vec::with_capacity(instances.len() * items.len()));
+    move || {
+        let mut out = buffer.borrow_mut();
+        out.clear();
+        for i in instances {
+            for x in items {
+                out.push(f(i, x));
+            }
+        }
+        black_box(&mut *out);
+        sum(&out[out.len() / 2])
+    }
+}
+
+fn instance_kernels<'a>(d: &'a InstanceData, out: &mut Vec<Kernel<'a>>) {
+    let n = d.instances.len() * d.rays.len();
+    let prepared_sum = |p: &(PreparedRay, rayhit::InstanceRayError<Vec3>)| {
+        let b = |v: Vec3| {
+            u64::from(v.x.to_bits() ^ v.y.to_bits().rotate_left(7) ^ v.z.to_bits().rotate_left(13))
+        };
+        b(p.1.at_origin) ^ b(p.1.per_t) ^ u64::from(p.0.origin().x.to_bits())
+    };
+    let glam_sum = |p: &PreparedRay| u64::from(p.origin().x.to_bits() ^ p.origin().y.to_bits());
+    let point_sum = |p: &rayhit::SurfacePoint| {
+        u64::from(p.point.x.to_bits() ^ p.normal.y.to_bits() ^ p.point_error.z.to_bits())
+    };
+    let plain_sum = |p: &(Vec3, Vec3)| u64::from(p.0.x.to_bits() ^ p.1.y.to_bits());
+    out.extend([
+        kernel(
+            "instance",
+            "rayhit world_to_object + world_to_object_error + PreparedRay::new",
+            "pairs",
+            n,
+            None,
+            over_pairs(
+                &d.instances,
+                &d.rays,
+                |i, r| {
+                    let object = i.world_to_object(r);
+                    (PreparedRay::new(&object), i.world_to_object_error(r))
+                },
+                prepared_sum,
+            ),
+        ),
+        kernel(
+            "instance",
+            "glam Affine3A inverse transform_point3/vector3 + PreparedRay::new",
+            "pairs",
+            n,
+            Some(1.0),
+            over_pairs(
+                &d.inverses,
+                &d.rays,
+                |a, r| {
+                    PreparedRay::new(&Ray::new(
+                        a.transform_point3(r.origin),
+                        a.transform_vector3(r.dir),
+                    ))
+                },
+                glam_sum,
+            ),
+        ),
+        kernel(
+            "instance",
+            "rayhit surface_to_world",
+            "pairs",
+            n,
+            None,
+            over_pairs(
+                &d.instances,
+                &d.hits,
+                |i, h| i.surface_to_world(h),
+                point_sum,
+            ),
+        ),
+        kernel(
+            "instance",
+            "glam transform_point3 + inverse-transpose normal",
+            "pairs",
+            n,
+            Some(1.0),
+            over_pairs(
+                &d.inverses
+                    .iter()
+                    .zip(&d.normal_maps)
+                    .map(|(a, m)| (a.inverse(), *m))
+                    .collect::<Vec<_>>()
+                    .leak()[..],
+                &d.hits,
+                |(a, m), h| {
+                    (
+                        a.transform_point3(h.point),
+                        Vec3::from(*m * Vec3A::from(h.normal)),
+                    )
+                },
+                plain_sum,
+            ),
+        ),
+    ]);
+}
+
 /// The cameras: every camera's ray, and its ray with differentials, over
 /// the 4096 pixel centres of a 64x64 image, in scanline order (coherent:
 /// neighbouring pixels one after the other, as a renderer's tiles visit
@@ -2195,7 +2374,7 @@ fn camera_kernels<'a>(d: &'a CameraData, out: &mut Vec<Kernel<'a>>) {
 /// The rows rayhit is compared against: the other crates and the
 /// textbook kernels written in this file.
 fn is_peer(name: &str) -> bool {
-    ["bvh", "parry3d", "textbook", "obvhs"]
+    ["bvh", "parry3d", "textbook", "obvhs", "glam"]
         .iter()
         .any(|p| name.starts_with(p))
 }
@@ -2371,6 +2550,7 @@ fn main() {
         .collect();
     let sweep = Sweep::new();
     let cameras = CameraData::new();
+    let instance_data = InstanceData::new();
 
     let mut kernels = Vec::new();
     for d in &box_data {
@@ -2387,6 +2567,7 @@ fn main() {
     camera_kernels(&cameras, &mut kernels);
     camera_reference_kernels(&cameras, &mut kernels);
     camera_by_reference_kernels(&cameras, &mut kernels);
+    instance_kernels(&instance_data, &mut kernels);
 
     // `--count NAME WORKLOAD REPS`: run one row's loop REPS times, untimed,
     // and stop; under `valgrind --tool=callgrind`, the difference between
@@ -2683,6 +2864,20 @@ fn main() {
             println!("- {camera}, {w}: {:.2}x its textbook form", ray / textbook);
         }
     }
+    // Instances: the crate's mapping with its bound against glam's
+    // transforms (target at most 1.3x each).
+    let inst = |name: &str| find(&kernels, "instance", name, "pairs");
+    target(
+        "world_to_object + error + prepare vs glam transform + prepare",
+        inst("glam Affine3A inverse transform_point3/vector3 + PreparedRay::new")
+            / inst("rayhit world_to_object + world_to_object_error + PreparedRay::new"),
+        1.0 / 1.3,
+    );
+    target(
+        "surface_to_world vs glam point and normal transform",
+        inst("glam transform_point3 + inverse-transpose normal") / inst("rayhit surface_to_world"),
+        1.0 / 1.3,
+    );
     println!();
     println!(
         "{} kernels, {ROUNDS} rounds each, timed in {:.1} s; fastest round reported.",
