@@ -294,7 +294,27 @@ impl TryFrom<DAffine3> for Instance<DVec3> {
 /// ([`bound_up`](crate::num::round::bound_up)).
 #[inline(always)]
 pub(crate) fn abs_apply_up<V: Vector>(rows: &[V; 3], v: V, c: V) -> V {
+    bound_up_v(apply(rows, v) + c, 4)
+}
+
+/// `bound_up` of each component.
+#[inline(always)]
+pub(crate) fn bound_up_v<V: Vector>(v: V, roundings: u32) -> V {
     use crate::num::round::bound_up;
-    let row = |i: usize| bound_up(rows[i].dot(v) + c[i], 4);
-    V::new(row(0), row(1), row(2))
+    V::new(
+        bound_up(v[0], roundings),
+        bound_up(v[1], roundings),
+        bound_up(v[2], roundings),
+    )
+}
+
+/// The matrix with rows `rows` times `v`: per component, bit for bit
+/// `rows[i].dot(v)` (the same products, summed in the same order), but
+/// computed as `col_0 v_x + col_1 v_y + col_2 v_z`, three vector products
+/// and two sums the compiler can keep in SIMD registers (the columns are
+/// gathered once per instance where a loop calls this with one instance).
+#[inline(always)]
+pub(crate) fn apply<V: Vector>(rows: &[V; 3], v: V) -> V {
+    let col = |j: usize| V::new(rows[0][j], rows[1][j], rows[2][j]);
+    col(0) * v.x() + col(1) * v.y() + col(2) * v.z()
 }

@@ -27,7 +27,7 @@
 //! ray's `t` up to this bound, and a hit at object `t` is a world hit at
 //! the same `t`. Evaluating the bound rounds up (`abs_apply_up`).
 
-use super::{Instance, abs_apply_up};
+use super::{Instance, abs_apply_up, apply};
 use crate::Ray;
 use crate::num::round::bound_up;
 use crate::num::{S, Scalar, Vector};
@@ -120,14 +120,7 @@ impl<V: Vector> Instance<V> {
     #[inline]
     #[must_use]
     pub fn world_to_object(&self, ray: &Ray<V>) -> Ray<V> {
-        let (o, d) = (ray.origin, ray.dir);
-        let origin = V::new(
-            self.a[0].dot(o) + self.b[0],
-            self.a[1].dot(o) + self.b[1],
-            self.a[2].dot(o) + self.b[2],
-        );
-        let dir = V::new(self.a[0].dot(d), self.a[1].dot(d), self.a[2].dot(d));
-        Ray::new(origin, dir)
+        Ray::new(apply(&self.a, ray.origin) + self.b, apply(&self.a, ray.dir))
     }
 
     /// The bound relating `ray` and its object ray

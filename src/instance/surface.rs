@@ -79,7 +79,7 @@
 //! [`SurfacePoint`]: crate::SurfacePoint
 //! [`offset_ray_origin`]: crate::offset_ray_origin
 
-use super::{Instance, abs_apply_up};
+use super::{Instance, abs_apply_up, apply, bound_up_v};
 use crate::num::round::bound_up;
 use crate::num::{S, Scalar, Vector};
 use crate::{Ray, SurfacePoint, offset_ray_origin};
@@ -120,58 +120,42 @@ impl<V: Vector> Instance<V> {
         );
         let g3 = S::<V>::gamma_n(3);
         let g4 = S::<V>::gamma_n(4);
-        let tiny = self.tiny_world[0];
+        let tiny = V::splat(self.tiny_world[0]);
+        // Every line below is per component, written with whole vectors
+        // (each component the same operations in the same order as the
+        // scalar formula in its comment), so that the compiler can keep
+        // them in SIMD registers.
         // Point: |M| e + g(4) (|M||p| + |T|) + U; at most 7 roundings on a
         // path of its evaluation.
-        let point = V::new(
-            self.m[0].dot(p) + self.t[0],
-            self.m[1].dot(p) + self.t[1],
-            self.m[2].dot(p) + self.t[2],
-        );
+        let point = apply(&self.m, p) + self.t;
         let pa = p.abs();
-        let point_error = |i: usize| {
-            let r = self.m_abs[i];
-            bound_up(r.dot(e) + g4 * (r.dot(pa) + self.t[i].abs()) + tiny, 7)
-        };
-        // Normal: g(3) |A^T||n| + |A^T| eta + normal_residual * W.
-        let normal = V::new(
-            self.a_t_row(0).dot(n),
-            self.a_t_row(1).dot(n),
-            self.a_t_row(2).dot(n),
+        let point_error = bound_up_v(
+            apply(&self.m_abs, e) + (apply(&self.m_abs, pa) + self.t.abs()) * g4 + tiny,
+            7,
         );
-        let na = n.abs();
+        // Normal: g(3) |A^T||n| + |A^T| eta + normal_residual * W. (A^T n
+        // is the rows of A weighted by n's components.)
+        let normal = self.a[0] * n.x() + self.a[1] * n.y() + self.a[2] * n.z();
+        let (na_g3, eta_a) = (
+            apply(&self.a_t_abs, n.abs()) * g3,
+            apply(&self.a_t_abs, eta),
+        );
         // |A^T N| <= |n_w| + g(3) |A^T||n| + |A^T| eta: the computed normal
         // and its rounding, not |A^T| (|n| + eta), which would let the
         // cancellation in A^T n (a normal along A's small singular
         // direction) inflate the residual's term by the condition number.
-        let w = |i: usize| {
-            let r = self.a_t_abs[i];
-            bound_up(normal[i].abs() + g3 * r.dot(na) + r.dot(eta), 5)
-        };
+        let w = bound_up_v(normal.abs() + na_g3 + eta_a, 5);
         let big_w = {
-            let (w0, w1, w2) = (w(0), w(1), w(2));
-            let m = if w0 > w1 { w0 } else { w1 };
-            if m > w2 { m } else { w2 }
+            let m = if w[0] > w[1] { w[0] } else { w[1] };
+            if m > w[2] { m } else { w[2] }
         };
-        let normal_error = |i: usize| {
-            let r = self.a_t_abs[i];
-            bound_up(
-                g3 * r.dot(na) + r.dot(eta) + self.normal_residual[i] * big_w + tiny,
-                7,
-            )
-        };
+        let normal_error = bound_up_v(na_g3 + eta_a + self.normal_residual * big_w + tiny, 7);
         SurfacePoint {
             point,
-            point_error: V::new(point_error(0), point_error(1), point_error(2)),
+            point_error,
             normal,
-            normal_error: V::new(normal_error(0), normal_error(1), normal_error(2)),
+            normal_error,
         }
-    }
-
-    /// Row `i` of `A^T` (column `i` of `A`).
-    #[inline(always)]
-    fn a_t_row(&self, i: usize) -> V {
-        V::new(self.a[0][i], self.a[1][i], self.a[2][i])
     }
 
     /// A ray leaving the world surface point `world` (from
