@@ -362,7 +362,7 @@
 //!   well-conditioned camera); singular (within rounding) and non-finite
 //!   matrices are errors.
 //! - **Panoramic** ([`EquirectangularCamera`], [`EqualAreaCamera`]). Unit
-//!   directions within `gamma(6)`; the inverse (`raster_position`) returns
+//!   directions within `4 u`; the inverse (`raster_position`) returns
 //!   the raster position within a derived bound (equirectangular, in `f32`,
 //!   about `w (40 u / cos(lat) + 15 u)` pixels across, growing towards the
 //!   poles, and `107 u h` down; equal area `225 u` of the image size); the
