@@ -483,15 +483,16 @@ pub use instance::{Instance, InstanceError, InstanceRayError};
 pub use num::{Scalar, Vector};
 pub use plane::{Plane, ray_plane, ray_plane_hit_point, ray_plane_t_error};
 pub use quantized::{QuantizedChildren, quantize_bounds, ray_quantized_children};
-pub use ray::{PreparedRay, Ray};
+pub use ray::{Interval, PreparedRay, Ray};
 pub use simd::TargetSimd;
 #[cfg(rayhit_runtime_avx)]
 pub use simd::{Avx2, Avx512};
 pub use surface::{SurfacePoint, offset_ray_origin};
 pub use triangle::{
     Side, Triangle, TriangleBatch, TriangleBatchHits, TriangleHit, TriangleHitError, ray_triangle,
-    ray_triangle_batch, ray_triangle_error_bounds, ray_triangle_mt, ray_triangle_one_hit,
-    ray_triangle_prepared, triangle_hit_point,
+    ray_triangle_batch, ray_triangle_error_bounds, ray_triangle_in, ray_triangle_mt,
+    ray_triangle_one_hit, ray_triangle_one_hit_in, ray_triangle_prepared, ray_triangle_prepared_in,
+    triangle_hit_point,
 };
 pub use with_simd::{Simd, SimdWork, with_simd};
 
@@ -563,14 +564,15 @@ pub mod prelude {
         DMatrixCamera, DOrthographicCamera, DPinholeCamera, DPlane, DPreparedRay, DRay,
         DRayDifferential, DSurfacePoint, DThinLensCamera, DTriangle, DTriangleBatch, DTriangleHit,
         DTriangleHitError, DValidAabb, EqualAreaCamera, EquirectangularCamera, FocusPoint,
-        HitDifferentials, MatrixCamera, OrthographicCamera, PinholeCamera, Plane, PreparedRay,
-        QuantizedChildren, Ray, RayCone, RayDifferential, Scalar, Side, Simd, SimdWork, SlabBox,
-        SurfacePoint, TargetSimd, ThinLensCamera, Triangle, TriangleBatch, TriangleBatchHits,
-        TriangleHit, TriangleHitError, ValidAabb, Vector, aabb_entry_face, offset_ray_origin,
-        quantize_bounds, ray_aabb, ray_aabb_batch, ray_aabb_face, ray_aabb_naive,
-        ray_aabb_prepared, ray_aabb_prepared_face, ray_plane, ray_plane_hit_point,
+        HitDifferentials, Interval, MatrixCamera, OrthographicCamera, PinholeCamera, Plane,
+        PreparedRay, QuantizedChildren, Ray, RayCone, RayDifferential, Scalar, Side, Simd,
+        SimdWork, SlabBox, SurfacePoint, TargetSimd, ThinLensCamera, Triangle, TriangleBatch,
+        TriangleBatchHits, TriangleHit, TriangleHitError, ValidAabb, Vector, aabb_entry_face,
+        offset_ray_origin, quantize_bounds, ray_aabb, ray_aabb_batch, ray_aabb_face,
+        ray_aabb_naive, ray_aabb_prepared, ray_aabb_prepared_face, ray_plane, ray_plane_hit_point,
         ray_plane_t_error, ray_quantized_children, ray_triangle, ray_triangle_batch,
-        ray_triangle_error_bounds, ray_triangle_mt, ray_triangle_one_hit, ray_triangle_prepared,
+        ray_triangle_error_bounds, ray_triangle_in, ray_triangle_mt, ray_triangle_one_hit,
+        ray_triangle_one_hit_in, ray_triangle_prepared, ray_triangle_prepared_in,
         triangle_cone_width, triangle_hit_differentials, triangle_hit_differentials_error,
         triangle_hit_point, with_simd,
     };

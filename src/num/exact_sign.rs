@@ -140,6 +140,253 @@ pub(crate) fn scale_to_one(x: f64, m: f64) -> f64 {
     x * pow2(half) * pow2(-e - half)
 }
 
+/// `a*b = p + e` exactly (`p = fl(a*b)`, `e = fma(a, b, -p)`), while `e`
+/// does not underflow.
+#[inline]
+fn two_product(a: f64, b: f64) -> (f64, f64) {
+    let p = a * b;
+    (p, fma(a, b, -p))
+}
+
+/// A nonoverlapping floating-point expansion grown one term at a time
+/// (Shewchuk's grow-expansion with zero elimination), for the sign of a
+/// long exact sum. Its nonzero components have disjoint bit ranges within
+/// `f64`'s 2,100 exponents, so 64 slots hold any expansion of finite terms;
+/// a non-finite term (an overflow) marks it undecided instead.
+struct Expansion {
+    e: [f64; 64],
+    len: usize,
+    ok: bool,
+}
+
+impl Expansion {
+    fn new() -> Self {
+        Self {
+            e: [0.0; 64],
+            len: 0,
+            ok: true,
+        }
+    }
+
+    fn add(&mut self, x: f64) {
+        if !x.is_finite() {
+            self.ok = false;
+        }
+        if !self.ok || x == 0.0 {
+            return;
+        }
+        let two_sum = |a: f64, b: f64| {
+            let s = a + b;
+            let bb = s - a;
+            (s, (a - (s - bb)) + (b - bb))
+        };
+        let mut q = x;
+        let mut kept = 0;
+        for i in 0..self.len {
+            let (s, err) = two_sum(q, self.e[i]);
+            if err != 0.0 {
+                self.e[kept] = err;
+                kept += 1;
+            }
+            q = s;
+        }
+        if !q.is_finite() || kept >= self.e.len() {
+            self.ok = false;
+            return;
+        }
+        if q != 0.0 {
+            self.e[kept] = q;
+            kept += 1;
+        }
+        self.len = kept;
+    }
+
+    /// Adds `sign * f[0] * f[1] * ... ` exactly: the product of up to four
+    /// factors as a sum of `2^(n-1)` floats (each step splits every term's
+    /// product with the next factor into its rounded value and exact
+    /// error).
+    fn add_product(&mut self, f: &[f64], negate: bool) {
+        let mut terms = [0.0f64; 8];
+        let mut n = 0;
+        if let Some((&first, rest)) = f.split_first() {
+            terms[0] = if negate { -first } else { first };
+            n = 1;
+            for &g in rest.iter().take(3) {
+                let mut next = [0.0f64; 8];
+                for (i, &t) in terms[..n].iter().enumerate() {
+                    let (p, e) = two_product(t, g);
+                    next[2 * i] = p;
+                    next[2 * i + 1] = e;
+                }
+                terms = next;
+                n *= 2;
+            }
+        }
+        for &t in &terms[..n] {
+            self.add(t);
+        }
+    }
+
+    /// The sign of the exact sum, `None` when a term or a partial sum was
+    /// not finite.
+    fn sign(&self) -> Option<core::cmp::Ordering> {
+        if !self.ok {
+            return None;
+        }
+        Some(match self.len {
+            0 => core::cmp::Ordering::Equal,
+            n if self.e[n - 1] > 0.0 => core::cmp::Ordering::Greater,
+            _ => core::cmp::Ordering::Less,
+        })
+    }
+}
+
+/// The exact signs that place a ray's crossing with a triangle's plane,
+/// for the interval forms of the watertight test.
+///
+/// With `A = a - o`, `n = (b - a) x (c - a)`, the line `o + t d` meets the
+/// plane at `t* = (A . n) / (d . n)` when `D = d . n` is not zero. Each
+/// `PlaneCrossing` holds the corner differences as exact pairs (Knuth's
+/// two-sum: `hi + lo` is the exact difference) and answers the sign of `D`
+/// and of `A . n - t D` for a float `t`: every monomial is a product of at
+/// most four floats (`t d_k (b - a)_j (c - a)_l` after splitting each
+/// difference into its two parts), expanded exactly and summed as a
+/// floating-point expansion (Shewchuk, "Adaptive Precision Floating-Point
+/// Arithmetic and Fast Robust Geometric Predicates", 1997). A few hundred
+/// terms: the rare fallback of the interval tests, taken only where the
+/// crossing lies within its rounding error bound of an end.
+///
+/// Exactness: the products' errors must not underflow, nor the products
+/// overflow. Inputs are `f32` or `f64` converted to `f64`. For `f32` every
+/// product of four finite `f32` values (and of their exact differences'
+/// parts) lies between `2^-596` and `2^512`, so the signs are always exact.
+/// For `f64`, the differences are scaled by one power of two, the direction
+/// by another, and `t` by their ratio (all exact); the signs are exact while
+/// each scaled value is zero or within `2^-240 .. 2^240` of one (coordinate
+/// differences within a factor `2^240` of the largest, and so on); an
+/// overflow is reported as `None`, never as a wrong sign.
+pub(crate) struct PlaneCrossing {
+    /// `a - o`, `b - a`, `c - a`, each component an exact `(hi, lo)` pair,
+    /// scaled by a common power of two.
+    diff: [[(f64, f64); 3]; 3],
+    /// The direction, scaled by a power of two.
+    dir: [f64; 3],
+    /// The factor that maps a `t` onto the scaled problem (a power of two).
+    t_scale: f64,
+}
+
+impl PlaneCrossing {
+    /// From the origin, the direction and the corners, as `f64`; `scale`
+    /// for `f64` inputs (for `f32` inputs scaling could only push the
+    /// smallest parts towards underflow, and every product is in range
+    /// without it).
+    pub(crate) fn new(
+        o: [f64; 3],
+        d: [f64; 3],
+        a: [f64; 3],
+        b: [f64; 3],
+        c: [f64; 3],
+        scale: bool,
+    ) -> Self {
+        let split = |p: [f64; 3], q: [f64; 3]| [0, 1, 2].map(|k| two_diff(p[k], q[k]));
+        let mut diff = [split(a, o), split(b, a), split(c, a)];
+        let largest = |m: f64, x: f64| if x.abs() > m { x.abs() } else { m };
+        let m = diff
+            .iter()
+            .flatten()
+            .fold(0.0f64, |m, &(hi, _)| largest(m, hi));
+        let md = d.iter().fold(0.0f64, |m, &x| largest(m, x));
+        // t* scales by (difference scale) / (direction scale): with A, n
+        // scaled by s1 (so A . n by s1^3, d . n by s1^2 s2), t* is scaled by
+        // s1 / s2, and so must t be.
+        let (s1, s2) = if scale {
+            (power_to_one(m), power_to_one(md))
+        } else {
+            (1.0, 1.0)
+        };
+        for p in diff.iter_mut().flatten() {
+            *p = (p.0 * s1, p.1 * s1);
+        }
+        Self {
+            diff,
+            dir: d.map(|x| x * s2),
+            t_scale: s1 / s2,
+        }
+    }
+
+    /// Adds `sign * v . n` to `acc`, with `v` given by `term(k)` as a list
+    /// of factors (one float, or the two parts of a difference) and `n`
+    /// expanded from the difference pairs.
+    fn add_dot_normal(
+        &self,
+        acc: &mut Expansion,
+        prefix: &[f64],
+        v: impl Fn(usize) -> [f64; 2],
+        negate: bool,
+    ) {
+        let [_, e1, e2] = self.diff;
+        for k in 0..3 {
+            let (j, l) = ((k + 1) % 3, (k + 2) % 3);
+            for (x, y, neg) in [(e1[j], e2[l], false), (e1[l], e2[j], true)] {
+                for vk in v(k) {
+                    if vk == 0.0 {
+                        continue;
+                    }
+                    for xp in [x.0, x.1] {
+                        for yp in [y.0, y.1] {
+                            let mut f = [0.0f64; 4];
+                            let mut n = 0;
+                            for &p in prefix.iter().take(1) {
+                                f[n] = p;
+                                n += 1;
+                            }
+                            f[n] = vk;
+                            f[n + 1] = xp;
+                            f[n + 2] = yp;
+                            acc.add_product(&f[..n + 3], neg != negate);
+                        }
+                    }
+                }
+            }
+        }
+    }
+
+    /// The exact sign of `D = d . n`; `None` on overflow.
+    pub(crate) fn den_sign(&self) -> Option<core::cmp::Ordering> {
+        let mut acc = Expansion::new();
+        self.add_dot_normal(&mut acc, &[], |k| [self.dir[k], 0.0], false);
+        acc.sign()
+    }
+
+    /// The exact sign of `A . n - t D`; `None` on overflow or a non-finite
+    /// `t`.
+    pub(crate) fn num_minus_t_den_sign(&self, t: f64) -> Option<core::cmp::Ordering> {
+        // (Scaling by a power of two is exact unless it overflows or loses
+        // bits to underflow; the round trip tells.)
+        let scaled = if t == 0.0 { 0.0 } else { t * self.t_scale };
+        if !(t == 0.0 || (scaled.is_finite() && scaled / self.t_scale == t)) {
+            return None;
+        }
+        let t = scaled;
+        let a = self.diff[0];
+        let mut acc = Expansion::new();
+        self.add_dot_normal(&mut acc, &[], |k| [a[k].0, a[k].1], false);
+        if t != 0.0 {
+            self.add_dot_normal(&mut acc, &[t], |k| [self.dir[k], 0.0], true);
+        }
+        acc.sign()
+    }
+}
+
+/// The power of two that brings `m` (nonnegative) near one: `2^-e` for
+/// `m` in `[2^e, 2^(e+1))`, and one for zero or a non-finite `m`.
+fn power_to_one(m: f64) -> f64 {
+    if !(m > 0.0 && m.is_finite()) {
+        return 1.0;
+    }
+    scale_to_one(1.0, m)
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
