@@ -227,6 +227,20 @@ impl Expansion {
         }
     }
 
+    /// The largest component (zero for an empty expansion).
+    fn lead(&self) -> f64 {
+        if self.len == 0 {
+            0.0
+        } else {
+            self.e[self.len - 1]
+        }
+    }
+
+    /// The nonzero components, smallest first.
+    fn components(&self) -> &[f64] {
+        &self.e[..self.len]
+    }
+
     /// The sign of the exact sum, `None` when a term or a partial sum was
     /// not finite.
     fn sign(&self) -> Option<core::cmp::Ordering> {
@@ -241,38 +255,72 @@ impl Expansion {
     }
 }
 
+/// `floor(log2 |v|)` for a finite nonzero `v` (subnormals included).
+fn exponent(v: f64) -> i32 {
+    let b = v.abs().to_bits();
+    let e = (b >> 52) as i32;
+    if e == 0 {
+        (63 - b.leading_zeros() as i32) - 1074
+    } else {
+        e - 1023
+    }
+}
+
+/// `v * 2^k`, in steps that each stay within the normal powers of two:
+/// exact unless the result overflows or loses bits to underflow.
+fn scale2(v: f64, k: i32) -> f64 {
+    let pow2 = |k: i32| f64::from_bits(((1023 + k) as u64) << 52);
+    let mut v = v;
+    let mut k = k;
+    while k != 0 {
+        let step = k.clamp(-1000, 1000);
+        v *= pow2(step);
+        k -= step;
+    }
+    v
+}
+
 /// The exact signs that place a ray's crossing with a triangle's plane,
 /// for the interval forms of the watertight test.
 ///
 /// With `A = a - o`, `n = (b - a) x (c - a)`, the line `o + t d` meets the
-/// plane at `t* = (A . n) / (d . n)` when `D = d . n` is not zero. Each
-/// `PlaneCrossing` holds the corner differences as exact pairs (Knuth's
-/// two-sum: `hi + lo` is the exact difference) and answers the sign of `D`
-/// and of `A . n - t D` for a float `t`: every monomial is a product of at
-/// most four floats (`t d_k (b - a)_j (c - a)_l` after splitting each
-/// difference into its two parts), expanded exactly and summed as a
+/// plane at `t* = (A . n) / (d . n)` when `D = d . n` is not zero. The
+/// corner differences are held as exact pairs (Knuth's two-sum: `hi + lo`
+/// is the exact difference); `A . n` and `D` are then sums of products of
+/// three floats, each expanded exactly into four terms and summed as a
 /// floating-point expansion (Shewchuk, "Adaptive Precision Floating-Point
 /// Arithmetic and Fast Robust Geometric Predicates", 1997). A few hundred
-/// terms: the rare fallback of the interval tests, taken only where the
-/// crossing lies within its rounding error bound of an end.
+/// operations: the rare fallback of the interval tests, taken only where
+/// the crossing lies within its rounding error bound of an end.
 ///
-/// Exactness: the products' errors must not underflow, nor the products
-/// overflow. Inputs are `f32` or `f64` converted to `f64`. For `f32` every
-/// product of four finite `f32` values (and of their exact differences'
-/// parts) lies between `2^-596` and `2^512`, so the signs are always exact.
-/// For `f64`, the differences are scaled by one power of two, the direction
-/// by another, and `t` by their ratio (all exact); the signs are exact while
-/// each scaled value is zero or within `2^-240 .. 2^240` of one (coordinate
-/// differences within a factor `2^240` of the largest, and so on); an
-/// overflow is reported as `None`, never as a wrong sign.
+/// `A . n - t D` is compared without forming `t D` in one exponent range:
+/// with `t = m 2^k` (`m` in `[1, 2)`), `N = A . n` and `M = m D` are
+/// expansions near one, and `N` against `2^k M` is decided by their
+/// leading components' exponents when those are three or more apart, and
+/// otherwise by scaling the smaller one up by the power of two (exact: no
+/// bits are lost scaling up, and the result is near the other) and summing.
+///
+/// Exactness: the products' rounding errors must not underflow. Inputs are
+/// `f32` or `f64` converted to `f64`. Products of three `f32` values (and
+/// of the parts of their exact differences) lie between `2^-447` and
+/// `2^387`, so for `f32` the signs are always exact. For `f64` the
+/// differences are scaled by one power of two and the direction by another
+/// (both exact while nothing underflows), and the signs are exact while
+/// each scaled value is zero or above `2^-300` (coordinate differences
+/// within a factor `2^300` of the largest, the direction's components
+/// within `2^300` of its largest). Any `t`, however large or small, is
+/// compared exactly. A non-finite term is reported as `None`, never as a
+/// wrong sign.
 pub(crate) struct PlaneCrossing {
     /// `a - o`, `b - a`, `c - a`, each component an exact `(hi, lo)` pair,
-    /// scaled by a common power of two.
+    /// scaled by `2^-ea`.
     diff: [[(f64, f64); 3]; 3],
-    /// The direction, scaled by a power of two.
+    /// The direction, scaled by `2^-ed`.
     dir: [f64; 3],
-    /// The factor that maps a `t` onto the scaled problem (a power of two).
-    t_scale: f64,
+    /// `ed - ea`: `t*` of the scaled problem is `t* 2^(ed - ea)` (`A . n`
+    /// scales by `2^-3ea`, `D` by `2^(-ed - 2ea)`), so a `t` is compared as
+    /// `t 2^(ed - ea)`.
+    shift: i32,
 }
 
 impl PlaneCrossing {
@@ -296,54 +344,34 @@ impl PlaneCrossing {
             .flatten()
             .fold(0.0f64, |m, &(hi, _)| largest(m, hi));
         let md = d.iter().fold(0.0f64, |m, &x| largest(m, x));
-        // t* scales by (difference scale) / (direction scale): with A, n
-        // scaled by s1 (so A . n by s1^3, d . n by s1^2 s2), t* is scaled by
-        // s1 / s2, and so must t be.
-        let (s1, s2) = if scale {
-            (power_to_one(m), power_to_one(md))
-        } else {
-            (1.0, 1.0)
-        };
+        let usable = |m: f64| scale && m > 0.0 && m.is_finite();
+        let ea = if usable(m) { exponent(m) } else { 0 };
+        let ed = if usable(md) { exponent(md) } else { 0 };
         for p in diff.iter_mut().flatten() {
-            *p = (p.0 * s1, p.1 * s1);
+            *p = (scale2(p.0, -ea), scale2(p.1, -ea));
         }
         Self {
             diff,
-            dir: d.map(|x| x * s2),
-            t_scale: s1 / s2,
+            dir: d.map(|x| scale2(x, -ed)),
+            shift: ed - ea,
         }
     }
 
-    /// Adds `sign * v . n` to `acc`, with `v` given by `term(k)` as a list
-    /// of factors (one float, or the two parts of a difference) and `n`
-    /// expanded from the difference pairs.
-    fn add_dot_normal(
-        &self,
-        acc: &mut Expansion,
-        prefix: &[f64],
-        v: impl Fn(usize) -> [f64; 2],
-        negate: bool,
-    ) {
+    /// Adds `(factor * v) . n` to `acc`, with `v_k` given by `v(k)` as the
+    /// parts of a sum (one of them zero for a plain float) and `n` expanded
+    /// from the difference pairs.
+    fn add_dot_normal(&self, acc: &mut Expansion, factor: f64, v: impl Fn(usize) -> [f64; 2]) {
         let [_, e1, e2] = self.diff;
         for k in 0..3 {
             let (j, l) = ((k + 1) % 3, (k + 2) % 3);
-            for (x, y, neg) in [(e1[j], e2[l], false), (e1[l], e2[j], true)] {
+            for (x, y, negate) in [(e1[j], e2[l], false), (e1[l], e2[j], true)] {
                 for vk in v(k) {
                     if vk == 0.0 {
                         continue;
                     }
                     for xp in [x.0, x.1] {
                         for yp in [y.0, y.1] {
-                            let mut f = [0.0f64; 4];
-                            let mut n = 0;
-                            for &p in prefix.iter().take(1) {
-                                f[n] = p;
-                                n += 1;
-                            }
-                            f[n] = vk;
-                            f[n + 1] = xp;
-                            f[n + 2] = yp;
-                            acc.add_product(&f[..n + 3], neg != negate);
+                            acc.add_product(&[vk * factor, xp, yp], negate);
                         }
                     }
                 }
@@ -351,40 +379,73 @@ impl PlaneCrossing {
         }
     }
 
+    /// `D`, scaled, times `factor` (exact when `factor` is a power of two
+    /// or the direction's components times it are exact, as for `m` in
+    /// `[1, 2)`: see `num_minus_t_den_sign`).
+    fn den(&self, factor: f64) -> Expansion {
+        let mut acc = Expansion::new();
+        // `factor * d_k` is split exactly first when it is not a float.
+        for k in 0..3 {
+            let (p, e) = two_product(self.dir[k], factor);
+            let one = |kk: usize| if kk == k { [p, e] } else { [0.0, 0.0] };
+            self.add_dot_normal(&mut acc, 1.0, one);
+        }
+        acc
+    }
+
     /// The exact sign of `D = d . n`; `None` on overflow.
     pub(crate) fn den_sign(&self) -> Option<core::cmp::Ordering> {
-        let mut acc = Expansion::new();
-        self.add_dot_normal(&mut acc, &[], |k| [self.dir[k], 0.0], false);
-        acc.sign()
+        self.den(1.0).sign()
     }
 
     /// The exact sign of `A . n - t D`; `None` on overflow or a non-finite
     /// `t`.
     pub(crate) fn num_minus_t_den_sign(&self, t: f64) -> Option<core::cmp::Ordering> {
-        // (Scaling by a power of two is exact unless it overflows or loses
-        // bits to underflow; the round trip tells.)
-        let scaled = if t == 0.0 { 0.0 } else { t * self.t_scale };
-        if !(t == 0.0 || (scaled.is_finite() && scaled / self.t_scale == t)) {
+        use core::cmp::Ordering;
+        if !t.is_finite() {
             return None;
         }
-        let t = scaled;
         let a = self.diff[0];
-        let mut acc = Expansion::new();
-        self.add_dot_normal(&mut acc, &[], |k| [a[k].0, a[k].1], false);
-        if t != 0.0 {
-            self.add_dot_normal(&mut acc, &[t], |k| [self.dir[k], 0.0], true);
+        let mut num = Expansion::new();
+        self.add_dot_normal(&mut num, 1.0, |k| [a[k].0, a[k].1]);
+        let num_sign = num.sign()?;
+        if t == 0.0 {
+            return Some(num_sign);
         }
-        acc.sign()
+        // t = m 2^k, m in [1, 2) (exact: scaling up a subnormal or down a
+        // normal value into [1, 2) loses no bits).
+        let kt = exponent(t);
+        let m = scale2(t, -kt);
+        let mden = self.den(m);
+        let mden_sign = mden.sign()?;
+        let k = kt + self.shift;
+        let flip = |o: Ordering| o.reverse();
+        match (num_sign, mden_sign) {
+            (_, Ordering::Equal) => return Some(num_sign),
+            (Ordering::Equal, _) => return Some(flip(mden_sign)),
+            (x, y) if x != y => return Some(num_sign),
+            _ => {}
+        }
+        // Same signs: by magnitude, the leading exponents first.
+        let (xn, xm) = (exponent(num.lead()), exponent(mden.lead()) + k);
+        if xn >= xm + 3 {
+            return Some(num_sign);
+        }
+        if xm >= xn + 3 {
+            return Some(flip(mden_sign));
+        }
+        // Within a factor of 16: scale the one that needs a power above
+        // one, and sum.
+        let mut sum = Expansion::new();
+        let (num_k, mden_k) = if k >= 0 { (0, k) } else { (-k, 0) };
+        for &x in num.components() {
+            sum.add(scale2(x, num_k));
+        }
+        for &x in mden.components() {
+            sum.add(-scale2(x, mden_k));
+        }
+        sum.sign()
     }
-}
-
-/// The power of two that brings `m` (nonnegative) near one: `2^-e` for
-/// `m` in `[2^e, 2^(e+1))`, and one for zero or a non-finite `m`.
-fn power_to_one(m: f64) -> f64 {
-    if !(m > 0.0 && m.is_finite()) {
-        return 1.0;
-    }
-    scale_to_one(1.0, m)
 }
 
 #[cfg(test)]
