@@ -18,6 +18,8 @@
 //!   `t0` as `t_min` is a miss and as `t_max` a hit, one ulp below the
 //!   reverse; and the same triangle with one corner moved by an ulp, so
 //!   that `t*` is a rational just beside `t0`.
+//! - *Any-hit*: `ray_triangle_occluded` and `ray_triangle_prepared_occluded`
+//!   are `ray_triangle_in(...).is_some()` on every interval above.
 //! - *Relation to the plain test*: with `(0, t_max]`, a hit of
 //!   `ray_triangle` is the interval form's hit, bit for bit, wherever
 //!   `t*` is farther than the error bound from the ends; a hit only the
@@ -30,7 +32,8 @@ use rayhit::exact::{self, oracle};
 use rayhit::glam::{DVec3, Vec3};
 use rayhit::{
     Interval, PreparedRay, Ray, Scalar, Triangle, TriangleHit, Vector, ray_triangle,
-    ray_triangle_error_bounds, ray_triangle_in, ray_triangle_one_hit_in, ray_triangle_prepared_in,
+    ray_triangle_error_bounds, ray_triangle_in, ray_triangle_occluded, ray_triangle_one_hit_in,
+    ray_triangle_prepared_in, ray_triangle_prepared_occluded,
 };
 use rayhit_testkit::rng::Pcg32;
 
@@ -94,6 +97,12 @@ fn closed_in<V: Vector>(
     i: Interval<S<V>>,
 ) -> Option<TriangleHit<S<V>>> {
     let hit = ray_triangle_in(ray, tri, i);
+    // The any-hit forms: exactly whether there is a hit.
+    assert_eq!(ray_triangle_occluded(ray, tri, i), hit.is_some());
+    assert_eq!(
+        ray_triangle_prepared_occluded(&PreparedRay::new(ray), tri, i),
+        hit.is_some()
+    );
     assert_eq!(
         bits(ray_triangle_prepared_in(&PreparedRay::new(ray), tri, i)),
         bits(hit),

@@ -301,16 +301,17 @@ fn scale2(v: f64, k: i32) -> f64 {
 /// bits are lost scaling up, and the result is near the other) and summing.
 ///
 /// Exactness: the products' rounding errors must not underflow. Inputs are
-/// `f32` or `f64` converted to `f64`. Products of three `f32` values (and
-/// of the parts of their exact differences) lie between `2^-447` and
-/// `2^387`, so for `f32` the signs are always exact. For `f64` the
-/// differences are scaled by one power of two and the direction by another
-/// (both exact while nothing underflows), and the signs are exact while
-/// each scaled value is zero or above `2^-300` (coordinate differences
-/// within a factor `2^300` of the largest, the direction's components
-/// within `2^300` of its largest). Any `t`, however large or small, is
-/// compared exactly. A non-finite term is reported as `None`, never as a
-/// wrong sign.
+/// `f32` or `f64` converted to `f64`. For `f32` every factor (a
+/// coordinate difference's parts, a direction component, and `m d_k`'s
+/// parts) is a multiple of `2^-172` below `2^130`, so every product and
+/// its rounding error are far inside `f64`'s range: the signs are always
+/// exact. For `f64` the differences are scaled by one power of two and the
+/// direction by another, and the signs are exact while every nonzero
+/// scaled value (the differences' rounding errors included) is above
+/// `2^-300`: nonzero differences within a factor `2^250` of the largest,
+/// the direction's nonzero components within `2^250` of its largest.
+/// Any `t`, however large or small, is compared exactly. A non-finite term
+/// is reported as `None`.
 pub(crate) struct PlaneCrossing {
     /// `a - o`, `b - a`, `c - a`, each component an exact `(hi, lo)` pair,
     /// scaled by `2^-ea`.

@@ -261,12 +261,14 @@ fn exact_decide<F: Scalar>(
 /// kernels are unchanged.
 ///
 /// Invalid rays and triangles with a NaN or infinite coordinate miss;
-/// bad intervals cannot be built ([`Interval::new`]). Exact for `f32`; for
-/// `f64` exact while the scaled products stay in range (coordinate
-/// differences within a factor `2^240` of the largest, and likewise the
-/// direction's components and the interval's ends relative to `t*`'s
-/// scale), and a miss where they do not. The preconditions of
-/// `ray_triangle` (no overflow of the edge functions) apply.
+/// bad intervals cannot be built ([`Interval::new`]). The range decision
+/// is exact for every `f32` input and any ends; for `f64`, for any ends,
+/// while the nonzero coordinate differences between the origin and the
+/// corners and between corners (and their rounding errors) are within a
+/// factor `2^250` of the largest, and the direction's nonzero components
+/// within `2^250` of its largest (so that no exact product underflows);
+/// beyond that it is not guaranteed. The preconditions of `ray_triangle`
+/// (no overflow of the edge functions) apply.
 ///
 /// ```
 /// use rayhit::{Interval, Ray, Triangle, ray_triangle_in, glam::Vec3};
@@ -361,4 +363,52 @@ pub fn ray_triangle_one_hit_in<V: Vector>(
     }
     let shear = Shear::new(&ray.dir);
     watertight_in(ray.origin, ray.dir, &shear, tri, interval, EdgeRule::OneHit)
+}
+
+/// Whether anything blocks the ray within `interval`: the any-hit form of
+/// [`ray_triangle_in`] for shadow rays, `true` exactly when
+/// `ray_triangle_in(ray, tri, interval)` is `Some`.
+///
+/// Same conventions and guarantees (closed, two-sided, watertight, both
+/// ends of `(t_min, t_max]` decided exactly against the exact crossing).
+/// Nothing of the hit is returned, so a shadow ray's loop can stop at the
+/// first `true`.
+///
+/// ```
+/// use rayhit::{Interval, Ray, Triangle, ray_triangle_occluded, glam::Vec3};
+/// let occluder = Triangle::new(Vec3::new(-1.0, -1.0, 1.0), Vec3::new(3.0, -1.0, 1.0), Vec3::new(-1.0, 3.0, 1.0));
+/// // From the floor towards a light at t = 1, through the occluder at t = 0.5.
+/// let ray = Ray::new(Vec3::ZERO, Vec3::new(0.0, 0.0, 2.0));
+/// assert!(ray_triangle_occluded(&ray, &occluder, Interval::new(0.0, 1.0).unwrap()));
+/// // A light below the occluder is not blocked.
+/// assert!(!ray_triangle_occluded(&ray, &occluder, Interval::new(0.0, 0.25).unwrap()));
+/// ```
+#[inline]
+#[must_use]
+pub fn ray_triangle_occluded<V: Vector>(
+    ray: &Ray<V>,
+    tri: &Triangle<V>,
+    interval: Interval<S<V>>,
+) -> bool {
+    ray_triangle_in(ray, tri, interval).is_some()
+}
+
+/// [`ray_triangle_occluded`] on a [`PreparedRay`]: the same answer.
+///
+/// ```
+/// use rayhit::{Interval, PreparedRay, Ray, Triangle, ray_triangle_prepared_occluded, glam::Vec3};
+/// let occluder = Triangle::new(Vec3::new(-1.0, -1.0, 1.0), Vec3::new(3.0, -1.0, 1.0), Vec3::new(-1.0, 3.0, 1.0));
+/// let ray = PreparedRay::new(&Ray::new(Vec3::ZERO, Vec3::new(0.0, 0.0, 2.0)));
+/// // The occluder is crossed at exactly t = 0.5: open below, closed above.
+/// assert!(ray_triangle_prepared_occluded(&ray, &occluder, Interval::new(0.25, 0.5).unwrap()));
+/// assert!(!ray_triangle_prepared_occluded(&ray, &occluder, Interval::new(0.5, 1.0).unwrap()));
+/// ```
+#[inline]
+#[must_use]
+pub fn ray_triangle_prepared_occluded<V: Vector>(
+    ray: &PreparedRay<V>,
+    tri: &Triangle<V>,
+    interval: Interval<S<V>>,
+) -> bool {
+    ray_triangle_prepared_in(ray, tri, interval).is_some()
 }
