@@ -482,4 +482,100 @@ mod tests {
         assert!(f64::diff_of_products_exact_sign(c, 1.0, a, a) < 0.0);
         assert_eq!(f64::diff_of_products_exact_sign(2.0, 3.0, 6.0, 1.0), 0.0);
     }
+
+    /// The plane-crossing signs against big rationals: `f64` inputs over
+    /// the documented range (coordinate differences within `2^60` of each
+    /// other, at any overall scale from `2^-400` to `2^400`; directions
+    /// likewise, independently), `f32` inputs from arbitrary finite bit
+    /// patterns; `t` at the exact crossing rounded and a few ulps either
+    /// side, and anywhere from `2^-1074` to `2^1023`.
+    #[cfg(feature = "exact")]
+    #[test]
+    fn plane_crossing_signs_are_exact() {
+        use crate::exact::oracle::{R, cross, dot, r, sub};
+        use num_traits::Zero;
+        let mut state = 0x9e37_79b9_7f4a_7c15u64;
+        let mut next = move || {
+            state ^= state << 13;
+            state ^= state >> 7;
+            state ^= state << 17;
+            state
+        };
+        let unit =
+            |next: &mut dyn FnMut() -> u64| (next() >> 11) as f64 / (1u64 << 53) as f64 * 2.0 - 1.0;
+        let (mut checked, mut near) = (0, 0);
+        for case in 0..1500 {
+            let wide = case % 3 != 0;
+            let v = |scale: f64, next: &mut dyn FnMut() -> u64| -> [f64; 3] {
+                if wide {
+                    [0, 1, 2].map(|_| {
+                        let spread = scale2(1.0, -((next() % 60) as i32));
+                        scale * spread * unit(next)
+                    })
+                } else {
+                    // Arbitrary finite f32 bit patterns.
+                    [0, 1, 2].map(|_| {
+                        loop {
+                            let x = f32::from_bits(next() as u32);
+                            if x.is_finite() {
+                                break f64::from(x);
+                            }
+                        }
+                    })
+                }
+            };
+            let g = scale2(1.0, (next() % 800) as i32 - 400);
+            let h = scale2(1.0, (next() % 800) as i32 - 400);
+            let (o, a, b, c) = (
+                v(g, &mut next),
+                v(g, &mut next),
+                v(g, &mut next),
+                v(g, &mut next),
+            );
+            let d = v(h, &mut next);
+            let pc = PlaneCrossing::new(o, d, a, b, c, wide);
+            let rv = |p: [f64; 3]| p.map(|x| r(x).unwrap());
+            let (ro, rd) = (rv(o), rv(d));
+            let ra = rv(a);
+            let n = cross(&sub(&rv(b), &ra), &sub(&rv(c), &ra));
+            let num = dot(&sub(&ra, &ro), &n);
+            let den = dot(&rd, &n);
+            let zero = R::zero();
+            assert_eq!(
+                pc.den_sign(),
+                Some(den.cmp(&zero)),
+                "{o:?} {d:?} {a:?} {b:?} {c:?}"
+            );
+            let mut ts = std::vec![
+                0.0,
+                f64::from_bits(1),
+                f64::MAX,
+                scale2(1.0, (next() % 2000) as i32 - 1000),
+            ];
+            if !den.is_zero() {
+                let t = crate::exact::round::<f64>(&(&num / &den)).abs();
+                let mut up = t;
+                let mut down = t;
+                for _ in 0..3 {
+                    ts.extend([up, down]);
+                    up = up.next_up();
+                    down = down.next_down();
+                }
+                near += 1;
+            }
+            for t in ts {
+                if !(t.is_finite() && t >= 0.0) {
+                    continue;
+                }
+                let expected = (&num - r(t).unwrap() * &den).cmp(&zero);
+                assert_eq!(
+                    pc.num_minus_t_den_sign(t),
+                    Some(expected),
+                    "t {t:e}: {o:?} {d:?} {a:?} {b:?} {c:?}"
+                );
+                checked += 1;
+            }
+        }
+        assert!(checked > 10_000 && near > 1_000, "{checked} {near}");
+    }
 }
