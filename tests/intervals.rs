@@ -20,6 +20,11 @@
 //!   that `t*` is a rational just beside `t0`.
 //! - *Any-hit*: `ray_triangle_occluded` and `ray_triangle_prepared_occluded`
 //!   are `ray_triangle_in(...).is_some()` on every interval above.
+//! - *Near the origin*: rays starting a few ulps off a triangle's centroid
+//!   (its plane crossed at a tiny `t*` of either sign, or zero), along
+//!   directions well away from the plane: with `(0, inf]` a hit exactly
+//!   when `t* > 0`, including the hits the plain test drops because its
+//!   sufficient tests cannot establish `t > 0`.
 //! - *Relation to the plain test*: with `(0, t_max]`, a hit of
 //!   `ray_triangle` is the interval form's hit, bit for bit, wherever
 //!   `t*` is farther than the error bound from the ends; a hit only the
@@ -135,6 +140,8 @@ struct Tally {
     float_wrong: usize,
     clear: usize,
     only_interval: usize,
+    /// Cases with `t* > 0`.
+    positive: usize,
 }
 
 fn random_ends<V: Vector>(seed: u64) -> Tally {
@@ -334,6 +341,110 @@ fn exact_ends<V: Vector>(seed: u64) -> Tally {
         }
     }
     tally
+}
+
+/// Rays starting within rounding of the triangle, near its centroid (so
+/// that the line surely crosses its interior), along directions well away
+/// from its plane: `t*` is a tiny positive or negative number, or zero.
+/// The plain test drops the hits whose `t > 0` it cannot establish; the
+/// interval form with `(0, inf]` hits exactly when `t* > 0`.
+fn near_origin<V: Vector>(seed: u64) -> Tally {
+    let mut rng = Pcg32::new(seed);
+    let mut tally = Tally::default();
+    let inf = S::<V>::INFINITY;
+    let all = Interval::up_to(inf).unwrap();
+    for _ in 0..cases() {
+        let scale = 10f64.powi(rng.below(7) as i32 - 3);
+        let far = 1e5 * f64::from(rng.below(3)) / 2.0;
+        let centre = [
+            far * signed(&mut rng),
+            far * signed(&mut rng),
+            far * signed(&mut rng),
+        ];
+        let tri = Triangle::new(
+            point::<V>(&mut rng, scale, centre),
+            point::<V>(&mut rng, scale, centre),
+            point::<V>(&mut rng, scale, centre),
+        );
+        let third = f::<V>(1.0 / 3.0);
+        let mut origin = (tri.a + tri.b + tri.c) * third;
+        // A few ulps off, on one axis.
+        let axis = rng.below(3) as usize;
+        let k = rng.below(9) as i32 - 4;
+        let moved = step(origin[axis], k);
+        origin = match axis {
+            0 => V::new(moved, origin.y(), origin.z()),
+            1 => V::new(origin.x(), moved, origin.z()),
+            _ => V::new(origin.x(), origin.y(), moved),
+        };
+        let n = tri.normal();
+        let dir = point::<V>(&mut rng, 1.0, [0.0; 3]);
+        // Well away from the plane: |cos| above 1/4.
+        let (dn, len) = (
+            dir.dot(n).to_f64(),
+            dir.length().to_f64() * n.length().to_f64(),
+        );
+        if !(dn.abs() > 0.25 * len) {
+            continue;
+        }
+        let ray = Ray::new(origin, dir);
+        let ex = oracle::triangle(&ray, &tri).unwrap();
+        let Some(t_exact) = ex.t.clone() else {
+            continue;
+        };
+        // The line must cross the interior clearly: every edge's product of
+        // one sign (the centroid is far from the edges of a fat triangle;
+        // slivers are skipped).
+        if !ex.interior() || tri.is_degenerate() {
+            continue;
+        }
+        tally.cases += 1;
+        let positive = t_exact > oracle::r(S::<V>::ZERO).unwrap();
+        let hit = closed_in(&ray, &tri, all);
+        if positive {
+            tally.positive += 1;
+            tally.inside += usize::from(hit.is_some());
+            assert!(
+                hit.is_some(),
+                "t* = {} > 0 missed: {ray:?} {tri:?}",
+                oracle::to_f64(&t_exact)
+            );
+        } else {
+            assert!(
+                hit.is_none(),
+                "t* = {} <= 0 hit: {ray:?} {tri:?}",
+                oracle::to_f64(&t_exact)
+            );
+        }
+        let plain = ray_triangle(&ray, &tri, inf);
+        match (plain, hit) {
+            (Some(_), _) => assert_eq!(bits(plain), bits(hit), "{ray:?} {tri:?}"),
+            (None, Some(h)) => {
+                tally.only_interval += 1;
+                let err = ray_triangle_error_bounds(&ray, &tri, &h).t;
+                assert!(
+                    h.t <= err,
+                    "plain test dropped a hit far from 0: {h:?} {err:?}"
+                );
+            }
+            (None, None) => {}
+        }
+    }
+    tally
+}
+
+#[test]
+fn near_origin_decided_exactly_f32() {
+    let t = near_origin::<Vec3>(5);
+    println!("f32 near origin: {t:?}");
+    assert!(t.only_interval > 0 && t.inside > t.cases / 4, "{t:?}");
+}
+
+#[test]
+fn near_origin_decided_exactly_f64() {
+    let t = near_origin::<DVec3>(6);
+    println!("f64 near origin: {t:?}");
+    assert!(t.only_interval > 0 && t.inside > t.cases / 4, "{t:?}");
 }
 
 #[test]
