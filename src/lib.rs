@@ -320,6 +320,20 @@
 //!   closed mesh is crossed an odd number of times by a ray from strictly
 //!   inside. A lone triangle's edges and corners hit only on one side of a
 //!   fixed tie-break.
+//! - **Intervals** ([`ray_triangle_in`], [`ray_triangle_prepared_in`],
+//!   [`ray_triangle_one_hit_in`], [`ray_triangle_occluded`]). The inside
+//!   tests above over an [`Interval`] `(t_min, t_max]`, with both ends
+//!   decided exactly against the exact crossing `t*` (the line's crossing
+//!   with the triangle's plane, from the input floats; the reported `t`
+//!   itself where that is undefined, for zero-area triangles): consecutive
+//!   intervals `(t0, t1]`, `(t1, t2]`, ... report each hit triangle in
+//!   exactly one of them, so every hit along a ray can be walked in order
+//!   with no skip and no repeat, and the one-hit form counts each crossing
+//!   of a closed mesh once over the whole walk. Exact for `f32`; for `f64`
+//!   under a range precondition on the coordinate differences (see
+//!   [`ray_triangle_in`]). With `(0, t_max]` the hit is [`ray_triangle`]'s,
+//!   bit for bit, wherever `t*` is farther than its error bound from both
+//!   ends.
 //! - **Moller-Trumbore** ([`ray_triangle_mt`]). Agrees with the watertight
 //!   test away from edges; not watertight (rays through shared edges can
 //!   miss both triangles, and do, at a measurable rate); rejects rays whose
@@ -483,15 +497,16 @@ pub use instance::{Instance, InstanceError, InstanceRayError};
 pub use num::{Scalar, Vector};
 pub use plane::{Plane, ray_plane, ray_plane_hit_point, ray_plane_t_error};
 pub use quantized::{QuantizedChildren, quantize_bounds, ray_quantized_children};
-pub use ray::{PreparedRay, Ray};
+pub use ray::{Interval, PreparedRay, Ray};
 pub use simd::TargetSimd;
 #[cfg(rayhit_runtime_avx)]
 pub use simd::{Avx2, Avx512};
 pub use surface::{SurfacePoint, offset_ray_origin};
 pub use triangle::{
     Side, Triangle, TriangleBatch, TriangleBatchHits, TriangleHit, TriangleHitError, ray_triangle,
-    ray_triangle_batch, ray_triangle_error_bounds, ray_triangle_mt, ray_triangle_one_hit,
-    ray_triangle_prepared, triangle_hit_point,
+    ray_triangle_batch, ray_triangle_error_bounds, ray_triangle_in, ray_triangle_mt,
+    ray_triangle_occluded, ray_triangle_one_hit, ray_triangle_one_hit_in, ray_triangle_prepared,
+    ray_triangle_prepared_in, ray_triangle_prepared_occluded, triangle_hit_point,
 };
 pub use with_simd::{Simd, SimdWork, with_simd};
 
@@ -563,16 +578,18 @@ pub mod prelude {
         DMatrixCamera, DOrthographicCamera, DPinholeCamera, DPlane, DPreparedRay, DRay,
         DRayDifferential, DSurfacePoint, DThinLensCamera, DTriangle, DTriangleBatch, DTriangleHit,
         DTriangleHitError, DValidAabb, EqualAreaCamera, EquirectangularCamera, FocusPoint,
-        HitDifferentials, MatrixCamera, OrthographicCamera, PinholeCamera, Plane, PreparedRay,
-        QuantizedChildren, Ray, RayCone, RayDifferential, Scalar, Side, Simd, SimdWork, SlabBox,
-        SurfacePoint, TargetSimd, ThinLensCamera, Triangle, TriangleBatch, TriangleBatchHits,
-        TriangleHit, TriangleHitError, ValidAabb, Vector, aabb_entry_face, offset_ray_origin,
-        quantize_bounds, ray_aabb, ray_aabb_batch, ray_aabb_face, ray_aabb_naive,
-        ray_aabb_prepared, ray_aabb_prepared_face, ray_plane, ray_plane_hit_point,
+        HitDifferentials, Interval, MatrixCamera, OrthographicCamera, PinholeCamera, Plane,
+        PreparedRay, QuantizedChildren, Ray, RayCone, RayDifferential, Scalar, Side, Simd,
+        SimdWork, SlabBox, SurfacePoint, TargetSimd, ThinLensCamera, Triangle, TriangleBatch,
+        TriangleBatchHits, TriangleHit, TriangleHitError, ValidAabb, Vector, aabb_entry_face,
+        offset_ray_origin, quantize_bounds, ray_aabb, ray_aabb_batch, ray_aabb_face,
+        ray_aabb_naive, ray_aabb_prepared, ray_aabb_prepared_face, ray_plane, ray_plane_hit_point,
         ray_plane_t_error, ray_quantized_children, ray_triangle, ray_triangle_batch,
-        ray_triangle_error_bounds, ray_triangle_mt, ray_triangle_one_hit, ray_triangle_prepared,
-        triangle_cone_width, triangle_hit_differentials, triangle_hit_differentials_error,
-        triangle_hit_point, with_simd,
+        ray_triangle_error_bounds, ray_triangle_in, ray_triangle_mt, ray_triangle_occluded,
+        ray_triangle_one_hit, ray_triangle_one_hit_in, ray_triangle_prepared,
+        ray_triangle_prepared_in, ray_triangle_prepared_occluded, triangle_cone_width,
+        triangle_hit_differentials, triangle_hit_differentials_error, triangle_hit_point,
+        with_simd,
     };
     #[cfg(rayhit_runtime_avx)]
     pub use crate::{Avx2, Avx512};

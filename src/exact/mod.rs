@@ -9,7 +9,8 @@
 //!
 //! - box ([`ray_aabb`]): the closed box against `t` in `[0, t_max]`;
 //! - triangle ([`ray_triangle`], [`ray_mesh`]): closed and two-sided,
-//!   `0 < t <= t_max`;
+//!   `0 < t <= t_max`; over an interval ([`ray_triangle_in`]),
+//!   `t_min < t <= t_max`;
 //! - plane ([`ray_plane`]): `0 < t <= t_max`, no hit when parallel;
 //! - invalid input (a non-finite coordinate, a zero direction, an inverted
 //!   box, a zero plane normal, a NaN `t_max`) is a miss, never a panic.
@@ -421,6 +422,38 @@ pub fn ray_triangle<V: Vector>(
         side,
         place,
     })
+}
+
+/// Exact ray/triangle over an interval: closed and two-sided, a crossing
+/// at `t_min < t <= t_max` (both ends floats, compared with the exact
+/// crossing); `None` for a miss, a line parallel to the triangle's plane
+/// (including a degenerate triangle), invalid input, or an interval that
+/// is not `0 <= t_min <= t_max` (NaN included). The same question as
+/// [`ray_triangle_in`](crate::ray_triangle_in) answers; with `t_min = 0`
+/// it is [`ray_triangle`]'s.
+///
+/// ```
+/// use rayhit::{Ray, Triangle, exact, glam::Vec3};
+/// let tri = Triangle::new(Vec3::new(-1.0, -1.0, 0.0), Vec3::new(3.0, -1.0, 0.0), Vec3::new(-1.0, 3.0, 0.0));
+/// // Crosses the plane z = 0 at exactly t = 2.
+/// let ray = Ray::new(Vec3::new(0.0, 0.0, 4.0), Vec3::new(0.0, 0.0, -2.0));
+/// assert!(exact::ray_triangle_in(&ray, &tri, 1.0, 2.0).is_some());
+/// assert!(exact::ray_triangle_in(&ray, &tri, 2.0, 3.0).is_none());
+/// assert!(exact::ray_triangle_in(&ray, &tri, 3.0, 1.0).is_none());
+/// ```
+#[must_use]
+pub fn ray_triangle_in<V: Vector>(
+    ray: &Ray<V>,
+    tri: &Triangle<V>,
+    t_min: V::Scalar,
+    t_max: V::Scalar,
+) -> Option<TriangleAnswer<V::Scalar>> {
+    let zero = <V::Scalar as Scalar>::ZERO;
+    if !(zero <= t_min && t_min <= t_max) {
+        return None;
+    }
+    let answer = ray_triangle(ray, tri, t_max)?;
+    (answer.t.value > oracle::r(t_min)?).then_some(answer)
 }
 
 /// One crossing of a ray through a mesh: the exact `t` and every triangle

@@ -1,12 +1,15 @@
 //! The ray, and its prepared form: what every kernel takes.
 //!
 //! - `mod.rs`: [`Ray`], and the check of a `t_max`.
+//! - `interval.rs`: [`Interval`], the range `(t_min, t_max]` of the
+//!   kernels' interval forms.
 //! - `slab.rs`: the box tests' per-ray part, the directed reciprocals.
 //! - `shear.rs`: the watertight triangle test's per-ray part, the axis
 //!   permutation and shear.
 //! - `prepared.rs`: [`PreparedRay`], both parts once per ray, and the one
 //!   encoding of an invalid ray.
 
+mod interval;
 mod prepared;
 mod shear;
 mod slab;
@@ -15,6 +18,7 @@ use glam::Vec3;
 
 use crate::num::{L, Lanes, S, Scalar, Vector};
 
+pub use interval::Interval;
 pub use prepared::PreparedRay;
 pub(crate) use shear::{Shear, largest_axis};
 pub(crate) use slab::SlabRay;

@@ -50,32 +50,7 @@ pub(crate) fn watertight_definition<V: Vector>(
     let [e0, e1, e2] = f.e;
 
     // Inside test in the sheared plane.
-    let inside = match rule {
-        EdgeRule::Closed => {
-            let any_neg = (e0 < zero) | (e1 < zero) | (e2 < zero);
-            let any_pos = (e0 > zero) | (e1 > zero) | (e2 > zero);
-            // NaN edge functions (overflow) fail both tests below instead.
-            !(any_neg & any_pos)
-        }
-        EdgeRule::OneHit => {
-            let sign = |i: usize, e: S<V>| {
-                if e > zero {
-                    Some(true)
-                } else if e < zero {
-                    Some(false)
-                } else if e == zero {
-                    f.tie_break(i)
-                } else {
-                    None
-                }
-            };
-            match (sign(0, e0), sign(1, e1), sign(2, e2)) {
-                (Some(a), Some(b), Some(c)) => a == b && b == c,
-                _ => false,
-            }
-        }
-    };
-    if !inside {
+    if !inside(&f, rule) {
         return None;
     }
     let det = e0 + e1 + e2;
@@ -171,6 +146,42 @@ pub(crate) fn watertight_definition<V: Vector>(
         Side::Back
     };
     Some(TriangleHit { t, u, v, side })
+}
+
+/// The watertight test's inside test in the sheared plane, with the edge
+/// rule `rule`: the edge functions' signs (exact) agree, a zero counting as
+/// inside (closed) or decided by the tie-break (one hit). NaN edge
+/// functions (overflow) pass the closed test; the determinant's range test
+/// rejects them instead.
+#[inline(always)]
+pub(crate) fn inside<F: Scalar>(f: &Frame<F>, rule: EdgeRule) -> bool {
+    let zero = F::ZERO;
+    let [e0, e1, e2] = f.e;
+    match rule {
+        EdgeRule::Closed => {
+            let any_neg = (e0 < zero) | (e1 < zero) | (e2 < zero);
+            let any_pos = (e0 > zero) | (e1 > zero) | (e2 > zero);
+            // NaN edge functions (overflow) fail both tests below instead.
+            !(any_neg & any_pos)
+        }
+        EdgeRule::OneHit => {
+            let sign = |i: usize, e: F| {
+                if e > zero {
+                    Some(true)
+                } else if e < zero {
+                    Some(false)
+                } else if e == zero {
+                    f.tie_break(i)
+                } else {
+                    None
+                }
+            };
+            match (sign(0, e0), sign(1, e1), sign(2, e2)) {
+                (Some(a), Some(b), Some(c)) => a == b && b == c,
+                _ => false,
+            }
+        }
+    }
 }
 
 #[cfg(test)]

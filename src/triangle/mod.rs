@@ -10,6 +10,10 @@
 //! - `bounds.rs`: the rounding error bounds of a hit, and the hit point's.
 //! - `watertight.rs`: [`ray_triangle`], [`ray_triangle_prepared`],
 //!   [`ray_triangle_one_hit`], held to the definition bit for bit.
+//! - `interval.rs`: [`ray_triangle_in`], [`ray_triangle_prepared_in`],
+//!   [`ray_triangle_one_hit_in`]: the watertight tests over an interval
+//!   `(t_min, t_max]`, decided exactly; [`ray_triangle_occluded`] and
+//!   [`ray_triangle_prepared_occluded`], their any-hit forms.
 //! - `mt.rs`: [`ray_triangle_mt`] (Moller-Trumbore) and its definition.
 //! - `batch.rs`: [`TriangleBatch`] and [`ray_triangle_batch`], the
 //!   watertight test on eight lanes of triangles at a time, held to the
@@ -20,6 +24,7 @@ mod bounds;
 mod conditioning;
 mod definition;
 mod frame;
+mod interval;
 mod mt;
 mod watertight;
 
@@ -32,6 +37,10 @@ use crate::num::{S, Scalar, Vector};
 pub(crate) use batch::TriangleBatchKernel;
 pub use batch::{TriangleBatch, TriangleBatchHits, ray_triangle_batch};
 pub use bounds::{TriangleHitError, ray_triangle_error_bounds, triangle_hit_point};
+pub use interval::{
+    ray_triangle_in, ray_triangle_occluded, ray_triangle_one_hit_in, ray_triangle_prepared_in,
+    ray_triangle_prepared_occluded,
+};
 pub use mt::ray_triangle_mt;
 pub use watertight::{ray_triangle, ray_triangle_one_hit, ray_triangle_prepared};
 

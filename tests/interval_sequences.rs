@@ -1,0 +1,415 @@
+//! Every hit along a ray, in order, from a sequence of interval calls, on
+//! closed meshes: no skip, no repeat, against exact arithmetic.
+//!
+//! The meshes: the test kit's icosphere (convex) and torus (not convex),
+//! and an octahedron with a T-junction (one face split at the midpoint of
+//! an edge, the crack closed by the zero-area triangle between the edge and
+//! its halves), each scaled by 1e-3 to 1e3 and translated by up to 1e5 in
+//! the precision under test (shared corners stay bit-identical). Rays
+//! start outside and are aimed at a corner, an edge midpoint, a face point
+//! or the middle of the mesh.
+//!
+//! The sequence is collected in windows: from `t_lo` (first 0), the
+//! nearest hit of `(t_lo, inf]` gives `t_hi` (its `t` plus its error bound
+//! from `ray_triangle_error_bounds`, rounded up); every hit of `(t_lo,
+//! t_hi]` is reported, sorted by `(t, triangle)`; then `t_lo = t_hi`. This
+//! runs with `ray_triangle_prepared_in` (closed) and
+//! `ray_triangle_one_hit_in`; and again with tight windows, `t_hi` the
+//! nearest hit's `t` itself, so that window ends fall right at crossings
+//! (the nearest triangle's `t*` is on either side of its rounded `t`;
+//! where that window is empty, the wide one is taken). Checked:
+//!
+//! - no repeat: no triangle is reported twice;
+//! - no skip: the triangles reported are those the same test reports over
+//!   `(0, inf]` in one call;
+//! - each reported triangle's exact crossing `t*` (exact arithmetic on the
+//!   same floats, `rayhit::exact`) lies in the window it was reported in,
+//!   so the windows are in exact order;
+//! - against the exact crossings: every triangle whose hit or miss the
+//!   exact module says is clear of rounding (`triangle_clear`) is reported
+//!   by the closed sequence exactly when the exact ray crosses it; and on
+//!   rays where every triangle is clear, the one-hit sequence's count is
+//!   the exact number of crossings; and on a convex mesh, a line that the
+//!   exact module finds meeting it at two points, in at one and out at the
+//!   other (through edges and corners included), has a one-hit count of
+//!   exactly 2.
+//!
+//! `SEQUENCE_RAYS=n` sets the rays per mesh and precision (default 80, a
+//! few seconds); the counts print with `--nocapture`. The long run, about
+//! a million rays per precision (hours on 2 cores):
+//!
+//! ```sh
+//! SEQUENCE_RAYS=340000 cargo test --release --test interval_sequences -- --ignored --nocapture
+//! ```
+
+use rayhit::exact::{self, oracle};
+use rayhit::glam::{DVec3, Vec3};
+use rayhit::{
+    Aabb, Interval, PreparedRay, Ray, Scalar, Triangle, TriangleHit, Vector, ray_aabb,
+    ray_triangle_error_bounds, ray_triangle_in, ray_triangle_one_hit_in, ray_triangle_prepared_in,
+};
+use rayhit_testkit::mesh::{self, Mesh};
+use rayhit_testkit::rng::Pcg32;
+
+type S<V> = <V as Vector>::Scalar;
+
+fn rays() -> usize {
+    std::env::var("SEQUENCE_RAYS")
+        .ok()
+        .and_then(|s| s.parse().ok())
+        .unwrap_or(80)
+}
+
+/// An octahedron of radius 2 with a T-junction: the face `px, py, pz` is
+/// split at `m`, the midpoint of `px, py`, and the filler `px, py, m`
+/// (zero area) closes the edge against the whole face `py, px, nz`.
+fn t_junction_octahedron() -> Mesh {
+    let positions = vec![
+        Vec3::new(2.0, 0.0, 0.0),
+        Vec3::new(0.0, 2.0, 0.0),
+        Vec3::new(0.0, 0.0, 2.0),
+        Vec3::new(-2.0, 0.0, 0.0),
+        Vec3::new(0.0, -2.0, 0.0),
+        Vec3::new(0.0, 0.0, -2.0),
+        Vec3::new(1.0, 1.0, 0.0),
+    ];
+    let (px, py, pz, nx, ny, nz, m) = (0, 1, 2, 3, 4, 5, 6);
+    let indices = vec![
+        [px, m, pz],
+        [m, py, pz],
+        [px, py, m],
+        [py, nx, pz],
+        [nx, ny, pz],
+        [ny, px, pz],
+        [py, px, nz],
+        [nx, py, nz],
+        [ny, nx, nz],
+        [px, ny, nz],
+    ];
+    Mesh {
+        positions,
+        normals: Vec::new(),
+        indices,
+    }
+}
+
+fn meshes() -> Vec<(&'static str, Mesh)> {
+    vec![
+        ("icosphere", mesh::icosphere(Vec3::ZERO, 1.0, 1)),
+        ("torus", mesh::torus(1.0, 0.4, 10, 6)),
+        ("t-junction octahedron", t_junction_octahedron()),
+    ]
+}
+
+fn f<V: Vector>(x: f64) -> S<V> {
+    S::<V>::from_f64(x)
+}
+
+fn signed(rng: &mut Pcg32) -> f64 {
+    f64::from(rng.next_u32()) / f64::from(u32::MAX) * 2.0 - 1.0
+}
+
+/// The mesh's triangles in precision `V`, scaled and translated per vertex.
+fn placed<V: Vector>(m: &Mesh, scale: f64, offset: [f64; 3]) -> Vec<Triangle<V>> {
+    let p: Vec<V> = m
+        .positions
+        .iter()
+        .map(|p| {
+            let c = |x: f32, o: f64| f::<V>(o) + f::<V>(f64::from(x)) * f::<V>(scale);
+            V::new(c(p.x, offset[0]), c(p.y, offset[1]), c(p.z, offset[2]))
+        })
+        .collect();
+    m.indices
+        .iter()
+        .map(|t| Triangle::new(p[t[0] as usize], p[t[1] as usize], p[t[2] as usize]))
+        .collect()
+}
+
+/// A reported hit: its window, the triangle's index, and `t`.
+type Reported<V> = (Interval<S<V>>, usize, S<V>);
+
+type Kernel<V> = fn(&Ray<V>, &Triangle<V>, Interval<S<V>>) -> Option<TriangleHit<S<V>>>;
+
+/// The hits of the window loop: (window, triangle, t).
+fn windows<V: Vector>(
+    ray: &Ray<V>,
+    tris: &[Triangle<V>],
+    kernel: Kernel<V>,
+    margin: bool,
+) -> (Vec<Reported<V>>, usize) {
+    let inf = S::<V>::INFINITY;
+    let mut lo = S::<V>::ZERO;
+    let mut out = Vec::new();
+    let mut count = 0;
+    loop {
+        count += 1;
+        assert!(
+            count <= 2 * tris.len() + 2,
+            "the windows do not advance: {ray:?}"
+        );
+        let rest = Interval::new(lo, inf).unwrap();
+        let nearest = tris
+            .iter()
+            .filter_map(|tri| kernel(ray, tri, rest).map(|h| (h, tri)))
+            .min_by(|a, b| a.0.t.partial_cmp(&b.0.t).unwrap());
+        let Some((hit, tri)) = nearest else { break };
+        let in_window = |window: Interval<S<V>>| -> Vec<(S<V>, usize)> {
+            tris.iter()
+                .enumerate()
+                .filter_map(|(i, tri)| kernel(ray, tri, window).map(|h| (h.t, i)))
+                .collect()
+        };
+        // The window with the margin: the nearest hit's `t*` is within the
+        // bound of its `t`, so the nearest hit is in it.
+        let err = ray_triangle_error_bounds(ray, tri, &hit).t;
+        let wide = (hit.t + err).next_up();
+        let wide = if wide.is_finite() { wide } else { inf };
+        // Tight: up to the nearest hit's `t`; empty when its `t*` is above
+        // that, and then the wide window is taken.
+        let tight = Interval::new(lo, hit.t).unwrap();
+        let (window, mut found) = match (margin, in_window(tight)) {
+            (false, found) if !found.is_empty() => (tight, found),
+            _ => {
+                let window = Interval::new(lo, wide).unwrap();
+                (window, in_window(window))
+            }
+        };
+        assert!(
+            !found.is_empty(),
+            "the nearest hit is not in its own window: {ray:?}"
+        );
+        let hi = window.max();
+        found.sort_by(|a, b| a.0.partial_cmp(&b.0).unwrap().then(a.1.cmp(&b.1)));
+        out.extend(found.into_iter().map(|(t, i)| (window, i, t)));
+        if hi == inf {
+            break;
+        }
+        lo = hi;
+    }
+    (out, count)
+}
+
+fn prepared_in<V: Vector>(
+    ray: &Ray<V>,
+    tri: &Triangle<V>,
+    i: Interval<S<V>>,
+) -> Option<TriangleHit<S<V>>> {
+    ray_triangle_prepared_in(&PreparedRay::new(ray), tri, i)
+}
+
+#[derive(Default, Debug)]
+struct Tally {
+    rays: usize,
+    closed_hits: usize,
+    one_hits: usize,
+    windows: usize,
+    /// Windows holding more than one triangle (ties and near-ties).
+    shared_windows: usize,
+    exact_checked: usize,
+    clear_rays: usize,
+    /// Rays through a convex mesh, in at one point and out at another.
+    two_crossing_rays: usize,
+}
+
+fn check_ray<V: Vector>(
+    ray: &Ray<V>,
+    tris: &[Triangle<V>],
+    boxes: &[Aabb<V>],
+    convex: bool,
+    tally: &mut Tally,
+) {
+    let inf = S::<V>::INFINITY;
+    let all = Interval::up_to(inf).unwrap();
+    // The exact crossings, and whether each is clear of rounding. (A box
+    // the slab test misses holds no exact crossing: it never misses what
+    // exact arithmetic hits.)
+    let mut answers = vec![None; tris.len()];
+    let mut clear = vec![true; tris.len()];
+    for (i, tri) in tris.iter().enumerate() {
+        if ray_aabb(ray, &boxes[i], inf).is_some() {
+            answers[i] = exact::ray_triangle(ray, tri, inf);
+            clear[i] = oracle::triangle_clear(ray, tri, inf);
+        }
+    }
+    let crossed: Vec<bool> = answers.iter().map(Option::is_some).collect();
+    // For a convex mesh: a line that meets it at exactly two points, going
+    // in at one and out at the other, crosses the surface exactly twice,
+    // through edges and corners too.
+    let two_crossings = convex && {
+        let mut ts: Vec<_> = answers
+            .iter()
+            .flatten()
+            .map(|a| (a.t.value.clone(), a.side))
+            .collect();
+        ts.sort_by(|a, b| a.0.cmp(&b.0));
+        ts.dedup_by(|a, b| a.0 == b.0);
+        ts.len() == 2 && ts[0].1 != ts[1].1
+    };
+    tally.two_crossing_rays += usize::from(two_crossings);
+    let all_clear = clear.iter().all(|&c| c);
+    tally.clear_rays += usize::from(all_clear);
+    for (one_hit, kernel, margin) in [
+        (false, prepared_in::<V> as Kernel<V>, true),
+        (true, ray_triangle_one_hit_in::<V>, true),
+        (false, prepared_in::<V>, false),
+        (true, ray_triangle_one_hit_in::<V>, false),
+    ] {
+        let (seq, count) = windows(ray, tris, kernel, margin);
+        tally.windows += count;
+        // No repeat.
+        let mut ids: Vec<usize> = seq.iter().map(|s| s.1).collect();
+        ids.sort_unstable();
+        let n = ids.len();
+        ids.dedup();
+        assert_eq!(ids.len(), n, "a triangle reported twice: {ray:?} {seq:?}");
+        // No skip: the same test over (0, inf] in one call.
+        let single = if one_hit {
+            ray_triangle_one_hit_in::<V>
+        } else {
+            ray_triangle_in::<V>
+        };
+        let expected: Vec<usize> = (0..tris.len())
+            .filter(|&i| single(ray, &tris[i], all).is_some())
+            .collect();
+        assert_eq!(ids, expected, "skipped or extra: {ray:?} {seq:?}");
+        // Each exact crossing in its window: the windows are in exact order.
+        for (w, i, _) in &seq {
+            if let Some(t) = oracle::triangle(ray, &tris[*i]).unwrap().t {
+                tally.exact_checked += 1;
+                let above = oracle::r(w.min()).unwrap() < t;
+                let below = w.max() == inf || t <= oracle::r(w.max()).unwrap();
+                assert!(
+                    above && below,
+                    "t* = {} outside its window {w:?}: {ray:?} {:?}",
+                    oracle::to_f64(&t),
+                    tris[*i]
+                );
+            }
+        }
+        tally.shared_windows += seq.windows(2).filter(|p| p[0].0 == p[1].0).count();
+        if one_hit {
+            tally.one_hits += n;
+            if all_clear {
+                let exact_count = crossed.iter().filter(|&&c| c).count();
+                assert_eq!(
+                    n, exact_count,
+                    "one-hit count against exact: {ray:?} {seq:?}"
+                );
+            }
+        } else {
+            tally.closed_hits += n;
+            // Against the exact crossings, where rounding cannot decide
+            // otherwise.
+            for i in 0..tris.len() {
+                if clear[i] {
+                    assert_eq!(
+                        ids.contains(&i),
+                        crossed[i],
+                        "triangle {i} against exact: {ray:?} {:?}",
+                        tris[i]
+                    );
+                }
+            }
+        }
+    }
+}
+
+/// The triangle's bounding box (its corners' extremes: exact).
+fn bounding_box<V: Vector>(t: &Triangle<V>) -> Aabb<V> {
+    let pick = |k: usize, less: bool| {
+        [t.b[k], t.c[k]]
+            .into_iter()
+            .fold(t.a[k], |m, x| if (x < m) == less { x } else { m })
+    };
+    let lo = V::new(pick(0, true), pick(1, true), pick(2, true));
+    let hi = V::new(pick(0, false), pick(1, false), pick(2, false));
+    Aabb::new(lo, hi)
+}
+
+fn run<V: Vector>(seed: u64, rays_per_mesh: usize) -> Tally {
+    let mut rng = Pcg32::new(seed);
+    let mut tally = Tally::default();
+    for (name, m) in meshes() {
+        let convex = name != "torus";
+        for _ in 0..rays_per_mesh.div_ceil(8) {
+            let scale = 10f64.powf(3.0 * signed(&mut rng));
+            let far = if rng.below(2) == 0 { 0.0 } else { 1e5 };
+            let offset = [
+                far * signed(&mut rng),
+                far * signed(&mut rng),
+                far * signed(&mut rng),
+            ];
+            let tris = placed::<V>(&m, scale, offset);
+            let boxes: Vec<Aabb<V>> = tris.iter().map(|t| bounding_box(t)).collect();
+            for _ in 0..8 {
+                let dir = loop {
+                    let d = [signed(&mut rng), signed(&mut rng), signed(&mut rng)];
+                    let l = (d[0] * d[0] + d[1] * d[1] + d[2] * d[2]).sqrt();
+                    if l > 0.1 && l <= 1.0 {
+                        break d.map(|x| x / l);
+                    }
+                };
+                let origin = V::new(
+                    f::<V>(offset[0] + 4.0 * scale * dir[0]),
+                    f::<V>(offset[1] + 4.0 * scale * dir[1]),
+                    f::<V>(offset[2] + 4.0 * scale * dir[2]),
+                );
+                let tri = tris[rng.below(tris.len() as u32) as usize];
+                let half = f::<V>(0.5);
+                let target = match rng.below(4) {
+                    0 => tri.a,
+                    1 => (tri.a + tri.b) * half,
+                    2 => {
+                        let (s, t) = (
+                            f::<V>(f64::from(rng.unit()) * 0.5),
+                            f::<V>(f64::from(rng.unit()) * 0.5),
+                        );
+                        tri.a + (tri.b - tri.a) * s + (tri.c - tri.a) * t
+                    }
+                    _ => V::new(f::<V>(offset[0]), f::<V>(offset[1]), f::<V>(offset[2])),
+                };
+                let ray = Ray::new(origin, target - origin);
+                if !ray.is_valid() {
+                    continue;
+                }
+                tally.rays += 1;
+                check_ray(&ray, &tris, &boxes, convex, &mut tally);
+            }
+        }
+    }
+    tally
+}
+
+#[test]
+fn sequences_on_closed_meshes_f32() {
+    let t = run::<Vec3>(11, rays());
+    println!("f32: {t:?}");
+    assert!(
+        t.closed_hits >= t.rays && t.clear_rays > t.rays / 4,
+        "{t:?}"
+    );
+}
+
+#[test]
+fn sequences_on_closed_meshes_f64() {
+    let t = run::<DVec3>(12, rays());
+    println!("f64: {t:?}");
+    assert!(
+        t.closed_hits >= t.rays && t.clear_rays > t.rays / 4,
+        "{t:?}"
+    );
+}
+
+#[test]
+#[ignore = "long: about a million rays per precision"]
+fn sequences_on_closed_meshes_long_f32() {
+    let t = run::<Vec3>(21, rays().max(340_000));
+    println!("f32 long: {t:?}");
+}
+
+#[test]
+#[ignore = "long: about a million rays per precision"]
+fn sequences_on_closed_meshes_long_f64() {
+    let t = run::<DVec3>(22, rays().max(340_000));
+    println!("f64 long: {t:?}");
+}
