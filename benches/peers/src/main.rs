@@ -2078,294 +2078,136 @@ fn camera_reference_kernels<'a>(d: &'a CameraData, out: &mut Vec<Kernel<'a>>) {
     }
 }
 
-/// The cameras' rays and differentials again, each camera reached through
-/// a reference the loop's closure captures (section `camera, by
-/// reference`): a renderer whose camera lives behind a pointer, such as a
-/// field `camera: &'a ThinLensCamera`. The compiler cannot tell that
-/// storing rays leaves the camera unchanged, reloads it for every ray and
-/// keeps the loop scalar: the other regime renderers see.
-fn camera_by_reference_kernels<'a>(d: &'a CameraData, out: &mut Vec<Kernel<'a>>) {
-    let section = "camera, by reference";
-    for (w, order) in [("scanline", &d.scanline), ("shuffled", &d.shuffled)] {
-        let (n, lens) = (order.len(), &d.lens);
-        out.extend([
-            kernel(
-                section,
-                "rayhit PinholeCamera::ray",
-                w,
-                n,
-                None,
-                over(order, lens, move |x, y, _| d.pinhole.ray(x, y), ray_sum),
-            ),
-            kernel(
-                section,
-                "rayhit ThinLensCamera::ray",
-                w,
-                n,
-                None,
-                over(
-                    order,
-                    lens,
-                    move |x, y, l| d.thin_lens.ray(x, y, l.0, l.1),
-                    ray_sum,
-                ),
-            ),
-            kernel(
-                section,
-                "rayhit OrthographicCamera::ray",
-                w,
-                n,
-                None,
-                over(order, lens, move |x, y, _| d.ortho.ray(x, y), ray_sum),
-            ),
-            kernel(
-                section,
-                "rayhit MatrixCamera::ray",
-                w,
-                n,
-                None,
-                over(order, lens, move |x, y, _| d.matrix.ray(x, y), ray_sum),
-            ),
-            kernel(
-                section,
-                "rayhit EquirectangularCamera::ray",
-                w,
-                n,
-                None,
-                over(order, lens, move |x, y, _| d.equirect.ray(x, y), ray_sum),
-            ),
-            kernel(
-                section,
-                "rayhit EqualAreaCamera::ray",
-                w,
-                n,
-                None,
-                over(order, lens, move |x, y, _| d.equal_area.ray(x, y), ray_sum),
-            ),
-            kernel(
-                section,
-                "rayhit PinholeCamera::ray_differential",
-                w,
-                n,
-                None,
-                over(
-                    order,
-                    lens,
-                    move |x, y, _| d.pinhole.ray_differential(x, y),
-                    diff_sum,
-                ),
-            ),
-            kernel(
-                section,
-                "rayhit ThinLensCamera::ray_differential",
-                w,
-                n,
-                None,
-                over(
-                    order,
-                    lens,
-                    move |x, y, l| d.thin_lens.ray_differential(x, y, l.0, l.1),
-                    diff_sum,
-                ),
-            ),
-            kernel(
-                section,
-                "rayhit OrthographicCamera::ray_differential",
-                w,
-                n,
-                None,
-                over(
-                    order,
-                    lens,
-                    move |x, y, _| d.ortho.ray_differential(x, y),
-                    diff_sum,
-                ),
-            ),
-            kernel(
-                section,
-                "rayhit MatrixCamera::ray_differential",
-                w,
-                n,
-                None,
-                over(
-                    order,
-                    lens,
-                    move |x, y, _| d.matrix.ray_differential(x, y),
-                    diff_sum,
-                ),
-            ),
-            kernel(
-                section,
-                "rayhit EquirectangularCamera::ray_differential",
-                w,
-                n,
-                None,
-                over(
-                    order,
-                    lens,
-                    move |x, y, _| d.equirect.ray_differential(x, y),
-                    diff_sum,
-                ),
-            ),
-            kernel(
-                section,
-                "rayhit EqualAreaCamera::ray_differential",
-                w,
-                n,
-                None,
-                over(
-                    order,
-                    lens,
-                    move |x, y, _| d.equal_area.ray_differential(x, y),
-                    diff_sum,
-                ),
-            ),
-        ]);
+/// The six cameras, by value.
+#[derive(Clone, Copy)]
+struct Cameras {
+    pinhole: PinholeCamera,
+    thin_lens: ThinLensCamera,
+    ortho: OrthographicCamera,
+    matrix: MatrixCamera,
+    equirect: EquirectangularCamera,
+    equal_area: EqualAreaCamera,
+}
+
+/// How a row's closure reaches the cameras: a copy it owns (`Cameras`), as
+/// a renderer's `self.camera` belongs to the renderer, so that the compiler
+/// knows the camera does not change while rays are stored and may compute
+/// several rays at once; or a reference it captures (`&Cameras`), as a
+/// renderer's `camera: &'a ThinLensCamera` field, which the compiler must
+/// reload for every ray, keeping every such loop scalar.
+trait CameraAccess: Copy {
+    fn get(&self) -> &Cameras;
+}
+
+impl CameraAccess for Cameras {
+    #[inline(always)]
+    fn get(&self) -> &Cameras {
+        self
     }
 }
 
-fn camera_kernels<'a>(d: &'a CameraData, out: &mut Vec<Kernel<'a>>) {
-    // Each row's closure owns a copy of its camera, as a renderer's
-    // `self.camera` is part of the renderer: the compiler then knows the
-    // camera does not change while the loop stores rays (a camera reached
-    // through a reference it cannot see into keeps every loop scalar).
-    let (pinhole, thin_lens, ortho) = (d.pinhole, d.thin_lens, d.ortho);
-    let (matrix, equirect, equal_area) = (d.matrix, d.equirect, d.equal_area);
+impl CameraAccess for &Cameras {
+    #[inline(always)]
+    fn get(&self) -> &Cameras {
+        self
+    }
+}
+
+/// Raster positions and their lens samples.
+type Positions<'a> = (&'a [(f32, f32)], &'a [(f32, f32)]);
+
+/// One row: `f` at every position of `order` through [`over`].
+fn camera_row<'a, T: Copy + Default + 'a>(
+    (section, name, w): (&'static str, String, &str),
+    (order, lens): Positions<'a>,
+    f: impl Fn(f32, f32, (f32, f32)) -> T + 'a,
+    sum: fn(&T) -> u64,
+) -> Kernel<'a> {
+    kernel(
+        section,
+        &name,
+        w,
+        order.len(),
+        None,
+        over(order, lens, f, sum),
+    )
+}
+
+/// Every camera's ray (section `sections.0`) and ray with differentials
+/// (`sections.1`), the closures reaching the cameras through `c`.
+fn camera_kernels<'a>(
+    c: impl CameraAccess + 'a,
+    d: &'a CameraData,
+    (rs, ds): (&'static str, &'static str),
+    out: &mut Vec<Kernel<'a>>,
+) {
+    let [p, t, o, m, e, a] = CAMERAS;
     for (w, order) in [("scanline", &d.scanline), ("shuffled", &d.shuffled)] {
-        let (n, lens) = (order.len(), &d.lens);
+        let ol = (&order[..], &d.lens[..]);
+        let ray = |name: &str| (rs, format!("rayhit {name}::ray"), w);
+        let diff = |name: &str| (ds, format!("rayhit {name}::ray_differential"), w);
         out.extend([
-            kernel(
-                "camera",
-                "rayhit PinholeCamera::ray",
-                w,
-                n,
-                None,
-                over(order, lens, move |x, y, _| pinhole.ray(x, y), ray_sum),
+            camera_row(
+                ray(p),
+                ol,
+                move |x, y, _| c.get().pinhole.ray(x, y),
+                ray_sum,
             ),
-            kernel(
-                "camera",
-                "rayhit ThinLensCamera::ray",
-                w,
-                n,
-                None,
-                over(
-                    order,
-                    lens,
-                    move |x, y, l| thin_lens.ray(x, y, l.0, l.1),
-                    ray_sum,
-                ),
+            camera_row(
+                ray(t),
+                ol,
+                move |x, y, s| c.get().thin_lens.ray(x, y, s.0, s.1),
+                ray_sum,
             ),
-            kernel(
-                "camera",
-                "rayhit OrthographicCamera::ray",
-                w,
-                n,
-                None,
-                over(order, lens, move |x, y, _| ortho.ray(x, y), ray_sum),
+            camera_row(ray(o), ol, move |x, y, _| c.get().ortho.ray(x, y), ray_sum),
+            camera_row(ray(m), ol, move |x, y, _| c.get().matrix.ray(x, y), ray_sum),
+            camera_row(
+                ray(e),
+                ol,
+                move |x, y, _| c.get().equirect.ray(x, y),
+                ray_sum,
             ),
-            kernel(
-                "camera",
-                "rayhit MatrixCamera::ray",
-                w,
-                n,
-                None,
-                over(order, lens, move |x, y, _| matrix.ray(x, y), ray_sum),
+            camera_row(
+                ray(a),
+                ol,
+                move |x, y, _| c.get().equal_area.ray(x, y),
+                ray_sum,
             ),
-            kernel(
-                "camera",
-                "rayhit EquirectangularCamera::ray",
-                w,
-                n,
-                None,
-                over(order, lens, move |x, y, _| equirect.ray(x, y), ray_sum),
+            camera_row(
+                diff(p),
+                ol,
+                move |x, y, _| c.get().pinhole.ray_differential(x, y),
+                diff_sum,
             ),
-            kernel(
-                "camera",
-                "rayhit EqualAreaCamera::ray",
-                w,
-                n,
-                None,
-                over(order, lens, move |x, y, _| equal_area.ray(x, y), ray_sum),
+            camera_row(
+                diff(t),
+                ol,
+                move |x, y, s| c.get().thin_lens.ray_differential(x, y, s.0, s.1),
+                diff_sum,
             ),
-        ]);
-        out.extend([
-            kernel(
-                "camera differentials",
-                "rayhit PinholeCamera::ray_differential",
-                w,
-                n,
-                None,
-                over(
-                    order,
-                    lens,
-                    move |x, y, _| pinhole.ray_differential(x, y),
-                    diff_sum,
-                ),
+            camera_row(
+                diff(o),
+                ol,
+                move |x, y, _| c.get().ortho.ray_differential(x, y),
+                diff_sum,
             ),
-            kernel(
-                "camera differentials",
-                "rayhit ThinLensCamera::ray_differential",
-                w,
-                n,
-                None,
-                over(
-                    order,
-                    lens,
-                    move |x, y, l| thin_lens.ray_differential(x, y, l.0, l.1),
-                    diff_sum,
-                ),
+            camera_row(
+                diff(m),
+                ol,
+                move |x, y, _| c.get().matrix.ray_differential(x, y),
+                diff_sum,
             ),
-            kernel(
-                "camera differentials",
-                "rayhit OrthographicCamera::ray_differential",
-                w,
-                n,
-                None,
-                over(
-                    order,
-                    lens,
-                    move |x, y, _| ortho.ray_differential(x, y),
-                    diff_sum,
-                ),
+            camera_row(
+                diff(e),
+                ol,
+                move |x, y, _| c.get().equirect.ray_differential(x, y),
+                diff_sum,
             ),
-            kernel(
-                "camera differentials",
-                "rayhit MatrixCamera::ray_differential",
-                w,
-                n,
-                None,
-                over(
-                    order,
-                    lens,
-                    move |x, y, _| matrix.ray_differential(x, y),
-                    diff_sum,
-                ),
-            ),
-            kernel(
-                "camera differentials",
-                "rayhit EquirectangularCamera::ray_differential",
-                w,
-                n,
-                None,
-                over(
-                    order,
-                    lens,
-                    move |x, y, _| equirect.ray_differential(x, y),
-                    diff_sum,
-                ),
-            ),
-            kernel(
-                "camera differentials",
-                "rayhit EqualAreaCamera::ray_differential",
-                w,
-                n,
-                None,
-                over(
-                    order,
-                    lens,
-                    move |x, y, _| equal_area.ray_differential(x, y),
-                    diff_sum,
-                ),
+            camera_row(
+                diff(a),
+                ol,
+                move |x, y, _| c.get().equal_area.ray_differential(x, y),
+                diff_sum,
             ),
         ]);
     }
@@ -2550,6 +2392,14 @@ fn main() {
         .collect();
     let sweep = Sweep::new();
     let cameras = CameraData::new();
+    let camera_set = Cameras {
+        pinhole: cameras.pinhole,
+        thin_lens: cameras.thin_lens,
+        ortho: cameras.ortho,
+        matrix: cameras.matrix,
+        equirect: cameras.equirect,
+        equal_area: cameras.equal_area,
+    };
     let instance_data = InstanceData::new();
 
     let mut kernels = Vec::new();
@@ -2564,9 +2414,21 @@ fn main() {
     for d in &cwbvh_data {
         cwbvh_kernels(d, &mut kernels);
     }
-    camera_kernels(&cameras, &mut kernels);
+    camera_kernels(
+        camera_set,
+        &cameras,
+        ("camera", "camera differentials"),
+        &mut kernels,
+    );
     camera_reference_kernels(&cameras, &mut kernels);
-    camera_by_reference_kernels(&cameras, &mut kernels);
+    // (The borrow is the point: the closures capture the reference.)
+    #[allow(clippy::needless_borrows_for_generic_args)]
+    camera_kernels(
+        &camera_set,
+        &cameras,
+        ("camera, by reference", "camera differentials, by reference"),
+        &mut kernels,
+    );
     instance_kernels(&instance_data, &mut kernels);
 
     // `--count NAME WORKLOAD REPS`: run one row's loop REPS times, untimed,
@@ -2794,7 +2656,7 @@ fn main() {
             let ray = find(&kernels, section, &format!("rayhit {name}::ray"), w);
             let diff = find(
                 &kernels,
-                section,
+                "camera differentials, by reference",
                 &format!("rayhit {name}::ray_differential"),
                 w,
             );
