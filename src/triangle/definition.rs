@@ -129,9 +129,23 @@ pub(crate) fn watertight_definition<V: Vector>(
             None => return None,
         }
     };
+    hit_at(t, [e1, e2], det, inv_det, &shear)
+}
+
+/// The hit at distance `t`, given the edge functions `e1`, `e2`, their sum
+/// `det` and its reciprocal: the barycentrics and the side. `None` when a
+/// barycentric is not finite. Shared by every form of the watertight test.
+#[inline(always)]
+pub(crate) fn hit_at<F: Scalar>(
+    t: F,
+    [e1, e2]: [F; 2],
+    det: F,
+    inv_det: F,
+    shear: &Shear<F>,
+) -> Option<TriangleHit<F>> {
+    let (zero, one) = (F::ZERO, F::ONE);
     // Each e_i / det is in [0, 1] exactly (all e_i share det's sign, and
     // |det| >= |e_i|); the rounded reciprocal can push it one ulp past 1.
-    let one = S::<V>::ONE;
     let u = min2(e1 * inv_det, one);
     let v = min2(e2 * inv_det, one);
     if !(u.is_finite() && v.is_finite()) {

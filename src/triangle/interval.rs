@@ -26,9 +26,9 @@
 //! a triangle twice and never skip one.
 
 use super::bounds::{ErrorBounds, HitCondition, longest_edge_t};
-use super::definition::{EdgeRule, inside};
+use super::definition::{EdgeRule, hit_at, inside};
 use super::frame::Frame;
-use super::{Side, Triangle, TriangleHit};
+use super::{Triangle, TriangleHit};
 use crate::num::exact_sign::PlaneCrossing;
 use crate::num::round::min2;
 use crate::num::{S, Scalar, Vector};
@@ -93,7 +93,7 @@ fn watertight_in<V: Vector>(
             if !(lo < t && t <= hi) {
                 return None;
             }
-            return finish(t, e1, e2, inv_det, det, shear);
+            return hit_at(t, [e1, e2], det, inv_det, shear);
         }
         // The determinant's sign is not known: ask the exact one.
         None => {
@@ -104,7 +104,7 @@ fn watertight_in<V: Vector>(
                     if !(lo < plain && plain <= hi) {
                         return None;
                     }
-                    return finish(plain, e1, e2, inv_det, det, shear);
+                    return hit_at(plain, [e1, e2], det, inv_det, shear);
                 }
                 _ => {
                     if !decide(plain, S::<V>::INFINITY, lo, hi, || exact)? {
@@ -116,34 +116,33 @@ fn watertight_in<V: Vector>(
         }
     };
     // `t*` is in `(lo, hi]`; the reported `t` is brought into it too (which
-    // only moves it towards `t*`, so its error bound still holds).
+    // only moves it towards `t*`, so its error bound still holds; and, with
+    // `hi <= MAX`, makes it finite, as on the other paths to `hit_at`).
     let t = if t > lo { t } else { lo.next_up() };
     let t = min2(t, hi);
-    finish(t, e1, e2, inv_det, det, shear)
+    hit_at(t, [e1, e2], det, inv_det, shear)
 }
 
-/// The hit at `t`: `u`, `v` and the side as in the plain test.
+/// [`watertight_in`] for a plain ray (its shear computed here), or `None`
+/// for an invalid ray.
 #[inline(always)]
-fn finish<F: Scalar>(
-    t: F,
-    e1: F,
-    e2: F,
-    inv_det: F,
-    det: F,
-    shear: &Shear<F>,
-) -> Option<TriangleHit<F>> {
-    let (zero, one) = (F::ZERO, F::ONE);
-    let u = min2(e1 * inv_det, one);
-    let v = min2(e2 * inv_det, one);
-    if !(u.is_finite() && v.is_finite() && t.is_finite()) {
+fn on_ray<V: Vector>(
+    ray: &Ray<V>,
+    tri: &Triangle<V>,
+    interval: Interval<S<V>>,
+    rule: EdgeRule,
+) -> Option<TriangleHit<S<V>>> {
+    if !ray.is_valid() {
         return None;
     }
-    let side = if (det > zero) != (shear.dz > zero) {
-        Side::Front
-    } else {
-        Side::Back
-    };
-    Some(TriangleHit { t, u, v, side })
+    watertight_in(
+        ray.origin,
+        ray.dir,
+        &Shear::new(&ray.dir),
+        tri,
+        interval,
+        rule,
+    )
 }
 
 /// The exact crossing's signs for the ray and the triangle.
@@ -288,11 +287,7 @@ pub fn ray_triangle_in<V: Vector>(
     tri: &Triangle<V>,
     interval: Interval<S<V>>,
 ) -> Option<TriangleHit<S<V>>> {
-    if !ray.is_valid() {
-        return None;
-    }
-    let shear = Shear::new(&ray.dir);
-    watertight_in(ray.origin, ray.dir, &shear, tri, interval, EdgeRule::Closed)
+    on_ray(ray, tri, interval, EdgeRule::Closed)
 }
 
 /// [`ray_triangle_in`] on a [`PreparedRay`]: the same answer, bit for bit.
@@ -358,11 +353,7 @@ pub fn ray_triangle_one_hit_in<V: Vector>(
     tri: &Triangle<V>,
     interval: Interval<S<V>>,
 ) -> Option<TriangleHit<S<V>>> {
-    if !ray.is_valid() {
-        return None;
-    }
-    let shear = Shear::new(&ray.dir);
-    watertight_in(ray.origin, ray.dir, &shear, tri, interval, EdgeRule::OneHit)
+    on_ray(ray, tri, interval, EdgeRule::OneHit)
 }
 
 /// Whether anything blocks the ray within `interval`: the any-hit form of
