@@ -144,24 +144,27 @@ struct Tally {
     positive: usize,
 }
 
+/// A triangle of size 1e-3 to 1e3 (the scale returned), centred at the
+/// origin or translated by up to 1e5 (the centre returned).
+fn random_triangle<V: Vector>(rng: &mut Pcg32) -> (Triangle<V>, f64, [f64; 3]) {
+    let scale = 10f64.powi(rng.below(7) as i32 - 3);
+    let far = 1e5 * f64::from(rng.below(3)) / 2.0;
+    let centre = [far * signed(rng), far * signed(rng), far * signed(rng)];
+    let tri = Triangle::new(
+        point::<V>(rng, scale, centre),
+        point::<V>(rng, scale, centre),
+        point::<V>(rng, scale, centre),
+    );
+    (tri, scale, centre)
+}
+
 fn random_ends<V: Vector>(seed: u64) -> Tally {
     let mut rng = Pcg32::new(seed);
     let mut tally = Tally::default();
     let inf = S::<V>::INFINITY;
     let all = Interval::up_to(inf).unwrap();
     for _ in 0..cases() {
-        let scale = 10f64.powi(rng.below(7) as i32 - 3);
-        let far = 1e5 * f64::from(rng.below(3)) / 2.0;
-        let centre = [
-            far * signed(&mut rng),
-            far * signed(&mut rng),
-            far * signed(&mut rng),
-        ];
-        let tri = Triangle::new(
-            point::<V>(&mut rng, scale, centre),
-            point::<V>(&mut rng, scale, centre),
-            point::<V>(&mut rng, scale, centre),
-        );
+        let (tri, scale, centre) = random_triangle::<V>(&mut rng);
         // Aim at an interior point, an edge point or a corner.
         let (a, b, c) = (tri.a, tri.b, tri.c);
         let target = match rng.below(4) {
@@ -354,18 +357,7 @@ fn near_origin<V: Vector>(seed: u64) -> Tally {
     let inf = S::<V>::INFINITY;
     let all = Interval::up_to(inf).unwrap();
     for _ in 0..cases() {
-        let scale = 10f64.powi(rng.below(7) as i32 - 3);
-        let far = 1e5 * f64::from(rng.below(3)) / 2.0;
-        let centre = [
-            far * signed(&mut rng),
-            far * signed(&mut rng),
-            far * signed(&mut rng),
-        ];
-        let tri = Triangle::new(
-            point::<V>(&mut rng, scale, centre),
-            point::<V>(&mut rng, scale, centre),
-            point::<V>(&mut rng, scale, centre),
-        );
+        let (tri, ..) = random_triangle::<V>(&mut rng);
         let third = f::<V>(1.0 / 3.0);
         let mut origin = (tri.a + tri.b + tri.c) * third;
         // A few ulps off, on one axis.
