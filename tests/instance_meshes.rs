@@ -147,15 +147,9 @@ impl<V: Vector> Solid<V> {
             let [a, b, cc] = f.map(|k| c(self.positions[k]));
             match self.shape {
                 Shape::Sphere => {
-                    // The distance of the face's plane from the origin.
-                    let e1 = [0, 1, 2].map(|k| b[k] - a[k]);
-                    let e2 = [0, 1, 2].map(|k| cc[k] - a[k]);
-                    let n = [
-                        e1[1] * e2[2] - e1[2] * e2[1],
-                        e1[2] * e2[0] - e1[0] * e2[2],
-                        e1[0] * e2[1] - e1[1] * e2[0],
-                    ];
-                    let d = (0..3).map(|k| a[k] * n[k]).sum::<f64>() / norm(n);
+                    // The distance of the face's plane from the origin (on
+                    // the side its outward normal points away from).
+                    let d = -rayhit_testkit::mesh::plane_distance(a, b, cc, [0.0; 3]);
                     assert!(d > 0.9, "a sphere face at {d} from the centre");
                 }
                 Shape::Torus => {

@@ -746,15 +746,7 @@ fn radius(mesh: &Mesh, c: [f64; 3]) -> f64 {
         .iter()
         .map(|t| {
             let [a, b, cc] = t.map(|i| mesh.vertices[i]);
-            let e1 = [0, 1, 2].map(|k| b[k] - a[k]);
-            let e2 = [0, 1, 2].map(|k| cc[k] - a[k]);
-            let n = [
-                e1[1] * e2[2] - e1[2] * e2[1],
-                e1[2] * e2[0] - e1[0] * e2[2],
-                e1[0] * e2[1] - e1[1] * e2[0],
-            ];
-            let nl = (n[0] * n[0] + n[1] * n[1] + n[2] * n[2]).sqrt();
-            ((0..3).map(|k| (a[k] - c[k]) * n[k]).sum::<f64>() / nl).abs()
+            rayhit_testkit::mesh::plane_distance(a, b, cc, c).abs()
         })
         .fold(f64::INFINITY, f64::min)
 }

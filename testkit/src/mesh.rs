@@ -10,7 +10,7 @@
 
 use std::collections::HashMap;
 
-use rayhit::glam::{Mat3, Vec3};
+use rayhit::glam::{DVec3, Mat3, Vec3};
 use rayhit::{
     Aabb, PreparedRay, Ray, Triangle, TriangleHit, ray_aabb_prepared, ray_triangle, ray_triangle_mt,
 };
@@ -281,6 +281,14 @@ pub fn shell(directions: &[Vec3], columns: u32, rows: u32, near: f32, far: f32) 
         }
     }
     mesh
+}
+
+/// The signed distance of `p` from the plane of the triangle `a, b, c`,
+/// in `f64`: positive on the side its normal `(b - a) x (c - a)` points to.
+pub fn plane_distance(a: [f64; 3], b: [f64; 3], c: [f64; 3], p: [f64; 3]) -> f64 {
+    let [a, b, c, p] = [a, b, c, p].map(DVec3::from);
+    let n = (b - a).cross(c - a);
+    (p - a).dot(n) / n.length()
 }
 
 /// Six times the signed volume enclosed by a closed mesh: positive when its
