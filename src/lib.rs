@@ -269,7 +269,7 @@
 //! "Exact" means what real arithmetic says about the same floating-point
 //! inputs: every finite float is a rational number, and the crate's test
 //! suite decides each question exactly with big rationals and holds every
-//! kernel to the claims below (`tests/oracle.rs`, `tests/properties.rs`).
+//! kernel to the claims below (`tests/suite/oracle.rs`, `tests/suite/properties.rs`).
 //! `u` is the unit roundoff of the precision in use.
 //!
 //! Preconditions shared by all of them: round-to-nearest arithmetic (Rust's

@@ -19,7 +19,7 @@
 //! 1e6 rays per precision):
 //!
 //! ```sh
-//! cargo test --release -p rayhit --test instances -- --ignored --nocapture
+//! cargo test --release -p rayhit --test suite instances:: -- --ignored --nocapture
 //! ```
 
 use num_traits::{Signed, Zero};

@@ -8,8 +8,8 @@
 //! all of them (products and sums in the same order), so any difference is a
 //! bug in a vector type's implementation.
 //!
-//! The tests turn those features on (the crate's dev-dependency on itself),
-//! so `cargo test --test interop` runs every type.
+//! This package's dependency on the crate turns those features on, so
+//! `cargo test -p rayhit-interop` runs every type.
 
 use rayhit::glam::Vec3;
 use rayhit::{
@@ -392,7 +392,6 @@ macro_rules! same_bits {
 }
 
 /// The checks for `Vec3`, `Vec3A` and `DVec3` of an older glam.
-#[allow(unused_macros)]
 macro_rules! older_glam {
     ($name:ident, $glam:ident) => {
         mod $name {
@@ -405,13 +404,8 @@ macro_rules! older_glam {
 }
 
 same_bits!(vec3a, Vec3, rayhit::glam::Vec3A);
-#[cfg(feature = "glam-029")]
 older_glam!(glam_0_29, glam029);
-#[cfg(feature = "glam-030")]
 older_glam!(glam_0_30, glam030);
-#[cfg(feature = "glam-031")]
 older_glam!(glam_0_31, glam031);
-#[cfg(feature = "glam-032")]
 older_glam!(glam_0_32, glam032);
-#[cfg(feature = "glam-033")]
 older_glam!(glam_0_33, glam033);

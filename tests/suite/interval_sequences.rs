@@ -39,7 +39,7 @@
 //! a million rays per precision (hours on 2 cores):
 //!
 //! ```sh
-//! SEQUENCE_RAYS=340000 cargo test --release --test interval_sequences -- --ignored --nocapture
+//! SEQUENCE_RAYS=340000 cargo test --release --test suite interval_sequences:: -- --ignored --nocapture
 //! ```
 
 use rayhit::exact::{self, oracle};

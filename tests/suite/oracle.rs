@@ -13,9 +13,9 @@
 //! the slab test, no crack and exactly one hit per crossing for the mesh
 //! tests); the rest is reported (run with `--nocapture` to see the tables).
 //!
-//! `cargo test --test oracle` runs 10,000 cases per generator and precision.
+//! `cargo test --test suite oracle::` runs 10,000 cases per generator and precision.
 //! The long run, 1,000,000 per generator:
-//! `cargo test --release --test oracle -- --ignored --nocapture`.
+//! `cargo test --release --test suite oracle:: -- --ignored --nocapture`.
 //! `ORACLE_CASES=n` overrides both.
 
 use std::fmt;
@@ -807,25 +807,25 @@ fn long<F: Fn(usize) + Sync>(f32_part: F, f64_part: impl Fn(usize) + Sync) {
 }
 
 #[test]
-#[ignore = "long: cargo test --release --test oracle -- --ignored --nocapture"]
+#[ignore = "long: cargo test --release --test suite oracle:: -- --ignored --nocapture"]
 fn long_boxes() {
     long(all_boxes::<Vec3>, all_boxes::<DVec3>);
 }
 
 #[test]
-#[ignore = "long: cargo test --release --test oracle -- --ignored --nocapture"]
+#[ignore = "long: cargo test --release --test suite oracle:: -- --ignored --nocapture"]
 fn long_triangles() {
     long(all_triangles::<Vec3>, all_triangles::<DVec3>);
 }
 
 #[test]
-#[ignore = "long: cargo test --release --test oracle -- --ignored --nocapture"]
+#[ignore = "long: cargo test --release --test suite oracle:: -- --ignored --nocapture"]
 fn long_meshes() {
     long(all_meshes::<Vec3>, all_meshes::<DVec3>);
 }
 
 #[test]
-#[ignore = "long: cargo test --release --test oracle -- --ignored --nocapture"]
+#[ignore = "long: cargo test --release --test suite oracle:: -- --ignored --nocapture"]
 fn long_planes() {
     long(run_planes::<Vec3>, run_planes::<DVec3>);
 }

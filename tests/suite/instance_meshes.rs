@@ -45,7 +45,7 @@
 //! per precision):
 //!
 //! ```sh
-//! cargo test --release -p rayhit --test instance_meshes -- --ignored --nocapture
+//! cargo test --release -p rayhit --test suite instance_meshes:: -- --ignored --nocapture
 //! ```
 
 use rayhit::exact::{self, AffineMap};

@@ -19,7 +19,7 @@ use rayhit_testkit::oracle::{R, gamma, r, rv};
 type S<V> = <V as Vector>::Scalar;
 
 /// Cases per property and precision. The README says how to run more
-/// (`PROPTEST_CASES=100000 cargo test --release --test properties`).
+/// (`PROPTEST_CASES=100000 cargo test --release --test suite properties::`).
 fn config() -> ProptestConfig {
     ProptestConfig {
         cases: 2048,
