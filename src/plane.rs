@@ -163,10 +163,13 @@ pub fn ray_plane_t_error<V: Vector>(ray: &Ray<V>, plane: &Plane<V>, t: S<V>) -> 
 /// their union, whatever the ends; a crossing beyond `MAX` (the largest
 /// finite float) is reported by none, as it has no float `t`.
 ///
-/// The reported `t` is `ray_plane`'s quotient, brought into the interval
-/// where rounding put it outside (which only moves it towards `t*`), so it
-/// is within `ray_plane_t_error(ray, plane, t)` of `t*` whenever that
-/// bound is finite, and always finite and in the interval.
+/// The reported `t` is always finite and in the interval. It is
+/// `ray_plane`'s quotient `q` where that is in the interval, and so within
+/// [`ray_plane_t_error`]`(ray, plane, t)` of `t*` where that bound is
+/// finite. Where rounding put `q` outside, `t` is brought in: to `t_max`
+/// (closer to `t*` than `q`), or to the successor of `t_min`, which is
+/// within the larger of `|q - t*|` and one ulp of `t_min` of `t*` (`t*`
+/// may lie strictly between `t_min` and its successor).
 ///
 /// Rays within rounding of parallel: [`ray_plane`] drops them (the sign of
 /// `dir . normal` is uncertain after rounding). Here the exact sign is

@@ -88,8 +88,11 @@ impl<F: Scalar> Interval<F> {
 
 /// `t` brought into `(lo, hi]` (`lo < hi`): `lo`'s successor where `t` is
 /// at most `lo` or NaN, `hi` where it is above. Where the exact `t*` is in
-/// `(lo, hi]`, this only moves `t` towards `t*` (or leaves it), so a bound
-/// on `|t - t*|` still holds; with `hi <= MAX` the result is finite.
+/// `(lo, hi]`: moving to `hi` only moves `t` towards `t*`; moving to
+/// `lo`'s successor does too unless `t*` lies strictly between `lo` and
+/// its successor, and then the result is within one ulp of `t*`. So
+/// `|result - t*| <= max(|t - t*|, succ(lo) - lo)`. With `hi <= MAX` the
+/// result is finite.
 #[inline(always)]
 pub(crate) fn bring_into<F: Scalar>(t: F, lo: F, hi: F) -> F {
     let t = if t > lo { t } else { lo.next_up() };
