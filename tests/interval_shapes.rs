@@ -45,8 +45,9 @@
 //! and boxes miss, without a panic.
 //!
 //! `INTERVAL_SHAPE_CASES=n` sets the cases per kind and precision (default
-//! 150, a few seconds in the test profile). The long run, ignored by
-//! default (about 100 times as many cases; a few minutes in release):
+//! 150, about 5 s on 2 cores in the test profile). The long run, ignored
+//! by default: 100 times as many cases, in one test (so on one core);
+//! about half an hour, estimated from the default run's times, not timed:
 //!
 //! ```sh
 //! cargo test --release --test interval_shapes -- --ignored --nocapture
