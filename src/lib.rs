@@ -334,6 +334,20 @@
 //!   [`ray_triangle_in`]). With `(0, t_max]` the hit is [`ray_triangle`]'s,
 //!   bit for bit, wherever `t*` is farther than its error bound from both
 //!   ends.
+//! - **Plane and box intervals** ([`ray_plane_in`], [`ray_aabb_in`],
+//!   [`ray_aabb_prepared_in`], [`ray_aabb_face_in`],
+//!   [`ray_aabb_prepared_face_in`]). The plane's crossing `t*` decided
+//!   exactly against `(t_min, t_max]`, rays within rounding of parallel
+//!   included (no crossing only where `dir . normal` is exactly zero), so
+//!   consecutive intervals report a plane exactly once; `t` is
+//!   [`ray_plane`]'s quotient brought into the interval. The slab test over
+//!   an interval: no false miss when the exact segment inside the closed
+//!   box meets `[t_min, t_max]`, `t_min <= enter <= exit <= t_max`, and
+//!   with `(0, t_max]` [`ray_aabb`]'s answer bit for bit. The entry face
+//!   over an interval is reported only when the exact entry distance is
+//!   in `(t_min, t_max]`, decided exactly: consecutive intervals report a
+//!   box's entry once. Exact for `f32`; for `f64` under the range
+//!   preconditions their documentation states.
 //! - **Moller-Trumbore** ([`ray_triangle_mt`]). Agrees with the watertight
 //!   test away from edges; not watertight (rays through shared edges can
 //!   miss both triangles, and do, at a measurable rate); rejects rays whose
@@ -485,7 +499,8 @@ mod testing;
 
 pub use aabb::{
     Aabb, AabbBatch, AabbBatchHits, BoxFace, BoxHit, SlabBox, ValidAabb, aabb_entry_face, ray_aabb,
-    ray_aabb_batch, ray_aabb_face, ray_aabb_naive, ray_aabb_prepared, ray_aabb_prepared_face,
+    ray_aabb_batch, ray_aabb_face, ray_aabb_face_in, ray_aabb_in, ray_aabb_naive,
+    ray_aabb_prepared, ray_aabb_prepared_face, ray_aabb_prepared_face_in, ray_aabb_prepared_in,
 };
 pub use camera::{
     CameraError, ClipSpace, Columns, EqualAreaCamera, EquirectangularCamera, FocusPoint,
@@ -495,7 +510,7 @@ pub use camera::{
 };
 pub use instance::{Instance, InstanceError, InstanceRayError};
 pub use num::{Scalar, Vector};
-pub use plane::{Plane, ray_plane, ray_plane_hit_point, ray_plane_t_error};
+pub use plane::{Plane, ray_plane, ray_plane_hit_point, ray_plane_in, ray_plane_t_error};
 pub use quantized::{QuantizedChildren, quantize_bounds, ray_quantized_children};
 pub use ray::{Interval, PreparedRay, Ray};
 pub use simd::TargetSimd;
@@ -583,8 +598,9 @@ pub mod prelude {
         SimdWork, SlabBox, SurfacePoint, TargetSimd, ThinLensCamera, Triangle, TriangleBatch,
         TriangleBatchHits, TriangleHit, TriangleHitError, ValidAabb, Vector, aabb_entry_face,
         offset_ray_origin, quantize_bounds, ray_aabb, ray_aabb_batch, ray_aabb_face,
-        ray_aabb_naive, ray_aabb_prepared, ray_aabb_prepared_face, ray_plane, ray_plane_hit_point,
-        ray_plane_t_error, ray_quantized_children, ray_triangle, ray_triangle_batch,
+        ray_aabb_face_in, ray_aabb_in, ray_aabb_naive, ray_aabb_prepared, ray_aabb_prepared_face,
+        ray_aabb_prepared_face_in, ray_aabb_prepared_in, ray_plane, ray_plane_hit_point,
+        ray_plane_in, ray_plane_t_error, ray_quantized_children, ray_triangle, ray_triangle_batch,
         ray_triangle_error_bounds, ray_triangle_in, ray_triangle_mt, ray_triangle_occluded,
         ray_triangle_one_hit, ray_triangle_one_hit_in, ray_triangle_prepared,
         ray_triangle_prepared_in, ray_triangle_prepared_occluded, triangle_cone_width,

@@ -4,7 +4,7 @@ use glam::Vec3;
 
 use crate::num::round::bound_up;
 use crate::num::{S, Scalar, Vector};
-use crate::ray::{Ray, t_max_ok};
+use crate::ray::{Interval, Ray, crossing_in, t_error, t_max_ok};
 
 /// The plane of points `p` with `(p - point) . normal = 0`.
 ///
@@ -144,18 +144,104 @@ pub fn ray_plane<V: Vector>(ray: &Ray<V>, plane: &Plane<V>, t_max: S<V>) -> Opti
 #[inline]
 #[must_use]
 pub fn ray_plane_t_error<V: Vector>(ray: &Ray<V>, plane: &Plane<V>, t: S<V>) -> S<V> {
-    let n = plane.normal.abs();
-    let w = (plane.point - ray.origin).abs();
-    let denom = ray.dir.dot(plane.normal).abs();
-    let a = S::<V>::gamma_n(4) * w.dot(n);
-    let b = S::<V>::gamma_n(3) * ray.dir.abs().dot(n);
-    let t = t.abs();
-    let x = b / denom;
-    if !(x <= S::<V>::HALF) {
-        return S::<V>::INFINITY;
+    t_error(ray.origin, ray.dir, plane.point, plane.normal, t)
+}
+
+/// The ray/plane test over an interval: where `ray` crosses `plane` at an
+/// exact distance `t*` with `interval.min() < t* <= interval.max()` (units
+/// of `ray.dir`), decided exactly; `Some(t)` with `t` in the interval, or
+/// `None`.
+///
+/// `t* = ((point - origin) . normal) / (dir . normal)` computed exactly
+/// from the input floats. The decision is not up to rounding: the reported
+/// `t` (the quotient [`ray_plane`] computes) and its bound
+/// [`ray_plane_t_error`] place `t*` where they can; where `t*` lies within
+/// the bound of an end, or the bound is unusable, the exact signs of
+/// `(point - origin) . normal - t_end (dir . normal)` and `dir . normal`
+/// decide, from error-free expansions. So consecutive intervals `(t0, t1]`,
+/// `(t1, t2]`, ... report the plane in exactly one of them when `t*` is in
+/// their union, whatever the ends; a crossing beyond `MAX` (the largest
+/// finite float) is reported by none, as it has no float `t`.
+///
+/// The reported `t` is always finite and in the interval. It is
+/// `ray_plane`'s quotient `q` where that is in the interval, and so within
+/// [`ray_plane_t_error`]`(ray, plane, t)` of `t*` where that bound is
+/// finite. Where rounding put `q` outside, `t` is brought in: to `t_max`
+/// (closer to `t*` than `q`), or to the successor of `t_min`, which is
+/// within the larger of `|q - t*|` and one ulp of `t_min` of `t*` (`t*`
+/// may lie strictly between `t_min` and its successor).
+///
+/// Rays within rounding of parallel: [`ray_plane`] drops them (the sign of
+/// `dir . normal` is uncertain after rounding). Here the exact sign is
+/// computed: where `dir . normal` is exactly zero (the ray parallel to the
+/// plane or lying in it, or a zero normal) there is no crossing and the
+/// answer is `None`; otherwise `t*` exists, however large, and is decided
+/// exactly like any other. The reported `t` is then the same quotient
+/// brought into the interval, with no error bound (`ray_plane_t_error` is
+/// infinite there): of a crossing that is in the interval, only that is
+/// known. This keeps the one-report rule for such rays too, where
+/// dropping them would leave their crossing unreported in every interval.
+///
+/// Relation to `ray_plane(ray, plane, t_max)`: with `interval = (0,
+/// t_max]`, both give the same `t`, bit for bit, wherever `ray_plane`
+/// hits and `t*` is farther than the error bound from `0` and `t_max`.
+///
+/// Cost: `ray_plane`'s arithmetic and its error bound; the exact signs
+/// (a few dozen operations) only near an end, within rounding of
+/// parallel, or where the numerator, denominator or `t` is below
+/// `8 MIN_POSITIVE / u` (there the bound's derivation, which treats every
+/// rounding as relative, does not cover underflow).
+///
+/// Invalid rays (see [`Ray::is_valid`]) and planes with a NaN or infinite
+/// coordinate miss; bad intervals cannot be built ([`Interval::new`]).
+/// Never panics. The decision is exact for every `f32` input; for `f64`,
+/// while the nonzero components of `point - origin` (and their rounding
+/// errors), of `dir` and of `normal` are each within a factor `2^400` of
+/// that vector's largest (so that no exact product underflows); beyond
+/// that it is not guaranteed, and an overflow in the exact signs gives
+/// `None`.
+///
+/// ```
+/// use rayhit::{Interval, Plane, Ray, ray_plane_in, glam::Vec3};
+/// let floor = Plane::new(Vec3::ZERO, Vec3::Y);
+/// // y = 3 - 2t reaches 0 at exactly t = 1.5.
+/// let ray = Ray::new(Vec3::new(0.0, 3.0, 0.0), Vec3::new(1.0, -2.0, 0.0));
+/// let hit = |lo: f32, hi: f32| ray_plane_in(&ray, &floor, Interval::new(lo, hi).unwrap());
+/// assert_eq!(hit(0.0, 10.0), Some(1.5));
+/// assert_eq!(hit(1.0, 1.5), Some(1.5)); // closed above
+/// assert_eq!(hit(1.5, 2.0), None); // open below: no repeat past t = 1.5
+/// assert_eq!(hit(1.5f32.next_down(), 2.0), Some(1.5));
+/// // A ray lying in the plane never crosses it.
+/// let along = Ray::new(Vec3::ZERO, Vec3::X);
+/// assert_eq!(ray_plane_in(&along, &floor, Interval::up_to(f32::INFINITY).unwrap()), None);
+/// ```
+///
+/// A ray so close to parallel that `ray_plane` drops it is decided
+/// exactly:
+///
+/// ```
+/// use rayhit::{Interval, Plane, Ray, ray_plane, ray_plane_in, glam::Vec3};
+/// // x + y = 1, and a ray whose dir . normal = 1 - (1 - 2^-23) = 2^-23 is
+/// // within its own rounding bound of zero: t* = 1 / 2^-23 = 2^23.
+/// let plane = Plane::new(Vec3::X, Vec3::new(1.0, 1.0, 0.0));
+/// let ray = Ray::new(Vec3::ZERO, Vec3::new(1.0, -(1.0 - f32::EPSILON), 0.0));
+/// assert_eq!(ray_plane(&ray, &plane, f32::INFINITY), None);
+/// let window = |lo: f32, hi: f32| Interval::new(lo, hi).unwrap();
+/// let t_star = 8388608.0; // 2^23
+/// assert_eq!(ray_plane_in(&ray, &plane, window(0.0, t_star)), Some(t_star));
+/// assert_eq!(ray_plane_in(&ray, &plane, window(t_star, f32::INFINITY)), None);
+/// ```
+#[inline]
+#[must_use]
+pub fn ray_plane_in<V: Vector>(
+    ray: &Ray<V>,
+    plane: &Plane<V>,
+    interval: Interval<S<V>>,
+) -> Option<S<V>> {
+    if !(ray.is_valid() && plane.point.is_finite() && plane.normal.is_finite()) {
+        return None;
     }
-    let r = (a + t * b) / denom + S::<V>::gamma_n(1) * t;
-    bound_up(r * (S::<V>::ONE + S::<V>::TWO * x), 9)
+    crossing_in(ray.origin, ray.dir, plane.point, plane.normal, interval)
 }
 
 /// The hit point `ray.at(t)` for a `t` from [`ray_plane`], and a

@@ -1,10 +1,10 @@
 //! The face a ray enters a box through, decided exactly, and the box tests
-//! that report it.
+//! that report it, over `[0, t_max]` and over an interval.
 
-use super::{Aabb, ray_aabb, ray_aabb_prepared};
+use super::{Aabb, ray_aabb, ray_aabb_in, ray_aabb_prepared, ray_aabb_prepared_in};
 use crate::num::exact_sign::{scale_to_one, sum_of_products_sign, two_diff};
 use crate::num::{S, Scalar, Vector};
-use crate::ray::{PreparedRay, Ray};
+use crate::ray::{Interval, PreparedRay, Ray, crossing_in};
 
 /// A face of a box: one axis's `min` or `max` side.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
@@ -85,8 +85,10 @@ impl BoxFace {
 /// A box hit: the slab test's interval and the face the ray enters through.
 ///
 /// `enter` and `exit` are exactly what [`ray_aabb`](crate::ray_aabb) (or
-/// [`ray_aabb_prepared`](crate::ray_aabb_prepared)) returns. `face` is decided in exact arithmetic:
-/// see [`ray_aabb_face`].
+/// [`ray_aabb_prepared`](crate::ray_aabb_prepared), or for the interval
+/// forms [`ray_aabb_in`](crate::ray_aabb_in)) returns. `face` is decided in exact arithmetic:
+/// see [`ray_aabb_face`], and [`ray_aabb_face_in`] for the interval forms,
+/// where it is also `None` when the entry is not within the interval.
 #[derive(Clone, Copy, Debug, PartialEq)]
 #[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 #[repr(C)]
@@ -275,4 +277,119 @@ pub fn aabb_entry_face<V: Vector>(ray: &PreparedRay<V>, aabb: &Aabb<V>) -> Optio
         return None;
     }
     entry_face(ray.origin(), ray.dir, aabb)
+}
+
+/// The entry face of `ray` into `aabb` (as [`entry_face`] decides it) if
+/// its exact crossing is in `interval`, decided exactly.
+///
+/// The entry is the crossing of one plane, the face's: the plane through
+/// the origin with the face's coordinate on its axis, normal the axis.
+/// Its point differs from the origin on that axis only, so the exact
+/// signs see one difference and one direction component (the
+/// preconditions of [`ray_aabb_face`] cover them), and the quotient is
+/// `fl(fl(plane - o) / d)`, as [`entry_face`] computes it.
+fn entry_face_in<V: Vector>(
+    origin: V,
+    dir: V,
+    aabb: &Aabb<V>,
+    interval: Interval<S<V>>,
+) -> Option<BoxFace> {
+    let face = entry_face(origin, dir, aabb)?;
+    let k = face.axis();
+    let c = face.plane(aabb);
+    let point = match k {
+        0 => V::new(c, origin.y(), origin.z()),
+        1 => V::new(origin.x(), c, origin.z()),
+        _ => V::new(origin.x(), origin.y(), c),
+    };
+    let normal = BoxFace::new(k, true)?.normal::<V>();
+    crossing_in(origin, dir, point, normal, interval).map(|_| face)
+}
+
+/// [`ray_aabb_face`] over an interval: [`ray_aabb_in`]'s conservative
+/// interval, and the face the ray enters through when it enters within
+/// `(t_min, t_max]`, decided exactly.
+///
+/// `enter` and `exit` are exactly what [`ray_aabb_in`] returns (so
+/// `t_min <= enter <= exit <= t_max`), and `None` exactly when it does.
+/// `face` is the entry face as [`ray_aabb_face`] defines it (the face
+/// whose plane the exact ray crosses at the exact entry distance `E*`,
+/// the lowest axis at an edge or corner; decided in exact arithmetic),
+/// reported only when `t_min < E* <= t_max`, decided exactly (`E*` is the
+/// crossing of one face plane, placed against both ends as
+/// [`ray_plane_in`](crate::ray_plane_in) places a crossing). Otherwise
+/// `face` is `None`: the ray entered at or before `t_min` (it is inside the
+/// closed box at `t_min`, or started inside), or, for a box reported
+/// within rounding of a miss, `E*` lies beyond `t_max`.
+///
+/// So over consecutive intervals `(t0, t1]`, `(t1, t2]`, ... a box entry
+/// is reported once: the entry face appears in exactly one interval
+/// (the one holding `E*`) when the exact ray meets the box and `E*` is in
+/// their union; in the other intervals the box may be reported (it is
+/// there, or within rounding), but with `face: None`. Where the exact ray
+/// misses the box by a few ulps and the conservative test still reports
+/// it, the face appears at most once.
+///
+/// With `interval = (0, t_max]` the answer is [`ray_aabb_face`]'s, bit
+/// for bit (its face is `None` exactly when `E* <= 0`), except that a
+/// face whose `E*` is beyond `t_max` (or beyond `MAX`, which no float `t`
+/// reaches) is not reported here.
+///
+/// Cost: [`ray_aabb_in`], the entry face, and for a face, one plane
+/// crossing decided against the ends (a filter, and exact signs within
+/// rounding of an end). Precondition of the exact face and of the exact
+/// decision, for `f64` only: that of [`ray_aabb_face`]. Invalid rays and
+/// boxes give `None`; bad intervals cannot be built ([`Interval::new`]).
+///
+/// ```
+/// use rayhit::{Aabb, BoxFace, Interval, Ray, ray_aabb_face_in, glam::Vec3};
+/// let unit = Aabb::new(Vec3::ZERO, Vec3::ONE);
+/// // From the left: enters through x = 0 at exactly t = 1.
+/// let ray = Ray::new(Vec3::new(-1.0, 0.5, 0.5), Vec3::X);
+/// let window = |lo: f32, hi: f32| Interval::new(lo, hi).unwrap();
+/// let first = ray_aabb_face_in(&ray, &unit, window(0.0, 1.0)).unwrap();
+/// assert_eq!((first.enter, first.face), (1.0, Some(BoxFace::MinX)));
+/// // The next window starts at the entry: the box is there, its entry is not.
+/// let next = ray_aabb_face_in(&ray, &unit, window(1.0, 1.5)).unwrap();
+/// assert_eq!((next.enter, next.face), (1.0, None));
+/// assert!(ray_aabb_face_in(&ray, &unit, window(0.0, 0.5)).is_none());
+/// ```
+#[must_use]
+pub fn ray_aabb_face_in<V: Vector>(
+    ray: &Ray<V>,
+    aabb: &Aabb<V>,
+    interval: Interval<S<V>>,
+) -> Option<BoxHit<S<V>>> {
+    let (enter, exit) = ray_aabb_in(ray, aabb, interval)?;
+    Some(BoxHit {
+        enter,
+        exit,
+        face: entry_face_in(ray.origin, ray.dir, aabb, interval),
+    })
+}
+
+/// [`ray_aabb_face_in`] on a [`PreparedRay`]: the same answer, bit for
+/// bit.
+///
+/// ```
+/// use rayhit::{Aabb, BoxFace, Interval, PreparedRay, Ray, ray_aabb_prepared_face_in, glam::Vec3};
+/// let ray = PreparedRay::new(&Ray::new(Vec3::new(0.5, 5.0, 0.5), -Vec3::Y));
+/// let unit = Aabb::new(Vec3::ZERO, Vec3::ONE);
+/// let hit = ray_aabb_prepared_face_in(&ray, &unit, Interval::new(3.0, 10.0).unwrap()).unwrap();
+/// assert_eq!((hit.enter, hit.face), (4.0, Some(BoxFace::MaxY)));
+/// let late = ray_aabb_prepared_face_in(&ray, &unit, Interval::new(4.0, 10.0).unwrap()).unwrap();
+/// assert_eq!(late.face, None);
+/// ```
+#[must_use]
+pub fn ray_aabb_prepared_face_in<V: Vector>(
+    ray: &PreparedRay<V>,
+    aabb: &Aabb<V>,
+    interval: Interval<S<V>>,
+) -> Option<BoxHit<S<V>>> {
+    let (enter, exit) = ray_aabb_prepared_in(ray, aabb, interval)?;
+    Some(BoxHit {
+        enter,
+        exit,
+        face: entry_face_in(ray.origin(), ray.dir, aabb, interval),
+    })
 }

@@ -4,8 +4,11 @@
 //! - `definition.rs`: the slab test's reference definition, one axis at a
 //!   time, and its rounding bounds (the exit's widening and slack).
 //! - `slab.rs`: [`ray_aabb`] and [`ray_aabb_prepared`], the slab test on
-//!   lanes, held to the definition bit for bit.
-//! - `face.rs`: the face a ray enters through, decided exactly.
+//!   lanes, held to the definition bit for bit, and their interval forms
+//!   [`ray_aabb_in`] and [`ray_aabb_prepared_in`] (the same code with a
+//!   lower end).
+//! - `face.rs`: the face a ray enters through, decided exactly, over
+//!   `[0, t_max]` and over an interval.
 //! - `naive.rs`: [`ray_aabb_naive`], the face-by-face reference.
 //! - `batch.rs`: [`AabbBatch`] and [`ray_aabb_batch`], the slab test on
 //!   eight lanes of boxes at a time, held to the definition bit for bit.
@@ -22,9 +25,12 @@ use crate::num::{S, Scalar, Vector};
 
 pub use batch::{AabbBatch, AabbBatchHits, ray_aabb_batch};
 pub(crate) use batch::{AabbBatchKernel, Slab8};
-pub use face::{BoxFace, BoxHit, aabb_entry_face, ray_aabb_face, ray_aabb_prepared_face};
+pub use face::{
+    BoxFace, BoxHit, aabb_entry_face, ray_aabb_face, ray_aabb_face_in, ray_aabb_prepared_face,
+    ray_aabb_prepared_face_in,
+};
 pub use naive::ray_aabb_naive;
-pub use slab::{ray_aabb, ray_aabb_prepared};
+pub use slab::{ray_aabb, ray_aabb_in, ray_aabb_prepared, ray_aabb_prepared_in};
 
 /// The closed box `min <= p <= max` (component-wise).
 ///

@@ -1,11 +1,13 @@
 //! The slab test on lanes: [`ray_aabb`] and [`ray_aabb_prepared`], all three
-//! axes at once, held bit for bit to `super::definition`.
+//! axes at once, held bit for bit to `super::definition`; and their
+//! interval forms [`ray_aabb_in`] and [`ray_aabb_prepared_in`], the same
+//! code with a lower end.
 
 use super::definition::{exit_slack, exit_widening};
 use super::{SlabBox, sealed as sealed_check};
 use crate::num::round::at_most;
 use crate::num::{L, Lanes, S, Scalar, Vector};
-use crate::ray::{PreparedRay, Ray, SlabRay, t_max_ok};
+use crate::ray::{Interval, PreparedRay, Ray, SlabRay, t_max_ok};
 
 /// The slab test on a prepared ray: the part of `[0, t_max]` the ray spends
 /// inside the closed box, or `None`.
@@ -20,7 +22,7 @@ pub fn ray_aabb_prepared<V: Vector>(
     aabb: &impl SlabBox<V>,
     t_max: S<V>,
 ) -> Option<(S<V>, S<V>)> {
-    slab_test(&ray.slab, aabb, t_max)
+    slab_test(&ray.slab, aabb, S::<V>::ZERO, t_max)
 }
 
 /// [`ray_aabb_prepared`] on the slab part of a prepared ray (which is all
@@ -36,10 +38,35 @@ pub fn ray_aabb_prepared<V: Vector>(
 /// widens to the same limit); and the final comparisons, with
 /// `enter <= limit && enter <= MAX` as `enter <= min(limit, MAX)`, and the
 /// box's validity, are one mask.
+///
+/// `t_min` is the lower end the entries are folded against: `ZERO` for
+/// the kernels without one (a constant, so they compile to what they
+/// compiled to before it was a parameter), an interval's `min` for the
+/// interval forms. It is at least zero and at most `t_max`.
+///
+/// Why a lower end keeps "no false miss" (the argument of
+/// `exit_widening`, with `0` replaced by `t_min`). Let `E` be the exact
+/// entry (the largest exact near distance over the axes the ray moves
+/// along) and `X` the exact exit, and suppose the closed box meets the
+/// ray somewhere in `[t_min, t_max]`: `E' = max(E, t_min) <= L = min(X,
+/// t_max)`. Each computed near distance of an exact `e` is at most
+/// `e (1 + u)^3` when `e >= 0`, and folding it against the float
+/// `t_min >= 0` (exact, never rounded) gives at most
+/// `max(e (1 + u)^3, t_min) <= max(e, t_min) (1 + u)^3`; a negative `e`
+/// gives `t_min`; an axis the ray does not move along gives `t_min` or a
+/// NaN that the fold ignores. So the computed entry is at most `E' (1 +
+/// u)^3 <= L (1 + u)^3`. The exit side is unchanged: the computed exit
+/// is at least `L (1 - u)^3` (`t_max` is exact too), and the widened exit
+/// `fl(exit W) + slack` at least `L (1 - u)^4 W >= L (1 + u)^3`: at least
+/// the exact exit `L`, and at least the computed entry, so the box is
+/// reported. (The subnormal and overflowed-reciprocal cases are those of
+/// `ray_aabb`'s documentation, where `t_min` plays no part.) The entry
+/// reported is at least `t_min`, and at most the exit.
 #[inline(always)]
 fn slab_test<V: Vector, B: SlabBox<V>>(
     ray: &SlabRay<V>,
     aabb: &B,
+    t_min: S<V>,
     t_max: S<V>,
 ) -> Option<(S<V>, S<V>)> {
     let aabb = aabb.corners();
@@ -54,16 +81,17 @@ fn slab_test<V: Vector, B: SlabBox<V>>(
     let min = L::<V>::new4(x, y, z, if packed { aabb.max.x() } else { z });
     let max = lanes(aabb.max);
     let big = S::<V>::MAX;
-    let (zero, limit) = (splat(S::<V>::ZERO), splat(t_max));
+    let (lower, limit) = (splat(t_min), splat(t_max));
     let t0 = min.sub(ray.origin).mul(ray.inv_to_min);
     let t1 = max.sub(ray.origin).mul(ray.inv_to_max);
-    // Each axis folds its two plane distances into the interval [0, t_max]
-    // the way Tavian Barnes does ("Fast, Branchless Ray/Bounding Box
-    // Intersections, Part 3", 2022): `max(t, 0)` and `min(t, t_max)` give
+    // Each axis folds its two plane distances into the interval [t_min,
+    // t_max] (`lower` holds `t_min`, zero but for the interval forms) the
+    // way Tavian Barnes does ("Fast, Branchless Ray/Bounding Box
+    // Intersections, Part 3", 2022): `max(t, t_min)` and `min(t, t_max)` give
     // the second operand for a NaN `t` (origin exactly on a slab plane of
     // an axis the ray does not move along), which leaves the interval
     // unchanged, as exact arithmetic says of a closed box.
-    let enter = t0.max(zero).min(t1.max(zero));
+    let enter = t0.max(lower).min(t1.max(lower));
     let exit = t0.min(limit).max(t1.min(limit));
     // Widen the exit by the rounding bound so that no box that exact
     // arithmetic hits is missed (see `exit_widening`). `enter` is infinite
@@ -155,7 +183,91 @@ pub fn ray_aabb<V: Vector>(
     aabb: &impl SlabBox<V>,
     t_max: S<V>,
 ) -> Option<(S<V>, S<V>)> {
-    slab_test(&SlabRay::new(ray).0, aabb, t_max)
+    slab_test(&SlabRay::new(ray).0, aabb, S::<V>::ZERO, t_max)
+}
+
+/// The slab test over an interval: conservative culling of a box against
+/// `(t_min, t_max]`, the box form of [`ray_aabb`]'s `[0, t_max]`.
+///
+/// Returns `Some((enter, exit))` with `t_min <= enter <= exit <= t_max`
+/// (`enter` finite; `exit` is `+inf` only if `t_max` is), the part of the
+/// interval the ray spends inside the closed box, up to rounding; or
+/// `None`.
+///
+/// Guarantees, for a valid ray and box and any interval (the
+/// preconditions of [`ray_aabb`] apply: no difference `min - o`,
+/// `max - o` overflows, exact entry and exit below `MAX / 2`):
+/// - **No false miss.** If exact arithmetic on the same inputs says the
+///   closed box meets the ray anywhere in `[t_min, t_max]` (so in
+///   particular whenever the exact segment inside the box meets `(t_min,
+///   t_max]`), this returns `Some`, and `exit` is at least the exact exit
+///   (clipped to `t_max`). The interval's ends are floats compared with
+///   the computed distances, never rounded; the proof is `ray_aabb`'s with
+///   `0` replaced by `t_min` (see the source).
+/// - **False hits only at the boundary**, as for [`ray_aabb`]: a box
+///   whose exact segment misses `[t_min, t_max]` is reported only within
+///   the same few ulps (`1 + 16u` relative, plus four subnormals), for
+///   example a box that the ray leaves just before `t_min`. A box the ray
+///   leaves exactly at `t_min` is reported: it is a conservative test, and
+///   the ends are not decided exactly (use [`ray_aabb_face_in`](crate::ray_aabb_face_in)
+///   for an exactly decided entry).
+/// - With `interval = (0, t_max]` the answer is [`ray_aabb`]'s, bit for
+///   bit.
+/// - Invalid rays and boxes give `None`; bad intervals cannot be built
+///   ([`Interval::new`]). Never panics.
+///
+/// ```
+/// use rayhit::{Aabb, Interval, Ray, ray_aabb, ray_aabb_in, glam::Vec3};
+/// let unit = Aabb::new(Vec3::ZERO, Vec3::ONE);
+/// // x = -1 + 2t is in [0, 1] for t in [0.5, 1].
+/// let ray = Ray::new(Vec3::new(-1.0, 0.5, 0.5), Vec3::new(2.0, 0.0, 0.0));
+/// let window = |lo: f32, hi: f32| Interval::new(lo, hi).unwrap();
+/// let (enter, exit) = ray_aabb_in(&ray, &unit, window(0.75, 4.0)).unwrap();
+/// assert_eq!(enter, 0.75); // already inside at t_min
+/// assert!(exit >= 1.0 && exit <= 1.0 + 8.0 * f32::EPSILON); // widened
+/// assert_eq!(ray_aabb_in(&ray, &unit, window(2.0, 4.0)), None); // left before t_min
+/// assert_eq!(ray_aabb_in(&ray, &unit, window(0.0, 0.25)), None); // not yet entered
+/// let all = Interval::up_to(f32::INFINITY).unwrap();
+/// assert_eq!(ray_aabb_in(&ray, &unit, all), ray_aabb(&ray, &unit, f32::INFINITY));
+/// ```
+#[inline]
+#[must_use]
+pub fn ray_aabb_in<V: Vector>(
+    ray: &Ray<V>,
+    aabb: &impl SlabBox<V>,
+    interval: Interval<S<V>>,
+) -> Option<(S<V>, S<V>)> {
+    slab_test(&SlabRay::new(ray).0, aabb, lower(interval), interval.max())
+}
+
+/// [`ray_aabb_in`] on a [`PreparedRay`]: the same answer, bit for bit,
+/// with the reciprocals computed once per ray.
+///
+/// ```
+/// use rayhit::{Aabb, Interval, PreparedRay, Ray, ValidAabb, ray_aabb_in, ray_aabb_prepared_in, glam::Vec3};
+/// let node = ValidAabb::new(Aabb::new(Vec3::new(2.0, -1.0, -1.0), Vec3::new(3.0, 1.0, 1.0))).unwrap();
+/// let ray = Ray::new(Vec3::ZERO, Vec3::X);
+/// let window = Interval::new(2.5, 10.0).unwrap();
+/// let hit = ray_aabb_prepared_in(&PreparedRay::new(&ray), &node, window);
+/// assert_eq!(hit, ray_aabb_in(&ray, &node, window));
+/// assert_eq!(hit.unwrap().0, 2.5);
+/// ```
+#[inline]
+#[must_use]
+pub fn ray_aabb_prepared_in<V: Vector>(
+    ray: &PreparedRay<V>,
+    aabb: &impl SlabBox<V>,
+    interval: Interval<S<V>>,
+) -> Option<(S<V>, S<V>)> {
+    slab_test(&ray.slab, aabb, lower(interval), interval.max())
+}
+
+/// The interval's lower end with `-0.0` made `+0.0` (an interval may
+/// start at `-0.0`, and the entries must never be `-0`: see
+/// [`slab_test`]).
+#[inline(always)]
+fn lower<F: Scalar>(interval: Interval<F>) -> F {
+    interval.min() + F::ZERO
 }
 
 #[cfg(test)]
@@ -251,5 +363,72 @@ mod tests {
             hits += check::<Vec3>(&mut draws) + check::<DVec3>(&mut draws);
         }
         assert!(hits > 20_000, "{hits}");
+    }
+
+    /// The interval forms are the slab test with a lower end: with `(0,
+    /// t_max]` (and `(-0, t_max]`) they give `ray_aabb`'s answer bit for
+    /// bit; with a lower end, the entry is that end where the plain entry
+    /// is below it, the exit is unchanged (the lower end takes no part in
+    /// it), and the box is missed where the widened exit is below the
+    /// lower end; the prepared form is the plain one, bit for bit.
+    #[test]
+    fn interval_forms_are_the_slab_test_with_a_lower_end() {
+        fn check<V: Vector>(draws: &mut Draws) -> (usize, usize) {
+            let mut c = || S::<V>::from_f64(draws.coordinate(200));
+            let ray = Ray::new(V::new(c(), c(), c()), V::new(c(), c(), c()));
+            let (a, b) = (V::new(c(), c(), c()), V::new(c(), c(), c()));
+            let aabb = Aabb::new(
+                V::new(min2(a.x(), b.x()), min2(a.y(), b.y()), min2(a.z(), b.z())),
+                V::new(max2(a.x(), b.x()), max2(a.y(), b.y()), max2(a.z(), b.z())),
+            );
+            let bits = |h: Option<(S<V>, S<V>)>| {
+                h.map(|(e, x)| (e.to_f64().to_bits(), x.to_f64().to_bits()))
+            };
+            let p = PreparedRay::new(&ray);
+            let (mut hits, mut cut) = (0, 0);
+            for t_max in [c().abs() * S::<V>::TWO, S::<V>::INFINITY] {
+                let plain = ray_aabb(&ray, &aabb, t_max);
+                for zero in [S::<V>::ZERO, -S::<V>::ZERO] {
+                    let all = Interval::new(zero, t_max).unwrap();
+                    assert_eq!(bits(ray_aabb_in(&ray, &aabb, all)), bits(plain));
+                    assert_eq!(bits(ray_aabb_prepared_in(&p, &aabb, all)), bits(plain));
+                }
+                let Some((enter, exit)) = plain else { continue };
+                hits += 1;
+                // Lower ends below, at and beyond the plain entry and exit.
+                let lows = [
+                    enter * S::<V>::HALF,
+                    enter,
+                    (enter + exit) * S::<V>::HALF,
+                    exit,
+                ];
+                for lo in lows.into_iter().chain([exit.next_up(), exit * S::<V>::TWO]) {
+                    let Some(window) = Interval::new(lo, t_max) else {
+                        continue;
+                    };
+                    let got = ray_aabb_in(&ray, &aabb, window);
+                    assert_eq!(bits(ray_aabb_prepared_in(&p, &aabb, window)), bits(got));
+                    if lo <= exit {
+                        let expected = (if enter > lo { enter } else { lo }, exit);
+                        assert_eq!(bits(got), bits(Some(expected)), "{ray:?} {aabb:?} {lo:?}");
+                    } else {
+                        // The reported exit is the widened one clipped
+                        // to t_max: beyond it, a miss.
+                        assert_eq!(got, None, "{ray:?} {aabb:?} {lo:?}");
+                        cut += 1;
+                    }
+                }
+            }
+            (hits, cut)
+        }
+        let mut draws = Draws(0x0fed_cba9_8765_4321);
+        let (mut hits, mut cut) = (0, 0);
+        for _ in 0..20_000 {
+            for (h, c) in [check::<Vec3>(&mut draws), check::<DVec3>(&mut draws)] {
+                hits += h;
+                cut += c;
+            }
+        }
+        assert!(hits > 5_000 && cut > 5_000, "{hits} {cut}");
     }
 }

@@ -7,11 +7,13 @@
 //! computes it with big rationals ([`Rational`]) and judges a claimed answer
 //! against it ([`judge`]), with the conventions of the crate's kernels:
 //!
-//! - box ([`ray_aabb`]): the closed box against `t` in `[0, t_max]`;
+//! - box ([`ray_aabb`]): the closed box against `t` in `[0, t_max]`; over
+//!   an interval ([`ray_aabb_in`]), against `t_min < t <= t_max`;
 //! - triangle ([`ray_triangle`], [`ray_mesh`]): closed and two-sided,
 //!   `0 < t <= t_max`; over an interval ([`ray_triangle_in`]),
 //!   `t_min < t <= t_max`;
-//! - plane ([`ray_plane`]): `0 < t <= t_max`, no hit when parallel;
+//! - plane ([`ray_plane`]): `0 < t <= t_max`, no hit when parallel; over
+//!   an interval ([`ray_plane_in`]), `t_min < t <= t_max`;
 //! - invalid input (a non-finite coordinate, a zero direction, an inverted
 //!   box, a zero plane normal, a NaN `t_max`) is a miss, never a panic.
 //!
@@ -337,6 +339,84 @@ pub fn ray_aabb<V: Vector>(
     })
 }
 
+/// Exact ray/box over an interval: the part of `(t_min, t_max]` the ray
+/// spends inside the closed box, as its closure `[enter, exit]` with
+/// `enter = max(E, t_min)` and `exit = min(X, t_max)` (`E`, `X` the exact
+/// entry and exit); `None` when that part is empty (the box is left at or
+/// before `t_min`, entered after `t_max`, or missed), for invalid input,
+/// and for an interval that is not `0 <= t_min <= t_max` (NaN included).
+/// The question [`ray_aabb_in`](crate::ray_aabb_in) answers
+/// conservatively: where this is `Some`, it must be `Some`.
+///
+/// `entry_faces` lists the faces crossed at `E` only when the entry is
+/// within the interval (`t_min < E`), and is empty otherwise (the ray is
+/// inside at `t_min`); where it is not empty, its first face is the one
+/// [`ray_aabb_face_in`](crate::ray_aabb_face_in) reports. `exit_faces` as
+/// for [`ray_aabb`]. With `t_min = 0` this differs from [`ray_aabb`] in
+/// two ways, both from the open lower end: a box the ray leaves exactly at
+/// `t = 0` is not hit, and a ray entering exactly at `t = 0` lists no
+/// entry face.
+///
+/// ```
+/// use rayhit::{Aabb, BoxFace, Ray, exact, glam::Vec3};
+/// let unit = Aabb::new(Vec3::ZERO, Vec3::ONE);
+/// // Enters through x = 0 at t = 1, leaves through x = 1 at t = 2.
+/// let ray = Ray::new(Vec3::new(-1.0, 0.5, 0.5), Vec3::X);
+/// let hit = exact::ray_aabb_in(&ray, &unit, 0.5, 4.0).unwrap();
+/// assert_eq!((hit.enter.rounded, hit.exit.rounded), (1.0, 2.0));
+/// assert_eq!(hit.entry_faces, [BoxFace::MinX]);
+/// // From t = 1 on, the ray is inside: no entry face.
+/// let later = exact::ray_aabb_in(&ray, &unit, 1.0, 4.0).unwrap();
+/// assert_eq!((later.enter.rounded, later.entry_faces.len()), (1.0, 0));
+/// assert!(exact::ray_aabb_in(&ray, &unit, 2.0, 4.0).is_none()); // left at t_min
+/// ```
+#[must_use]
+pub fn ray_aabb_in<V: Vector>(
+    ray: &Ray<V>,
+    b: &Aabb<V>,
+    t_min: V::Scalar,
+    t_max: V::Scalar,
+) -> Option<BoxAnswer<V::Scalar>> {
+    let zero = <V::Scalar as Scalar>::ZERO;
+    if !(zero <= t_min && t_min <= t_max && ray.is_valid() && b.is_valid()) {
+        return None;
+    }
+    let slabs = oracle::box_slabs(ray, b)?;
+    let lo = oracle::r(t_min)?;
+    // A valid ray moves along some axis, so both exist.
+    let e = slabs.iter().map(|s| s.0.clone()).max()?;
+    let x = slabs.iter().map(|s| s.1.clone()).min()?;
+    let enter = if e > lo { e.clone() } else { lo.clone() };
+    let exit = match oracle::limit(t_max) {
+        Some(m) if m < x => m,
+        _ => x,
+    };
+    if !(enter <= exit && exit > lo) {
+        return None;
+    }
+    let d = oracle::rv(ray.dir)?;
+    let face = |k: usize, near: bool| {
+        let max_side = (d[k] < Rational::zero()) == near;
+        BoxFace::new(k, max_side).expect("axis below 3")
+    };
+    let entry_faces = slabs
+        .iter()
+        .filter(|s| e > lo && s.0 == e)
+        .map(|s| face(s.2, true))
+        .collect();
+    let exit_faces = slabs
+        .iter()
+        .filter(|s| s.1 == exit)
+        .map(|s| face(s.2, false))
+        .collect();
+    Some(BoxAnswer {
+        enter: Exact::new(enter),
+        exit: Exact::new(exit),
+        entry_faces,
+        exit_faces,
+    })
+}
+
 /// Where on a triangle a crossing is: inside, on one edge, or at a corner.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
 pub enum Place {
@@ -536,6 +616,40 @@ pub fn ray_plane<V: Vector>(
         return None;
     }
     oracle::plane_hit(ray, plane, t_max).map(Exact::new)
+}
+
+/// Exact ray/plane over an interval: the crossing `t` with `t_min < t <=
+/// t_max` (both ends floats, compared with the exact crossing); `None`
+/// when the ray is parallel to the plane, crosses it outside the interval,
+/// the input is invalid (as for [`ray_plane`]), or the interval is not
+/// `0 <= t_min <= t_max` (NaN included). The question
+/// [`ray_plane_in`](crate::ray_plane_in) answers exactly (for crossings up
+/// to `MAX`, the largest float `t` it can report); with `t_min = 0` it is
+/// [`ray_plane`]'s.
+///
+/// ```
+/// use rayhit::{Plane, Ray, exact, glam::Vec3};
+/// let floor = Plane::new(Vec3::ZERO, Vec3::Y);
+/// // Crosses y = 0 at exactly t = 1/3.
+/// let ray = Ray::new(Vec3::new(0.0, 1.0, 0.0), Vec3::new(1.0, -3.0, 0.0));
+/// let third = 1.0f32 / 3.0; // rounded up: 1/3 lies just below it
+/// assert!(exact::ray_plane_in(&ray, &floor, 0.0, third).is_some());
+/// assert!(exact::ray_plane_in(&ray, &floor, third, 1.0).is_none());
+/// assert!(exact::ray_plane_in(&ray, &floor, third.next_down(), 1.0).is_some());
+/// ```
+#[must_use]
+pub fn ray_plane_in<V: Vector>(
+    ray: &Ray<V>,
+    plane: &Plane<V>,
+    t_min: V::Scalar,
+    t_max: V::Scalar,
+) -> Option<Exact<V::Scalar>> {
+    let zero = <V::Scalar as Scalar>::ZERO;
+    if !(zero <= t_min && t_min <= t_max) {
+        return None;
+    }
+    let answer = ray_plane(ray, plane, t_max)?;
+    (answer.value > oracle::r(t_min)?).then_some(answer)
 }
 
 #[cfg(test)]

@@ -280,18 +280,23 @@ fn scale2(v: f64, k: i32) -> f64 {
     v
 }
 
-/// The exact signs that place a ray's crossing with a triangle's plane,
-/// for the interval forms of the watertight test.
+/// The exact signs that place a ray's crossing with a plane against a
+/// float `t`, for the interval forms: the plane of a triangle's corners
+/// ([`PlaneCrossing::new`]), or a plane given by a point and a normal
+/// ([`PlaneCrossing::with_normal`], the plane test and a box's face).
 ///
-/// With `A = a - o`, `n = (b - a) x (c - a)`, the line `o + t d` meets the
+/// With `A = a - o` (`a` a corner, or the given point) and `n` the normal
+/// (`(b - a) x (c - a)`, or the given one), the line `o + t d` meets the
 /// plane at `t* = (A . n) / (d . n)` when `D = d . n` is not zero. The
-/// corner differences are held as exact pairs (Knuth's two-sum: `hi + lo`
-/// is the exact difference); `A . n` and `D` are then sums of products of
-/// three floats, each expanded exactly into four terms and summed as a
-/// floating-point expansion (Shewchuk, "Adaptive Precision Floating-Point
-/// Arithmetic and Fast Robust Geometric Predicates", 1997). A few hundred
-/// operations: the rare fallback of the interval tests, taken only where
-/// the crossing lies within its rounding error bound of an end.
+/// coordinate differences are held as exact pairs (Knuth's two-sum:
+/// `hi + lo` is the exact difference); `A . n` and `D` are then sums of
+/// products of three floats (a triangle's) or two (a given normal's), each
+/// expanded exactly into four or two terms and summed as a floating-point
+/// expansion (Shewchuk, "Adaptive Precision Floating-Point Arithmetic and
+/// Fast Robust Geometric Predicates", 1997). A few hundred operations for
+/// a triangle, a few dozen for a given normal: the rare fallback of the
+/// interval tests, taken only where the crossing lies within its rounding
+/// error bound of an end.
 ///
 /// `A . n - t D` is compared without forming `t D` in one exponent range:
 /// with `t = m 2^k` (`m` in `[1, 2)`), `N = A . n` and `M = m D` are
@@ -302,33 +307,59 @@ fn scale2(v: f64, k: i32) -> f64 {
 ///
 /// Exactness: the products' rounding errors must not underflow. Inputs are
 /// `f32` or `f64` converted to `f64`. For `f32` every factor (a
-/// coordinate difference's parts, a direction component, and `m d_k`'s
-/// parts) is a multiple of `2^-172` below `2^130`, so every product and
-/// its rounding error are far inside `f64`'s range: the signs are always
-/// exact. For `f64` the differences are scaled by one power of two and the
-/// direction by another, and the signs are exact while every nonzero
-/// scaled value (the differences' rounding errors included) is above
-/// `2^-300`: nonzero differences within a factor `2^250` of the largest,
-/// the direction's nonzero components within `2^250` of its largest.
-/// Any `t`, however large or small, is compared exactly. A non-finite term
-/// is reported as `None`.
+/// coordinate difference's parts, a direction or normal component, and
+/// `m d_k`'s parts) is a multiple of `2^-172` below `2^130`, so every
+/// product and its rounding error are far inside `f64`'s range: the signs
+/// are always exact. For `f64` the differences are scaled by one power of
+/// two, the direction by another (and a given normal by a third), so that
+/// each has its largest component in `[1, 2)`. For a triangle the signs
+/// are exact while every nonzero scaled value (the differences' rounding
+/// errors included) is above `2^-300`: nonzero differences within a factor `2^250` of the largest, the direction's
+/// nonzero components within `2^250` of its largest. For a given normal
+/// (two factors per product) they are exact while every nonzero scaled
+/// value is above `2^-400`: a product is then at least `2^-800`, and one
+/// with the error part of `m d_k` (at least `2^-105` of `d_k`) at least
+/// `2^-906`, so its own rounding error is exact (products above `2^-969`
+/// split exactly). Any `t`, however large or small, is compared exactly.
+/// A non-finite term is reported as `None`.
 pub(crate) struct PlaneCrossing {
-    /// `a - o`, `b - a`, `c - a`, each component an exact `(hi, lo)` pair,
-    /// scaled by `2^-ea`.
-    diff: [[(f64, f64); 3]; 3],
+    /// `a - o`, each component an exact `(hi, lo)` pair, scaled by `2^-ea`.
+    to_plane: [(f64, f64); 3],
+    /// Where the normal comes from.
+    normal: Normal,
     /// The direction, scaled by `2^-ed`.
     dir: [f64; 3],
     /// `ed - ea`: `t*` of the scaled problem is `t* 2^(ed - ea)` (`A . n`
-    /// scales by `2^-3ea`, `D` by `2^(-ed - 2ea)`), so a `t` is compared as
-    /// `t 2^(ed - ea)`.
+    /// and `D` share the normal's scale, `A` is scaled by `2^-ea` and `d`
+    /// by `2^-ed`), so a `t` is compared as `t 2^(ed - ea)`.
     shift: i32,
 }
 
+/// The normal of a [`PlaneCrossing`].
+enum Normal {
+    /// `n = (b - a) x (c - a)`, from the exact pairs of the two edges,
+    /// scaled by `2^-ea` like `a - o`.
+    Edges([[(f64, f64); 3]; 2]),
+    /// A given normal, scaled by a power of two of its own.
+    Given([f64; 3]),
+}
+
+/// The exponent of the largest magnitude among `values` when scaling is
+/// asked for and it is a usable (finite, nonzero) number, else `0`.
+fn scale_exponent(values: impl Iterator<Item = f64>, scale: bool) -> i32 {
+    let m = values.fold(0.0f64, |m, x| if x.abs() > m { x.abs() } else { m });
+    if scale && m > 0.0 && m.is_finite() {
+        exponent(m)
+    } else {
+        0
+    }
+}
+
 impl PlaneCrossing {
-    /// From the origin, the direction and the corners, as `f64`; `scale`
-    /// for `f64` inputs (for `f32` inputs scaling could only push the
-    /// smallest parts towards underflow, and every product is in range
-    /// without it).
+    /// For the plane of the corners `a`, `b`, `c`: from the origin, the
+    /// direction and the corners, as `f64`; `scale` for `f64` inputs (for
+    /// `f32` inputs scaling could only push the smallest parts towards
+    /// underflow, and every product is in range without it).
     pub(crate) fn new(
         o: [f64; 3],
         d: [f64; 3],
@@ -339,40 +370,72 @@ impl PlaneCrossing {
     ) -> Self {
         let split = |p: [f64; 3], q: [f64; 3]| [0, 1, 2].map(|k| two_diff(p[k], q[k]));
         let mut diff = [split(a, o), split(b, a), split(c, a)];
-        let largest = |m: f64, x: f64| if x.abs() > m { x.abs() } else { m };
-        let m = diff
-            .iter()
-            .flatten()
-            .fold(0.0f64, |m, &(hi, _)| largest(m, hi));
-        let md = d.iter().fold(0.0f64, |m, &x| largest(m, x));
-        let usable = |m: f64| scale && m > 0.0 && m.is_finite();
-        let ea = if usable(m) { exponent(m) } else { 0 };
-        let ed = if usable(md) { exponent(md) } else { 0 };
+        let ea = scale_exponent(diff.iter().flatten().map(|p| p.0), scale);
+        let ed = scale_exponent(d.into_iter(), scale);
         for p in diff.iter_mut().flatten() {
             *p = (scale2(p.0, -ea), scale2(p.1, -ea));
         }
+        let [to_plane, e1, e2] = diff;
         Self {
-            diff,
+            to_plane,
+            normal: Normal::Edges([e1, e2]),
             dir: d.map(|x| scale2(x, -ed)),
             shift: ed - ea,
         }
     }
 
-    /// Adds `(factor * v) . n` to `acc`, with `v_k` given by `v(k)` as the
-    /// parts of a sum (one of them zero for a plain float) and `n` expanded
-    /// from the difference pairs.
-    fn add_dot_normal(&self, acc: &mut Expansion, factor: f64, v: impl Fn(usize) -> [f64; 2]) {
-        let [_, e1, e2] = self.diff;
-        for k in 0..3 {
-            let (j, l) = ((k + 1) % 3, (k + 2) % 3);
-            for (x, y, negate) in [(e1[j], e2[l], false), (e1[l], e2[j], true)] {
-                for vk in v(k) {
-                    if vk == 0.0 {
-                        continue;
+    /// For the plane through `p` with normal `n`: from the origin, the
+    /// direction, the point and the normal, as `f64`; `scale` as for
+    /// [`PlaneCrossing::new`].
+    pub(crate) fn with_normal(
+        o: [f64; 3],
+        d: [f64; 3],
+        p: [f64; 3],
+        n: [f64; 3],
+        scale: bool,
+    ) -> Self {
+        let mut to_plane = [0, 1, 2].map(|k| two_diff(p[k], o[k]));
+        let ea = scale_exponent(to_plane.iter().map(|p| p.0), scale);
+        let ed = scale_exponent(d.into_iter(), scale);
+        let en = scale_exponent(n.into_iter(), scale);
+        for p in &mut to_plane {
+            *p = (scale2(p.0, -ea), scale2(p.1, -ea));
+        }
+        Self {
+            to_plane,
+            normal: Normal::Given(n.map(|x| scale2(x, -en))),
+            dir: d.map(|x| scale2(x, -ed)),
+            shift: ed - ea,
+        }
+    }
+
+    /// Adds `v . n` to `acc`, with `v_k` given by `v(k)` as the parts of a
+    /// sum (one of them zero for a plain float) and `n` the normal
+    /// (expanded from the edge pairs, or given).
+    fn add_dot_normal(&self, acc: &mut Expansion, v: impl Fn(usize) -> [f64; 2]) {
+        match &self.normal {
+            Normal::Edges([e1, e2]) => {
+                for k in 0..3 {
+                    let (j, l) = ((k + 1) % 3, (k + 2) % 3);
+                    for (x, y, negate) in [(e1[j], e2[l], false), (e1[l], e2[j], true)] {
+                        for vk in v(k) {
+                            if vk == 0.0 {
+                                continue;
+                            }
+                            for xp in [x.0, x.1] {
+                                for yp in [y.0, y.1] {
+                                    acc.add_product(&[vk, xp, yp], negate);
+                                }
+                            }
+                        }
                     }
-                    for xp in [x.0, x.1] {
-                        for yp in [y.0, y.1] {
-                            acc.add_product(&[vk * factor, xp, yp], negate);
+                }
+            }
+            Normal::Given(n) => {
+                for (k, &nk) in n.iter().enumerate() {
+                    for vk in v(k) {
+                        if vk != 0.0 && nk != 0.0 {
+                            acc.add_product(&[vk, nk], false);
                         }
                     }
                 }
@@ -389,7 +452,7 @@ impl PlaneCrossing {
         for k in 0..3 {
             let (p, e) = two_product(self.dir[k], factor);
             let one = |kk: usize| if kk == k { [p, e] } else { [0.0, 0.0] };
-            self.add_dot_normal(&mut acc, 1.0, one);
+            self.add_dot_normal(&mut acc, one);
         }
         acc
     }
@@ -406,9 +469,9 @@ impl PlaneCrossing {
         if !t.is_finite() {
             return None;
         }
-        let a = self.diff[0];
+        let a = self.to_plane;
         let mut num = Expansion::new();
-        self.add_dot_normal(&mut num, 1.0, |k| [a[k].0, a[k].1]);
+        self.add_dot_normal(&mut num, |k| [a[k].0, a[k].1]);
         let num_sign = num.sign()?;
         if t == 0.0 {
             return Some(num_sign);
@@ -577,5 +640,114 @@ mod tests {
             }
         }
         assert!(checked > 10_000 && near > 1_000, "{checked} {near}");
+    }
+
+    /// The plane-crossing signs for a given normal against big rationals:
+    /// `f64` inputs over the documented range (components within `2^60`
+    /// of each other, point, origin, direction and normal each at its own
+    /// scale from `2^-400` to `2^400`; and points at unit scale translated
+    /// far away, so that `point - origin` carries a rounding error), `f32`
+    /// inputs from arbitrary finite bit patterns; `t` at the exact
+    /// crossing rounded and a few ulps either side, and anywhere from
+    /// `2^-1074` to `2^1023`.
+    #[cfg(feature = "exact")]
+    #[test]
+    fn given_normal_crossing_signs_are_exact() {
+        use crate::exact::oracle::{R, dot, r, sub};
+        use num_traits::Zero;
+        let mut state = 0x2545_f491_4f6c_dd1du64;
+        let mut next = move || {
+            state ^= state << 13;
+            state ^= state >> 7;
+            state ^= state << 17;
+            state
+        };
+        let unit =
+            |next: &mut dyn FnMut() -> u64| (next() >> 11) as f64 / (1u64 << 53) as f64 * 2.0 - 1.0;
+        let (mut checked, mut near, mut zero_den) = (0, 0, 0);
+        for case in 0..3000 {
+            let wide = case % 3 != 0;
+            let v = |scale: f64, next: &mut dyn FnMut() -> u64| -> [f64; 3] {
+                if wide {
+                    [0, 1, 2].map(|_| {
+                        // Some exact zeros, which the scaling must skip.
+                        if next().is_multiple_of(8) {
+                            return 0.0;
+                        }
+                        let spread = scale2(1.0, -((next() % 60) as i32));
+                        scale * spread * unit(next)
+                    })
+                } else {
+                    [0, 1, 2].map(|_| {
+                        loop {
+                            let x = f32::from_bits(next() as u32);
+                            if x.is_finite() {
+                                break f64::from(x);
+                            }
+                        }
+                    })
+                }
+            };
+            let scale = |next: &mut dyn FnMut() -> u64| scale2(1.0, (next() % 800) as i32 - 400);
+            let (g, h, k) = (scale(&mut next), scale(&mut next), scale(&mut next));
+            let o = v(g, &mut next);
+            let mut p = v(g, &mut next);
+            if wide && case % 5 == 1 {
+                // Far from the origin, with a rounding error in `p - o`.
+                let off = v(g * scale2(1.0, -30), &mut next);
+                p = [0, 1, 2].map(|i| o[i] + off[i]);
+            }
+            let d = v(h, &mut next);
+            let mut n = v(k, &mut next);
+            if case % 7 == 2 {
+                // Exactly parallel: n orthogonal to d (exact for
+                // components that are zero or swapped and negated).
+                n = [d[1], -d[0], 0.0];
+            }
+            let pc = PlaneCrossing::with_normal(o, d, p, n, wide);
+            let rv = |p: [f64; 3]| p.map(|x| r(x).unwrap());
+            let rn = rv(n);
+            let num = dot(&sub(&rv(p), &rv(o)), &rn);
+            let den = dot(&rv(d), &rn);
+            let zero = R::zero();
+            assert_eq!(
+                pc.den_sign(),
+                Some(den.cmp(&zero)),
+                "{o:?} {d:?} {p:?} {n:?}"
+            );
+            zero_den += usize::from(den.is_zero());
+            let mut ts = std::vec![
+                0.0,
+                f64::from_bits(1),
+                f64::MAX,
+                scale2(1.0, (next() % 2000) as i32 - 1000),
+            ];
+            if !den.is_zero() {
+                let t = crate::exact::round::<f64>(&(&num / &den)).abs();
+                let (mut up, mut down) = (t, t);
+                for _ in 0..3 {
+                    ts.extend([up, down]);
+                    up = up.next_up();
+                    down = down.next_down();
+                }
+                near += 1;
+            }
+            for t in ts {
+                if !(t.is_finite() && t >= 0.0) {
+                    continue;
+                }
+                let expected = (&num - r(t).unwrap() * &den).cmp(&zero);
+                assert_eq!(
+                    pc.num_minus_t_den_sign(t),
+                    Some(expected),
+                    "t {t:e}: {o:?} {d:?} {p:?} {n:?}"
+                );
+                checked += 1;
+            }
+        }
+        assert!(
+            checked > 20_000 && near > 2_000 && zero_den > 100,
+            "{checked} {near} {zero_den}"
+        );
     }
 }

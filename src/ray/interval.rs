@@ -1,7 +1,12 @@
 //! [`Interval`]: the range `(min, max]` of `t` a kernel's interval form
-//! searches.
+//! searches; and the decision of an exact crossing distance against its
+//! ends, which every interval form shares (an error-bound filter, then
+//! exact signs).
 
 use crate::num::Scalar;
+use crate::num::exact_sign::PlaneCrossing;
+use crate::num::round::min2;
+use core::cmp::Ordering;
 
 /// The half-open range `min < t <= max` of distances along a ray, in units
 /// of the ray's `dir`, that the interval forms of the kernels (such as
@@ -68,4 +73,110 @@ impl<F: Scalar> Interval<F> {
     pub fn contains(&self, t: F) -> bool {
         self.min < t && t <= self.max
     }
+}
+
+impl<F: Scalar> Interval<F> {
+    /// The ends a kernel decides against: `(min, min(max, MAX))`. The
+    /// largest distance a hit can report is `MAX` (a crossing beyond it
+    /// has no finite `t`), so a crossing beyond `MAX` is reported by no
+    /// interval.
+    #[inline(always)]
+    pub(crate) fn ends(&self) -> (F, F) {
+        (self.min, min2(self.max, F::MAX))
+    }
+}
+
+/// `t` brought into `(lo, hi]` (`lo < hi`): `lo`'s successor where `t` is
+/// at most `lo` or NaN, `hi` where it is above. Where the exact `t*` is in
+/// `(lo, hi]`: moving to `hi` only moves `t` towards `t*`; moving to
+/// `lo`'s successor does too unless `t*` lies strictly between `lo` and
+/// its successor, and then the result is within one ulp of `t*`. So
+/// `|result - t*| <= max(|t - t*|, succ(lo) - lo)`. With `hi <= MAX` the
+/// result is finite.
+#[inline(always)]
+pub(crate) fn bring_into<F: Scalar>(t: F, lo: F, hi: F) -> F {
+    let t = if t > lo { t } else { lo.next_up() };
+    min2(t, hi)
+}
+
+/// Where a distance lies against one end of an interval.
+#[derive(Clone, Copy, PartialEq, Eq)]
+pub(crate) enum Place {
+    /// Surely on the near side of the filter's band.
+    Below,
+    /// Surely on the far side.
+    Above,
+    /// Within the band: the exact signs decide.
+    Unknown,
+}
+
+/// Whether the exact crossing `t*` is in `(lo, hi]`, given a float `t`
+/// within `err` of it (where `t*` exists), and the exact signs where the
+/// band `[t - err, t + err]` leaves an end open; `None` where the exact
+/// signs overflow (outside their documented range).
+///
+/// The filter: where the band lies on one side of an end (its bounds
+/// rounded outward), that end is decided. Otherwise `t* > lo` holds
+/// exactly when `A . n - lo D` has the sign of `D` (and `D` is not zero),
+/// and `t* <= hi` when `A . n - hi D` is zero or of the opposite sign
+/// ([`PlaneCrossing`]). A NaN `t` or `err`, or an infinite `err`, leaves
+/// both ends to the exact signs, which also answer "no crossing" where
+/// `D` is exactly zero. Shared by the triangle, plane and box-face
+/// interval forms.
+#[inline(always)]
+pub(crate) fn decide<F: Scalar>(
+    t: F,
+    err: F,
+    lo: F,
+    hi: F,
+    exact: impl FnOnce() -> PlaneCrossing,
+) -> Option<bool> {
+    use crate::num::round::outward::{add_up, sub_down};
+    let low = if sub_down(t, err) > lo {
+        Place::Above
+    } else if add_up(t, err) <= lo {
+        Place::Below
+    } else {
+        Place::Unknown
+    };
+    if low == Place::Below {
+        return Some(false);
+    }
+    let high = if add_up(t, err) <= hi {
+        Place::Below
+    } else if sub_down(t, err) > hi {
+        Place::Above
+    } else {
+        Place::Unknown
+    };
+    if high == Place::Above {
+        return Some(false);
+    }
+    if low == Place::Above && high == Place::Below {
+        return Some(true);
+    }
+    exact_decide(low, high, lo, hi, exact())
+}
+
+/// The exact half of [`decide`], out of line.
+#[cold]
+#[inline(never)]
+fn exact_decide<F: Scalar>(
+    low: Place,
+    high: Place,
+    lo: F,
+    hi: F,
+    exact: PlaneCrossing,
+) -> Option<bool> {
+    let den = exact.den_sign()?;
+    if den == Ordering::Equal {
+        return Some(false);
+    }
+    // t* > lo  <=>  (A . n - lo D) has the sign of D.
+    let above_lo = low == Place::Above || exact.num_minus_t_den_sign(lo.to_f64())? == den;
+    if !above_lo {
+        return Some(false);
+    }
+    // t* <= hi  <=>  (A . n - hi D) is zero or has the sign opposite to D's.
+    Some(high == Place::Below || exact.num_minus_t_den_sign(hi.to_f64())? != den)
 }

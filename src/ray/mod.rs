@@ -2,13 +2,18 @@
 //!
 //! - `mod.rs`: [`Ray`], and the check of a `t_max`.
 //! - `interval.rs`: [`Interval`], the range `(t_min, t_max]` of the
-//!   kernels' interval forms.
+//!   kernels' interval forms, and the exact decision of a crossing
+//!   against its ends.
+//! - `crossing.rs`: a ray's line crossing a plane given by a point and a
+//!   normal (the plane test's and a box face's): the quotient, its error
+//!   bound, and the crossing over an interval.
 //! - `slab.rs`: the box tests' per-ray part, the directed reciprocals.
 //! - `shear.rs`: the watertight triangle test's per-ray part, the axis
 //!   permutation and shear.
 //! - `prepared.rs`: [`PreparedRay`], both parts once per ray, and the one
 //!   encoding of an invalid ray.
 
+mod crossing;
 mod interval;
 mod prepared;
 mod shear;
@@ -18,7 +23,9 @@ use glam::Vec3;
 
 use crate::num::{L, Lanes, S, Scalar, Vector};
 
+pub(crate) use crossing::{crossing_in, t_error};
 pub use interval::Interval;
+pub(crate) use interval::{bring_into, decide};
 pub use prepared::PreparedRay;
 pub(crate) use shear::{Shear, largest_axis};
 pub(crate) use slab::SlabRay;

@@ -30,21 +30,9 @@ use super::definition::{EdgeRule, hit_at, inside};
 use super::frame::Frame;
 use super::{Triangle, TriangleHit};
 use crate::num::exact_sign::PlaneCrossing;
-use crate::num::round::min2;
 use crate::num::{S, Scalar, Vector};
-use crate::ray::{Interval, PreparedRay, Ray, Shear};
+use crate::ray::{Interval, PreparedRay, Ray, Shear, bring_into, decide};
 use core::cmp::Ordering;
-
-/// Where a distance lies against one end of an interval.
-#[derive(Clone, Copy, PartialEq, Eq)]
-enum Place {
-    /// Surely on the near side of the filter's band.
-    Below,
-    /// Surely on the far side.
-    Above,
-    /// Within the band: the exact signs decide.
-    Unknown,
-}
 
 /// The watertight test with the exact interval decision, for a valid ray
 /// (origin, direction, shear) and any interval.
@@ -74,7 +62,7 @@ fn watertight_in<V: Vector>(
     let plain = t_scaled * inv_det;
     // The largest distance a hit can report: `t <= MAX` as in the plain
     // test (a crossing beyond it has no finite `t`).
-    let (lo, hi) = (interval.min(), min2(interval.max(), S::<V>::MAX));
+    let (lo, hi) = interval.ends();
     let bounds = ErrorBounds::new(&f, &z, shear);
     let t = match HitCondition::new(&bounds, det) {
         // The exact determinant has the computed one's sign, so `d . n` is
@@ -118,9 +106,7 @@ fn watertight_in<V: Vector>(
     // `t*` is in `(lo, hi]`; the reported `t` is brought into it too (which
     // only moves it towards `t*`, so its error bound still holds; and, with
     // `hi <= MAX`, makes it finite, as on the other paths to `hit_at`).
-    let t = if t > lo { t } else { lo.next_up() };
-    let t = min2(t, hi);
-    hit_at(t, [e1, e2], det, inv_det, shear)
+    hit_at(bring_into(t, lo, hi), [e1, e2], det, inv_det, shear)
 }
 
 /// [`watertight_in`] for a plain ray (its shear computed here), or `None`
@@ -153,68 +139,6 @@ fn crossing<V: Vector>(origin: V, dir: V, tri: &Triangle<V>) -> PlaneCrossing {
     // `f64` inputs are scaled; `f32` ones are in range as they are.
     let wide = S::<V>::UNIT_ROUNDOFF.to_f64() < 1e-10;
     PlaneCrossing::new(w(origin), w(dir), w(tri.a), w(tri.b), w(tri.c), wide)
-}
-
-/// Whether `t*` is in `(lo, hi]`, given `t` within `err` of it, and the
-/// exact signs where the band leaves it open; `None` where the exact signs
-/// overflow (outside their documented range).
-#[inline(always)]
-fn decide<F: Scalar>(
-    t: F,
-    err: F,
-    lo: F,
-    hi: F,
-    exact: impl FnOnce() -> PlaneCrossing,
-) -> Option<bool> {
-    use crate::num::round::outward::{add_up, sub_down};
-    // (NaN `t` or `err` leaves both ends to the exact signs.)
-    let low = if sub_down(t, err) > lo {
-        Place::Above
-    } else if add_up(t, err) <= lo {
-        Place::Below
-    } else {
-        Place::Unknown
-    };
-    if low == Place::Below {
-        return Some(false);
-    }
-    let high = if add_up(t, err) <= hi {
-        Place::Below
-    } else if sub_down(t, err) > hi {
-        Place::Above
-    } else {
-        Place::Unknown
-    };
-    if high == Place::Above {
-        return Some(false);
-    }
-    if low == Place::Above && high == Place::Below {
-        return Some(true);
-    }
-    exact_decide(low, high, lo, hi, exact())
-}
-
-/// The exact half of [`decide`], out of line.
-#[cold]
-#[inline(never)]
-fn exact_decide<F: Scalar>(
-    low: Place,
-    high: Place,
-    lo: F,
-    hi: F,
-    exact: PlaneCrossing,
-) -> Option<bool> {
-    let den = exact.den_sign()?;
-    if den == Ordering::Equal {
-        return Some(false);
-    }
-    // t* > lo  <=>  (A . n - lo D) has the sign of D.
-    let above_lo = low == Place::Above || exact.num_minus_t_den_sign(lo.to_f64())? == den;
-    if !above_lo {
-        return Some(false);
-    }
-    // t* <= hi  <=>  (A . n - hi D) is zero or has the sign opposite to D's.
-    Some(high == Place::Below || exact.num_minus_t_den_sign(hi.to_f64())? != den)
 }
 
 /// The watertight ray/triangle test over an interval: a hit where the ray
