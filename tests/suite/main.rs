@@ -18,6 +18,7 @@ mod fuzz_regressions;
 mod instance_meshes;
 mod instances;
 mod interval_sequences;
+mod interval_shapes;
 mod intervals;
 mod oracle;
 mod properties;

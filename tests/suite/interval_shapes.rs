@@ -50,7 +50,7 @@
 //! about half an hour, estimated from the default run's times, not timed:
 //!
 //! ```sh
-//! cargo test --release --test interval_shapes -- --ignored --nocapture
+//! cargo test --release --test suite interval_shapes:: -- --ignored --nocapture
 //! ```
 
 use rayhit::exact::num_traits::Signed;
