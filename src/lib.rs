@@ -355,10 +355,13 @@
 //! - **Batches** ([`ray_aabb_batch`], [`ray_triangle_batch`],
 //!   [`ray_triangle_prepared`]). Bit for bit the answers of
 //!   [`ray_aabb_prepared`] and [`ray_triangle`] on each lane's shape, so
-//!   every guarantee above holds per lane.
-//! - **Compressed wide nodes** ([`ray_quantized_children`]). Every child
-//!   box is decoded rounded outward, so that it contains the exact
-//!   quantized box, and tested as [`ray_aabb_batch`] tests it: no false
+//!   every guarantee above holds per lane; over an interval,
+//!   [`ray_aabb_batch_in`] is [`ray_aabb_prepared_in`] on each lane's box,
+//!   bit for bit.
+//! - **Compressed wide nodes** ([`ray_quantized_children`],
+//!   [`ray_quantized_children_in`]). Every child box is decoded rounded
+//!   outward, so that it contains the exact quantized box, and tested as
+//!   [`ray_aabb_batch`] (or [`ray_aabb_batch_in`]) tests it: no false
 //!   miss against exact arithmetic on the quantized boxes.
 //! - **Plane** ([`ray_plane`]). `t` within [`ray_plane_t_error`], always
 //!   finite for a reported hit; rays within rounding of parallel (the sign
@@ -499,8 +502,9 @@ mod testing;
 
 pub use aabb::{
     Aabb, AabbBatch, AabbBatchHits, BoxFace, BoxHit, SlabBox, ValidAabb, aabb_entry_face, ray_aabb,
-    ray_aabb_batch, ray_aabb_face, ray_aabb_face_in, ray_aabb_in, ray_aabb_naive,
-    ray_aabb_prepared, ray_aabb_prepared_face, ray_aabb_prepared_face_in, ray_aabb_prepared_in,
+    ray_aabb_batch, ray_aabb_batch_in, ray_aabb_face, ray_aabb_face_in, ray_aabb_in,
+    ray_aabb_naive, ray_aabb_prepared, ray_aabb_prepared_face, ray_aabb_prepared_face_in,
+    ray_aabb_prepared_in,
 };
 pub use camera::{
     CameraError, ClipSpace, Columns, EqualAreaCamera, EquirectangularCamera, FocusPoint,
@@ -511,7 +515,9 @@ pub use camera::{
 pub use instance::{Instance, InstanceError, InstanceRayError};
 pub use num::{Scalar, Vector};
 pub use plane::{Plane, ray_plane, ray_plane_hit_point, ray_plane_in, ray_plane_t_error};
-pub use quantized::{QuantizedChildren, quantize_bounds, ray_quantized_children};
+pub use quantized::{
+    QuantizedChildren, quantize_bounds, ray_quantized_children, ray_quantized_children_in,
+};
 pub use ray::{Interval, PreparedRay, Ray};
 pub use simd::TargetSimd;
 #[cfg(rayhit_runtime_avx)]
@@ -597,15 +603,15 @@ pub mod prelude {
         PreparedRay, QuantizedChildren, Ray, RayCone, RayDifferential, Scalar, Side, Simd,
         SimdWork, SlabBox, SurfacePoint, TargetSimd, ThinLensCamera, Triangle, TriangleBatch,
         TriangleBatchHits, TriangleHit, TriangleHitError, ValidAabb, Vector, aabb_entry_face,
-        offset_ray_origin, quantize_bounds, ray_aabb, ray_aabb_batch, ray_aabb_face,
-        ray_aabb_face_in, ray_aabb_in, ray_aabb_naive, ray_aabb_prepared, ray_aabb_prepared_face,
-        ray_aabb_prepared_face_in, ray_aabb_prepared_in, ray_plane, ray_plane_hit_point,
-        ray_plane_in, ray_plane_t_error, ray_quantized_children, ray_triangle, ray_triangle_batch,
-        ray_triangle_error_bounds, ray_triangle_in, ray_triangle_mt, ray_triangle_occluded,
-        ray_triangle_one_hit, ray_triangle_one_hit_in, ray_triangle_prepared,
-        ray_triangle_prepared_in, ray_triangle_prepared_occluded, triangle_cone_width,
-        triangle_hit_differentials, triangle_hit_differentials_error, triangle_hit_point,
-        with_simd,
+        offset_ray_origin, quantize_bounds, ray_aabb, ray_aabb_batch, ray_aabb_batch_in,
+        ray_aabb_face, ray_aabb_face_in, ray_aabb_in, ray_aabb_naive, ray_aabb_prepared,
+        ray_aabb_prepared_face, ray_aabb_prepared_face_in, ray_aabb_prepared_in, ray_plane,
+        ray_plane_hit_point, ray_plane_in, ray_plane_t_error, ray_quantized_children,
+        ray_quantized_children_in, ray_triangle, ray_triangle_batch, ray_triangle_error_bounds,
+        ray_triangle_in, ray_triangle_mt, ray_triangle_occluded, ray_triangle_one_hit,
+        ray_triangle_one_hit_in, ray_triangle_prepared, ray_triangle_prepared_in,
+        ray_triangle_prepared_occluded, triangle_cone_width, triangle_hit_differentials,
+        triangle_hit_differentials_error, triangle_hit_point, with_simd,
     };
     #[cfg(rayhit_runtime_avx)]
     pub use crate::{Avx2, Avx512};

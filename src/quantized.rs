@@ -6,9 +6,9 @@ use core::marker::PhantomData;
 
 use glam::Vec3;
 
-use crate::aabb::{Aabb, AabbBatch, AabbBatchHits, Slab8};
+use crate::aabb::{Aabb, AabbBatch, AabbBatchHits, Slab8, slab_ends};
 use crate::num::{Lanes8, Vector};
-use crate::ray::{PreparedRay, t_max_ok};
+use crate::ray::{Interval, PreparedRay, t_max_ok};
 use crate::simd::{Isa, Kernel, per_call};
 
 /// The eight child boxes of a compressed wide BVH node, read in place:
@@ -259,7 +259,42 @@ pub fn ray_quantized_children<V: Vector<Scalar = f32>>(
     node: &QuantizedChildren<'_, V>,
     t_max: f32,
 ) -> AabbBatchHits<f32, 8> {
-    per_call::<QuantizedKernel<'_, V>>(ray, node, t_max)
+    per_call::<QuantizedKernel<'_, V>>(ray, node, (0.0, t_max))
+}
+
+/// [`ray_quantized_children`] over an interval: each child's box, decoded
+/// and widened as there, culled against `(t_min, t_max]` as
+/// [`ray_aabb_batch_in`](crate::ray_aabb_batch_in) culls it: lane by lane,
+/// bit for bit what [`ray_aabb_prepared_in`](crate::ray_aabb_prepared_in)
+/// gives for [`child_box`](QuantizedChildren::child_box), so never a false
+/// miss of a child whose box the exact ray crosses within the interval.
+/// With `interval = (0, t_max]`, the answer of [`ray_quantized_children`],
+/// bit for bit.
+///
+/// ```
+/// use rayhit::{Interval, PreparedRay, QuantizedChildren, Ray, ray_quantized_children_in, glam::Vec3};
+/// let (lo, hi) = ([0, 4, 0, 0, 0, 0, 0, 0], [4, 8, 0, 0, 0, 0, 0, 0]);
+/// let node = QuantizedChildren {
+///     origin: Vec3::ZERO,
+///     exponents: [127; 3], // step 1
+///     min: [&lo, &lo, &lo],
+///     max: [&hi, &hi, &hi],
+/// };
+/// // Along the diagonal from (-1, -1, -1): child 0 ([0, 4]^3) is left at
+/// // t = 5, child 1 ([4, 8]^3) entered there. Past t = 6, only child 1.
+/// let ray = PreparedRay::new(&Ray::new(Vec3::splat(-1.0), Vec3::ONE));
+/// let hits = ray_quantized_children_in(&ray, &node, Interval::new(6.0, f32::INFINITY).unwrap());
+/// assert_eq!(hits.mask & 0b11, 0b10);
+/// assert_eq!(hits.enter[1], 6.0);
+/// ```
+#[inline]
+#[must_use]
+pub fn ray_quantized_children_in<V: Vector<Scalar = f32>>(
+    ray: &PreparedRay<V>,
+    node: &QuantizedChildren<'_, V>,
+    interval: Interval<f32>,
+) -> AabbBatchHits<f32, 8> {
+    per_call::<QuantizedKernel<'_, V>>(ray, node, slab_ends(interval))
 }
 
 /// [`ray_quantized_children`] as a kernel, for any instruction set (see
@@ -269,7 +304,8 @@ pub(crate) struct QuantizedKernel<'n, V>(PhantomData<&'n V>);
 impl<'n, V: Vector<Scalar = f32>> Kernel for QuantizedKernel<'n, V> {
     type Ray = PreparedRay<V>;
     type Shapes = QuantizedChildren<'n, V>;
-    type Limit = f32;
+    /// `(t_min, t_max)`, as the box batch's.
+    type Limit = (f32, f32);
     type Output = AabbBatchHits<f32, 8>;
 
     #[inline(always)]
@@ -277,9 +313,9 @@ impl<'n, V: Vector<Scalar = f32>> Kernel for QuantizedKernel<'n, V> {
         _: I,
         ray: &PreparedRay<V>,
         node: &QuantizedChildren<'n, V>,
-        t_max: f32,
+        ends: (f32, f32),
     ) -> Self::Output {
-        quantized_body::<I::W<f32>, V>(ray, node, t_max)
+        quantized_body::<I::W<f32>, V>(ray, node, ends)
     }
 }
 
@@ -303,16 +339,16 @@ fn decode<W: Lanes8<F = f32>, V: Vector<Scalar = f32>>(
 fn quantized_body<W: Lanes8<F = f32>, V: Vector<Scalar = f32>>(
     ray: &PreparedRay<V>,
     node: &QuantizedChildren<'_, V>,
-    t_max: f32,
+    ends: (f32, f32),
 ) -> AabbBatchHits<f32, 8> {
     let mut enter = [f32::INFINITY; 8];
-    if !(t_max_ok(t_max) && node.is_valid()) {
+    if !(t_max_ok(ends.1) && node.is_valid()) {
         return AabbBatchHits { mask: 0, enter };
     }
     let (x0, x1, ox) = decode::<W, V>(node, 0);
     let (y0, y1, oy) = decode::<W, V>(node, 1);
     let (z0, z1, oz) = decode::<W, V>(node, 2);
-    let slab = Slab8::<W>::new(ray, t_max);
+    let slab = Slab8::<W>::new(ray, ends);
     let (hit, e) = slab.test([x0, y0, z0], [x1, y1, z1]);
     let hit = W::and(hit, W::and(ox, W::and(oy, oz)));
     W::select(hit, e, W::splat(f32::INFINITY)).store(&mut enter);

@@ -4,10 +4,10 @@
 //! themselves, their tokens and the dispatch are `crate::simd`'s; every
 //! batch kernel is a kernel body there, and a method here.
 
-use crate::aabb::{AabbBatch, AabbBatchHits, AabbBatchKernel};
-use crate::num::{S, Vector};
+use crate::aabb::{AabbBatch, AabbBatchHits, AabbBatchKernel, slab_ends};
+use crate::num::{S, Scalar, Vector};
 use crate::quantized::{QuantizedChildren, QuantizedKernel};
-use crate::ray::PreparedRay;
+use crate::ray::{Interval, PreparedRay};
 #[cfg(rayhit_runtime_avx)]
 use crate::simd::Work;
 use crate::simd::{Isa, TargetSimd};
@@ -46,7 +46,20 @@ pub trait Simd: Copy + core::fmt::Debug + Isa {
         batch: &AabbBatch<V, N>,
         t_max: S<V>,
     ) -> AabbBatchHits<S<V>, N> {
-        self.kernel::<AabbBatchKernel<V, N>>(ray, batch, t_max)
+        self.kernel::<AabbBatchKernel<V, N>>(ray, batch, (S::<V>::ZERO, t_max))
+    }
+
+    /// [`ray_aabb_batch_in`](crate::ray_aabb_batch_in), compiled for this
+    /// instruction set.
+    #[inline(always)]
+    #[must_use]
+    fn ray_aabb_batch_in<V: Vector, const N: usize>(
+        self,
+        ray: &PreparedRay<V>,
+        batch: &AabbBatch<V, N>,
+        interval: Interval<S<V>>,
+    ) -> AabbBatchHits<S<V>, N> {
+        self.kernel::<AabbBatchKernel<V, N>>(ray, batch, slab_ends(interval))
     }
 
     /// [`ray_triangle_batch`](crate::ray_triangle_batch), compiled for this
@@ -72,7 +85,20 @@ pub trait Simd: Copy + core::fmt::Debug + Isa {
         node: &QuantizedChildren<'_, V>,
         t_max: f32,
     ) -> AabbBatchHits<f32, 8> {
-        self.kernel::<QuantizedKernel<'_, V>>(ray, node, t_max)
+        self.kernel::<QuantizedKernel<'_, V>>(ray, node, (0.0, t_max))
+    }
+
+    /// [`ray_quantized_children_in`](crate::ray_quantized_children_in),
+    /// compiled for this instruction set.
+    #[inline(always)]
+    #[must_use]
+    fn ray_quantized_children_in<V: Vector<Scalar = f32>>(
+        self,
+        ray: &PreparedRay<V>,
+        node: &QuantizedChildren<'_, V>,
+        interval: Interval<f32>,
+    ) -> AabbBatchHits<f32, 8> {
+        self.kernel::<QuantizedKernel<'_, V>>(ray, node, slab_ends(interval))
     }
 }
 

@@ -1,7 +1,9 @@
 //! The batch kernels against the scalar ones, bit for bit.
 //!
 //! `ray_aabb_batch` must give, in every lane, the hit or miss and the entry
-//! `t` of `ray_aabb_prepared` on that lane's box; `ray_triangle_batch` the
+//! `t` of `ray_aabb_prepared` on that lane's box (and `ray_aabb_batch_in`
+//! those of `ray_aabb_prepared_in`, over intervals whose lower end lies
+//! before, at and within the lanes' boxes); `ray_triangle_batch` the
 //! hit or miss, `t`, `u`, `v` and side of `ray_triangle` on that lane's
 //! triangle; and `ray_triangle_prepared` exactly `ray_triangle`. Since the
 //! scalar kernels are held to the exact oracle elsewhere (`properties`,
@@ -18,8 +20,9 @@ use proptest::prelude::*;
 use rayhit::glam::{DVec3, Vec3};
 use rayhit::strategies as strat;
 use rayhit::{
-    Aabb, AabbBatch, PreparedRay, Ray, Scalar, Triangle, TriangleBatch, TriangleHit, Vector,
-    ray_aabb_batch, ray_aabb_prepared, ray_triangle, ray_triangle_batch, ray_triangle_prepared,
+    Aabb, AabbBatch, Interval, PreparedRay, Ray, Scalar, Triangle, TriangleBatch, TriangleHit,
+    Vector, ray_aabb_batch, ray_aabb_batch_in, ray_aabb_prepared, ray_aabb_prepared_in,
+    ray_triangle, ray_triangle_batch, ray_triangle_prepared,
 };
 use rayhit_testkit::bits::{bits, hit_bits};
 use rayhit_testkit::source::Source;
@@ -71,6 +74,38 @@ fn check_boxes<V: Vector, const N: usize>(
     }
     if hits.mask & !batch.mask() != 0 {
         return Err(format!("mask {:b} outside the used lanes", hits.mask));
+    }
+    // Over intervals: lower ends at zero (both signs), at and just past the
+    // first box's entry and exit, and halfway to `t_max`.
+    let mut lower = vec![S::<V>::ZERO, -S::<V>::ZERO, t_max * S::<V>::HALF];
+    if let Some(Some(b)) = boxes.first()
+        && let Some((enter, exit)) = ray_aabb_prepared(&prepared, b, t_max)
+    {
+        lower.extend([enter, enter.next_up(), exit, exit.next_down()]);
+    }
+    for lo in lower {
+        let Some(interval) = Interval::new(lo, t_max) else {
+            continue;
+        };
+        let hits = ray_aabb_batch_in(&prepared, &batch, interval);
+        for lane in 0..N {
+            let expected = match boxes.get(lane) {
+                Some(Some(b)) => {
+                    ray_aabb_prepared_in(&prepared, b, interval).map(|(enter, _)| enter)
+                }
+                _ => None,
+            };
+            let got = hits.get(lane);
+            if got.map(bits) != expected.map(bits)
+                || (got.is_none() && bits(hits.enter[lane]) != bits(S::<V>::INFINITY))
+            {
+                return Err(format!(
+                    "lane {lane} of {N} over {interval:?}: batch {got:?} (enter {:?}), scalar {expected:?}; ray {ray:?}, box {:?}",
+                    hits.enter[lane],
+                    boxes.get(lane)
+                ));
+            }
+        }
     }
     Ok(())
 }

@@ -12,8 +12,9 @@
 use num_traits::{One, Signed, Zero};
 use rayhit::glam::Vec3;
 use rayhit::{
-    AabbBatchHits, PreparedRay, QuantizedChildren, Ray, Simd, SimdWork, TargetSimd,
-    quantize_bounds, ray_aabb_batch, ray_quantized_children, with_simd,
+    AabbBatchHits, Interval, PreparedRay, QuantizedChildren, Ray, Simd, SimdWork, TargetSimd,
+    quantize_bounds, ray_aabb_batch, ray_aabb_batch_in, ray_quantized_children,
+    ray_quantized_children_in, with_simd,
 };
 use rayhit_testkit::oracle;
 use rayhit_testkit::oracle::{R, r};
@@ -157,7 +158,7 @@ impl SimdWork for ViaWithSimd<'_> {
 #[test]
 fn node_test_is_the_box_batch_on_the_decoded_boxes() {
     let mut rng = Source::seeded(12);
-    let mut hits = 0;
+    let (mut hits, mut interval_hits) = (0, 0);
     for i in 0..20_000 {
         let node = Node::random(&mut rng);
         let view = node.view();
@@ -196,9 +197,29 @@ fn node_test_is_the_box_batch_on_the_decoded_boxes() {
                 }
             }
             hits += expected.mask.count_ones();
+            // Over intervals starting at zero, at the nearest child's
+            // entry and just past it, and halfway to `t_max`.
+            let nearest = expected.enter.iter().copied().fold(f32::INFINITY, f32::min);
+            for lo in [0.0, nearest, nearest.next_up(), t_max * 0.5] {
+                let Some(interval) = Interval::new(lo, t_max) else {
+                    continue;
+                };
+                let expected = ray_aabb_batch_in(&ray, &boxes, interval);
+                for got in [
+                    ray_quantized_children_in(&ray, &view, interval),
+                    TargetSimd.ray_quantized_children_in(&ray, &view, interval),
+                ] {
+                    assert_eq!(got.mask, expected.mask, "{ray:?} {interval:?}");
+                    for l in 0..8 {
+                        assert_eq!(got.enter[l].to_bits(), expected.enter[l].to_bits());
+                    }
+                }
+                interval_hits += expected.mask.count_ones();
+            }
         }
     }
     assert!(hits > 20_000, "{hits}");
+    assert!(interval_hits > 20_000, "{interval_hits}");
 }
 
 /// The exact interval of `t >= 0` in which the ray is inside an exact box,

@@ -11,7 +11,7 @@ use glam::Vec3;
 use super::Aabb;
 use super::definition::{exit_slack, exit_widening};
 use crate::num::{Lanes, Lanes8, S, Scalar, Vector};
-use crate::ray::{PreparedRay, t_max_ok};
+use crate::ray::{Interval, PreparedRay, t_max_ok};
 use crate::simd::{Isa, Kernel, check_lanes, lanes_at, per_call, put};
 
 /// One axis of the slab test's NaN-safe fold (see
@@ -28,7 +28,8 @@ pub(crate) struct Slab8<W: Lanes8> {
     origin: [W; 3],
     inv_to_min: [W; 3],
     inv_to_max: [W; 3],
-    /// `0` and `t_max` in every lane.
+    /// `t_min` (zero but for the interval forms) and `t_max` in every
+    /// lane.
     lo: W,
     hi: W,
     simple: bool,
@@ -39,7 +40,10 @@ where
     W::F: Scalar,
 {
     #[inline(always)]
-    pub(crate) fn new<V: Vector<Scalar = W::F>>(ray: &PreparedRay<V>, t_max: W::F) -> Self {
+    pub(crate) fn new<V: Vector<Scalar = W::F>>(
+        ray: &PreparedRay<V>,
+        (t_min, t_max): (W::F, W::F),
+    ) -> Self {
         let [ox, oy, oz] = ray.slab.origin.to_array();
         let [ax, ay, az] = ray.slab.inv_to_min.to_array();
         let [bx, by, bz] = ray.slab.inv_to_max.to_array();
@@ -47,15 +51,18 @@ where
             origin: [W::splat(ox), W::splat(oy), W::splat(oz)],
             inv_to_min: [W::splat(ax), W::splat(ay), W::splat(az)],
             inv_to_max: [W::splat(bx), W::splat(by), W::splat(bz)],
-            lo: W::splat(W::F::ZERO),
+            lo: W::splat(t_min),
             hi: W::splat(t_max),
             simple: ray.simple,
         }
     }
 
-    /// The slab test of eight valid boxes (for `t_max >= 0`): the lanes
-    /// hit, and the entry `t` of each (`+inf` where not hit), bit for bit
-    /// what [`ray_aabb_prepared`](crate::ray_aabb_prepared) gives for each.
+    /// The slab test of eight valid boxes (for `0 <= t_min <= t_max`,
+    /// `t_min` not `-0`): the lanes hit, and the entry `t` of each (`+inf`
+    /// where not hit), bit for bit what
+    /// [`ray_aabb_prepared_in`](crate::ray_aabb_prepared_in) gives for each
+    /// (and so [`ray_aabb_prepared`](crate::ray_aabb_prepared) for `t_min =
+    /// 0`).
     ///
     /// For rays whose reciprocals are all normal (every component
     /// nonzero), the per-axis folds simplify. Every reciprocal is then
@@ -65,8 +72,9 @@ where
     /// `min(max(t0, 0), max(t1, 0))`, is `max(min(t0, t1), 0)`, and the exit,
     /// `max(min(t0, t_max), min(t1, t_max))`, is `min(max(t0, t1), t_max)`
     /// (max and min commute with the clamps for values that are not NaN).
-    /// The largest entry is taken before the clamp at 0 rather than after:
-    /// the same value, and `+0`, never `-0`, when it is 0; a `-0`/`+0` tie
+    /// The largest entry is taken before the clamp at `t_min` rather than
+    /// after: the same value, and `+0`, never `-0`, when it is 0 (`t_min`
+    /// is never `-0`); a `-0`/`+0` tie
     /// among the exits widens to the same limit. So the answers are the
     /// definition's, bit for bit.
     #[inline(always)]
@@ -294,7 +302,47 @@ pub fn ray_aabb_batch<V: Vector, const N: usize>(
     batch: &AabbBatch<V, N>,
     t_max: S<V>,
 ) -> AabbBatchHits<S<V>, N> {
-    per_call::<AabbBatchKernel<V, N>>(ray, batch, t_max)
+    per_call::<AabbBatchKernel<V, N>>(ray, batch, (S::<V>::ZERO, t_max))
+}
+
+/// [`ray_aabb_batch`] over an interval: lane by lane, bit for bit what
+/// [`ray_aabb_prepared_in`](crate::ray_aabb_prepared_in) returns for that
+/// box (hit or miss, and the entry `t`), so its guarantees hold per lane:
+/// conservative culling against `(t_min, t_max]`, never a false miss when
+/// the exact segment inside the closed box meets the interval, and
+/// `t_min <= enter <= t_max`. With `interval = (0, t_max]`, the answer of
+/// [`ray_aabb_batch`], bit for bit.
+///
+/// For traversal past a hit already found (every hit along a ray in
+/// order, or the next window of a shadow ray): the children that end
+/// before `t_min` are culled.
+///
+/// ```
+/// use rayhit::{Aabb, AabbBatch, Interval, PreparedRay, Ray, ray_aabb_batch_in, ray_aabb_prepared_in, glam::Vec3};
+/// let boxes: Vec<Aabb> = (0..4)
+///     .map(|i| {
+///         let z = 2.0 * i as f32;
+///         Aabb::new(Vec3::new(-1.0, -1.0, z), Vec3::new(1.0, 1.0, z + 1.0))
+///     })
+///     .collect();
+/// let batch = AabbBatch::<Vec3, 4>::from_slice(&boxes).unwrap();
+/// let ray = PreparedRay::new(&Ray::new(Vec3::new(0.0, 0.0, -1.0), Vec3::Z));
+/// // Past t = 3.5 (z = 2.5): box 1 (z in [2, 3]) is still being crossed,
+/// // box 0 is behind, boxes 2 and 3 are ahead.
+/// let window = Interval::new(3.5, f32::INFINITY).unwrap();
+/// let hits = ray_aabb_batch_in(&ray, &batch, window);
+/// assert_eq!(hits.mask, 0b1110);
+/// assert_eq!(hits.get(1), Some(3.5));
+/// assert_eq!(hits.get(2), ray_aabb_prepared_in(&ray, &boxes[2], window).map(|(enter, _)| enter));
+/// ```
+#[inline]
+#[must_use]
+pub fn ray_aabb_batch_in<V: Vector, const N: usize>(
+    ray: &PreparedRay<V>,
+    batch: &AabbBatch<V, N>,
+    interval: Interval<S<V>>,
+) -> AabbBatchHits<S<V>, N> {
+    per_call::<AabbBatchKernel<V, N>>(ray, batch, super::slab::ends(interval))
 }
 
 /// [`ray_aabb_batch`] as a kernel, for any instruction set (see
@@ -304,7 +352,8 @@ pub(crate) struct AabbBatchKernel<V, const N: usize>(PhantomData<V>);
 impl<V: Vector, const N: usize> Kernel for AabbBatchKernel<V, N> {
     type Ray = PreparedRay<V>;
     type Shapes = AabbBatch<V, N>;
-    type Limit = S<V>;
+    /// `(t_min, t_max)`: see [`Slab8::new`].
+    type Limit = (S<V>, S<V>);
     type Output = AabbBatchHits<S<V>, N>;
 
     #[inline(always)]
@@ -312,9 +361,9 @@ impl<V: Vector, const N: usize> Kernel for AabbBatchKernel<V, N> {
         _: I,
         ray: &PreparedRay<V>,
         batch: &AabbBatch<V, N>,
-        t_max: S<V>,
+        ends: (S<V>, S<V>),
     ) -> Self::Output {
-        aabb_batch_body::<I::W<S<V>>, V, N>(ray, batch, t_max)
+        aabb_batch_body::<I::W<S<V>>, V, N>(ray, batch, ends)
     }
 }
 
@@ -324,15 +373,15 @@ impl<V: Vector, const N: usize> Kernel for AabbBatchKernel<V, N> {
 fn aabb_batch_body<W: Lanes8<F = S<V>>, V: Vector, const N: usize>(
     ray: &PreparedRay<V>,
     batch: &AabbBatch<V, N>,
-    t_max: S<V>,
+    ends: (S<V>, S<V>),
 ) -> AabbBatchHits<S<V>, N> {
     const { check_lanes::<N>() };
     let inf = S::<V>::INFINITY;
     let mut enter = [inf; N];
-    if !t_max_ok(t_max) {
+    if !t_max_ok(ends.1) {
         return AabbBatchHits { mask: 0, enter };
     }
-    let slab = Slab8::<W>::new(ray, t_max);
+    let slab = Slab8::<W>::new(ray, ends);
     let [min, max] = &batch.planes;
     let mut mask = 0;
     for c in 0..N.div_ceil(8) {

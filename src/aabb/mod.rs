@@ -23,13 +23,14 @@ use glam::Vec3;
 
 use crate::num::{S, Scalar, Vector};
 
-pub use batch::{AabbBatch, AabbBatchHits, ray_aabb_batch};
+pub use batch::{AabbBatch, AabbBatchHits, ray_aabb_batch, ray_aabb_batch_in};
 pub(crate) use batch::{AabbBatchKernel, Slab8};
 pub use face::{
     BoxFace, BoxHit, aabb_entry_face, ray_aabb_face, ray_aabb_face_in, ray_aabb_prepared_face,
     ray_aabb_prepared_face_in,
 };
 pub use naive::ray_aabb_naive;
+pub(crate) use slab::ends as slab_ends;
 pub use slab::{ray_aabb, ray_aabb_in, ray_aabb_prepared, ray_aabb_prepared_in};
 
 /// The closed box `min <= p <= max` (component-wise).

@@ -237,7 +237,8 @@ pub fn ray_aabb_in<V: Vector>(
     aabb: &impl SlabBox<V>,
     interval: Interval<S<V>>,
 ) -> Option<(S<V>, S<V>)> {
-    slab_test(&SlabRay::new(ray).0, aabb, lower(interval), interval.max())
+    let (lo, hi) = ends(interval);
+    slab_test(&SlabRay::new(ray).0, aabb, lo, hi)
 }
 
 /// [`ray_aabb_in`] on a [`PreparedRay`]: the same answer, bit for bit,
@@ -259,7 +260,15 @@ pub fn ray_aabb_prepared_in<V: Vector>(
     aabb: &impl SlabBox<V>,
     interval: Interval<S<V>>,
 ) -> Option<(S<V>, S<V>)> {
-    slab_test(&ray.slab, aabb, lower(interval), interval.max())
+    let (lo, hi) = ends(interval);
+    slab_test(&ray.slab, aabb, lo, hi)
+}
+
+/// The ends the slab test folds against, `(lower(interval), max)`: what
+/// the batch kernels take.
+#[inline(always)]
+pub(crate) fn ends<F: Scalar>(interval: Interval<F>) -> (F, F) {
+    (lower(interval), interval.max())
 }
 
 /// The interval's lower end with `-0.0` made `+0.0` (an interval may
