@@ -373,6 +373,15 @@
 //!   [`ray_plane_hit_point`]); a ray spawned from it in a direction not
 //!   within rounding of tangent (the sign of `dir . normal` known despite
 //!   its rounding and the normal's error) does not hit that surface again.
+//! - **Shadow segments** ([`SurfacePoint::spawn_to`],
+//!   [`SurfacePoint::spawn_to_point`]). A ray and the interval `(0, 1]`
+//!   from one surface point to another (or to a point light): the exact
+//!   segment crosses the start surface's plane at `t < 0` and the
+//!   target's at `t > 1`, checked, not assumed (`None` where it cannot be
+//!   shown: within rounding of tangent, coincident ends, no usable
+//!   normal); every plane with the two points on opposite sides, farther
+//!   from it than the ends' moves (about their error bounds), is crossed
+//!   inside the interval.
 //! - **Camera** ([`PinholeCamera`]). Unit directions within `gamma(6)`; the
 //!   centre pixel of an odd-sized image looks along the view direction to a
 //!   few ulps; agrees with glam's view and projection matrices.

@@ -1,11 +1,13 @@
-//! Leaving a surface: a hit point with its error bounds ([`SurfacePoint`])
-//! and the offset origin of a ray that cannot hit that surface again
-//! ([`offset_ray_origin`]).
+//! Leaving a surface: a hit point with its error bounds ([`SurfacePoint`]),
+//! the offset origin of a ray that cannot hit that surface again
+//! ([`offset_ray_origin`]), and the segment between two surface points, or
+//! from one to a point light, that hits neither end
+//! ([`SurfacePoint::spawn_to`], [`SurfacePoint::spawn_to_point`]).
 
 use glam::Vec3;
 
 use crate::num::{S, Scalar, Vector};
-use crate::ray::Ray;
+use crate::ray::{Interval, Ray};
 
 /// Moves a point computed on a surface to where a ray leaving it along `dir`
 /// cannot meet that surface again: the origin for a shadow or bounce ray.
@@ -68,14 +70,40 @@ pub fn offset_ray_origin<V: Vector>(
     normal_error: V,
     dir: V,
 ) -> V {
+    if !dir.is_finite() {
+        return point;
+    }
+    offset_to_side(point, point_error, normal, normal_error, side(dir, normal)).unwrap_or(point)
+}
+
+/// The side [`offset_ray_origin`] moves to for `dir`: the sign of the
+/// computed `dir . normal`, `+1` where it is zero.
+#[inline(always)]
+fn side<V: Vector>(dir: V, normal: V) -> S<V> {
+    if dir.dot(normal) < S::<V>::ZERO {
+        -S::<V>::ONE
+    } else {
+        S::<V>::ONE
+    }
+}
+
+/// [`offset_ray_origin`] to a given side (`+1` or `-1` times `normal`), or
+/// `None` where it returns the point unmoved (non-finite input, a normal
+/// not known well enough).
+fn offset_to_side<V: Vector>(
+    point: V,
+    point_error: V,
+    normal: V,
+    normal_error: V,
+    side: S<V>,
+) -> Option<V> {
     use crate::num::round::outward::{add_down, add_up, div_up, mul_down, mul_up, sub_down};
     let all_finite = point.is_finite()
         && point_error.is_finite()
         && normal.is_finite()
-        && normal_error.is_finite()
-        && dir.is_finite();
+        && normal_error.is_finite();
     if !all_finite {
-        return point;
+        return None;
     }
     let zero = S::<V>::ZERO;
     let (n, eta) = (normal.abs(), normal_error.abs());
@@ -92,14 +120,9 @@ pub fn offset_ray_origin<V: Vector>(
     }
     let denom = sub_down(n2, mul_up(add_up(S::<V>::ONE, four_u), cross));
     if !(denom > zero) {
-        return point;
+        return None;
     }
     let lambda = div_up(add_up(a, slack), denom);
-    let side = if dir.dot(normal) < zero {
-        -S::<V>::ONE
-    } else {
-        S::<V>::ONE
-    };
     let step = lambda * side;
     let moved = |i: usize| {
         let off = step * normal[i];
@@ -113,7 +136,7 @@ pub fn offset_ray_origin<V: Vector>(
             point[i]
         }
     };
-    V::new(moved(0), moved(1), moved(2))
+    Some(V::new(moved(0), moved(1), moved(2)))
 }
 
 /// A point on a surface with the error bounds needed to leave it safely:
@@ -243,4 +266,278 @@ impl<V: Vector> SurfacePoint<V> {
         );
         Ray::new(origin, dir)
     }
+
+    /// The shadow-ray segment from this surface point to `target`, a point
+    /// on another surface (an area light's sample, or a vertex of another
+    /// path): a ray and the interval `(0, 1]` that hits neither end's
+    /// surface and finds every occluder in between that is farther than the
+    /// ends' error bounds from them, with no epsilon. Trace it with the
+    /// interval forms ([`ray_triangle_occluded`](crate::ray_triangle_occluded),
+    /// [`ray_plane_in`](crate::ray_plane_in),
+    /// [`ray_aabb_face_in`](crate::ray_aabb_face_in)).
+    ///
+    /// pbrt-v4's `SpawnRayTo` offsets both ends with `OffsetRayOrigin` and
+    /// still stops at `1 - ShadowEpsilon`; here the end's offset also covers
+    /// the rounding of the direction, and both ends are proved clear.
+    ///
+    /// The ray is `origin + t dir` with `origin` this point moved off its
+    /// surface towards the target ([`offset_ray_origin`], the side of
+    /// `(target.point - self.point) . self.normal`), and `dir = end -
+    /// origin` rounded, where `end` is the target moved off its surface
+    /// towards the origin by its error bound plus a bound on that rounding.
+    /// The segment's exact end is `origin + 1 dir`, a few ulps from `end`.
+    ///
+    /// # Guarantees (when `Some`)
+    ///
+    /// Write `P` and `Q` for the exact planes of the two surfaces (through
+    /// the exact points `self.point` and `target.point` stand for, normals
+    /// within `normal_error` of `normal`), as [`spawn`](Self::spawn) does.
+    ///
+    /// 1. **Neither end is hit.** The exact ray's crossing with `P` is at
+    ///    `t < 0` (it moves away from `P` from a start strictly on one
+    ///    side), and its crossing with `Q` at `t > 1` (it moves towards `Q`
+    ///    and its exact end is still strictly on the origin's side). The
+    ///    interval forms decide `0 < t* <= 1` exactly, so they report
+    ///    neither surface. With the plain triangle and plane kernels
+    ///    (`ray_triangle(&ray, tri, 1.0)`) the start surface is not
+    ///    reported either, for any `t_max` (as for [`spawn`](Self::spawn)),
+    ///    but the target surface can be: they compare a rounded `t` with
+    ///    `t_max`, and `t*` may be above `1` by less than the kernel's
+    ///    error bound. With plain kernels, skip the target's own
+    ///    primitive.
+    /// 2. **Occluders are found.** Let `B_o = |origin - self.point|` and
+    ///    `B_e = |origin + dir - target.point|` (exact, Euclidean): the
+    ///    moves of the two ends. Each point `origin + t dir` of the
+    ///    segment is within `(1 - t) B_o + t B_e` of `p + t (q - p)` on the
+    ///    segment between the points as given. So a plane with `p` and
+    ///    `q` strictly on opposite sides, `p` farther than `B_o` from it
+    ///    and `q` farther than `B_e`, is crossed at an exact `0 < t* < 1`
+    ///    and reported. A triangle in such a plane is reported where
+    ///    `[p, q]` crosses it farther than `B (1 + |q - p| / (h_p + h_q -
+    ///    B_o - B_e))` from its edges, with `B = max(B_o, B_e)` and `h_p`,
+    ///    `h_q` the ends' distances from the plane (the crossing moves by at
+    ///    most that). Against the exact surface points, add their error
+    ///    bounds to `B_o` and `B_e`.
+    ///
+    /// The moves are about the error bounds: `B_o` is the offset of
+    /// [`offset_ray_origin`], `lambda |normal|` plus two ulps per
+    /// component (for an exact normal, `lambda |normal| <= |point_error|`;
+    /// a computed normal adds its relative error), and `B_e` the same for
+    /// the target with its error widened by `r` below, plus the rounding
+    /// of `dir`, at most `u |end - origin|` per component: in all a few
+    /// ulps of the points' coordinates and of the segment's length.
+    ///
+    /// # Derivation
+    ///
+    /// The end: let `e` be the target's error bound, `n` and `eta` its
+    /// normal and the normal's error, `N` the exact normal of `Q`, `q*`
+    /// its exact point, `o` the origin, and `d = fl(end - o)`. Then `o +
+    /// d = end + delta` with `|delta_i| <= u |end_i - o_i|` (one rounded
+    /// subtraction), and `|end_i - o_i| <= |q_i - o_i| + |end_i - q_i|`.
+    /// The move `end - q` depends on `delta`'s bound, so the bound is
+    /// fixed beforehand, with slack: with `m_i` the computed `|q_i - o_i|`
+    /// stepped up one ulp (at least the exact value) and `L = max_i m_i`,
+    /// take `r_i = u (m_i + L)`, rounded up. Offset `q` by
+    /// [`offset_ray_origin`] with the point error `e + r`; afterwards
+    /// check that no component moved by more than `L` (stepped up one
+    /// ulp). So `|end_i - o_i| <= m_i + L` and `|delta_i| <= r_i`.
+    /// `offset_ray_origin`'s derivation moves the point across `Q` by more
+    /// than `sum (e + r)_i (|n_i| + eta_i) >= sum (e_i + r_i) |N_i|`, and
+    /// `q` started at most `sum e_i |N_i|` from it, so `s (end - q*) . N >
+    /// sum r_i |N_i| >= |delta . N|`, with `s` the origin's side of `Q`:
+    /// the exact end `o + d` is strictly on side `s` (as
+    /// [`Instance::spawn_through`](crate::Instance::spawn_through) widens
+    /// the error for the round trip).
+    ///
+    /// The direction: `d . N` differs from the computed `fl(d . n)` by at
+    /// most `gamma(3) sum |d_i n_i| + sum |d_i| eta_i` (plus four
+    /// subnormals for underflow), evaluated rounding up. Where `fl(d .
+    /// n)` exceeds that bound with the sign pointing into side `s` of the
+    /// start plane (the origin's side), the ray moves away from `P` and
+    /// stays on side `s` for all `t >= 0`; where `-fl(d . n_q)` exceeds it
+    /// with the sign of `s_q`, the ray approaches `Q` from side `s_q` and
+    /// is on that side for every `t <= 1`. Both are checked, and decide
+    /// the answer: `Some` is proved, not hoped for.
+    ///
+    /// # `None`
+    ///
+    /// - Any input not finite; an overflow.
+    /// - Either normal not known well enough to pick a side (a zero or
+    ///   nearly zero normal: a zero-area triangle, a sliver), where
+    ///   [`spawn`](Self::spawn) would start unmoved. A zero-area triangle
+    ///   has no plane to leave; use [`spawn`](Self::spawn) towards the
+    ///   target and a `t_max` of your own if you must.
+    /// - The segment within rounding of tangent to either surface: its
+    ///   angle with the surface below a few ulps plus the normal's
+    ///   relative error, or the far end within about the near end's error
+    ///   bound of the near end's plane. This includes coincident ends,
+    ///   ends on one plane, and ends closer than their error bounds (the
+    ///   offsets would cross).
+    /// - The target's move longer than the segment's largest component
+    ///   (the check above; the ends are then within about their error
+    ///   bounds of each other).
+    ///
+    /// In each case the connection carries no light a renderer could
+    /// resolve (a cosine at one end is zero within rounding, or the ends
+    /// cannot be told apart): count it as blocked. Never panics.
+    ///
+    /// Instances: a world point from
+    /// [`Instance::surface_to_world`](crate::Instance::surface_to_world) is
+    /// a surface point like any other, and the guarantees hold against
+    /// world-space geometry; a segment traced back into an instance
+    /// through its stored inverse needs the extra margin
+    /// [`Instance::spawn`](crate::Instance::spawn) adds, which has no
+    /// segment form yet.
+    ///
+    /// ```
+    /// use rayhit::{Interval, Plane, Ray, SurfacePoint, Triangle};
+    /// use rayhit::{ray_plane, ray_plane_in, ray_triangle, ray_triangle_occluded, glam::Vec3};
+    /// // A point on the floor, and a point on a ceiling light facing down.
+    /// let floor = Plane::new(Vec3::ZERO, Vec3::Y);
+    /// let down = Ray::new(Vec3::new(0.3, 5.0, 0.1), Vec3::new(0.1, -1.0, 0.2));
+    /// let on_floor = SurfacePoint::on_plane(&down, &floor, ray_plane(&down, &floor, f32::INFINITY).unwrap());
+    /// let light = Triangle::new(Vec3::new(-1.0, 3.0, -1.0), Vec3::new(0.0, 3.0, 2.0), Vec3::new(2.0, 3.0, -1.0));
+    /// let up = Ray::new(Vec3::new(0.2, 0.0, 0.3), Vec3::new(0.0, 1.0, 0.05));
+    /// let on_light = SurfacePoint::on_triangle(&light, &ray_triangle(&up, &light, f32::INFINITY).unwrap());
+    ///
+    /// let (shadow, segment) = on_floor.spawn_to(&on_light).unwrap();
+    /// assert_eq!(segment, Interval::up_to(1.0).unwrap());
+    /// // Neither end's surface is hit...
+    /// assert!(!ray_triangle_occluded(&shadow, &light, segment));
+    /// assert_eq!(ray_plane_in(&shadow, &floor, segment), None);
+    /// // ...and a shelf half way up is.
+    /// let shelf = Triangle::new(Vec3::new(-5.0, 1.5, -5.0), Vec3::new(0.0, 1.5, 5.0), Vec3::new(5.0, 1.5, -5.0));
+    /// assert!(ray_triangle_occluded(&shadow, &shelf, segment));
+    /// // Coincident ends give no segment.
+    /// assert!(on_floor.spawn_to(&on_floor).is_none());
+    /// ```
+    #[must_use]
+    pub fn spawn_to(&self, target: &SurfacePoint<V>) -> Option<(Ray<V>, Interval<S<V>>)> {
+        segment(self, target.point, Some(target))
+    }
+
+    /// The shadow-ray segment from this surface point to a point light at
+    /// `light` (an exact point, on no surface): a ray and the interval
+    /// `(0, 1]` that does not hit this point's surface and finds every
+    /// occluder in between farther than the ends' moves from them.
+    ///
+    /// As [`spawn_to`](Self::spawn_to), with the end the light itself (it
+    /// is not moved: there is no surface to leave), so `B_e = |origin +
+    /// dir - light|` is the rounding of `dir`, at most `u |light_i -
+    /// origin_i|` in component `i`; guarantee 1 is for the start surface, whose crossing is
+    /// at `t < 0` (so no kernel reports it, for any `t_max`). `None` for
+    /// non-finite input, a normal not known well enough, and a light
+    /// within rounding of the surface's plane (its angle with the surface
+    /// below a few ulps plus the normal's relative error, or its distance
+    /// from the plane below about the point's error bound), coincident
+    /// points included: count it as blocked. Never panics.
+    ///
+    /// ```
+    /// use rayhit::{Interval, Plane, Ray, SurfacePoint, ray_plane, ray_plane_in, glam::DVec3};
+    /// let wall = Plane::new(DVec3::new(0.0, 0.0, 4.0), DVec3::Z);
+    /// let eye = Ray::new(DVec3::new(0.1, 0.2, 0.0), DVec3::new(0.3, -0.2, 1.0));
+    /// let here = SurfacePoint::on_plane(&eye, &wall, ray_plane(&eye, &wall, f64::INFINITY).unwrap());
+    /// let (shadow, segment) = here.spawn_to_point(DVec3::new(2.0, 1.0, 0.5)).unwrap();
+    /// assert_eq!(ray_plane_in(&shadow, &wall, segment), None);
+    /// // A pane of glass at z = 2 is between the wall and the light.
+    /// let pane = Plane::new(DVec3::new(0.0, 0.0, 2.0), DVec3::Z);
+    /// assert!(ray_plane_in(&shadow, &pane, segment).is_some());
+    /// // A light in the wall's plane: no segment.
+    /// assert!(here.spawn_to_point(DVec3::new(5.0, 5.0, 4.0)).is_none());
+    /// ```
+    #[must_use]
+    pub fn spawn_to_point(&self, light: V) -> Option<(Ray<V>, Interval<S<V>>)> {
+        segment(self, light, None)
+    }
+}
+
+/// The segment of [`SurfacePoint::spawn_to`] (`target` given) and
+/// [`SurfacePoint::spawn_to_point`] (`to` exact); the derivation is at
+/// `spawn_to`.
+fn segment<V: Vector>(
+    from: &SurfacePoint<V>,
+    to: V,
+    target: Option<&SurfacePoint<V>>,
+) -> Option<(Ray<V>, Interval<S<V>>)> {
+    use crate::num::round::max2;
+    use crate::num::round::outward::{add_up, mul_up};
+    if !to.is_finite() {
+        return None;
+    }
+    // The origin, off the start plane on the target's side.
+    let s_p = side(to - from.point, from.normal);
+    let origin = offset_to_side(
+        from.point,
+        from.point_error,
+        from.normal,
+        from.normal_error,
+        s_p,
+    )?;
+    if !origin.is_finite() {
+        return None;
+    }
+    let (end, s_q) = match target {
+        None => (to, S::<V>::ZERO),
+        Some(t) => {
+            // `m_i >= |q_i - o_i|`, `L` their largest, `r_i = u (m_i + L)`
+            // rounded up: the rounding of `dir` where no component of the
+            // end moves by more than `L`.
+            let u = S::<V>::UNIT_ROUNDOFF;
+            let m = V::new(
+                (to.x() - origin.x()).abs().next_up(),
+                (to.y() - origin.y()).abs().next_up(),
+                (to.z() - origin.z()).abs().next_up(),
+            );
+            let big = max2(max2(m.x(), m.y()), m.z());
+            let widened = |i: usize| add_up(t.point_error[i].abs(), mul_up(u, add_up(m[i], big)));
+            let error = V::new(widened(0), widened(1), widened(2));
+            let s_q = side(origin - to, t.normal);
+            let end = offset_to_side(to, error, t.normal, t.normal_error, s_q)?;
+            // The premise of `r`: `|end_i - q_i| <= L`.
+            let within = |i: usize| (end[i] - to[i]).abs().next_up() <= big;
+            if !(within(0) && within(1) && within(2)) {
+                return None;
+            }
+            (end, s_q)
+        }
+    };
+    let dir = end - origin;
+    let ray = Ray::new(origin, dir);
+    if !ray.is_valid() {
+        return None;
+    }
+    // Away from the start plane, into the origin's side `s_p`.
+    if !moves_to_side(dir, from.normal, from.normal_error, s_p) {
+        return None;
+    }
+    // Towards the target plane, from the origin's side `s_q`.
+    if let Some(t) = target
+        && !moves_to_side(dir, t.normal, t.normal_error, -s_q)
+    {
+        return None;
+    }
+    Some((ray, Interval::up_to(S::<V>::ONE)?))
+}
+
+/// Whether `s (dir . N) > 0` for every normal `N` within `normal_error` of
+/// `normal` (`s` is `+1` or `-1`): the computed `dir . normal`, times `s`,
+/// above its rounding bound `gamma(3) sum |dir_i normal_i|` plus the
+/// normal's error `sum |dir_i| eta_i`.
+///
+/// Five roundings on any path of the bound (the path through `gamma(3)`,
+/// itself rounded once, has three), so `bound_up(.., 5)`. Underflow: each
+/// of the dot product's three products loses at most half a subnormal,
+/// and the bound's own products as much; `4 TINY` covers them (where the
+/// bound is at least `4 TINY / u`, `bound_up`'s slack does already, and
+/// below that the addition is exact).
+#[inline(always)]
+fn moves_to_side<V: Vector>(dir: V, normal: V, normal_error: V, s: S<V>) -> bool {
+    use crate::num::round::bound_up;
+    let (d, n, eta) = (dir.abs(), normal.abs(), normal_error.abs());
+    let dot = dir.x() * normal.x() + dir.y() * normal.y() + dir.z() * normal.z();
+    let on_n = d.x() * n.x() + d.y() * n.y() + d.z() * n.z();
+    let on_eta = d.x() * eta.x() + d.y() * eta.y() + d.z() * eta.z();
+    let bound =
+        bound_up(S::<V>::gamma_n(3) * on_n + on_eta, 5) + S::<V>::TINY * S::<V>::from_u32(4);
+    s * dot > bound
 }

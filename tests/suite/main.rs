@@ -22,3 +22,4 @@ mod interval_shapes;
 mod intervals;
 mod oracle;
 mod properties;
+mod spawn_to;
