@@ -35,7 +35,7 @@ mod exact_judge {
 type Target = (&'static str, fn(&[u8]));
 
 /// Every target, by the name of its file in `fuzz/fuzz_targets/`.
-const TARGETS: [Target; 16] = [
+const TARGETS: [Target; 17] = [
     ("aabb", targets::aabb),
     ("aabb_slab_vs_naive", targets::aabb_slab_vs_naive),
     ("batch", targets::batch),
@@ -45,6 +45,7 @@ const TARGETS: [Target; 16] = [
     ("exact_judge", exact_judge::run),
     ("hit_differentials", targets::hit_differentials),
     ("instance", targets::instance),
+    ("interval", targets::interval),
     ("matrix_camera", targets::matrix_camera),
     ("orthographic", targets::orthographic),
     ("plane", targets::plane),

@@ -37,6 +37,7 @@ pub mod camera;
 pub mod exact;
 pub mod hit_differentials;
 pub mod instance;
+pub mod interval;
 pub mod matrix_camera;
 pub mod orthographic;
 pub mod panoramic;
@@ -137,6 +138,10 @@ pub mod targets {
     /// `hit_differentials`: [`hit_differentials::HitDifferentialsCheck`].
     pub fn hit_differentials(data: &[u8]) {
         dispatch::<hit_differentials::HitDifferentialsCheck>(data);
+    }
+    /// `interval`: [`interval::IntervalCheck`].
+    pub fn interval(data: &[u8]) {
+        dispatch::<interval::IntervalCheck>(data);
     }
     /// `matrix_camera`: [`matrix_camera::MatrixCameraCheck`].
     pub fn matrix_camera(data: &[u8]) {
