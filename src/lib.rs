@@ -357,7 +357,9 @@
 //!   [`ray_aabb_prepared`] and [`ray_triangle`] on each lane's shape, so
 //!   every guarantee above holds per lane; over an interval,
 //!   [`ray_aabb_batch_in`] is [`ray_aabb_prepared_in`] on each lane's box,
-//!   bit for bit.
+//!   and [`ray_triangle_batch_in`] (with its any-hit form
+//!   [`ray_triangle_batch_occluded`]) is [`ray_triangle_prepared_in`] on each
+//!   lane's triangle, bit for bit.
 //! - **Compressed wide nodes** ([`ray_quantized_children`],
 //!   [`ray_quantized_children_in`]). Every child box is decoded rounded
 //!   outward, so that it contains the exact quantized box, and tested as
@@ -534,9 +536,10 @@ pub use simd::{Avx2, Avx512};
 pub use surface::{SurfacePoint, offset_ray_origin};
 pub use triangle::{
     Side, Triangle, TriangleBatch, TriangleBatchHits, TriangleHit, TriangleHitError, ray_triangle,
-    ray_triangle_batch, ray_triangle_error_bounds, ray_triangle_in, ray_triangle_mt,
-    ray_triangle_occluded, ray_triangle_one_hit, ray_triangle_one_hit_in, ray_triangle_prepared,
-    ray_triangle_prepared_in, ray_triangle_prepared_occluded, triangle_hit_point,
+    ray_triangle_batch, ray_triangle_batch_in, ray_triangle_batch_occluded,
+    ray_triangle_error_bounds, ray_triangle_in, ray_triangle_mt, ray_triangle_occluded,
+    ray_triangle_one_hit, ray_triangle_one_hit_in, ray_triangle_prepared, ray_triangle_prepared_in,
+    ray_triangle_prepared_occluded, triangle_hit_point,
 };
 pub use with_simd::{Simd, SimdWork, with_simd};
 

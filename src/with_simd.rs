@@ -11,7 +11,9 @@ use crate::ray::{Interval, PreparedRay};
 #[cfg(rayhit_runtime_avx)]
 use crate::simd::Work;
 use crate::simd::{Isa, TargetSimd};
-use crate::triangle::{TriangleBatch, TriangleBatchHits, TriangleBatchKernel};
+use crate::triangle::{
+    TriangleBatch, TriangleBatchHits, TriangleBatchKernel, TriangleCandidatesKernel, interval_lanes,
+};
 
 /// Work that [`with_simd`] runs compiled for the CPU's widest SIMD: a BVH
 /// traversal, a tile of primary rays, any loop that calls the batch
@@ -73,6 +75,34 @@ pub trait Simd: Copy + core::fmt::Debug + Isa {
         t_max: S<V>,
     ) -> TriangleBatchHits<S<V>, N> {
         self.kernel::<TriangleBatchKernel<V, N>>(ray, batch, t_max)
+    }
+
+    /// [`ray_triangle_batch_in`](crate::ray_triangle_batch_in), its lane
+    /// part compiled for this instruction set.
+    #[inline(always)]
+    #[must_use]
+    fn ray_triangle_batch_in<V: Vector, const N: usize>(
+        self,
+        ray: &PreparedRay<V>,
+        batch: &TriangleBatch<V, N>,
+        interval: Interval<S<V>>,
+    ) -> TriangleBatchHits<S<V>, N> {
+        let candidates = self.kernel::<TriangleCandidatesKernel<V, N>>(ray, batch, ());
+        interval_lanes(ray, batch, interval, candidates, false)
+    }
+
+    /// [`ray_triangle_batch_occluded`](crate::ray_triangle_batch_occluded),
+    /// its lane part compiled for this instruction set.
+    #[inline(always)]
+    #[must_use]
+    fn ray_triangle_batch_occluded<V: Vector, const N: usize>(
+        self,
+        ray: &PreparedRay<V>,
+        batch: &TriangleBatch<V, N>,
+        interval: Interval<S<V>>,
+    ) -> bool {
+        let candidates = self.kernel::<TriangleCandidatesKernel<V, N>>(ray, batch, ());
+        interval_lanes(ray, batch, interval, candidates, true).mask != 0
     }
 
     /// [`ray_quantized_children`](crate::ray_quantized_children), compiled

@@ -5,7 +5,9 @@
 //! those of `ray_aabb_prepared_in`, over intervals whose lower end lies
 //! before, at and within the lanes' boxes); `ray_triangle_batch` the
 //! hit or miss, `t`, `u`, `v` and side of `ray_triangle` on that lane's
-//! triangle; and `ray_triangle_prepared` exactly `ray_triangle`. Since the
+//! triangle (and `ray_triangle_batch_in` those of `ray_triangle_prepared_in`
+//! over intervals, with `ray_triangle_batch_occluded` true exactly when it
+//! hits a lane); and `ray_triangle_prepared` exactly `ray_triangle`. Since the
 //! scalar kernels are held to the exact oracle elsewhere (`properties`,
 //! `oracle`, `corpus`), identity carries every guarantee over.
 //!
@@ -20,9 +22,10 @@ use proptest::prelude::*;
 use rayhit::glam::{DVec3, Vec3};
 use rayhit::strategies as strat;
 use rayhit::{
-    Aabb, AabbBatch, Interval, PreparedRay, Ray, Scalar, Triangle, TriangleBatch, TriangleHit,
-    Vector, ray_aabb_batch, ray_aabb_batch_in, ray_aabb_prepared, ray_aabb_prepared_in,
-    ray_triangle, ray_triangle_batch, ray_triangle_prepared,
+    Aabb, AabbBatch, Interval, PreparedRay, Ray, Scalar, Simd, TargetSimd, Triangle, TriangleBatch,
+    TriangleHit, Vector, ray_aabb_batch, ray_aabb_batch_in, ray_aabb_prepared,
+    ray_aabb_prepared_in, ray_triangle, ray_triangle_batch, ray_triangle_batch_in,
+    ray_triangle_batch_occluded, ray_triangle_prepared, ray_triangle_prepared_in,
 };
 use rayhit_testkit::bits::{bits, hit_bits};
 use rayhit_testkit::source::Source;
@@ -208,6 +211,49 @@ fn check_triangles<V: Vector, const N: usize>(
     };
     if !same_nearest {
         return Err(format!("nearest {got:?}, expected {nearest:?}"));
+    }
+    // Over intervals: lower ends at zero (both signs), at the nearest hit
+    // and an ulp either side, and halfway to `t_max`.
+    let mut lower = vec![S::<V>::ZERO, -S::<V>::ZERO, t_max * S::<V>::HALF];
+    if let Some((_, h)) = nearest {
+        lower.extend([h.t, h.t.next_up(), h.t.next_down()]);
+    }
+    for lo in lower {
+        let Some(interval) = Interval::new(lo, t_max) else {
+            continue;
+        };
+        let hits = ray_triangle_batch_in(&prepared, &batch, interval);
+        for lane in 0..N {
+            let expected = match tris.get(lane) {
+                Some(Some(t)) => ray_triangle_prepared_in(&prepared, t, interval),
+                _ => None,
+            };
+            let got = hits.get(lane);
+            if hit_bits(got) != hit_bits(expected)
+                || (got.is_none() && bits(hits.t[lane]) != bits(S::<V>::INFINITY))
+            {
+                return Err(format!(
+                    "lane {lane} of {N} over {interval:?}: batch {got:?} (t {:?}), scalar {expected:?}; ray {ray:?}, triangle {:?}",
+                    hits.t[lane],
+                    tris.get(lane)
+                ));
+            }
+        }
+        let via_simd = TargetSimd.ray_triangle_batch_in(&prepared, &batch, interval);
+        if via_simd.mask != hits.mask || via_simd.t.map(bits) != hits.t.map(bits) {
+            return Err(format!(
+                "Simd::ray_triangle_batch_in differs over {interval:?}"
+            ));
+        }
+        let occluded = ray_triangle_batch_occluded(&prepared, &batch, interval);
+        if occluded != (hits.mask != 0)
+            || occluded != TargetSimd.ray_triangle_batch_occluded(&prepared, &batch, interval)
+        {
+            return Err(format!(
+                "occluded {occluded} but mask {:b} over {interval:?}; ray {ray:?}",
+                hits.mask
+            ));
+        }
     }
     Ok(())
 }

@@ -9,9 +9,10 @@ use core::marker::PhantomData;
 use glam::Vec3;
 
 use super::definition::{EdgeRule, watertight_definition};
+use super::interval::watertight_in;
 use super::{Side, Triangle, TriangleHit};
 use crate::num::{Lanes, Lanes8, S, Scalar, Vector};
-use crate::ray::{PreparedRay, t_max_ok};
+use crate::ray::{Interval, PreparedRay, t_max_ok};
 use crate::simd::{Isa, Kernel, check_lanes, lanes_at, per_call, put};
 
 /// Up to `N` triangles, structure-of-arrays.
@@ -224,6 +225,60 @@ where
     (px.add(sx.mul(pz)), py.add(sy.mul(pz)), pz)
 }
 
+/// The ray's part of the lanes' frame: the axis order, the origin in it,
+/// and the shear, in every lane.
+struct RayLanes<W> {
+    k: [usize; 3],
+    o: [W; 3],
+    sx: W,
+    sy: W,
+}
+
+impl<W: Lanes8> RayLanes<W>
+where
+    W::F: Scalar,
+{
+    #[inline(always)]
+    fn new<V: Vector<Scalar = W::F>>(ray: &PreparedRay<V>) -> Self {
+        let sh = ray.shear();
+        // The origin in the ray's axis order, from the prepared lanes
+        // (indexing the origin by axis would branch on the axis).
+        let [ox, oy, oz] = ray.origin_lanes.map(|l| l.x());
+        Self {
+            k: [sh.kx as usize, sh.ky as usize, sh.kz as usize],
+            o: [W::splat(ox), W::splat(oy), W::splat(oz)],
+            sx: W::splat(sh.sx),
+            sy: W::splat(sh.sy),
+        }
+    }
+
+    /// Chunk `c` of the batch in the ray's frame: the edge functions
+    /// `e0`, `e1`, `e2` (the scalar test's, operation for operation) and
+    /// the corners' unscaled depths.
+    #[inline(always)]
+    fn edges<const N: usize>(&self, p: &[[[W::F; N]; 3]; 3], c: usize) -> ([W; 3], [W; 3]) {
+        let (k, o, sx, sy) = (self.k, self.o, self.sx, self.sy);
+        let (x0, y0, pz0) = sheared::<W, N>(&p[0], c, k, o, sx, sy);
+        let (x1, y1, pz1) = sheared::<W, N>(&p[1], c, k, o, sx, sy);
+        let (x2, y2, pz2) = sheared::<W, N>(&p[2], c, k, o, sx, sy);
+        let e0 = x1.mul(y2).sub(y1.mul(x2));
+        let e1 = x2.mul(y0).sub(y2.mul(x0));
+        let e2 = x0.mul(y1).sub(y0.mul(x1));
+        ([e0, e1, e2], [pz0, pz1, pz2])
+    }
+}
+
+/// Inside test of `EdgeRule::Closed` on lanes: not both signs among the
+/// edge functions. For non-NaN values "some e_i < 0" is "min e_i < 0",
+/// which is cheaper; a NaN edge function leaves the lane not outside (the
+/// scalar test then misses it: its `det` is NaN). Returns `outside`, and
+/// the smallest and largest edge function.
+#[inline(always)]
+fn outside<W: Lanes8>([e0, e1, e2]: [W; 3], lo: W) -> (W::Mask, W, W) {
+    let (e_min, e_max) = (e0.min(e1.min(e2)), e0.max(e1.max(e2)));
+    (W::and(e_min.lt(lo), lo.lt(e_max)), e_min, e_max)
+}
+
 /// The watertight test ([`ray_triangle`](crate::ray_triangle)) of one
 /// prepared ray against every triangle of a batch.
 ///
@@ -313,17 +368,12 @@ fn triangle_batch_body<W: Lanes8<F = S<V>>, V: Vector, const N: usize>(
         return out;
     }
     let sh = ray.shear();
-    // The permuted axes: x, y, z of the ray's frame.
-    let (kx, ky, kz) = (sh.kx as usize, sh.ky as usize, sh.kz as usize);
-    // The origin in the ray's axis order, from the prepared lanes (indexing
-    // the origin by axis would branch on the axis).
-    let [ox, oy, oz] = ray.origin_lanes.map(|l| l.x());
     let ray_front = sh.dz > zero;
+    let frame = RayLanes::<W>::new(ray);
 
     let splat = W::splat;
     let (lo, top, ones) = (splat(zero), splat(t_max), splat(one));
-    let (sx, sy, sz) = (splat(sh.sx), splat(sh.sy), splat(sh.sz));
-    let (ox, oy, oz) = (splat(ox), splat(oy), splat(oz));
+    let sz = splat(sh.sz);
 
     let top_max = splat(if t_max < S::<V>::MAX {
         t_max
@@ -334,21 +384,10 @@ fn triangle_batch_body<W: Lanes8<F = S<V>>, V: Vector, const N: usize>(
     let all = lo.le(lo);
     for c in 0..N.div_ceil(8) {
         // Lanes past N hold NaN, and are not in `batch.used`.
-        let (k, o) = ([kx, ky, kz], [ox, oy, oz]);
-        let (x0, y0, pz0) = sheared::<W, N>(&batch.p[0], c, k, o, sx, sy);
-        let (x1, y1, pz1) = sheared::<W, N>(&batch.p[1], c, k, o, sx, sy);
-        let (x2, y2, pz2) = sheared::<W, N>(&batch.p[2], c, k, o, sx, sy);
-        // Edge functions.
-        let e0 = x1.mul(y2).sub(y1.mul(x2));
-        let e1 = x2.mul(y0).sub(y2.mul(x0));
-        let e2 = x0.mul(y1).sub(y0.mul(x1));
-        // Inside test of `EdgeRule::Closed`: not both signs among the edge
-        // functions. For non-NaN values "some e_i < 0" is "min e_i < 0",
-        // which is cheaper; a NaN edge function makes `det` NaN and the
-        // range test below fails, as in the scalar test, whatever this
-        // says.
-        let (e_min, e_max) = (e0.min(e1.min(e2)), e0.max(e1.max(e2)));
-        let outside = W::and(e_min.lt(lo), lo.lt(e_max));
+        let ([e0, e1, e2], [pz0, pz1, pz2]) = frame.edges(&batch.p, c);
+        // (A NaN edge function makes `det` NaN and the range test below
+        // fails, as in the scalar test, whatever `outside` says.)
+        let (outside, e_min, e_max) = outside([e0, e1, e2], lo);
         // A zero edge function sends a lane inside to the scalar code,
         // which recomputes it with its sign exact (a lane outside stays
         // outside whatever that sign). Inside, the edge functions share a
@@ -450,4 +489,145 @@ fn slow_lanes<V: Vector, const N: usize>(
             (out.t[l], out.u[l], out.v[l]) = (h.t, h.u, h.v);
         }
     }
+}
+
+/// The lanes of a batch that the watertight test's inside test does not
+/// put outside (every used lane that is not surely outside): the only
+/// lanes the scalar interval test can report. The lanes' edge functions
+/// are the scalar test's, bit for bit, and a lane they put outside (both
+/// signs among them, none zero or NaN) is outside for the scalar test too,
+/// whose exact recomputation only ever changes a zero.
+pub(crate) struct TriangleCandidatesKernel<V, const N: usize>(PhantomData<V>);
+
+impl<V: Vector, const N: usize> Kernel for TriangleCandidatesKernel<V, N> {
+    type Ray = PreparedRay<V>;
+    type Shapes = TriangleBatch<V, N>;
+    type Limit = ();
+    type Output = u32;
+
+    #[inline(always)]
+    fn run<I: Isa>(_: I, ray: &PreparedRay<V>, batch: &TriangleBatch<V, N>, (): ()) -> u32 {
+        const { check_lanes::<N>() };
+        let frame = RayLanes::<I::W<S<V>>>::new(ray);
+        let lo = I::W::<S<V>>::splat(S::<V>::ZERO);
+        let mut inside = 0;
+        for c in 0..N.div_ceil(8) {
+            let (outside, _, _) = outside(frame.edges(&batch.p, c).0, lo);
+            inside |= (!I::W::<S<V>>::bits(outside) & 0xff) << (8 * c);
+        }
+        inside & batch.used
+    }
+}
+
+/// The lanes of `candidates` whose triangle the scalar interval test
+/// ([`ray_triangle_prepared_in`](crate::ray_triangle_prepared_in)) hits,
+/// as a batch answer; with `any`, it stops at the first.
+#[inline(always)]
+pub(crate) fn interval_lanes<V: Vector, const N: usize>(
+    ray: &PreparedRay<V>,
+    batch: &TriangleBatch<V, N>,
+    interval: Interval<S<V>>,
+    mut candidates: u32,
+    any: bool,
+) -> TriangleBatchHits<S<V>, N> {
+    let (zero, inf) = (S::<V>::ZERO, S::<V>::INFINITY);
+    let mut out = TriangleBatchHits {
+        mask: 0,
+        front: 0,
+        t: [inf; N],
+        u: [zero; N],
+        v: [zero; N],
+    };
+    if !ray.is_valid() {
+        return out;
+    }
+    let shear = ray.shear();
+    while candidates != 0 {
+        let l = candidates.trailing_zeros() as usize;
+        candidates &= candidates - 1;
+        let tri = batch.lane(l);
+        let hit = watertight_in(
+            ray.origin(),
+            ray.dir,
+            &shear,
+            &tri,
+            interval,
+            EdgeRule::Closed,
+        );
+        if let Some(h) = hit {
+            out.mask |= 1 << l;
+            if h.side == Side::Front {
+                out.front |= 1 << l;
+            }
+            (out.t[l], out.u[l], out.v[l]) = (h.t, h.u, h.v);
+            if any {
+                break;
+            }
+        }
+    }
+    out
+}
+
+/// [`ray_triangle_batch`] over an interval: lane by lane, bit for bit what
+/// [`ray_triangle_prepared_in`](crate::ray_triangle_prepared_in) returns
+/// for that lane's triangle, so its guarantees hold per lane: watertight,
+/// and both ends of `(t_min, t_max]` decided exactly against the exact
+/// crossing, so that consecutive intervals report each triangle of the
+/// batch once (every hit along a ray, in order).
+///
+/// How: the lanes compute the inside test's edge functions for eight
+/// triangles at a time, and only the triangles not surely outside (most
+/// lanes of a leaf are outside) go through the scalar interval test.
+///
+/// Empty lanes and an invalid ray give no hits. Never panics.
+///
+/// ```
+/// use rayhit::{Interval, PreparedRay, Ray, Triangle, TriangleBatch, ray_triangle_batch_in, glam::Vec3};
+/// // Four layers along z, at z = 1, 2, 3, 4, crossed at t = 1, 2, 3, 4.
+/// let tris: Vec<Triangle> = (1..=4)
+///     .map(|k| {
+///         let z = k as f32;
+///         Triangle::new(Vec3::new(0.0, 0.0, z), Vec3::new(1.0, 0.0, z), Vec3::new(0.0, 1.0, z))
+///     })
+///     .collect();
+/// let batch = TriangleBatch::<Vec3, 4>::from_slice(&tris).unwrap();
+/// let ray = PreparedRay::new(&Ray::new(Vec3::new(0.25, 0.25, 0.0), Vec3::Z));
+/// // Past the hit at t = 2: the next ones, and never layer 2 again.
+/// let hits = ray_triangle_batch_in(&ray, &batch, Interval::new(2.0, f32::INFINITY).unwrap());
+/// assert_eq!(hits.mask, 0b1100);
+/// assert_eq!(hits.nearest().unwrap().1.t, 3.0);
+/// ```
+#[inline]
+#[must_use]
+pub fn ray_triangle_batch_in<V: Vector, const N: usize>(
+    ray: &PreparedRay<V>,
+    batch: &TriangleBatch<V, N>,
+    interval: Interval<S<V>>,
+) -> TriangleBatchHits<S<V>, N> {
+    let candidates = per_call::<TriangleCandidatesKernel<V, N>>(ray, batch, ());
+    interval_lanes(ray, batch, interval, candidates, false)
+}
+
+/// Whether any triangle of the batch blocks the ray within `interval`:
+/// the any-hit form of [`ray_triangle_batch_in`] for shadow rays, `true`
+/// exactly when its `mask` is not zero. It stops at the first lane hit.
+///
+/// ```
+/// use rayhit::{Interval, PreparedRay, Ray, Triangle, TriangleBatch, ray_triangle_batch_occluded, glam::Vec3};
+/// let occluder = Triangle::new(Vec3::new(-1.0, -1.0, 1.0), Vec3::new(3.0, -1.0, 1.0), Vec3::new(-1.0, 3.0, 1.0));
+/// let batch = TriangleBatch::<Vec3, 8>::from_slice(&[occluder]).unwrap();
+/// // From the floor towards a light at t = 1, through the occluder at t = 0.5.
+/// let ray = PreparedRay::new(&Ray::new(Vec3::ZERO, Vec3::new(0.0, 0.0, 2.0)));
+/// assert!(ray_triangle_batch_occluded(&ray, &batch, Interval::new(0.0, 1.0).unwrap()));
+/// assert!(!ray_triangle_batch_occluded(&ray, &batch, Interval::new(0.0, 0.25).unwrap()));
+/// ```
+#[inline]
+#[must_use]
+pub fn ray_triangle_batch_occluded<V: Vector, const N: usize>(
+    ray: &PreparedRay<V>,
+    batch: &TriangleBatch<V, N>,
+    interval: Interval<S<V>>,
+) -> bool {
+    let candidates = per_call::<TriangleCandidatesKernel<V, N>>(ray, batch, ());
+    interval_lanes(ray, batch, interval, candidates, true).mask != 0
 }

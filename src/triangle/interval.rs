@@ -37,7 +37,7 @@ use core::cmp::Ordering;
 /// The watertight test with the exact interval decision, for a valid ray
 /// (origin, direction, shear) and any interval.
 #[inline(always)]
-fn watertight_in<V: Vector>(
+pub(super) fn watertight_in<V: Vector>(
     origin: V,
     dir: V,
     shear: &Shear<S<V>>,

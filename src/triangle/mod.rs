@@ -34,8 +34,11 @@ use crate::num::exact_sign::{scale_to_one, sum_of_products_sign, two_diff};
 use crate::num::round::bound_up;
 use crate::num::{S, Scalar, Vector};
 
-pub(crate) use batch::TriangleBatchKernel;
-pub use batch::{TriangleBatch, TriangleBatchHits, ray_triangle_batch};
+pub use batch::{
+    TriangleBatch, TriangleBatchHits, ray_triangle_batch, ray_triangle_batch_in,
+    ray_triangle_batch_occluded,
+};
+pub(crate) use batch::{TriangleBatchKernel, TriangleCandidatesKernel, interval_lanes};
 pub use bounds::{TriangleHitError, ray_triangle_error_bounds, triangle_hit_point};
 pub use interval::{
     ray_triangle_in, ray_triangle_occluded, ray_triangle_one_hit_in, ray_triangle_prepared_in,

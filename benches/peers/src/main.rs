@@ -49,11 +49,12 @@ fn ray_a(r: &Ray) -> Ray<Vec3A> {
     Ray::new(r.origin.into(), r.dir.into())
 }
 use rayhit::{
-    Aabb, AabbBatch, ClipSpace, EqualAreaCamera, EquirectangularCamera, MatrixCamera,
+    Aabb, AabbBatch, ClipSpace, EqualAreaCamera, EquirectangularCamera, Interval, MatrixCamera,
     OrthographicCamera, PinholeCamera, PreparedRay, Ray, RayDifferential, Side, Simd, SimdWork,
     ThinLensCamera, Triangle, TriangleBatch, TriangleBatchHits, ValidAabb, ray_aabb,
-    ray_aabb_batch, ray_aabb_prepared, ray_triangle, ray_triangle_batch, ray_triangle_mt,
-    ray_triangle_prepared, with_simd,
+    ray_aabb_batch, ray_aabb_prepared, ray_triangle, ray_triangle_batch, ray_triangle_batch_in,
+    ray_triangle_batch_occluded, ray_triangle_mt, ray_triangle_prepared, ray_triangle_prepared_in,
+    with_simd,
 };
 use rayhit_peers::cwbvh;
 use rayhit_testkit::rng::Pcg32;
@@ -1245,6 +1246,7 @@ fn group_kernels<'a>(
         }),
     );
     let sec = "triangle x8";
+    let all = Interval::up_to(INF).expect("(0, inf]");
     out.extend([
         kernel(
             sec,
@@ -1274,6 +1276,36 @@ fn group_kernels<'a>(
             None,
             chunked(&t.prepared, tb8, GROUP / 8, |r, x| {
                 batch_t_sum(&ray_triangle_batch(r, x, INF))
+            }),
+        ),
+        kernel(
+            sec,
+            "rayhit ray_triangle_prepared_in, (0, inf]",
+            w,
+            nt,
+            None,
+            chunked(&t.prepared, &t.tris, GROUP, move |r, x| {
+                t_sum(ray_triangle_prepared_in(r, x, all).map(|h| h.t))
+            }),
+        ),
+        kernel(
+            sec,
+            "rayhit ray_triangle_batch_in, 8 lanes, (0, inf]",
+            w,
+            nt,
+            None,
+            chunked(&t.prepared, tb8, GROUP / 8, move |r, x| {
+                batch_t_sum(&ray_triangle_batch_in(r, x, all))
+            }),
+        ),
+        kernel(
+            sec,
+            "rayhit ray_triangle_batch_occluded, 8 lanes, (0, inf]",
+            w,
+            nt,
+            None,
+            chunked(&t.prepared, tb8, GROUP / 8, move |r, x| {
+                u64::from(ray_triangle_batch_occluded(r, x, all))
             }),
         ),
         kernel(
