@@ -316,27 +316,8 @@ pub fn ray_aabb<V: Vector>(
     }
     let slabs = oracle::box_slabs(ray, b)?;
     let (enter, exit) = oracle::box_interval(ray, b, t_max)?;
-    let d = oracle::rv(ray.dir)?;
-    let face = |k: usize, near: bool| {
-        let max_side = (d[k] < Rational::zero()) == near;
-        BoxFace::new(k, max_side).expect("axis below 3")
-    };
-    let entry_faces = slabs
-        .iter()
-        .filter(|s| s.0 == enter)
-        .map(|s| face(s.2, true))
-        .collect();
-    let exit_faces = slabs
-        .iter()
-        .filter(|s| s.1 == exit)
-        .map(|s| face(s.2, false))
-        .collect();
-    Some(BoxAnswer {
-        enter: Exact::new(enter),
-        exit: Exact::new(exit),
-        entry_faces,
-        exit_faces,
-    })
+    let entry = enter.clone();
+    box_answer(&slabs, ray, enter, exit, Some(&entry))
 }
 
 /// Exact ray/box over an interval: the part of `(t_min, t_max]` the ray
@@ -394,6 +375,21 @@ pub fn ray_aabb_in<V: Vector>(
     if !(enter <= exit && exit > lo) {
         return None;
     }
+    let entry = (e > lo).then_some(&e);
+    box_answer(&slabs, ray, enter, exit, entry)
+}
+
+/// The answer for the part `[enter, exit]` of a ray in a box, with its
+/// faces: the entry faces are the slabs whose near plane is crossed at
+/// `entry` (none for `None`), the exit faces those whose far plane is
+/// crossed at `exit`.
+fn box_answer<V: Vector>(
+    slabs: &[(Rational, Rational, usize)],
+    ray: &Ray<V>,
+    enter: Rational,
+    exit: Rational,
+    entry: Option<&Rational>,
+) -> Option<BoxAnswer<V::Scalar>> {
     let d = oracle::rv(ray.dir)?;
     let face = |k: usize, near: bool| {
         let max_side = (d[k] < Rational::zero()) == near;
@@ -401,7 +397,7 @@ pub fn ray_aabb_in<V: Vector>(
     };
     let entry_faces = slabs
         .iter()
-        .filter(|s| e > lo && s.0 == e)
+        .filter(|s| entry == Some(&s.0))
         .map(|s| face(s.2, true))
         .collect();
     let exit_faces = slabs

@@ -546,6 +546,63 @@ mod tests {
         assert_eq!(f64::diff_of_products_exact_sign(2.0, 3.0, 6.0, 1.0), 0.0);
     }
 
+    /// Marsaglia's xorshift64 from `state`: the tests' reproducible bits.
+    #[cfg(feature = "exact")]
+    fn xorshift(mut state: u64) -> impl FnMut() -> u64 {
+        move || {
+            state ^= state << 13;
+            state ^= state >> 7;
+            state ^= state << 17;
+            state
+        }
+    }
+
+    /// Holds `pc` to the exact numerator and denominator of its crossing:
+    /// the denominator's sign, and that of `num - t den` for `t` at zero,
+    /// the smallest subnormal, `MAX`, `random_t`, and (where the crossing
+    /// exists) the crossing rounded and three ulps either side. Returns the
+    /// number of `t` checked, and 1 where the crossing exists.
+    #[cfg(feature = "exact")]
+    fn check_signs(
+        pc: &PlaneCrossing,
+        num: &crate::exact::oracle::R,
+        den: &crate::exact::oracle::R,
+        random_t: f64,
+        what: &dyn Fn() -> std::string::String,
+    ) -> (usize, usize) {
+        use crate::exact::oracle::{R, r};
+        use num_traits::Zero;
+        let zero = R::zero();
+        assert_eq!(pc.den_sign(), Some(den.cmp(&zero)), "{}", what());
+        let mut ts = std::vec![0.0, f64::from_bits(1), f64::MAX, random_t];
+        let mut near = 0;
+        if !den.is_zero() {
+            let t = crate::exact::round::<f64>(&(num / den)).abs();
+            let (mut up, mut down) = (t, t);
+            for _ in 0..3 {
+                ts.extend([up, down]);
+                up = up.next_up();
+                down = down.next_down();
+            }
+            near = 1;
+        }
+        let mut checked = 0;
+        for t in ts {
+            if !(t.is_finite() && t >= 0.0) {
+                continue;
+            }
+            let expected = (num - r(t).unwrap() * den).cmp(&zero);
+            assert_eq!(
+                pc.num_minus_t_den_sign(t),
+                Some(expected),
+                "t {t:e}: {}",
+                what()
+            );
+            checked += 1;
+        }
+        (checked, near)
+    }
+
     /// The plane-crossing signs against big rationals: `f64` inputs over
     /// the documented range (coordinate differences within `2^60` of each
     /// other, at any overall scale from `2^-400` to `2^400`; directions
@@ -555,15 +612,8 @@ mod tests {
     #[cfg(feature = "exact")]
     #[test]
     fn plane_crossing_signs_are_exact() {
-        use crate::exact::oracle::{R, cross, dot, r, sub};
-        use num_traits::Zero;
-        let mut state = 0x9e37_79b9_7f4a_7c15u64;
-        let mut next = move || {
-            state ^= state << 13;
-            state ^= state >> 7;
-            state ^= state << 17;
-            state
-        };
+        use crate::exact::oracle::{cross, dot, r, sub};
+        let mut next = xorshift(0x9e37_79b9_7f4a_7c15);
         let unit =
             |next: &mut dyn FnMut() -> u64| (next() >> 11) as f64 / (1u64 << 53) as f64 * 2.0 - 1.0;
         let (mut checked, mut near) = (0, 0);
@@ -603,41 +653,11 @@ mod tests {
             let n = cross(&sub(&rv(b), &ra), &sub(&rv(c), &ra));
             let num = dot(&sub(&ra, &ro), &n);
             let den = dot(&rd, &n);
-            let zero = R::zero();
-            assert_eq!(
-                pc.den_sign(),
-                Some(den.cmp(&zero)),
-                "{o:?} {d:?} {a:?} {b:?} {c:?}"
-            );
-            let mut ts = std::vec![
-                0.0,
-                f64::from_bits(1),
-                f64::MAX,
-                scale2(1.0, (next() % 2000) as i32 - 1000),
-            ];
-            if !den.is_zero() {
-                let t = crate::exact::round::<f64>(&(&num / &den)).abs();
-                let mut up = t;
-                let mut down = t;
-                for _ in 0..3 {
-                    ts.extend([up, down]);
-                    up = up.next_up();
-                    down = down.next_down();
-                }
-                near += 1;
-            }
-            for t in ts {
-                if !(t.is_finite() && t >= 0.0) {
-                    continue;
-                }
-                let expected = (&num - r(t).unwrap() * &den).cmp(&zero);
-                assert_eq!(
-                    pc.num_minus_t_den_sign(t),
-                    Some(expected),
-                    "t {t:e}: {o:?} {d:?} {a:?} {b:?} {c:?}"
-                );
-                checked += 1;
-            }
+            let random_t = scale2(1.0, (next() % 2000) as i32 - 1000);
+            let (c1, n1) = check_signs(&pc, &num, &den, random_t, &|| {
+                std::format!("{o:?} {d:?} {a:?} {b:?} {c:?}")
+            });
+            (checked, near) = (checked + c1, near + n1);
         }
         assert!(checked > 10_000 && near > 1_000, "{checked} {near}");
     }
@@ -653,15 +673,9 @@ mod tests {
     #[cfg(feature = "exact")]
     #[test]
     fn given_normal_crossing_signs_are_exact() {
-        use crate::exact::oracle::{R, dot, r, sub};
+        use crate::exact::oracle::{dot, r, sub};
         use num_traits::Zero;
-        let mut state = 0x2545_f491_4f6c_dd1du64;
-        let mut next = move || {
-            state ^= state << 13;
-            state ^= state >> 7;
-            state ^= state << 17;
-            state
-        };
+        let mut next = xorshift(0x2545_f491_4f6c_dd1d);
         let unit =
             |next: &mut dyn FnMut() -> u64| (next() >> 11) as f64 / (1u64 << 53) as f64 * 2.0 - 1.0;
         let (mut checked, mut near, mut zero_den) = (0, 0, 0);
@@ -709,41 +723,12 @@ mod tests {
             let rn = rv(n);
             let num = dot(&sub(&rv(p), &rv(o)), &rn);
             let den = dot(&rv(d), &rn);
-            let zero = R::zero();
-            assert_eq!(
-                pc.den_sign(),
-                Some(den.cmp(&zero)),
-                "{o:?} {d:?} {p:?} {n:?}"
-            );
             zero_den += usize::from(den.is_zero());
-            let mut ts = std::vec![
-                0.0,
-                f64::from_bits(1),
-                f64::MAX,
-                scale2(1.0, (next() % 2000) as i32 - 1000),
-            ];
-            if !den.is_zero() {
-                let t = crate::exact::round::<f64>(&(&num / &den)).abs();
-                let (mut up, mut down) = (t, t);
-                for _ in 0..3 {
-                    ts.extend([up, down]);
-                    up = up.next_up();
-                    down = down.next_down();
-                }
-                near += 1;
-            }
-            for t in ts {
-                if !(t.is_finite() && t >= 0.0) {
-                    continue;
-                }
-                let expected = (&num - r(t).unwrap() * &den).cmp(&zero);
-                assert_eq!(
-                    pc.num_minus_t_den_sign(t),
-                    Some(expected),
-                    "t {t:e}: {o:?} {d:?} {p:?} {n:?}"
-                );
-                checked += 1;
-            }
+            let random_t = scale2(1.0, (next() % 2000) as i32 - 1000);
+            let (c1, n1) = check_signs(&pc, &num, &den, random_t, &|| {
+                std::format!("{o:?} {d:?} {p:?} {n:?}")
+            });
+            (checked, near) = (checked + c1, near + n1);
         }
         assert!(
             checked > 20_000 && near > 2_000 && zero_den > 100,

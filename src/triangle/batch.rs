@@ -170,6 +170,18 @@ pub struct TriangleBatchHits<F = f32, const N: usize = 8> {
 }
 
 impl<F: Scalar, const N: usize> TriangleBatchHits<F, N> {
+    /// No lane hit: `t = +inf`, `u = v = 0` everywhere.
+    #[inline(always)]
+    pub(crate) fn none() -> Self {
+        Self {
+            mask: 0,
+            front: 0,
+            t: [F::INFINITY; N],
+            u: [F::ZERO; N],
+            v: [F::ZERO; N],
+        }
+    }
+
     /// The hit in `lane` as the scalar test returns it; `None` for a lane
     /// not hit and for `lane >= N`.
     #[inline]
@@ -357,13 +369,7 @@ fn triangle_batch_body<W: Lanes8<F = S<V>>, V: Vector, const N: usize>(
     let zero = S::<V>::ZERO;
     let one = S::<V>::ONE;
     let inf = S::<V>::INFINITY;
-    let mut out = TriangleBatchHits {
-        mask: 0,
-        front: 0,
-        t: [inf; N],
-        u: [zero; N],
-        v: [zero; N],
-    };
+    let mut out = TriangleBatchHits::none();
     if !(ray.is_valid() && t_max_ok(t_max)) {
         return out;
     }
@@ -530,14 +536,7 @@ pub(crate) fn interval_lanes<V: Vector, const N: usize>(
     mut candidates: u32,
     any: bool,
 ) -> TriangleBatchHits<S<V>, N> {
-    let (zero, inf) = (S::<V>::ZERO, S::<V>::INFINITY);
-    let mut out = TriangleBatchHits {
-        mask: 0,
-        front: 0,
-        t: [inf; N],
-        u: [zero; N],
-        v: [zero; N],
-    };
+    let mut out = TriangleBatchHits::none();
     if !ray.is_valid() {
         return out;
     }

@@ -33,6 +33,7 @@
 //! `INTERVAL_CASES=n` sets the case count per generator and precision
 //! (default 400, a few seconds).
 
+use super::draw::{f, point, signed, v};
 use rayhit::exact::{self, oracle};
 use rayhit::glam::{DVec3, Vec3};
 use rayhit::{
@@ -49,28 +50,6 @@ fn cases() -> usize {
         .ok()
         .and_then(|s| s.parse().ok())
         .unwrap_or(400)
-}
-
-fn f<V: Vector>(x: f64) -> S<V> {
-    S::<V>::from_f64(x)
-}
-
-fn v<V: Vector>(x: f64, y: f64, z: f64) -> V {
-    V::new(f::<V>(x), f::<V>(y), f::<V>(z))
-}
-
-/// A uniform value in `[-1, 1)` with 53 random bits.
-fn signed(rng: &mut Pcg32) -> f64 {
-    let bits = (u64::from(rng.next_u32()) << 21) ^ u64::from(rng.next_u32());
-    (bits & ((1 << 53) - 1)) as f64 / (1u64 << 52) as f64 - 1.0
-}
-
-fn point<V: Vector>(rng: &mut Pcg32, scale: f64, centre: [f64; 3]) -> V {
-    v::<V>(
-        centre[0] + scale * signed(rng),
-        centre[1] + scale * signed(rng),
-        centre[2] + scale * signed(rng),
-    )
 }
 
 /// `x` moved by `k` ulps (up for `k > 0`).

@@ -13,6 +13,7 @@ mod box_face;
 mod camera;
 mod cameras;
 mod degenerate;
+mod draw;
 mod exact_api;
 mod fuzz_regressions;
 mod instance_meshes;

@@ -51,6 +51,7 @@
 //! cargo test --release -p rayhit --test suite spawn_to:: -- --ignored --nocapture
 //! ```
 
+use super::draw::signed;
 use rayhit::glam::{DVec3, Vec3};
 use rayhit::{
     Aabb, BoxFace, Interval, Plane, Ray, Scalar, SurfacePoint, Triangle, Vector, ray_aabb_face,
@@ -72,12 +73,6 @@ fn cases(default: usize) -> usize {
 }
 
 // ------------------------------------------------------------ f64 helpers
-
-/// A uniform value in `[-1, 1)`.
-fn signed(rng: &mut Pcg32) -> f64 {
-    let bits = (u64::from(rng.next_u32()) << 21) ^ u64::from(rng.next_u32());
-    (bits & ((1 << 53) - 1)) as f64 / (1u64 << 52) as f64 - 1.0
-}
 
 fn norm(a: [f64; 3]) -> f64 {
     (a[0] * a[0] + a[1] * a[1] + a[2] * a[2]).sqrt()
