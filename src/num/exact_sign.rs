@@ -557,6 +557,30 @@ mod tests {
         }
     }
 
+    /// Three coordinates for the sign tests: with `wide`, `f64` values at
+    /// `scale` times `2^-59` to 1 (and, with `zeros`, an exact zero one
+    /// time in eight); otherwise arbitrary finite `f32` bit patterns.
+    #[cfg(feature = "exact")]
+    fn coords(wide: bool, zeros: bool, scale: f64, next: &mut dyn FnMut() -> u64) -> [f64; 3] {
+        let unit =
+            |next: &mut dyn FnMut() -> u64| (next() >> 11) as f64 / (1u64 << 53) as f64 * 2.0 - 1.0;
+        [0, 1, 2].map(|_| {
+            if !wide {
+                return loop {
+                    let x = f32::from_bits(next() as u32);
+                    if x.is_finite() {
+                        break f64::from(x);
+                    }
+                };
+            }
+            if zeros && next().is_multiple_of(8) {
+                return 0.0;
+            }
+            let spread = scale2(1.0, -((next() % 60) as i32));
+            scale * spread * unit(next)
+        })
+    }
+
     /// Holds `pc` to the exact numerator and denominator of its crossing:
     /// the denominator's sign, and that of `num - t den` for `t` at zero,
     /// the smallest subnormal, `MAX`, `random_t`, and (where the crossing
@@ -614,29 +638,10 @@ mod tests {
     fn plane_crossing_signs_are_exact() {
         use crate::exact::oracle::{cross, dot, r, sub};
         let mut next = xorshift(0x9e37_79b9_7f4a_7c15);
-        let unit =
-            |next: &mut dyn FnMut() -> u64| (next() >> 11) as f64 / (1u64 << 53) as f64 * 2.0 - 1.0;
         let (mut checked, mut near) = (0, 0);
         for case in 0..1500 {
             let wide = case % 3 != 0;
-            let v = |scale: f64, next: &mut dyn FnMut() -> u64| -> [f64; 3] {
-                if wide {
-                    [0, 1, 2].map(|_| {
-                        let spread = scale2(1.0, -((next() % 60) as i32));
-                        scale * spread * unit(next)
-                    })
-                } else {
-                    // Arbitrary finite f32 bit patterns.
-                    [0, 1, 2].map(|_| {
-                        loop {
-                            let x = f32::from_bits(next() as u32);
-                            if x.is_finite() {
-                                break f64::from(x);
-                            }
-                        }
-                    })
-                }
-            };
+            let v = |scale: f64, next: &mut dyn FnMut() -> u64| coords(wide, false, scale, next);
             let g = scale2(1.0, (next() % 800) as i32 - 400);
             let h = scale2(1.0, (next() % 800) as i32 - 400);
             let (o, a, b, c) = (
@@ -676,32 +681,11 @@ mod tests {
         use crate::exact::oracle::{dot, r, sub};
         use num_traits::Zero;
         let mut next = xorshift(0x2545_f491_4f6c_dd1d);
-        let unit =
-            |next: &mut dyn FnMut() -> u64| (next() >> 11) as f64 / (1u64 << 53) as f64 * 2.0 - 1.0;
         let (mut checked, mut near, mut zero_den) = (0, 0, 0);
         for case in 0..3000 {
             let wide = case % 3 != 0;
-            let v = |scale: f64, next: &mut dyn FnMut() -> u64| -> [f64; 3] {
-                if wide {
-                    [0, 1, 2].map(|_| {
-                        // Some exact zeros, which the scaling must skip.
-                        if next().is_multiple_of(8) {
-                            return 0.0;
-                        }
-                        let spread = scale2(1.0, -((next() % 60) as i32));
-                        scale * spread * unit(next)
-                    })
-                } else {
-                    [0, 1, 2].map(|_| {
-                        loop {
-                            let x = f32::from_bits(next() as u32);
-                            if x.is_finite() {
-                                break f64::from(x);
-                            }
-                        }
-                    })
-                }
-            };
+            // (With some exact zeros, which the scaling must skip.)
+            let v = |scale: f64, next: &mut dyn FnMut() -> u64| coords(wide, true, scale, next);
             let scale = |next: &mut dyn FnMut() -> u64| scale2(1.0, (next() % 800) as i32 - 400);
             let (g, h, k) = (scale(&mut next), scale(&mut next), scale(&mut next));
             let o = v(g, &mut next);

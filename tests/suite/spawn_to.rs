@@ -284,17 +284,24 @@ fn on_triangle_f64(rng: &mut Pcg32, corners: [[f64; 3]; 3]) -> [f64; 3] {
     }
 }
 
+/// A ray aimed at `target` from a point `0.3` to `3.3` times `scale` away
+/// from it along the direction `from` draws (after the distance).
+fn aimed<V: Vector>(
+    rng: &mut Pcg32,
+    scale: f64,
+    target: [f64; 3],
+    from: impl FnOnce(&mut Pcg32) -> [f64; 3],
+) -> Ray<V> {
+    let distance = scale * (0.3 + 3.0 * signed(rng).abs());
+    let origin = v::<V>(lin(target, distance, from(rng)));
+    Ray::new(origin, v::<V>(target) - origin)
+}
+
 /// An end on the mesh triangle `i`, from a ray aimed at it.
 fn end_on_triangle<V: Vector>(rng: &mut Pcg32, sc: &Scene<V>, i: usize) -> Option<End<V>> {
     let tri = sc.tris[i];
     let target = on_triangle_f64(rng, [c(tri.a), c(tri.b), c(tri.c)]);
-    let from = lin(
-        target,
-        sc.scale * (0.3 + 3.0 * signed(rng).abs()),
-        random_unit(rng),
-    );
-    let origin = v::<V>(from);
-    let ray = Ray::new(origin, v::<V>(target) - origin);
+    let ray = aimed::<V>(rng, sc.scale, target, random_unit);
     let hit = ray_triangle(&ray, &tri, S::<V>::INFINITY)?;
     Some(End {
         sp: SurfacePoint::on_triangle(&tri, &hit),
@@ -318,13 +325,7 @@ fn end_on<V: Vector>(rng: &mut Pcg32, sc: &Scene<V>) -> Option<End<V>> {
                 sc.scale * signed(rng),
                 t2,
             );
-            let from = lin(
-                target,
-                sc.scale * (0.3 + 3.0 * signed(rng).abs()),
-                random_unit(rng),
-            );
-            let origin = v::<V>(from);
-            let ray = Ray::new(origin, v::<V>(target) - origin);
+            let ray = aimed::<V>(rng, sc.scale, target, random_unit);
             let t = ray_plane(&ray, &pl, S::<V>::INFINITY)?;
             Some(End {
                 sp: SurfacePoint::on_plane(&ray, &pl, t),
@@ -344,9 +345,7 @@ fn end_on<V: Vector>(rng: &mut Pcg32, sc: &Scene<V>) -> Option<End<V>> {
             if fdot(out, n) <= 0.05 {
                 return None;
             }
-            let from = lin(target, sc.scale * (0.3 + 3.0 * signed(rng).abs()), out);
-            let origin = v::<V>(from);
-            let ray = Ray::new(origin, v::<V>(target) - origin);
+            let ray = aimed::<V>(rng, sc.scale, target, |_| out);
             let hit = ray_aabb_face(&ray, &b, S::<V>::INFINITY)?;
             let f = hit.face?;
             Some(End {
