@@ -103,9 +103,9 @@ pub(super) fn watertight_in<V: Vector>(
             }
         }
     };
-    // `t*` is in `(lo, hi]`; the reported `t` is brought into it too (which
-    // only moves it towards `t*`, so its error bound still holds; and, with
-    // `hi <= MAX`, makes it finite, as on the other paths to `hit_at`).
+    // `t*` is in `(lo, hi]`; the reported `t` is brought into it too (see
+    // `bring_into`: within its error bound of `t*`, or one ulp of `lo`;
+    // and, with `hi <= MAX`, finite, as on the other paths to `hit_at`).
     hit_at(bring_into(t, lo, hi), [e1, e2], det, inv_det, shear)
 }
 
@@ -151,9 +151,11 @@ fn crossing<V: Vector>(origin: V, dir: V, tri: &Triangle<V>) -> PlaneCrossing {
 /// triangle's plane, computed from the input floats. The reported `t` is
 /// the same quotient as `ray_triangle`'s, within
 /// [`ray_triangle_error_bounds`](crate::ray_triangle_error_bounds) of
-/// `t*`, and brought into the interval when rounding put it outside (which
-/// only moves it towards `t*`); `u`, `v` and the side are as for
-/// `ray_triangle`.
+/// `t*`, and brought into the interval when rounding put it outside: to
+/// `t_max`, which only moves it towards `t*`, or to the float just above
+/// `t_min`, which is within the larger of that bound and one ulp of
+/// `t_min` (`t*` may lie strictly between `t_min` and that float); `u`,
+/// `v` and the side are as for `ray_triangle`.
 ///
 /// So consecutive intervals `(t0, t1]`, `(t1, t2]`, ... report each hit
 /// triangle in exactly one of them, whatever the ends: a loop that
