@@ -8,8 +8,9 @@ use core::marker::PhantomData;
 
 use glam::Vec3;
 
+use super::conditioning::edge_signs_known;
 use super::definition::{EdgeRule, watertight_definition};
-use super::interval::watertight_in;
+use super::interval::{DepthWindow, watertight_in};
 use super::{Side, Triangle, TriangleHit};
 use crate::num::{Lanes, Lanes8, S, Scalar, Vector};
 use crate::ray::{Interval, PreparedRay, t_max_ok};
@@ -269,15 +270,27 @@ where
     /// the corners' unscaled depths.
     #[inline(always)]
     fn edges<const N: usize>(&self, p: &[[[W::F; N]; 3]; 3], c: usize) -> ([W; 3], [W; 3]) {
-        let (k, o, sx, sy) = (self.k, self.o, self.sx, self.sy);
-        let (x0, y0, pz0) = sheared::<W, N>(&p[0], c, k, o, sx, sy);
-        let (x1, y1, pz1) = sheared::<W, N>(&p[1], c, k, o, sx, sy);
-        let (x2, y2, pz2) = sheared::<W, N>(&p[2], c, k, o, sx, sy);
-        let e0 = x1.mul(y2).sub(y1.mul(x2));
-        let e1 = x2.mul(y0).sub(y2.mul(x0));
-        let e2 = x0.mul(y1).sub(y0.mul(x1));
-        ([e0, e1, e2], [pz0, pz1, pz2])
+        let corners = self.corners(p, c);
+        (edge_functions(&corners), corners.map(|(_, _, pz)| pz))
     }
+
+    /// Chunk `c` of the batch in the ray's frame: each corner's sheared
+    /// `x`, `y` and unscaled depth `p_z`.
+    #[inline(always)]
+    fn corners<const N: usize>(&self, p: &[[[W::F; N]; 3]; 3], c: usize) -> [(W, W, W); 3] {
+        let (k, o, sx, sy) = (self.k, self.o, self.sx, self.sy);
+        [0, 1, 2].map(|i| sheared::<W, N>(&p[i], c, k, o, sx, sy))
+    }
+}
+
+/// The edge functions of three corners in the ray's frame, the scalar
+/// test's operations (`Frame::new`).
+#[inline(always)]
+fn edge_functions<W: Lanes8>([(x0, y0, _), (x1, y1, _), (x2, y2, _)]: &[(W, W, W); 3]) -> [W; 3] {
+    let e0 = x1.mul(*y2).sub(y1.mul(*x2));
+    let e1 = x2.mul(*y0).sub(y2.mul(*x0));
+    let e2 = x0.mul(*y1).sub(y0.mul(*x1));
+    [e0, e1, e2]
 }
 
 /// Inside test of `EdgeRule::Closed` on lanes: not both signs among the
@@ -497,53 +510,172 @@ fn slow_lanes<V: Vector, const N: usize>(
     }
 }
 
-/// The lanes of a batch that the watertight test's inside test does not
-/// put outside (every used lane that is not surely outside): the only
-/// lanes the scalar interval test can report. The lanes' edge functions
-/// are the scalar test's, bit for bit, and a lane they put outside (both
-/// signs among them, none zero or NaN) is outside for the scalar test too,
-/// whose exact recomputation only ever changes a zero.
-pub(crate) struct TriangleCandidatesKernel<V, const N: usize>(PhantomData<V>);
+/// The lane part of [`ray_triangle_batch_in`] (`ANY = false`) and
+/// [`ray_triangle_batch_occluded`] (`ANY = true`): the answer of every lane
+/// the corners' depths decide, and the lanes they leave to the scalar
+/// interval test (see [`finish_in`]). With `ANY`, it returns at the first
+/// chunk with a lane hit, with only `mask` set.
+pub(crate) struct TriangleBatchInKernel<V, const N: usize, const ANY: bool>(PhantomData<V>);
 
-impl<V: Vector, const N: usize> Kernel for TriangleCandidatesKernel<V, N> {
+impl<V: Vector, const N: usize, const ANY: bool> Kernel for TriangleBatchInKernel<V, N, ANY> {
     type Ray = PreparedRay<V>;
     type Shapes = TriangleBatch<V, N>;
-    type Limit = ();
-    type Output = u32;
+    type Limit = Interval<S<V>>;
+    type Output = (TriangleBatchHits<S<V>, N>, u32);
+    /// As for [`TriangleBatchKernel`].
+    const AVX512: bool = false;
 
     #[inline(always)]
-    fn run<I: Isa>(_: I, ray: &PreparedRay<V>, batch: &TriangleBatch<V, N>, (): ()) -> u32 {
-        const { check_lanes::<N>() };
-        let frame = RayLanes::<I::W<S<V>>>::new(ray);
-        let lo = I::W::<S<V>>::splat(S::<V>::ZERO);
-        let mut inside = 0;
-        for c in 0..N.div_ceil(8) {
-            let (outside, _, _) = outside(frame.edges(&batch.p, c).0, lo);
-            inside |= (!I::W::<S<V>>::bits(outside) & 0xff) << (8 * c);
-        }
-        inside & batch.used
+    fn run<I: Isa>(
+        _: I,
+        ray: &PreparedRay<V>,
+        batch: &TriangleBatch<V, N>,
+        interval: Interval<S<V>>,
+    ) -> Self::Output {
+        triangle_batch_in_body::<I::W<S<V>>, V, N, ANY>(ray, batch, interval)
     }
 }
 
-/// The lanes of `candidates` whose triangle the scalar interval test
-/// ([`ray_triangle_prepared_in`](crate::ray_triangle_prepared_in)) hits,
-/// as a batch answer; with `any`, it stops at the first.
+/// The body of [`TriangleBatchInKernel`] with the eight-lane type `W`: per
+/// lane, the scalar interval test's shortcut (`watertight_in_lanes`: the
+/// inside test, then, where every edge function's sign is surely exact,
+/// the corners' depths against the interval's ends), on the same values
+/// with the same operations, so the same answer, bit for bit (the
+/// depths' conditions through their smallest and largest, as
+/// `corner_verdict` notes).
 #[inline(always)]
-pub(crate) fn interval_lanes<V: Vector, const N: usize>(
+fn triangle_batch_in_body<W: Lanes8<F = S<V>>, V: Vector, const N: usize, const ANY: bool>(
     ray: &PreparedRay<V>,
     batch: &TriangleBatch<V, N>,
     interval: Interval<S<V>>,
-    mut candidates: u32,
-    any: bool,
-) -> TriangleBatchHits<S<V>, N> {
+) -> (TriangleBatchHits<S<V>, N>, u32) {
+    const { check_lanes::<N>() };
+    let (zero, one) = (S::<V>::ZERO, S::<V>::ONE);
     let mut out = TriangleBatchHits::none();
     if !ray.is_valid() {
-        return out;
+        return (out, 0);
     }
+    let sh = ray.shear();
+    let window = DepthWindow::new(interval, sh.sz);
+    if !window.usable {
+        // Every lane to the scalar test (a direction near the ends of the
+        // float range).
+        return (out, batch.used);
+    }
+    let frame = RayLanes::<W>::new(ray);
+    let splat = W::splat;
+    let (lo, ones, sz) = (splat(zero), splat(one), splat(sh.sz));
+    let (down, up) = DepthWindow::<S<V>>::factors();
+    let (down, up) = (splat(down), splat(up));
+    let (t_lo, t_hi) = (splat(window.lo), splat(window.hi));
+    let (t_lo_normal, t_hi_normal) = (splat(window.lo_normal), splat(window.hi_normal));
+    let (normal, max) = (splat(S::<V>::MIN_POSITIVE), splat(S::<V>::MAX));
+    let (neg_normal, neg_max) = (lo.sub(normal), lo.sub(max));
+    let above_lo = splat(window.lo.next_up());
+    let (mut hit, mut slow, mut front) = (0, 0, 0);
+    let all = lo.le(lo);
+    for c in 0..N.div_ceil(8) {
+        // Lanes past N hold NaN, and are not in `batch.used`.
+        let corners = frame.corners(&batch.p, c);
+        let [e0, e1, e2] = edge_functions(&corners);
+        let (outside, e_min, e_max) = outside([e0, e1, e2], lo);
+        let inside = W::and_not(all, outside);
+        if W::bits(inside) == 0 {
+            continue;
+        }
+        let [(x0, y0, pz0), (x1, y1, pz1), (x2, y2, pz2)] = corners;
+        // The largest |x_i|, |y_i|, |p_z,i|, as the larger of the largest
+        // value and minus the smallest.
+        let top = x0
+            .max(x1.max(x2))
+            .max(y0.max(y1.max(y2)))
+            .max(pz0.max(pz1.max(pz2)));
+        let bottom = x0
+            .min(x1.min(x2))
+            .min(y0.min(y1.min(y2)))
+            .min(pz0.min(pz1.min(pz2)));
+        let scale = top.max(lo.sub(bottom));
+        // Inside, the edge functions share a sign, so the smallest |e_i|
+        // is e_min where they are positive and -e_max where negative.
+        let min_abs_e = e_min.max(lo.sub(e_max));
+        let det = e0.add(e1).add(e2);
+        let finite = W::and(det.le(max), neg_max.le(det));
+        let known = W::and(W::and(edge_signs_known(min_abs_e, scale), finite), inside);
+        let (z0, z1, z2) = (pz0.mul(sz), pz1.mul(sz), pz2.mul(sz));
+        let (z_min, z_max) = (z0.min(z1.min(z2)), z0.max(z1.max(z2)));
+        let (low, high) = (z_min.mul(down), z_max.mul(up));
+        let accept = W::and(t_lo_normal.lt(low), high.le(t_hi));
+        let reject = W::or(
+            W::or(t_hi_normal.lt(low), z_max.le(neg_normal)),
+            W::and(normal.le(z_min), high.le(t_lo)),
+        );
+        let hit_c = W::and(known, accept);
+        let shift = 8 * c;
+        slow |= W::bits(W::and_not(inside, W::and(known, W::or(accept, reject)))) << shift;
+        hit |= W::bits(hit_c) << shift;
+        if ANY {
+            if W::bits(hit_c) & (batch.used >> shift) != 0 {
+                out.mask = hit & batch.used;
+                return (out, 0);
+            }
+            continue;
+        }
+        let inv_det = ones.div(det);
+        let t = e0.mul(z0).add(e1.mul(z1)).add(e2.mul(z2)).mul(inv_det);
+        // `bring_into`: `t` above `t_min`, at most `t_max`.
+        let t = W::select(t_lo.lt(t), t, above_lo).min(t_hi);
+        let u = e1.mul(inv_det).min(ones);
+        let v = e2.mul(inv_det).min(ones);
+        front |= W::bits(lo.lt(det)) << shift;
+        put(&mut out.t, c, W::select(hit_c, t, splat(S::<V>::INFINITY)));
+        put(&mut out.u, c, W::select(hit_c, u, lo));
+        put(&mut out.v, c, W::select(hit_c, v, lo));
+    }
+    let hit = hit & batch.used;
+    out.mask = hit;
+    // A hit is from the front when the sign of its determinant differs
+    // from that of the ray's main component (see `watertight_definition`).
+    out.front = if sh.dz > zero {
+        !front & hit
+    } else {
+        front & hit
+    };
+    (out, slow & batch.used)
+}
+
+/// The lanes in `slow` of a batch answer from the scalar interval test
+/// ([`ray_triangle_prepared_in`](crate::ray_triangle_prepared_in)),
+/// bit for bit; with `any`, it stops at the first hit (and at once when
+/// `out` already has one).
+#[inline(always)]
+pub(crate) fn finish_in<V: Vector, const N: usize>(
+    ray: &PreparedRay<V>,
+    batch: &TriangleBatch<V, N>,
+    interval: Interval<S<V>>,
+    (mut out, slow): (TriangleBatchHits<S<V>, N>, u32),
+    any: bool,
+) -> TriangleBatchHits<S<V>, N> {
+    if slow != 0 && !(any && out.mask != 0) {
+        slow_lanes_in(ray, batch, interval, slow, any, &mut out);
+    }
+    out
+}
+
+/// The scalar half of [`finish_in`], out of line (such lanes are rare).
+#[cold]
+#[inline(never)]
+fn slow_lanes_in<V: Vector, const N: usize>(
+    ray: &PreparedRay<V>,
+    batch: &TriangleBatch<V, N>,
+    interval: Interval<S<V>>,
+    mut slow: u32,
+    any: bool,
+    out: &mut TriangleBatchHits<S<V>, N>,
+) {
     let shear = ray.shear();
-    while candidates != 0 {
-        let l = candidates.trailing_zeros() as usize;
-        candidates &= candidates - 1;
+    while slow != 0 {
+        let l = slow.trailing_zeros() as usize;
+        slow &= slow - 1;
         let tri = batch.lane(l);
         let hit = watertight_in(
             ray.origin(),
@@ -564,7 +696,6 @@ pub(crate) fn interval_lanes<V: Vector, const N: usize>(
             }
         }
     }
-    out
 }
 
 /// [`ray_triangle_batch`] over an interval: lane by lane, bit for bit what
@@ -603,8 +734,8 @@ pub fn ray_triangle_batch_in<V: Vector, const N: usize>(
     batch: &TriangleBatch<V, N>,
     interval: Interval<S<V>>,
 ) -> TriangleBatchHits<S<V>, N> {
-    let candidates = per_call::<TriangleCandidatesKernel<V, N>>(ray, batch, ());
-    interval_lanes(ray, batch, interval, candidates, false)
+    let lanes = per_call::<TriangleBatchInKernel<V, N, false>>(ray, batch, interval);
+    finish_in(ray, batch, interval, lanes, false)
 }
 
 /// Whether any triangle of the batch blocks the ray within `interval`:
@@ -627,6 +758,6 @@ pub fn ray_triangle_batch_occluded<V: Vector, const N: usize>(
     batch: &TriangleBatch<V, N>,
     interval: Interval<S<V>>,
 ) -> bool {
-    let candidates = per_call::<TriangleCandidatesKernel<V, N>>(ray, batch, ());
-    interval_lanes(ray, batch, interval, candidates, true).mask != 0
+    let lanes = per_call::<TriangleBatchInKernel<V, N, true>>(ray, batch, interval);
+    finish_in(ray, batch, interval, lanes, true).mask != 0
 }

@@ -4,7 +4,7 @@
 //! lane by lane on three frames (the per-call test), and per corner with a
 //! cheaper sufficient test first (the prepared test).
 
-use crate::num::{Lanes, Scalar};
+use crate::num::{Lanes, Lanes8, Scalar};
 
 /// A sufficient condition for the determinant's sign to be known (for
 /// [`HitCondition::new`] to be `Some`), from `m`, the largest `|x_i|` and
@@ -58,8 +58,13 @@ pub(crate) fn det_sign_known_roughly<W: Lanes>(det: W, k: W) -> u32
 where
     W::F: Scalar,
 {
-    let bound = W::splat(W::F::from_u32(200) * W::F::UNIT_ROUNDOFF);
-    k.mul(k).mul(bound).lt(det.abs())
+    k.mul(k).mul(W::splat(rough_factor())).lt(det.abs())
+}
+
+/// The factor `200 u` of [`det_sign_known_roughly`] and [`edge_signs_known`].
+#[inline(always)]
+fn rough_factor<F: Scalar>() -> F {
+    F::from_u32(200) * F::UNIT_ROUNDOFF
 }
 
 /// The threshold of [`det_sign_known`] itself, for
@@ -90,4 +95,60 @@ where
         .mul(W::splat(W::F::from_u32(64) * u))
         .add(s.mul(s).mul(W::splat(W::F::from_u32(256) * u * u)));
     threshold.lt(det.abs())
+}
+
+/// A sufficient condition for every edge function's sign to be known, so
+/// that the exact edge functions `E_i` share the computed ones' sign and
+/// none is zero: the exact line crosses the exact triangle's plane inside
+/// the triangle, and its crossing `t*` is a convex combination of the
+/// corners' exact depths (what the interval tests' shortcut needs).
+///
+/// The test, per lane of a batch (a triangle each): the smallest `|e_i|`
+/// above `200 u K^2`, with `K` at least the largest `|x_i|`, `|y_i|` and
+/// `|p_z,i|` (`m` and `w` of [`det_sign_known`]), and `K` at least
+/// [`scale_floor`]. [`edge_signs_known_at_corners`] is the same test with
+/// the corners in lanes.
+///
+/// Why: [`det_sign_known`]'s derivation bounds the edge functions' error
+/// `de` of [`ErrorBounds`] by `u (12 m^2 + 20 m w) + 2 u^2 (2m + 5w)^2`,
+/// below `33 u K^2` and so below `|e_i| / 5`: each `E_i` has the sign of
+/// `e_i`. The threshold rounds twice, which `200` (against `193`, as in
+/// [`det_sign_known_roughly`]) covers. Those bounds count every rounding as
+/// relative; a result in the subnormal range is off by at most `eta = u
+/// MIN_POSITIVE` more (a difference that is subnormal is exact, a product
+/// off by `eta`), which adds at most `5 K eta + 2 eta` to an edge function,
+/// below `2^-70 u K^2` for `K >= scale_floor()`; and `200 u K^2` is then a
+/// normal float, so its own rounding is relative. NaN fails the test.
+#[inline(always)]
+pub(crate) fn edge_signs_known<W: Lanes8>(min_abs_e: W, k: W) -> W::Mask
+where
+    W::F: Scalar,
+{
+    let large = W::splat(scale_floor::<W::F>()).le(k);
+    W::and(k.mul(k).mul(W::splat(rough_factor())).lt(min_abs_e), large)
+}
+
+/// [`edge_signs_known`] with the corners in lanes: `min_abs_e` holds the
+/// smallest `|e_i|` in every lane and lane `i` of `k` is corner `i`'s
+/// `max(|x_i|, |y_i|, |p_z,i|)`; every lane passing is the test for the
+/// largest `k_i`.
+#[inline(always)]
+pub(crate) fn edge_signs_known_at_corners<W: Lanes>(min_abs_e: W, k: W) -> bool
+where
+    W::F: Scalar,
+{
+    det_sign_known_roughly(min_abs_e, k) == 0b111 && W::splat(scale_floor::<W::F>()).le(k) != 0
+}
+
+/// The smallest scale of a triangle, seen from the ray, for which
+/// [`edge_signs_known`] holds as derived: `2^-50` for `f32`, `2^-480` for
+/// `f64` (so that `200 u K^2` is a normal float, and underflow is
+/// negligible against it).
+#[inline(always)]
+pub(crate) fn scale_floor<F: Scalar>() -> F {
+    if F::UNIT_ROUNDOFF.to_f64() < 1e-10 {
+        F::from_f64(f64::from_bits((1023 - 480) << 52))
+    } else {
+        F::from_f64(f64::from_bits((1023 - 50) << 52))
+    }
 }

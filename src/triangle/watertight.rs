@@ -240,12 +240,12 @@ pub(crate) fn watertight_lanes<V: Vector>(
 /// it comes back in registers (see `crate::num::repr::Bits`). Returned
 /// through memory, the rare paths' answer made the inlined common path
 /// write its own answer through memory as well.
-type Packed<F> = <<F as Repr>::Bits as Bits>::Packed;
+pub(super) type Packed<F> = <<F as Repr>::Bits as Bits>::Packed;
 
 /// `hit` packed: `t`, `u`, `v` and a code, 0 for a miss, 1 for a hit from
 /// the front, 2 from the back.
 #[inline(always)]
-fn pack<F: Scalar>(hit: Option<TriangleHit<F>>) -> Packed<F> {
+pub(super) fn pack<F: Scalar>(hit: Option<TriangleHit<F>>) -> Packed<F> {
     let (values, code) = match hit {
         None => ([F::ZERO; 3], 0),
         Some(h) => (
@@ -261,7 +261,7 @@ fn pack<F: Scalar>(hit: Option<TriangleHit<F>>) -> Packed<F> {
 
 /// The inverse of [`pack`], bit for bit.
 #[inline(always)]
-fn unpack<F: Scalar>(packed: Packed<F>) -> Option<TriangleHit<F>> {
+pub(super) fn unpack<F: Scalar>(packed: Packed<F>) -> Option<TriangleHit<F>> {
     let ([t, u, v], code) = F::Bits::unpack(packed);
     let side = match code {
         0 => return None,
@@ -273,7 +273,7 @@ fn unpack<F: Scalar>(packed: Packed<F>) -> Option<TriangleHit<F>> {
 
 /// A ray the definition can be run on, from what a fast path was given: its
 /// origin and shear (rebuilt where the fast path kept only its lanes).
-trait DefinitionRay<V: Vector> {
+pub(super) trait DefinitionRay<V: Vector> {
     fn origin_and_shear(&self) -> (V, Shear<S<V>>);
 }
 
@@ -327,7 +327,7 @@ fn definition_out_of_line<V: Vector, R: DefinitionRay<V>>(
 /// `origin_lanes` and shear `shear`, a corner per lane: the sheared `x` and
 /// `y`, the unscaled depth `p_z`, and the edge functions.
 #[inline(always)]
-fn frame_lanes<V: Vector>(
+pub(super) fn frame_lanes<V: Vector>(
     origin_lanes: &[L<V>; 3],
     shear_lanes: &[L<V>; 3],
     axes: &[Axis; 3],
