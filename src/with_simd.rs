@@ -12,7 +12,7 @@ use crate::ray::{Interval, PreparedRay};
 use crate::simd::Work;
 use crate::simd::{Isa, TargetSimd};
 use crate::triangle::{
-    TriangleBatch, TriangleBatchHits, TriangleBatchInKernel, TriangleBatchKernel, finish_in,
+    TriangleBatch, TriangleBatchHits, TriangleBatchInKernel, TriangleBatchKernel,
 };
 
 /// Work that [`with_simd`] runs compiled for the CPU's widest SIMD: a BVH
@@ -87,8 +87,7 @@ pub trait Simd: Copy + core::fmt::Debug + Isa {
         batch: &TriangleBatch<V, N>,
         interval: Interval<S<V>>,
     ) -> TriangleBatchHits<S<V>, N> {
-        let lanes = self.kernel::<TriangleBatchInKernel<V, N, false>>(ray, batch, interval);
-        finish_in(ray, batch, interval, lanes, false)
+        self.kernel::<TriangleBatchInKernel<V, N, false>>(ray, batch, interval)
     }
 
     /// [`ray_triangle_batch_occluded`](crate::ray_triangle_batch_occluded),
@@ -101,8 +100,9 @@ pub trait Simd: Copy + core::fmt::Debug + Isa {
         batch: &TriangleBatch<V, N>,
         interval: Interval<S<V>>,
     ) -> bool {
-        let lanes = self.kernel::<TriangleBatchInKernel<V, N, true>>(ray, batch, interval);
-        finish_in(ray, batch, interval, lanes, true).mask != 0
+        self.kernel::<TriangleBatchInKernel<V, N, true>>(ray, batch, interval)
+            .mask
+            != 0
     }
 
     /// [`ray_quantized_children`](crate::ray_quantized_children), compiled

@@ -271,7 +271,8 @@ where
     #[inline(always)]
     fn edges<const N: usize>(&self, p: &[[[W::F; N]; 3]; 3], c: usize) -> ([W; 3], [W; 3]) {
         let corners = self.corners(p, c);
-        (edge_functions(&corners), corners.map(|(_, _, pz)| pz))
+        let [(_, _, pz0), (_, _, pz1), (_, _, pz2)] = corners;
+        (edge_functions(&corners), [pz0, pz1, pz2])
     }
 
     /// Chunk `c` of the batch in the ray's frame: each corner's sheared
@@ -279,7 +280,11 @@ where
     #[inline(always)]
     fn corners<const N: usize>(&self, p: &[[[W::F; N]; 3]; 3], c: usize) -> [(W, W, W); 3] {
         let (k, o, sx, sy) = (self.k, self.o, self.sx, self.sy);
-        [0, 1, 2].map(|i| sheared::<W, N>(&p[i], c, k, o, sx, sy))
+        [
+            sheared::<W, N>(&p[0], c, k, o, sx, sy),
+            sheared::<W, N>(&p[1], c, k, o, sx, sy),
+            sheared::<W, N>(&p[2], c, k, o, sx, sy),
+        ]
     }
 }
 
@@ -510,18 +515,18 @@ fn slow_lanes<V: Vector, const N: usize>(
     }
 }
 
-/// The lane part of [`ray_triangle_batch_in`] (`ANY = false`) and
-/// [`ray_triangle_batch_occluded`] (`ANY = true`): the answer of every lane
-/// the corners' depths decide, and the lanes they leave to the scalar
-/// interval test (see [`finish_in`]). With `ANY`, it returns at the first
-/// chunk with a lane hit, with only `mask` set.
+/// [`ray_triangle_batch_in`] (`ANY = false`) and
+/// [`ray_triangle_batch_occluded`] (`ANY = true`) as a kernel: the answer
+/// of every lane the corners' depths decide, and the scalar interval test
+/// for the lanes they leave. With `ANY`, it returns at the first lane hit,
+/// with only `mask` set.
 pub(crate) struct TriangleBatchInKernel<V, const N: usize, const ANY: bool>(PhantomData<V>);
 
 impl<V: Vector, const N: usize, const ANY: bool> Kernel for TriangleBatchInKernel<V, N, ANY> {
     type Ray = PreparedRay<V>;
     type Shapes = TriangleBatch<V, N>;
     type Limit = Interval<S<V>>;
-    type Output = (TriangleBatchHits<S<V>, N>, u32);
+    type Output = TriangleBatchHits<S<V>, N>;
     /// As for [`TriangleBatchKernel`].
     const AVX512: bool = false;
 
@@ -548,19 +553,20 @@ fn triangle_batch_in_body<W: Lanes8<F = S<V>>, V: Vector, const N: usize, const 
     ray: &PreparedRay<V>,
     batch: &TriangleBatch<V, N>,
     interval: Interval<S<V>>,
-) -> (TriangleBatchHits<S<V>, N>, u32) {
+) -> TriangleBatchHits<S<V>, N> {
     const { check_lanes::<N>() };
     let (zero, one) = (S::<V>::ZERO, S::<V>::ONE);
     let mut out = TriangleBatchHits::none();
     if !ray.is_valid() {
-        return (out, 0);
+        return out;
     }
     let sh = ray.shear();
     let window = DepthWindow::new(interval, sh.sz);
     if !window.usable {
         // Every lane to the scalar test (a direction near the ends of the
         // float range).
-        return (out, batch.used);
+        slow_lanes_in(ray, batch, interval, batch.used, ANY, &mut out);
+        return out;
     }
     let frame = RayLanes::<W>::new(ray);
     let splat = W::splat;
@@ -613,12 +619,14 @@ fn triangle_batch_in_body<W: Lanes8<F = S<V>>, V: Vector, const N: usize, const 
         let shift = 8 * c;
         slow |= W::bits(W::and_not(inside, W::and(known, W::or(accept, reject)))) << shift;
         hit |= W::bits(hit_c) << shift;
-        if ANY {
-            if W::bits(hit_c) & (batch.used >> shift) != 0 {
-                out.mask = hit & batch.used;
-                return (out, 0);
-            }
+        if W::bits(hit_c) & (batch.used >> shift) == 0 {
+            // (Most chunks with a lane inside have no lane hit: for random
+            // rays, half the triangles the line crosses are behind.)
             continue;
+        }
+        if ANY {
+            out.mask = hit & batch.used;
+            return out;
         }
         let inv_det = ones.div(det);
         let t = e0.mul(z0).add(e1.mul(z1)).add(e2.mul(z2)).mul(inv_det);
@@ -640,28 +648,17 @@ fn triangle_batch_in_body<W: Lanes8<F = S<V>>, V: Vector, const N: usize, const 
     } else {
         front & hit
     };
-    (out, slow & batch.used)
-}
-
-/// The lanes in `slow` of a batch answer from the scalar interval test
-/// ([`ray_triangle_prepared_in`](crate::ray_triangle_prepared_in)),
-/// bit for bit; with `any`, it stops at the first hit (and at once when
-/// `out` already has one).
-#[inline(always)]
-pub(crate) fn finish_in<V: Vector, const N: usize>(
-    ray: &PreparedRay<V>,
-    batch: &TriangleBatch<V, N>,
-    interval: Interval<S<V>>,
-    (mut out, slow): (TriangleBatchHits<S<V>, N>, u32),
-    any: bool,
-) -> TriangleBatchHits<S<V>, N> {
-    if slow != 0 && !(any && out.mask != 0) {
-        slow_lanes_in(ray, batch, interval, slow, any, &mut out);
+    let slow = slow & batch.used;
+    if slow != 0 {
+        slow_lanes_in(ray, batch, interval, slow, ANY, &mut out);
     }
     out
 }
 
-/// The scalar half of [`finish_in`], out of line (such lanes are rare).
+/// The lanes in `slow` of a batch answer from the scalar interval test
+/// ([`ray_triangle_prepared_in`](crate::ray_triangle_prepared_in)), bit
+/// for bit; with `any`, it stops at the first hit. Out of line (such lanes
+/// are rare).
 #[cold]
 #[inline(never)]
 fn slow_lanes_in<V: Vector, const N: usize>(
@@ -734,8 +731,7 @@ pub fn ray_triangle_batch_in<V: Vector, const N: usize>(
     batch: &TriangleBatch<V, N>,
     interval: Interval<S<V>>,
 ) -> TriangleBatchHits<S<V>, N> {
-    let lanes = per_call::<TriangleBatchInKernel<V, N, false>>(ray, batch, interval);
-    finish_in(ray, batch, interval, lanes, false)
+    per_call::<TriangleBatchInKernel<V, N, false>>(ray, batch, interval)
 }
 
 /// Whether any triangle of the batch blocks the ray within `interval`:
@@ -758,6 +754,5 @@ pub fn ray_triangle_batch_occluded<V: Vector, const N: usize>(
     batch: &TriangleBatch<V, N>,
     interval: Interval<S<V>>,
 ) -> bool {
-    let lanes = per_call::<TriangleBatchInKernel<V, N, true>>(ray, batch, interval);
-    finish_in(ray, batch, interval, lanes, true).mask != 0
+    per_call::<TriangleBatchInKernel<V, N, true>>(ray, batch, interval).mask != 0
 }

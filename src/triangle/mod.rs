@@ -38,7 +38,7 @@ pub use batch::{
     TriangleBatch, TriangleBatchHits, ray_triangle_batch, ray_triangle_batch_in,
     ray_triangle_batch_occluded,
 };
-pub(crate) use batch::{TriangleBatchInKernel, TriangleBatchKernel, finish_in};
+pub(crate) use batch::{TriangleBatchInKernel, TriangleBatchKernel};
 pub use bounds::{TriangleHitError, ray_triangle_error_bounds, triangle_hit_point};
 pub use interval::{
     ray_triangle_in, ray_triangle_occluded, ray_triangle_one_hit_in, ray_triangle_prepared_in,

@@ -54,7 +54,7 @@ use rayhit::{
     ThinLensCamera, Triangle, TriangleBatch, TriangleBatchHits, ValidAabb, ray_aabb,
     ray_aabb_batch, ray_aabb_prepared, ray_triangle, ray_triangle_batch, ray_triangle_batch_in,
     ray_triangle_batch_occluded, ray_triangle_mt, ray_triangle_prepared, ray_triangle_prepared_in,
-    with_simd,
+    ray_triangle_prepared_occluded, with_simd,
 };
 use rayhit_peers::cwbvh;
 use rayhit_testkit::rng::Pcg32;
@@ -1286,6 +1286,16 @@ fn group_kernels<'a>(
             None,
             chunked(&t.prepared, &t.tris, GROUP, move |r, x| {
                 t_sum(ray_triangle_prepared_in(r, x, all).map(|h| h.t))
+            }),
+        ),
+        kernel(
+            sec,
+            "rayhit ray_triangle_prepared_occluded, (0, inf]",
+            w,
+            nt,
+            None,
+            chunked(&t.prepared, &t.tris, GROUP, move |r, x| {
+                u64::from(ray_triangle_prepared_occluded(r, x, all))
             }),
         ),
         kernel(
