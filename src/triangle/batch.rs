@@ -702,9 +702,11 @@ fn slow_lanes_in<V: Vector, const N: usize>(
 /// crossing, so that consecutive intervals report each triangle of the
 /// batch once (every hit along a ray, in order).
 ///
-/// How: the lanes compute the inside test's edge functions for eight
-/// triangles at a time, and only the triangles not surely outside (most
-/// lanes of a leaf are outside) go through the scalar interval test.
+/// How: eight triangles at a time, the lanes run the scalar test's inside
+/// test and its common case (the corners' depths against the ends, where
+/// every edge function's sign is surely exact), with the same operations;
+/// the rare lanes these leave (a crossing near an edge or an end) go
+/// through the scalar interval test itself.
 ///
 /// Empty lanes and an invalid ray give no hits. Never panics.
 ///
@@ -736,7 +738,8 @@ pub fn ray_triangle_batch_in<V: Vector, const N: usize>(
 
 /// Whether any triangle of the batch blocks the ray within `interval`:
 /// the any-hit form of [`ray_triangle_batch_in`] for shadow rays, `true`
-/// exactly when its `mask` is not zero. It stops at the first lane hit.
+/// exactly when its `mask` is not zero. It stops at the first chunk of
+/// eight lanes with a hit, and computes no `t`, `u` or `v`.
 ///
 /// ```
 /// use rayhit::{Interval, PreparedRay, Ray, Triangle, TriangleBatch, ray_triangle_batch_occluded, glam::Vec3};

@@ -345,10 +345,14 @@ fn crossing<V: Vector>(origin: V, dir: V, tri: &Triangle<V>) -> PlaneCrossing {
 /// ray spawned off a surface, wrong for a sequence); this decides both
 /// ends exactly.
 ///
-/// Cost: the inside test plus the error bound of `t` for each triangle
-/// whose inside test passes; the exact signs (a few hundred operations)
-/// only where `t*` is within that bound of an end. The `t_max`-only
-/// kernels are unchanged.
+/// Cost: about that of `ray_triangle`. Where the inside test passes,
+/// the common case is decided from the corners' depths: when every edge
+/// function's sign is surely exact, `t*` lies between the corners' exact
+/// depths along the ray, and the ends are compared with those (with a
+/// margin of a few ulps). The error bound of `t` is computed only for
+/// crossings near an edge or an end, and the exact signs (a few hundred
+/// operations) only where `t*` is within that bound of an end. The
+/// `t_max`-only kernels are unchanged.
 ///
 /// Invalid rays and triangles with a NaN or infinite coordinate miss;
 /// bad intervals cannot be built ([`Interval::new`]). The range decision

@@ -35,7 +35,7 @@ mod exact_judge {
 type Target = (&'static str, fn(&[u8]));
 
 /// Every target, by the name of its file in `fuzz/fuzz_targets/`.
-const TARGETS: [Target; 17] = [
+const TARGETS: [Target; 18] = [
     ("aabb", targets::aabb),
     ("aabb_slab_vs_naive", targets::aabb_slab_vs_naive),
     ("batch", targets::batch),
@@ -50,6 +50,7 @@ const TARGETS: [Target; 17] = [
     ("orthographic", targets::orthographic),
     ("plane", targets::plane),
     ("spawn", targets::spawn),
+    ("spawn_to", targets::spawn_to),
     ("thin_lens", targets::thin_lens),
     ("triangle", targets::triangle),
     (

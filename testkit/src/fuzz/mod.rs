@@ -20,7 +20,7 @@
 //! Structured inputs check the invariants in detail: exact-oracle agreement
 //! within the documented bounds, hit points on the surface, slab against
 //! naive, watertight against Moller-Trumbore, closed meshes that never leak,
-//! spawned rays that never re-hit.
+//! spawned rays that never re-hit, shadow-ray segments that hit neither end.
 //!
 //! A failed check panics with the input printed as `Debug` floats (which
 //! round-trip exactly), ready to paste into `tests/suite/fuzz_regressions.rs`.
@@ -43,6 +43,7 @@ pub mod orthographic;
 pub mod panoramic;
 pub mod plane;
 pub mod spawn;
+pub mod spawn_to;
 pub mod thin_lens;
 pub mod triangle;
 
@@ -122,6 +123,10 @@ pub mod targets {
     /// `spawn`: [`spawn::Spawn`].
     pub fn spawn(data: &[u8]) {
         dispatch::<spawn::Spawn>(data);
+    }
+    /// `spawn_to`: [`spawn_to::SpawnTo`].
+    pub fn spawn_to(data: &[u8]) {
+        dispatch::<spawn_to::SpawnTo>(data);
     }
     /// `batch`: [`batch::Batch`].
     pub fn batch(data: &[u8]) {

@@ -130,7 +130,7 @@ fn new_dir<V: Vector>(src: &mut Source, normal: V, along: V) -> V {
 /// are relative-error arguments, which need their products in the normal
 /// range; every nonzero coordinate, edge component and barycentric product
 /// between `2^-40` and `2^40` (`f32`; `2^-300` and `2^300` for `f64`).
-fn in_normal_range<V: Vector>(vs: &[V]) -> bool {
+pub(super) fn in_normal_range<V: Vector>(vs: &[V]) -> bool {
     let k = if S::<V>::UNIT_ROUNDOFF.to_f64() > 1e-10 {
         40
     } else {
@@ -148,7 +148,7 @@ fn in_normal_range<V: Vector>(vs: &[V]) -> bool {
 /// The products `triangle_hit_point` and `normal_with_error` form are far
 /// from underflow ([`super::far_from_underflow`]): `u (b - a)_j`,
 /// `v (c - a)_j` and `(b - a)_j (c - a)_k`.
-fn triangle_no_underflow<V: Vector>(tri: &Triangle<V>, u: S<V>, v: S<V>) -> bool {
+pub(super) fn triangle_no_underflow<V: Vector>(tri: &Triangle<V>, u: S<V>, v: S<V>) -> bool {
     let (e1, e2) = (tri.b - tri.a, tri.c - tri.a);
     (0..3).all(|j| {
         product_far_from_underflow(u, e1[j])
