@@ -139,41 +139,21 @@ pub(crate) fn sin_cos_quarter<F: Scalar>(r: F) -> (F, F) {
 /// an integer; `k = round(4 s)` is a quarter-turn count in `-2..=2`, and
 /// `r = 4 s - k` in `[-1/2, 1/2]`, all exact. [`sin_cos_quarter`] of `r`
 /// then has the only error, and the quarter turns are exact swaps and sign
-/// changes.
+/// changes, read from the bits of `4 s + c` (the sum [`round_int`] rounds
+/// with), so that no comparison picks them: the whole function is
+/// arithmetic and bit operations, which a loop of rays computes several
+/// at a time.
 #[inline(always)]
 pub(crate) fn sin_cos_turns<F: Scalar>(t: F) -> (F, F) {
-    // Within half a turn (every angle of a position in a panorama's image)
-    // there are no whole turns: s = t, and k is already in -2..=2.
-    let inside = t.abs() <= F::HALF;
-    let s = if inside { t } else { t - round_int(t) };
+    let c = round_int_constant::<F>();
+    // (Within half a turn, s = t: round(t) is 0, ties to even.)
+    let s = t - round_int(t);
     let four_s = s * F::from_u32(4);
-    let k = round_int(four_s);
-    let r = four_s - k;
+    // k + c: its low bits are k modulo 4 (for |t| < 2^(p-2), |k| <= 2).
+    let kc = four_s + c;
+    let r = four_s - (kc - c);
     let (sin, cos) = sin_cos_quarter(r);
-    // k modulo 4, in -2..=2 (for |t| beyond 2^(p-2), k may be any integer).
-    let q = if inside {
-        k
-    } else {
-        k - F::from_u32(4) * round_int(k * F::from_f64(0.25))
-    };
-    quarter_turns(sin, cos, q)
-}
-
-/// `(sin, cos)` of an angle `q` quarter turns on, `q` in `-2..=2`: exact.
-#[inline(always)]
-fn quarter_turns<F: Scalar>(sin: F, cos: F, q: F) -> (F, F) {
-    let zero = F::ZERO;
-    let odd = q.abs() == F::ONE;
-    let (a, b) = if odd { (cos, sin) } else { (sin, cos) };
-    // sin(x + q pi/2): s, c, -s, -c for q = 0, 1, 2 (or -2), -1;
-    // cos(x + q pi/2): c, -s, -c, s.
-    let two = F::TWO;
-    let sin_negative = q < zero || q == two;
-    let cos_negative = q > zero || q == -two;
-    (
-        if sin_negative { -a } else { a },
-        if cos_negative { -b } else { b },
-    )
+    <F as Repr>::Bits::quarter_turns(kc, sin, cos)
 }
 
 /// Taylor coefficients of `atan(x) / x` in powers of `x^2`.
