@@ -156,6 +156,20 @@ pub(crate) fn sin_cos_turns<F: Scalar>(t: F) -> (F, F) {
     <F as Repr>::Bits::quarter_turns(kc, sin, cos)
 }
 
+/// [`sin_cos_turns`] for `t` in `[0, 1/4]` (a quarter turn), bit for bit,
+/// with a shorter reduction: `q = 4t` quarter turns, in `[0, 1]`; above
+/// `1/2`, `r = q - 1` (exact, Sterbenz) and the quarter turn's swap and
+/// sign, `(cos r, -sin r)`, which is what [`sin_cos_turns`] computes there
+/// (`k = 1`). NaN gives NaN.
+#[inline(always)]
+pub(crate) fn sin_cos_quadrant<F: Scalar>(t: F) -> (F, F) {
+    let q = t * F::from_u32(4);
+    let turned = q > F::HALF;
+    let r = if turned { q - F::ONE } else { q };
+    let (sin, cos) = sin_cos_quarter(r);
+    if turned { (cos, -sin) } else { (sin, cos) }
+}
+
 /// Taylor coefficients of `atan(x) / x` in powers of `x^2`.
 const ATAN: [f64; 21] = [
     1.0,
@@ -410,6 +424,30 @@ mod tests {
                 "{r}"
             );
         }
+    }
+
+    /// The quadrant's sine and cosine are `sin_cos_turns`, bit for bit
+    /// (signed zeros included), over `[0, 1/4]`: every `f32` step of
+    /// `2^-16` and the ends' neighbours, in both precisions.
+    #[test]
+    fn quadrant_is_sin_cos_turns() {
+        fn check<F: Scalar>(t: F) {
+            let (a, b) = (sin_cos_quadrant(t), sin_cos_turns(t));
+            let bits = |(s, c): (F, F)| (s.to_f64().to_bits(), c.to_f64().to_bits());
+            assert_eq!(bits(a), bits(b), "{t:?}");
+        }
+        for i in 0..=(1 << 14) {
+            let t = f64::from(i) * 2f64.powi(-16);
+            for t in [t, t + 1e-9] {
+                check(t as f32);
+                check(t);
+            }
+        }
+        for t in [0.125f32, 0.125f32.next_up(), 0.25f32.next_down(), 0.25] {
+            check(t);
+            check(f64::from(t));
+        }
+        assert!(sin_cos_quadrant(f32::NAN).0.is_nan());
     }
 
     /// Exact cases: quarter turns give exact zeros and ones.
