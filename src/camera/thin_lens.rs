@@ -375,21 +375,21 @@ impl<V: Vector> ThinLensCamera<V> {
     #[inline(always)]
     #[must_use]
     pub fn ray_differential(&self, x: S<V>, y: S<V>, s: S<V>, t: S<V>) -> RayDifferential<V> {
+        // A branch, not a select as in `ray`: a loop storing rays with
+        // differentials (72 bytes each) mostly stays scalar, and there the
+        // branch (taken only at the centre) is cheaper than computing the
+        // pinhole camera's differentials for every ray (BENCHMARKS.md,
+        // Cameras).
         let (offset, centre) = self.lens_offset(s, t);
-        let lens = RayDifferential {
+        if centre {
+            return self.pinhole.ray_differential(x, y);
+        }
+        RayDifferential {
             ray: self.through(&self.focus(x, y), offset),
             dx_origin: V::ZERO,
             dx_dir: self.pinhole.right() * self.scale,
             dy_origin: V::ZERO,
             dy_dir: -(self.pinhole.up() * self.scale),
-        };
-        let pinhole = self.pinhole.ray_differential(x, y);
-        RayDifferential {
-            ray: select_ray(centre, pinhole.ray, lens.ray),
-            dx_origin: select(centre, pinhole.dx_origin, lens.dx_origin),
-            dx_dir: select(centre, pinhole.dx_dir, lens.dx_dir),
-            dy_origin: select(centre, pinhole.dy_origin, lens.dy_origin),
-            dy_dir: select(centre, pinhole.dy_dir, lens.dy_dir),
         }
     }
 
