@@ -4,7 +4,7 @@
 use glam::Vec3;
 
 use super::{Basis, CameraError, RayCone, RayDifferential, by_components, centred};
-use crate::num::trig::{atan2_turns, sin_cos_turns};
+use crate::num::trig::{atan2_turns, sin_cos_quadrant};
 use crate::num::{Bits, Repr, S, Scalar, Vector, unit, unit_near};
 use crate::ray::Ray;
 
@@ -161,7 +161,7 @@ impl<V: Vector> EqualAreaCamera<V> {
     /// phi` and `r sqrt(2 - r^2)`.
     #[inline(always)]
     fn local(&self, q: &Square<S<V>>) -> (V, S<V>, S<V>, S<V>) {
-        let (sin, cos) = sin_cos_turns(q.phi);
+        let (sin, cos) = sin_cos_quadrant(q.phi);
         let r2 = q.r * q.r;
         let ring = q.r * (S::<V>::TWO - r2).sqrt();
         let z = S::<V>::ONE - r2;

@@ -132,18 +132,16 @@ fn concentric_disc<F: Scalar>(s: F, t: F) -> (F, F) {
     let (zero, one) = (F::ZERO, F::ONE);
     let a = s * F::TWO - one;
     let b = t * F::TWO - one;
-    if a == zero && b == zero {
-        return (zero, zero);
-    }
+    // Selects, not branches: which triangle a sample falls in is a coin
+    // toss, and a loop of rays vectorises only without branches.
     let wide = a.abs() > b.abs();
-    let (r, q) = if wide { (a, b / a) } else { (b, a / b) };
+    let (r, n) = if wide { (a, b) } else { (b, a) };
+    // At the centre (r = 0, so n = 0 too) the angle 0: the point (0, 0).
+    let q = n / if r == zero { one } else { r };
     // (pi/4) q radians are q/2 quarter turns (exact).
     let (sin, cos) = sin_cos_quarter(q * F::HALF);
-    if wide {
-        (r * cos, r * sin)
-    } else {
-        (r * sin, r * cos)
-    }
+    let (x, y) = (r * cos, r * sin);
+    if wide { (x, y) } else { (y, x) }
 }
 
 /// The constant that rounds a coordinate to the grid of [`FocusPoint`]:
@@ -166,6 +164,19 @@ fn grid<F: Scalar>(focus: F, bound: F) -> F {
     } else {
         F::ZERO
     }
+}
+
+/// `a` where `m` holds, else `b`, per component: a select.
+#[inline(always)]
+fn select<V: Vector>(m: bool, a: V, b: V) -> V {
+    let pick = |a: S<V>, b: S<V>| if m { a } else { b };
+    V::new(pick(a.x(), b.x()), pick(a.y(), b.y()), pick(a.z(), b.z()))
+}
+
+/// [`select`] of both a ray's origin and direction.
+#[inline(always)]
+fn select_ray<V: Vector>(m: bool, a: Ray<V>, b: Ray<V>) -> Ray<V> {
+    Ray::new(select(m, a.origin, b.origin), select(m, a.dir, b.dir))
 }
 
 /// `x` rounded to the grid of `c` (see [`grid`]).
@@ -288,24 +299,19 @@ impl<V: Vector> ThinLensCamera<V> {
             + (self.pinhole.right() * (radius * a) + self.pinhole.up() * (radius * b))
     }
 
-    /// The lens offset `radius * concentric_disc(s, t)`, or `None` at the
-    /// lens centre (where the ray is the pinhole ray).
+    /// The lens offset `radius * concentric_disc(s, t)`, and whether the
+    /// sample is at the lens centre (where the ray is the pinhole ray).
     #[inline(always)]
-    fn lens_offset(&self, s: S<V>, t: S<V>) -> Option<(S<V>, S<V>)> {
+    fn lens_offset(&self, s: S<V>, t: S<V>) -> ((S<V>, S<V>), bool) {
         let radius = self.lens_radius;
         // A zero radius is the pinhole camera, whatever the sample (a NaN
         // one included); so is the sample at the lens centre. Any other
         // sample takes the lens's path, even where its offset underflows to
         // zero (a subnormal radius), so that its ray meets the focus point.
         let zero = S::<V>::ZERO;
-        if radius == zero {
-            return None;
-        }
         let (a, b) = concentric_disc(s, t);
-        if a == zero && b == zero {
-            return None;
-        }
-        Some((radius * a, radius * b))
+        let centre = radius == zero || (a == zero && b == zero);
+        ((radius * a, radius * b), centre)
     }
 
     /// The ray from the lens point at offset `(ra, rb)` through `focus`.
@@ -330,10 +336,12 @@ impl<V: Vector> ThinLensCamera<V> {
     #[inline(always)]
     #[must_use]
     pub fn ray_through(&self, focus: &FocusPoint<V>, s: S<V>, t: S<V>) -> Ray<V> {
-        match self.lens_offset(s, t) {
-            Some(offset) => self.through(focus, offset),
-            None => self.pinhole.ray(focus.raster.0, focus.raster.1),
-        }
+        let (offset, centre) = self.lens_offset(s, t);
+        // Both rays, and a select: a branch would keep a loop of rays
+        // from being vectorised.
+        let lens = self.through(focus, offset);
+        let pinhole = self.pinhole.ray(focus.raster.0, focus.raster.1);
+        select_ray(centre, pinhole, lens)
     }
 
     /// The ray of raster position `(x, y)` and lens sample `(s, t)`:
@@ -367,9 +375,15 @@ impl<V: Vector> ThinLensCamera<V> {
     #[inline(always)]
     #[must_use]
     pub fn ray_differential(&self, x: S<V>, y: S<V>, s: S<V>, t: S<V>) -> RayDifferential<V> {
-        let Some(offset) = self.lens_offset(s, t) else {
+        // A branch, not a select as in `ray`: a loop storing rays with
+        // differentials (72 bytes each) mostly stays scalar, and there the
+        // branch (taken only at the centre) is cheaper than computing the
+        // pinhole camera's differentials for every ray (BENCHMARKS.md,
+        // Cameras).
+        let (offset, centre) = self.lens_offset(s, t);
+        if centre {
             return self.pinhole.ray_differential(x, y);
-        };
+        }
         RayDifferential {
             ray: self.through(&self.focus(x, y), offset),
             dx_origin: V::ZERO,

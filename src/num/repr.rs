@@ -69,6 +69,13 @@ pub trait Bits {
     /// `2^(1 - emax)` for the others. Integer operations on the bits only,
     /// with no branch.
     fn inverse_binade(x: Self::F) -> Self::F;
+    /// `(sin, cos)` turned `q` quarter turns further on (`(cos, -sin)`,
+    /// `(-sin, -cos)` or `(-cos, sin)`), `q` read from the low two bits of
+    /// `y`'s significand: for `y = c + k` with `c = 1.5 * 2^(p-1)` (`p` the
+    /// precision) and `k` an integer, `|k| < 2^(p-2)`, those bits are `k`
+    /// modulo 4. Integer operations on the bits only (a swap by masks and
+    /// sign flips), exact, with no comparison and no branch.
+    fn quarter_turns(y: Self::F, sin: Self::F, cos: Self::F) -> (Self::F, Self::F);
 }
 
 /// [`Bits`] of `f32`.
@@ -125,6 +132,21 @@ impl Bits for F32Bits {
         let field = (x.to_bits() & 0x7f80_0000).min(253 << 23);
         f32::from_bits((254 << 23) - field)
     }
+
+    #[inline(always)]
+    fn quarter_turns(y: f32, sin: f32, cos: f32) -> (f32, f32) {
+        let q = y.to_bits();
+        // All ones for odd q: then sin and cos swap places.
+        let swap = 0u32.wrapping_sub(q & 1);
+        let (s, c) = (sin.to_bits(), cos.to_bits());
+        let (a, b) = ((s & !swap) | (c & swap), (c & !swap) | (s & swap));
+        // sin(x + q pi/2) is negative for q = 2, 3 (bit 1 of q); cos(x +
+        // q pi/2) for q = 1, 2 (bit 1 of q + 1).
+        (
+            f32::from_bits(a ^ ((q & 2) << 30)),
+            f32::from_bits(b ^ ((q.wrapping_add(1) & 2) << 30)),
+        )
+    }
 }
 
 impl Bits for F64Bits {
@@ -162,6 +184,19 @@ impl Bits for F64Bits {
         // As for `f32`: E = e + 1023, clamped to 2045 (2^1022).
         let field = (x.to_bits() & 0x7ff0_0000_0000_0000).min(2045 << 52);
         f64::from_bits((2046 << 52) - field)
+    }
+
+    #[inline(always)]
+    fn quarter_turns(y: f64, sin: f64, cos: f64) -> (f64, f64) {
+        // As for `f32`.
+        let q = y.to_bits();
+        let swap = 0u64.wrapping_sub(q & 1);
+        let (s, c) = (sin.to_bits(), cos.to_bits());
+        let (a, b) = ((s & !swap) | (c & swap), (c & !swap) | (s & swap));
+        (
+            f64::from_bits(a ^ ((q & 2) << 62)),
+            f64::from_bits(b ^ ((q.wrapping_add(1) & 2) << 62)),
+        )
     }
 }
 

@@ -139,41 +139,35 @@ pub(crate) fn sin_cos_quarter<F: Scalar>(r: F) -> (F, F) {
 /// an integer; `k = round(4 s)` is a quarter-turn count in `-2..=2`, and
 /// `r = 4 s - k` in `[-1/2, 1/2]`, all exact. [`sin_cos_quarter`] of `r`
 /// then has the only error, and the quarter turns are exact swaps and sign
-/// changes.
+/// changes, read from the bits of `4 s + c` (the sum [`round_int`] rounds
+/// with), so that no comparison picks them: the whole function is
+/// arithmetic and bit operations, which a loop of rays computes several
+/// at a time.
 #[inline(always)]
 pub(crate) fn sin_cos_turns<F: Scalar>(t: F) -> (F, F) {
-    // Within half a turn (every angle of a position in a panorama's image)
-    // there are no whole turns: s = t, and k is already in -2..=2.
-    let inside = t.abs() <= F::HALF;
-    let s = if inside { t } else { t - round_int(t) };
+    let c = round_int_constant::<F>();
+    // (Within half a turn, s = t: round(t) is 0, ties to even.)
+    let s = t - round_int(t);
     let four_s = s * F::from_u32(4);
-    let k = round_int(four_s);
-    let r = four_s - k;
+    // k + c: its low bits are k modulo 4 (for |t| < 2^(p-2), |k| <= 2).
+    let kc = four_s + c;
+    let r = four_s - (kc - c);
     let (sin, cos) = sin_cos_quarter(r);
-    // k modulo 4, in -2..=2 (for |t| beyond 2^(p-2), k may be any integer).
-    let q = if inside {
-        k
-    } else {
-        k - F::from_u32(4) * round_int(k * F::from_f64(0.25))
-    };
-    quarter_turns(sin, cos, q)
+    <F as Repr>::Bits::quarter_turns(kc, sin, cos)
 }
 
-/// `(sin, cos)` of an angle `q` quarter turns on, `q` in `-2..=2`: exact.
+/// [`sin_cos_turns`] for `t` in `[0, 1/4]` (a quarter turn), bit for bit,
+/// with a shorter reduction: `q = 4t` quarter turns, in `[0, 1]`; above
+/// `1/2`, `r = q - 1` (exact, Sterbenz) and the quarter turn's swap and
+/// sign, `(cos r, -sin r)`, which is what [`sin_cos_turns`] computes there
+/// (`k = 1`). NaN gives NaN.
 #[inline(always)]
-fn quarter_turns<F: Scalar>(sin: F, cos: F, q: F) -> (F, F) {
-    let zero = F::ZERO;
-    let odd = q.abs() == F::ONE;
-    let (a, b) = if odd { (cos, sin) } else { (sin, cos) };
-    // sin(x + q pi/2): s, c, -s, -c for q = 0, 1, 2 (or -2), -1;
-    // cos(x + q pi/2): c, -s, -c, s.
-    let two = F::TWO;
-    let sin_negative = q < zero || q == two;
-    let cos_negative = q > zero || q == -two;
-    (
-        if sin_negative { -a } else { a },
-        if cos_negative { -b } else { b },
-    )
+pub(crate) fn sin_cos_quadrant<F: Scalar>(t: F) -> (F, F) {
+    let q = t * F::from_u32(4);
+    let turned = q > F::HALF;
+    let r = if turned { q - F::ONE } else { q };
+    let (sin, cos) = sin_cos_quarter(r);
+    if turned { (cos, -sin) } else { (sin, cos) }
 }
 
 /// Taylor coefficients of `atan(x) / x` in powers of `x^2`.
@@ -430,6 +424,30 @@ mod tests {
                 "{r}"
             );
         }
+    }
+
+    /// The quadrant's sine and cosine are `sin_cos_turns`, bit for bit
+    /// (signed zeros included), over `[0, 1/4]`: every `f32` step of
+    /// `2^-16` and the ends' neighbours, in both precisions.
+    #[test]
+    fn quadrant_is_sin_cos_turns() {
+        fn check<F: Scalar>(t: F) {
+            let (a, b) = (sin_cos_quadrant(t), sin_cos_turns(t));
+            let bits = |(s, c): (F, F)| (s.to_f64().to_bits(), c.to_f64().to_bits());
+            assert_eq!(bits(a), bits(b), "{t:?}");
+        }
+        for i in 0..=(1 << 14) {
+            let t = f64::from(i) * 2f64.powi(-16);
+            for t in [t, t + 1e-9] {
+                check(t as f32);
+                check(t);
+            }
+        }
+        for t in [0.125f32, 0.125f32.next_up(), 0.25f32.next_down(), 0.25] {
+            check(t);
+            check(f64::from(t));
+        }
+        assert!(sin_cos_quadrant(f32::NAN).0.is_nan());
     }
 
     /// Exact cases: quarter turns give exact zeros and ones.
