@@ -166,19 +166,6 @@ fn grid<F: Scalar>(focus: F, bound: F) -> F {
     }
 }
 
-/// `a` where `m` holds, else `b`, per component: a select.
-#[inline(always)]
-fn select<V: Vector>(m: bool, a: V, b: V) -> V {
-    let pick = |a: S<V>, b: S<V>| if m { a } else { b };
-    V::new(pick(a.x(), b.x()), pick(a.y(), b.y()), pick(a.z(), b.z()))
-}
-
-/// [`select`] of both a ray's origin and direction.
-#[inline(always)]
-fn select_ray<V: Vector>(m: bool, a: Ray<V>, b: Ray<V>) -> Ray<V> {
-    Ray::new(select(m, a.origin, b.origin), select(m, a.dir, b.dir))
-}
-
 /// `x` rounded to the grid of `c` (see [`grid`]).
 #[inline(always)]
 fn snap<F: Scalar>(x: F, c: F) -> F {
@@ -336,12 +323,14 @@ impl<V: Vector> ThinLensCamera<V> {
     #[inline(always)]
     #[must_use]
     pub fn ray_through(&self, focus: &FocusPoint<V>, s: S<V>, t: S<V>) -> Ray<V> {
+        // A branch, taken only at the centre: a select computes the
+        // pinhole ray for every sample, which a scalar loop pays for
+        // (BENCHMARKS.md, Cameras).
         let (offset, centre) = self.lens_offset(s, t);
-        // Both rays, and a select: a branch would keep a loop of rays
-        // from being vectorised.
-        let lens = self.through(focus, offset);
-        let pinhole = self.pinhole.ray(focus.raster.0, focus.raster.1);
-        select_ray(centre, pinhole, lens)
+        if centre {
+            return self.pinhole.ray(focus.raster.0, focus.raster.1);
+        }
+        self.through(focus, offset)
     }
 
     /// The ray of raster position `(x, y)` and lens sample `(s, t)`:
@@ -375,7 +364,7 @@ impl<V: Vector> ThinLensCamera<V> {
     #[inline(always)]
     #[must_use]
     pub fn ray_differential(&self, x: S<V>, y: S<V>, s: S<V>, t: S<V>) -> RayDifferential<V> {
-        // A branch, not a select as in `ray`: a loop storing rays with
+        // A branch, as in `ray_through`: a loop storing rays with
         // differentials (72 bytes each) mostly stays scalar, and there the
         // branch (taken only at the centre) is cheaper than computing the
         // pinhole camera's differentials for every ray (BENCHMARKS.md,
