@@ -20,7 +20,14 @@
 //!   comparison is exact) and is at most `16 u` of the terms' magnitudes
 //!   wider; every world point of an exact object point
 //!   (`Instance::surface_to_world`) within its `point_error` of the exact
-//!   image (stored rounded to nearest, so half an ulp is added).
+//!   image (stored rounded to nearest, so half an ulp is added);
+//! - over an interval `(t_min, t_max]` (ends at and around the exact
+//!   crossing): `ray_triangle_in` hits only where the exact plane crossing
+//!   is in the interval, and as the exact answer where the inside test is
+//!   clear of rounding, its prepared, batch and any-hit forms alike;
+//!   `ray_plane_in` hits exactly as the exact answer; each `t` in the
+//!   interval and within its bound of the exact one (or of the float above
+//!   `t_min`).
 //!
 //! Regenerate only for a deliberate change of guarantee (see CONTRIBUTING.md):
 //! `RAYHIT_REGENERATE_CORPUS=1 cargo test --release -p rayhit-corpus --test corpus`.
@@ -478,6 +485,223 @@ fn check_planes<V: Vector>(lines: &[String]) -> Failures {
     fail
 }
 
+// -------------------------------------------------------------- intervals
+
+const TRI_IN_HEADER: &str = "origin dir a b c t_min t_max | exact answer over (t_min, t_max]: miss, or hit T U V front|back (rounded to nearest) | the exact plane crossing t* against the ends: below (t* <= t_min), inside, above (t* > t_max) or none (parallel) | band: clear or edge";
+
+const PLANE_IN_HEADER: &str = "origin dir point normal t_min t_max | exact answer over (t_min, t_max]: miss, or hit T (rounded to nearest)";
+
+/// `x` stepped `k` floats up (down for negative `k`).
+fn step<F: Scalar>(x: F, k: i32) -> F {
+    (0..k.unsigned_abs()).fold(x, |x, _| if k > 0 { x.next_up() } else { x.next_down() })
+}
+
+/// Interval ends around an exact crossing `t*` (line `i` picks the kind):
+/// the float nearest `t*` and its neighbours up to two floats away as
+/// `t_min` (to infinity), as `t_max` (from zero), a window a float or two
+/// wide either side, and a wide window from half of it to twice it.
+/// `None` where the ends are not `0 <= t_min <= t_max`.
+fn ends<F: Scalar>(t: &R, i: usize) -> Option<(F, F)> {
+    let t0: F = nearest(t);
+    let k = (i / 4 % 5) as i32 - 2;
+    let (lo, hi) = match i % 4 {
+        0 => (step(t0, k), F::INFINITY),
+        1 => (F::ZERO, step(t0, k)),
+        2 => (step(t0, -1 - k.abs()), step(t0, k)),
+        _ => (t0 * F::HALF, t0 * F::TWO),
+    };
+    (F::ZERO <= lo && lo <= hi).then_some((lo, hi))
+}
+
+/// Where the exact `t*` lies against the ends.
+fn place<F: Scalar>(t: Option<&R>, lo: F, hi: F) -> &'static str {
+    match t {
+        None => "none",
+        Some(t) if *t <= r(lo) => "below",
+        Some(t) if hi.is_finite() && *t > r(hi) => "above",
+        Some(_) => "inside",
+    }
+}
+
+fn tri_in_line<V: Vector>(i: usize, (tri, ray, _): &TriCase<V>) -> Option<String> {
+    if !(ray.is_valid() && tri.normal().is_finite()) {
+        return None;
+    }
+    let t_star = oracle::triangle(ray, tri).t?;
+    if !t_star.is_positive() {
+        return None;
+    }
+    let (lo, hi) = ends::<S<V>>(&t_star, i)?;
+    let answer = match exact::ray_triangle_in(ray, tri, lo, hi) {
+        Some(h) => format!(
+            "hit {} {} {} {}",
+            hex(h.t.rounded),
+            hex(h.u.rounded),
+            hex(h.v.rounded),
+            if h.side == Side::Front {
+                "front"
+            } else {
+                "back"
+            }
+        ),
+        None => "miss".into(),
+    };
+    // Clear: the inside test's answer is not within rounding (the range is
+    // decided exactly whatever the band).
+    let clear = oracle::triangle_clear(ray, tri, S::<V>::INFINITY);
+    Some(format!(
+        "{} {} {} {} {} {} {} | {answer} | {} | {}",
+        hex_v(ray.origin),
+        hex_v(ray.dir),
+        hex_v(tri.a),
+        hex_v(tri.b),
+        hex_v(tri.c),
+        hex(lo),
+        hex(hi),
+        place(Some(&t_star), lo, hi),
+        if clear { "clear" } else { "edge" }
+    ))
+}
+
+/// The interval forms of the watertight test against the corpus: the
+/// per-call, prepared and batch forms bit for bit alike, the any-hit forms
+/// exactly whether they hit; a hit only where the exact plane crossing is
+/// in the interval, with its `t` in the interval and within its error
+/// bound of the exact `T` (or of one float above `t_min`, where `T` lies
+/// between `t_min` and that float); and, where the inside test is clear
+/// of rounding, hit or miss as the exact answer.
+fn check_triangle_intervals<V: Vector>(lines: &[String]) -> Failures {
+    use rayhit::{
+        Interval, PreparedRay, TriangleBatch, ray_triangle_batch_in, ray_triangle_batch_occluded,
+        ray_triangle_in, ray_triangle_occluded, ray_triangle_prepared_in,
+    };
+    let mut fail = Failures::default();
+    for (i, line) in lines.iter().enumerate() {
+        let parts: Vec<&str> = line.split(" | ").collect();
+        let mut f = Fields(parts[0].split_whitespace());
+        let ray = Ray::new(f.v::<V>(), f.v::<V>());
+        let tri = Triangle::new(f.v::<V>(), f.v::<V>(), f.v::<V>());
+        let (lo, hi): (S<V>, S<V>) = (f.f(), f.f());
+        let mut ans = Fields(parts[1].split_whitespace());
+        let exact: Option<S<V>> = match ans.word() {
+            "hit" => Some(ans.f()),
+            _ => None,
+        };
+        let (place, clear) = (parts[2].trim(), parts[3].trim() == "clear");
+        let Some(window) = Interval::new(lo, hi) else {
+            fail.check(false, i, || "not an interval".into());
+            continue;
+        };
+        let got = ray_triangle_in(&ray, &tri, window);
+        let prepared = PreparedRay::new(&ray);
+        let batch = TriangleBatch::<V, 8>::from_slice(&[tri]).expect("one triangle");
+        let bits = |h: Option<rayhit::TriangleHit<S<V>>>| {
+            h.map(|h| (hex(h.t), hex(h.u), hex(h.v), h.side))
+        };
+        fail.check(
+            bits(ray_triangle_prepared_in(&prepared, &tri, window)) == bits(got)
+                && bits(ray_triangle_batch_in(&prepared, &batch, window).get(0)) == bits(got),
+            i,
+            || "the prepared or batch form differs".into(),
+        );
+        fail.check(
+            ray_triangle_occluded(&ray, &tri, window) == got.is_some()
+                && ray_triangle_batch_occluded(&prepared, &batch, window) == got.is_some(),
+            i,
+            || "an any-hit form differs".into(),
+        );
+        if clear {
+            fail.check(got.is_some() == exact.is_some(), i, || {
+                format!("hit/miss {got:?} vs exact {exact:?}")
+            });
+        }
+        if let Some(h) = got {
+            fail.check(place == "inside" && window.contains(h.t), i, || {
+                format!("hit {h:?} with t* {place} the interval")
+            });
+            if let Some(te) = exact {
+                let err = ray_triangle_error_bounds(&ray, &tri, &h).t;
+                let slack = if err.is_finite() {
+                    r(err)
+                } else {
+                    R::from_integer(0.into())
+                };
+                let step_up = r(lo.next_up()) - r(lo);
+                let bound = if slack > step_up { slack } else { step_up };
+                let ok = !err.is_finite()
+                    || (r(h.t) - r(te)).abs() <= bound + ulp(te) / R::from_integer(2.into());
+                fail.check(ok, i, || {
+                    format!("t {:?} vs exact {te:?}, bound {err:?}", h.t)
+                });
+            }
+        }
+    }
+    fail
+}
+
+fn plane_in_line<V: Vector>(
+    i: usize,
+    (plane, ray, _): &(Plane<V>, Ray<V>, S<V>),
+) -> Option<String> {
+    if !ray.is_valid() {
+        return None;
+    }
+    let t_star = oracle::plane_hit(ray, plane, S::<V>::INFINITY)?;
+    let (lo, hi) = ends::<S<V>>(&t_star, i)?;
+    let answer = match exact::ray_plane_in(ray, plane, lo, hi) {
+        Some(t) => format!("hit {}", hex(t.rounded)),
+        None => "miss".into(),
+    };
+    Some(format!(
+        "{} {} {} {} {} {} | {answer}",
+        hex_v(ray.origin),
+        hex_v(ray.dir),
+        hex_v(plane.point),
+        hex_v(plane.normal),
+        hex(lo),
+        hex(hi),
+    ))
+}
+
+/// `ray_plane_in` against the corpus: hit or miss as the exact answer
+/// (decided exactly, no band), `t` in the interval and within
+/// `ray_plane_t_error` of the exact `T` (or of one float above `t_min`).
+fn check_plane_intervals<V: Vector>(lines: &[String]) -> Failures {
+    use rayhit::{Interval, ray_plane_in};
+    let mut fail = Failures::default();
+    for (i, line) in lines.iter().enumerate() {
+        let parts: Vec<&str> = line.split(" | ").collect();
+        let mut f = Fields(parts[0].split_whitespace());
+        let ray = Ray::new(f.v::<V>(), f.v::<V>());
+        let plane = Plane::new(f.v::<V>(), f.v::<V>());
+        let (lo, hi): (S<V>, S<V>) = (f.f(), f.f());
+        let mut ans = Fields(parts[1].split_whitespace());
+        let exact: Option<S<V>> = match ans.word() {
+            "hit" => Some(ans.f()),
+            _ => None,
+        };
+        let Some(window) = Interval::new(lo, hi) else {
+            fail.check(false, i, || "not an interval".into());
+            continue;
+        };
+        let got = ray_plane_in(&ray, &plane, window);
+        fail.check(got.is_some() == exact.is_some(), i, || {
+            format!("hit/miss {got:?} vs exact {exact:?}")
+        });
+        if let (Some(t), Some(te)) = (got, exact) {
+            let err = ray_plane_t_error(&ray, &plane, t);
+            let step_up = r(lo.next_up()) - r(lo);
+            let ok = window.contains(t)
+                && (!err.is_finite() || {
+                    let bound = if r(err) > step_up { r(err) } else { step_up };
+                    (r(t) - r(te)).abs() <= bound + ulp(te) / R::from_integer(2.into())
+                });
+            fail.check(ok, i, || format!("t {t:?} vs exact {te:?}, bound {err:?}"));
+        }
+    }
+    fail
+}
+
 // ---------------------------------------------------- hit differentials
 
 const DIFF_HEADER: &str = "dir dx_origin dx_dir dy_origin dy_dir a b c t | exact transfer (rounded to nearest): dp_dx du_dx dv_dx dp_dy du_dy dv_dy";
@@ -738,6 +962,21 @@ fn corpus<V: Vector>() {
             .collect();
         write("instance_point", p, INSTANCE_POINT_HEADER, &lines);
     }
+    if regenerate() || std::env::var_os("RAYHIT_REGENERATE_INTERVAL_CORPUS").is_some() {
+        let tris: Vec<String> = draw(&triangles::generators::<V>())
+            .iter()
+            .enumerate()
+            .filter_map(|(i, c)| tri_in_line(i, c))
+            .collect();
+        write("triangle_interval", p, TRI_IN_HEADER, &tris);
+        let planes: Vec<String> =
+            draw::<(Plane<V>, Ray<V>, S<V>)>(&[("plane", 22, planes::plane::<V>)])
+                .iter()
+                .enumerate()
+                .filter_map(|(i, c)| plane_in_line(i, c))
+                .collect();
+        write("plane_interval", p, PLANE_IN_HEADER, &planes);
+    }
     let files = [
         ("box", check_boxes::<V> as fn(&[String]) -> Failures),
         ("triangle", check_triangles::<V>),
@@ -745,6 +984,8 @@ fn corpus<V: Vector>() {
         ("hit_differentials", check_differentials::<V>),
         ("instance_box", check_instance_boxes::<V>),
         ("instance_point", check_instance_points::<V>),
+        ("triangle_interval", check_triangle_intervals::<V>),
+        ("plane_interval", check_plane_intervals::<V>),
     ];
     for (kernel, check) in files {
         let lines = read(kernel, p);
