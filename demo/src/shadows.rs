@@ -339,9 +339,12 @@ impl ShadowScene {
             let tri = self.glass.mesh.triangle(id as usize);
             let bound = ray_triangle_error_bounds(ray, &tri, &nearest).t;
             let t_hi = (nearest.t + bound).next_up().min(t_max);
-            // `nearest.t > t_lo`, so the window is not empty and the walk
-            // moves on by at least one crossing each time.
-            let step = Interval::new(t_lo, t_hi).expect("t_hi > t_lo");
+            // `nearest.t > t_lo`, so the window is not empty, holds the
+            // nearest crossing, and the walk moves on by at least one
+            // crossing each time.
+            let Some(step) = Interval::new(t_lo, t_hi) else {
+                break;
+            };
             found.clear();
             self.glass.one_hits_in(ray, &prepared, step, &mut found);
             found.sort_by(|a, b| a.0.t.total_cmp(&b.0.t).then(a.1.cmp(&b.1)));

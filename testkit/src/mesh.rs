@@ -6,7 +6,10 @@
 //! node's box is tested with the crate's prepared slab test, which never
 //! misses a box that exact arithmetic says the ray meets, so a triangle is
 //! never skipped because its box was rounded away; the root box is the
-//! mesh's bounding box, tested before any triangle.
+//! mesh's bounding box, tested before any triangle. The interval forms
+//! (`occluded_in`, `nearest_one_hit_in`, `one_hits_in`) search `(t_min,
+//! t_max]` with the crate's interval kernels, for shadow segments and for
+//! walking every crossing along a ray.
 
 use std::collections::HashMap;
 
