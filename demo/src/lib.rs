@@ -5,3 +5,4 @@
 /// oracle tests and the benches build the same meshes).
 pub use rayhit_testkit::mesh;
 pub mod scene;
+pub mod shadows;

@@ -3,6 +3,7 @@
 //! ```sh
 //! cargo run --release -p rayhit-demo                 # writes render.png
 //! cargo run --release -p rayhit-demo -- --scene leak # watertight vs Moller-Trumbore
+//! cargo run --release -p rayhit-demo -- --scene shadows # segments to lights, glass
 //! cargo run --release -p rayhit-demo -- --lens 0.15,7.4 # depth of field
 //! cargo run --release -p rayhit-demo -- --camera equirect --width 720 --height 360
 //! cargo run --release -p rayhit-demo -- --help
@@ -25,6 +26,13 @@
 //! `ray_triangle_mt`, and the rays that get into the mesh without any
 //! triangle reporting it are counted and drawn in red (watertight on the
 //! left, Moller-Trumbore on the right).
+//!
+//! The `shadows` scene: a square light and two point lights, every shadow
+//! ray a segment from `SurfacePoint::spawn_to` or `spawn_to_point` tested
+//! with the interval and any-hit kernels, and a glass torus whose surfaces
+//! each tint what is behind them, found in order along each ray by walking
+//! consecutive intervals with `ray_triangle_one_hit_in` (see
+//! `rayhit_demo::shadows`).
 
 use std::error::Error;
 use std::fs::File;
@@ -38,13 +46,18 @@ use rayhit::glam::Vec3;
 use rayhit::{EquirectangularCamera, OrthographicCamera, ThinLensCamera};
 use rayhit_demo::mesh::Kernel;
 use rayhit_demo::scene::{Filter, Scene, Shape, View, demo_scene, leak_scene, render, to_srgb8};
+use rayhit_demo::shadows::{render_shadows, shadow_scene};
 
 const USAGE: &str = "\
-usage: render [--scene demo|leak] [--camera pinhole|ortho|equirect] [--lens RADIUS,FOCUS]
+usage: render [--scene demo|leak|shadows] [--camera pinhole|ortho|equirect] [--lens RADIUS,FOCUS]
               [--filter differentials|cones|off] [--width N] [--height N] [--samples N] [--out FILE]
 
   --scene    demo (default): ground, boxes and meshes in soft sunlight
              leak: the watertightness experiment, both triangle kernels
+             shadows: soft shadows from a square light and hard ones from
+             two point lights, every shadow ray a segment between two
+             points with no epsilon, and a glass torus that tints what is
+             behind it once per surface crossed
   --camera   the demo scene's camera (default pinhole): ortho, parallel
              rays from the pinhole's eye plane; equirect, the whole sphere
              around the eye
@@ -57,8 +70,9 @@ usage: render [--scene demo|leak] [--camera pinhole|ortho|equirect] [--lens RADI
              shows moire towards the horizon at one sample per pixel
   --width    image width in pixels (default 640; 4 to 16384)
   --height   image height in pixels (default 360; 4 to 16384)
-  --samples  rays per pixel in the demo scene (default 16; the leak scene
-             traces exactly one ray through each pixel centre)
+  --samples  rays per pixel in the demo and shadows scenes (default 16;
+             the leak scene traces exactly one ray through each pixel
+             centre)
   --out      the PNG to write (default render.png)";
 
 /// The largest width or height accepted.
@@ -72,10 +86,18 @@ enum CameraKind {
     Equirectangular,
 }
 
+/// Which scene is drawn.
+#[derive(Clone, Copy, Debug, PartialEq)]
+enum SceneKind {
+    Demo,
+    Leak,
+    Shadows,
+}
+
 /// The command line.
 #[derive(Debug)]
 struct Options {
-    leak: bool,
+    scene: SceneKind,
     camera: CameraKind,
     lens: Option<(f32, f32)>,
     filter: Filter,
@@ -87,7 +109,7 @@ struct Options {
 
 fn parse(mut args: impl Iterator<Item = String>) -> Result<Option<Options>, String> {
     let mut options = Options {
-        leak: false,
+        scene: SceneKind::Demo,
         camera: CameraKind::Pinhole,
         lens: None,
         filter: Filter::Differentials,
@@ -109,10 +131,13 @@ fn parse(mut args: impl Iterator<Item = String>) -> Result<Option<Options>, Stri
         };
         match flag.as_str() {
             "--scene" => {
-                options.leak = match value.as_str() {
-                    "demo" => false,
-                    "leak" => true,
-                    _ => return Err(format!("unknown scene {value:?}: demo or leak")),
+                options.scene = match value.as_str() {
+                    "demo" => SceneKind::Demo,
+                    "leak" => SceneKind::Leak,
+                    "shadows" => SceneKind::Shadows,
+                    _ => {
+                        return Err(format!("unknown scene {value:?}: demo, leak or shadows"));
+                    }
                 }
             }
             "--camera" => {
@@ -308,6 +333,36 @@ fn run_leak(options: &Options) -> Result<(), Box<dyn Error>> {
     Ok(())
 }
 
+fn run_shadows(options: &Options) -> Result<(), Box<dyn Error>> {
+    let file = create(&options.out)?;
+    let scene = shadow_scene(options.width, options.height);
+    println!(
+        "scene: ground, sphere, box, glass torus ({} triangles), a square light and {} point lights",
+        scene.glass.mesh.indices.len(),
+        scene.points.len()
+    );
+    let bar = progress_bar(options.height);
+    let start = Instant::now();
+    let (image, rays, segments) = render_shadows(&scene, options.samples, &|| bar.inc(1));
+    let seconds = start.elapsed().as_secs_f64();
+    bar.finish_and_clear();
+    let rgb: Vec<u8> = image.pixels.iter().flat_map(|&c| to_srgb8(c)).collect();
+    write_png(file, image.width, image.height, &rgb)?;
+    let mut counts = [0u32; 5];
+    for &c in &image.crossings {
+        counts[c.min(4)] += 1;
+    }
+    println!(
+        "rendered {}x{} at {} samples per pixel into {}",
+        image.width, image.height, options.samples, options.out
+    );
+    println!(
+        "pixel-centre rays crossing the glass 0, 1, 2, 3, 4+ times: {counts:?}; {segments} shadow segments"
+    );
+    report_speed(rays + segments, seconds);
+    Ok(())
+}
+
 fn main() -> ExitCode {
     let options = match parse(std::env::args().skip(1)) {
         Ok(Some(options)) => options,
@@ -320,10 +375,10 @@ fn main() -> ExitCode {
             return ExitCode::from(2);
         }
     };
-    let result = if options.leak {
-        run_leak(&options)
-    } else {
-        run_demo(&options)
+    let result = match options.scene {
+        SceneKind::Demo => run_demo(&options),
+        SceneKind::Leak => run_leak(&options),
+        SceneKind::Shadows => run_shadows(&options),
     };
     match result {
         Ok(()) => ExitCode::SUCCESS,

@@ -6,13 +6,18 @@
 //! node's box is tested with the crate's prepared slab test, which never
 //! misses a box that exact arithmetic says the ray meets, so a triangle is
 //! never skipped because its box was rounded away; the root box is the
-//! mesh's bounding box, tested before any triangle.
+//! mesh's bounding box, tested before any triangle. The interval forms
+//! (`occluded_in`, `nearest_one_hit_in`, `one_hits_in`) search `(t_min,
+//! t_max]` with the crate's interval kernels, for shadow segments and for
+//! walking every crossing along a ray.
 
 use std::collections::HashMap;
 
 use rayhit::glam::{DVec3, Mat3, Vec3};
 use rayhit::{
-    Aabb, PreparedRay, Ray, Triangle, TriangleHit, ray_aabb_prepared, ray_triangle, ray_triangle_mt,
+    Aabb, Interval, PreparedRay, Ray, Triangle, TriangleHit, ray_aabb_prepared,
+    ray_aabb_prepared_in, ray_triangle, ray_triangle_mt, ray_triangle_one_hit_in,
+    ray_triangle_prepared_occluded,
 };
 
 /// Which ray/triangle kernel a mesh is intersected with.
@@ -454,5 +459,117 @@ impl Bvh {
             }
         }
         best
+    }
+
+    /// Whether any triangle blocks the ray within `interval` (for a shadow
+    /// segment from `SurfacePoint::spawn_to`, `(0, 1]`): nodes by
+    /// `ray_aabb_prepared_in`, which never misses a box exact arithmetic
+    /// puts in the interval, triangles by `ray_triangle_prepared_occluded`,
+    /// which decides both ends exactly; stops at the first triangle found.
+    pub fn occluded_in(&self, prepared: &PreparedRay, interval: Interval<f32>) -> bool {
+        let mut window = interval;
+        self.visit_in(prepared, &mut window, &mut |tri, _, window| {
+            ray_triangle_prepared_occluded(prepared, tri, *window)
+        })
+    }
+
+    /// The nearest crossing within `interval` by `ray_triangle_one_hit_in`
+    /// (each crossing of a closed, consistently wound mesh belongs to
+    /// exactly one triangle, even through a shared edge or corner), with
+    /// the triangle's index in the mesh. `prepared` is `ray` prepared.
+    pub fn nearest_one_hit_in(
+        &self,
+        ray: &Ray,
+        prepared: &PreparedRay,
+        interval: Interval<f32>,
+    ) -> Option<(TriangleHit, u32)> {
+        let mut best = None;
+        let mut window = interval;
+        self.visit_in(prepared, &mut window, &mut |tri, id, window| {
+            if let Some(hit) = ray_triangle_one_hit_in(ray, tri, *window) {
+                // The hit's `t` is in the window, above its lower end, so
+                // the shrunk window is valid; any nearer crossing is in it.
+                if let Some(nearer) = Interval::new(window.min(), hit.t) {
+                    *window = nearer;
+                }
+                best = Some((hit, id));
+            }
+            false
+        });
+        best
+    }
+
+    /// Every crossing within `interval` by `ray_triangle_one_hit_in`, with
+    /// the triangles' indices in the mesh, in no particular order, added
+    /// to `out`.
+    pub fn one_hits_in(
+        &self,
+        ray: &Ray,
+        prepared: &PreparedRay,
+        interval: Interval<f32>,
+        out: &mut Vec<(TriangleHit, u32)>,
+    ) {
+        let mut window = interval;
+        self.visit_in(prepared, &mut window, &mut |tri, id, window| {
+            if let Some(hit) = ray_triangle_one_hit_in(ray, tri, *window) {
+                out.push((hit, id));
+            }
+            false
+        });
+    }
+
+    /// Calls `visit` on each triangle of the leaves whose boxes the ray
+    /// meets within `window` (nearer boxes first), which `visit` may
+    /// shrink; stops and returns `true` as soon as `visit` does.
+    fn visit_in(
+        &self,
+        prepared: &PreparedRay,
+        window: &mut Interval<f32>,
+        visit: &mut dyn FnMut(&Triangle, u32, &mut Interval<f32>) -> bool,
+    ) -> bool {
+        let Some(root) = self.nodes.first() else {
+            return false;
+        };
+        if ray_aabb_prepared_in(prepared, &root.bounds, *window).is_none() {
+            return false;
+        }
+        let mut stack = [0u32; 64];
+        let mut len = 1;
+        while len > 0 {
+            len -= 1;
+            let node = &self.nodes[stack[len] as usize];
+            if node.count > 0 {
+                let first = node.index as usize;
+                for (tri, id) in &self.triangles[first..first + node.count as usize] {
+                    if visit(tri, *id, window) {
+                        return true;
+                    }
+                }
+                continue;
+            }
+            let (left, right) = (stack[len] + 1, node.index);
+            let enter = |i: u32| {
+                ray_aabb_prepared_in(prepared, &self.nodes[i as usize].bounds, *window)
+                    .map(|(e, _)| e)
+            };
+            match (enter(left), enter(right)) {
+                (Some(l), Some(r)) => {
+                    let (near, far) = if l <= r { (left, right) } else { (right, left) };
+                    stack[len] = far;
+                    stack[len + 1] = near;
+                    len += 2;
+                }
+                (Some(_), None) => {
+                    stack[len] = left;
+                    len += 1;
+                }
+                (None, Some(_)) => {
+                    stack[len] = right;
+                    len += 1;
+                }
+                (None, None) => {}
+            }
+        }
+        false
     }
 }
