@@ -28,8 +28,9 @@
 //!   crossing the segment, and a plane and a triangle through the
 //!   midpoint; wherever exact arithmetic confirms the documented
 //!   precondition (the ends on opposite sides, farther than `B_o` and
-//!   `B_e` from the plane), `ray_plane_in` and `ray_triangle_occluded`
-//!   must report them. "Just beyond" is `B (1 + 2^-8)` snapped outward to
+//!   `B_e` from the plane; for a triangle, from its own plane, its corners
+//!   being rounded), `ray_plane_in` and `ray_triangle_occluded` must
+//!   report them. "Just beyond" is `B (1 + 2^-8)` snapped outward to
 //!   the float grid for planes, and `B (1 + 2^-6)` plus the corners'
 //!   rounding for triangles; the distances reached, in units of `B`, are
 //!   printed.
@@ -738,16 +739,28 @@ fn place_occluders<V: Vector>(
     let nr = rv(nv);
     let mid: V = v(lin(pf, 0.5, w));
     if clear(&rv(mid), &nr, &rat(1.0)) {
-        tally.midpoint_placed += 1;
         let plane = Plane::new(mid, nv);
         let (t1, t2) = tangents(unit(c(nv)));
-        let radius = 4.0 * len;
+        // Large next to the corners' rounding too (`2u` of the largest
+        // coordinate): far from the origin, a triangle a few segment
+        // lengths wide is tilted out of the plane by rounding its corners,
+        // and its own plane is what the precondition is about.
+        let big = pf.iter().chain(&qf).fold(0.0f64, |m, x| m.max(x.abs()));
+        let radius = 4.0 * len + 128.0 * S::<V>::UNIT_ROUNDOFF.to_f64() * big;
         let corner = |a: f64| {
             let (s, t) = (a.cos(), a.sin());
             v::<V>(lin(lin(c(mid), radius * s, t1), radius * t, t2))
         };
         let third = std::f64::consts::TAU / 3.0;
         let tri = Triangle::new(corner(0.0), corner(third), corner(2.0 * third));
+        let (ta, tb, tc) = (rv(tri.a), rv(tri.b), rv(tri.c));
+        let tn = cross(&sub(&tb, &ta), &sub(&tc, &ta));
+        let flipped = tn.clone().map(|x| -x);
+        if !(clear(&ta, &tn, &rat(1.0)) || clear(&ta, &flipped, &rat(1.0))) {
+            tally.occluders_skipped += 1;
+            return;
+        }
+        tally.midpoint_placed += 1;
         let found = ray_plane_in(ray, &plane, interval).is_some()
             && ray_triangle_occluded(ray, &tri, interval);
         if found {
