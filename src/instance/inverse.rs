@@ -43,7 +43,14 @@
 //! K_o = Rb + g(4) |M||A|          c_o = |beta|b + g(4) |M||b| + U
 //! K_d = Rb + g(3) |M||A|          c_d = U
 //! U   = MIN_POSITIVE (1 + max_i sum_j |M_ij|)
+//! c_p = g(4) |T| + U
 //! ```
+//!
+//! each evaluated in `f64`, made an upper bound with `bound_up` and
+//! rounded up to the instance's precision (`c_p` is evaluated with `U`
+//! as stored, itself rounded up; a product `g(4) |T_i|` that underflows
+//! `f64` loses at most half an `f64` `TINY`, one more of the roundings
+//! `U` covers).
 //!
 //! `U` covers every rounding of the per-ray arithmetic that falls into
 //! the subnormal range (at most half a `TINY` each, a few dozen of them,

@@ -124,10 +124,11 @@ impl core::error::Error for InstanceError {}
 /// ```
 #[derive(Clone, Copy, Debug)]
 pub struct Instance<V = Vec3> {
-    // Everything as the per-ray and per-hit arithmetic reads it: matrices
-    // as columns, so that a matrix times a vector is three products and
-    // two sums of whole registers (no gathering of rows per call), and
-    // every vector in `Four` (one aligned load).
+    // Everything as the per-ray and per-hit arithmetic reads it, computed
+    // once here: matrices as columns, so that a matrix times a vector is
+    // three products and two sums of whole registers (no row is gathered
+    // per call), the absolute values and the bounds' constant terms
+    // precomputed, and every vector in a `Four` (one aligned load).
     /// Columns of `M`.
     m_cols: [Four<V>; 3],
     /// `T`.
@@ -162,17 +163,15 @@ pub struct Instance<V = Vec3> {
     tiny_world: Four<V>,
 }
 
-/// A vector stored as four lanes: its components, then a zero as lane 3
-/// (computed along and never read), aligned to 16 bytes. For `Vec3` the
-/// four `f32` are then one aligned load, which the instruction using
-/// them reads from memory itself; other vector types load their three
-/// components. (The zero is an `f32` for every precision, so that the
-/// type needs nothing of `V`, and `Instance<V>` no bound on `V`.)
+/// A vector stored where four lanes can be loaded at once: aligned to 16
+/// bytes, so that for `Vec3` (whose four bytes after it are then padding)
+/// the compiler loads its three lanes with one aligned load, which the
+/// instruction using them reads from memory itself. (Needing nothing of
+/// `V`, it leaves `Instance<V>` without a bound on `V`.)
 #[derive(Clone, Copy)]
 #[repr(C, align(16))]
 struct Four<V> {
     v: V,
-    w: f32,
 }
 
 impl<V: fmt::Debug> fmt::Debug for Four<V> {
@@ -182,26 +181,15 @@ impl<V: fmt::Debug> fmt::Debug for Four<V> {
 }
 
 impl<V: Vector> Four<V> {
-    /// `v` stored with a zero after it.
+    /// `v`, stored.
     fn new(v: V) -> Self {
-        Self { v, w: 0.0 }
+        Self { v }
     }
 
-    /// The stored lanes: `v`'s components, and in lane 3 the zero where
-    /// `V` is three `f32` (`Vec3`, where the four are contiguous) or
-    /// `v`'s `z` (as [`Lanes::new`] fills it).
+    /// The stored vector in lanes ([`lanes`]).
     #[inline(always)]
     fn load(&self) -> L<V> {
-        let v = self.v;
-        let f32_packed = core::mem::size_of::<S<V>>() == core::mem::size_of::<f32>()
-            && core::mem::size_of::<V>() == 3 * core::mem::size_of::<f32>();
-        if f32_packed {
-            // (Exact: an f32 through f64 and back.)
-            let w = S::<V>::from_f64(f64::from(self.w));
-            L::<V>::new4(v.x(), v.y(), v.z(), w)
-        } else {
-            lanes(v)
-        }
+        lanes(self.v)
     }
 }
 

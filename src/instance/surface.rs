@@ -25,6 +25,11 @@
 //!   (`w = A^T N - R^T w`, and `rho = ||R^T||_inf <= 1/2` is checked when
 //!   the instance is built). `normal_residual = colsum(Rb) / (1 - rho)`.
 //!
+//! Both bounds are evaluated factored, with the same exact values:
+//! `|M| (e + g(4)|p|) + c_p` (`c_p = g(4)|T| + U` stored with the
+//! instance) and `s = |A^T| (g(3)|n| + eta)`, one matrix product each; the
+//! rounding counts are at the code.
+//!
 //! So the world [`SurfacePoint`] bounds hold against the exact world
 //! surface, with its normal `w`; a world point of a nested instance is the
 //! outer instance's map of the inner one's, and the bounds hold again, now
@@ -145,9 +150,8 @@ impl<V: Vector> Instance<V> {
         // normal along A's small singular direction) inflate the residual's
         // term by the condition number. Six roundings.
         let w = bound_up_l::<V>(normal.abs().add(s), 6);
-        // W = max_i w_i, in every lane. (Taken from lanes 0 to 2 alone, as
-        // scalars: a packed maximum would read lane 3 too, and make the
-        // compiler compute it all the way back to the stored rows.)
+        // W = max_i w_i, in every lane (as scalars from lanes 0 to 2: fewer
+        // instructions than a packed maximum, which reads lane 3 too).
         let [w0, w1, w2] = w.to_array();
         let big_w = L::<V>::splat(max2(max2(w0, w1), w2));
         // s + normal_residual W + U: seven roundings on s's path (its five,
