@@ -50,10 +50,11 @@ impl<V: Vector> Instance<V> {
             return None;
         }
         let (lo, hi) = (object.min, object.max);
+        let (cols, t) = (self.matrix_columns(), self.translation());
         let end = |i: usize, upper: bool| -> S<V> {
-            let mut acc = self.t[i];
+            let mut acc = t[i];
             for j in 0..3 {
-                let m = self.m[i][j];
+                let m = cols[j][i];
                 acc = if upper {
                     add_up(acc, max2(mul_up(m, lo[j]), mul_up(m, hi[j])))
                 } else {

@@ -43,7 +43,14 @@
 //! K_o = Rb + g(4) |M||A|          c_o = |beta|b + g(4) |M||b| + U
 //! K_d = Rb + g(3) |M||A|          c_d = U
 //! U   = MIN_POSITIVE (1 + max_i sum_j |M_ij|)
+//! c_p = g(4) |T| + U
 //! ```
+//!
+//! each evaluated in `f64`, made an upper bound with `bound_up` and
+//! rounded up to the instance's precision (`c_p` is evaluated with `U`
+//! as stored, itself rounded up; a product `g(4) |T_i|` that underflows
+//! `f64` loses at most half an `f64` `TINY`, one more of the roundings
+//! `U` covers).
 //!
 //! `U` covers every rounding of the per-ray arithmetic that falls into
 //! the subnormal range (at most half a `TINY` each, a few dozen of them,
@@ -53,7 +60,7 @@
 //! [`InstanceError::IllConditioned`]; the normal's bound divides by
 //! `1 - rho`.
 
-use super::{Instance, InstanceError};
+use super::{Four, Instance, InstanceError};
 use crate::num::round::bound_up;
 use crate::num::{S, Scalar, Vector};
 
@@ -147,38 +154,52 @@ pub(super) fn build<V: Vector>(cols: [V; 3], t: V) -> Result<Instance<V>, Instan
     let tiny_world = bound_up(tiny_world, 1);
 
     let vec = |f: &dyn Fn(usize) -> f64| -> V { V::new(up_to(f(0)), up_to(f(1)), up_to(f(2))) };
-    let rows = |f: &dyn Fn(usize, usize) -> f64| -> [V; 3] {
-        [0, 1, 2].map(|i| V::new(up_to(f(i, 0)), up_to(f(i, 1)), up_to(f(i, 2))))
+    // A matrix's columns, each entry rounded up: column `j` holds entries
+    // `(0, j)`, `(1, j)`, `(2, j)`.
+    let cols_of = |f: &dyn Fn(usize, usize) -> f64| -> [Four<V>; 3] {
+        [0, 1, 2].map(|j| Four::new(vec(&|i| f(i, j))))
     };
-    let k_origin = rows(&|i, j| bound_up(rb[i][j] + g4 * ma[i][j], 2));
-    let k_dir = rows(&|i, j| bound_up(rb[i][j] + g3 * ma[i][j], 2));
+    let k_origin = cols_of(&|i, j| bound_up(rb[i][j] + g4 * ma[i][j], 2));
+    let k_dir = cols_of(&|i, j| bound_up(rb[i][j] + g3 * ma[i][j], 2));
     let c_origin = vec(&|i| bound_up(beta[i] + g4 * mb[i] + tiny_world, 3));
     let c_dir = vec(&|_| tiny_world);
+    // `U` as the per-hit arithmetic adds it: rounded up to the precision.
+    let tiny_up = S::<V>::to_f64(up_to::<S<V>>(tiny_world));
+    // c_p = g(4) |T| + U: a product and a sum in f64.
+    let c_point = vec(&|i| bound_up(g4 * tt(i).abs() + tiny_up, 2));
     let normal_residual = vec(&|j| bound_up(col_sum(j) / one_minus_rho, 1));
 
-    let inst = Instance {
-        m: [0, 1, 2].map(|i| V::new(cols[0][i], cols[1][i], cols[2][i])),
-        t,
-        a: [0, 1, 2].map(|i| V::new(a[i][0], a[i][1], a[i][2])),
-        b: V::new(b[0], b[1], b[2]),
-        m_abs: [0, 1, 2].map(|i| V::new(cols[0][i], cols[1][i], cols[2][i]).abs()),
-        a_t_abs: [0, 1, 2].map(|j| V::new(a[0][j], a[1][j], a[2][j]).abs()),
-        k_origin,
-        c_origin,
-        k_dir,
-        c_dir,
-        normal_residual,
-        tiny_world: V::splat(up_to(tiny_world)),
-    };
-    let finite = |v: &[V; 3]| v.iter().all(|r| r.is_finite());
-    if !(finite(&inst.k_origin)
-        && finite(&inst.k_dir)
-        && inst.c_origin.is_finite()
-        && inst.normal_residual.is_finite()
-        && inst.tiny_world.is_finite())
+    let a_rows = [0, 1, 2].map(|i| V::new(a[i][0], a[i][1], a[i][2]));
+    let a_cols = [0, 1, 2].map(|j| V::new(a[0][j], a[1][j], a[2][j]));
+    let finite = |v: &[V]| v.iter().all(|r| r.is_finite());
+    if !(finite(&k_origin.map(|c| c.v))
+        && finite(&k_dir.map(|c| c.v))
+        && finite(&[
+            c_origin,
+            c_point,
+            normal_residual,
+            V::splat(up_to(tiny_world)),
+        ]))
     {
         return Err(InstanceError::Overflow);
     }
+    let four = |v: [V; 3]| v.map(Four::new);
+    let inst = Instance {
+        m_cols: four(cols),
+        t: Four::new(t),
+        a_cols: four(a_cols),
+        b: Four::new(V::new(b[0], b[1], b[2])),
+        a_rows: four(a_rows),
+        m_abs_cols: four(cols.map(Vector::abs)),
+        a_abs_rows: four(a_rows.map(Vector::abs)),
+        k_origin,
+        c_origin: Four::new(c_origin),
+        k_dir,
+        c_dir: Four::new(c_dir),
+        c_point: Four::new(c_point),
+        normal_residual: Four::new(normal_residual),
+        tiny_world: Four::new(V::splat(up_to(tiny_world))),
+    };
     Ok(inst)
 }
 
@@ -193,9 +214,10 @@ mod tests {
         // the f64 evaluation's a-priori term, gamma_64(4) (|M||A| + I) =
         // 2 gamma_64(4) ~ 8.9e-16 on the diagonal, far below f32's u.
         let i = build([Vec3::X * 4.0, Vec3::Y * 2.0, Vec3::Z * 0.5], Vec3::ZERO).unwrap();
-        assert_eq!(i.a[0], Vec3::new(0.25, 0.0, 0.0));
-        assert!(i.normal_residual.max_element() < 1e-15);
-        assert!(i.normal_residual.min_element() > 0.0);
+        assert_eq!(i.inverse().0[0], Vec3::new(0.25, 0.0, 0.0));
+        let normal_residual: Vec3 = i.normal_residual.v;
+        assert!(normal_residual.max_element() < 1e-15);
+        assert!(normal_residual.min_element() > 0.0);
     }
 
     #[test]

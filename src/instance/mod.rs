@@ -35,7 +35,7 @@ use core::fmt;
 
 use glam::{Affine3A, DAffine3, DVec3, Vec3, Vec3A};
 
-use crate::num::Vector;
+use crate::num::{L, Lanes, S, Scalar, Vector};
 
 pub use ray::InstanceRayError;
 
@@ -122,35 +122,88 @@ impl core::error::Error for InstanceError {}
 /// let hit = ray_triangle(&object, &tri, f32::INFINITY).unwrap();
 /// assert!((hit.t - 5.0).abs() < 1e-3);
 /// ```
-#[derive(Clone, Copy, Debug, PartialEq)]
+#[derive(Clone, Copy, Debug)]
 pub struct Instance<V = Vec3> {
-    /// Rows of `M`.
-    m: [V; 3],
+    // Everything as the per-ray and per-hit arithmetic reads it, computed
+    // once here: matrices as columns, so that a matrix times a vector is
+    // three products and two sums of whole registers (no row is gathered
+    // per call), the absolute values and the bounds' constant terms
+    // precomputed, and every vector in a `Four` (one aligned load).
+    /// Columns of `M`.
+    m_cols: [Four<V>; 3],
     /// `T`.
-    t: V,
-    /// Rows of the stored inverse's matrix `A`.
-    a: [V; 3],
+    t: Four<V>,
+    /// Columns of the stored inverse's matrix `A`.
+    a_cols: [Four<V>; 3],
     /// The stored inverse's translation `b`.
-    b: V,
-    /// Rows of `|M|`.
-    m_abs: [V; 3],
-    /// Rows of `|A^T|` (the columns of `|A|`).
-    a_t_abs: [V; 3],
-    /// Rows of `K_o`, the origin's error matrix (see `ray.rs`).
-    k_origin: [V; 3],
+    b: Four<V>,
+    /// Rows of `A` (the columns of `A^T`, for the normal).
+    a_rows: [Four<V>; 3],
+    /// Columns of `|M|`.
+    m_abs_cols: [Four<V>; 3],
+    /// Rows of `|A|` (the columns of `|A^T|`).
+    a_abs_rows: [Four<V>; 3],
+    /// Columns of `K_o`, the origin's error matrix (see `inverse.rs`).
+    k_origin: [Four<V>; 3],
     /// `c_o`, the origin's absolute error term.
-    c_origin: V,
-    /// Rows of `K_d`, the direction's error matrix.
-    k_dir: [V; 3],
+    c_origin: Four<V>,
+    /// Columns of `K_d`, the direction's error matrix.
+    k_dir: [Four<V>; 3],
     /// `c_d`, the direction's absolute error term (underflow only).
-    c_dir: V,
+    c_dir: Four<V>,
+    /// `c_p = g(4) |T| + U`, rounded up: the world point's error bound
+    /// but for the terms that depend on the point (see `surface.rs`).
+    c_point: Four<V>,
     /// Per component, the column sum of the residual bound divided by
     /// `1 - rho` (see `surface.rs`).
-    normal_residual: V,
-    /// An absolute term covering roundings into the subnormal range of a
-    /// world point: `MIN_POSITIVE (1 + max row sum of |M|)`, in every
-    /// component.
-    tiny_world: V,
+    normal_residual: Four<V>,
+    /// `U`, an absolute term covering roundings into the subnormal range
+    /// of a world point: `MIN_POSITIVE (1 + max row sum of |M|)`, in
+    /// every component.
+    tiny_world: Four<V>,
+}
+
+/// A vector stored where four lanes can be loaded at once: aligned to 16
+/// bytes, so that for `Vec3` (whose four bytes after it are then padding)
+/// the compiler loads its three lanes with one aligned load, which the
+/// instruction using them reads from memory itself. (Needing nothing of
+/// `V`, it leaves `Instance<V>` without a bound on `V`.)
+#[derive(Clone, Copy)]
+#[repr(C, align(16))]
+struct Four<V> {
+    v: V,
+}
+
+impl<V: fmt::Debug> fmt::Debug for Four<V> {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        self.v.fmt(f)
+    }
+}
+
+impl<V: Vector> Four<V> {
+    /// `v`, stored.
+    fn new(v: V) -> Self {
+        Self { v }
+    }
+
+    /// The stored vector in lanes ([`lanes`]).
+    #[inline(always)]
+    fn load(&self) -> L<V> {
+        lanes(self.v)
+    }
+}
+
+/// The lanes of three stored vectors (a matrix's columns).
+#[inline(always)]
+fn load3<V: Vector>(c: &[Four<V>; 3]) -> [L<V>; 3] {
+    [c[0].load(), c[1].load(), c[2].load()]
+}
+
+impl<V: Vector> PartialEq for Instance<V> {
+    fn eq(&self, o: &Self) -> bool {
+        // The rest is a function of these two.
+        self.matrix_columns() == o.matrix_columns() && self.translation() == o.translation()
+    }
 }
 
 impl<V: Vector> Instance<V> {
@@ -184,8 +237,7 @@ impl<V: Vector> Instance<V> {
     /// ```
     #[must_use]
     pub fn matrix_columns(&self) -> [V; 3] {
-        let col = |j: usize| V::new(self.m[0][j], self.m[1][j], self.m[2][j]);
-        [col(0), col(1), col(2)]
+        self.m_cols.map(|c| c.v)
     }
 
     /// The translation `T`, as given.
@@ -197,7 +249,7 @@ impl<V: Vector> Instance<V> {
     /// ```
     #[must_use]
     pub fn translation(&self) -> V {
-        self.t
+        self.t.v
     }
 
     /// The stored inverse `x -> A x + b`: the columns of `A` and `b`. It is
@@ -212,8 +264,7 @@ impl<V: Vector> Instance<V> {
     /// ```
     #[must_use]
     pub fn inverse(&self) -> ([V; 3], V) {
-        let col = |j: usize| V::new(self.a[0][j], self.a[1][j], self.a[2][j]);
-        ([col(0), col(1), col(2)], self.b)
+        (self.a_cols.map(|c| c.v), self.b.v)
     }
 }
 
@@ -288,33 +339,46 @@ impl TryFrom<DAffine3> for Instance<DVec3> {
     }
 }
 
-/// `sum_j rows[i][j] * v[j] + c[i]` per component for non-negative
-/// `rows`, `v`, `c`, made an upper bound of its exact value: one product
-/// and three additions on the longest path, four roundings
-/// ([`bound_up`](crate::num::round::bound_up)).
+/// `v` in lanes 0 to 2 (lane 3 repeats `z`).
 #[inline(always)]
-pub(crate) fn abs_apply_up<V: Vector>(rows: &[V; 3], v: V, c: V) -> V {
-    bound_up_v(apply(rows, v) + c, 4)
+pub(crate) fn lanes<V: Vector>(v: V) -> L<V> {
+    L::<V>::new(v.x(), v.y(), v.z())
 }
 
-/// `bound_up` of each component.
+/// Lanes 0 to 2 as a vector.
 #[inline(always)]
-pub(crate) fn bound_up_v<V: Vector>(v: V, roundings: u32) -> V {
+pub(crate) fn vector<V: Vector>(l: L<V>) -> V {
+    let [x, y, z] = l.to_array();
+    V::new(x, y, z)
+}
+
+/// The matrix with columns `cols` times `v`: per component, bit for bit
+/// the dot product of the matrix's row with `v` as [`Vector::dot`] sums
+/// it (`(x + y) + z`), computed as `(col_0 v_x + col_1 v_y) + col_2 v_z`
+/// on whole registers: a product's longest path has three roundings (a
+/// product and two sums).
+#[inline(always)]
+pub(crate) fn apply<V: Vector>(cols: &[L<V>; 3], v: L<V>) -> L<V> {
+    let [x, y, z] = v.to_array();
+    let splat = L::<V>::splat;
+    cols[0]
+        .mul(splat(x))
+        .add(cols[1].mul(splat(y)))
+        .add(cols[2].mul(splat(z)))
+}
+
+/// `apply(cols, v) + c` per component for non-negative `cols`, `v`, `c`,
+/// made an upper bound of its exact value: one product and three
+/// additions on the longest path, four roundings ([`bound_up_l`]).
+#[inline(always)]
+pub(crate) fn abs_apply_up<V: Vector>(cols: &[L<V>; 3], v: L<V>, c: L<V>) -> L<V> {
+    bound_up_l::<V>(apply::<V>(cols, v).add(c), 4)
+}
+
+/// [`bound_up`](crate::num::round::bound_up) of every lane: bit for bit
+/// the same (one product by the same factor).
+#[inline(always)]
+pub(crate) fn bound_up_l<V: Vector>(v: L<V>, roundings: u32) -> L<V> {
     use crate::num::round::bound_up;
-    V::new(
-        bound_up(v[0], roundings),
-        bound_up(v[1], roundings),
-        bound_up(v[2], roundings),
-    )
-}
-
-/// The matrix with rows `rows` times `v`: per component, bit for bit
-/// `rows[i].dot(v)` (the same products, summed in the same order), but
-/// computed as `col_0 v_x + col_1 v_y + col_2 v_z`, three vector products
-/// and two sums the compiler can keep in SIMD registers (the columns are
-/// gathered once per instance where a loop calls this with one instance).
-#[inline(always)]
-pub(crate) fn apply<V: Vector>(rows: &[V; 3], v: V) -> V {
-    let col = |j: usize| V::new(rows[0][j], rows[1][j], rows[2][j]);
-    col(0) * v.x() + col(1) * v.y() + col(2) * v.z()
+    v.mul(L::<V>::splat(bound_up(S::<V>::ONE, roundings)))
 }

@@ -27,10 +27,10 @@
 //! ray's `t` up to this bound, and a hit at object `t` is a world hit at
 //! the same `t`. Evaluating the bound rounds up (`abs_apply_up`).
 
-use super::{Instance, abs_apply_up, apply};
+use super::{Instance, abs_apply_up, apply, lanes, load3, vector};
 use crate::Ray;
 use crate::num::round::bound_up;
-use crate::num::{S, Scalar, Vector};
+use crate::num::{Lanes, S, Scalar, Vector};
 
 /// A bound on how far a world ray and its object ray
 /// ([`Instance::world_to_object`]) are apart at the same `t`: per
@@ -87,9 +87,16 @@ impl<V: Vector> InstanceRayError<V> {
     /// ```
     #[must_use]
     pub fn nested(outer: &Instance<V>, outer_error: &Self, inner_error: &Self) -> Self {
+        let bound = |inner: V, outer_term: V| {
+            vector(abs_apply_up::<V>(
+                &load3(&outer.m_abs_cols),
+                lanes(inner),
+                lanes(outer_term),
+            ))
+        };
         Self {
-            at_origin: abs_apply_up(&outer.m_abs, inner_error.at_origin, outer_error.at_origin),
-            per_t: abs_apply_up(&outer.m_abs, inner_error.per_t, outer_error.per_t),
+            at_origin: bound(inner_error.at_origin, outer_error.at_origin),
+            per_t: bound(inner_error.per_t, outer_error.per_t),
         }
     }
 }
@@ -120,7 +127,10 @@ impl<V: Vector> Instance<V> {
     #[inline]
     #[must_use]
     pub fn world_to_object(&self, ray: &Ray<V>) -> Ray<V> {
-        Ray::new(apply(&self.a, ray.origin) + self.b, apply(&self.a, ray.dir))
+        let a = load3(&self.a_cols);
+        let origin = apply::<V>(&a, lanes(ray.origin)).add(self.b.load());
+        let dir = apply::<V>(&a, lanes(ray.dir));
+        Ray::new(vector(origin), vector(dir))
     }
 
     /// The bound relating `ray` and its object ray
@@ -145,9 +155,18 @@ impl<V: Vector> Instance<V> {
     #[inline]
     #[must_use]
     pub fn world_to_object_error(&self, ray: &Ray<V>) -> InstanceRayError<V> {
+        let (origin, dir) = (lanes(ray.origin).abs(), lanes(ray.dir).abs());
         InstanceRayError {
-            at_origin: abs_apply_up(&self.k_origin, ray.origin.abs(), self.c_origin),
-            per_t: abs_apply_up(&self.k_dir, ray.dir.abs(), self.c_dir),
+            at_origin: vector(abs_apply_up::<V>(
+                &load3(&self.k_origin),
+                origin,
+                self.c_origin.load(),
+            )),
+            per_t: vector(abs_apply_up::<V>(
+                &load3(&self.k_dir),
+                dir,
+                self.c_dir.load(),
+            )),
         }
     }
 }

@@ -25,6 +25,11 @@
 //!   (`w = A^T N - R^T w`, and `rho = ||R^T||_inf <= 1/2` is checked when
 //!   the instance is built). `normal_residual = colsum(Rb) / (1 - rho)`.
 //!
+//! Both bounds are evaluated factored, with the same exact values:
+//! `|M| (e + g(4)|p|) + c_p` (`c_p = g(4)|T| + U` stored with the
+//! instance) and `s = |A^T| (g(3)|n| + eta)`, one matrix product each; the
+//! rounding counts are at the code.
+//!
 //! So the world [`SurfacePoint`] bounds hold against the exact world
 //! surface, with its normal `w`; a world point of a nested instance is the
 //! outer instance's map of the inner one's, and the bounds hold again, now
@@ -79,9 +84,9 @@
 //! [`SurfacePoint`]: crate::SurfacePoint
 //! [`offset_ray_origin`]: crate::offset_ray_origin
 
-use super::{Instance, abs_apply_up, apply, bound_up_v};
-use crate::num::round::bound_up;
-use crate::num::{S, Scalar, Vector};
+use super::{Instance, abs_apply_up, apply, bound_up_l, lanes, load3, vector};
+use crate::num::round::{bound_up, max2};
+use crate::num::{L, Lanes, S, Scalar, Vector};
 use crate::{Ray, SurfacePoint, offset_ray_origin};
 
 impl<V: Vector> Instance<V> {
@@ -110,51 +115,57 @@ impl<V: Vector> Instance<V> {
     /// assert!((world.point - exact_ish).abs().max_element() < 1e-2);
     /// assert!(world.point_error.max_element() < 1e-2);
     /// ```
+    #[inline]
     #[must_use]
     pub fn surface_to_world(&self, object: &SurfacePoint<V>) -> SurfacePoint<V> {
-        let (p, e, n, eta) = (
-            object.point,
-            object.point_error.abs(),
-            object.normal,
-            object.normal_error.abs(),
+        let (p, n) = (lanes(object.point), lanes(object.normal));
+        let (e, eta) = (
+            lanes(object.point_error).abs(),
+            lanes(object.normal_error).abs(),
         );
-        let g3 = S::<V>::gamma_n(3);
-        let g4 = S::<V>::gamma_n(4);
-        let tiny = V::splat(self.tiny_world[0]);
-        // Every line below is per component, written with whole vectors
-        // (each component the same operations in the same order as the
-        // scalar formula in its comment), so that the compiler can keep
-        // them in SIMD registers.
-        // Point: |M| e + g(4) (|M||p| + |T|) + U; at most 7 roundings on a
-        // path of its evaluation.
-        let point = apply(&self.m, p) + self.t;
-        let pa = p.abs();
-        let point_error = bound_up_v(
-            apply(&self.m_abs, e) + (apply(&self.m_abs, pa) + self.t.abs()) * g4 + tiny,
+        let splat = L::<V>::splat;
+        let (g3, g4) = (splat(S::<V>::gamma_n(3)), splat(S::<V>::gamma_n(4)));
+        // Every line below is per component, on whole registers; the
+        // rounding counts are the longest paths from an input (the object
+        // point's floats and the instance's stored ones, taken as exact) to
+        // the bound, each product and sum one rounding.
+        // Point: M p + T.
+        let point = apply::<V>(&load3(&self.m_cols), p).add(self.t.load());
+        // Its bound, |M| e + g(4) (|M||p| + |T|) + U, evaluated as
+        // |M| (e + g(4)|p|) + c_p (the same exact value, with c_p = g(4)|T|
+        // + U rounded up when the instance was built): g(4)|p| and the sum
+        // with e (two roundings), the matrix product (three more) and the
+        // sum with c_p: six.
+        let point_error = bound_up_l::<V>(
+            apply::<V>(&load3(&self.m_abs_cols), p.abs().mul(g4).add(e)).add(self.c_point.load()),
+            6,
+        );
+        // Normal: A^T n, the rows of A weighted by n's components.
+        let normal = apply::<V>(&load3(&self.a_rows), n);
+        // s = g(3) |A^T||n| + |A^T| eta, evaluated as |A^T| (g(3)|n| + eta):
+        // five roundings, as for the point's |M| (e + g(4)|p|).
+        let s = apply::<V>(&load3(&self.a_abs_rows), n.abs().mul(g3).add(eta));
+        // |A^T N| <= |n_w| + s: the computed normal and its rounding, not
+        // |A^T| (|n| + eta), which would let the cancellation in A^T n (a
+        // normal along A's small singular direction) inflate the residual's
+        // term by the condition number. Six roundings.
+        let w = bound_up_l::<V>(normal.abs().add(s), 6);
+        // W = max_i w_i, in every lane (as scalars from lanes 0 to 2: fewer
+        // instructions than a packed maximum, which reads lane 3 too).
+        let [w0, w1, w2] = w.to_array();
+        let big_w = L::<V>::splat(max2(max2(w0, w1), w2));
+        // s + normal_residual W + U: seven roundings on s's path (its five,
+        // two sums); three on W's (a product, two sums).
+        let normal_error = bound_up_l::<V>(
+            s.add(self.normal_residual.load().mul(big_w))
+                .add(self.tiny_world.load()),
             7,
         );
-        // Normal: g(3) |A^T||n| + |A^T| eta + normal_residual * W. (A^T n
-        // is the rows of A weighted by n's components.)
-        let normal = self.a[0] * n.x() + self.a[1] * n.y() + self.a[2] * n.z();
-        let (na_g3, eta_a) = (
-            apply(&self.a_t_abs, n.abs()) * g3,
-            apply(&self.a_t_abs, eta),
-        );
-        // |A^T N| <= |n_w| + g(3) |A^T||n| + |A^T| eta: the computed normal
-        // and its rounding, not |A^T| (|n| + eta), which would let the
-        // cancellation in A^T n (a normal along A's small singular
-        // direction) inflate the residual's term by the condition number.
-        let w = bound_up_v(normal.abs() + na_g3 + eta_a, 5);
-        let big_w = {
-            let m = if w[0] > w[1] { w[0] } else { w[1] };
-            if m > w[2] { m } else { w[2] }
-        };
-        let normal_error = bound_up_v(na_g3 + eta_a + self.normal_residual * big_w + tiny, 7);
         SurfacePoint {
-            point,
-            point_error,
-            normal,
-            normal_error,
+            point: vector(point),
+            point_error: vector(point_error),
+            normal: vector(normal),
+            normal_error: vector(normal_error),
         }
     }
 
@@ -281,15 +292,19 @@ fn round_trip_bound<V: Vector>(path: &[&Instance<V>], origin: V, dir: V) -> V {
     for k in 1..levels {
         rays[k] = path[k - 1].world_to_object(&rays[k - 1]);
     }
-    let mut acc = V::ZERO;
+    let mut acc = L::<V>::splat(S::<V>::ZERO);
     for k in (0..levels).rev() {
         let inst = path[k];
-        let delta = abs_apply_up(&inst.k_origin, rays[k].origin.abs(), inst.c_origin);
+        let delta = abs_apply_up::<V>(
+            &load3(&inst.k_origin),
+            lanes(rays[k].origin).abs(),
+            inst.c_origin.load(),
+        );
         acc = if k + 1 == levels {
             delta
         } else {
-            abs_apply_up(&inst.m_abs, acc, delta)
+            abs_apply_up::<V>(&load3(&inst.m_abs_cols), acc, delta)
         };
     }
-    acc
+    vector(acc)
 }
