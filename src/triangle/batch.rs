@@ -577,7 +577,6 @@ fn triangle_batch_in_body<W: Lanes8<F = S<V>>, V: Vector, const N: usize, const 
     let (t_lo_normal, t_hi_normal) = (splat(window.lo_normal), splat(window.hi_normal));
     let (normal, max) = (splat(S::<V>::MIN_POSITIVE), splat(S::<V>::MAX));
     let (neg_normal, neg_max) = (lo.sub(normal), lo.sub(max));
-    let above_lo = splat(window.lo.next_up());
     let (mut hit, mut slow, mut front) = (0, 0, 0);
     let all = lo.le(lo);
     for c in 0..N.div_ceil(8) {
@@ -630,7 +629,9 @@ fn triangle_batch_in_body<W: Lanes8<F = S<V>>, V: Vector, const N: usize, const 
         }
         let inv_det = ones.div(det);
         let t = e0.mul(z0).add(e1.mul(z1)).add(e2.mul(z2)).mul(inv_det);
-        // `bring_into`: `t` above `t_min`, at most `t_max`.
+        // `bring_into`: `t` above `t_min`, at most `t_max` (the float
+        // above `t_min` computed here, for chunks with a hit only).
+        let above_lo = splat(window.lo.next_up());
         let t = W::select(t_lo.lt(t), t, above_lo).min(t_hi);
         let u = e1.mul(inv_det).min(ones);
         let v = e2.mul(inv_det).min(ones);
