@@ -59,3 +59,18 @@ impl Draws {
         }
     }
 }
+
+/// A triangle test's answer as bits (`t`, `u`, `v` widened exactly to
+/// `f64`, and the side), for the bit-for-bit comparisons.
+pub(crate) fn hit_bits<F: crate::Scalar>(
+    h: Option<crate::TriangleHit<F>>,
+) -> Option<(u64, u64, u64, crate::Side)> {
+    h.map(|h| {
+        (
+            h.t.to_f64().to_bits(),
+            h.u.to_f64().to_bits(),
+            h.v.to_f64().to_bits(),
+            h.side,
+        )
+    })
+}

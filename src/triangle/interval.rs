@@ -550,16 +550,7 @@ mod tests {
             }
             let prepared = PreparedRay::new(&ray);
             let shear = Shear::new(&ray.dir);
-            let bits = |h: Option<TriangleHit<S<V>>>| {
-                h.map(|h| {
-                    (
-                        h.t.to_f64().to_bits(),
-                        h.u.to_f64().to_bits(),
-                        h.v.to_f64().to_bits(),
-                        h.side,
-                    )
-                })
-            };
+            let bits = crate::testing::hit_bits::<S<V>>;
             let all = Interval::up_to(S::<V>::INFINITY).unwrap();
             let Some(t) = watertight_in(ray.origin, ray.dir, &shear, &tri, all, EdgeRule::Closed)
                 .map(|h| h.t)

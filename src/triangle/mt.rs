@@ -138,16 +138,7 @@ mod tests {
             let mut hits = 0;
             let t_max = S::<V>::from_f64(draws.coordinate(40) * 4.0);
             for t_max in [t_max, S::<V>::INFINITY, S::<V>::NAN] {
-                let bits = |h: Option<TriangleHit<S<V>>>| {
-                    h.map(|h| {
-                        (
-                            h.t.to_f64().to_bits(),
-                            h.u.to_f64().to_bits(),
-                            h.v.to_f64().to_bits(),
-                            h.side,
-                        )
-                    })
-                };
+                let bits = crate::testing::hit_bits::<S<V>>;
                 let expected = bits(mt_definition(&ray, &tri, t_max));
                 hits += usize::from(expected.is_some());
                 assert_eq!(

@@ -575,16 +575,7 @@ mod tests {
                     let shear = Shear::new(&ray.dir);
                     watertight_definition(ray.origin, &shear, &tri, t_max, EdgeRule::Closed)
                 });
-                let bits = |h: Option<TriangleHit<S<V>>>| {
-                    h.map(|h| {
-                        (
-                            h.t.to_f64().to_bits(),
-                            h.u.to_f64().to_bits(),
-                            h.v.to_f64().to_bits(),
-                            h.side,
-                        )
-                    })
-                };
+                let bits = crate::testing::hit_bits::<S<V>>;
                 let expected = bits(expected.flatten());
                 hits += usize::from(expected.is_some());
                 assert_eq!(

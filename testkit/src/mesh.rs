@@ -440,23 +440,7 @@ impl Bvh {
             };
             // Push the farther child first so that the nearer is visited
             // first and shrinks `t_max` for the other.
-            match (enter(left), enter(right)) {
-                (Some(l), Some(r)) => {
-                    let (near, far) = if l <= r { (left, right) } else { (right, left) };
-                    stack[len] = far;
-                    stack[len + 1] = near;
-                    len += 2;
-                }
-                (Some(_), None) => {
-                    stack[len] = left;
-                    len += 1;
-                }
-                (None, Some(_)) => {
-                    stack[len] = right;
-                    len += 1;
-                }
-                (None, None) => {}
-            }
+            len = push_children(&mut stack, len, (left, enter(left)), (right, enter(right)));
         }
         best
     }
@@ -552,24 +536,36 @@ impl Bvh {
                 ray_aabb_prepared_in(prepared, &self.nodes[i as usize].bounds, *window)
                     .map(|(e, _)| e)
             };
-            match (enter(left), enter(right)) {
-                (Some(l), Some(r)) => {
-                    let (near, far) = if l <= r { (left, right) } else { (right, left) };
-                    stack[len] = far;
-                    stack[len + 1] = near;
-                    len += 2;
-                }
-                (Some(_), None) => {
-                    stack[len] = left;
-                    len += 1;
-                }
-                (None, Some(_)) => {
-                    stack[len] = right;
-                    len += 1;
-                }
-                (None, None) => {}
-            }
+            len = push_children(&mut stack, len, (left, enter(left)), (right, enter(right)));
         }
         false
+    }
+}
+
+/// Pushes the children a ray enters (`Some` entry distance) onto a
+/// traversal stack holding `len` nodes, the farther first so that the
+/// nearer is visited first; returns the new length.
+fn push_children<F: PartialOrd>(
+    stack: &mut [u32; 64],
+    len: usize,
+    (left, l): (u32, Option<F>),
+    (right, r): (u32, Option<F>),
+) -> usize {
+    match (l, r) {
+        (Some(l), Some(r)) => {
+            let (near, far) = if l <= r { (left, right) } else { (right, left) };
+            stack[len] = far;
+            stack[len + 1] = near;
+            len + 2
+        }
+        (Some(_), None) => {
+            stack[len] = left;
+            len + 1
+        }
+        (None, Some(_)) => {
+            stack[len] = right;
+            len + 1
+        }
+        (None, None) => len,
     }
 }

@@ -131,10 +131,16 @@ fn new_dir<V: Vector>(src: &mut Source, normal: V, along: V) -> V {
 /// range; every nonzero coordinate, edge component and barycentric product
 /// between `2^-40` and `2^40` (`f32`; `2^-300` and `2^300` for `f64`).
 pub(super) fn in_normal_range<V: Vector>(vs: &[V]) -> bool {
+    within_binades(vs, 40, 300)
+}
+
+/// Every coordinate of `vs` zero or between `2^-k` and `2^k`, with `k`
+/// `k32` for `f32` and `k64` for `f64`.
+pub(super) fn within_binades<V: Vector>(vs: &[V], k32: i32, k64: i32) -> bool {
     let k = if S::<V>::UNIT_ROUNDOFF.to_f64() > 1e-10 {
-        40
+        k32
     } else {
-        300
+        k64
     };
     let (lo, hi) = (2f64.powi(-k), 2f64.powi(k));
     vs.iter().all(|v| {

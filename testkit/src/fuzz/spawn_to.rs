@@ -25,7 +25,7 @@ use rayhit::{
     ray_triangle, ray_triangle_in, ray_triangle_one_hit, ray_triangle_one_hit_in,
 };
 
-use super::spawn::triangle_no_underflow;
+use super::spawn::{triangle_no_underflow, within_binades};
 use super::{Check, Input, S, raw, raw_vec};
 use crate::cases;
 
@@ -128,18 +128,7 @@ impl Check for SpawnTo {
 /// and `2^100` for `f64`): the ends' bounds and the interval kernels'
 /// exact decisions are relative-error arguments, with ranges of their own.
 fn in_range<V: Vector>(vs: &[V]) -> bool {
-    let k = if S::<V>::UNIT_ROUNDOFF.to_f64() > 1e-10 {
-        40
-    } else {
-        100
-    };
-    let (lo, hi) = (2f64.powi(-k), 2f64.powi(k));
-    vs.iter().all(|v| {
-        (0..3).all(|i| {
-            let x = v[i].to_f64().abs();
-            x == 0.0 || (lo..=hi).contains(&x)
-        })
-    })
+    within_binades(vs, 40, 100)
 }
 
 /// The segment from `start` to `target`, checked (see the module docs).
