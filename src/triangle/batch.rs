@@ -494,23 +494,39 @@ fn slow_lanes<V: Vector, const N: usize>(
     ray: &PreparedRay<V>,
     batch: &TriangleBatch<V, N>,
     t_max: S<V>,
-    mut slow: u32,
+    slow: u32,
     out: &mut TriangleBatchHits<S<V>, N>,
+) {
+    let (origin, shear) = (ray.origin(), ray.shear());
+    scalar_lanes(batch, slow, false, out, |tri| {
+        watertight_definition(origin, &shear, tri, t_max, EdgeRule::Closed)
+    });
+}
+
+/// The lanes in `slow` of a batch answer from the scalar `test` on each
+/// lane's triangle (a lane can arrive with an answer already written,
+/// which is replaced); with `any`, it stops at the first hit.
+#[inline(always)]
+fn scalar_lanes<V: Vector, const N: usize>(
+    batch: &TriangleBatch<V, N>,
+    mut slow: u32,
+    any: bool,
+    out: &mut TriangleBatchHits<S<V>, N>,
+    test: impl Fn(&Triangle<V>) -> Option<TriangleHit<S<V>>>,
 ) {
     while slow != 0 {
         let l = slow.trailing_zeros() as usize;
         slow &= slow - 1;
-        let tri = batch.lane(l);
-        // (A lane can arrive here with the plain answer already written.)
         (out.t[l], out.u[l], out.v[l]) = (S::<V>::INFINITY, S::<V>::ZERO, S::<V>::ZERO);
-        if let Some(h) =
-            watertight_definition(ray.origin(), &ray.shear(), &tri, t_max, EdgeRule::Closed)
-        {
+        if let Some(h) = test(&batch.lane(l)) {
             out.mask |= 1 << l;
             if h.side == Side::Front {
                 out.front |= 1 << l;
             }
             (out.t[l], out.u[l], out.v[l]) = (h.t, h.u, h.v);
+            if any {
+                break;
+            }
         }
     }
 }
@@ -666,34 +682,14 @@ fn slow_lanes_in<V: Vector, const N: usize>(
     ray: &PreparedRay<V>,
     batch: &TriangleBatch<V, N>,
     interval: Interval<S<V>>,
-    mut slow: u32,
+    slow: u32,
     any: bool,
     out: &mut TriangleBatchHits<S<V>, N>,
 ) {
-    let shear = ray.shear();
-    while slow != 0 {
-        let l = slow.trailing_zeros() as usize;
-        slow &= slow - 1;
-        let tri = batch.lane(l);
-        let hit = watertight_in(
-            ray.origin(),
-            ray.dir,
-            &shear,
-            &tri,
-            interval,
-            EdgeRule::Closed,
-        );
-        if let Some(h) = hit {
-            out.mask |= 1 << l;
-            if h.side == Side::Front {
-                out.front |= 1 << l;
-            }
-            (out.t[l], out.u[l], out.v[l]) = (h.t, h.u, h.v);
-            if any {
-                break;
-            }
-        }
-    }
+    let (origin, shear) = (ray.origin(), ray.shear());
+    scalar_lanes(batch, slow, any, out, |tri| {
+        watertight_in(origin, ray.dir, &shear, tri, interval, EdgeRule::Closed)
+    });
 }
 
 /// [`ray_triangle_batch`] over an interval: lane by lane, bit for bit what

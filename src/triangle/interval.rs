@@ -39,8 +39,8 @@ use super::bounds::{ErrorBounds, HitCondition, longest_edge_t};
 use super::conditioning::edge_signs_known_at_corners;
 use super::definition::{EdgeRule, hit_at, inside};
 use super::frame::Frame;
-use super::watertight::{DefinitionRay, Packed, frame_lanes, pack, unpack};
-use super::{Side, Triangle, TriangleHit};
+use super::watertight::{DefinitionRay, Packed, frame_lanes, lanes_hit, pack, unpack};
+use super::{Triangle, TriangleHit};
 use crate::num::exact_sign::PlaneCrossing;
 use crate::num::{Axis, L, Lanes, S, Scalar, Vector};
 use crate::ray::{Interval, PreparedRay, Ray, Shear, bring_into, decide};
@@ -142,7 +142,7 @@ fn watertight_in_lanes<V: Vector, R: DefinitionRay<V>>(
     interval: Interval<S<V>>,
     rule: EdgeRule,
 ) -> Option<TriangleHit<S<V>>> {
-    let (zero, one) = (S::<V>::ZERO, S::<V>::ONE);
+    let zero = S::<V>::ZERO;
     let (x, y, pz, e) = frame_lanes(origin_lanes, shear_lanes, axes, tri);
     let lanes_zero = L::<V>::splat(zero);
     if e.lt(lanes_zero) != 0 && lanes_zero.lt(e) != 0 {
@@ -161,24 +161,12 @@ fn watertight_in_lanes<V: Vector, R: DefinitionRay<V>>(
     let z = pz.mul(sz);
     match known.then(|| corner_verdict(&window, z)).flatten() {
         Some(true) => {
-            // As `watertight_in` computes them: `u`, `v` finite (each
-            // `|e_i| <= |det|`, `det` finite and far from zero), the side
-            // from the signs of `det` and `d_z` (that of `1 / d_z`).
-            let inv_det = one / det;
+            // As `watertight_in` computes them (`det` finite and far from
+            // zero, so `u` and `v` are finite).
+            let inv_det = S::<V>::ONE / det;
             let t = e.mul(z).sum3() * inv_det;
-            let w = e.mul(L::<V>::splat(inv_det)).min(L::<V>::splat(one));
-            let [_, u, v] = w.to_array();
-            let side = if (det > zero) != (sz.x() > zero) {
-                Side::Front
-            } else {
-                Side::Back
-            };
-            Some(TriangleHit {
-                t: bring_into(t, window.lo, window.hi),
-                u,
-                v,
-                side,
-            })
+            let t = bring_into(t, window.lo, window.hi);
+            Some(lanes_hit(t, e, det, inv_det, sz.x()))
         }
         Some(false) => None,
         None => unpack(in_out_of_line(ray, dir, tri, interval, rule)),

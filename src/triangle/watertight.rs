@@ -221,19 +221,32 @@ pub(crate) fn watertight_lanes<V: Vector>(
     if !(t > zero && t <= min2(S::<V>::MAX, t_max)) {
         return None;
     }
-    // u and v: lanes 1 and 2 of `min(e * inv_det, 1)`, finite here: each
-    // `|e_i| <= |det|` (the `e_i` share a sign), and `1 / det` is finite
-    // (else `t` would be infinite).
-    let w = e.mul(L::<V>::splat(inv_det)).min(L::<V>::splat(one));
+    // (`u` and `v` finite here: `1 / det` is finite, else `t` would be
+    // infinite.)
+    Some(lanes_hit(t, e, det, inv_det, sz.x()))
+}
+
+/// The hit at `t` with the corners' edge functions in lanes `e`, as
+/// `hit_at` computes it: `u` and `v` lanes 1 and 2 of `min(e / det, 1)`
+/// (finite where `1 / det` is: each `|e_i| <= |det|`, the `e_i` sharing a
+/// sign), the side from the signs of `det` and `sz = 1 / d_z` (which has
+/// the sign of `d_z`, and is not zero: `|d_z| <= MAX`).
+#[inline(always)]
+pub(super) fn lanes_hit<F: Scalar, W: Lanes<F = F>>(
+    t: F,
+    e: W,
+    det: F,
+    inv_det: F,
+    sz: F,
+) -> TriangleHit<F> {
+    let w = e.mul(W::splat(inv_det)).min(W::splat(F::ONE));
     let [_, u, v] = w.to_array();
-    // (`sz = 1 / d_z` has the sign of `d_z`, and is not zero: `|d_z| <=
-    // MAX`.)
-    let side = if (det > zero) != (sz.x() > zero) {
+    let side = if (det > F::ZERO) != (sz > F::ZERO) {
         Side::Front
     } else {
         Side::Back
     };
-    Some(TriangleHit { t, u, v, side })
+    TriangleHit { t, u, v, side }
 }
 
 /// A triangle test's answer as the rare paths return it: packed so that

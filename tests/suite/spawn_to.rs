@@ -569,6 +569,8 @@ fn place_occluders<V: Vector>(
         return;
     }
     let wu = unit(w);
+    // The ends' largest coordinate: the scale of the corners' rounding.
+    let big = pf.iter().chain(&qf).fold(0.0f64, |m, x| m.max(x.abs()));
     let eps_plane = rat(1.0 + 1.0 / 256.0);
     // The exact precondition for a plane through `at` with normal `n`: `p`
     // on the negative side farther than `B_o (1 + eps)`, `q` on the
@@ -657,7 +659,6 @@ fn place_occluders<V: Vector>(
         // The triangle: its plane `B (1 + 2^-6)` plus the corners'
         // rounding from the end, centred where `[p, q]` crosses it, its
         // size many times the documented edge margin.
-        let big = pf.iter().chain(&qf).fold(0.0f64, |m, x| m.max(x.abs()));
         let margin_b = bo.max(be);
         let nu = unit(nf);
         let want = b * (1.0 + 1.0 / 64.0);
@@ -745,7 +746,6 @@ fn place_occluders<V: Vector>(
         // coordinate): far from the origin, a triangle a few segment
         // lengths wide is tilted out of the plane by rounding its corners,
         // and its own plane is what the precondition is about.
-        let big = pf.iter().chain(&qf).fold(0.0f64, |m, x| m.max(x.abs()));
         let radius = 4.0 * len + 128.0 * S::<V>::UNIT_ROUNDOFF.to_f64() * big;
         let corner = |a: f64| {
             let (s, t) = (a.cos(), a.sin());
