@@ -60,4 +60,6 @@ pub use dispatch::TargetSimd;
 #[cfg(rayhit_runtime_avx)]
 pub(crate) use dispatch::Work;
 pub(crate) use dispatch::{Isa, Kernel, per_call};
+#[cfg(test)]
+pub(crate) use portable::Portable8;
 pub(crate) use rows::{check_lanes, lanes_at, put};

@@ -591,8 +591,8 @@ fn triangle_batch_in_body<W: Lanes8<F = S<V>>, V: Vector, const N: usize, const 
     let (down, up) = (splat(down), splat(up));
     let (t_lo, t_hi) = (splat(window.lo), splat(window.hi));
     let (t_lo_normal, t_hi_normal) = (splat(window.lo_normal), splat(window.hi_normal));
-    let (normal, max) = (splat(S::<V>::MIN_POSITIVE), splat(S::<V>::MAX));
-    let (neg_normal, neg_max) = (lo.sub(normal), lo.sub(max));
+    let normal = splat(S::<V>::MIN_POSITIVE);
+    let neg_normal = lo.sub(normal);
     let (mut hit, mut slow, mut front) = (0, 0, 0);
     let all = lo.le(lo);
     for c in 0..N.div_ceil(8) {
@@ -605,23 +605,19 @@ fn triangle_batch_in_body<W: Lanes8<F = S<V>>, V: Vector, const N: usize, const 
             continue;
         }
         let [(x0, y0, pz0), (x1, y1, pz1), (x2, y2, pz2)] = corners;
-        // The largest |x_i|, |y_i|, |p_z,i|, as the larger of the largest
-        // value and minus the smallest.
-        let top = x0
-            .max(x1.max(x2))
-            .max(y0.max(y1.max(y2)))
-            .max(pz0.max(pz1.max(pz2)));
-        let bottom = x0
-            .min(x1.min(x2))
-            .min(y0.min(y1.min(y2)))
-            .min(pz0.min(pz1.min(pz2)));
-        let scale = top.max(lo.sub(bottom));
+        // The largest |x_i| and |y_i| (`m`), and the largest |p_z,i| (`w`),
+        // each the larger of the largest value and minus the smallest.
+        let top = x0.max(x1.max(x2)).max(y0.max(y1.max(y2)));
+        let bottom = x0.min(x1.min(x2)).min(y0.min(y1.min(y2)));
+        let m = top.max(lo.sub(bottom));
+        let w = pz0.max(pz1.max(pz2)).max(lo.sub(pz0.min(pz1.min(pz2))));
         // Inside, the edge functions share a sign, so the smallest |e_i|
         // is e_min where they are positive and -e_max where negative.
         let min_abs_e = e_min.max(lo.sub(e_max));
         let det = e0.add(e1).add(e2);
-        let finite = W::and(det.le(max), neg_max.le(det));
-        let known = W::and(W::and(edge_signs_known(min_abs_e, scale), finite), inside);
+        // (`det - det` is zero exactly when `det` is finite.)
+        let finite = det.sub(det).eq(lo);
+        let known = W::and(W::and(edge_signs_known(min_abs_e, m, w), finite), inside);
         let (z0, z1, z2) = (pz0.mul(sz), pz1.mul(sz), pz2.mul(sz));
         let (z_min, z_max) = (z0.min(z1.min(z2)), z0.max(z1.max(z2)));
         let (low, high) = (z_min.mul(down), z_max.mul(up));

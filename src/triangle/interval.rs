@@ -126,17 +126,20 @@ where
     (before || splat(window.hi_normal).lt(low) == 0b111).then_some(false)
 }
 
-/// [`watertight_in`] with the corners in lanes, for a valid ray given by
-/// its origin's lanes, shear lanes and axis order (as
-/// [`PreparedRay`] keeps them): the common case decided by
-/// [`corner_verdict`], everything else by [`watertight_in`] itself, out of
-/// line. The same answer, bit for bit: the shortcut decides exactly what
-/// `watertight_in` decides, and its `t`, `u`, `v` and side are the same
-/// operations on the same values.
+/// [`watertight_in`] with the corners in lanes, for a ray given by its
+/// origin's lanes, shear lanes and axis order (as [`PreparedRay`] keeps
+/// them): the common case decided by [`corner_verdict`], everything else
+/// by [`watertight_in`] itself, out of line. The same answer, bit for bit:
+/// the shortcut decides exactly what `watertight_in` decides, and its `t`,
+/// `u`, `v` and side are the same operations on the same values.
+///
+/// An invalid ray (whose origin lanes are NaN, as [`PreparedRay::new`]
+/// makes them) needs no test on the common path: its edge functions and
+/// determinant are NaN, which fails the shortcut, and the out-of-line path
+/// answers `None` for it.
 #[inline(always)]
 fn watertight_in_lanes<V: Vector, R: DefinitionRay<V>>(
     ray: &R,
-    dir: V,
     (origin_lanes, shear_lanes, axes): (&[L<V>; 3], &[L<V>; 3], &[Axis; 3]),
     tri: &Triangle<V>,
     interval: Interval<S<V>>,
@@ -152,12 +155,11 @@ fn watertight_in_lanes<V: Vector, R: DefinitionRay<V>>(
     let sz = shear_lanes[2];
     let window = DepthWindow::new(interval, sz.x());
     let det = e.sum3();
-    let k = x.abs().max(y.abs()).max(pz.abs());
     // (A zero or NaN edge function fails `edge_signs_known`; an infinite
     // one would pass it, so `det` must be finite.)
     let known = window.usable
         && det.abs() <= S::<V>::MAX
-        && edge_signs_known_at_corners(e.abs().min_all(), k);
+        && edge_signs_known_at_corners(x, y, pz, e.abs().min_all().x());
     let z = pz.mul(sz);
     match known.then(|| corner_verdict(&window, z)).flatten() {
         Some(true) => {
@@ -169,23 +171,32 @@ fn watertight_in_lanes<V: Vector, R: DefinitionRay<V>>(
             Some(lanes_hit(t, e, det, inv_det, sz.x()))
         }
         Some(false) => None,
-        None => unpack(in_out_of_line(ray, dir, tri, interval, rule)),
+        None => unpack(in_out_of_line(ray, tri, interval, rule)),
     }
 }
 
 /// [`watertight_in`], out of the hot path: the rare cases of
-/// [`watertight_in_lanes`].
+/// [`watertight_in_lanes`], and its invalid rays (a miss).
 #[cold]
 #[inline(never)]
 fn in_out_of_line<V: Vector, R: DefinitionRay<V>>(
     ray: &R,
-    dir: V,
     tri: &Triangle<V>,
     interval: Interval<S<V>>,
     rule: EdgeRule,
 ) -> Packed<S<V>> {
+    if !ray.valid() {
+        return pack::<S<V>>(None);
+    }
     let (origin, shear) = ray.origin_and_shear();
-    pack(watertight_in(origin, dir, &shear, tri, interval, rule))
+    pack(watertight_in(
+        origin,
+        ray.direction(),
+        &shear,
+        tri,
+        interval,
+        rule,
+    ))
 }
 
 /// The watertight test with the exact interval decision, for a valid ray
@@ -281,7 +292,7 @@ fn on_ray<V: Vector>(
         &shear.lanes(),
         &[shear.kx, shear.ky, shear.kz],
     );
-    watertight_in_lanes(ray, ray.dir, lanes, tri, interval, rule)
+    watertight_in_lanes(ray, lanes, tri, interval, rule)
 }
 
 /// The exact crossing's signs for the ray and the triangle.
@@ -384,18 +395,17 @@ pub fn ray_triangle_in<V: Vector>(
 /// assert_eq!(hit, ray_triangle_in(&ray, &tri, window));
 /// assert_eq!(hit.unwrap().t, 2.0);
 /// ```
-#[inline]
+// (Always inlined, as `ray_triangle_prepared` is: the body of a
+// traversal's inner loop, its rare paths out of line.)
+#[inline(always)]
 #[must_use]
 pub fn ray_triangle_prepared_in<V: Vector>(
     ray: &PreparedRay<V>,
     tri: &Triangle<V>,
     interval: Interval<S<V>>,
 ) -> Option<TriangleHit<S<V>>> {
-    if !ray.is_valid() {
-        return None;
-    }
     let lanes = (&ray.origin_lanes, &ray.shear_lanes, &ray.axes);
-    watertight_in_lanes(ray, ray.dir, lanes, tri, interval, EdgeRule::Closed)
+    watertight_in_lanes(ray, lanes, tri, interval, EdgeRule::Closed)
 }
 
 /// [`ray_triangle_one_hit`](crate::ray_triangle_one_hit) over an interval:
@@ -471,7 +481,9 @@ pub fn ray_triangle_occluded<V: Vector>(
 /// assert!(ray_triangle_prepared_occluded(&ray, &occluder, Interval::new(0.25, 0.5).unwrap()));
 /// assert!(!ray_triangle_prepared_occluded(&ray, &occluder, Interval::new(0.5, 1.0).unwrap()));
 /// ```
-#[inline]
+// (Always inlined, as `ray_triangle_prepared` is: the body of a
+// traversal's inner loop, its rare paths out of line.)
+#[inline(always)]
 #[must_use]
 pub fn ray_triangle_prepared_occluded<V: Vector>(
     ray: &PreparedRay<V>,

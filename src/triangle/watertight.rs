@@ -285,9 +285,12 @@ pub(super) fn unpack<F: Scalar>(packed: Packed<F>) -> Option<TriangleHit<F>> {
 }
 
 /// A ray the definition can be run on, from what a fast path was given: its
-/// origin and shear (rebuilt where the fast path kept only its lanes).
+/// origin and shear (rebuilt where the fast path kept only its lanes), its
+/// direction, and whether it is valid.
 pub(super) trait DefinitionRay<V: Vector> {
     fn origin_and_shear(&self) -> (V, Shear<S<V>>);
+    fn direction(&self) -> V;
+    fn valid(&self) -> bool;
 }
 
 impl<V: Vector> DefinitionRay<V> for Ray<V> {
@@ -295,12 +298,28 @@ impl<V: Vector> DefinitionRay<V> for Ray<V> {
     fn origin_and_shear(&self) -> (V, Shear<S<V>>) {
         (self.origin, Shear::new(&self.dir))
     }
+    #[inline(always)]
+    fn direction(&self) -> V {
+        self.dir
+    }
+    #[inline(always)]
+    fn valid(&self) -> bool {
+        self.is_valid()
+    }
 }
 
 impl<V: Vector> DefinitionRay<V> for PreparedRay<V> {
     #[inline(always)]
     fn origin_and_shear(&self) -> (V, Shear<S<V>>) {
         (self.origin(), self.shear())
+    }
+    #[inline(always)]
+    fn direction(&self) -> V {
+        self.dir
+    }
+    #[inline(always)]
+    fn valid(&self) -> bool {
+        self.is_valid()
     }
 }
 
