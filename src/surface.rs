@@ -384,10 +384,9 @@ impl<V: Vector> SurfacePoint<V> {
     /// Instances: a world point from
     /// [`Instance::surface_to_world`](crate::Instance::surface_to_world) is
     /// a surface point like any other, and the guarantees hold against
-    /// world-space geometry; a segment traced back into an instance
-    /// through its stored inverse needs the extra margin
-    /// [`Instance::spawn`](crate::Instance::spawn) adds, which has no
-    /// segment form yet.
+    /// world-space geometry; a segment traced back into an end's instance
+    /// through its stored inverse needs the extra margin of
+    /// [`Instance::spawn_to_through`](crate::Instance::spawn_to_through).
     ///
     /// ```
     /// use rayhit::{Interval, Plane, Ray, SurfacePoint, Triangle};
@@ -413,7 +412,7 @@ impl<V: Vector> SurfacePoint<V> {
     /// ```
     #[must_use]
     pub fn spawn_to(&self, target: &SurfacePoint<V>) -> Option<(Ray<V>, Interval<S<V>>)> {
-        segment(self, target.point, Some(target))
+        segment(self, target.point, Some(target), [None, None])
     }
 
     /// The shadow-ray segment from this surface point to a point light at
@@ -447,32 +446,83 @@ impl<V: Vector> SurfacePoint<V> {
     /// ```
     #[must_use]
     pub fn spawn_to_point(&self, light: V) -> Option<(Ray<V>, Interval<S<V>>)> {
-        segment(self, light, None)
+        segment(self, light, None, [None, None])
     }
+}
+
+/// A bound on how far the object ray of a world ray, mapped through a
+/// path of instances, is from the world ray: per component, at `t = 0`
+/// and per unit of `t` (the path's
+/// [`InstanceRayError`](crate::InstanceRayError)).
+pub(crate) type RayMapBound<'a, V> = &'a dyn Fn(&Ray<V>) -> (V, V);
+
+/// A point offset off a surface with its error widened by `extra`, for a
+/// round trip through instances whose error grows with the point: `place`
+/// offsets with a given `extra` (`None` where it cannot), `need` is the
+/// extra the placed point needs. Starting from twice `first`, the point is
+/// kept when what it needs is strictly below the extra it was placed with,
+/// else the extra becomes twice the need, four times at most; `None`
+/// when it does not settle (the round trip's error grows with the offset
+/// as fast as the offset does) or `place` fails.
+pub(crate) fn settle<V: Vector>(
+    first: V,
+    place: impl Fn(V) -> Option<V>,
+    need: impl Fn(V) -> V,
+) -> Option<V> {
+    let mut extra = first * S::<V>::TWO;
+    for _ in 0..4 {
+        if !extra.is_finite() {
+            return None;
+        }
+        let point = place(extra)?;
+        let needed = need(point);
+        if (0..3).all(|i| needed[i] < extra[i]) {
+            return Some(point);
+        }
+        extra = needed * S::<V>::TWO;
+    }
+    None
 }
 
 /// The segment of [`SurfacePoint::spawn_to`] (`target` given) and
 /// [`SurfacePoint::spawn_to_point`] (`to` exact); the derivation is at
-/// `spawn_to`.
-fn segment<V: Vector>(
+/// `spawn_to`. `maps` are the start's and the target's instance paths'
+/// bounds, for a segment traced back into them
+/// ([`Instance::spawn_to_through`](crate::Instance::spawn_to_through)):
+/// the ends are offset further by what the round trip moves the object
+/// ray at `t = 0` (start) and `t = 1` (end), and the direction's mapped
+/// rounding joins the side tests. Without maps, every extra is zero and
+/// the segment is the world one, bit for bit.
+pub(crate) fn segment<V: Vector>(
     from: &SurfacePoint<V>,
     to: V,
     target: Option<&SurfacePoint<V>>,
+    maps: [Option<RayMapBound<'_, V>>; 2],
 ) -> Option<(Ray<V>, Interval<S<V>>)> {
     use crate::num::round::max2;
     use crate::num::round::outward::{add_up, mul_up};
     if !to.is_finite() {
         return None;
     }
+    let widen = |e: V, extra: V| {
+        V::new(
+            add_up(e[0], extra[0]),
+            add_up(e[1], extra[1]),
+            add_up(e[2], extra[2]),
+        )
+    };
     // The origin, off the start plane on the target's side.
     let s_p = side(to - from.point, from.normal);
-    let origin = offset_to_side(
-        from.point,
-        from.point_error,
-        from.normal,
-        from.normal_error,
-        s_p,
-    )?;
+    let place_origin =
+        |error: V| offset_to_side(from.point, error, from.normal, from.normal_error, s_p);
+    let origin = match maps[0] {
+        None => place_origin(from.point_error)?,
+        Some(map) => settle(
+            map(&Ray::new(from.point, to - from.point)).0,
+            |extra| place_origin(widen(from.point_error.abs(), extra)),
+            |o| map(&Ray::new(o, to - o)).0,
+        )?,
+    };
     if !origin.is_finite() {
         return None;
     }
@@ -492,7 +542,18 @@ fn segment<V: Vector>(
             let widened = |i: usize| add_up(t.point_error[i].abs(), mul_up(u, add_up(m[i], big)));
             let error = V::new(widened(0), widened(1), widened(2));
             let s_q = side(origin - to, t.normal);
-            let end = offset_to_side(to, error, t.normal, t.normal_error, s_q)?;
+            let place_end = |error: V| offset_to_side(to, error, t.normal, t.normal_error, s_q);
+            let end = match maps[1] {
+                None => place_end(error)?,
+                // The object ray at `t = 1`: `at_origin + per_t`.
+                Some(map) => {
+                    let at_end = |e: V| {
+                        let (a, p) = map(&Ray::new(origin, e - origin));
+                        widen(a, p)
+                    };
+                    settle(at_end(to), |extra| place_end(widen(error, extra)), at_end)?
+                }
+            };
             // The premise of `r`: `|end_i - q_i| <= L`.
             let within = |i: usize| (end[i] - to[i]).abs().next_up() <= big;
             if !(within(0) && within(1) && within(2)) {
@@ -506,23 +567,28 @@ fn segment<V: Vector>(
     if !ray.is_valid() {
         return None;
     }
+    // The mapped direction's rounding, per unit of `t`.
+    let per_t = |map: Option<RayMapBound<'_, V>>| map.map(|m| m(&ray).1);
     // Away from the start plane, into the origin's side `s_p`.
-    if !moves_to_side(dir, from.normal, from.normal_error, s_p) {
+    if !moves_to_side(dir, from.normal, from.normal_error, s_p, per_t(maps[0])) {
         return None;
     }
     // Towards the target plane, from the origin's side `s_q`.
     if let Some(t) = target
-        && !moves_to_side(dir, t.normal, t.normal_error, -s_q)
+        && !moves_to_side(dir, t.normal, t.normal_error, -s_q, per_t(maps[1]))
     {
         return None;
     }
     Some((ray, Interval::up_to(S::<V>::ONE)?))
 }
 
-/// Whether `s (dir . N) > 0` for every normal `N` within `normal_error` of
-/// `normal` (`s` is `+1` or `-1`): the computed `dir . normal`, times `s`,
-/// above its rounding bound `gamma(3) sum |dir_i normal_i|` plus the
-/// normal's error `sum |dir_i| eta_i`.
+/// Whether `s (D . N) > 0` for every normal `N` within `normal_error` of
+/// `normal` (`s` is `+1` or `-1`) and `D = dir`, or, given `dir_error`,
+/// every direction `D` within it of `dir`: the computed `dir . normal`,
+/// times `s`, above its rounding bound `gamma(3) sum |dir_i normal_i|`
+/// plus the normal's error `sum |dir_i| eta_i`, plus the direction's,
+/// `sum dir_error_i (|normal_i| + eta_i)` (`|(D - dir) . N|` is at most
+/// that, as `|N_i| <= |normal_i| + eta_i`), added rounding up.
 ///
 /// Five roundings on any path of the bound (the path through `gamma(3)`,
 /// itself rounded once, has three), so `bound_up(.., 5)`. Underflow: each
@@ -531,13 +597,26 @@ fn segment<V: Vector>(
 /// bound is at least `4 TINY / u`, `bound_up`'s slack does already, and
 /// below that the addition is exact).
 #[inline(always)]
-fn moves_to_side<V: Vector>(dir: V, normal: V, normal_error: V, s: S<V>) -> bool {
+fn moves_to_side<V: Vector>(
+    dir: V,
+    normal: V,
+    normal_error: V,
+    s: S<V>,
+    dir_error: Option<V>,
+) -> bool {
     use crate::num::round::bound_up;
+    use crate::num::round::outward::{add_up, mul_up};
     let (d, n, eta) = (dir.abs(), normal.abs(), normal_error.abs());
     let dot = dir.x() * normal.x() + dir.y() * normal.y() + dir.z() * normal.z();
     let on_n = d.x() * n.x() + d.y() * n.y() + d.z() * n.z();
     let on_eta = d.x() * eta.x() + d.y() * eta.y() + d.z() * eta.z();
     let bound =
         bound_up(S::<V>::gamma_n(3) * on_n + on_eta, 5) + S::<V>::TINY * S::<V>::from_u32(4);
-    s * dot > bound
+    let Some(dir_error) = dir_error else {
+        return s * dot > bound;
+    };
+    let moved = (0..3).fold(bound, |acc, i| {
+        add_up(acc, mul_up(dir_error[i].abs(), add_up(n[i], eta[i])))
+    });
+    s * dot > moved
 }

@@ -8,7 +8,9 @@
 //!   bound relating the two rays' points at the same `t`.
 //! - `bounds.rs`: an object box to a world box, rounded outward.
 //! - `surface.rs`: an object hit to a world [`SurfacePoint`], and the rays
-//!   that leave it ([`Instance::spawn`], [`Instance::spawn_through`]).
+//!   that leave it ([`Instance::spawn`], [`Instance::spawn_through`]), and
+//!   shadow-ray segments between such points
+//!   ([`Instance::spawn_to_through`], [`Instance::spawn_to_point_through`]).
 //!
 //! # Notation, used by every derivation in this module
 //!
@@ -95,10 +97,15 @@ impl core::error::Error for InstanceError {}
 /// - [`Instance::spawn`] and [`Instance::spawn_through`]: a ray leaving
 ///   that world point which, mapped back into the instance through the
 ///   stored inverse as a renderer does, cannot meet the surface it left.
+/// - [`Instance::spawn_to_through`] and [`Instance::spawn_to_point_through`]:
+///   a shadow-ray segment `(0, 1]` between two such points (or to a point
+///   light) that, traced into either end's instance, meets neither end's
+///   surface.
 ///
 /// Nested instances (an instance of instances) chain the maps: each level
 /// maps the ray it receives, and the error bounds compose (see
-/// [`InstanceRayError::nested`] and [`Instance::spawn_through`]). Matrices are
+/// [`InstanceRayError::nested`], [`Instance::path_error`] and
+/// [`Instance::spawn_through`]). Matrices are
 /// never multiplied together, so no rounding of a product needs a bound.
 ///
 /// Two *different* instances that meet at a seam (two copies of a tile

@@ -101,7 +101,59 @@ impl<V: Vector> InstanceRayError<V> {
     }
 }
 
+impl<V: Vector> InstanceRayError<V> {
+    /// `(at_origin, per_t)`.
+    pub(crate) fn parts(&self) -> (V, V) {
+        (self.at_origin, self.per_t)
+    }
+}
+
 impl<V: Vector> Instance<V> {
+    /// The bound relating `ray` and its object ray through the instances
+    /// `path` (outermost first: `path[0]` maps the world ray, `path[1]`
+    /// maps the result, and so on): each level's
+    /// [`Instance::world_to_object_error`] for the ray it receives,
+    /// composed with [`InstanceRayError::nested`] from the innermost out.
+    /// Zero for an empty path; infinite for a path deeper than eight
+    /// levels (not covered).
+    ///
+    /// ```
+    /// use rayhit::{Instance, Ray, glam::{Affine3A, Vec3}};
+    /// let outer = Instance::from_affine3a(Affine3A::from_scale(Vec3::splat(2.0))).unwrap();
+    /// let inner = Instance::from_affine3a(Affine3A::from_translation(Vec3::splat(3.0))).unwrap();
+    /// let world = Ray::new(Vec3::new(1.0, 2.0, 3.0), Vec3::X);
+    /// let both = Instance::path_error(&[&outer, &inner], &world);
+    /// assert!(both.at_origin.x >= outer.world_to_object_error(&world).at_origin.x);
+    /// assert_eq!(Instance::path_error(&[&outer], &world), outer.world_to_object_error(&world));
+    /// ```
+    #[must_use]
+    pub fn path_error(path: &[&Self], ray: &Ray<V>) -> InstanceRayError<V> {
+        let zero = InstanceRayError {
+            at_origin: V::ZERO,
+            per_t: V::ZERO,
+        };
+        let Some((&last, outer)) = path.split_last() else {
+            return zero;
+        };
+        if path.len() > 8 {
+            let inf = V::splat(S::<V>::INFINITY);
+            return InstanceRayError {
+                at_origin: inf,
+                per_t: inf,
+            };
+        }
+        // The rays each level receives.
+        let mut rays = [*ray; 8];
+        for k in 1..path.len() {
+            rays[k] = path[k - 1].world_to_object(&rays[k - 1]);
+        }
+        let mut acc = last.world_to_object_error(&rays[outer.len()]);
+        for (k, inst) in outer.iter().enumerate().rev() {
+            acc = InstanceRayError::nested(inst, &inst.world_to_object_error(&rays[k]), &acc);
+        }
+        acc
+    }
+
     /// The world ray in object space: `origin' = A origin + b`,
     /// `dir' = A dir`, rounded, with the stored inverse `A x + b`.
     ///

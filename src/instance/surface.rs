@@ -84,9 +84,11 @@
 //! [`SurfacePoint`]: crate::SurfacePoint
 //! [`offset_ray_origin`]: crate::offset_ray_origin
 
-use super::{Instance, abs_apply_up, apply, bound_up_l, lanes, load3, vector};
+use super::{Instance, apply, bound_up_l, lanes, load3, vector};
 use crate::num::round::{bound_up, max2};
 use crate::num::{L, Lanes, S, Scalar, Vector};
+use crate::ray::Interval;
+use crate::surface::{RayMapBound, segment, settle};
 use crate::{Ray, SurfacePoint, offset_ray_origin};
 
 impl<V: Vector> Instance<V> {
@@ -247,13 +249,8 @@ impl<V: Vector> Instance<V> {
         if path.is_empty() {
             return world.spawn(dir);
         }
-        let two = S::<V>::TWO;
         let e = world.point_error.abs();
-        let mut extra = round_trip_bound(path, world.point, dir) * two;
-        for _ in 0..4 {
-            if !extra.is_finite() {
-                return unmoved;
-            }
+        let place = |extra: V| {
             let widened = V::new(
                 bound_up(e[0] + extra[0], 1),
                 bound_up(e[1] + extra[1], 1),
@@ -261,50 +258,113 @@ impl<V: Vector> Instance<V> {
             );
             let origin =
                 offset_ray_origin(world.point, widened, world.normal, world.normal_error, dir);
-            if origin == world.point {
-                // Not moved: the normal is not known well enough, or the
-                // input is not finite.
-                return unmoved;
-            }
-            let need = round_trip_bound(path, origin, dir);
-            let below = |i: usize| need[i] < extra[i];
-            if below(0) && below(1) && below(2) {
-                return Ray::new(origin, dir);
-            }
-            extra = need * two;
-        }
-        unmoved
-    }
-}
-
-/// A per-component bound on `|F_1(...F_k(o_k)) - o|`, with `o_k` the origin
-/// `o` mapped through `path` (outermost first) with the stored inverses:
-/// `K_1 |o| + c_1 + |M_1| (K_2 |o_1| + c_2 + |M_2| (...))`, evaluated
-/// innermost first, rounding up.
-fn round_trip_bound<V: Vector>(path: &[&Instance<V>], origin: V, dir: V) -> V {
-    // The origins each level receives.
-    let mut rays = [Ray::new(origin, dir); 8];
-    let levels = path.len().min(8);
-    if path.len() > 8 {
-        // Deeper nesting than the bound is written for: no guarantee.
-        return V::splat(S::<V>::INFINITY);
-    }
-    for k in 1..levels {
-        rays[k] = path[k - 1].world_to_object(&rays[k - 1]);
-    }
-    let mut acc = L::<V>::splat(S::<V>::ZERO);
-    for k in (0..levels).rev() {
-        let inst = path[k];
-        let delta = abs_apply_up::<V>(
-            &load3(&inst.k_origin),
-            lanes(rays[k].origin).abs(),
-            inst.c_origin.load(),
-        );
-        acc = if k + 1 == levels {
-            delta
-        } else {
-            abs_apply_up::<V>(&load3(&inst.m_abs_cols), acc, delta)
+            // Not moved: the normal is not known well enough, or the
+            // input is not finite.
+            (origin != world.point).then_some(origin)
         };
+        let need = |origin: V| Self::path_error(path, &Ray::new(origin, dir)).at_origin;
+        settle(need(world.point), place, need).map_or(unmoved, |origin| Ray::new(origin, dir))
     }
-    vector(acc)
+
+    /// The shadow-ray segment from `from`, a surface point of an object
+    /// reached through the instances `from_path`, to `to`, one reached
+    /// through `to_path` (each outermost first, as for
+    /// [`Instance::spawn_through`]; an empty path is a world surface), as
+    /// [`SurfacePoint::spawn_to`] makes it: a ray and the interval `(0,
+    /// 1]`, for a segment traced through the whole scene, each instance
+    /// visited with [`Instance::world_to_object`].
+    ///
+    /// Guarantees, with the object rays the renderer computes: the one in
+    /// `from`'s object space has its origin strictly on the side of the
+    /// exact object plane that its direction moves away from (its exact
+    /// crossing is at `t < 0`), and the one in `to`'s object space is,
+    /// at `t = 1`, strictly on the side its direction comes from (its
+    /// crossing is at `t > 1`), so no interval kernel reports either
+    /// surface over `(0, 1]`; and any surface the exact world segment
+    /// crosses farther than the ends' moves from them is crossed in
+    /// `(0, 1]`. Where a path is empty, that end is
+    /// [`SurfacePoint::spawn_to`]'s, bit for bit.
+    ///
+    /// How: each end is offset as `spawn_to` offsets it, its point error
+    /// widened by the round trip's error at that end (the path's
+    /// [`InstanceRayError`](crate::InstanceRayError) at `t = 0` for the
+    /// start, at `t = 1` for the end), evaluated at the ends actually
+    /// returned and checked, as [`Instance::spawn_through`] does; and the
+    /// side tests of the direction include its mapped rounding (`per_t`).
+    /// Every condition is checked: `Some` is proved.
+    ///
+    /// `None`: as for [`SurfacePoint::spawn_to`] (count the connection as
+    /// blocked), and also where the round trip's error grows with an end's
+    /// offset as fast as the offset does (the product of a path's
+    /// condition numbers near `1 / u`). Never panics.
+    ///
+    /// ```
+    /// use rayhit::{Instance, Interval, Ray, SurfacePoint, Triangle, ray_triangle, ray_triangle_in};
+    /// use rayhit::glam::{Affine3A, Quat, Vec3};
+    /// // A tile rotated and placed far away, and a lamp above it, each an instance of one triangle.
+    /// let tri = Triangle::new(Vec3::new(-1.0, -1.0, 0.0), Vec3::new(2.0, -1.0, 0.0), Vec3::new(-1.0, 2.0, 0.0));
+    /// let place = |q: Quat, at: Vec3| Instance::from_affine3a(Affine3A::from_rotation_translation(q, at)).unwrap();
+    /// let tile = place(Quat::from_rotation_x(0.3), Vec3::new(2e4, 0.0, 0.0));
+    /// let lamp = place(Quat::from_rotation_x(3.0), Vec3::new(2e4, 0.0, 3.0));
+    /// // Where a ray from the eye straight down (or up) meets an instance.
+    /// let hit_on = |inst: &Instance, dir: Vec3| {
+    ///     let ray = inst.world_to_object(&Ray::new(Vec3::new(2e4, 0.2, 1.5), dir));
+    ///     inst.surface_to_world(&SurfacePoint::on_triangle(&tri, &ray_triangle(&ray, &tri, f32::INFINITY).unwrap()))
+    /// };
+    /// let on_tile = hit_on(&tile, -Vec3::Z);
+    /// let on_lamp = hit_on(&lamp, Vec3::Z);
+    /// let (shadow, segment) = Instance::spawn_to_through(&[&tile], &on_tile, &[&lamp], &on_lamp).unwrap();
+    /// assert_eq!(segment, Interval::up_to(1.0).unwrap());
+    /// // Traced into either instance, the segment meets neither end's surface.
+    /// for inst in [&tile, &lamp] {
+    ///     assert!(ray_triangle_in(&inst.world_to_object(&shadow), &tri, segment).is_none());
+    /// }
+    /// ```
+    ///
+    /// [`SurfacePoint::spawn_to`]: crate::SurfacePoint::spawn_to
+    #[must_use]
+    pub fn spawn_to_through(
+        from_path: &[&Self],
+        from: &SurfacePoint<V>,
+        to_path: &[&Self],
+        to: &SurfacePoint<V>,
+    ) -> Option<(Ray<V>, Interval<S<V>>)> {
+        let from_map = |ray: &Ray<V>| Self::path_error(from_path, ray).parts();
+        let to_map = |ray: &Ray<V>| Self::path_error(to_path, ray).parts();
+        let maps: [Option<RayMapBound<'_, V>>; 2] = [
+            (!from_path.is_empty()).then_some(&from_map),
+            (!to_path.is_empty()).then_some(&to_map),
+        ];
+        segment(from, to.point, Some(to), maps)
+    }
+
+    /// The shadow-ray segment from `from`, a surface point reached through
+    /// the instances `from_path`, to a point light at `light` (a world
+    /// point, on no surface): [`Instance::spawn_to_through`] with the
+    /// light as the end, unmoved, as [`SurfacePoint::spawn_to_point`] has
+    /// it. The same guarantees for the start; `None` in the same cases.
+    ///
+    /// ```
+    /// use rayhit::{Instance, Ray, SurfacePoint, Triangle, ray_triangle, ray_triangle_in};
+    /// use rayhit::glam::{DAffine3, DQuat, DVec3};
+    /// let tri = Triangle::new(DVec3::ZERO, DVec3::X, DVec3::Y);
+    /// let inst = Instance::from_daffine3(DAffine3::from_scale_rotation_translation(
+    ///     DVec3::new(1e3, 1e-3, 1.0), DQuat::from_rotation_y(0.4), DVec3::splat(1e5))).unwrap();
+    /// let ray = Ray::new(DVec3::new(0.2, 0.3, 1.0), -DVec3::Z);
+    /// let here = inst.surface_to_world(&SurfacePoint::on_triangle(&tri, &ray_triangle(&ray, &tri, f64::INFINITY).unwrap()));
+    /// let light = here.point + here.normal * 10.0 + DVec3::X;
+    /// let (shadow, segment) = Instance::spawn_to_point_through(&[&inst], &here, light).unwrap();
+    /// assert!(ray_triangle_in(&inst.world_to_object(&shadow), &tri, segment).is_none());
+    /// ```
+    #[must_use]
+    pub fn spawn_to_point_through(
+        from_path: &[&Self],
+        from: &SurfacePoint<V>,
+        light: V,
+    ) -> Option<(Ray<V>, Interval<S<V>>)> {
+        let from_map = |ray: &Ray<V>| Self::path_error(from_path, ray).parts();
+        let maps: [Option<RayMapBound<'_, V>>; 2] =
+            [(!from_path.is_empty()).then_some(&from_map), None];
+        segment(from, light, None, maps)
+    }
 }

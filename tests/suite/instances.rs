@@ -10,6 +10,12 @@
 //!   triangle they left, by the watertight kernel and by the exact plane
 //!   crossing; the self-hits of two usual approaches on the same rays are
 //!   counted and printed (not asserted: they are the comparison);
+//! - shadow-ray segments (`Instance::spawn_to_through` from such a point to
+//!   a point of a second triangle facing it in the same object space, and
+//!   `spawn_to_point_through` to a light), traced back into the instances,
+//!   report neither end over `(0, 1]` and cross neither end's plane there
+//!   exactly; the world-only segments (`SurfacePoint::spawn_to`) on the
+//!   same points are counted for comparison;
 //! - singular, NaN and infinite matrices are errors, and nothing panics.
 //!
 //! Transforms: rotations, per-axis scales from 1e-3 to 1e3, shears,
@@ -26,8 +32,8 @@ use num_traits::{Signed, Zero};
 use rayhit::exact::{self, AffineMap};
 use rayhit::glam::{DVec3, Vec3};
 use rayhit::{
-    Aabb, Instance, InstanceError, InstanceRayError, Ray, Scalar, SurfacePoint, Triangle, Vector,
-    ray_triangle,
+    Aabb, Instance, InstanceError, InstanceRayError, Interval, Ray, Scalar, SurfacePoint, Triangle,
+    Vector, ray_triangle, ray_triangle_in,
 };
 use rayhit_testkit::oracle::{R, dot, r, rv};
 use rayhit_testkit::source::Source;
@@ -201,6 +207,20 @@ struct Spawns {
     /// pbrt-v4's transform of the error and `OffsetRayOrigin`.
     pbrt_hits: usize,
     pbrt_ahead: usize,
+    /// Segments (`Instance::spawn_to_through` between two surfaces of the
+    /// same object space, `spawn_to_point_through` to a light) returned,
+    /// and `None` (within rounding of tangent, or not settled).
+    segments: usize,
+    no_segment: usize,
+    /// Ours: the interval kernel's reports of either end's triangle over
+    /// `(0, 1]` on the object ray, and exact crossings of the start plane
+    /// at `t >= 0` or of the end plane at `t <= 1`.
+    segment_hits: usize,
+    segment_exact: usize,
+    /// `SurfacePoint::spawn_to` / `spawn_to_point` from the world points
+    /// (world-space margins only): the same reports.
+    world_only_hits: usize,
+    world_only_exact: usize,
 }
 
 /// The exact plane crossing of `ray` with `tri`'s plane is ahead
@@ -359,6 +379,7 @@ fn spawns<V: Vector>(seed: u64, n: usize) -> Spawns {
         let w = AffineMap::of_path(&insts)
             .and_then(|f| f.normal(&big_n))
             .expect("a nonsingular path");
+        segments(&mut src, &insts, &path, &tri, s, &wsp, &mut out);
         let n_len = wsp.normal.length();
         for k in 0..4 {
             // Two directions back to the side the ray came from, two through.
@@ -440,6 +461,107 @@ fn spawns<V: Vector>(seed: u64, n: usize) -> Spawns {
     out
 }
 
+/// Whether the exact crossing of `ray` with `tri`'s plane is at a `t`
+/// for which `bad` holds (no crossing: false).
+fn crossing_where<V: Vector>(ray: &Ray<V>, tri: &Triangle<V>, bad: impl Fn(&R) -> bool) -> bool {
+    rayhit_testkit::oracle::triangle(ray, tri)
+        .t
+        .is_some_and(|t| bad(&t))
+}
+
+/// The segment checks of one case: from `wsp` (on `tri`, through `insts`)
+/// to a point of a second triangle of the same object space, facing the
+/// first a few sizes away along its normal, and to a point light; each
+/// segment traced back into the instances as a renderer does. Neither end's
+/// triangle may be reported over `(0, 1]` (`ray_triangle_in`) nor crossed
+/// there exactly (the start's plane at `t < 0`, the end's at `t > 1`).
+fn segments<V: Vector>(
+    src: &mut Source,
+    insts: &[&Instance<V>],
+    path: &[&Case<V>],
+    tri: &Triangle<V>,
+    size: f64,
+    wsp: &SurfacePoint<V>,
+    out: &mut Spawns,
+) {
+    let back = |ray: &Ray<V>| {
+        insts
+            .iter()
+            .fold(*ray, |ray, inst| inst.world_to_object(&ray))
+    };
+    let f = |x: V| [x[0].to_f64(), x[1].to_f64(), x[2].to_f64()];
+    let (a, b, c) = (f(tri.a), f(tri.b), f(tri.c));
+    let e1 = [0, 1, 2].map(|i| b[i] - a[i]);
+    let e2 = [0, 1, 2].map(|i| c[i] - a[i]);
+    let n = [
+        e1[1] * e2[2] - e1[2] * e2[1],
+        e1[2] * e2[0] - e1[0] * e2[2],
+        e1[0] * e2[1] - e1[1] * e2[0],
+    ];
+    let len = n.iter().map(|x| x * x).sum::<f64>().sqrt();
+    if !(len > 0.0) {
+        return;
+    }
+    // The facing triangle: the first moved along its normal (either way)
+    // and turned over, so the two face each other.
+    let h = size * src.range(0.5, 5.0) * if src.one_in(2) { 1.0 } else { -1.0 } / len;
+    let lift = |p: [f64; 3]| v::<V>([0, 1, 2].map(|i| p[i] + h * n[i]));
+    let far = Triangle::new(lift(a), lift(c), lift(b));
+    // A world ray from the start's point to a point of it, to find the
+    // end's surface point as a renderer would.
+    let (fu, fv) = (src.range(0.1, 0.45), src.range(0.1, 0.45));
+    let target = [0, 1, 2].map(|i| a[i] + h * n[i] + fu * (c[i] - a[i]) + fv * (b[i] - a[i]));
+    let to_world = |x: [f64; 3]| path.iter().rev().fold(x, |x, c| c.approx(x));
+    let wt = v::<V>(to_world(target));
+    let probe = Ray::new(wsp.point, wt - wsp.point);
+    let Some(hit) = ray_triangle(&back(&probe), &far, S::<V>::INFINITY) else {
+        return;
+    };
+    let end = insts
+        .iter()
+        .rev()
+        .fold(SurfacePoint::on_triangle(&far, &hit), |sp, inst| {
+            inst.surface_to_world(&sp)
+        });
+    let light = wsp.point + (wt - wsp.point) * S::<V>::from_f64(src.range(0.5, 2.0));
+    let one = R::from_integer(1.into());
+    let mut judge = |seg: Option<(Ray<V>, Interval<S<V>>)>,
+                     world: Option<(Ray<V>, Interval<S<V>>)>,
+                     to_far: bool| {
+        let Some((ray, interval)) = seg else {
+            out.no_segment += 1;
+            return;
+        };
+        out.segments += 1;
+        let obj = back(&ray);
+        let reported = |obj: &Ray<V>, interval| {
+            ray_triangle_in(obj, tri, interval).is_some()
+                || (to_far && ray_triangle_in(obj, &far, interval).is_some())
+        };
+        let crossed = |obj: &Ray<V>| {
+            crossing_where(obj, tri, |t| !t.is_negative())
+                || (to_far && crossing_where(obj, &far, |t| *t <= one))
+        };
+        out.segment_hits += usize::from(reported(&obj, interval));
+        out.segment_exact += usize::from(crossed(&obj));
+        if let Some((ray, interval)) = world {
+            let obj = back(&ray);
+            out.world_only_hits += usize::from(reported(&obj, interval));
+            out.world_only_exact += usize::from(crossed(&obj));
+        }
+    };
+    judge(
+        Instance::spawn_to_through(insts, wsp, insts, &end),
+        wsp.spawn_to(&end),
+        true,
+    );
+    judge(
+        Instance::spawn_to_point_through(insts, wsp, light),
+        wsp.spawn_to_point(light),
+        false,
+    );
+}
+
 fn run_all<V: Vector>(name: &str, seed: u64, n: usize) {
     let (checked, misses, excess) = boxes::<V>(seed, n);
     eprintln!(
@@ -471,6 +593,25 @@ fn run_all<V: Vector>(name: &str, seed: u64, n: usize) {
         s.forward_only_ahead,
         s.pbrt_hits,
         s.pbrt_ahead
+    );
+    eprintln!(
+        "{name}: segments: {} returned, {} none; ours: {} kernel reports of an end, {} exact \
+         crossings of an end in (0, 1]; world margins only: {} kernel reports, {} exact crossings",
+        s.segments,
+        s.no_segment,
+        s.segment_hits,
+        s.segment_exact,
+        s.world_only_hits,
+        s.world_only_exact
+    );
+    assert!(s.segments > n, "{name}: too few segments checked: {s:?}");
+    assert_eq!(
+        s.segment_hits, 0,
+        "{name}: a segment reported an end: {s:?}"
+    );
+    assert_eq!(
+        s.segment_exact, 0,
+        "{name}: a segment crosses an end: {s:?}"
     );
     assert!(s.rays > n, "{name}: too few spawned rays checked: {s:?}");
     // The unmoved fallback is for paths whose combined condition is near
