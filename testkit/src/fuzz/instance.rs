@@ -12,10 +12,19 @@
 //! axis, [`rayhit::exact::judge_world_box`]); the ray's error bound is
 //! never NaN for a finite ray; and in structured mode (within the tested
 //! ranges) the bound holds exactly at `t = 0` and `t = 1`:
-//! `|F(object.at(t)) - world.at(t)| <= err.at(t)`.
+//! `|F(object.at(t)) - world.at(t)| <= err.at(t)`; and, on a triangle
+//! across the object box hit by the ray taken as an object ray, the
+//! shadow-ray segment from the hit's world point to a light off the
+//! surface ([`Instance::spawn_to_point_through`]), where there is one,
+//! traced back into the instance, does not report the triangle over its
+//! interval (both edge rules) and crosses the triangle's exact plane at
+//! `t < 0`.
 
 use arbitrary::Arbitrary;
-use rayhit::{Aabb, Instance, InstanceError, Ray, Scalar, Vector, exact, strategies};
+use rayhit::{
+    Aabb, Instance, InstanceError, Ray, Scalar, SurfacePoint, Triangle, Vector, exact,
+    ray_triangle, ray_triangle_in, ray_triangle_one_hit_in, strategies,
+};
 
 use super::{Check, Input, S, raw, raw_vec};
 
@@ -83,6 +92,7 @@ impl Check for InstanceCheck {
             return;
         }
         let object_ray = inst.world_to_object(&ray);
+        segment_to_a_light(&inst, &object, &ray);
         for t_param in [S::<V>::ZERO, S::<V>::ONE] {
             let bound = err.at(t_param);
             let j =
@@ -93,4 +103,43 @@ impl Check for InstanceCheck {
             );
         }
     }
+}
+
+/// The segment check of structured inputs: a triangle across `object`
+/// (three of its corners) hit by `ray` in object space; the segment from
+/// the hit's world point to a light along the world normal, a thousandth
+/// of the point's distance from the origin away (at least one unit),
+/// traced back into the instance.
+fn segment_to_a_light<V: Vector>(inst: &Instance<V>, object: &Aabb<V>, ray: &Ray<V>) {
+    let (lo, hi) = (object.min, object.max);
+    let mid = (lo.z() + hi.z()) * S::<V>::HALF;
+    let tri = Triangle::new(
+        lo,
+        V::new(hi.x(), lo.y(), mid),
+        V::new(lo.x(), hi.y(), hi.z()),
+    );
+    let Some(hit) = ray_triangle(ray, &tri, S::<V>::INFINITY) else {
+        return;
+    };
+    let world = inst.surface_to_world(&SurfacePoint::on_triangle(&tri, &hit));
+    let n = world.normal.length();
+    if !(n > S::<V>::ZERO && n.is_finite()) {
+        return;
+    }
+    let away = world.point.length() * S::<V>::from_f64(1e-3) + S::<V>::ONE;
+    let light = world.point + world.normal * (away / n);
+    let Some((shadow, interval)) = Instance::spawn_to_point_through(&[inst], &world, light) else {
+        return;
+    };
+    let back = inst.world_to_object(&shadow);
+    assert!(
+        ray_triangle_in(&back, &tri, interval).is_none()
+            && ray_triangle_one_hit_in(&back, &tri, interval).is_none(),
+        "the segment {shadow:?} reports its start triangle {tri:?} through {inst:?}"
+    );
+    let crossing = crate::oracle::triangle(&back, &tri);
+    assert!(
+        crossing.t.is_none_or(|t| t < crate::oracle::int(0)),
+        "the segment {shadow:?} crosses its start plane ahead: {tri:?} through {inst:?}"
+    );
 }
