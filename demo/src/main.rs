@@ -4,6 +4,7 @@
 //! cargo run --release -p rayhit-demo                 # writes render.png
 //! cargo run --release -p rayhit-demo -- --scene leak # watertight vs Moller-Trumbore
 //! cargo run --release -p rayhit-demo -- --scene shadows # segments to lights, glass
+//! cargo run --release -p rayhit-demo -- --scene instances # one mesh placed far away
 //! cargo run --release -p rayhit-demo -- --lens 0.15,7.4 # depth of field
 //! cargo run --release -p rayhit-demo -- --camera equirect --width 720 --height 360
 //! cargo run --release -p rayhit-demo -- --help
@@ -33,6 +34,15 @@
 //! each tint what is behind them, found in order along each ray by walking
 //! consecutive intervals with `ray_triangle_one_hit_in` (see
 //! `rayhit_demo::shadows`).
+//!
+//! The `instances` scene: one torus mesh placed many times by `Instance`s
+//! (turned, squashed along random axes; two stacks of rings and a framed
+//! mirror nested one level deeper), the whole scene and the camera 36,000
+//! units from the origin; a two-level traversal (the instances' world
+//! boxes from `object_to_world_box`, one `world_to_object` per visit),
+//! hits carried out by `surface_to_world`, and every shadow, sky and
+//! mirror ray from an instance started with `Instance::spawn_through` (see
+//! `rayhit_demo::instances`).
 
 use std::error::Error;
 use std::fs::File;
@@ -44,13 +54,15 @@ use indicatif::{ProgressBar, ProgressStyle};
 
 use rayhit::glam::Vec3;
 use rayhit::{EquirectangularCamera, OrthographicCamera, ThinLensCamera};
+use rayhit_demo::instances::{Content, On, instance_scene, render_instances};
 use rayhit_demo::mesh::Kernel;
 use rayhit_demo::scene::{Filter, Scene, Shape, View, demo_scene, leak_scene, render, to_srgb8};
 use rayhit_demo::shadows::{render_shadows, shadow_scene};
 
 const USAGE: &str = "\
-usage: render [--scene demo|leak|shadows] [--camera pinhole|ortho|equirect] [--lens RADIUS,FOCUS]
-              [--filter differentials|cones|off] [--width N] [--height N] [--samples N] [--out FILE]
+usage: render [--scene demo|leak|shadows|instances] [--camera pinhole|ortho|equirect]
+              [--lens RADIUS,FOCUS] [--filter differentials|cones|off]
+              [--width N] [--height N] [--samples N] [--out FILE]
 
   --scene    demo (default): ground, boxes and meshes in soft sunlight
              leak: the watertightness experiment, both triangle kernels
@@ -58,6 +70,9 @@ usage: render [--scene demo|leak|shadows] [--camera pinhole|ortho|equirect] [--l
              two point lights, every shadow ray a segment between two
              points with no epsilon, and a glass torus that tints what is
              behind it once per surface crossed
+             instances: one torus placed many times, turned, squashed and
+             nested, far from the origin, with a mirror and sunlight, every
+             ray leaving an instance spawned through the instance's map
   --camera   the demo scene's camera (default pinhole): ortho, parallel
              rays from the pinhole's eye plane; equirect, the whole sphere
              around the eye
@@ -70,9 +85,9 @@ usage: render [--scene demo|leak|shadows] [--camera pinhole|ortho|equirect] [--l
              shows moire towards the horizon at one sample per pixel
   --width    image width in pixels (default 640; 4 to 16384)
   --height   image height in pixels (default 360; 4 to 16384)
-  --samples  rays per pixel in the demo and shadows scenes (default 16;
-             the leak scene traces exactly one ray through each pixel
-             centre)
+  --samples  rays per pixel in the demo, shadows and instances scenes
+             (default 16; the leak scene traces exactly one ray through
+             each pixel centre)
   --out      the PNG to write (default render.png)";
 
 /// The largest width or height accepted.
@@ -92,6 +107,7 @@ enum SceneKind {
     Demo,
     Leak,
     Shadows,
+    Instances,
 }
 
 /// The command line.
@@ -135,8 +151,11 @@ fn parse(mut args: impl Iterator<Item = String>) -> Result<Option<Options>, Stri
                     "demo" => SceneKind::Demo,
                     "leak" => SceneKind::Leak,
                     "shadows" => SceneKind::Shadows,
+                    "instances" => SceneKind::Instances,
                     _ => {
-                        return Err(format!("unknown scene {value:?}: demo, leak or shadows"));
+                        return Err(format!(
+                            "unknown scene {value:?}: demo, leak, shadows or instances"
+                        ));
                     }
                 }
             }
@@ -363,6 +382,44 @@ fn run_shadows(options: &Options) -> Result<(), Box<dyn Error>> {
     Ok(())
 }
 
+fn run_instances(options: &Options) -> Result<(), Box<dyn Error>> {
+    let file = create(&options.out)?;
+    let scene = instance_scene(options.width, options.height);
+    let triangles: Vec<usize> = scene.meshes.iter().map(|m| m.mesh.indices.len()).collect();
+    let groups = scene
+        .nodes
+        .iter()
+        .filter(|n| matches!(n.content, Content::Group(_)))
+        .count();
+    println!(
+        "scene: ground, {} placed meshes (a torus of {} triangles, a slab of {}) under {} \
+         top-level instances ({groups} of them groups), around {}",
+        scene.paths().len(),
+        triangles[0],
+        triangles[1],
+        scene.nodes.len(),
+        scene.camera.eye()
+    );
+    let bar = progress_bar(options.height);
+    let start = Instant::now();
+    let (image, rays) = render_instances(&scene, options.samples, &|| bar.inc(1));
+    let seconds = start.elapsed().as_secs_f64();
+    bar.finish_and_clear();
+    let rgb: Vec<u8> = image.pixels.iter().flat_map(|&c| to_srgb8(c)).collect();
+    write_png(file, image.width, image.height, &rgb)?;
+    let instanced = image
+        .seen
+        .iter()
+        .filter(|s| matches!(s, Some(On::Instance { .. })))
+        .count();
+    println!(
+        "rendered {}x{} at {} samples per pixel into {} ({instanced} pixel centres see an instance)",
+        image.width, image.height, options.samples, options.out
+    );
+    report_speed(rays, seconds);
+    Ok(())
+}
+
 fn main() -> ExitCode {
     let options = match parse(std::env::args().skip(1)) {
         Ok(Some(options)) => options,
@@ -379,6 +436,7 @@ fn main() -> ExitCode {
         SceneKind::Demo => run_demo(&options),
         SceneKind::Leak => run_leak(&options),
         SceneKind::Shadows => run_shadows(&options),
+        SceneKind::Instances => run_instances(&options),
     };
     match result {
         Ok(()) => ExitCode::SUCCESS,

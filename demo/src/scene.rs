@@ -109,9 +109,9 @@ pub const SUN: Vec3 = Vec3::new(2.1, 1.95, 1.7);
 /// uniform here, so orientation does not matter; obstruction does).
 pub const SKY_LIGHT: Vec3 = Vec3::new(0.40, 0.48, 0.62);
 /// How far an ambient-occlusion ray looks for something in the way.
-const OCCLUSION_RANGE: f32 = 2.5;
+pub const OCCLUSION_RANGE: f32 = 2.5;
 /// Reflections followed, at most.
-const MAX_DEPTH: u32 = 3;
+pub const MAX_DEPTH: u32 = 3;
 
 /// The background seen by a ray that hits nothing: a gradient from the
 /// horizon up.
@@ -158,7 +158,7 @@ impl Rng {
     }
 
     /// A uniform point in the unit disc.
-    fn disc(&mut self) -> (f32, f32) {
+    pub fn disc(&mut self) -> (f32, f32) {
         let r = self.next_f32().sqrt();
         let phi = self.next_f32() * std::f32::consts::TAU;
         (r * phi.cos(), r * phi.sin())
