@@ -60,7 +60,7 @@
 //! [`InstanceError::IllConditioned`]; the normal's bound divides by
 //! `1 - rho`.
 
-use super::{Instance, InstanceError, Three};
+use super::{Four, Instance, InstanceError};
 use crate::num::round::bound_up;
 use crate::num::{S, Scalar, Vector};
 
@@ -156,8 +156,9 @@ pub(super) fn build<V: Vector>(cols: [V; 3], t: V) -> Result<Instance<V>, Instan
     let vec = |f: &dyn Fn(usize) -> f64| -> V { V::new(up_to(f(0)), up_to(f(1)), up_to(f(2))) };
     // A matrix's columns, each entry rounded up: column `j` holds entries
     // `(0, j)`, `(1, j)`, `(2, j)`.
-    let cols_of =
-        |f: &dyn Fn(usize, usize) -> f64| -> [V; 3] { [0, 1, 2].map(|j| vec(&|i| f(i, j))) };
+    let cols_of = |f: &dyn Fn(usize, usize) -> f64| -> [Four<V>; 3] {
+        [0, 1, 2].map(|j| Four::new(vec(&|i| f(i, j))))
+    };
     let k_origin = cols_of(&|i, j| bound_up(rb[i][j] + g4 * ma[i][j], 2));
     let k_dir = cols_of(&|i, j| bound_up(rb[i][j] + g3 * ma[i][j], 2));
     let c_origin = vec(&|i| bound_up(beta[i] + g4 * mb[i] + tiny_world, 3));
@@ -172,21 +173,27 @@ pub(super) fn build<V: Vector>(cols: [V; 3], t: V) -> Result<Instance<V>, Instan
     let a_rows = [0, 1, 2].map(|i| V::new(a[i][0], a[i][1], a[i][2]));
     let a_cols = [0, 1, 2].map(|j| V::new(a[0][j], a[1][j], a[2][j]));
     let finite = |v: &[V]| v.iter().all(|r| r.is_finite());
-    if !(finite(&k_origin) && finite(&k_dir) && finite(&[c_origin, c_point, normal_residual, u])) {
+    if !(finite(&k_origin.map(|c| c.get()))
+        && finite(&k_dir.map(|c| c.get()))
+        && finite(&[c_origin, c_point, normal_residual, u]))
+    {
         return Err(InstanceError::Overflow);
     }
-    // The order within each group: `RAY_B`, `RAY_C_O`, `RAY_U` and
-    // `HIT_T`, `HIT_C_P`, `HIT_NORMAL_RESIDUAL`.
+    let four = |v: [V; 3]| v.map(Four::new);
     let inst = Instance {
-        m_cols: Three::new(cols),
-        a_cols: Three::new(a_cols),
-        a_rows: Three::new(a_rows),
-        m_abs_cols: Three::new(cols.map(Vector::abs)),
-        a_abs_rows: Three::new(a_rows.map(Vector::abs)),
-        k_origin: Three::new(k_origin),
-        k_dir: Three::new(k_dir),
-        ray_terms: Three::new([V::new(b[0], b[1], b[2]), c_origin, u]),
-        hit_terms: Three::new([t, c_point, normal_residual]),
+        m_cols: four(cols),
+        t: Four::new(t),
+        a_cols: four(a_cols),
+        b: Four::new(V::new(b[0], b[1], b[2])),
+        a_rows: four(a_rows),
+        m_abs_cols: four(cols.map(Vector::abs)),
+        a_abs_rows: four(a_rows.map(Vector::abs)),
+        k_origin,
+        c_origin: Four::new(c_origin),
+        k_dir,
+        c_point: Four::new(c_point),
+        normal_residual: Four::new(normal_residual),
+        tiny_world: Four::new(u),
     };
     Ok(inst)
 }
@@ -203,7 +210,7 @@ mod tests {
         // 2 gamma_64(4) ~ 8.9e-16 on the diagonal, far below f32's u.
         let i = build([Vec3::X * 4.0, Vec3::Y * 2.0, Vec3::Z * 0.5], Vec3::ZERO).unwrap();
         assert_eq!(i.inverse().0[0], Vec3::new(0.25, 0.0, 0.0));
-        let normal_residual: Vec3 = i.hit_terms.get(super::super::HIT_NORMAL_RESIDUAL);
+        let normal_residual: Vec3 = i.normal_residual.get();
         assert!(normal_residual.max_element() < 1e-15);
         assert!(normal_residual.min_element() > 0.0);
     }

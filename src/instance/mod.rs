@@ -130,127 +130,88 @@ impl core::error::Error for InstanceError {}
 /// assert!((hit.t - 5.0).abs() < 1e-3);
 /// ```
 #[derive(Clone, Copy, Debug)]
-pub struct Instance<V = Vec3> {
+pub struct Instance<V: Vector = Vec3> {
     // Everything as the per-ray and per-hit arithmetic reads it, computed
     // once here: matrices as columns, so that a matrix times a vector is
     // three products and two sums of whole registers (no row is gathered
     // per call), the absolute values and the bounds' constant terms
-    // precomputed, and every vector stored as one aligned load of four
-    // lanes whose fourth is a stored zero (`Three`).
+    // precomputed, and every vector in a `Four` (one aligned load, the
+    // fourth lane a stored zero).
     /// Columns of `M`.
-    m_cols: Three<V>,
+    m_cols: [Four<V>; 3],
+    /// `T`.
+    t: Four<V>,
     /// Columns of the stored inverse's matrix `A`.
-    a_cols: Three<V>,
+    a_cols: [Four<V>; 3],
+    /// The stored inverse's translation `b`.
+    b: Four<V>,
     /// Rows of `A` (the columns of `A^T`, for the normal).
-    a_rows: Three<V>,
+    a_rows: [Four<V>; 3],
     /// Columns of `|M|`.
-    m_abs_cols: Three<V>,
+    m_abs_cols: [Four<V>; 3],
     /// Rows of `|A|` (the columns of `|A^T|`).
-    a_abs_rows: Three<V>,
+    a_abs_rows: [Four<V>; 3],
     /// Columns of `K_o`, the origin's error matrix (see `inverse.rs`).
-    k_origin: Three<V>,
+    k_origin: [Four<V>; 3],
+    /// `c_o`, the origin's absolute error term.
+    c_origin: Four<V>,
     /// Columns of `K_d`, the direction's error matrix.
-    k_dir: Three<V>,
-    /// The per-ray vectors ([`RAY_B`], [`RAY_C_O`], [`RAY_U`]).
-    ray_terms: Three<V>,
-    /// The per-hit vectors ([`HIT_T`], [`HIT_C_P`], [`HIT_NORMAL_RESIDUAL`]).
-    hit_terms: Three<V>,
+    k_dir: [Four<V>; 3],
+    /// `c_p = g(4) |T| + U`, rounded up: the world point's error bound
+    /// but for the terms that depend on the point (see `surface.rs`).
+    c_point: Four<V>,
+    /// Per component, the column sum of the residual bound divided by
+    /// `1 - rho` (see `surface.rs`).
+    normal_residual: Four<V>,
+    /// `U`, an absolute term covering roundings into the subnormal range:
+    /// `MIN_POSITIVE (1 + max row sum of |M|)`, in every component. It is
+    /// also `c_d`, the direction's absolute error term.
+    tiny_world: Four<V>,
 }
 
-/// In `ray_terms`: the stored inverse's translation `b`.
-const RAY_B: usize = 0;
-/// In `ray_terms`: `c_o`, the origin's absolute error term.
-const RAY_C_O: usize = 1;
-/// In `ray_terms`: `U`, an absolute term covering roundings into the
-/// subnormal range, `MIN_POSITIVE (1 + max row sum of |M|)` in every
-/// component; it is also `c_d`, the direction's absolute error term.
-const RAY_U: usize = 2;
-/// In `hit_terms`: the translation `T`.
-const HIT_T: usize = 0;
-/// In `hit_terms`: `c_p = g(4) |T| + U`, rounded up: the world point's
-/// error bound but for the terms that depend on the point (see
-/// `surface.rs`).
-const HIT_C_P: usize = 1;
-/// In `hit_terms`: per component, the column sum of the residual bound
-/// divided by `1 - rho` (see `surface.rs`).
-const HIT_NORMAL_RESIDUAL: usize = 2;
-
-/// Three vectors stored so that each is one aligned load of four lanes
-/// whose fourth lane is a stored zero.
+/// A vector as the per-call arithmetic loads it: in lanes, the fourth a
+/// stored zero, 16-byte aligned (for `f32`, one aligned load that the
+/// instruction using it reads from memory itself).
 ///
-/// A `Vec3` (or `DVec3`) alone in a 16-byte (32-byte) slot leaves its
-/// fourth lane as padding: bytes that no code writes and that a move need
-/// not copy, which the compiler still loads with the three lanes (one
-/// aligned load) where the fourth lane's results are never read. Whatever
-/// the padding held went through the fourth lane's products and sums; it
-/// held the upper halves of stack addresses, which read as subnormal
-/// floats, and an operation with a subnormal operand or result takes the
-/// CPU's slow path: about 15 ns per `surface_to_world`. So vectors of
-/// three packed components (`Vec3`, `DVec3`) are stored three to a group
-/// of four `V`s, as twelve consecutive scalars: vector `k` in scalars
-/// `4k` to `4k + 2` and a zero in `4k + 3`, every byte written. A vector
-/// type of four lanes (`Vec3A`) has vector `k` in `v[k]` with its own
-/// fourth lane (glam's `Vec3A` keeps `z` there), and `v[3]` unused.
-/// (Needing nothing of `V`, it leaves `Instance<V>` without a bound on
-/// `V`.)
+/// The fourth lane is computed along with the others and never read, so
+/// it must hold an ordinary number: an operation with a subnormal operand
+/// or result takes the CPU's slow path whichever lane it is in. Stored as
+/// a `V` in a 16-byte slot, a `Vec3`'s fourth lane was padding, which no
+/// code writes and a move need not copy, and which the compiler loaded
+/// along with the three lanes where the fourth lane's results go unread;
+/// on the peers' data it held halves of stack addresses, subnormal as
+/// floats, and cost `surface_to_world` about 15 ns a call. (This needs
+/// `V: Vector`, the lanes' type being its precision's, on `Instance` too.)
 #[derive(Clone, Copy, Debug)]
 #[repr(C, align(16))]
-struct Three<V> {
-    v: [V; 4],
+struct Four<V: Vector> {
+    l: L<V>,
 }
 
-impl<V: Vector> Three<V> {
-    /// True when `V` is three packed scalars (`Vec3`, `DVec3`), false
-    /// when it is four lanes (`Vec3A`).
-    const PACKED: bool = {
-        let (v, s) = (size_of::<V>(), size_of::<S<V>>());
-        assert!(v == 3 * s || v == 4 * s);
-        v == 3 * s
-    };
-
-    /// `vs`, stored.
-    fn new(vs: [V; 3]) -> Self {
-        let v = if Self::PACKED {
-            let scalar = |i: usize| {
-                if i % 4 == 3 {
-                    S::<V>::ZERO
-                } else {
-                    vs[i / 4][i % 4]
-                }
-            };
-            [0, 1, 2, 3].map(|k| V::new(scalar(3 * k), scalar(3 * k + 1), scalar(3 * k + 2)))
-        } else {
-            [vs[0], vs[1], vs[2], V::ZERO]
-        };
-        Self { v }
-    }
-
-    /// Vector `k` in lanes (lane 3 zero, or `Vec3A`'s own).
-    #[inline(always)]
-    fn load(&self, k: usize) -> L<V> {
-        if Self::PACKED {
-            let scalar = |i: usize| self.v[i / 3][i % 3];
-            L::<V>::new4(
-                scalar(4 * k),
-                scalar(4 * k + 1),
-                scalar(4 * k + 2),
-                scalar(4 * k + 3),
-            )
-        } else {
-            lanes(self.v[k])
+impl<V: Vector> Four<V> {
+    /// `v` in lanes 0 to 2, zero in lane 3.
+    fn new(v: V) -> Self {
+        Self {
+            l: L::<V>::new4(v.x(), v.y(), v.z(), S::<V>::ZERO),
         }
     }
 
-    /// The three vectors in lanes (a matrix's columns).
+    /// The stored vector in lanes.
     #[inline(always)]
-    fn load3(&self) -> [L<V>; 3] {
-        [self.load(0), self.load(1), self.load(2)]
+    fn load(&self) -> L<V> {
+        self.l
     }
 
-    /// Vector `k`.
-    fn get(&self, k: usize) -> V {
-        vector(self.load(k))
+    /// The stored vector.
+    fn get(&self) -> V {
+        vector(self.l)
     }
+}
+
+/// The lanes of three stored vectors (a matrix's columns).
+#[inline(always)]
+fn load3<V: Vector>(c: &[Four<V>; 3]) -> [L<V>; 3] {
+    [c[0].load(), c[1].load(), c[2].load()]
 }
 
 impl<V: Vector> PartialEq for Instance<V> {
@@ -291,7 +252,7 @@ impl<V: Vector> Instance<V> {
     /// ```
     #[must_use]
     pub fn matrix_columns(&self) -> [V; 3] {
-        [0, 1, 2].map(|k| self.m_cols.get(k))
+        self.m_cols.map(|c| c.get())
     }
 
     /// The translation `T`, as given.
@@ -303,7 +264,7 @@ impl<V: Vector> Instance<V> {
     /// ```
     #[must_use]
     pub fn translation(&self) -> V {
-        self.hit_terms.get(HIT_T)
+        self.t.get()
     }
 
     /// The stored inverse `x -> A x + b`: the columns of `A` and `b`. It is
@@ -318,10 +279,7 @@ impl<V: Vector> Instance<V> {
     /// ```
     #[must_use]
     pub fn inverse(&self) -> ([V; 3], V) {
-        (
-            [0, 1, 2].map(|k| self.a_cols.get(k)),
-            self.ray_terms.get(RAY_B),
-        )
+        (self.a_cols.map(|c| c.get()), self.b.get())
     }
 }
 
@@ -444,35 +402,24 @@ pub(crate) fn bound_up_l<V: Vector>(v: L<V>, roundings: u32) -> L<V> {
 mod tests {
     use super::*;
 
-    /// Each vector comes back from its group as stored, and a packed
-    /// group (`Vec3`, `DVec3`) holds a written zero after each vector,
-    /// where a lone vector would have had padding.
+    /// A stored vector loads as its three components and a zero, in
+    /// every vector type; the instance holds 27 of them and nothing else.
     #[test]
-    fn groups_keep_their_vectors_and_zero_lanes() {
-        fn check<V: Vector>(packed: bool) {
+    fn stored_vectors_load_with_a_zero_fourth_lane() {
+        fn check<V: Vector>() {
             let s = |x: f64| S::<V>::from_f64(x);
-            let vs = [
-                V::new(s(1.0), s(-2.0), s(3.5)),
-                V::new(s(-0.0), s(1e-3), s(7.0)),
-                V::new(s(5.0), s(6.0), s(-1e4)),
-            ];
-            let group = Three::new(vs);
-            assert_eq!(Three::<V>::PACKED, packed);
-            for (k, v) in vs.iter().enumerate() {
-                assert_eq!(group.get(k), *v);
-                assert_eq!(group.load(k).to_array(), [v.x(), v.y(), v.z()]);
-            }
-            if packed {
-                // Scalars 3, 7 and 11 of the twelve.
-                for (i, j) in [(1, 0), (2, 1), (3, 2)] {
-                    assert_eq!(group.v[i][j].to_f64().to_bits(), 0);
-                }
-            }
+            let v = V::new(s(1.0), s(-2.0), s(3.5));
+            let four = Four::new(v);
+            let bits = |a: [S<V>; 4]| a.map(|c| c.to_f64().to_bits());
+            assert_eq!(
+                bits(four.load().to_array4()),
+                bits([s(1.0), s(-2.0), s(3.5), s(0.0)])
+            );
+            assert_eq!(four.get(), v);
         }
-        check::<Vec3>(true);
-        check::<DVec3>(true);
-        check::<Vec3A>(false);
-        // Nine groups of four `Vec3`: 432 bytes, no padding.
-        assert_eq!(size_of::<Instance<Vec3>>(), 9 * 48);
+        check::<Vec3>();
+        check::<Vec3A>();
+        check::<DVec3>();
+        assert_eq!(size_of::<Instance<Vec3>>(), 27 * 16);
     }
 }

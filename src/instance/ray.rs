@@ -27,7 +27,7 @@
 //! ray's `t` up to this bound, and a hit at object `t` is a world hit at
 //! the same `t`. Evaluating the bound rounds up (`abs_apply_up`).
 
-use super::{Instance, RAY_B, RAY_C_O, RAY_U, abs_apply_up, apply, lanes, vector};
+use super::{Instance, abs_apply_up, apply, lanes, load3, vector};
 use crate::Ray;
 use crate::num::round::bound_up;
 use crate::num::{Lanes, S, Scalar, Vector};
@@ -89,7 +89,7 @@ impl<V: Vector> InstanceRayError<V> {
     pub fn nested(outer: &Instance<V>, outer_error: &Self, inner_error: &Self) -> Self {
         let bound = |inner: V, outer_term: V| {
             vector(abs_apply_up::<V>(
-                &outer.m_abs_cols.load3(),
+                &load3(&outer.m_abs_cols),
                 lanes(inner),
                 lanes(outer_term),
             ))
@@ -179,8 +179,8 @@ impl<V: Vector> Instance<V> {
     #[inline]
     #[must_use]
     pub fn world_to_object(&self, ray: &Ray<V>) -> Ray<V> {
-        let a = self.a_cols.load3();
-        let origin = apply::<V>(&a, lanes(ray.origin)).add(self.ray_terms.load(RAY_B));
+        let a = load3(&self.a_cols);
+        let origin = apply::<V>(&a, lanes(ray.origin)).add(self.b.load());
         let dir = apply::<V>(&a, lanes(ray.dir));
         Ray::new(vector(origin), vector(dir))
     }
@@ -210,14 +210,14 @@ impl<V: Vector> Instance<V> {
         let (origin, dir) = (lanes(ray.origin).abs(), lanes(ray.dir).abs());
         InstanceRayError {
             at_origin: vector(abs_apply_up::<V>(
-                &self.k_origin.load3(),
+                &load3(&self.k_origin),
                 origin,
-                self.ray_terms.load(RAY_C_O),
+                self.c_origin.load(),
             )),
             per_t: vector(abs_apply_up::<V>(
-                &self.k_dir.load3(),
+                &load3(&self.k_dir),
                 dir,
-                self.ray_terms.load(RAY_U),
+                self.tiny_world.load(),
             )),
         }
     }

@@ -84,9 +84,7 @@
 //! [`SurfacePoint`]: crate::SurfacePoint
 //! [`offset_ray_origin`]: crate::offset_ray_origin
 
-use super::{
-    HIT_C_P, HIT_NORMAL_RESIDUAL, HIT_T, Instance, RAY_U, apply, bound_up_l, lanes, vector,
-};
+use super::{Instance, apply, bound_up_l, lanes, load3, vector};
 use crate::num::round::{bound_up, max2};
 use crate::num::{L, Lanes, S, Scalar, Vector};
 use crate::ray::Interval;
@@ -134,22 +132,21 @@ impl<V: Vector> Instance<V> {
         // point's floats and the instance's stored ones, taken as exact) to
         // the bound, each product and sum one rounding.
         // Point: M p + T.
-        let point = apply::<V>(&self.m_cols.load3(), p).add(self.hit_terms.load(HIT_T));
+        let point = apply::<V>(&load3(&self.m_cols), p).add(self.t.load());
         // Its bound, |M| e + g(4) (|M||p| + |T|) + U, evaluated as
         // |M| (e + g(4)|p|) + c_p (the same exact value, with c_p = g(4)|T|
         // + U rounded up when the instance was built): g(4)|p| and the sum
         // with e (two roundings), the matrix product (three more) and the
         // sum with c_p: six.
         let point_error = bound_up_l::<V>(
-            apply::<V>(&self.m_abs_cols.load3(), p.abs().mul(g4).add(e))
-                .add(self.hit_terms.load(HIT_C_P)),
+            apply::<V>(&load3(&self.m_abs_cols), p.abs().mul(g4).add(e)).add(self.c_point.load()),
             6,
         );
         // Normal: A^T n, the rows of A weighted by n's components.
-        let normal = apply::<V>(&self.a_rows.load3(), n);
+        let normal = apply::<V>(&load3(&self.a_rows), n);
         // s = g(3) |A^T||n| + |A^T| eta, evaluated as |A^T| (g(3)|n| + eta):
         // five roundings, as for the point's |M| (e + g(4)|p|).
-        let s = apply::<V>(&self.a_abs_rows.load3(), n.abs().mul(g3).add(eta));
+        let s = apply::<V>(&load3(&self.a_abs_rows), n.abs().mul(g3).add(eta));
         // |A^T N| <= |n_w| + s: the computed normal and its rounding, not
         // |A^T| (|n| + eta), which would let the cancellation in A^T n (a
         // normal along A's small singular direction) inflate the residual's
@@ -162,8 +159,8 @@ impl<V: Vector> Instance<V> {
         // s + normal_residual W + U: seven roundings on s's path (its five,
         // two sums); three on W's (a product, two sums).
         let normal_error = bound_up_l::<V>(
-            s.add(self.hit_terms.load(HIT_NORMAL_RESIDUAL).mul(big_w))
-                .add(self.ray_terms.load(RAY_U)),
+            s.add(self.normal_residual.load().mul(big_w))
+                .add(self.tiny_world.load()),
             7,
         );
         SurfacePoint {

@@ -247,7 +247,7 @@ fn tube_distance(x: [f64; 3]) -> f64 {
 /// One placement of a mesh: the instances from the world inwards, the
 /// exact object-to-world map of the whole path and its inverse, and `f64`
 /// copies for aiming (never for judging).
-struct Placement<V> {
+struct Placement<V: Vector> {
     path: Vec<Instance<V>>,
     to_world: AffineMap,
     to_object: AffineMap,

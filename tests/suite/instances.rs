@@ -58,7 +58,7 @@ fn v<V: Vector>(x: [f64; 3]) -> V {
 /// An instance drawn from `rayhit::strategies::transform`, in `V`'s
 /// precision, with the exact map `F(x) = M x + T` of the floats it was
 /// built from.
-struct Case<V> {
+struct Case<V: Vector> {
     inst: Instance<V>,
     map: AffineMap,
     /// `f64` copies for aiming rays (not for judging).
