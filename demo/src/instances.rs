@@ -28,10 +28,9 @@ use rayhit::{
     Aabb, Instance, PinholeCamera, Plane, PreparedRay, Ray, SurfacePoint, Triangle, TriangleHit,
     ray_aabb_prepared, ray_plane,
 };
-use rayon::prelude::*;
 
 use crate::mesh::{Bvh, Kernel, Mesh, torus};
-use crate::scene::{MAX_DEPTH, Material, OCCLUSION_RANGE, Rng, SKY_LIGHT, SUN, sky};
+use crate::scene::{MAX_DEPTH, Material, OCCLUSION_RANGE, Rng, SKY_LIGHT, SUN, render_pixels, sky};
 
 /// Where the scene stands: the ground, every instance and the camera are
 /// placed around this point, far from the origin, where an `f32`
@@ -791,41 +790,20 @@ pub fn render_instances(
 ) -> (InstanceImage, u64) {
     let camera = &scene.camera;
     let (width, height) = (camera.width(), camera.height());
-    let mut pixels = vec![Vec3::ZERO; (width * height) as usize];
-    let mut seen = vec![None; pixels.len()];
-    let rays = pixels
-        .par_chunks_mut(width as usize)
-        .zip(seen.par_chunks_mut(width as usize))
-        .enumerate()
-        .map(|(j, (row, seen_row))| {
-            let j = j as u32;
-            let mut rays = 0;
-            for i in 0..width {
-                let mut rng = Rng::new(u64::from(j * width + i));
-                let mut sum = Vec3::ZERO;
-                for s in 0..samples {
-                    let (dx, dy) = if s == 0 {
-                        (0.5, 0.5)
-                    } else {
-                        (rng.next_f32(), rng.next_f32())
-                    };
-                    let ray = camera.ray(i as f32 + dx, j as f32 + dy);
-                    rays += 1;
-                    let hit = scene.nearest(&ray, f32::INFINITY);
-                    if s == 0 {
-                        seen_row[i as usize] = hit.map(|h| h.on);
-                    }
-                    sum += match hit {
-                        Some(hit) => scene.shade(&ray, &hit, 0, &mut rng, &mut rays),
-                        None => sky(ray.dir),
-                    };
-                }
-                row[i as usize] = sum / samples as f32;
-            }
-            row_done();
-            rays
-        })
-        .sum();
+    let (pixels, seen, [rays, _]) = render_pixels(
+        (width, height),
+        samples,
+        row_done,
+        |x, y, _, rng, counts| {
+            let ray = camera.ray(x, y);
+            let hit = scene.nearest(&ray, f32::INFINITY);
+            let colour = match hit {
+                Some(hit) => scene.shade(&ray, &hit, 0, rng, &mut counts[0]),
+                None => sky(ray.dir),
+            };
+            (colour, hit.map(|h| h.on))
+        },
+    );
     let image = InstanceImage {
         width,
         height,

@@ -470,53 +470,31 @@ pub struct Image {
 pub fn render(scene: &Scene, samples: u32, row_done: &(dyn Fn() + Sync)) -> (Image, u64) {
     let camera = &scene.camera;
     let (width, height) = (camera.width(), camera.height());
-    let mut pixels = vec![Vec3::ZERO; (width * height) as usize];
-    let mut seen = vec![None; pixels.len()];
-    let rays = pixels
-        .par_chunks_mut(width as usize)
-        .zip(seen.par_chunks_mut(width as usize))
-        .enumerate()
-        .map(|(j, (row, seen_row))| {
-            let j = j as u32;
-            let mut rays = 0;
-            for i in 0..width {
-                let mut rng = Rng::new(u64::from(j * width + i));
-                let mut sum = Vec3::ZERO;
-                for s in 0..samples {
-                    // The first sample through the pixel's centre (and the
-                    // lens's), the others jittered.
-                    let jitter = if s == 0 {
-                        (0.5, 0.5, 0.5, 0.5)
-                    } else {
-                        (
-                            rng.next_f32(),
-                            rng.next_f32(),
-                            rng.next_f32(),
-                            rng.next_f32(),
-                        )
-                    };
-                    let (x, y) = (i as f32 + jitter.0, j as f32 + jitter.1);
-                    let (diff, cone) = scene.primary(x, y, (jitter.2, jitter.3));
-                    let ray = diff.ray;
-                    rays += 1;
-                    let hit = scene.intersect(&ray, f32::INFINITY);
-                    if s == 0 {
-                        seen_row[i as usize] = hit.map(|h| h.object);
-                    }
-                    sum += match hit {
-                        Some(hit) => {
-                            let footprint = scene.footprint(&diff, &cone, &hit);
-                            scene.shade_over(&ray, &hit, footprint, 0, &mut rng, &mut rays)
-                        }
-                        None => sky(ray.dir),
-                    };
+    let (pixels, seen, [rays, _]) = render_pixels(
+        (width, height),
+        samples,
+        row_done,
+        |x, y, first, rng, counts| {
+            // The lens sample: the lens's centre for the first sample,
+            // drawn after the pixel's jitter for the others.
+            let lens = if first {
+                (0.5, 0.5)
+            } else {
+                (rng.next_f32(), rng.next_f32())
+            };
+            let (diff, cone) = scene.primary(x, y, lens);
+            let ray = diff.ray;
+            let hit = scene.intersect(&ray, f32::INFINITY);
+            let colour = match hit {
+                Some(hit) => {
+                    let footprint = scene.footprint(&diff, &cone, &hit);
+                    scene.shade_over(&ray, &hit, footprint, 0, rng, &mut counts[0])
                 }
-                row[i as usize] = sum / samples as f32;
-            }
-            row_done();
-            rays
-        })
-        .sum();
+                None => sky(ray.dir),
+            };
+            (colour, hit.map(|h| h.object))
+        },
+    );
     let image = Image {
         width,
         height,
@@ -524,6 +502,56 @@ pub fn render(scene: &Scene, samples: u32, row_done: &(dyn Fn() + Sync)) -> (Ima
         seen,
     };
     (image, rays)
+}
+
+/// The demo scenes' pixel loop, rows in parallel (`row_done` after each):
+/// per pixel, `samples` calls of `sample(x, y, first, rng, counts)` at
+/// raster position `(x, y)`, the first (`first` true) through the pixel's
+/// centre and the others at uniform random points of the pixel (two draws
+/// from the pixel's own `rng`, seeded by its index, so the picture does
+/// not depend on the threads), each returning its colour and what the
+/// pixel records of its first sample. Returns the pixels (the samples'
+/// mean), the records, and the summed `counts`, where each sample counts
+/// one camera ray in `counts[0]` and `sample` adds what else it traces.
+pub fn render_pixels<T: Send + Clone + Default>(
+    (width, height): (u32, u32),
+    samples: u32,
+    row_done: &(dyn Fn() + Sync),
+    sample: impl Fn(f32, f32, bool, &mut Rng, &mut [u64; 2]) -> (Vec3, T) + Sync,
+) -> (Vec<Vec3>, Vec<T>, [u64; 2]) {
+    let mut pixels = vec![Vec3::ZERO; (width * height) as usize];
+    let mut records = vec![T::default(); pixels.len()];
+    let counts = pixels
+        .par_chunks_mut(width as usize)
+        .zip(records.par_chunks_mut(width as usize))
+        .enumerate()
+        .map(|(j, (row, record_row))| {
+            let j = j as u32;
+            let mut counts = [0; 2];
+            for i in 0..width {
+                let mut rng = Rng::new(u64::from(j * width + i));
+                let mut sum = Vec3::ZERO;
+                for s in 0..samples {
+                    let (dx, dy) = if s == 0 {
+                        (0.5, 0.5)
+                    } else {
+                        (rng.next_f32(), rng.next_f32())
+                    };
+                    counts[0] += 1;
+                    let (colour, record) =
+                        sample(i as f32 + dx, j as f32 + dy, s == 0, &mut rng, &mut counts);
+                    if s == 0 {
+                        record_row[i as usize] = record;
+                    }
+                    sum += colour;
+                }
+                row[i as usize] = sum / samples as f32;
+            }
+            row_done();
+            counts
+        })
+        .reduce(|| [0; 2], |a, b| [a[0] + b[0], a[1] + b[1]]);
+    (pixels, records, counts)
 }
 
 impl Scene {

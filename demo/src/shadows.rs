@@ -30,10 +30,9 @@ use rayhit::{
     TriangleHit, ray_aabb_prepared_face_in, ray_plane_in, ray_triangle_error_bounds,
     ray_triangle_prepared_in, ray_triangle_prepared_occluded,
 };
-use rayon::prelude::*;
 
 use crate::mesh::{Bvh, icosphere, torus};
-use crate::scene::{Material, Rng, sky};
+use crate::scene::{Material, Rng, render_pixels, sky};
 
 /// The geometry of an opaque object.
 #[derive(Debug)]
@@ -492,38 +491,12 @@ pub fn render_shadows(
 ) -> (ShadowImage, u64, u64) {
     let camera = &scene.camera;
     let (width, height) = (camera.width(), camera.height());
-    let mut pixels = vec![Vec3::ZERO; (width * height) as usize];
-    let mut crossings = vec![0; pixels.len()];
-    let (rays, segments) = pixels
-        .par_chunks_mut(width as usize)
-        .zip(crossings.par_chunks_mut(width as usize))
-        .enumerate()
-        .map(|(j, (row, crossing_row))| {
-            let j = j as u32;
-            let (mut rays, mut segments) = (0, 0);
-            for i in 0..width {
-                let mut rng = Rng::new(u64::from(j * width + i));
-                let mut sum = Vec3::ZERO;
-                for s in 0..samples {
-                    let (dx, dy) = if s == 0 {
-                        (0.5, 0.5)
-                    } else {
-                        (rng.next_f32(), rng.next_f32())
-                    };
-                    let ray = camera.ray(i as f32 + dx, j as f32 + dy);
-                    rays += 1;
-                    let (colour, crossed) = scene.radiance(&ray, &mut rng, &mut segments);
-                    if s == 0 {
-                        crossing_row[i as usize] = crossed;
-                    }
-                    sum += colour;
-                }
-                row[i as usize] = sum / samples as f32;
-            }
-            row_done();
-            (rays, segments)
-        })
-        .reduce(|| (0, 0), |a, b| (a.0 + b.0, a.1 + b.1));
+    let (pixels, crossings, [rays, segments]) = render_pixels(
+        (width, height),
+        samples,
+        row_done,
+        |x, y, _, rng, counts| scene.radiance(&camera.ray(x, y), rng, &mut counts[1]),
+    );
     let image = ShadowImage {
         width,
         height,
