@@ -30,7 +30,10 @@ use rayhit::{
 };
 
 use crate::mesh::{Bvh, Kernel, Mesh, torus};
-use crate::scene::{MAX_DEPTH, Material, OCCLUSION_RANGE, Rng, SKY_LIGHT, SUN, render_pixels, sky};
+use crate::scene::{
+    MAX_DEPTH, Material, OCCLUSION_RANGE, Rng, SKY_LIGHT, SUN, facing, render_pixels, sky,
+    toward_disc,
+};
 
 /// Where the scene stands: the ground, every instance and the camera are
 /// placed around this point, far from the origin, where an `f32`
@@ -724,15 +727,11 @@ impl InstanceScene {
         rays: &mut u64,
     ) -> Vec3 {
         let material = self.material(&hit.on);
-        let flip = |n: Vec3| if n.dot(ray.dir) > 0.0 { -n } else { n };
-        let geometric = flip(hit.surface.normal.try_normalize().unwrap_or(hit.shading));
-        let shading = flip(hit.shading);
+        let (geometric, shading) = facing(ray, hit.surface.normal, hit.shading);
         let mut light = Vec3::ZERO;
 
         // The sun: a random point of its disc, for soft shadows.
-        let (a, b) = rng.disc();
-        let (s1, s2) = self.sun.any_orthonormal_pair();
-        let to_sun = (self.sun + (s1 * a + s2 * b) * self.sun_radius).normalize();
+        let to_sun = toward_disc(self.sun, self.sun_radius, rng);
         let cos = shading.dot(to_sun);
         if cos > 0.0 && geometric.dot(to_sun) > 0.0 {
             *rays += 1;

@@ -298,16 +298,11 @@ impl Scene {
         rays: &mut u64,
     ) -> Vec3 {
         let material = &self.objects[hit.object].material;
-        // Both normals, turned to face the incoming ray.
-        let flip = |n: Vec3| if n.dot(ray.dir) > 0.0 { -n } else { n };
-        let geometric = flip(hit.surface.normal.try_normalize().unwrap_or(hit.shading));
-        let shading = flip(hit.shading);
+        let (geometric, shading) = facing(ray, hit.surface.normal, hit.shading);
         let mut light = Vec3::ZERO;
 
         // The sun: a random point of its disc, for soft shadows.
-        let (a, b) = rng.disc();
-        let (s1, s2) = self.sun.any_orthonormal_pair();
-        let to_sun = (self.sun + (s1 * a + s2 * b) * self.sun_radius).normalize();
+        let to_sun = toward_disc(self.sun, self.sun_radius, rng);
         let cos = shading.dot(to_sun);
         if cos > 0.0 && geometric.dot(to_sun) > 0.0 {
             *rays += 1;
@@ -502,6 +497,25 @@ pub fn render(scene: &Scene, samples: u32, row_done: &(dyn Fn() + Sync)) -> (Ima
         seen,
     };
     (image, rays)
+}
+
+/// The geometric normal (unit, or the shading normal where it has no
+/// length) and the shading normal, both turned to face the incoming `ray`.
+pub fn facing(ray: &Ray, geometric: Vec3, shading: Vec3) -> (Vec3, Vec3) {
+    let flip = |n: Vec3| if n.dot(ray.dir) > 0.0 { -n } else { n };
+    (
+        flip(geometric.try_normalize().unwrap_or(shading)),
+        flip(shading),
+    )
+}
+
+/// A unit direction towards a random point of the disc of angular radius
+/// about `radius` around the unit direction `centre` (a sun's disc, for
+/// soft shadows).
+pub fn toward_disc(centre: Vec3, radius: f32, rng: &mut Rng) -> Vec3 {
+    let (a, b) = rng.disc();
+    let (s1, s2) = centre.any_orthonormal_pair();
+    (centre + (s1 * a + s2 * b) * radius).normalize()
 }
 
 /// The demo scenes' pixel loop, rows in parallel (`row_done` after each):

@@ -32,7 +32,7 @@ use rayhit::{
 };
 
 use crate::mesh::{Bvh, icosphere, torus};
-use crate::scene::{Material, Rng, render_pixels, sky};
+use crate::scene::{Material, Rng, facing, render_pixels, sky};
 
 /// The geometry of an opaque object.
 #[derive(Debug)]
@@ -427,9 +427,7 @@ impl ShadowScene {
                 Vec3::splat(0.05)
             };
         };
-        let flip = |n: Vec3| if n.dot(ray.dir) > 0.0 { -n } else { n };
-        let geometric = flip(hit.surface.normal.try_normalize().unwrap_or(hit.shading));
-        let shading = flip(hit.shading);
+        let (geometric, shading) = facing(ray, hit.surface.normal, hit.shading);
         let e = self.irradiance(&hit.surface, shading, geometric, rng, segments);
         let albedo = self.opaque[object].material.albedo_at(hit.surface.point);
         albedo * (AMBIENT + e / std::f32::consts::PI)
