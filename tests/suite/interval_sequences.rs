@@ -42,10 +42,11 @@
 //! passes the triangle by more than the test's rounding, it is a clear
 //! miss (and the exact line must miss it), with no verdict to compute.
 //!
-//! `SEQUENCE_RAYS=n` sets the rays per mesh and precision (default 80, a
-//! few seconds); the counts and the time print with `--nocapture`. The
+//! `SEQUENCE_RAYS=n` sets the rays per mesh and precision (default 80, well
+//! under a second); the counts and the time print with `--nocapture`. The
 //! long run, about a million rays per precision, each on
-//! `SEQUENCE_THREADS` threads (default 2; the two precisions run at once):
+//! `SEQUENCE_THREADS` threads (default 2; the two precisions run at once),
+//! took 6.6 minutes on 2 shared cores (f32 256 s and f64 394 s, at once):
 //!
 //! ```sh
 //! SEQUENCE_RAYS=340000 cargo test --release --test suite interval_sequences:: -- --ignored --nocapture
