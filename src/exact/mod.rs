@@ -460,20 +460,40 @@ pub fn ray_triangle<V: Vector>(
     tri: &Triangle<V>,
     t_max: V::Scalar,
 ) -> Option<TriangleAnswer<V::Scalar>> {
-    if !(ray.is_valid()
-        && tri.a.is_finite()
-        && tri.b.is_finite()
-        && tri.c.is_finite()
-        && valid_limit(t_max))
-    {
+    if !triangle_input_valid(ray, tri, t_max) {
         return None;
     }
-    let ex = oracle::triangle(ray, tri)?;
-    if !ex.hits(&oracle::limit(t_max)) {
+    ray_triangle_from_exact(ray, tri, &oracle::triangle(ray, tri)?, t_max)
+}
+
+/// [`ray_triangle`]'s answer from the exact crossing already computed:
+/// `exact` must be [`oracle::triangle`]`(ray, tri)`, and then the answer is
+/// [`ray_triangle`]'s, with no exact arithmetic beyond rounding `t`, `u`
+/// and `v` to floats. For a caller that needs the exact crossing for more
+/// than the answer (a rounding band, a window check), so it is computed
+/// once.
+///
+/// ```
+/// use rayhit::{Ray, Triangle, exact, glam::Vec3};
+/// let tri = Triangle::new(Vec3::ZERO, Vec3::X, Vec3::Y);
+/// let ray = Ray::new(Vec3::new(0.25, 0.25, 2.0), Vec3::new(0.0, 0.0, -1.0));
+/// let crossing = exact::oracle::triangle(&ray, &tri).unwrap();
+/// let answer = exact::ray_triangle_from_exact(&ray, &tri, &crossing, f32::INFINITY);
+/// assert_eq!(answer, exact::ray_triangle(&ray, &tri, f32::INFINITY));
+/// assert_eq!(answer.unwrap().t.rounded, 2.0);
+/// ```
+#[must_use]
+pub fn ray_triangle_from_exact<V: Vector>(
+    ray: &Ray<V>,
+    tri: &Triangle<V>,
+    exact: &oracle::ExactTriangle,
+    t_max: V::Scalar,
+) -> Option<TriangleAnswer<V::Scalar>> {
+    if !(triangle_input_valid(ray, tri, t_max) && exact.hits(&oracle::limit(t_max))) {
         return None;
     }
-    let (t, (u, v)) = (ex.t.clone()?, ex.uv.clone()?);
-    let zero = |k: usize| ex.signs[k] == core::cmp::Ordering::Equal;
+    let (t, (u, v)) = (exact.t.clone()?, exact.uv.clone()?);
+    let zero = |k: usize| exact.signs[k] == core::cmp::Ordering::Equal;
     // Edge k runs from corner k to corner k + 1.
     let place = match (zero(0), zero(1), zero(2)) {
         (false, false, false) => Place::Interior,
@@ -484,9 +504,12 @@ pub fn ray_triangle<V: Vector>(
         (false, true, true) => Place::Corner(2),
         (true, false, true) => Place::Corner(0),
     };
-    let (a, b, c) = (oracle::rv(tri.a)?, oracle::rv(tri.b)?, oracle::rv(tri.c)?);
-    let n = oracle::cross(&oracle::sub(&b, &a), &oracle::sub(&c, &a));
-    let side = if oracle::dot(&oracle::rv(ray.dir)?, &n).is_negative() {
+    // The side is the sign of `dir . n`, `n = (b - a) x (c - a)`: with the
+    // corners taken from the origin, `n = a x b + b x c + c x a`, so `dir .
+    // n` is the sum of the three edge products. On a hit their nonzero
+    // signs agree and the sum is not zero (the line is not parallel), so it
+    // has their sign.
+    let side = if exact.signs.contains(&core::cmp::Ordering::Less) {
         Side::Front
     } else {
         Side::Back
@@ -498,6 +521,16 @@ pub fn ray_triangle<V: Vector>(
         side,
         place,
     })
+}
+
+/// The inputs [`ray_triangle`] answers for: a valid ray, finite corners,
+/// a `t_max` that is not NaN.
+fn triangle_input_valid<V: Vector>(ray: &Ray<V>, tri: &Triangle<V>, t_max: V::Scalar) -> bool {
+    ray.is_valid()
+        && tri.a.is_finite()
+        && tri.b.is_finite()
+        && tri.c.is_finite()
+        && valid_limit(t_max)
 }
 
 /// Exact ray/triangle over an interval: closed and two-sided, a crossing

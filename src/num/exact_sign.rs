@@ -1,6 +1,7 @@
 //! Exact signs and error-free transformations: the fallbacks that decide
 //! a sign rounding cannot (an edge function that rounds to zero, an entry
-//! face near an edge, whether a triangle has zero area).
+//! face near an edge, whether a triangle has zero area), and for the exact
+//! module's float filter, a Plucker product against a float.
 
 use super::Scalar;
 
@@ -153,6 +154,7 @@ fn two_product(a: f64, b: f64) -> (f64, f64) {
 /// long exact sum. Its nonzero components have disjoint bit ranges within
 /// `f64`'s 2,100 exponents, so 64 slots hold any expansion of finite terms;
 /// a non-finite term (an overflow) marks it undecided instead.
+#[derive(Clone)]
 struct Expansion {
     e: [f64; 64],
     len: usize,
@@ -512,6 +514,64 @@ impl PlaneCrossing {
     }
 }
 
+/// A Plucker product `((p - o) x (q - o)) . d` held exactly, as a
+/// floating-point expansion, for comparing it with floats
+/// ([`PluckerProduct::cmp`]): the exact fallback of the oracle's float
+/// filter for the watertight test's clear misses.
+///
+/// The differences are held as exact pairs (Knuth's two-sum: `hi + lo` is
+/// the exact difference), and each of the six monomials `(A_j B_k - A_k
+/// B_j) d_l` as the products of their parts, each expanded exactly into
+/// four terms and summed as an expansion (Shewchuk, 1997): at most 96
+/// terms.
+///
+/// Exactness: every nonzero input must have its magnitude in `[2^-300,
+/// 2^300]` (every finite `f32` does). Then a difference's parts are
+/// multiples of `2^-352` (the smaller input's ulp, at least `2^-300 2^-52`)
+/// below `2^301`, so a product of three parts is a multiple of `2^-1056`
+/// (as is every rounding error the expansion of a product splits off:
+/// exact, above `f64`'s subnormal spacing `2^-1074`) below `2^903`, and no
+/// sum overflows. Other inputs are refused (`None`).
+#[cfg(feature = "exact")]
+pub(crate) struct PluckerProduct(Expansion);
+
+#[cfg(feature = "exact")]
+impl PluckerProduct {
+    /// `((p - o) x (q - o)) . d`, or `None` for an input outside the exact
+    /// range (a nonzero magnitude outside `[2^-300, 2^300]`, or not finite).
+    pub(crate) fn new(o: [f64; 3], d: [f64; 3], p: [f64; 3], q: [f64; 3]) -> Option<Self> {
+        let (small, large) = (scale2(1.0, -300), scale2(1.0, 300));
+        let in_range = |x: &f64| *x == 0.0 || (small <= x.abs() && x.abs() <= large);
+        if ![o, d, p, q].iter().flatten().all(in_range) {
+            return None;
+        }
+        let a = [0, 1, 2].map(|k| two_diff(p[k], o[k]));
+        let b = [0, 1, 2].map(|k| two_diff(q[k], o[k]));
+        let mut acc = Expansion::new();
+        for (l, &dl) in d.iter().enumerate() {
+            let (j, k) = ((l + 1) % 3, (l + 2) % 3);
+            for (x, y, negate) in [(a[j], b[k], false), (a[k], b[j], true)] {
+                for xp in [x.0, x.1] {
+                    for yp in [y.0, y.1] {
+                        if xp != 0.0 && yp != 0.0 && dl != 0.0 {
+                            acc.add_product(&[xp, yp, dl], negate);
+                        }
+                    }
+                }
+            }
+        }
+        acc.ok.then_some(Self(acc))
+    }
+
+    /// The exact sign of `product - c`; `None` for a `c` that is not
+    /// finite.
+    pub(crate) fn cmp(&self, c: f64) -> Option<core::cmp::Ordering> {
+        let mut diff = self.0.clone();
+        diff.add(-c);
+        diff.sign()
+    }
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -718,5 +778,75 @@ mod tests {
             checked > 20_000 && near > 2_000 && zero_den > 100,
             "{checked} {near} {zero_den}"
         );
+    }
+
+    /// The Plucker product's exact signs against big rationals: `f32`
+    /// inputs from arbitrary finite bit patterns, `f64` inputs over the
+    /// documented range (magnitudes from about `2^-300` to `2^240`, with
+    /// exact zeros, and points translated far from the origin so that `p - o`
+    /// rounds); each against the exact product rounded and a few ulps
+    /// either side, and zero. Inputs beyond the range are refused.
+    #[cfg(feature = "exact")]
+    #[test]
+    fn plucker_product_signs_are_exact() {
+        use crate::exact::oracle::{cross, dot, r, sub};
+        let mut next = xorshift(0x6c8e_9cf5_7093_2bd5);
+        let (mut checked, mut refused) = (0, 0);
+        for case in 0..3000 {
+            let wide = case % 3 != 0;
+            let v = |scale: f64, next: &mut dyn FnMut() -> u64| coords(wide, true, scale, next);
+            let scale = |next: &mut dyn FnMut() -> u64| scale2(1.0, (next() % 480) as i32 - 240);
+            let (g, h) = (scale(&mut next), scale(&mut next));
+            let o = v(g, &mut next);
+            let (mut p, mut q) = (v(g, &mut next), v(g, &mut next));
+            if wide && case % 5 == 1 {
+                let (dp, dq) = (
+                    v(g * scale2(1.0, -30), &mut next),
+                    v(g * scale2(1.0, -30), &mut next),
+                );
+                p = [0, 1, 2].map(|i| o[i] + dp[i]);
+                q = [0, 1, 2].map(|i| o[i] + dq[i]);
+            }
+            let d = v(h, &mut next);
+            let Some(product) = PluckerProduct::new(o, d, p, q) else {
+                // Refused only beyond the range (f64 only).
+                let out = |x: &f64| {
+                    *x != 0.0 && !(scale2(1.0, -300)..=scale2(1.0, 300)).contains(&x.abs())
+                };
+                assert!(
+                    wide && [o, d, p, q].iter().flatten().any(out),
+                    "{o:?} {d:?} {p:?} {q:?}"
+                );
+                refused += 1;
+                continue;
+            };
+            let rv = |p: [f64; 3]| p.map(|x| r(x).unwrap());
+            let ro = rv(o);
+            let exact = dot(&cross(&sub(&rv(p), &ro), &sub(&rv(q), &ro)), &rv(d));
+            let near = crate::exact::round::<f64>(&exact);
+            let (mut up, mut down) = (near, near);
+            let mut cs = std::vec![0.0];
+            for _ in 0..3 {
+                cs.extend([up, down]);
+                (up, down) = (up.next_up(), down.next_down());
+            }
+            for c in cs {
+                let expected = exact.cmp(&r(c).unwrap());
+                assert_eq!(
+                    product.cmp(c),
+                    Some(expected),
+                    "{c:e}: {o:?} {d:?} {p:?} {q:?}"
+                );
+                checked += 1;
+            }
+        }
+        assert!(checked > 20_000 && refused < 100, "{checked} {refused}");
+        let big = scale2(1.0, 301);
+        let refused =
+            |x: f64| PluckerProduct::new([x, 0.0, 0.0], [1.0; 3], [1.0; 3], [0.0, 1.0, 2.0]);
+        assert!(
+            refused(big).is_none() && refused(1.0 / big).is_none() && refused(f64::NAN).is_none()
+        );
+        assert!(refused(scale2(1.0, 300)).is_some() && refused(scale2(1.0, -300)).is_some());
     }
 }
