@@ -622,19 +622,13 @@ fn triangle_batch_in_body<W: Lanes8<F = S<V>>, V: Vector, const N: usize, const 
         let (z_min, z_max) = (z0.min(z1.min(z2)), z0.max(z1.max(z2)));
         let (low, high) = (z_min.mul(down), z_max.mul(up));
         let accept = W::and(t_lo_normal.lt(low), high.le(t_hi));
+        let reject = W::or(
+            W::or(t_hi_normal.lt(low), z_max.le(neg_normal)),
+            W::and(normal.le(z_min), high.le(t_lo)),
+        );
         let hit_c = W::and(known, accept);
         let shift = 8 * c;
-        // The lanes inside and not accepted: a miss where known and
-        // rejected, else to the scalar test (the rejection computed only
-        // for chunks that have such lanes).
-        let pending = W::and_not(inside, hit_c);
-        if W::bits(pending) != 0 {
-            let reject = W::or(
-                W::or(t_hi_normal.lt(low), z_max.le(neg_normal)),
-                W::and(normal.le(z_min), high.le(t_lo)),
-            );
-            slow |= W::bits(W::and_not(pending, W::and(known, reject))) << shift;
-        }
+        slow |= W::bits(W::and_not(inside, W::and(known, W::or(accept, reject)))) << shift;
         hit |= W::bits(hit_c) << shift;
         if W::bits(hit_c) & (batch.used >> shift) == 0 {
             // (Most chunks with a lane inside have no lane hit: for random
