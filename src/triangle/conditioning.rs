@@ -121,7 +121,7 @@ where
 /// more (a difference that is subnormal is exact, a product off by
 /// `eta`), which adds at most `5 (m + w) eta + 2 eta` to an edge function;
 /// with `m' >= scale_floor()`, against `T >= 64 u m' (m' + w)`, the first
-/// part is below `2^-80 T` and `2 eta` below `MIN_POSITIVE / (32 m'^2) T`,
+/// part is below `2^-79 T` and `2 eta` below `MIN_POSITIVE / (32 m'^2) T`,
 /// `2^-31 T` in `f32` and `2^-67 T` in `f64`, inside the margin; and `64 u
 /// m'^2` is a normal float, so the threshold's own few roundings are
 /// relative (the second-order term, if subnormal, is off by `eta`, also
