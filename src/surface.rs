@@ -491,7 +491,7 @@ pub(crate) fn settle<V: Vector>(
 /// ([`Instance::spawn_to_through`](crate::Instance::spawn_to_through)):
 /// the ends are offset further by what the round trip moves the object
 /// ray at `t = 0` (start) and `t = 1` (end), and the direction's mapped
-/// rounding joins the side tests. Without maps, every extra is zero and
+/// rounding joins the side tests. Without maps nothing is widened, and
 /// the segment is the world one, bit for bit.
 pub(crate) fn segment<V: Vector>(
     from: &SurfacePoint<V>,
