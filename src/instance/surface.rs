@@ -282,7 +282,7 @@ impl<V: Vector> Instance<V> {
     /// crossing is at `t > 1`), so no interval kernel reports either
     /// surface over `(0, 1]`; and any surface the exact world segment
     /// crosses farther than the ends' moves from them is crossed in
-    /// `(0, 1]`. Where a path is empty, that end is
+    /// `(0, 1]`. With both paths empty, the segment is
     /// [`SurfacePoint::spawn_to`]'s, bit for bit.
     ///
     /// How: each end is offset as `spawn_to` offsets it, its point error
