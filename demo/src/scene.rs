@@ -499,6 +499,23 @@ pub fn render(scene: &Scene, samples: u32, row_done: &(dyn Fn() + Sync)) -> (Ima
     (image, rays)
 }
 
+/// A uniformly random point of `tri` as a surface point (barycentrics
+/// drawn from `rng`, folded into the triangle): `SurfacePoint::on_triangle`
+/// holds for any barycentrics, and the hit's `t` is not used.
+pub fn random_point_on(tri: &Triangle, rng: &mut Rng) -> SurfacePoint {
+    let (mut u, mut v) = (rng.next_f32(), rng.next_f32());
+    if u + v > 1.0 {
+        (u, v) = (1.0 - u, 1.0 - v);
+    }
+    let at = rayhit::TriangleHit {
+        t: 0.0,
+        u,
+        v,
+        side: Side::Front,
+    };
+    SurfacePoint::on_triangle(tri, &at)
+}
+
 /// The geometric normal (unit, or the shading normal where it has no
 /// length) and the shading normal, both turned to face the incoming `ray`.
 pub fn facing(ray: &Ray, geometric: Vec3, shading: Vec3) -> (Vec3, Vec3) {

@@ -26,13 +26,13 @@
 
 use rayhit::glam::{Mat3, Vec3};
 use rayhit::{
-    Aabb, Interval, PinholeCamera, Plane, PreparedRay, Ray, Side, SurfacePoint, Triangle,
-    TriangleHit, ray_aabb_prepared_face_in, ray_plane_in, ray_triangle_error_bounds,
-    ray_triangle_prepared_in, ray_triangle_prepared_occluded,
+    Aabb, Interval, PinholeCamera, Plane, PreparedRay, Ray, SurfacePoint, Triangle, TriangleHit,
+    ray_aabb_prepared_face_in, ray_plane_in, ray_triangle_error_bounds, ray_triangle_prepared_in,
+    ray_triangle_prepared_occluded,
 };
 
 use crate::mesh::{Bvh, icosphere, torus};
-use crate::scene::{Material, Rng, facing, render_pixels, sky};
+use crate::scene::{Material, Rng, facing, random_point_on, render_pixels, sky};
 
 /// The geometry of an opaque object.
 #[derive(Debug)]
@@ -95,18 +95,7 @@ impl AreaLight {
     /// barycentrics: what `SurfacePoint::spawn_to` needs at the far end.
     pub fn sample(&self, rng: &mut Rng) -> SurfacePoint {
         let tri = &self.triangles[usize::from(rng.next_f32() >= 0.5)];
-        let (mut u, mut v) = (rng.next_f32(), rng.next_f32());
-        if u + v > 1.0 {
-            (u, v) = (1.0 - u, 1.0 - v);
-        }
-        // `triangle_hit_point` holds for any barycentrics; `t` is unused.
-        let at = TriangleHit {
-            t: 0.0,
-            u,
-            v,
-            side: Side::Front,
-        };
-        SurfacePoint::on_triangle(tri, &at)
+        random_point_on(tri, rng)
     }
 }
 

@@ -24,8 +24,8 @@ use rayhit::exact::AffineMap;
 use rayhit::exact::oracle::rv;
 use rayhit::glam::Vec3;
 use rayhit::{
-    Aabb, Instance, Interval, PinholeCamera, PreparedRay, Ray, Side, SurfacePoint, Triangle,
-    TriangleHit, exact, ray_aabb, ray_plane, ray_triangle,
+    Aabb, Instance, Interval, PinholeCamera, PreparedRay, Ray, Side, SurfacePoint, Triangle, exact,
+    ray_aabb, ray_plane, ray_triangle,
 };
 use rayhit_demo::instances::{
     Content, InstanceHit, InstanceScene, On, Path, instance_scene, render_instances, slab,
@@ -937,17 +937,7 @@ fn rays_from_anywhere_on_an_instance_never_hit_the_triangle_they_left() {
         for k in 0..mesh.indices.len() {
             let tri = mesh.triangle(k);
             for _ in 0..4 {
-                let (mut u, mut v) = (rng.next_f32(), rng.next_f32());
-                if u + v > 1.0 {
-                    (u, v) = (1.0 - u, 1.0 - v);
-                }
-                let at = TriangleHit {
-                    t: 0.0,
-                    u,
-                    v,
-                    side: Side::Front,
-                };
-                let object = SurfacePoint::on_triangle(&tri, &at);
+                let object = scene::random_point_on(&tri, &mut rng);
                 let surface = nodes[..len]
                     .iter()
                     .rev()

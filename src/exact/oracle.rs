@@ -445,24 +445,19 @@ fn integers<const N: usize>(points: [[f64; 3]; N]) -> ([I3; N], i64) {
     (scaled, e)
 }
 
-/// A finite float as `(m, e)` with `x = m 2^e` and `m` odd, or `(0, 0)`.
+/// A finite float as `(m, e)` with `x = m 2^e` and `m` odd, or `(0, 0)`:
+/// num-traits' `integer_decode` with the mantissa's trailing zeros moved
+/// into the exponent.
 fn odd_parts(x: f64) -> (i64, i64) {
-    if x == 0.0 {
+    use num_traits::float::FloatCore;
+    let (m, e, sign) = x.integer_decode();
+    if m == 0 {
         return (0, 0);
     }
-    let bits = x.to_bits();
-    let (exponent, fraction) = (
-        ((bits >> 52) & 0x7ff) as i64,
-        (bits & ((1 << 52) - 1)) as i64,
-    );
-    let (m, e) = if exponent == 0 {
-        (fraction, -1074)
-    } else {
-        (fraction | (1 << 52), exponent - 1075)
-    };
     let zeros = m.trailing_zeros();
-    let m = m >> zeros;
-    (if x < 0.0 { -m } else { m }, e + i64::from(zeros))
+    // `m < 2^53`: it fits.
+    let m = (m >> zeros) as i64;
+    (i64::from(sign) * m, i64::from(e) + i64::from(zeros))
 }
 
 fn isub(a: &I3, b: &I3) -> I3 {
