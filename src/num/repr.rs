@@ -61,6 +61,11 @@ pub trait Bits {
     /// 2^(e+1)`) for normal `x`; zero for zero and subnormals, infinity
     /// for infinities and NaN: the exponent bits alone.
     fn binade(x: Self::F) -> Self::F;
+    /// The float after `x` for `x` in `[-0, +inf]` (what `next_up` gives
+    /// there: the smallest subnormal after either zero, `+inf` after
+    /// `+inf`), as integer operations on the bits with no branch. Other
+    /// inputs (negative, NaN) give some float.
+    fn successor(x: Self::F) -> Self::F;
     /// `2^-e` for `|x|` in the binade `[2^e, 2^(e+1))`, exactly, so that
     /// `|x| 2^-e` is in `[1, 2)`; for `|x|` at or above `2^(emax - 1)`,
     /// `2^(1 - emax)` (the largest `e` whose `2^-e` is normal; `emax` is 127
@@ -121,6 +126,12 @@ impl Bits for F32Bits {
     }
 
     #[inline(always)]
+    fn successor(x: f32) -> f32 {
+        // Without the sign bit, the bits of [+0, +inf] count up.
+        f32::from_bits(((x.to_bits() & 0x7fff_ffff) + 1).min(0x7f80_0000))
+    }
+
+    #[inline(always)]
     fn binade(x: f32) -> f32 {
         f32::from_bits(x.to_bits() & 0x7f80_0000)
     }
@@ -175,6 +186,11 @@ impl Bits for F64Bits {
     }
 
     #[inline(always)]
+    fn successor(x: f64) -> f64 {
+        f64::from_bits(((x.to_bits() & 0x7fff_ffff_ffff_ffff) + 1).min(0x7ff0_0000_0000_0000))
+    }
+
+    #[inline(always)]
     fn binade(x: f64) -> f64 {
         f64::from_bits(x.to_bits() & 0x7ff0_0000_0000_0000)
     }
@@ -204,6 +220,44 @@ impl Bits for F64Bits {
 mod tests {
     use super::*;
     use crate::num::Scalar;
+
+    /// `successor` is `next_up` on `[-0, +inf]`: both zeros, subnormals,
+    /// the normal range's ends, binade edges and random floats.
+    #[test]
+    fn successor_is_next_up_from_zero_up() {
+        fn check<F: Scalar + core::fmt::Debug>(successor: fn(F) -> F, random: &[F]) {
+            let mut values = std::vec![
+                F::ZERO,
+                -F::ZERO,
+                F::TINY,
+                F::MIN_POSITIVE,
+                F::MIN_POSITIVE.next_down(),
+                F::ONE,
+                F::ONE.next_down(),
+                F::TWO,
+                F::MAX,
+                F::MAX.next_down(),
+                F::INFINITY,
+            ];
+            values.extend_from_slice(random);
+            for x in values {
+                let (got, expected) = (successor(x), x.next_up());
+                assert!(
+                    got == expected && got > x || x == F::INFINITY && got == x,
+                    "{x:?}: {got:?}"
+                );
+            }
+        }
+        let mut draws = crate::testing::Draws(0x5ecc_e550);
+        let r32: std::vec::Vec<f32> = (0..1000)
+            .map(|_| f32::from_bits((draws.next() >> 33) as u32 & 0x7f7f_ffff))
+            .collect();
+        let r64: std::vec::Vec<f64> = (0..1000)
+            .map(|_| f64::from_bits(draws.next() >> 2))
+            .collect();
+        check::<f32>(F32Bits::successor, &r32);
+        check::<f64>(F64Bits::successor, &r64);
+    }
 
     /// `in_unit_interval` is `0 <= x && x <= 1`, signed zeros, the
     /// neighbours of 0 and 1, infinities and NaN included.

@@ -3,9 +3,9 @@
 //! ends, which every interval form shares (an error-bound filter, then
 //! exact signs).
 
-use crate::num::Scalar;
 use crate::num::exact_sign::PlaneCrossing;
 use crate::num::round::min2;
+use crate::num::{Bits, Repr, Scalar};
 use core::cmp::Ordering;
 
 /// The half-open range `min < t <= max` of distances along a ray, in units
@@ -86,7 +86,7 @@ impl<F: Scalar> Interval<F> {
     }
 }
 
-/// `t` brought into `(lo, hi]` (`lo < hi`): `lo`'s successor where `t` is
+/// `t` brought into `(lo, hi]` (`0 <= lo < hi`): `lo`'s successor where `t` is
 /// at most `lo` or NaN, `hi` where it is above. Where the exact `t*` is in
 /// `(lo, hi]`: moving to `hi` only moves `t` towards `t*`; moving to
 /// `lo`'s successor does too unless `t*` lies strictly between `lo` and
@@ -95,7 +95,11 @@ impl<F: Scalar> Interval<F> {
 /// result is finite.
 #[inline(always)]
 pub(crate) fn bring_into<F: Scalar>(t: F, lo: F, hi: F) -> F {
-    let t = if t > lo { t } else { lo.next_up() };
+    let t = if t > lo {
+        t
+    } else {
+        <F as Repr>::Bits::successor(lo)
+    };
     min2(t, hi)
 }
 

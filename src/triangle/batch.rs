@@ -12,7 +12,8 @@ use super::conditioning::edge_signs_known;
 use super::definition::{EdgeRule, watertight_definition};
 use super::interval::{DepthWindow, watertight_in};
 use super::{Side, Triangle, TriangleHit};
-use crate::num::{Lanes, Lanes8, S, Scalar, Vector};
+use crate::num::round::max2;
+use crate::num::{Bits, Lanes, Lanes8, Repr, S, Scalar, Vector};
 use crate::ray::{Interval, PreparedRay, t_max_ok};
 use crate::simd::{Isa, Kernel, check_lanes, lanes_at, per_call, put};
 
@@ -44,6 +45,11 @@ use crate::simd::{Isa, Kernel, check_lanes, lanes_at, per_call, put};
 pub struct TriangleBatch<V: Vector = Vec3, const N: usize = 8> {
     /// `p[corner][axis][lane]`, corners `a, b, c`.
     p: [[[S<V>; N]; 3]; 3],
+    /// Per lane, the triangle's reach from its first corner: at least
+    /// `|p_i[a] - p_0[a]|` for the other corners `i` and every axis `a`
+    /// (NaN in an empty lane, like its corners), for the interval forms' edge-sign test
+    /// (`edge_signs_known`).
+    reach: [S<V>; N],
     /// The lanes that hold a triangle.
     used: u32,
     /// The lanes whose triangle has zero area ([`Triangle::is_degenerate`]),
@@ -64,6 +70,7 @@ impl<V: Vector, const N: usize> TriangleBatch<V, N> {
         let nan = S::<V>::NAN;
         Self {
             p: [[[nan; N]; 3]; 3],
+            reach: [nan; N],
             used: 0,
             degenerate: 0,
         }
@@ -97,6 +104,7 @@ impl<V: Vector, const N: usize> TriangleBatch<V, N> {
                 self.p[i][k][lane] = corner[k];
             }
         }
+        self.reach[lane] = reach(tri);
         self.used |= 1 << lane;
         if tri.is_degenerate() {
             self.degenerate |= 1 << lane;
@@ -119,6 +127,7 @@ impl<V: Vector, const N: usize> TriangleBatch<V, N> {
                 axis[lane] = nan;
             }
         }
+        self.reach[lane] = nan;
         self.used &= !(1 << lane);
         self.degenerate &= !(1 << lane);
     }
@@ -147,6 +156,19 @@ impl<V: Vector, const N: usize> TriangleBatch<V, N> {
         let corner = |i: usize| V::new(self.p[i][0][lane], self.p[i][1][lane], self.p[i][2][lane]);
         Triangle::new(corner(0), corner(1), corner(2))
     }
+}
+
+/// The largest `|p_i[a] - p_0[a]|` over the corners `i = 1, 2` and the axes
+/// `a`, rounded up: each difference rounds to nearest, so the exact one is
+/// at most its float's successor. Infinite where a difference overflows.
+/// (A triangle with a NaN or infinite corner has NaN edge functions, which
+/// fail the edge-sign test whatever the reach.)
+pub(super) fn reach<V: Vector>(tri: &Triangle<V>) -> S<V> {
+    let (d1, d2) = ((tri.b - tri.a).abs(), (tri.c - tri.a).abs());
+    (0..3)
+        .map(|k| max2(d1[k], d2[k]))
+        .fold(S::<V>::ZERO, max2)
+        .next_up()
 }
 
 /// The answer of [`ray_triangle_batch`]: which lanes are hit, where, and
@@ -604,20 +626,16 @@ fn triangle_batch_in_body<W: Lanes8<F = S<V>>, V: Vector, const N: usize, const 
         if W::bits(inside) == 0 {
             continue;
         }
-        let [(x0, y0, pz0), (x1, y1, pz1), (x2, y2, pz2)] = corners;
-        // The largest |x_i| and |y_i| (`m`), and the largest |p_z,i| (`w`),
-        // each the larger of the largest value and minus the smallest.
-        let top = x0.max(x1.max(x2)).max(y0.max(y1.max(y2)));
-        let bottom = x0.min(x1.min(x2)).min(y0.min(y1.min(y2)));
-        let m = top.max(lo.sub(bottom));
-        let w = pz0.max(pz1.max(pz2)).max(lo.sub(pz0.min(pz1.min(pz2))));
+        let [(x0, y0, pz0), (_, _, pz1), (_, _, pz2)] = corners;
         // Inside, the edge functions share a sign, so the smallest |e_i|
         // is e_min where they are positive and -e_max where negative.
         let min_abs_e = e_min.max(lo.sub(e_max));
         let det = e0.add(e1).add(e2);
         // (`det - det` is zero exactly when `det` is finite.)
         let finite = det.sub(det).eq(lo);
-        let known = W::and(W::and(edge_signs_known(min_abs_e, m, w), finite), inside);
+        let reach = lanes_at::<W, N>(&batch.reach, c);
+        let signs_known = edge_signs_known(min_abs_e, (x0, y0, pz0), reach);
+        let known = W::and(W::and(signs_known, finite), inside);
         let (z0, z1, z2) = (pz0.mul(sz), pz1.mul(sz), pz2.mul(sz));
         let (z_min, z_max) = (z0.min(z1.min(z2)), z0.max(z1.max(z2)));
         let (low, high) = (z_min.mul(down), z_max.mul(up));
@@ -643,7 +661,7 @@ fn triangle_batch_in_body<W: Lanes8<F = S<V>>, V: Vector, const N: usize, const 
         let t = e0.mul(z0).add(e1.mul(z1)).add(e2.mul(z2)).mul(inv_det);
         // `bring_into`: `t` above `t_min`, at most `t_max` (the float
         // above `t_min` computed here, for chunks with a hit only).
-        let above_lo = splat(window.lo.next_up());
+        let above_lo = splat(<S<V> as Repr>::Bits::successor(window.lo));
         let t = W::select(t_lo.lt(t), t, above_lo).min(t_hi);
         let u = e1.mul(inv_det).min(ones);
         let v = e2.mul(inv_det).min(ones);
