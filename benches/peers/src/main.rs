@@ -57,6 +57,9 @@ use rayhit::{
     ray_triangle_prepared_occluded, with_simd,
 };
 use rayhit_peers::cwbvh;
+
+#[cfg(target_arch = "x86_64")]
+mod floor_batch;
 use rayhit_testkit::rng::Pcg32;
 use rayhit_testkit::workloads::*;
 
@@ -1131,6 +1134,70 @@ fn triangle_kernels<'a>(d: &'a TriData, out: &mut Vec<Kernel<'a>>) {
             Some(parry_agree),
             pairwise(&d.order, &d.parry_rays, &d.parry_tris, |r, t| {
                 t_sum(t.cast_local_ray(r, f32::MAX, true))
+            }),
+        ),
+    ]);
+}
+
+/// The floors of the eight-lane triangle batches (`floor_batch`), in the
+/// "triangle x8" section next to the batches they bound, with how often
+/// their lanes agree with rayhit's (all but the rare lanes the floors leave
+/// to stubs).
+#[cfg(target_arch = "x86_64")]
+fn batch_floor_kernels<'a>(
+    t: &'a TriData,
+    tb8: &'a [TriangleBatch<Vec3, 8>],
+    fb8: &'a [floor_batch::FloorBatch],
+    out: &mut Vec<Kernel<'a>>,
+) {
+    use floor_batch::{Question, floor_batch};
+    let sec = "triangle x8";
+    let all = Interval::up_to(INF).expect("(0, inf]");
+    let per_ray = GROUP / 8;
+    let lanes = |m: u32| (0..8).map(move |l| m >> l & 1 != 0);
+    let floor_mask = |q, i: usize| {
+        floor_batch(q, &t.floor_rays[i / per_ray], &fb8[i], 0.0, INF).map_or(0, |h| h.mask)
+    };
+    let agree_with = |q, ours: &dyn Fn(usize) -> u32| {
+        agree(
+            (0..fb8.len()).flat_map(|i| lanes(ours(i))),
+            (0..fb8.len()).flat_map(|i| lanes(floor_mask(q, i))),
+        )
+    };
+    let plain = agree_with(Question::UpTo, &|i| {
+        ray_triangle_batch(&t.prepared[i / per_ray], &tb8[i], INF).mask
+    });
+    let within = agree_with(Question::Within, &|i| {
+        ray_triangle_batch_in(&t.prepared[i / per_ray], &tb8[i], all).mask
+    });
+    let floor_t_sum = |h: Option<floor_batch::FloorHits>| {
+        h.map_or(0, |h| {
+            (0..8)
+                .filter(|l| h.mask >> l & 1 != 0)
+                .map(|l| bits(h.t[l]))
+                .sum()
+        })
+    };
+    let w = "groups of 8";
+    out.extend([
+        kernel(
+            sec,
+            "floor: batch, 8 lanes, AVX2 + the guarantee's checks",
+            w,
+            t.tris.len(),
+            Some(plain),
+            chunked(&t.floor_rays, fb8, per_ray, move |r, x| {
+                floor_t_sum(floor_batch(Question::UpTo, r, x, 0.0, INF))
+            }),
+        ),
+        kernel(
+            sec,
+            "floor: batch_in, 8 lanes, AVX2 + the guarantee's checks, (0, inf]",
+            w,
+            t.tris.len(),
+            Some(within),
+            chunked(&t.floor_rays, fb8, per_ray, move |r, x| {
+                floor_t_sum(floor_batch(Question::Within, r, x, 0.0, INF))
             }),
         ),
     ]);
@@ -2432,6 +2499,12 @@ fn main() {
         .chunks(8)
         .map(|c| TriangleBatch::from_slice(c).expect("8"))
         .collect();
+    #[cfg(target_arch = "x86_64")]
+    let fb8: Vec<floor_batch::FloorBatch> = gt
+        .tris
+        .chunks(8)
+        .map(floor_batch::FloorBatch::new)
+        .collect();
     let sweep = Sweep::new();
     let cameras = CameraData::new();
     let camera_set = Cameras {
@@ -2452,6 +2525,8 @@ fn main() {
         triangle_kernels(d, &mut kernels);
     }
     group_kernels(&gb, &bb4, &bb8, &gt, &tb4, &tb8, &mut kernels);
+    #[cfg(target_arch = "x86_64")]
+    batch_floor_kernels(&gt, &tb8, &fb8, &mut kernels);
     sweep_kernels(&sweep, &mut kernels);
     for d in &cwbvh_data {
         cwbvh_kernels(d, &mut kernels);
