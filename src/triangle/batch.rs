@@ -441,7 +441,12 @@ fn triangle_batch_body<W: Lanes8<F = S<V>>, V: Vector, const N: usize>(
         let zero_edge = W::or(e_min.eq(lo), e_max.eq(lo));
         if W::bits(W::and_not(all, outside)) == 0 {
             // Every lane outside (most rays miss most triangles of a leaf):
-            // nothing more to compute for this chunk.
+            // nothing more to compute for this chunk, and with one chunk,
+            // nothing to do but return (so the answer is written once,
+            // not kept on the stack for the end).
+            if N <= 8 {
+                return out;
+            }
             continue;
         }
         let det = e0.add(e1).add(e2);
@@ -502,7 +507,7 @@ fn triangle_batch_body<W: Lanes8<F = S<V>>, V: Vector, const N: usize>(
     out.front = if ray_front { !front & hit } else { front & hit };
     let slow = slow & used;
     if slow != 0 {
-        slow_lanes(ray, batch, t_max, slow, &mut out);
+        out = slow_lanes(ray, batch, t_max, slow, out);
     }
     out
 }
@@ -517,12 +522,12 @@ fn slow_lanes<V: Vector, const N: usize>(
     batch: &TriangleBatch<V, N>,
     t_max: S<V>,
     slow: u32,
-    out: &mut TriangleBatchHits<S<V>, N>,
-) {
+    out: TriangleBatchHits<S<V>, N>,
+) -> TriangleBatchHits<S<V>, N> {
     let (origin, shear) = (ray.origin(), ray.shear());
     scalar_lanes(batch, slow, false, out, |tri| {
         watertight_definition(origin, &shear, tri, t_max, EdgeRule::Closed)
-    });
+    })
 }
 
 /// The lanes in `slow` of a batch answer from the scalar `test` on each
@@ -533,9 +538,9 @@ fn scalar_lanes<V: Vector, const N: usize>(
     batch: &TriangleBatch<V, N>,
     mut slow: u32,
     any: bool,
-    out: &mut TriangleBatchHits<S<V>, N>,
+    mut out: TriangleBatchHits<S<V>, N>,
     test: impl Fn(&Triangle<V>) -> Option<TriangleHit<S<V>>>,
-) {
+) -> TriangleBatchHits<S<V>, N> {
     while slow != 0 {
         let l = slow.trailing_zeros() as usize;
         slow &= slow - 1;
@@ -551,6 +556,7 @@ fn scalar_lanes<V: Vector, const N: usize>(
             }
         }
     }
+    out
 }
 
 /// [`ray_triangle_batch_in`] (`ANY = false`) and
@@ -603,8 +609,7 @@ fn triangle_batch_in_body<W: Lanes8<F = S<V>>, V: Vector, const N: usize, const 
     if !window.usable {
         // Every lane to the scalar test (a direction near the ends of the
         // float range).
-        slow_lanes_in(ray, batch, interval, batch.used, ANY, &mut out);
-        return out;
+        return slow_lanes_in(ray, batch, interval, batch.used, ANY, out);
     }
     let frame = RayLanes::<W>::new(ray);
     let splat = W::splat;
@@ -624,6 +629,10 @@ fn triangle_batch_in_body<W: Lanes8<F = S<V>>, V: Vector, const N: usize, const 
         let (outside, e_min, e_max) = outside([e0, e1, e2], lo);
         let inside = W::and_not(all, outside);
         if W::bits(inside) == 0 {
+            // (As in `triangle_batch_body`.)
+            if N <= 8 {
+                return out;
+            }
             continue;
         }
         let [(x0, y0, pz0), (_, _, pz1), (_, _, pz2)] = corners;
@@ -681,7 +690,7 @@ fn triangle_batch_in_body<W: Lanes8<F = S<V>>, V: Vector, const N: usize, const 
     };
     let slow = slow & batch.used;
     if slow != 0 {
-        slow_lanes_in(ray, batch, interval, slow, ANY, &mut out);
+        out = slow_lanes_in(ray, batch, interval, slow, ANY, out);
     }
     out
 }
@@ -698,12 +707,12 @@ fn slow_lanes_in<V: Vector, const N: usize>(
     interval: Interval<S<V>>,
     slow: u32,
     any: bool,
-    out: &mut TriangleBatchHits<S<V>, N>,
-) {
+    out: TriangleBatchHits<S<V>, N>,
+) -> TriangleBatchHits<S<V>, N> {
     let (origin, shear) = (ray.origin(), ray.shear());
     scalar_lanes(batch, slow, any, out, |tri| {
         watertight_in(origin, ray.dir, &shear, tri, interval, EdgeRule::Closed)
-    });
+    })
 }
 
 /// [`ray_triangle_batch`] over an interval: lane by lane, bit for bit what

@@ -85,28 +85,35 @@ fn stub(slow: i32) {
     std::hint::black_box(slow);
 }
 
+/// Whether the floors can run here (they need AVX2).
+pub fn available() -> bool {
+    std::arch::is_x86_feature_detected!("avx2")
+}
+
 /// The floor for `question` on one ray and eight triangles, over `(lo,
-/// hi]` (`lo` is zero for [`Question::UpTo`]); `None` without AVX2.
-pub fn floor_batch(
-    question: Question,
-    r: &FloorRay,
-    b: &FloorBatch,
-    lo: f32,
-    hi: f32,
-) -> Option<FloorHits> {
-    if !std::arch::is_x86_feature_detected!("avx2") {
-        return None;
-    }
-    // SAFETY: the CPU has AVX2 (detected above), the one precondition of
+/// hi]` (`lo` is zero for [`Question::UpTo`]).
+///
+/// # Panics
+///
+/// Without AVX2 ([`available`]).
+#[inline(always)]
+pub fn floor_batch(question: Question, r: &FloorRay, b: &FloorBatch, lo: f32, hi: f32) -> FloorHits {
+    assert!(AVX2.with(|a| *a), "the floors need AVX2");
+    // SAFETY: the CPU has AVX2 (asserted above), the one precondition of
     // calling a function compiled with it; its loads and stores are of
     // 32-byte aligned arrays of eight floats (`FloorBatch` and `FloorHits`
     // are `align(32)`, their arrays at multiples of 32 bytes).
-    Some(unsafe {
+    unsafe {
         match question {
             Question::UpTo => floor_avx2::<false>(r, b, lo, hi),
             Question::Within => floor_avx2::<true>(r, b, lo, hi),
         }
-    })
+    }
+}
+
+thread_local! {
+    /// [`available`], asked once per thread.
+    static AVX2: bool = available();
 }
 
 #[target_feature(enable = "avx2")]

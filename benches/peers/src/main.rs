@@ -1151,12 +1151,15 @@ fn batch_floor_kernels<'a>(
     out: &mut Vec<Kernel<'a>>,
 ) {
     use floor_batch::{Question, floor_batch};
+    if !floor_batch::available() {
+        return;
+    }
     let sec = "triangle x8";
     let all = Interval::up_to(INF).expect("(0, inf]");
     let per_ray = GROUP / 8;
     let lanes = |m: u32| (0..8).map(move |l| m >> l & 1 != 0);
     let floor_mask = |q, i: usize| {
-        floor_batch(q, &t.floor_rays[i / per_ray], &fb8[i], 0.0, INF).map_or(0, |h| h.mask)
+        floor_batch(q, &t.floor_rays[i / per_ray], &fb8[i], 0.0, INF).mask
     };
     let agree_with = |q, ours: &dyn Fn(usize) -> u32| {
         agree(
@@ -1170,13 +1173,14 @@ fn batch_floor_kernels<'a>(
     let within = agree_with(Question::Within, &|i| {
         ray_triangle_batch_in(&t.prepared[i / per_ray], &tb8[i], all).mask
     });
-    let floor_t_sum = |h: Option<floor_batch::FloorHits>| {
-        h.map_or(0, |h| {
-            (0..8)
-                .filter(|l| h.mask >> l & 1 != 0)
-                .map(|l| bits(h.t[l]))
-                .sum()
-        })
+    // (As `batch_t_sum` sums a batch's.)
+    let floor_t_sum = |h: floor_batch::FloorHits| {
+        let (mut c, mut m) = (0, h.mask);
+        while m != 0 {
+            c += bits(h.t[m.trailing_zeros() as usize]);
+            m &= m - 1;
+        }
+        c
     };
     let w = "groups of 8";
     out.extend([
