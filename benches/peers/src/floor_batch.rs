@@ -97,7 +97,13 @@ pub fn available() -> bool {
 ///
 /// Without AVX2 ([`available`]).
 #[inline(always)]
-pub fn floor_batch(question: Question, r: &FloorRay, b: &FloorBatch, lo: f32, hi: f32) -> FloorHits {
+pub fn floor_batch(
+    question: Question,
+    r: &FloorRay,
+    b: &FloorBatch,
+    lo: f32,
+    hi: f32,
+) -> FloorHits {
     assert!(AVX2.with(|a| *a), "the floors need AVX2");
     // SAFETY: the CPU has AVX2 (asserted above), the one precondition of
     // calling a function compiled with it; its loads and stores are of

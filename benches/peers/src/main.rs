@@ -500,10 +500,15 @@ fn nearest<'a, R, X>(
 
 /// The checksum of a triangle batch's hits: every hit lane's `t`.
 fn batch_t_sum<const N: usize>(h: &TriangleBatchHits<f32, N>) -> u64 {
+    lanes_t_sum(h.mask, &h.t)
+}
+
+/// The checksum of the `t` of the lanes set in `mask`.
+fn lanes_t_sum(mask: u32, t: &[f32]) -> u64 {
     let mut c = 0;
-    let mut m = h.mask;
+    let mut m = mask;
     while m != 0 {
-        c += bits(h.t[m.trailing_zeros() as usize]);
+        c += bits(t[m.trailing_zeros() as usize]);
         m &= m - 1;
     }
     c
@@ -1158,9 +1163,8 @@ fn batch_floor_kernels<'a>(
     let all = Interval::up_to(INF).expect("(0, inf]");
     let per_ray = GROUP / 8;
     let lanes = |m: u32| (0..8).map(move |l| m >> l & 1 != 0);
-    let floor_mask = |q, i: usize| {
-        floor_batch(q, &t.floor_rays[i / per_ray], &fb8[i], 0.0, INF).mask
-    };
+    let floor_mask =
+        |q, i: usize| floor_batch(q, &t.floor_rays[i / per_ray], &fb8[i], 0.0, INF).mask;
     let agree_with = |q, ours: &dyn Fn(usize) -> u32| {
         agree(
             (0..fb8.len()).flat_map(|i| lanes(ours(i))),
@@ -1173,36 +1177,30 @@ fn batch_floor_kernels<'a>(
     let within = agree_with(Question::Within, &|i| {
         ray_triangle_batch_in(&t.prepared[i / per_ray], &tb8[i], all).mask
     });
-    // (As `batch_t_sum` sums a batch's.)
-    let floor_t_sum = |h: floor_batch::FloorHits| {
-        let (mut c, mut m) = (0, h.mask);
-        while m != 0 {
-            c += bits(h.t[m.trailing_zeros() as usize]);
-            m &= m - 1;
-        }
-        c
-    };
     let w = "groups of 8";
+    let row = |q, name: &str, agreement| {
+        kernel(
+            sec,
+            name,
+            w,
+            t.tris.len(),
+            Some(agreement),
+            chunked(&t.floor_rays, fb8, per_ray, move |r, x| {
+                let h = floor_batch(q, r, x, 0.0, INF);
+                lanes_t_sum(h.mask, &h.t)
+            }),
+        )
+    };
     out.extend([
-        kernel(
-            sec,
+        row(
+            Question::UpTo,
             "floor: batch, 8 lanes, AVX2 + the guarantee's checks",
-            w,
-            t.tris.len(),
-            Some(plain),
-            chunked(&t.floor_rays, fb8, per_ray, move |r, x| {
-                floor_t_sum(floor_batch(Question::UpTo, r, x, 0.0, INF))
-            }),
+            plain,
         ),
-        kernel(
-            sec,
+        row(
+            Question::Within,
             "floor: batch_in, 8 lanes, AVX2 + the guarantee's checks, (0, inf]",
-            w,
-            t.tris.len(),
-            Some(within),
-            chunked(&t.floor_rays, fb8, per_ray, move |r, x| {
-                floor_t_sum(floor_batch(Question::Within, r, x, 0.0, INF))
-            }),
+            within,
         ),
     ]);
 }
