@@ -81,10 +81,7 @@ impl<V: Vector> Ray<V> {
         // comparisons on lanes: `|c| <= MAX` is false exactly for the
         // infinities and NaN.
         let lanes = |v: V| L::<V>::new(v.x(), v.y(), v.z());
-        let (o, d) = (lanes(self.origin), lanes(self.dir));
-        let big = L::<V>::splat(S::<V>::MAX);
-        let finite = o.abs().le(big) & d.abs().le(big) == 0b111;
-        finite & (d.eq(L::<V>::splat(S::<V>::ZERO)) != 0b111)
+        valid_lanes::<V>(lanes(self.origin), lanes(self.dir))
     }
 }
 
@@ -93,6 +90,14 @@ impl<V: Vector> Ray<V> {
 #[inline(always)]
 pub(crate) fn t_max_ok<F: Scalar>(t_max: F) -> bool {
     t_max >= F::ZERO
+}
+
+/// [`Ray::is_valid`] of the ray from `o` along `d`, given in lanes 0 to 2.
+#[inline(always)]
+pub(crate) fn valid_lanes<V: Vector>(o: L<V>, d: L<V>) -> bool {
+    let big = L::<V>::splat(S::<V>::MAX);
+    let finite = o.abs().le(big) & d.abs().le(big) == 0b111;
+    finite & (d.eq(L::<V>::splat(S::<V>::ZERO)) != 0b111)
 }
 
 /// The ray every invalid ray is prepared as: from `(+inf, +inf, +inf)`

@@ -3,7 +3,7 @@
 
 use glam::Vec3;
 
-use super::{Ray, Shear, SlabRay, invalid_stand_in};
+use super::{Ray, Shear, SlabRay, invalid_stand_in, valid_lanes};
 use crate::num::{Axis, L, Lanes, S, Scalar, Vector};
 
 /// A ray prepared for many box and triangle tests: its origin and, per
@@ -89,17 +89,45 @@ impl<V: Vector> PreparedRay<V> {
     #[inline]
     #[must_use]
     pub fn new(ray: &Ray<V>) -> Self {
-        let stand_in = invalid_stand_in();
-        let valid = if ray.is_valid() { ray } else { &stand_in };
-        let shear = Shear::<S<V>>::new(&valid.dir);
-        let (slab, simple) = SlabRay::new(ray);
+        // From the ray's components in lanes, and a branch to the invalid
+        // ray's preparation, not a choice between two rays: choosing a
+        // reference, or a whole ray, made the compiler store a ray it had
+        // just computed (a ray mapped into an instance, say) and load it
+        // back in pieces that straddle its stores, a store-forwarding
+        // stall each time (10 ns of the instance row's 30 in
+        // `benches/peers`).
+        let lanes = |v: V| L::<V>::new(v.x(), v.y(), v.z());
+        let (origin, dir) = (lanes(ray.origin), lanes(ray.dir));
+        if valid_lanes::<V>(origin, dir) {
+            Self::build(origin.to_array(), dir.to_array())
+        } else {
+            Self::invalid()
+        }
+    }
+
+    /// Every invalid ray's preparation: that of [`invalid_stand_in`].
+    #[cold]
+    #[inline(never)]
+    fn invalid() -> Self {
+        let ray = invalid_stand_in::<V>();
+        let array = |v: V| [v.x(), v.y(), v.z()];
+        Self::build(array(ray.origin), array(ray.dir))
+    }
+
+    /// The preparation of the ray from `o` along `d`, valid or the
+    /// stand-in.
+    #[inline(always)]
+    fn build(o: [S<V>; 3], d: [S<V>; 3]) -> Self {
+        let shear = Shear::<S<V>>::of(d);
+        let lanes = |[x, y, z]: [S<V>; 3]| L::<V>::new(x, y, z);
+        let (slab, simple) = SlabRay::of(lanes(o), lanes(d));
         Self {
             slab,
             simple,
             shear_lanes: shear.lanes(),
-            origin_lanes: shear.origin_lanes(valid.origin),
+            origin_lanes: shear.origin_lanes_of(o),
             axes: [shear.kx, shear.ky, shear.kz],
-            dir: valid.dir,
+            dir: V::new(d[0], d[1], d[2]),
         }
     }
 

@@ -46,14 +46,19 @@ pub(crate) fn largest_axis<F: Scalar>(a: [F; 3]) -> usize {
 impl<F: Scalar> Shear<F> {
     #[inline(always)]
     pub(crate) fn new<V: Vector<Scalar = F>>(dir: &V) -> Self {
-        let a = dir.abs();
-        let k = largest_axis([a.x(), a.y(), a.z()]);
+        Self::of([dir.x(), dir.y(), dir.z()])
+    }
+
+    /// [`Shear::new`] of the direction `d`, given as its components.
+    #[inline(always)]
+    pub(crate) fn of(d: [F; 3]) -> Self {
+        let k = largest_axis(d.map(F::abs));
         let (kz, kx, ky) = (
             Axis::from_index(k),
             Axis::from_index(if k == 2 { 0 } else { k + 1 }),
             Axis::from_index(if k == 0 { 2 } else { k - 1 }),
         );
-        let (dx, dy, dz) = (dir.get(kx), dir.get(ky), dir.get(kz));
+        let (dx, dy, dz) = (d[kx as usize], d[ky as usize], d[kz as usize]);
         // Three quotients, each rounded once, in one division of lanes.
         let q = F::L4::new(-dx, -dy, F::ONE).div(F::L4::splat(dz));
         let [sx, sy, sz] = q.to_array();
@@ -89,7 +94,17 @@ impl<F: Scalar> Shear<F> {
     /// the lanes form of the test subtracts from the corners.
     #[inline(always)]
     pub(crate) fn origin_lanes<V: Vector<Scalar = F>>(&self, origin: V) -> [F::L4; 3] {
-        let (x, y, z) = self.permute(origin);
+        self.origin_lanes_of([origin.x(), origin.y(), origin.z()])
+    }
+
+    /// [`Shear::origin_lanes`] of the origin's components.
+    #[inline(always)]
+    pub(crate) fn origin_lanes_of(&self, o: [F; 3]) -> [F::L4; 3] {
+        let (x, y, z) = (
+            o[self.kx as usize],
+            o[self.ky as usize],
+            o[self.kz as usize],
+        );
         [F::L4::splat(x), F::L4::splat(y), F::L4::splat(z)]
     }
 }

@@ -31,19 +31,19 @@ impl<V: Vector> SlabRay<V> {
     /// hot loop.
     #[inline(always)]
     pub(crate) fn new(ray: &Ray<V>) -> (Self, bool) {
+        let lanes = |v: V| L::<V>::new(v.x(), v.y(), v.z());
         if !ray.is_valid() {
-            return Self::of(&invalid_stand_in());
+            let stand_in = invalid_stand_in::<V>();
+            return Self::of(lanes(stand_in.origin), lanes(stand_in.dir));
         }
-        Self::of(ray)
+        Self::of(lanes(ray.origin), lanes(ray.dir))
     }
 
     /// The preparation itself, for a ray that is valid or the stand-in for
-    /// an invalid one.
+    /// an invalid one, given as lanes.
     #[inline(always)]
-    fn of(ray: &Ray<V>) -> (Self, bool) {
-        let lanes = |v: V| L::<V>::new(v.x(), v.y(), v.z());
+    pub(crate) fn of(origin: L<V>, dir: L<V>) -> (Self, bool) {
         let (one, zero) = (L::<V>::splat(S::<V>::ONE), L::<V>::splat(S::<V>::ZERO));
-        let (origin, dir) = (lanes(ray.origin), lanes(ray.dir));
         let r = one.div(dir);
         // Where every reciprocal is a normal float (or an exact infinity,
         // from d = +-0), both planes use it.
@@ -58,7 +58,7 @@ impl<V: Vector> SlabRay<V> {
             };
             return (slab, normal == 0b111);
         }
-        (Self::stepped(origin, ray.dir), false)
+        (Self::stepped(origin, dir), false)
     }
 
     /// The rare case of [`SlabRay::new`]: some reciprocal is subnormal or
@@ -76,7 +76,7 @@ impl<V: Vector> SlabRay<V> {
     /// within `15u`.
     #[cold]
     #[inline(never)]
-    fn stepped(origin: L<V>, dir: V) -> Self {
+    fn stepped(origin: L<V>, dir: L<V>) -> Self {
         // Stepping: for d > 0 the min plane is the entry (wants the smaller
         // magnitude, r stepped down) and the max plane the exit (r stepped
         // up). For d < 0, r is negative and the roles swap, and stepping
@@ -92,9 +92,10 @@ impl<V: Vector> SlabRay<V> {
                 (r.next_down(), r.next_up())
             }
         };
-        let (x0, x1) = axis(dir.x());
-        let (y0, y1) = axis(dir.y());
-        let (z0, z1) = axis(dir.z());
+        let [dx, dy, dz] = dir.to_array();
+        let (x0, x1) = axis(dx);
+        let (y0, y1) = axis(dy);
+        let (z0, z1) = axis(dz);
         Self {
             origin,
             inv_to_min: L::<V>::new(x0, y0, z0),
