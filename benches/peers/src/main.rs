@@ -1629,6 +1629,8 @@ struct InstanceData {
     instances: Vec<rayhit::Instance>,
     inverses: Vec<rayhit::glam::Affine3A>,
     normal_maps: Vec<rayhit::glam::Mat3A>,
+    /// The same placements as [`SurfaceFloor`] holds them.
+    surface_floors: Vec<SurfaceFloor>,
     rays: Vec<Ray>,
     hits: Vec<rayhit::SurfacePoint>,
 }
@@ -1640,6 +1642,7 @@ impl InstanceData {
         let mut instances = Vec::new();
         let mut inverses = Vec::new();
         let mut normal_maps = Vec::new();
+        let mut surface_floors = Vec::new();
         while instances.len() < 64 {
             let q = Quat::from_axis_angle(rng.sphere(), rng.range(0.0, core::f32::consts::TAU));
             let scale = Vec3::new(
@@ -1658,6 +1661,7 @@ impl InstanceData {
                 instances.push(inst);
                 inverses.push(place.inverse());
                 normal_maps.push(place.matrix3.inverse().transpose());
+                surface_floors.push(SurfaceFloor::new(&place));
             }
         }
         let rays = (0..64)
@@ -1679,8 +1683,70 @@ impl InstanceData {
             instances,
             inverses,
             normal_maps,
+            surface_floors,
             rays,
             hits,
+        }
+    }
+}
+
+/// The floor for `Instance::surface_to_world`: the same point, normal and
+/// error bounds (the point's `|M| (e + g(4)|p|) + c`, the normal's `|A^T|
+/// (g(3)|n| + eta)`, the largest of `|A^T n| + s` times a residual),
+/// written with glam's `Mat3A` and `Vec3A` and nothing else: the plain
+/// transform's two matrix products and the bounds' two more, a maximum and
+/// a few products and sums. The constants stand in for the instance's
+/// (same shapes, plausible values), so it is timed, not compared.
+struct SurfaceFloor {
+    m: rayhit::glam::Mat3A,
+    m_abs: rayhit::glam::Mat3A,
+    t: Vec3A,
+    c_point: Vec3A,
+    a_t: rayhit::glam::Mat3A,
+    a_t_abs: rayhit::glam::Mat3A,
+    residual: Vec3A,
+    tiny: Vec3A,
+}
+
+impl SurfaceFloor {
+    fn new(place: &rayhit::glam::Affine3A) -> Self {
+        use rayhit::glam::Mat3A;
+        let abs = |m: Mat3A| Mat3A::from_cols(m.x_axis.abs(), m.y_axis.abs(), m.z_axis.abs());
+        let a_t = place.matrix3.inverse().transpose();
+        let u = f32::EPSILON / 2.0;
+        Self {
+            m: place.matrix3,
+            m_abs: abs(place.matrix3),
+            t: place.translation,
+            c_point: place.translation.abs() * (5.0 * u),
+            a_t,
+            a_t_abs: abs(a_t),
+            residual: Vec3A::splat(8.0 * u),
+            tiny: Vec3A::splat(f32::MIN_POSITIVE),
+        }
+    }
+
+    #[inline(always)]
+    fn surface_to_world(&self, h: &rayhit::SurfacePoint) -> rayhit::SurfacePoint {
+        let u = f32::EPSILON / 2.0;
+        let (g3, g4) = (3.0 * u / (1.0 - 3.0 * u), 4.0 * u / (1.0 - 4.0 * u));
+        let (up6, up7) = (1.0 + 7.0 * u, 1.0 + 8.0 * u);
+        let (p, n) = (Vec3A::from(h.point), Vec3A::from(h.normal));
+        let (e, eta) = (
+            Vec3A::from(h.point_error).abs(),
+            Vec3A::from(h.normal_error).abs(),
+        );
+        let point = self.m * p + self.t;
+        let point_error = (self.m_abs * (p.abs() * g4 + e) + self.c_point) * up6;
+        let normal = self.a_t * n;
+        let s = self.a_t_abs * (n.abs() * g3 + eta);
+        let w = (normal.abs() + s) * up6;
+        let normal_error = (s + self.residual * w.max_element() + self.tiny) * up7;
+        rayhit::SurfacePoint {
+            point: point.into(),
+            point_error: point_error.into(),
+            normal: normal.into(),
+            normal_error: normal_error.into(),
         }
     }
 }
@@ -1767,6 +1833,19 @@ fn instance_kernels<'a>(d: &'a InstanceData, out: &mut Vec<Kernel<'a>>) {
                 &d.instances,
                 &d.hits,
                 |i, h| i.surface_to_world(h),
+                point_sum,
+            ),
+        ),
+        kernel(
+            "instance",
+            "floor: surface_to_world's bounds with glam Mat3A",
+            "pairs",
+            n,
+            None,
+            over_pairs(
+                &d.surface_floors,
+                &d.hits,
+                |f, h| f.surface_to_world(h),
                 point_sum,
             ),
         ),
