@@ -6,7 +6,7 @@
 use super::definition::{exit_slack, exit_widening};
 use super::{SlabBox, sealed as sealed_check};
 use crate::num::round::at_most;
-use crate::num::{L, Lanes, S, Scalar, Vector};
+use crate::num::{L, Lanes, S, Scalar, Vector, lanes};
 use crate::ray::{Interval, PreparedRay, Ray, SlabRay, t_max_ok};
 
 /// The slab test on a prepared ray: the part of `[0, t_max]` the ray spends
@@ -71,7 +71,6 @@ fn slab_test<V: Vector, B: SlabBox<V>>(
 ) -> Option<(S<V>, S<V>)> {
     let aabb = aabb.corners();
     let splat = L::<V>::splat;
-    let lanes = |v: V| L::<V>::new(v.x(), v.y(), v.z());
     // (Lane 3 is never read. Where a vector is its three components and
     // nothing more (`Vec3`, `DVec3`, not `Vec3A`), the maximum's `x` is
     // stored right after the minimum's `z`: filling lane 3 with it lets the

@@ -37,7 +37,7 @@ use core::fmt;
 
 use glam::{Affine3A, DAffine3, DVec3, Vec3, Vec3A};
 
-use crate::num::{L, Lanes, S, Scalar, Vector};
+use crate::num::{L, Lanes, S, Scalar, Vector, vector};
 
 pub use ray::InstanceRayError;
 
@@ -352,19 +352,6 @@ impl TryFrom<DAffine3> for Instance<DVec3> {
     fn try_from(affine: DAffine3) -> Result<Self, InstanceError> {
         Self::from_daffine3(affine)
     }
-}
-
-/// `v` in lanes 0 to 2 (lane 3 repeats `z`).
-#[inline(always)]
-pub(crate) fn lanes<V: Vector>(v: V) -> L<V> {
-    L::<V>::new(v.x(), v.y(), v.z())
-}
-
-/// Lanes 0 to 2 as a vector.
-#[inline(always)]
-pub(crate) fn vector<V: Vector>(l: L<V>) -> V {
-    let [x, y, z] = l.to_array();
-    V::new(x, y, z)
 }
 
 /// The matrix with columns `cols` times `v`: per component, bit for bit

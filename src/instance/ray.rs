@@ -27,10 +27,11 @@
 //! ray's `t` up to this bound, and a hit at object `t` is a world hit at
 //! the same `t`. Evaluating the bound rounds up (`abs_apply_up`).
 
-use super::{Instance, abs_apply_up, apply, lanes, load3, vector};
+use super::{Instance, abs_apply_up, apply, load3};
 use crate::Ray;
 use crate::num::round::bound_up;
 use crate::num::{Lanes, S, Scalar, Vector};
+use crate::num::{lanes, vector};
 
 /// A bound on how far a world ray and its object ray
 /// ([`Instance::world_to_object`]) are apart at the same `t`: per

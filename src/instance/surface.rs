@@ -84,9 +84,10 @@
 //! [`SurfacePoint`]: crate::SurfacePoint
 //! [`offset_ray_origin`]: crate::offset_ray_origin
 
-use super::{Instance, apply, bound_up_l, lanes, load3, vector};
+use super::{Instance, apply, bound_up_l, load3};
 use crate::num::round::{bound_up, max2};
 use crate::num::{L, Lanes, S, Scalar, Vector};
+use crate::num::{lanes, vector};
 use crate::ray::Interval;
 use crate::surface::{RayMapBound, segment, settle};
 use crate::{Ray, SurfacePoint, offset_ray_origin};

@@ -32,3 +32,16 @@ pub(crate) use vector::{unit, unit_and_inverse_length, unit_near};
 pub(crate) type S<V> = <V as Vector>::Scalar;
 /// The four-lane type of the vector type `V`'s scalar.
 pub(crate) type L<V> = <S<V> as Repr>::L4;
+
+/// `v` in lanes 0 to 2 (lane 3 repeats `z`).
+#[inline(always)]
+pub(crate) fn lanes<V: Vector>(v: V) -> L<V> {
+    L::<V>::new(v.x(), v.y(), v.z())
+}
+
+/// Lanes 0 to 2 as a vector.
+#[inline(always)]
+pub(crate) fn vector<V: Vector>(l: L<V>) -> V {
+    let [x, y, z] = l.to_array();
+    V::new(x, y, z)
+}

@@ -21,7 +21,7 @@ mod slab;
 
 use glam::Vec3;
 
-use crate::num::{L, Lanes, S, Scalar, Vector};
+use crate::num::{L, Lanes, S, Scalar, Vector, lanes};
 
 pub(crate) use crossing::{crossing_in, t_error};
 pub use interval::Interval;
@@ -80,7 +80,6 @@ impl<V: Vector> Ray<V> {
         // `origin.is_finite() && dir.is_finite() && dir != 0`, written as
         // comparisons on lanes: `|c| <= MAX` is false exactly for the
         // infinities and NaN.
-        let lanes = |v: V| L::<V>::new(v.x(), v.y(), v.z());
         valid_lanes::<V>(lanes(self.origin), lanes(self.dir))
     }
 }

@@ -4,7 +4,7 @@
 use glam::Vec3;
 
 use super::{Ray, Shear, SlabRay, invalid_stand_in, valid_lanes};
-use crate::num::{Axis, L, Lanes, S, Scalar, Vector};
+use crate::num::{Axis, L, Lanes, S, Scalar, Vector, lanes};
 
 /// A ray prepared for many box and triangle tests: its origin and, per
 /// axis, the reciprocal of its direction rounded down and rounded up in
@@ -96,10 +96,9 @@ impl<V: Vector> PreparedRay<V> {
         // back in pieces that straddle its stores, a store-forwarding
         // stall each time (10 ns of the instance row's 30 in
         // `benches/peers`).
-        let lanes = |v: V| L::<V>::new(v.x(), v.y(), v.z());
         let (origin, dir) = (lanes(ray.origin), lanes(ray.dir));
         if valid_lanes::<V>(origin, dir) {
-            Self::build(origin.to_array(), dir.to_array())
+            Self::build(origin, dir)
         } else {
             Self::invalid()
         }
@@ -110,17 +109,16 @@ impl<V: Vector> PreparedRay<V> {
     #[inline(never)]
     fn invalid() -> Self {
         let ray = invalid_stand_in::<V>();
-        let array = |v: V| [v.x(), v.y(), v.z()];
-        Self::build(array(ray.origin), array(ray.dir))
+        Self::build(lanes(ray.origin), lanes(ray.dir))
     }
 
-    /// The preparation of the ray from `o` along `d`, valid or the
-    /// stand-in.
+    /// The preparation of the ray from `origin` along `dir` (lanes 0 to
+    /// 2; lane 3 as [`lanes`] puts it), valid or the stand-in.
     #[inline(always)]
-    fn build(o: [S<V>; 3], d: [S<V>; 3]) -> Self {
+    fn build(origin: L<V>, dir: L<V>) -> Self {
+        let (o, d) = (origin.to_array(), dir.to_array());
         let shear = Shear::<S<V>>::of(d);
-        let lanes = |[x, y, z]: [S<V>; 3]| L::<V>::new(x, y, z);
-        let (slab, simple) = SlabRay::of(lanes(o), lanes(d));
+        let (slab, simple) = SlabRay::of(origin, dir);
         Self {
             slab,
             simple,

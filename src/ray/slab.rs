@@ -3,7 +3,7 @@
 //! conservative.
 
 use super::{Ray, invalid_stand_in};
-use crate::num::{L, Lanes, S, Scalar, Vector};
+use crate::num::{L, Lanes, S, Scalar, Vector, lanes};
 
 /// The slab test's per-ray data, in lanes: see `PreparedRay::new`.
 #[derive(Clone, Copy, Debug)]
@@ -31,7 +31,6 @@ impl<V: Vector> SlabRay<V> {
     /// hot loop.
     #[inline(always)]
     pub(crate) fn new(ray: &Ray<V>) -> (Self, bool) {
-        let lanes = |v: V| L::<V>::new(v.x(), v.y(), v.z());
         if !ray.is_valid() {
             let stand_in = invalid_stand_in::<V>();
             return Self::of(lanes(stand_in.origin), lanes(stand_in.dir));

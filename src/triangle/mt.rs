@@ -4,7 +4,7 @@
 
 use super::{Side, Triangle, TriangleHit};
 use crate::num::round::{bound_up, min2};
-use crate::num::{Bits, L, Lanes, Repr, S, Scalar, Vector};
+use crate::num::{Bits, Lanes, Repr, S, Scalar, Vector, lanes};
 use crate::ray::Ray;
 
 /// Moller-Trumbore ray/triangle test: the fast path.
@@ -44,7 +44,6 @@ pub fn ray_triangle_mt<V: Vector>(
     // `det = 0`, so `u` is NaN or infinite, a NaN or infinite coordinate
     // makes `det` or `u`, `v`, `t` NaN or infinite, and each fails a range
     // test, as does a NaN or negative `t_max`.
-    let lanes = |v: V| L::<V>::new(v.x(), v.y(), v.z());
     let (a, d) = (lanes(tri.a), lanes(ray.dir));
     let e1 = lanes(tri.b).sub(a);
     let e2 = lanes(tri.c).sub(a);

@@ -9,7 +9,7 @@ use super::conditioning::{
 use super::definition::{EdgeRule, watertight_definition};
 use super::{Side, Triangle, TriangleHit};
 use crate::num::round::min2;
-use crate::num::{Axis, Bits, L, Lanes, Repr, S, Scalar, Vector};
+use crate::num::{Axis, Bits, L, Lanes, Repr, S, Scalar, Vector, lanes};
 use crate::ray::{PreparedRay, Ray, Shear, largest_axis, t_max_ok};
 
 /// The watertight test shared by [`ray_triangle`] and
@@ -54,7 +54,6 @@ fn watertight_every_axis<V: Vector>(
     t_max: S<V>,
 ) -> Option<TriangleHit<S<V>>> {
     let splat = L::<V>::splat;
-    let lanes = |v: V| L::<V>::new(v.x(), v.y(), v.z());
     let (zero, one) = (splat(S::<V>::ZERO), splat(S::<V>::ONE));
     let (o, d) = (lanes(ray.origin), lanes(ray.dir));
     let kz = largest_axis(d.abs().to_array());
