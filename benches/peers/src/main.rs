@@ -1982,11 +1982,28 @@ fn over<'a, T: Copy + Default + 'a>(
     let buffer = std::cell::RefCell::new(vec![T::default(); order.len()]);
     move || {
         let mut out = buffer.borrow_mut();
-        for ((p, l), slot) in order.iter().zip(lens).zip(out.iter_mut()) {
-            *slot = f(p.0, p.1, *l);
-        }
+        fill(order, lens, &mut out, &f);
         black_box(&mut *out);
         sum(&out[out.len() / 2])
+    }
+}
+
+/// The camera rows' loop: `f` at every position, into `out`. A function
+/// of its own, as a renderer's loop over a tile writes into a slice it was
+/// given: `out` is then known not to overlap the camera, so the camera's
+/// fields stay in registers and the compiler may compute several rays at
+/// once. (Written inside the closure of [`over`], the buffer behind its
+/// `RefCell` might overlap the camera in the closure as far as the
+/// compiler knows.)
+#[inline(never)]
+fn fill<T>(
+    order: &[(f32, f32)],
+    lens: &[(f32, f32)],
+    out: &mut [T],
+    f: &impl Fn(f32, f32, (f32, f32)) -> T,
+) {
+    for ((p, l), slot) in order.iter().zip(lens).zip(out.iter_mut()) {
+        *slot = f(p.0, p.1, *l);
     }
 }
 
@@ -2102,6 +2119,62 @@ mod camera_refs {
         (origin, p_focus - origin)
     }
 
+    /// The thin lens's floor with what its guarantees need, written
+    /// directly: the floor above, plus per component the grid of the focus
+    /// point (`6` times the binade of `max(|F_i|, M_i)`, `M` a bound on the
+    /// lens points, zero above `MAX / 8`) with the focus point and the lens
+    /// point rounded to it, so that `F - L` is exact; and, with `centre`, the pinhole ray
+    /// (glam's normalised film direction from the eye) for the sample at
+    /// the lens centre, selected.
+    #[inline(always)]
+    #[allow(clippy::too_many_arguments)]
+    pub fn thin_lens_guarantee_floor(
+        pin: &rayhit::PinholeCamera,
+        f: &Frame,
+        radius: f32,
+        focus: f32,
+        lens_bound: Vec3,
+        centre: bool,
+        x: f32,
+        y: f32,
+        s: f32,
+        t: f32,
+    ) -> (Vec3, Vec3) {
+        let k = focus / f.focal;
+        let (dx, dy) = (x - f.w * 0.5, f.h * 0.5 - y);
+        let p_focus = f.eye + f.forward * focus + f.right * (dx * k) + f.up * (dy * k);
+        let (a, b) = (2.0 * s - 1.0, 2.0 * t - 1.0);
+        let wide = a.abs() > b.abs();
+        let (r, n) = if wide { (a, b) } else { (b, a) };
+        let (sin, cos) = quarter(n / if r == 0.0 { 1.0 } else { r } * 0.5);
+        let (la, lb) = if wide {
+            (r * cos, r * sin)
+        } else {
+            (r * sin, r * cos)
+        };
+        let lens = f.eye + f.right * (radius * la) + f.up * (radius * lb);
+        // (Zero above MAX / 8, where the sum would overflow.)
+        let grid_of = |v: f32| {
+            let b = f32::from_bits(v.to_bits() & 0x7f80_0000);
+            if b <= f32::MAX * 0.125 { b * 6.0 } else { 0.0 }
+        };
+        let m = p_focus.abs().max(lens_bound);
+        let grid = Vec3::new(grid_of(m.x), grid_of(m.y), grid_of(m.z));
+        let snap = |v: Vec3| (v + grid) - grid;
+        let (p_focus, origin) = (snap(p_focus), snap(lens));
+        let ray = (origin, p_focus - origin);
+        let pr = pin.ray(x, y);
+        let sel = centre & ((radius == 0.0) | ((a == 0.0) & (b == 0.0)));
+        let pick = |p: Vec3, q: Vec3| {
+            Vec3::new(
+                if sel { p.x } else { q.x },
+                if sel { p.y } else { q.y },
+                if sel { p.z } else { q.z },
+            )
+        };
+        (pick(pr.origin, ray.0), pick(pr.dir, ray.1))
+    }
+
     /// pbrt-v4's equirectangular `SphericalCamera`: the two angles in
     /// radians, `std`'s sines and cosines, the direction in the frame.
     #[inline(always)]
@@ -2189,12 +2262,21 @@ fn camera_reference_kernels<'a>(d: &'a CameraData, out: &mut Vec<Kernel<'a>>) {
     // so that the loops can vectorise.)
     let as_ray = |(o, dir): (Vec3, Vec3)| Ray::new(Vec3::new(o.x, o.y, o.z), dir);
     let thin = move |x, y, l: (f32, f32)| d.thin_lens.ray(x, y, l.0, l.1);
+    let pin = d.pinhole;
+    // A bound on the lens points' coordinates, as the camera's own.
+    let bound = (frame.eye.abs() + (frame.right.abs() + frame.up.abs()) * radius) * (1.0 + 1e-5);
     let agree = [
         camera_agreement(d, thin, |x, y, l| {
             thin_lens_textbook(&frame, radius, focus, x, y, l.0, l.1)
         }),
         camera_agreement(d, thin, |x, y, l| {
             thin_lens_floor(&frame, radius, focus, x, y, l.0, l.1)
+        }),
+        camera_agreement(d, thin, |x, y, l| {
+            thin_lens_guarantee_floor(&pin, &frame, radius, focus, bound, false, x, y, l.0, l.1)
+        }),
+        camera_agreement(d, thin, |x, y, l| {
+            thin_lens_guarantee_floor(&pin, &frame, radius, focus, bound, true, x, y, l.0, l.1)
         }),
         camera_agreement(
             d,
@@ -2219,6 +2301,7 @@ fn camera_reference_kernels<'a>(d: &'a CameraData, out: &mut Vec<Kernel<'a>>) {
                 over(
                     order,
                     lens,
+                    #[inline(always)]
                     move |x, y, l| {
                         as_ray(thin_lens_textbook(&frame, radius, focus, x, y, l.0, l.1))
                     },
@@ -2234,7 +2317,44 @@ fn camera_reference_kernels<'a>(d: &'a CameraData, out: &mut Vec<Kernel<'a>>) {
                 over(
                     order,
                     lens,
+                    #[inline(always)]
                     move |x, y, l| as_ray(thin_lens_floor(&frame, radius, focus, x, y, l.0, l.1)),
+                    ray_sum,
+                ),
+            ),
+            kernel(
+                "camera",
+                "floor thin lens + grid",
+                w,
+                n,
+                Some(agree[2]),
+                over(
+                    order,
+                    lens,
+                    #[inline(always)]
+                    move |x, y, l| {
+                        as_ray(thin_lens_guarantee_floor(
+                            &pin, &frame, radius, focus, bound, false, x, y, l.0, l.1,
+                        ))
+                    },
+                    ray_sum,
+                ),
+            ),
+            kernel(
+                "camera",
+                "floor thin lens + grid + lens-centre ray",
+                w,
+                n,
+                Some(agree[3]),
+                over(
+                    order,
+                    lens,
+                    #[inline(always)]
+                    move |x, y, l| {
+                        as_ray(thin_lens_guarantee_floor(
+                            &pin, &frame, radius, focus, bound, true, x, y, l.0, l.1,
+                        ))
+                    },
                     ray_sum,
                 ),
             ),
@@ -2243,10 +2363,11 @@ fn camera_reference_kernels<'a>(d: &'a CameraData, out: &mut Vec<Kernel<'a>>) {
                 "textbook equirectangular (pbrt-v4, std sin/cos)",
                 w,
                 n,
-                Some(agree[2]),
+                Some(agree[4]),
                 over(
                     order,
                     lens,
+                    #[inline(always)]
                     move |x, y, _| as_ray(equirect_textbook(&equi, x, y)),
                     ray_sum,
                 ),
@@ -2256,10 +2377,11 @@ fn camera_reference_kernels<'a>(d: &'a CameraData, out: &mut Vec<Kernel<'a>>) {
                 "textbook equal area (pbrt-v4, std sin/cos)",
                 w,
                 n,
-                Some(agree[3]),
+                Some(agree[5]),
                 over(
                     order,
                     lens,
+                    #[inline(always)]
                     move |x, y, _| as_ray(equal_area_textbook(&area, x, y)),
                     ray_sum,
                 ),
@@ -2340,62 +2462,84 @@ fn camera_kernels<'a>(
             camera_row(
                 ray(p),
                 ol,
+                #[inline(always)]
                 move |x, y, _| c.get().pinhole.ray(x, y),
                 ray_sum,
             ),
             camera_row(
                 ray(t),
                 ol,
+                #[inline(always)]
                 move |x, y, s| c.get().thin_lens.ray(x, y, s.0, s.1),
                 ray_sum,
             ),
-            camera_row(ray(o), ol, move |x, y, _| c.get().ortho.ray(x, y), ray_sum),
-            camera_row(ray(m), ol, move |x, y, _| c.get().matrix.ray(x, y), ray_sum),
+            camera_row(
+                ray(o),
+                ol,
+                #[inline(always)]
+                move |x, y, _| c.get().ortho.ray(x, y),
+                ray_sum,
+            ),
+            camera_row(
+                ray(m),
+                ol,
+                #[inline(always)]
+                move |x, y, _| c.get().matrix.ray(x, y),
+                ray_sum,
+            ),
             camera_row(
                 ray(e),
                 ol,
+                #[inline(always)]
                 move |x, y, _| c.get().equirect.ray(x, y),
                 ray_sum,
             ),
             camera_row(
                 ray(a),
                 ol,
+                #[inline(always)]
                 move |x, y, _| c.get().equal_area.ray(x, y),
                 ray_sum,
             ),
             camera_row(
                 diff(p),
                 ol,
+                #[inline(always)]
                 move |x, y, _| c.get().pinhole.ray_differential(x, y),
                 diff_sum,
             ),
             camera_row(
                 diff(t),
                 ol,
+                #[inline(always)]
                 move |x, y, s| c.get().thin_lens.ray_differential(x, y, s.0, s.1),
                 diff_sum,
             ),
             camera_row(
                 diff(o),
                 ol,
+                #[inline(always)]
                 move |x, y, _| c.get().ortho.ray_differential(x, y),
                 diff_sum,
             ),
             camera_row(
                 diff(m),
                 ol,
+                #[inline(always)]
                 move |x, y, _| c.get().matrix.ray_differential(x, y),
                 diff_sum,
             ),
             camera_row(
                 diff(e),
                 ol,
+                #[inline(always)]
                 move |x, y, _| c.get().equirect.ray_differential(x, y),
                 diff_sum,
             ),
             camera_row(
                 diff(a),
                 ol,
+                #[inline(always)]
                 move |x, y, _| c.get().equal_area.ray_differential(x, y),
                 diff_sum,
             ),
