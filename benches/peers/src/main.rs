@@ -2547,6 +2547,76 @@ fn camera_kernels<'a>(
     }
 }
 
+/// The differentials' floors: each camera's ray alone, stored as a ray
+/// with differentials whose four derivatives are zero. No ray with
+/// differentials can cost less than computing its ray and writing its 72
+/// bytes, so these rows bound from below what any camera's
+/// `ray_differential` costs in this loop.
+fn differential_floor_kernels<'a>(c: Cameras, d: &'a CameraData, out: &mut Vec<Kernel<'a>>) {
+    let zero = |ray: Ray| RayDifferential {
+        ray,
+        dx_origin: Vec3::ZERO,
+        dx_dir: Vec3::ZERO,
+        dy_origin: Vec3::ZERO,
+        dy_dir: Vec3::ZERO,
+    };
+    let [p, t, o, m, e, a] = CAMERAS;
+    for (w, order) in [("scanline", &d.scanline), ("shuffled", &d.shuffled)] {
+        let ol = (&order[..], &d.lens[..]);
+        let row = |name: &str| {
+            (
+                "camera differentials",
+                format!("floor: {name}::ray with zero differentials"),
+                w,
+            )
+        };
+        out.extend([
+            camera_row(
+                row(p),
+                ol,
+                #[inline(always)]
+                move |x, y, _| zero(c.pinhole.ray(x, y)),
+                diff_sum,
+            ),
+            camera_row(
+                row(t),
+                ol,
+                #[inline(always)]
+                move |x, y, s| zero(c.thin_lens.ray(x, y, s.0, s.1)),
+                diff_sum,
+            ),
+            camera_row(
+                row(o),
+                ol,
+                #[inline(always)]
+                move |x, y, _| zero(c.ortho.ray(x, y)),
+                diff_sum,
+            ),
+            camera_row(
+                row(m),
+                ol,
+                #[inline(always)]
+                move |x, y, _| zero(c.matrix.ray(x, y)),
+                diff_sum,
+            ),
+            camera_row(
+                row(e),
+                ol,
+                #[inline(always)]
+                move |x, y, _| zero(c.equirect.ray(x, y)),
+                diff_sum,
+            ),
+            camera_row(
+                row(a),
+                ol,
+                #[inline(always)]
+                move |x, y, _| zero(c.equal_area.ray(x, y)),
+                diff_sum,
+            ),
+        ]);
+    }
+}
+
 /// The rows rayhit is compared against: the other crates and the
 /// textbook kernels written in this file.
 fn is_peer(name: &str) -> bool {
@@ -2763,6 +2833,7 @@ fn main() {
         &mut kernels,
     );
     camera_reference_kernels(&cameras, &mut kernels);
+    differential_floor_kernels(camera_set, &cameras, &mut kernels);
     // (The borrow is the point: the closures capture the reference.)
     #[allow(clippy::needless_borrows_for_generic_args)]
     camera_kernels(
