@@ -163,15 +163,6 @@ pub(crate) fn by_components<V: Vector>(v: V) -> V {
     V::new(v.x(), v.y(), v.z())
 }
 
-/// `a` where `pick` holds, else `b`, chosen component by component: three
-/// selects of floats, never a branch, so that a loop of rays choosing
-/// between two rays per lane still computes several at a time.
-#[inline(always)]
-pub(crate) fn pick<V: Vector>(pick: bool, a: V, b: V) -> V {
-    let c = |x: S<V>, y: S<V>| if pick { x } else { y };
-    V::new(c(a.x(), b.x()), c(a.y(), b.y()), c(a.z(), b.z()))
-}
-
 /// A camera's position and orthonormal frame: `forward` along the view,
 /// `right = normalize(forward x up)` with its component along `forward`
 /// removed once more, `up = normalize(right x forward)`: orthonormal within

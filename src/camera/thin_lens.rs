@@ -3,11 +3,11 @@
 
 use glam::Vec3;
 
-use super::{CameraError, PinholeCamera, RayCone, RayDifferential, by_components, pick};
+use super::{CameraError, PinholeCamera, RayCone, RayDifferential};
 use crate::num::round::{bound_up, max2};
 use crate::num::trig::{sin_cos_quarter, trig_n};
 use crate::num::{Bits, Repr};
-use crate::num::{S, Scalar, Vector, unit};
+use crate::num::{S, Scalar, Vector};
 use crate::ray::Ray;
 
 /// A thin-lens camera: the rays of one film point start on a lens disc and
@@ -101,8 +101,8 @@ where
     /// Per component, `1.5 * 2^(e_i + 2)`: adding and subtracting it
     /// rounds to the grid (zero where no rounding is needed or possible).
     grid: V,
-    /// The pinhole ray's direction, for the ray of the lens centre.
-    pinhole: V,
+    /// The raster position, for the pinhole ray at the lens centre.
+    raster: (S<V>, S<V>),
 }
 
 impl<V: Vector> FocusPoint<V> {
@@ -252,10 +252,6 @@ impl<V: Vector> ThinLensCamera<V> {
     /// and the grid moves it by at most two ulps of the larger of the
     /// point's and the lens's coordinates. A NaN or infinite position
     /// gives a NaN point.
-    ///
-    /// It also holds the pinhole ray's unit direction towards `(x, y)`
-    /// (bit for bit [`PinholeCamera::ray`]'s), which the sample at the lens
-    /// centre takes.
     #[inline(always)]
     #[must_use]
     pub fn focus(&self, x: S<V>, y: S<V>) -> FocusPoint<V> {
@@ -271,7 +267,7 @@ impl<V: Vector> ThinLensCamera<V> {
                 snap(f.z(), grid.z()),
             ),
             grid,
-            pinhole: unit(self.pinhole.film(x, y)),
+            raster: (x, y),
         }
     }
 
@@ -301,9 +297,7 @@ impl<V: Vector> ThinLensCamera<V> {
         // zero (a subnormal radius), so that its ray meets the focus point.
         let zero = S::<V>::ZERO;
         let (a, b) = concentric_disc(s, t);
-        // (`|` and `&`, not `||` and `&&`: no branch, so that a loop of
-        // rays computes several at a time.)
-        let centre = (radius == zero) | ((a == zero) & (b == zero));
+        let centre = radius == zero || (a == zero && b == zero);
         ((radius * a, radius * b), centre)
     }
 
@@ -329,17 +323,14 @@ impl<V: Vector> ThinLensCamera<V> {
     #[inline(always)]
     #[must_use]
     pub fn ray_through(&self, focus: &FocusPoint<V>, s: S<V>, t: S<V>) -> Ray<V> {
-        // Both rays and a select, component by component, not a branch:
-        // a loop of rays then computes several at a time (BENCHMARKS.md,
-        // Cameras). The pinhole ray's direction was computed with the
-        // focus point.
+        // A branch, taken only at the centre: a select computes the
+        // pinhole ray for every sample, which a scalar loop pays for
+        // (BENCHMARKS.md, Cameras).
         let (offset, centre) = self.lens_offset(s, t);
-        let lens = self.through(focus, offset);
-        let eye = by_components(self.pinhole.eye());
-        Ray::new(
-            pick(centre, eye, lens.origin),
-            pick(centre, focus.pinhole, lens.dir),
-        )
+        if centre {
+            return self.pinhole.ray(focus.raster.0, focus.raster.1);
+        }
+        self.through(focus, offset)
     }
 
     /// The ray of raster position `(x, y)` and lens sample `(s, t)`:
