@@ -2103,56 +2103,54 @@ mod camera_refs {
         s: f32,
         t: f32,
     ) -> (Vec3, Vec3) {
+        let (p_focus, origin, _) = focus_and_lens(f, radius, focus, (x, y), (s, t));
+        (origin, p_focus - origin)
+    }
+
+    /// The floor's focus point and lens point, and whether the sample is
+    /// at the lens centre.
+    #[inline(always)]
+    fn focus_and_lens(
+        f: &Frame,
+        radius: f32,
+        focus: f32,
+        (x, y): (f32, f32),
+        (s, t): (f32, f32),
+    ) -> (Vec3, Vec3, bool) {
         let k = focus / f.focal;
         let centre = f.eye + f.forward * focus;
         let p_focus = centre + f.right * ((x - f.w * 0.5) * k) + f.up * ((f.h * 0.5 - y) * k);
         let (a, b) = (2.0 * s - 1.0, 2.0 * t - 1.0);
         let wide = a.abs() > b.abs();
         let (r, n) = if wide { (a, b) } else { (b, a) };
-        let (sin, cos) = quarter(n / r * 0.5);
-        let (la, lb) = if wide {
-            (r * cos, r * sin)
-        } else {
-            (r * sin, r * cos)
-        };
-        let origin = f.eye + f.right * (radius * la) + f.up * (radius * lb);
-        (origin, p_focus - origin)
-    }
-
-    /// The thin lens's floor with what its guarantees need, written
-    /// directly: the floor above, plus per component the grid of the focus
-    /// point (`6` times the binade of `max(|F_i|, M_i)`, `M` a bound on the
-    /// lens points, zero above `MAX / 8`) with the focus point and the lens
-    /// point rounded to it, so that `F - L` is exact; and, with `centre`, the pinhole ray
-    /// (glam's normalised film direction from the eye) for the sample at
-    /// the lens centre, selected.
-    #[inline(always)]
-    #[allow(clippy::too_many_arguments)]
-    pub fn thin_lens_guarantee_floor(
-        pin: &rayhit::PinholeCamera,
-        f: &Frame,
-        radius: f32,
-        focus: f32,
-        lens_bound: Vec3,
-        centre: bool,
-        x: f32,
-        y: f32,
-        s: f32,
-        t: f32,
-    ) -> (Vec3, Vec3) {
-        let k = focus / f.focal;
-        let (dx, dy) = (x - f.w * 0.5, f.h * 0.5 - y);
-        let p_focus = f.eye + f.forward * focus + f.right * (dx * k) + f.up * (dy * k);
-        let (a, b) = (2.0 * s - 1.0, 2.0 * t - 1.0);
-        let wide = a.abs() > b.abs();
-        let (r, n) = if wide { (a, b) } else { (b, a) };
+        // (The division guarded at the centre, so that its NaN does not
+        // reach the rays of the lens-centre form.)
         let (sin, cos) = quarter(n / if r == 0.0 { 1.0 } else { r } * 0.5);
         let (la, lb) = if wide {
             (r * cos, r * sin)
         } else {
             (r * sin, r * cos)
         };
-        let lens = f.eye + f.right * (radius * la) + f.up * (radius * lb);
+        let origin = f.eye + f.right * (radius * la) + f.up * (radius * lb);
+        (p_focus, origin, (a == 0.0) & (b == 0.0))
+    }
+
+    /// The thin lens's floor with what its guarantees need, written
+    /// directly: the floor above, plus per component the grid of the focus
+    /// point (`6` times the binade of `max(|F_i|, M_i)`, `M` a bound on the
+    /// lens points, zero above `MAX / 8`) with the focus point and the lens
+    /// point rounded to it, so that `F - L` is exact; and, with `centre`,
+    /// the pinhole camera's ray for the sample at the lens centre (both
+    /// rays computed, one selected per component: no branch).
+    #[inline(always)]
+    pub fn thin_lens_guarantee_floor(
+        pin: &rayhit::PinholeCamera,
+        (f, radius, focus, lens_bound): (&Frame, f32, f32, Vec3),
+        centre: bool,
+        position: (f32, f32),
+        sample: (f32, f32),
+    ) -> (Vec3, Vec3) {
+        let (p_focus, lens, at_centre) = focus_and_lens(f, radius, focus, position, sample);
         // (Zero above MAX / 8, where the sum would overflow.)
         let grid_of = |v: f32| {
             let b = f32::from_bits(v.to_bits() & 0x7f80_0000);
@@ -2163,8 +2161,8 @@ mod camera_refs {
         let snap = |v: Vec3| (v + grid) - grid;
         let (p_focus, origin) = (snap(p_focus), snap(lens));
         let ray = (origin, p_focus - origin);
-        let pr = pin.ray(x, y);
-        let sel = centre & ((radius == 0.0) | ((a == 0.0) & (b == 0.0)));
+        let pr = pin.ray(position.0, position.1);
+        let sel = centre & ((radius == 0.0) | at_centre);
         let pick = |p: Vec3, q: Vec3| {
             Vec3::new(
                 if sel { p.x } else { q.x },
@@ -2233,6 +2231,32 @@ fn camera_agreement(
     same as f64 / d.scanline.len() as f64
 }
 
+/// The loop of [`camera_refs::thin_lens_guarantee_floor`], with or
+/// without the lens-centre ray (`CENTRE`, a constant, as the crate's
+/// camera has no such switch).
+fn guarantee_floor_loop<'a, const CENTRE: bool>(
+    order: &'a [(f32, f32)],
+    lens: &'a [(f32, f32)],
+    (pin, frame, radius, focus, bound): (PinholeCamera, camera_refs::Frame, f32, f32, Vec3),
+) -> impl Fn() -> u64 + 'a {
+    over(
+        order,
+        lens,
+        #[inline(always)]
+        move |x, y, l| {
+            let (o, dir) = camera_refs::thin_lens_guarantee_floor(
+                &pin,
+                (&frame, radius, focus, bound),
+                CENTRE,
+                (x, y),
+                l,
+            );
+            Ray::new(Vec3::new(o.x, o.y, o.z), dir)
+        },
+        ray_sum,
+    )
+}
+
 fn camera_reference_kernels<'a>(d: &'a CameraData, out: &mut Vec<Kernel<'a>>) {
     use camera_refs::*;
     let p = &d.pinhole;
@@ -2273,10 +2297,10 @@ fn camera_reference_kernels<'a>(d: &'a CameraData, out: &mut Vec<Kernel<'a>>) {
             thin_lens_floor(&frame, radius, focus, x, y, l.0, l.1)
         }),
         camera_agreement(d, thin, |x, y, l| {
-            thin_lens_guarantee_floor(&pin, &frame, radius, focus, bound, false, x, y, l.0, l.1)
+            thin_lens_guarantee_floor(&pin, (&frame, radius, focus, bound), false, (x, y), l)
         }),
         camera_agreement(d, thin, |x, y, l| {
-            thin_lens_guarantee_floor(&pin, &frame, radius, focus, bound, true, x, y, l.0, l.1)
+            thin_lens_guarantee_floor(&pin, (&frame, radius, focus, bound), true, (x, y), l)
         }),
         camera_agreement(
             d,
@@ -2291,6 +2315,25 @@ fn camera_reference_kernels<'a>(d: &'a CameraData, out: &mut Vec<Kernel<'a>>) {
     ];
     for (w, order) in [("scanline", &d.scanline), ("shuffled", &d.shuffled)] {
         let (n, lens) = (order.len(), &d.lens);
+        let floor = (pin, frame, radius, focus, bound);
+        out.extend([
+            kernel(
+                "camera",
+                "floor thin lens + grid",
+                w,
+                n,
+                Some(agree[2]),
+                guarantee_floor_loop::<false>(order, lens, floor),
+            ),
+            kernel(
+                "camera",
+                "floor thin lens + grid + lens-centre ray",
+                w,
+                n,
+                Some(agree[3]),
+                guarantee_floor_loop::<true>(order, lens, floor),
+            ),
+        ]);
         out.extend([
             kernel(
                 "camera",
@@ -2319,42 +2362,6 @@ fn camera_reference_kernels<'a>(d: &'a CameraData, out: &mut Vec<Kernel<'a>>) {
                     lens,
                     #[inline(always)]
                     move |x, y, l| as_ray(thin_lens_floor(&frame, radius, focus, x, y, l.0, l.1)),
-                    ray_sum,
-                ),
-            ),
-            kernel(
-                "camera",
-                "floor thin lens + grid",
-                w,
-                n,
-                Some(agree[2]),
-                over(
-                    order,
-                    lens,
-                    #[inline(always)]
-                    move |x, y, l| {
-                        as_ray(thin_lens_guarantee_floor(
-                            &pin, &frame, radius, focus, bound, false, x, y, l.0, l.1,
-                        ))
-                    },
-                    ray_sum,
-                ),
-            ),
-            kernel(
-                "camera",
-                "floor thin lens + grid + lens-centre ray",
-                w,
-                n,
-                Some(agree[3]),
-                over(
-                    order,
-                    lens,
-                    #[inline(always)]
-                    move |x, y, l| {
-                        as_ray(thin_lens_guarantee_floor(
-                            &pin, &frame, radius, focus, bound, true, x, y, l.0, l.1,
-                        ))
-                    },
                     ray_sum,
                 ),
             ),
