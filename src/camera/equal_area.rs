@@ -3,7 +3,7 @@
 
 use glam::Vec3;
 
-use super::{Basis, CameraError, RayCone, RayDifferential, by_components, centred};
+use super::{Basis, CameraError, RayCone, RayDifferential, by_components, centred, zero_vector};
 use crate::num::trig::{atan2_turns, sin_cos_quadrant};
 use crate::num::{Bits, Repr, S, Scalar, Vector, unit, unit_near};
 use crate::ray::Ray;
@@ -254,9 +254,9 @@ impl<V: Vector> EqualAreaCamera<V> {
         let (kx, ky) = self.scale;
         RayDifferential {
             ray: Ray::new(by_components(b.eye), unit_near(dir)),
-            dx_origin: V::ZERO,
+            dx_origin: zero_vector(),
             dx_dir: along_u * (q.su * kx),
-            dy_origin: V::ZERO,
+            dy_origin: zero_vector(),
             dy_dir: along_v * (-(q.sv * ky)),
         }
     }

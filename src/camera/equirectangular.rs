@@ -2,7 +2,7 @@
 
 use glam::Vec3;
 
-use super::{Basis, CameraError, RayCone, RayDifferential, by_components, centred};
+use super::{Basis, CameraError, RayCone, RayDifferential, by_components, centred, zero_vector};
 use crate::num::trig::{atan2_turns, sin_cos_turns};
 use crate::num::{S, Scalar, Vector, unit, unit_near};
 use crate::ray::Ray;
@@ -141,9 +141,9 @@ impl<V: Vector> EquirectangularCamera<V> {
         );
         RayDifferential {
             ray: Ray::new(by_components(b.eye), dir),
-            dx_origin: V::ZERO,
+            dx_origin: zero_vector(),
             dx_dir: (b.right * cl - b.forward * sl) * (ca * kx),
-            dy_origin: V::ZERO,
+            dy_origin: zero_vector(),
             dy_dir: ((b.right * sl + b.forward * cl) * sa - b.up * ca) * ky,
         }
     }

@@ -2,7 +2,7 @@
 
 use glam::{DMat4, DVec3, Mat4, Vec3};
 
-use super::{CameraError, RayCone, RayDifferential, by_components, centred};
+use super::{CameraError, RayCone, RayDifferential, by_components, centred, zero_vector};
 use crate::num::trig::atan2_turns;
 use crate::num::{S, Scalar, Vector, unit, unit_and_inverse_length};
 use crate::ray::Ray;
@@ -322,18 +322,18 @@ impl<V: Vector> MatrixCamera<V> {
                 let (dir, inv) = unit_and_inverse_length(p);
                 RayDifferential {
                     ray: Ray::new(by_components(self.fixed), dir),
-                    dx_origin: V::ZERO,
+                    dx_origin: zero_vector(),
                     dx_dir: (a - dir * dir.dot(a)) * inv,
-                    dy_origin: V::ZERO,
+                    dy_origin: zero_vector(),
                     dy_dir: (dir * dir.dot(b) - b) * inv,
                 }
             }
             Projection::Orthographic => RayDifferential {
                 ray: Ray::new(p, by_components(self.fixed)),
                 dx_origin: a,
-                dx_dir: V::ZERO,
+                dx_dir: zero_vector(),
                 dy_origin: -b,
-                dy_dir: V::ZERO,
+                dy_dir: zero_vector(),
             },
         }
     }

@@ -163,6 +163,15 @@ pub(crate) fn by_components<V: Vector>(v: V) -> V {
     V::new(v.x(), v.y(), v.z())
 }
 
+/// The zero vector, built from three zeros: the constant `V::ZERO` stored
+/// into a ray with differentials is written by a call to `memset`, and a
+/// loop of rays containing a call does not vectorise.
+#[inline(always)]
+pub(crate) fn zero_vector<V: Vector>() -> V {
+    let z = S::<V>::ZERO;
+    V::new(z, z, z)
+}
+
 /// A camera's position and orthonormal frame: `forward` along the view,
 /// `right = normalize(forward x up)` with its component along `forward`
 /// removed once more, `up = normalize(right x forward)`: orthonormal within

@@ -2,7 +2,7 @@
 
 use glam::Vec3;
 
-use super::{Basis, CameraError, RayCone, RayDifferential, by_components, centred};
+use super::{Basis, CameraError, RayCone, RayDifferential, by_components, centred, zero_vector};
 use crate::num::{S, Scalar, Vector};
 use crate::ray::Ray;
 
@@ -124,9 +124,9 @@ impl<V: Vector> OrthographicCamera<V> {
         RayDifferential {
             ray: self.ray(x, y),
             dx_origin: self.basis.right * s,
-            dx_dir: V::ZERO,
+            dx_dir: zero_vector(),
             dy_origin: -(self.basis.up * s),
-            dy_dir: V::ZERO,
+            dy_dir: zero_vector(),
         }
     }
 

@@ -3,7 +3,7 @@
 
 use glam::Vec3;
 
-use super::{Basis, CameraError, RayCone, RayDifferential, by_components, centred};
+use super::{Basis, CameraError, RayCone, RayDifferential, by_components, centred, zero_vector};
 use crate::num::trig::atan2_turns;
 use crate::num::{S, Scalar, Vector, unit, unit_and_inverse_length};
 use crate::ray::Ray;
@@ -189,9 +189,9 @@ impl<V: Vector> PinholeCamera<V> {
         let (r, u) = (self.right, self.up);
         RayDifferential {
             ray: Ray::new(by_components(self.eye), dir),
-            dx_origin: V::ZERO,
+            dx_origin: zero_vector(),
             dx_dir: (r - dir * dir.dot(r)) * inv,
-            dy_origin: V::ZERO,
+            dy_origin: zero_vector(),
             dy_dir: (dir * dir.dot(u) - u) * inv,
         }
     }

@@ -3,7 +3,7 @@
 
 use glam::Vec3;
 
-use super::{CameraError, PinholeCamera, RayCone, RayDifferential};
+use super::{CameraError, PinholeCamera, RayCone, RayDifferential, zero_vector};
 use crate::num::round::{bound_up, max2};
 use crate::num::trig::{sin_cos_quarter, trig_n};
 use crate::num::{Bits, Repr};
@@ -375,9 +375,9 @@ impl<V: Vector> ThinLensCamera<V> {
         }
         RayDifferential {
             ray: self.through(&self.focus(x, y), offset),
-            dx_origin: V::ZERO,
+            dx_origin: zero_vector(),
             dx_dir: self.pinhole.right() * self.scale,
-            dy_origin: V::ZERO,
+            dy_origin: zero_vector(),
             dy_dir: -(self.pinhole.up() * self.scale),
         }
     }

@@ -2560,12 +2560,18 @@ fn camera_kernels<'a>(
 /// bytes, so these rows bound from below what any camera's
 /// `ray_differential` costs in this loop.
 fn differential_floor_kernels<'a>(c: Cameras, d: &'a CameraData, out: &mut Vec<Kernel<'a>>) {
-    let zero = |ray: Ray| RayDifferential {
+    // (A zero the compiler cannot see through: the constant `Vec3::ZERO`,
+    // or one written with literals, is stored by a call to `memset`, which
+    // keeps the loop scalar. The crate's cameras, generic over the vector
+    // type, build theirs from three zeros after the fact, which the
+    // compiler stores as floats.)
+    let z: f32 = black_box(0.0);
+    let zero = move |ray: Ray| RayDifferential {
         ray,
-        dx_origin: Vec3::ZERO,
-        dx_dir: Vec3::ZERO,
-        dy_origin: Vec3::ZERO,
-        dy_dir: Vec3::ZERO,
+        dx_origin: Vec3::new(z, z, z),
+        dx_dir: Vec3::new(z, z, z),
+        dy_origin: Vec3::new(z, z, z),
+        dy_dir: Vec3::new(z, z, z),
     };
     let [p, t, o, m, e, a] = CAMERAS;
     for (w, order) in [("scanline", &d.scanline), ("shuffled", &d.shuffled)] {
