@@ -162,12 +162,15 @@ impl<V: Vector> PinholeCamera<V> {
     /// origin does not move, and with `p` the unnormalised direction
     /// (`dir = p / |p|`, `dp/dx = right`, `dp/dy = -true_up`),
     ///
-    /// `dx_dir = (right - dir (dir . right)) / |p|`,
-    /// `dy_dir = (dir (dir . true_up) - true_up) / |p|`,
+    /// `dx_dir = (right - dir (dx / |p|)) / |p|`,
+    /// `dy_dir = (dir (dy / |p|) - true_up) / |p|`,
     ///
     /// the derivatives of the unit direction (`1 / |p|` is the factor the
-    /// normalisation used). `|p| >= focal_length` up to the basis's
-    /// rounding, so each is at most `1 / focal_length` long: a pixel's angle.
+    /// normalisation used; `(dx, dy)` the offsets from the image centre,
+    /// `p . right / |p|` and `p . true_up / |p|` for an orthonormal basis,
+    /// which saves two dot products). `|p| >= focal_length` up to the
+    /// basis's rounding, so each is at most `1 / focal_length` long: a
+    /// pixel's angle.
     ///
     /// Bounds. Second order: with `dp/dx` of length 1, the unit direction's
     /// second derivative is at most `4 / |p|^2` long (its three terms are
@@ -177,22 +180,26 @@ impl<V: Vector> PinholeCamera<V> {
     /// 1)^2` (roughly) of `dir + dx_dir`, and likewise for `y`. Rounding:
     /// with `K` the vector of `|focal forward_i| + |dx right_i| + |dy
     /// up_i|` (`p`'s magnitudes), `dx_dir` is within `(gamma(28) + 5
-    /// gamma(3) |K| / |p|) / |p|` of the exact derivative at the camera's
-    /// (rounded) basis and the given position, as a vector (derived, and
+    /// gamma(3) |K| / |p|) / |p| + gamma(13) (focal_length + |dx| + |dy|) /
+    /// |p|^2` of the exact derivative at the camera's (rounded) basis and
+    /// the given position, as a vector (the last term: the basis is
+    /// orthonormal within `gamma(13)`, so `dx` is that close to `p .
+    /// right`, and `dy` to `p . true_up`; derived, and
     /// held to in exact arithmetic, in the test kit's camera checks). A
     /// NaN or infinite position gives NaN differentials, as it gives a NaN
     /// direction.
     #[inline(always)]
     #[must_use]
     pub fn ray_differential(&self, x: S<V>, y: S<V>) -> RayDifferential<V> {
+        let (dx, dy) = centred(x, y, self.width, self.height);
         let (dir, inv) = unit_and_inverse_length(self.film(x, y));
         let (r, u) = (self.right, self.up);
         RayDifferential {
             ray: Ray::new(by_components(self.eye), dir),
             dx_origin: zero_vector(),
-            dx_dir: (r - dir * dir.dot(r)) * inv,
+            dx_dir: (r - dir * (dx * inv)) * inv,
             dy_origin: zero_vector(),
-            dy_dir: (dir * dir.dot(u) - u) * inv,
+            dy_dir: (dir * (dy * inv) - u) * inv,
         }
     }
 

@@ -190,48 +190,41 @@ impl_glam!(glam032);
 #[cfg(feature = "glam-033")]
 impl_glam!(glam033);
 
-/// `v / |v|`: glam's `normalize` (`v * (1 / sqrt(v . v))`) where `v . v`
-/// is a normal float, and elsewhere the same computation on `w = v 2^-e`,
-/// `2^e` the binade of `v`'s largest component (its largest component
-/// then in `[1, 2)`; see [`Bits::inverse_binade`]), so that `w . w`
-/// neither overflows nor underflows; a NaN vector when `v` is zero or not
-/// finite.
+/// `v / |v|`, computed on `w = v 2^-e`, `2^e` the binade of `v`'s largest
+/// component (its largest component then in `[1, 2)`; see
+/// [`Bits::inverse_binade`]), as glam's `normalize` computes it (`w * (1 /
+/// sqrt(w . w))`), so that `w . w` neither overflows nor underflows; a NaN
+/// vector when `v` is zero or not finite.
 ///
 /// Scaling by a power of two is exact in the normal range, and it scales
-/// `v . v` by the square, its square root and reciprocal by the power
-/// itself, all exactly: so the scaled computation has the same error as
-/// the common one. Components that the scaling pushes below the normal
-/// range are below `2^-126` of the largest and change the length by less
-/// than a rounding. (Such lengths come from a camera ray at a focal length
-/// of `1e30` pixels, for instance.)
+/// `w . w` by the square, its square root and reciprocal by the power
+/// itself, all exactly: so the result is glam's `normalize(v)` bit for bit
+/// wherever `v . v` and its nonzero products `v_i^2` are normal floats,
+/// and has the same error elsewhere. Components that the scaling pushes
+/// below the normal range are below `2^-126` of the largest and change the
+/// length by less than a rounding. (Lengths whose squares over- or
+/// underflow come from a camera ray at a focal length of `1e30` pixels,
+/// for instance.)
 ///
-/// Both paths are written as selects, not a branch to a cold function, so
-/// that a loop computing many rays can be vectorised by the compiler.
+/// The scaling is applied always, with no test and no branch, so that a
+/// loop computing many rays can be vectorised by the compiler.
 pub(crate) fn unit<V: Vector>(v: V) -> V {
     unit_and_inverse_length(v).0
 }
 
-/// [`unit`] and `1 / |v|`, the factor the normalisation applied: bit for
-/// bit `1 / sqrt(v . v)` where `v . v` is a normal float, and elsewhere
-/// `2^-e / sqrt(w . w)` (as in [`unit`]), which has the same error except
-/// where the result is subnormal (a length above `2^126`: up to `2^-149`
-/// more, absolutely) or overflows (infinity for a length below `1 /
-/// MAX`). A NaN or zero vector gives NaN or infinity.
+/// [`unit`] and `1 / |v|`, the factor the normalisation applied: `2^-e /
+/// sqrt(w . w)` (as in [`unit`]), bit for bit `1 / sqrt(v . v)` where `v .
+/// v` and its nonzero products are normal floats, with the same error
+/// elsewhere except where the result is subnormal (a length above
+/// `2^126`: up to `2^-149` more, absolutely) or overflows (infinity for a
+/// length below `1 / MAX`). A NaN or zero vector gives NaN or infinity.
 #[inline(always)]
 pub(crate) fn unit_and_inverse_length<V: Vector>(v: V) -> (V, S<V>) {
-    let one = S::<V>::ONE;
-    let l2 = v.dot(v);
-    let normal = l2 >= S::<V>::MIN_POSITIVE && l2 <= S::<V>::MAX;
     let a = v.abs();
     let m = max2(a.x(), max2(a.y(), a.z()));
-    let s = if normal {
-        one
-    } else {
-        <S<V> as Repr>::Bits::inverse_binade(m)
-    };
+    let s = <S<V> as Repr>::Bits::inverse_binade(m);
     let w = v * s;
-    let l2 = if normal { l2 } else { w.dot(w) };
-    let rcp = one / l2.sqrt();
+    let rcp = S::<V>::ONE / w.dot(w).sqrt();
     (w * rcp, rcp * s)
 }
 
@@ -293,8 +286,10 @@ mod tests {
     /// The inverse length, against `1 / |v|` computed in `f64` from the
     /// `f32` vector (exact squares, a sum and a square root each within half
     /// an `f64` ulp: far inside the `f32` bound), over lengths from
-    /// subnormal to near overflow. Where `v . v` is normal it is `1 /
-    /// sqrt(v . v)` bit for bit; elsewhere within `gamma(4)` (the dot
+    /// subnormal to near overflow. Where `v . v` and its nonzero products
+    /// are normal it is `1 / sqrt(v . v)` bit for bit (the scaling by a
+    /// power of two commutes with every rounding there); elsewhere within
+    /// `gamma(4)` (the dot
     /// product's three roundings and the square root's, halved, plus the
     /// division's), or `2^-149` absolutely where it is subnormal.
     #[test]
@@ -312,7 +307,9 @@ mod tests {
                 }
                 let (u, inv) = unit_and_inverse_length(v);
                 let l2 = v.dot(v);
-                if (f32::MIN_POSITIVE..=f32::MAX).contains(&l2) {
+                let normal = |x: f32| (f32::MIN_POSITIVE..=f32::MAX).contains(&x);
+                let products = [v.x, v.y, v.z].iter().all(|&c| c == 0.0 || normal(c * c));
+                if normal(l2) && products {
                     assert_eq!(inv, 1.0 / l2.sqrt(), "{v}");
                     assert_eq!(u, v.normalize(), "{v}");
                 }

@@ -2573,6 +2573,31 @@ fn differential_floor_kernels<'a>(c: Cameras, d: &'a CameraData, out: &mut Vec<K
         dy_origin: Vec3::new(z, z, z),
         dy_dir: Vec3::new(z, z, z),
     };
+    // The pinhole camera's ray with differentials written directly with
+    // glam: the film direction, its length's reciprocal (no rescaling of a
+    // squared length that over- or underflows), and the two derivatives
+    // as the crate forms them.
+    let pin = &c.pinhole;
+    let (eye, fwd, right, up) = (
+        pin.eye(),
+        pin.forward() * pin.focal_length(),
+        pin.right(),
+        pin.up(),
+    );
+    let (hw, hh) = (pin.width() as f32 * 0.5, pin.height() as f32 * 0.5);
+    let pinhole_floor = move |x: f32, y: f32| {
+        let (dx, dy) = (x - hw, hh - y);
+        let p = fwd + right * dx + up * dy;
+        let inv = 1.0 / p.dot(p).sqrt();
+        let dir = p * inv;
+        RayDifferential {
+            ray: Ray::new(Vec3::new(eye.x, eye.y, eye.z), dir),
+            dx_origin: Vec3::new(z, z, z),
+            dx_dir: (right - dir * (dx * inv)) * inv,
+            dy_origin: Vec3::new(z, z, z),
+            dy_dir: (dir * (dy * inv) - up) * inv,
+        }
+    };
     let [p, t, o, m, e, a] = CAMERAS;
     for (w, order) in [("scanline", &d.scanline), ("shuffled", &d.shuffled)] {
         let ol = (&order[..], &d.lens[..]);
@@ -2583,6 +2608,17 @@ fn differential_floor_kernels<'a>(c: Cameras, d: &'a CameraData, out: &mut Vec<K
                 w,
             )
         };
+        out.push(camera_row(
+            (
+                "camera differentials",
+                "floor: pinhole ray with differentials (glam, no rescaling)".to_string(),
+                w,
+            ),
+            ol,
+            #[inline(always)]
+            move |x, y, _| pinhole_floor(x, y),
+            diff_sum,
+        ));
         out.extend([
             camera_row(
                 row(p),

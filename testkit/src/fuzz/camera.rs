@@ -208,7 +208,11 @@ fn check_centre<V: Vector>(cam: &PinholeCamera<V>, view: V) {
 /// evaluated as `(c + a dx) + b dy` (for the pinhole camera `c` is `focal
 /// forward`, whose product is part of the evaluation), and its
 /// differential along `step` (`a`, or `-b` for raster `y`) is `(step - dir
-/// (dir . step)) / |p|` with `1 / |p|` the normalisation's factor.
+/// (dir . step)) / |p|` with `1 / |p|` the normalisation's factor; or,
+/// for a camera whose frame is orthonormal within `orthonormal` (each
+/// entry of `B^T B - I` for the frame `c / |c|`, `a`, `b`), with `dx /
+/// |p|` and `dy / |p|` standing for `dir . a` and `-dir . step` along
+/// `-b`, which are those dot products for an exactly orthonormal frame.
 #[derive(Clone, Copy, Debug)]
 pub struct Linear<V> {
     /// The constant term (exactly, as the camera's arithmetic sees it).
@@ -217,6 +221,9 @@ pub struct Linear<V> {
     pub a: V,
     /// The step per unit of `dy`.
     pub b: V,
+    /// Zero where the camera forms `dir . step`; else the bound on its
+    /// frame's departure from orthonormal that lets it use `dx` and `dy`.
+    pub orthonormal: f64,
 }
 
 /// The derivative along `step` of the direction at `(dx, dy)`, against
@@ -239,7 +246,14 @@ pub struct Linear<V> {
 ///   factor's error);
 /// - `t_2 = 2 |step|^2 / (|p~| - |step|)^2`: the second-order term (the
 ///   unit direction's second derivative is at most `4 |p'|^2 / |p|^2`
-///   long, and `|p|` stays above `|p~| - |step|` over the step).
+///   long, and `|p|` stays above `|p~| - |step|` over the step);
+/// - `t_frame = e (|c| + |dx| |a| + |dy| |b|) / ((1 - e) |p~|^2)` with `e`
+///   the frame's `orthonormal` bound, for a camera using `dx` for `p~ .
+///   a` (and `dy` for `p~ . b`): with `c = focal forward`, `p~ . a =
+///   focal (forward . a) + dx (a . a) + dy (b . a)` is within `e (focal +
+///   |dx| + |dy|)` of `dx`, and each unit vector's length is at least `1
+///   - e`; through `dir (dir . step) / |p|` that moves the differential by
+///   that over `|p~|^2`.
 ///
 /// The norms are taken in `f64` (a relative `1e-15`, covered by a factor
 /// `1 + 1e-9` on the bound); the comparison is exact.
@@ -283,7 +297,10 @@ pub fn check_linear_differential<V: Vector>(
     let t = |p: f64, k: f64| 2.0 * (g(4) + g(3) * k / p) + 2.0 * u;
     let t_diff = s_len / p0 * (g(28) + 5.0 * g(3) * k0 / p0);
     let t_2 = 2.0 * s_len * s_len / ((p0 - s_len) * (p0 - s_len));
-    let bound = (t(p0, k0) + t(p1, k1) + t_diff + t_2) * (1.0 + 1e-9);
+    let e = lin.orthonormal;
+    let reach = norm(lin.c) + f(dx).abs() * norm(a) + f(dy).abs() * norm(b);
+    let t_frame = e * reach / ((1.0 - e) * p0 * p0);
+    let bound = (t(p0, k0) + t(p1, k1) + t_diff + t_2 + t_frame) * (1.0 + 1e-9);
     let (d0, d1, dd) = (rv(dir), rv(next), rv(diff));
     let res: [R; 3] = core::array::from_fn(|k| &d1[k] - &d0[k] - &dd[k]);
     let b2 = R::from_float(bound * bound).expect("a finite bound");
@@ -293,6 +310,11 @@ pub fn check_linear_differential<V: Vector>(
         super::exact::f(&dot(&res, &res)).sqrt(),
         ctx()
     );
+}
+
+/// `gamma(13)`, in `f64`.
+fn g13<V: Vector>() -> f64 {
+    S::<V>::gamma_n(13).to_f64()
 }
 
 /// The pinhole camera's differentials at a pixel centre, against its
@@ -316,6 +338,8 @@ pub fn check_pinhole_differential<V: Vector>(cam: &PinholeCamera<V>, i: u32, j: 
         c: [0, 1, 2].map(|k| fw[k].to_f64() * fl),
         a: cam.right(),
         b: cam.up(),
+        // The camera's frame is orthonormal within gamma(13) (its docs).
+        orthonormal: g13::<V>(),
     };
     let dx = x - S::<V>::from_u32(cam.width()) * half;
     let dy = S::<V>::from_u32(cam.height()) * half - y;

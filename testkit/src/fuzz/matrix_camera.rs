@@ -448,6 +448,7 @@ fn check_neighbours<V: Vector>(
             c: [0, 1, 2].map(|k| c[k].to_f64()),
             a,
             b,
+            orthonormal: 0.0,
         };
         check_linear_differential(&lin, dx, dy, a, diff.ray.dir, next_x.dir, diff.dx_dir, &ctx);
         check_linear_differential(
