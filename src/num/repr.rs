@@ -140,7 +140,12 @@ impl Bits for F32Bits {
     fn inverse_binade(x: f32) -> f32 {
         // The exponent field E (biased: 2^e has E = e + 127), clamped to
         // 253 (2^126); 254 - E is the field of 2^-e, in 1..=254.
-        let field = (x.to_bits() & 0x7f80_0000).min(253 << 23);
+        // (The clamp as a float minimum, one instruction in SIMD, where
+        // an unsigned integer minimum is several without SSE4.1; a NaN
+        // gives the clamp.)
+        let a = f32::from_bits(x.to_bits() & 0x7fff_ffff);
+        let cap = f32::from_bits(253 << 23);
+        let field = (if a < cap { a } else { cap }).to_bits() & 0x7f80_0000;
         f32::from_bits((254 << 23) - field)
     }
 
@@ -198,7 +203,9 @@ impl Bits for F64Bits {
     #[inline(always)]
     fn inverse_binade(x: f64) -> f64 {
         // As for `f32`: E = e + 1023, clamped to 2045 (2^1022).
-        let field = (x.to_bits() & 0x7ff0_0000_0000_0000).min(2045 << 52);
+        let a = f64::from_bits(x.to_bits() & 0x7fff_ffff_ffff_ffff);
+        let cap = f64::from_bits(2045 << 52);
+        let field = (if a < cap { a } else { cap }).to_bits() & 0x7ff0_0000_0000_0000;
         f64::from_bits((2046 << 52) - field)
     }
 
