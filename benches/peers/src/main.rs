@@ -2187,6 +2187,62 @@ mod camera_refs {
         )
     }
 
+    /// `(sin, cos)` of `q` quarter turns for `|q|` below `2^22`: `k =
+    /// round(q)` by the sum with `1.5 * 2^23`, the quarter-turn polynomials
+    /// at `q - k`, and the quarter turns `k` brings as a swap by masks and
+    /// two sign flips from the sum's low bits. (The crate's own reduction
+    /// first takes out whole turns, for a range four times as wide.)
+    #[inline(always)]
+    fn sin_cos_quarters(q: f32) -> (f32, f32) {
+        const C: f32 = 12_582_912.0;
+        let kc = q + C;
+        let (sin, cos) = quarter(q - (kc - C));
+        let k = kc.to_bits();
+        let swap = 0u32.wrapping_sub(k & 1);
+        let (s, c) = (sin.to_bits(), cos.to_bits());
+        let (a, b) = ((s & !swap) | (c & swap), (c & !swap) | (s & swap));
+        // sin(x + k pi/2) is negative for k = 2, 3 modulo 4, cos for 1, 2.
+        let sa = (k & 2) << 30;
+        let sb = (k.wrapping_add(1) & 2) << 30;
+        (f32::from_bits(a ^ sa), f32::from_bits(b ^ sb))
+    }
+
+    /// The equirectangular direction with the least arithmetic its
+    /// guarantees need, a lower bound on any such camera: each angle's
+    /// sine and cosine to a few ulps for positions well outside the image
+    /// too ([`sin_cos_quarters`]), the direction in the frame, and one
+    /// Newton step to unit length (the frame's rounding leaves it a few
+    /// tens of ulps off).
+    #[inline(always)]
+    pub fn equirect_floor(f: &Frame, x: f32, y: f32) -> Vec3 {
+        let (lon, lat) = ((x - f.w * 0.5) * (4.0 / f.w), (f.h * 0.5 - y) * (2.0 / f.h));
+        let (sl, cl) = sin_cos_quarters(lon);
+        let (sa, ca) = sin_cos_quarters(lat);
+        let d = f.right * (ca * sl) + f.up * sa + f.forward * (ca * cl);
+        d * (1.5 - 0.5 * d.dot(d))
+    }
+
+    /// The equal-area direction with the least arithmetic its guarantees
+    /// need, a lower bound: the front half's map only (no fold to the back
+    /// half, no clamp outside the image): the square's coordinates, the
+    /// radius, the angle's division, its sine and cosine within a quarter
+    /// turn (one comparison, a subtraction and a swap), the ring's square
+    /// root, the direction in the frame and one Newton step.
+    #[inline(always)]
+    pub fn equal_area_floor(f: &Frame, x: f32, y: f32) -> Vec3 {
+        let (u, v) = ((x - f.w * 0.5) * (2.0 / f.w), (f.h * 0.5 - y) * (2.0 / f.h));
+        let (au, av) = (u.abs(), v.abs());
+        let r = au + av;
+        let q = av / if r == 0.0 { 1.0 } else { r };
+        let turned = q > 0.5;
+        let (s, c) = quarter(if turned { q - 1.0 } else { q });
+        let (sin, cos) = if turned { (c, -s) } else { (s, c) };
+        let ring = r * (2.0 - r * r).sqrt();
+        let (lx, ly) = (cos.copysign(u) * ring, sin.copysign(v) * ring);
+        let d = f.right * lx + f.up * ly + f.forward * (1.0 - r * r);
+        d * (1.5 - 0.5 * d.dot(d))
+    }
+
     /// pbrt-v4's `EqualAreaSquareToSphere` with `std`'s sine and cosine,
     /// the square's `v` up, the direction in the frame.
     #[inline(always)]
@@ -2286,6 +2342,9 @@ fn camera_reference_kernels<'a>(d: &'a CameraData, out: &mut Vec<Kernel<'a>>) {
     // so that the loops can vectorise.)
     let as_ray = |(o, dir): (Vec3, Vec3)| Ray::new(Vec3::new(o.x, o.y, o.z), dir);
     let thin = move |x, y, l: (f32, f32)| d.thin_lens.ray(x, y, l.0, l.1);
+    // (The eye as three floats: a vector captured whole and stored into
+    // every ray keeps these loops scalar.)
+    let (ex, ey, ez) = (frame.eye.x, frame.eye.y, frame.eye.z);
     let pin = d.pinhole;
     // A bound on the lens points' coordinates, as the camera's own.
     let bound = (frame.eye.abs() + (frame.right.abs() + frame.up.abs()) * radius) * (1.0 + 1e-5);
@@ -2311,6 +2370,17 @@ fn camera_reference_kernels<'a>(d: &'a CameraData, out: &mut Vec<Kernel<'a>>) {
             d,
             |x, y, _| d.equal_area.ray(x, y),
             |x, y, _| equal_area_textbook(&area, x, y),
+        ),
+        camera_agreement(
+            d,
+            |x, y, _| d.equirect.ray(x, y),
+            |x, y, _| (frame.eye, equirect_floor(&equi, x, y)),
+        ),
+        // (The front half only: the diamond, half the image.)
+        camera_agreement(
+            d,
+            |x, y, _| d.equal_area.ray(x, y),
+            |x, y, _| (frame.eye, equal_area_floor(&area, x, y)),
         ),
     ];
     for (w, order) in [("scanline", &d.scanline), ("shuffled", &d.shuffled)] {
@@ -2376,6 +2446,34 @@ fn camera_reference_kernels<'a>(d: &'a CameraData, out: &mut Vec<Kernel<'a>>) {
                     lens,
                     #[inline(always)]
                     move |x, y, _| as_ray(equirect_textbook(&equi, x, y)),
+                    ray_sum,
+                ),
+            ),
+            kernel(
+                "camera",
+                "floor equirectangular",
+                w,
+                n,
+                Some(agree[6]),
+                over(
+                    order,
+                    lens,
+                    #[inline(always)]
+                    move |x, y, _| Ray::new(Vec3::new(ex, ey, ez), equirect_floor(&equi, x, y)),
+                    ray_sum,
+                ),
+            ),
+            kernel(
+                "camera",
+                "floor equal area (front half)",
+                w,
+                n,
+                Some(agree[7]),
+                over(
+                    order,
+                    lens,
+                    #[inline(always)]
+                    move |x, y, _| Ray::new(Vec3::new(ex, ey, ez), equal_area_floor(&area, x, y)),
                     ray_sum,
                 ),
             ),
