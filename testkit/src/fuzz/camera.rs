@@ -211,8 +211,8 @@ fn check_centre<V: Vector>(cam: &PinholeCamera<V>, view: V) {
 /// (dir . step)) / |p|` with `1 / |p|` the normalisation's factor; or,
 /// for a camera whose frame is orthonormal within `orthonormal` (each
 /// entry of `B^T B - I` for the frame `c / |c|`, `a`, `b`), with `dx /
-/// |p|` and `dy / |p|` standing for `dir . a` and `-dir . step` along
-/// `-b`, which are those dot products for an exactly orthonormal frame.
+/// |p|` and `dy / |p|` standing for `dir . a` and `dir . b`, which they
+/// equal for an exactly orthonormal frame.
 #[derive(Clone, Copy, Debug)]
 pub struct Linear<V> {
     /// The constant term (exactly, as the camera's arithmetic sees it).
