@@ -30,7 +30,9 @@
 //!   `t_min`).
 //!
 //! Regenerate only for a deliberate change of guarantee (see CONTRIBUTING.md):
-//! `RAYHIT_REGENERATE_CORPUS=1 cargo test --release -p rayhit-corpus --test corpus`.
+//! `RAYHIT_REGENERATE_CORPUS=1 cargo test --release -p rayhit-corpus --test corpus`
+//! for every file, or `RAYHIT_REGENERATE_CORPUS=triangle_interval,plane_interval`
+//! (a list of kernels) for those files alone.
 
 use std::fmt::Write as _;
 use std::path::PathBuf;
@@ -59,8 +61,17 @@ type S<V> = <V as Vector>::Scalar;
 /// Cases per kernel and precision.
 const CASES: usize = 2048;
 
-fn regenerate() -> bool {
-    std::env::var_os("RAYHIT_REGENERATE_CORPUS").is_some()
+/// Whether to regenerate `kernel`'s files: `RAYHIT_REGENERATE_CORPUS` is
+/// `1` or `all` for every file, or a comma-separated list of kernels
+/// (`triangle_interval,plane_interval`) for those alone, so that the other
+/// files, drawn by generators that may have changed since, stay as they
+/// are.
+fn regenerate(kernel: &str) -> bool {
+    let Some(value) = std::env::var_os("RAYHIT_REGENERATE_CORPUS") else {
+        return false;
+    };
+    let value = value.to_string_lossy();
+    value == "1" || value == "all" || value.split(',').any(|k| k.trim() == kernel)
 }
 
 fn path(kernel: &str, precision: &str) -> PathBuf {
@@ -923,35 +934,45 @@ fn check_instance_points<V: Vector>(lines: &[String]) -> Failures {
 
 fn corpus<V: Vector>() {
     let p = precision::<V>();
-    if regenerate() {
+    if regenerate("box") {
         let boxes: Vec<String> = draw(&boxes::generators::<V>())
             .iter()
             .filter_map(box_line)
             .collect();
         write("box", p, BOX_HEADER, &boxes);
+    }
+    if regenerate("triangle") {
         let tris: Vec<String> = draw(&triangles::generators::<V>())
             .iter()
             .filter_map(tri_line)
             .collect();
         write("triangle", p, TRI_HEADER, &tris);
+    }
+    if regenerate("plane") {
         let planes: Vec<String> =
             draw::<(Plane<V>, Ray<V>, S<V>)>(&[("plane", 21, planes::plane::<V>)])
                 .iter()
                 .filter_map(plane_line)
                 .collect();
         write("plane", p, PLANE_HEADER, &planes);
+    }
+    if regenerate("hit_differentials") {
         let mut src = Source::seeded(0xd1ff_c0de);
         let diffs: Vec<String> = (0..4 * CASES)
             .filter_map(|_| diff_line::<V>(&mut src))
             .take(CASES / 2)
             .collect();
         write("hit_differentials", p, DIFF_HEADER, &diffs);
+    }
+    if regenerate("instance_box") {
         let mut src = Source::seeded(0x1257_b0c5);
         let lines: Vec<String> = (0..2 * CASES)
             .filter_map(|_| instance_box_line::<V>(&mut src))
             .take(CASES / 2)
             .collect();
         write("instance_box", p, INSTANCE_BOX_HEADER, &lines);
+    }
+    if regenerate("instance_point") {
         let mut src = Source::seeded(0x1257_901e);
         let lines: Vec<String> = (0..2 * CASES)
             .filter_map(|_| instance_point_line::<V>(&mut src))
@@ -959,13 +980,15 @@ fn corpus<V: Vector>() {
             .collect();
         write("instance_point", p, INSTANCE_POINT_HEADER, &lines);
     }
-    if regenerate() || std::env::var_os("RAYHIT_REGENERATE_INTERVAL_CORPUS").is_some() {
+    if regenerate("triangle_interval") {
         let tris: Vec<String> = draw(&triangles::generators::<V>())
             .iter()
             .enumerate()
             .filter_map(|(i, c)| tri_in_line(i, c))
             .collect();
         write("triangle_interval", p, TRI_IN_HEADER, &tris);
+    }
+    if regenerate("plane_interval") {
         let planes: Vec<String> =
             draw::<(Plane<V>, Ray<V>, S<V>)>(&[("plane", 22, planes::plane::<V>)])
                 .iter()
