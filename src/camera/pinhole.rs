@@ -153,7 +153,12 @@ impl<V: Vector> PinholeCamera<V> {
     /// `focal * forward + (x - width/2) * right + (height/2 - y) * true_up`.
     #[inline(always)]
     pub(crate) fn film(&self, x: S<V>, y: S<V>) -> V {
-        let (dx, dy) = centred(x, y, self.width, self.height);
+        self.film_at(centred(x, y, self.width, self.height))
+    }
+
+    /// [`film`](Self::film) at the offsets `(dx, dy)` from the image centre.
+    #[inline(always)]
+    fn film_at(&self, (dx, dy): (S<V>, S<V>)) -> V {
         self.forward * self.focal_length + self.right * dx + self.up * dy
     }
 
@@ -192,7 +197,7 @@ impl<V: Vector> PinholeCamera<V> {
     #[must_use]
     pub fn ray_differential(&self, x: S<V>, y: S<V>) -> RayDifferential<V> {
         let (dx, dy) = centred(x, y, self.width, self.height);
-        let (dir, inv) = unit_and_inverse_length(self.film(x, y));
+        let (dir, inv) = unit_and_inverse_length(self.film_at((dx, dy)));
         let (r, u) = (self.right, self.up);
         RayDifferential {
             ray: Ray::new(by_components(self.eye), dir),

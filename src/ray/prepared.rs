@@ -4,7 +4,7 @@
 use glam::Vec3;
 
 use super::{Ray, Shear, SlabRay, invalid_stand_in, valid_lanes};
-use crate::num::{Axis, L, Lanes, S, Scalar, Vector, lanes};
+use crate::num::{Axis, L, Lanes, S, Scalar, Vector, lanes, vector};
 
 /// A ray prepared for many box and triangle tests: its origin and, per
 /// axis, the reciprocal of its direction rounded down and rounded up in
@@ -125,7 +125,7 @@ impl<V: Vector> PreparedRay<V> {
             shear_lanes: shear.lanes(),
             origin_lanes: shear.origin_lanes_of(o),
             axes: [shear.kx, shear.ky, shear.kz],
-            dir: V::new(d[0], d[1], d[2]),
+            dir: vector(dir),
         }
     }
 

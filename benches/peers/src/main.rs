@@ -2313,6 +2313,32 @@ fn guarantee_floor_loop<'a, const CENTRE: bool>(
     )
 }
 
+/// A row of the section `camera` whose rays start at `eye` and go along
+/// `dir(x, y)`. (The eye as three floats: a vector captured whole and
+/// stored into every ray keeps the loop scalar.)
+fn eye_row<'a>(
+    (name, w): (&str, &str),
+    (order, lens): Positions<'a>,
+    agree: f64,
+    [ex, ey, ez]: [f32; 3],
+    dir: impl Fn(f32, f32) -> Vec3 + 'a,
+) -> Kernel<'a> {
+    kernel(
+        "camera",
+        name,
+        w,
+        order.len(),
+        Some(agree),
+        over(
+            order,
+            lens,
+            #[inline(always)]
+            move |x, y, _| Ray::new(Vec3::new(ex, ey, ez), dir(x, y)),
+            ray_sum,
+        ),
+    )
+}
+
 fn camera_reference_kernels<'a>(d: &'a CameraData, out: &mut Vec<Kernel<'a>>) {
     use camera_refs::*;
     let p = &d.pinhole;
@@ -2342,9 +2368,7 @@ fn camera_reference_kernels<'a>(d: &'a CameraData, out: &mut Vec<Kernel<'a>>) {
     // so that the loops can vectorise.)
     let as_ray = |(o, dir): (Vec3, Vec3)| Ray::new(Vec3::new(o.x, o.y, o.z), dir);
     let thin = move |x, y, l: (f32, f32)| d.thin_lens.ray(x, y, l.0, l.1);
-    // (The eye as three floats: a vector captured whole and stored into
-    // every ray keeps these loops scalar.)
-    let (ex, ey, ez) = (frame.eye.x, frame.eye.y, frame.eye.z);
+    let eye = frame.eye.to_array();
     let pin = d.pinhole;
     // A bound on the lens points' coordinates, as the camera's own.
     let bound = (frame.eye.abs() + (frame.right.abs() + frame.up.abs()) * radius) * (1.0 + 1e-5);
@@ -2449,33 +2473,21 @@ fn camera_reference_kernels<'a>(d: &'a CameraData, out: &mut Vec<Kernel<'a>>) {
                     ray_sum,
                 ),
             ),
-            kernel(
-                "camera",
-                "floor equirectangular",
-                w,
-                n,
-                Some(agree[6]),
-                over(
-                    order,
-                    lens,
-                    #[inline(always)]
-                    move |x, y, _| Ray::new(Vec3::new(ex, ey, ez), equirect_floor(&equi, x, y)),
-                    ray_sum,
-                ),
+            eye_row(
+                ("floor equirectangular", w),
+                (order, lens),
+                agree[6],
+                eye,
+                #[inline(always)]
+                move |x, y| equirect_floor(&equi, x, y),
             ),
-            kernel(
-                "camera",
-                "floor equal area (front half)",
-                w,
-                n,
-                Some(agree[7]),
-                over(
-                    order,
-                    lens,
-                    #[inline(always)]
-                    move |x, y, _| Ray::new(Vec3::new(ex, ey, ez), equal_area_floor(&area, x, y)),
-                    ray_sum,
-                ),
+            eye_row(
+                ("floor equal area (front half)", w),
+                (order, lens),
+                agree[7],
+                eye,
+                #[inline(always)]
+                move |x, y| equal_area_floor(&area, x, y),
             ),
             kernel(
                 "camera",

@@ -312,11 +312,6 @@ pub fn check_linear_differential<V: Vector>(
     );
 }
 
-/// `gamma(13)`, in `f64`.
-fn g13<V: Vector>() -> f64 {
-    S::<V>::gamma_n(13).to_f64()
-}
-
 /// The pinhole camera's differentials at a pixel centre, against its
 /// neighbours' rays ([`check_linear_differential`]), and its ray.
 pub fn check_pinhole_differential<V: Vector>(cam: &PinholeCamera<V>, i: u32, j: u32) {
@@ -339,7 +334,7 @@ pub fn check_pinhole_differential<V: Vector>(cam: &PinholeCamera<V>, i: u32, j: 
         a: cam.right(),
         b: cam.up(),
         // The camera's frame is orthonormal within gamma(13) (its docs).
-        orthonormal: g13::<V>(),
+        orthonormal: S::<V>::gamma_n(13).to_f64(),
     };
     let dx = x - S::<V>::from_u32(cam.width()) * half;
     let dy = S::<V>::from_u32(cam.height()) * half - y;
