@@ -9,27 +9,26 @@ use std::hint::black_box;
 
 use rayhit::glam::Vec3;
 use rayhit::{
-    Aabb, AabbBatch, AabbBatchHits, PreparedRay, QuantizedChildren, Ray, Triangle, TriangleBatch,
-    TriangleBatchHits, TriangleHit, ray_aabb_batch, ray_aabb_prepared, ray_quantized_children,
-    ray_triangle_batch, ray_triangle_prepared,
+    Aabb, Bounds, Intersect, IntersectLanes, PreparedRay, Ray, Triangle, TriangleHit,
+    batch::{AabbBatch, AabbBatchHits, QuantizedChildren, TriangleBatch, TriangleBatchHits},
 };
 
 /// `ray_aabb_prepared`: one box, the slab test on four lanes.
 #[inline(never)]
 pub fn box_prepared(ray: &PreparedRay, aabb: &Aabb, t_max: f32) -> Option<(f32, f32)> {
-    ray_aabb_prepared(ray, aabb, t_max)
+    aabb.clip(ray, t_max)
 }
 
 /// `ray_triangle_prepared`: one triangle, the watertight test.
 #[inline(never)]
 pub fn triangle_prepared(ray: &PreparedRay, tri: &Triangle, t_max: f32) -> Option<TriangleHit> {
-    ray_triangle_prepared(ray, tri, t_max)
+    tri.hit(ray, t_max)
 }
 
 /// `ray_aabb_batch` on 8 boxes.
 #[inline(never)]
 pub fn box_batch_8(ray: &PreparedRay, b: &AabbBatch<Vec3, 8>, t_max: f32) -> AabbBatchHits<f32, 8> {
-    ray_aabb_batch(ray, b, t_max)
+    b.clip(ray, t_max)
 }
 
 /// `ray_aabb_batch` on 16 boxes.
@@ -39,7 +38,7 @@ pub fn box_batch_16(
     b: &AabbBatch<Vec3, 16>,
     t_max: f32,
 ) -> AabbBatchHits<f32, 16> {
-    ray_aabb_batch(ray, b, t_max)
+    b.clip(ray, t_max)
 }
 
 /// `ray_triangle_batch` on 8 triangles.
@@ -49,7 +48,7 @@ pub fn triangle_batch_8(
     b: &TriangleBatch<Vec3, 8>,
     t_max: f32,
 ) -> TriangleBatchHits<f32, 8> {
-    ray_triangle_batch(ray, b, t_max)
+    b.hit(ray, t_max)
 }
 
 /// `ray_triangle_batch` on 16 triangles.
@@ -59,7 +58,7 @@ pub fn triangle_batch_16(
     b: &TriangleBatch<Vec3, 16>,
     t_max: f32,
 ) -> TriangleBatchHits<f32, 16> {
-    ray_triangle_batch(ray, b, t_max)
+    b.hit(ray, t_max)
 }
 
 /// `ray_quantized_children`: the eight children of a compressed node.
@@ -69,7 +68,7 @@ pub fn quantized_children(
     node: &QuantizedChildren<'_, Vec3>,
     t_max: f32,
 ) -> AabbBatchHits<f32, 8> {
-    ray_quantized_children(ray, node, t_max)
+    node.clip(ray, t_max)
 }
 
 fn main() {

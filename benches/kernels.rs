@@ -14,9 +14,10 @@ use std::time::Duration;
 use criterion::{BenchmarkGroup, Criterion, Throughput, criterion_group, criterion_main};
 use rayhit::glam::{DVec3, Vec3};
 use rayhit::{
-    Aabb, AabbBatch, DAabb, DRay, DTriangle, PreparedRay, Ray, Triangle, TriangleBatch, ray_aabb,
-    ray_aabb_batch, ray_aabb_naive, ray_aabb_prepared, ray_plane, ray_triangle, ray_triangle_batch,
-    ray_triangle_mt, ray_triangle_prepared,
+    Aabb, Bounds, Camera, DAabb, DRay, DTriangle, Intersect, IntersectLanes, PreparedRay, Ray,
+    Triangle,
+    batch::{AabbBatch, TriangleBatch},
+    ray_aabb, ray_plane, ray_triangle,
 };
 use rayhit_testkit::workloads::*;
 
@@ -137,7 +138,7 @@ fn boxes(c: &mut Criterion) {
             b.iter(|| {
                 let mut n = 0u32;
                 for (r, x) in black_box(&prepared).iter().zip(black_box(boxes)) {
-                    n += u32::from(ray_aabb_prepared(r, x, INF).is_some());
+                    n += u32::from(x.clip(r, INF).is_some());
                 }
                 n
             })
@@ -145,7 +146,7 @@ fn boxes(c: &mut Criterion) {
         g.bench_function("naive", |b| {
             b.iter(|| {
                 count_boxes(black_box(rays), black_box(boxes), |r, x| {
-                    ray_aabb_naive(r, x, INF).is_some()
+                    x.clip_by_faces(r, INF).is_some()
                 })
             })
         });
@@ -178,7 +179,7 @@ fn triangles(c: &mut Criterion) {
             b.iter(|| {
                 let mut acc = 0.0f32;
                 for (r, t) in black_box(&prepared).iter().zip(black_box(tris)) {
-                    acc += ray_triangle_prepared(r, t, INF).map_or(0.0, |h| h.t);
+                    acc += t.hit(r, INF).map_or(0.0, |h| h.t);
                 }
                 acc
             })
@@ -186,7 +187,7 @@ fn triangles(c: &mut Criterion) {
         g.bench_function("moller_trumbore", |b| {
             b.iter(|| {
                 sum_t(black_box(rays), black_box(tris), |r, t| {
-                    ray_triangle_mt(r, t, INF).map(|h| h.t)
+                    t.moller_trumbore(r, INF).map(|h| h.t)
                 })
             })
         });
@@ -206,7 +207,7 @@ fn groups(c: &mut Criterion) {
             let mut n = 0u32;
             for (r, group) in black_box(&prepared).iter().zip(gb.boxes.chunks(GROUP)) {
                 for x in group {
-                    n += u32::from(ray_aabb_prepared(r, x, INF).is_some());
+                    n += u32::from(x.clip(r, INF).is_some());
                 }
             }
             n
@@ -236,7 +237,7 @@ fn groups(c: &mut Criterion) {
             let mut acc = 0.0f32;
             for (r, group) in black_box(&prepared).iter().zip(gt.triangles.chunks(GROUP)) {
                 for t in group {
-                    acc += ray_triangle_prepared(r, t, INF).map_or(0.0, |h| h.t);
+                    acc += t.hit(r, INF).map_or(0.0, |h| h.t);
                 }
             }
             acc
@@ -262,7 +263,7 @@ fn box_batches<const N: usize>(g: &mut Group<'_>, rays: &[PreparedRay], boxes: &
             let mut n = 0u32;
             for (r, group) in black_box(rays).iter().zip(black_box(&batches)) {
                 for batch in group {
-                    n += ray_aabb_batch(r, batch, INF).mask.count_ones();
+                    n += batch.clip(r, INF).mask.count_ones();
                 }
             }
             n
@@ -289,7 +290,7 @@ fn triangle_batches<const N: usize>(
             let mut acc = 0.0f32;
             for (r, group) in black_box(rays).iter().zip(black_box(&batches)) {
                 for batch in group {
-                    let hits = ray_triangle_batch(r, batch, INF);
+                    let hits = batch.hit(r, INF);
                     let mut bits = hits.mask;
                     while bits != 0 {
                         acc += hits.t[bits.trailing_zeros() as usize];
@@ -319,7 +320,7 @@ fn sweep(c: &mut Criterion) {
                 let mut hits = 0u32;
                 for r in black_box(&prepared) {
                     for x in black_box(boxes) {
-                        hits += u32::from(ray_aabb_prepared(r, x, INF).is_some());
+                        hits += u32::from(x.clip(r, INF).is_some());
                     }
                 }
                 hits
@@ -334,7 +335,7 @@ fn sweep(c: &mut Criterion) {
                 let mut hits = 0u32;
                 for r in black_box(&prepared) {
                     for batch in black_box(&batches) {
-                        hits += ray_aabb_batch(r, batch, INF).mask.count_ones();
+                        hits += batch.clip(r, INF).mask.count_ones();
                     }
                 }
                 hits
@@ -355,7 +356,7 @@ fn sweep(c: &mut Criterion) {
                 for r in black_box(&prepared) {
                     let mut t_max = INF;
                     for t in black_box(tris) {
-                        if let Some(h) = ray_triangle_prepared(r, t, t_max) {
+                        if let Some(h) = t.hit(r, t_max) {
                             t_max = h.t;
                         }
                     }
@@ -374,7 +375,7 @@ fn sweep(c: &mut Criterion) {
                 for r in black_box(&prepared) {
                     let mut t_max = INF;
                     for batch in black_box(&batches) {
-                        if let Some((_, h)) = ray_triangle_batch(r, batch, t_max).nearest() {
+                        if let Some((_, h)) = batch.hit(r, t_max).nearest() {
                             t_max = h.t;
                         }
                     }
@@ -404,7 +405,7 @@ fn double(c: &mut Criterion) {
         b.iter(|| {
             let mut n = 0u32;
             for (r, x) in black_box(&rays).iter().zip(black_box(&boxes)) {
-                n += u32::from(ray_aabb_prepared(r, x, f64::INFINITY).is_some());
+                n += u32::from(x.clip(r, f64::INFINITY).is_some());
             }
             n
         })
@@ -440,7 +441,7 @@ fn double(c: &mut Criterion) {
         b.iter(|| {
             let mut n = 0u32;
             for (r, batch) in black_box(&rays).iter().zip(black_box(&batches)) {
-                n += ray_aabb_batch(r, batch, f64::INFINITY).mask.count_ones();
+                n += batch.clip(r, f64::INFINITY).mask.count_ones();
             }
             n
         })
@@ -463,7 +464,8 @@ fn double(c: &mut Criterion) {
         b.iter(|| {
             let mut acc = 0.0f64;
             for (r, batch) in black_box(&rays).iter().zip(black_box(&batches)) {
-                acc += ray_triangle_batch(r, batch, f64::INFINITY)
+                acc += batch
+                    .hit(r, f64::INFINITY)
                     .nearest()
                     .map_or(0.0, |(_, h)| h.t);
             }

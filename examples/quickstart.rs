@@ -4,8 +4,7 @@
 
 use rayhit::glam::Vec3;
 use rayhit::{
-    Aabb, PinholeCamera, Plane, Ray, Triangle, ray_aabb, ray_aabb_naive, ray_plane, ray_triangle,
-    ray_triangle_error_bounds, ray_triangle_mt,
+    Aabb, Camera, PinholeCamera, Plane, Ray, Surface, Triangle, ray_aabb, ray_plane, ray_triangle,
 };
 
 fn main() {
@@ -35,7 +34,7 @@ fn main() {
     );
     println!(
         "box (naive):      {:?}",
-        ray_aabb_naive(&ray, &unit, f32::INFINITY)
+        unit.clip_by_faces(&ray, f32::INFINITY)
     );
 
     let tri = Triangle::new(
@@ -44,14 +43,14 @@ fn main() {
         Vec3::new(0.0, 1.0, 0.0),
     );
     let hit = ray_triangle(&ray, &tri, f32::INFINITY).expect("the centre ray hits the triangle");
-    let err = ray_triangle_error_bounds(&ray, &tri, &hit);
+    let err = tri.hit_error(&ray, &hit);
     println!(
         "triangle:         t = {} (+- {:e}), u = {}, v = {}, {:?}",
         hit.t, err.t, hit.u, hit.v, hit.side
     );
     println!(
         "Moller-Trumbore:  {:?}",
-        ray_triangle_mt(&ray, &tri, f32::INFINITY)
+        tri.moller_trumbore(&ray, f32::INFINITY)
     );
 
     // The cases that trip up textbook code.

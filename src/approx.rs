@@ -17,16 +17,16 @@
 //! relative to the larger magnitude, `max_ulps` in units in the last place
 //! of the precision. For a hit, a relative tolerance on `t` is usually the
 //! meaningful one; the crate's error bounds
-//! ([`ray_triangle_error_bounds`](crate::ray_triangle_error_bounds),
-//! [`ray_plane_t_error`](crate::ray_plane_t_error)) say how large it must be.
+//! ([`Triangle`'s `hit_error`](crate::Triangle#method.hit_error),
+//! [`Plane`'s `hit_error`](crate::Plane#method.hit_error)) say how large it must be.
 //!
 //! ```
 //! use approx::assert_relative_eq;
-//! use rayhit::{Ray, Triangle, TriangleHit, ray_triangle, ray_triangle_mt, glam::Vec3};
+//! use rayhit::{Ray, Triangle, TriangleHit, ray_triangle, glam::Vec3};
 //! let tri = Triangle::new(Vec3::ZERO, Vec3::X, Vec3::Y);
 //! let ray = Ray::new(Vec3::new(0.2, 0.3, 1.0), -Vec3::Z);
 //! let a = ray_triangle(&ray, &tri, f32::INFINITY).unwrap();
-//! let b = ray_triangle_mt(&ray, &tri, f32::INFINITY).unwrap();
+//! let b = tri.moller_trumbore(&ray, f32::INFINITY).unwrap();
 //! assert_relative_eq!(a, b, max_relative = 1e-6);
 //! ```
 

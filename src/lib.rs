@@ -1,11 +1,11 @@
 //! Camera rays (pinhole, thin lens, orthographic, panoramic, from a
 //! rasterizer's matrices, with ray differentials and ray cones) and
-//! ray/plane, ray/box and ray/triangle intersection, as small pure functions
-//! over [`glam`] vectors, with error bounds that are derived, documented and
-//! tested against exact arithmetic.
+//! ray/plane, ray/box and ray/triangle intersection over [`glam`] vectors,
+//! with error bounds that are derived, documented and tested against exact
+//! arithmetic.
 //!
 //! ```
-//! use rayhit::{Aabb, PinholeCamera, Triangle, ray_aabb, ray_triangle, glam::Vec3};
+//! use rayhit::{Aabb, Camera, PinholeCamera, Triangle, ray_aabb, ray_triangle, glam::Vec3};
 //!
 //! let cam = PinholeCamera::from_fov(
 //!     Vec3::new(0.0, 0.0, 5.0), -Vec3::Z, Vec3::Y, 60f32.to_radians(), 64, 48,
@@ -19,6 +19,79 @@
 //! assert!(enter <= hit.t);
 //! ```
 //!
+//! # One way to ask every shape
+//!
+//! Every shape answers the same questions, each with one name:
+//!
+//! | question | method | trait |
+//! | --- | --- | --- |
+//! | the closest hit over a range | `hit(ray, search)` | [`Intersect`] |
+//! | does anything block the ray over a range | `occluded(ray, search)` | [`Intersect`] |
+//! | the hit's error bound | `hit_error(ray, &hit)` | [`Surface`] |
+//! | the point a new ray leaves from | `surface_point(ray, &hit)`, then [`SurfacePoint::spawn`] or [`SurfacePoint::spawn_to`] | [`Surface`] |
+//! | a BVH node's test (conservative) | `clip(ray, search)` | [`Bounds`] |
+//! | the closest hit of each of several shapes, and the any-hit answer | `hit(ray, search)`, `occluded(ray, search)` | [`IntersectLanes`] |
+//!
+//! What varies is passed as a value, not spelled in the name:
+//!
+//! - **the ray** ([`RayForm`]): a [`Ray`]; a [`PreparedRay`], its per-ray
+//!   work done once for the many tests of a traversal; or a prepared ray on
+//!   an instruction set chosen once ([`batch::SimdRay`]). The answer is the
+//!   same bit for bit; the cost differs.
+//! - **the search** ([`Search`]): a `t_max`, meaning `(0, t_max]` with
+//!   `t > 0` decided conservatively (for rays spawned off a surface), or an
+//!   [`Interval`] `(t_min, t_max]` with both ends decided exactly (for
+//!   walking every hit in order); either with an [`EdgeRule`] (closed, or
+//!   one hit per crossing of a mesh's shared edges).
+//!
+//! | shape | [`Intersect::Hit`] (or [`IntersectLanes::Hits`]) | [`Surface`] | [`Bounds`] |
+//! | --- | --- | --- | --- |
+//! | [`Triangle`] | [`TriangleHit`]: `t`, `u`, `v`, [`Side`] | [`TriangleHitError`]; the point from the barycentrics | |
+//! | [`Plane`] | `t` | the bound on `t`; the point with the plane's exact normal | |
+//! | [`Aabb`], [`ValidAabb`] | [`BoxHit`]: the interval and the entry [`BoxFace`], decided exactly | [`Aabb::surface_point`] (none from inside) | `Option<(enter, exit)>` |
+//! | [`batch::TriangleBatch`] | [`batch::TriangleBatchHits`]: every lane's hit | | |
+//! | [`batch::AabbBatch`], [`batch::QuantizedChildren`] | | | [`batch::AabbBatchHits`]: the lanes hit, and their entries |
+//!
+//! The simplest calls keep a free function each: [`ray_triangle`],
+//! [`ray_plane`] and [`ray_aabb`] take a [`Ray`] and a `t_max`, and are the
+//! trait calls with those arguments, bit for bit.
+//!
+//! ```
+//! use rayhit::{EdgeRule, Intersect, Interval, PreparedRay, Ray, Triangle, glam::Vec3};
+//! let tri = Triangle::new(Vec3::ZERO, Vec3::new(2.0, 0.0, 0.0), Vec3::new(0.0, 2.0, 0.0));
+//! let ray = Ray::new(Vec3::new(0.5, 0.25, 4.0), Vec3::new(0.0, 0.0, -2.0));
+//! let prepared = PreparedRay::new(&ray);
+//! let window = Interval::new(1.0, 2.0).unwrap();
+//! assert_eq!(tri.hit(&ray, f32::INFINITY).unwrap().t, 2.0);
+//! assert_eq!(tri.hit(&prepared, window), tri.hit(&ray, window));
+//! assert!(tri.occluded(&prepared, (window, EdgeRule::OneHit)));
+//! ```
+//!
+//! # Which call for which job
+//!
+//! | job | call | why this one |
+//! | --- | --- | --- |
+//! | camera rays | [`Camera::ray`] of a [`CameraSample`] (or [`Camera::pixel_ray`]) on any camera: [`PinholeCamera`] and the others in [`camera`] | unit directions to a few ulps, raster conventions stated, one trait for six cameras |
+//! | depth of field | [`camera::ThinLensCamera::focus`] once per film point, then [`camera::ThinLensCamera::ray_through`] per lens sample | every ray of a film point meets its focus point exactly (`ray.at(1)` is it, bit for bit); the lens centre is the pinhole ray |
+//! | CAD views, previews, baking | [`camera::OrthographicCamera`] | one direction for every ray, bit for bit; origins on a plane you place by the scene |
+//! | rays matching a rasterizer's pixels | [`camera::MatrixCamera::from_mat4`] with your view and projection matrices | the ray of a pixel projects back to it within a stated bound |
+//! | environment maps, 360-degree captures | [`camera::EquirectangularCamera`], [`camera::EqualAreaCamera`] | with the inverse, `raster_position`, and its bound |
+//! | texture filtering | [`Camera::ray_differential`], then [`Triangle::hit_differentials`] (or [`Camera::ray_cone`] and [`Triangle::cone_width`]) | each derivative with its error bound ([`Triangle::hit_differentials_error`]) |
+//! | closest hit on a mesh | [`ray_triangle`], or [`Intersect::hit`] on a [`PreparedRay`] when one ray meets many triangles | watertight: no ray passes between triangles that share an edge |
+//! | BVH node, binary | [`Bounds::clip`] of a [`ValidAabb`] on a [`PreparedRay`] | conservative: never misses a box the ray meets, so the leaf is always visited; a `ValidAabb` is checked once, when made |
+//! | BVH node, 4 to 16 children | [`Bounds::clip`] of a [`batch::AabbBatch`], on a [`batch::SimdRay`] inside [`batch::with_simd`] | one ray against a node's children at once, the same answers bit for bit |
+//! | compressed wide BVH node (8-bit child boxes) | [`Bounds::clip`] of [`batch::QuantizedChildren`] | reads the node as stored, still conservative |
+//! | leaf with several triangles | [`IntersectLanes::hit`] of a [`batch::TriangleBatch`] | 8 or 16 triangles at once, each lane the scalar test's answer |
+//! | shadow ray between two surfaces, or to a point light | [`SurfacePoint::spawn_to`], [`SurfacePoint::spawn_to_point`], then [`Intersect::occluded`] over the [`Interval`] they return | no epsilon: the segment cannot hit the surface at either end, and an occluder farther from both ends' planes than their error bounds is found |
+//! | shadow / any-hit ray from a plain origin | [`Intersect::occluded`] with the light's distance as `t_max` | `t_max` is honoured conservatively |
+//! | inside/outside, CSG, crossing counts | [`Intersect::hit`] with [`EdgeRule::OneHit`] | exactly one hit per crossing of a consistently wound mesh |
+//! | every hit along a ray, in order (transparency, alpha-tested foliage, volumes) | [`Intersect::hit`] over consecutive [`Interval`]s `(t0, t1]`, `(t1, t2]`, ... (with [`EdgeRule::OneHit`], one report per crossing of a mesh's shared edges); nodes culled with [`Bounds::clip`] over the same intervals | both ends decided exactly against the exact crossing: every crossing lands in exactly one interval, so no hit is skipped or repeated; the node tests never cull a box the ray crosses within the interval |
+//! | boxes as geometry | [`Intersect::hit`] of an [`Aabb`], then [`Aabb::surface_point`] | the face the ray enters through, decided exactly, and its normal |
+//! | planes | [`ray_plane`] (or [`Intersect::hit`] of a [`Plane`]) | `t` with its error bound ([`Surface::hit_error`]) |
+//! | the next ray from a hit | [`Surface::surface_point`], then [`SurfacePoint::spawn`] | the new ray cannot hit the surface it left |
+//! | instances (one mesh placed many times, two-level BVH) | [`Instance`]: `object_to_world_box` for the top level, `world_to_object` once per visit, `surface_to_world` and `spawn` for the next ray, `spawn_to_through` for a shadow segment | world boxes contain the exact transformed object box; the spawned ray, mapped back, cannot hit the surface it left |
+//! | when speed matters more than cracks | [`Triangle::moller_trumbore`] | the textbook fast test, not watertight |
+//!
 //! # Conventions
 //!
 //! - A [`Ray`] is `origin + t * dir` for `t >= 0`. `dir` need not be unit
@@ -30,24 +103,23 @@
 //!   `[max(t_enter, 0), min(t_exit, t_max)]` when it is not empty, so a ray
 //!   starting inside has `enter = 0`.
 //! - Shapes are closed: a ray through a box face, edge or corner, or through
-//!   a triangle edge or corner, hits ([`ray_triangle_one_hit`] is the
+//!   a triangle edge or corner, hits ([`EdgeRule::OneHit`] is the
 //!   deliberate exception, for meshes).
 //! - Triangle hits carry barycentrics `(u, v)` with
 //!   `point = (1 - u - v) * a + u * b + v * c`, each in `[0, 1]`, and the
 //!   [`Side`] the ray came from; the tests are two-sided.
-//! - Cameras: right-handed world, raster `(0, 0)` at the image's top-left,
-//!   `x` right, `y` down, pixel `(i, j)` centred at `(i + 0.5, j + 0.5)`,
-//!   `right = normalize(view x up)`; see [`PinholeCamera`]. Every camera
-//!   ([`PinholeCamera`], [`ThinLensCamera`], [`OrthographicCamera`],
-//!   [`MatrixCamera`], [`EquirectangularCamera`], [`EqualAreaCamera`])
-//!   gives the ray of a raster position, the ray with its differentials
-//!   ([`RayDifferential`]: per pixel in `x` and `y`) and its ray cone
-//!   ([`RayCone`]); [`triangle_hit_differentials`] carries the differentials
-//!   to a hit, for texture filtering.
+//! - Cameras ([`Camera`]): right-handed world, raster `(0, 0)` at the
+//!   image's top-left, `x` right, `y` down, pixel `(i, j)` centred at
+//!   `(i + 0.5, j + 0.5)`, `right = normalize(view x up)`; see
+//!   [`PinholeCamera`].
 //! - Bad input (NaN, infinities, zero vectors, zero plane normals, inverted
-//!   boxes, NaN or negative `t_max`) gives `None` or a [`CameraError`];
-//!   nothing panics and no `t` is NaN. Zero-area triangles are hit where
-//!   rounding leaves them a sliver (see [`Triangle`]).
+//!   boxes, NaN or negative `t_max`) gives `None` or an error
+//!   ([`camera::CameraError`], [`instance::InstanceError`]); nothing
+//!   panics and no `t` is NaN. A camera's bad parameters are errors when
+//!   it is made; a NaN raster position gives a NaN ray (which every query
+//!   rejects). Zero-area triangles are not invalid: they are hit where
+//!   rounding leaves them a sliver, which keeps meshes that close
+//!   T-junctions with them watertight (see [`Triangle`]).
 //!
 //! # Precision
 //!
@@ -57,15 +129,10 @@
 //! `obvhs` store their geometry: no conversion needed) or [`glam::DVec3`]
 //! (`f64`). Every vector type of a precision gives the same answers, bit for
 //! bit (the kernels do the same arithmetic on each). The `f64` types also
-//! have glam-style names:
-//! [`DRay`], [`DAabb`], [`DValidAabb`], [`DPreparedRay`], [`DAabbBatch`],
-//! [`DTriangleBatch`], [`DPlane`], [`DTriangle`], [`DTriangleHit`],
-//! [`DTriangleHitError`], [`DPinholeCamera`], [`DThinLensCamera`],
-//! [`DOrthographicCamera`], [`DMatrixCamera`], [`DEquirectangularCamera`],
-//! [`DEqualAreaCamera`], [`DRayDifferential`], [`DHitDifferentials`],
-//! [`DSurfacePoint`]. Functions
-//! need no second name: `ray_triangle(&ray, &tri, f64::INFINITY)` takes a
-//! `DRay` and a `DTriangle`.
+//! have glam-style names, `D` and the name ([`DRay`], [`DTriangle`],
+//! [`camera::DThinLensCamera`], [`batch::DAabbBatch`], ...); functions and
+//! methods need no second name: `ray_triangle(&ray, &tri, f64::INFINITY)`
+//! takes a `DRay` and a `DTriangle`.
 //!
 //! The glam above is the one this crate re-exports, [`glam`] 0.34. A crate
 //! on an older glam turns on that release's feature (`glam-029`,
@@ -80,7 +147,7 @@
 //! [`Scalar`] traits, and each error bound is derived in terms of the unit
 //! roundoff `u` of the precision in use (`2^-24` for `f32`, `2^-53` for
 //! `f64`), with `gamma(n) = n*u / (1 - n*u)` ([`Scalar::gamma_n`]) bounding
-//! `n` chained roundings; so every guarantee below holds in both precisions,
+//! `n` chained roundings; so every guarantee holds in both precisions,
 //! each with its own `u`, and the test suite checks both.
 //!
 //! ```
@@ -88,32 +155,6 @@
 //! let tri = DTriangle::new(DVec3::ZERO, DVec3::X, DVec3::Y);
 //! let ray = DRay::new(DVec3::new(0.25, 0.25, 1e9), -DVec3::Z);
 //! assert_eq!(ray_triangle(&ray, &tri, f64::INFINITY).unwrap().t, 1e9);
-//! ```
-//!
-//! # Batches
-//!
-//! For the inner loops of BVH traversal, [`PreparedRay`] carries everything
-//! per ray that the box and triangle tests need, and the batch kernels test
-//! one prepared ray against up to 32 shapes stored structure-of-arrays
-//! ([`AabbBatch`] with [`ray_aabb_batch`], [`TriangleBatch`] with
-//! [`ray_triangle_batch`]; 8 or 16 lanes are the useful sizes), returning a
-//! hit mask and per-lane distances. They work on eight lanes at a time in
-//! SIMD registers (SSE2 by default; AVX2 where the build or the CPU has it:
-//! with `std` on x86-64 an AVX2 copy is picked at run time; NEON on
-//! aarch64), in both
-//! precisions, and each lane's answer is bit for bit the scalar kernel's.
-//! [`with_simd`] makes that choice once for a whole traversal instead of
-//! once per batch, and also uses an AVX-512 copy of the box kernels on CPUs
-//! that have it.
-//!
-//! ```
-//! use rayhit::{Aabb, AabbBatch, PreparedRay, Ray, ray_aabb_batch, glam::Vec3};
-//! let boxes = [Aabb::new(Vec3::splat(1.0), Vec3::splat(2.0)), Aabb::new(Vec3::splat(-2.0), Vec3::splat(-1.0))];
-//! let batch = AabbBatch::<Vec3, 8>::from_slice(&boxes).unwrap();
-//! let ray = PreparedRay::new(&Ray::new(Vec3::ZERO, Vec3::ONE));
-//! let hits = ray_aabb_batch(&ray, &batch, f32::INFINITY);
-//! assert_eq!(hits.mask, 0b01);
-//! assert_eq!(hits.enter[0], 1.0);
 //! ```
 //!
 //! # Watertight traversal
@@ -126,25 +167,23 @@
 //! `t`) never visits the leaf holding the triangles: the ray goes through
 //! the mesh. So a watertight traversal needs a *conservative* node test,
 //! one that never misses a box exact arithmetic says the ray meets, and the
-//! triangle test in the leaves; all the crate's box tests are conservative:
+//! triangle test in the leaves; every [`Bounds`] test is conservative:
 //!
 //! | BVH shape | node test | leaves |
 //! | --- | --- | --- |
-//! | binary, boxes as [`ValidAabb`] (checked once, when built) | [`ray_aabb_prepared`] | [`ray_triangle_prepared`] |
-//! | wide (4 to 16 children), boxes stored as an [`AabbBatch`] | [`ray_aabb_batch`] | [`ray_triangle_batch`] or [`ray_triangle_prepared`] |
-//! | compressed wide (children quantized to bytes, Ylitie et al. 2017) | [`ray_quantized_children`] on the node as stored | the same |
+//! | binary, boxes as [`ValidAabb`] (checked once, when built) | [`Bounds::clip`] of the box | [`Intersect::hit`] of each [`Triangle`] |
+//! | wide (4 to 16 children), boxes stored as a [`batch::AabbBatch`] | [`Bounds::clip`] of the batch | the same, or of a [`batch::TriangleBatch`] |
+//! | compressed wide (children quantized to bytes, Ylitie et al. 2017) | [`Bounds::clip`] of [`batch::QuantizedChildren`], the node as stored | the same |
 //!
 //! Closest hit: pass the nearest hit so far as `t_max` to both tests, so
 //! that farther nodes and triangles are culled. For a compressed wide BVH,
 //! the node test is conservative for the boxes the bytes describe; those
-//! must contain the geometry, which [`quantize_bounds`] guarantees for a
-//! builder that uses it.
+//! must contain the geometry, which [`batch::QuantizedChildren::quantize`]
+//! guarantees for a builder that uses it.
 //!
 //! ```
 //! use rayhit::glam::Vec3;
-//! use rayhit::{
-//!     Aabb, PreparedRay, Ray, Triangle, ValidAabb, ray_aabb_prepared, ray_triangle_prepared,
-//! };
+//! use rayhit::{Aabb, Bounds, Intersect, PreparedRay, Ray, Triangle, ValidAabb};
 //!
 //! /// A binary BVH node: a box and either two children or a range of triangles.
 //! enum Node {
@@ -162,14 +201,14 @@
 //!             Node::Inner { bounds, .. } | Node::Leaf { bounds, .. } => bounds,
 //!         };
 //!         // Conservative: never skips a node the ray meets before `t_max`.
-//!         if ray_aabb_prepared(&ray, bounds, t_max).is_none() {
+//!         if bounds.clip(&ray, t_max).is_none() {
 //!             continue;
 //!         }
 //!         match &nodes[i] {
 //!             Node::Inner { children, .. } => stack.extend(children),
 //!             Node::Leaf { triangles: range, .. } => {
 //!                 for k in range.clone() {
-//!                     if let Some(hit) = ray_triangle_prepared(&ray, &triangles[k], t_max) {
+//!                     if let Some(hit) = triangles[k].hit(&ray, t_max) {
 //!                         (best, t_max) = (Some((hit.t, k)), hit.t);
 //!                     }
 //!                 }
@@ -221,19 +260,19 @@
 //!   mapped back into the same instance through the stored inverse, does
 //!   not meet the surface it left (for a direction not within rounding of
 //!   tangent). Nested instances chain the maps level by level, and
-//!   [`Instance::spawn_through`] and [`InstanceRayError::nested`] carry the
-//!   bounds through the chain.
+//!   [`Instance::spawn_through`] and [`instance::InstanceRayError::nested`]
+//!   carry the bounds through the chain.
 //!
 //! Preconditions: the matrix is finite and not singular, and its computed
 //! inverse is good to better than half (a condition number well below
-//! `1 / u`; construction returns an [`InstanceError`] otherwise); every
-//! bound grows with the condition number and the coordinates' magnitude.
-//! What does not hold: two *different* instances meeting at a seam are not
-//! watertight with each other (each sees its own rounded object ray), unless
-//! their transforms are equal.
+//! `1 / u`; construction returns an [`instance::InstanceError`]
+//! otherwise); every bound grows with the condition number and the
+//! coordinates' magnitude. What does not hold: two *different* instances
+//! meeting at a seam are not watertight with each other (each sees its own
+//! rounded object ray), unless their transforms are equal.
 //!
 //! ```
-//! use rayhit::{Aabb, Instance, PreparedRay, Ray, SurfacePoint, Triangle, ray_aabb, ray_triangle_prepared, glam::{Affine3A, Quat, Vec3}};
+//! use rayhit::{Aabb, Instance, Intersect, PreparedRay, Ray, Triangle, ray_aabb, glam::{Affine3A, Quat, Vec3}};
 //! let mesh = [Triangle::new(Vec3::new(-1.0, 0.0, -1.0), Vec3::new(0.0, 0.0, 1.0), Vec3::new(1.0, 0.0, -1.0))];
 //! let mesh_box = Aabb::new(Vec3::new(-1.0, 0.0, -1.0), Vec3::new(1.0, 0.0, 1.0));
 //! let copies = [
@@ -251,7 +290,7 @@
 //!     }
 //!     let object = PreparedRay::new(&copy.world_to_object(&world)); // once per visit
 //!     for tri in &mesh {
-//!         if let Some(hit) = ray_triangle_prepared(&object, tri, t_max) {
+//!         if let Some(hit) = tri.hit(&object, t_max) {
 //!             t_max = hit.t;
 //!             best = Some((copy, *tri, hit));
 //!         }
@@ -259,9 +298,9 @@
 //! }
 //! let (copy, tri, hit) = best.unwrap();
 //! assert!((hit.t - 15.0).abs() < 1e-2);
-//! let here = copy.surface_to_world(&SurfacePoint::on_triangle(&tri, &hit));
+//! let here = copy.surface_to_world(&tri.surface_point_at(hit.u, hit.v));
 //! let bounce = copy.spawn(&here, Vec3::new(0.2, 1.0, 0.1));
-//! assert!(ray_triangle_prepared(&PreparedRay::new(&copy.world_to_object(&bounce)), &tri, f32::INFINITY).is_none());
+//! assert!(tri.hit(&PreparedRay::new(&copy.world_to_object(&bounce)), f32::INFINITY).is_none());
 //! ```
 //!
 //! # Numerical guarantees
@@ -269,8 +308,25 @@
 //! "Exact" means what real arithmetic says about the same floating-point
 //! inputs: every finite float is a rational number, and the crate's test
 //! suite decides each question exactly with big rationals and holds every
-//! kernel to the claims below (`tests/suite/oracle.rs`, `tests/suite/properties.rs`).
-//! `u` is the unit roundoff of the precision in use.
+//! query to its claims (the [`exact`](crate#features) module offers the
+//! same answers). Each guarantee is stated, with its preconditions, where
+//! the query is documented:
+//!
+//! | query | what it promises | stated at |
+//! | --- | --- | --- |
+//! | the slab test, a box's [`Bounds::clip`] | no false miss against exact arithmetic; false hits only within a few ulps of an edge or corner | [`ray_aabb`]; [`Aabb`]'s `clip` for intervals |
+//! | the face-by-face box test | the reference: agrees with the slab test away from edges and corners | [`Aabb::clip_by_faces`] |
+//! | a box's entry face | decided exactly; over intervals, each entry reported once | [`Aabb`]'s `hit` |
+//! | the watertight triangle test | no ray passes between triangles sharing an edge; `t > 0` in exact arithmetic; `t`, `u`, `v` within their error bounds | [`ray_triangle`]; [`Triangle`]'s `hit` for intervals and the one-hit rule |
+//! | a triangle hit's error bounds | finite wherever the side is certain | [`Triangle`]'s `hit_error` |
+//! | Moller-Trumbore | agrees with the watertight test away from edges; not watertight | [`Triangle::moller_trumbore`] |
+//! | the plane test | `t` within its bound; over intervals decided exactly | [`ray_plane`]; [`Plane`]'s `hit` and `hit_error` |
+//! | batches and compressed nodes | every lane bit for bit the scalar answer | [`batch::TriangleBatch`]'s `hit`, [`batch::AabbBatch`]'s and [`batch::QuantizedChildren`]'s `clip` |
+//! | spawned rays | do not hit the surface they leave | [`SurfacePoint::spawn`] |
+//! | shadow segments | hit neither end; find every occluder beyond the ends' bounds | [`SurfacePoint::spawn_to`], [`SurfacePoint::spawn_to_point`] |
+//! | cameras | unit directions, exact focus points, back-projection and round-trip bounds | each camera in [`camera`], and its bound functions |
+//! | differentials | each camera's within its second-order term; at a hit within their bound | [`Camera::ray_differential`] of each camera, [`Triangle::hit_differentials_error`] |
+//! | instances | world boxes contain the exact image; spawned rays do not re-hit through the stored inverse | [`Instance`] and its methods |
 //!
 //! Preconditions shared by all of them: round-to-nearest arithmetic (Rust's
 //! only mode), and no intermediate overflow. For the box test, no difference
@@ -293,141 +349,10 @@
 //! the crack-freeness of the watertight and one-hit tests, which rests on
 //! computing a shared edge's functions identically, not on their accuracy.
 //!
-//! - **Slab test** ([`ray_aabb`], [`ray_aabb_prepared`]). No false miss: if
-//!   the closed box meets the ray on `[0, t_max]` exactly, the test reports
-//!   it, for every input including axis-parallel rays, rays lying in a face
-//!   plane, zero-thickness boxes, `-0.0` direction components and components
-//!   so small that their reciprocal overflows. The reported exit is at least
-//!   the exact exit. False hits only within a factor `1 + 16u` (plus four
-//!   subnormals) of the boundary: the ray passes within a few ulps of an
-//!   edge (`1 + 40u` where a direction component above `2^126` in `f32`,
-//!   `2^1022` in `f64`, has a subnormal reciprocal).
-//! - **Naive box test** ([`ray_aabb_naive`]). The reference: agrees with the
-//!   slab test on hit or miss wherever the exact interval is not within
-//!   `32u` (relative) of empty, with distances within two roundings; never
-//!   hits where the slab test misses.
-//! - **Watertight triangle test** ([`ray_triangle`]). A ray through an edge
-//!   or corner shared by triangles of a mesh (bit-identical corners,
-//!   consistent winding, locally a surface seen from one side) hits at least
-//!   one of them. Every reported hit has `t > 0` and lies in front of the
-//!   origin in exact arithmetic (all corners in front, or the numerator or
-//!   `t` above its error bound). `t`, `u`, `v` are within
-//!   [`ray_triangle_error_bounds`], which is finite unless the exact
-//!   determinant's sign is unknown (a ray within rounding of parallel, or a
-//!   sliver seen edge-on).
-//! - **One-hit variant** ([`ray_triangle_one_hit`]). The same, and exactly
-//!   one hit where the ray crosses such a mesh at a shared edge or corner; a
-//!   closed mesh is crossed an odd number of times by a ray from strictly
-//!   inside. A lone triangle's edges and corners hit only on one side of a
-//!   fixed tie-break.
-//! - **Intervals** ([`ray_triangle_in`], [`ray_triangle_prepared_in`],
-//!   [`ray_triangle_one_hit_in`], [`ray_triangle_occluded`]). The inside
-//!   tests above over an [`Interval`] `(t_min, t_max]`, with both ends
-//!   decided exactly against the exact crossing `t*` (the line's crossing
-//!   with the triangle's plane, from the input floats; the reported `t`
-//!   itself where that is undefined, for zero-area triangles): consecutive
-//!   intervals `(t0, t1]`, `(t1, t2]`, ... report each hit triangle in
-//!   exactly one of them, so every hit along a ray can be walked in order
-//!   with no skip and no repeat, and the one-hit form counts each crossing
-//!   of a closed mesh once over the whole walk. Exact for `f32`; for `f64`
-//!   under a range precondition on the coordinate differences (see
-//!   [`ray_triangle_in`]). With `(0, t_max]` the hit is [`ray_triangle`]'s,
-//!   bit for bit, wherever `t*` is farther than its error bound from both
-//!   ends.
-//! - **Plane and box intervals** ([`ray_plane_in`], [`ray_aabb_in`],
-//!   [`ray_aabb_prepared_in`], [`ray_aabb_face_in`],
-//!   [`ray_aabb_prepared_face_in`]). The plane's crossing `t*` decided
-//!   exactly against `(t_min, t_max]`, rays within rounding of parallel
-//!   included (no crossing only where `dir . normal` is exactly zero), so
-//!   consecutive intervals report a plane exactly once; `t` is
-//!   [`ray_plane`]'s quotient brought into the interval. The slab test over
-//!   an interval: no false miss when the exact segment inside the closed
-//!   box meets `[t_min, t_max]`, `t_min <= enter <= exit <= t_max`, and
-//!   with `(0, t_max]` [`ray_aabb`]'s answer bit for bit. The entry face
-//!   over an interval is reported only when the exact entry distance is
-//!   in `(t_min, t_max]`, decided exactly: consecutive intervals report a
-//!   box's entry once. Exact for `f32`; for `f64` under the range
-//!   preconditions their documentation states.
-//! - **Moller-Trumbore** ([`ray_triangle_mt`]). Agrees with the watertight
-//!   test away from edges; not watertight (rays through shared edges can
-//!   miss both triangles, and do, at a measurable rate); rejects rays whose
-//!   determinant is within its own rounding error bound.
-//! - **Batches** ([`ray_aabb_batch`], [`ray_triangle_batch`],
-//!   [`ray_triangle_prepared`]). Bit for bit the answers of
-//!   [`ray_aabb_prepared`] and [`ray_triangle`] on each lane's shape, so
-//!   every guarantee above holds per lane; over an interval,
-//!   [`ray_aabb_batch_in`] is [`ray_aabb_prepared_in`] on each lane's box,
-//!   and [`ray_triangle_batch_in`] (with its any-hit form
-//!   [`ray_triangle_batch_occluded`]) is [`ray_triangle_prepared_in`] on each
-//!   lane's triangle, bit for bit.
-//! - **Compressed wide nodes** ([`ray_quantized_children`],
-//!   [`ray_quantized_children_in`]). Every child box is decoded rounded
-//!   outward, so that it contains the exact quantized box, and tested as
-//!   [`ray_aabb_batch`] (or [`ray_aabb_batch_in`]) tests it: no false
-//!   miss against exact arithmetic on the quantized boxes.
-//! - **Plane** ([`ray_plane`]). `t` within [`ray_plane_t_error`], always
-//!   finite for a reported hit; rays within rounding of parallel (the sign
-//!   of `dir . normal` not certain) are not reported.
-//! - **Spawned rays** ([`offset_ray_origin`]). The offset origin lies
-//!   strictly on the far side of the exact plane of the surface it leaves,
-//!   given bounds on the hit point's and the normal's errors
-//!   ([`triangle_hit_point`], [`Triangle::normal_with_error`],
-//!   [`ray_plane_hit_point`]); a ray spawned from it in a direction not
-//!   within rounding of tangent (the sign of `dir . normal` known despite
-//!   its rounding and the normal's error) does not hit that surface again.
-//! - **Shadow segments** ([`SurfacePoint::spawn_to`],
-//!   [`SurfacePoint::spawn_to_point`]). A ray and the interval `(0, 1]`
-//!   from one surface point to another (or to a point light): the exact
-//!   segment crosses the start surface's plane at `t < 0` and the
-//!   target's at `t > 1`, checked, not assumed (`None` where it cannot be
-//!   shown: within rounding of tangent, coincident ends, no usable
-//!   normal); every plane with the two points on opposite sides, farther
-//!   from it than the ends' moves (about their error bounds), is crossed
-//!   inside the interval.
-//! - **Camera** ([`PinholeCamera`]). Unit directions within `gamma(6)`; the
-//!   centre pixel of an odd-sized image looks along the view direction to a
-//!   few ulps; agrees with glam's view and projection matrices.
-//! - **Thin lens** ([`ThinLensCamera`]). The rays of one film point meet at
-//!   its focus point exactly: `origin + dir` is the focus point in exact
-//!   arithmetic and `ray.at(1)` is it bit for bit (lens samples in `[0,
-//!   1]^2`, coordinates below `MAX / 8`); the focus point within `gamma(6)`
-//!   of `|eye_i| + k |p_i|`'s magnitudes plus two ulps of the grid, of the
-//!   exact `eye + (focal_distance / focal_length) p`; the lens centre (and
-//!   a zero radius) gives the pinhole ray bit for bit.
-//! - **Orthographic** ([`OrthographicCamera`]). One direction for every ray,
-//!   bit for bit; each origin within `gamma(4)` of its magnitudes of the
-//!   exact point of the plane through the given centre (no far position is
-//!   ever added).
-//! - **From matrices** ([`MatrixCamera`]). In exact arithmetic on the
-//!   matrices given, a pixel's ray projects back to the pixel within the
-//!   bound its documentation states (about `10 u` of the image size for a
-//!   well-conditioned camera); singular (within rounding) and non-finite
-//!   matrices are errors.
-//! - **Panoramic** ([`EquirectangularCamera`], [`EqualAreaCamera`]). Unit
-//!   directions within `4 u`; the inverse (`raster_position`) returns
-//!   the raster position within a derived bound (equirectangular, in `f32`,
-//!   about `w (40 u / cos(lat) + 15 u)` pixels across, growing towards the
-//!   poles, and `107 u h` down; equal area `225 u` of the image size); the
-//!   equal-area differentials span a pixel's solid angle, `4 pi / (width
-//!   height)`.
-//! - **Differentials** ([`RayDifferential`], [`triangle_hit_differentials`]).
-//!   Each camera's are the derivatives of its rays, within its stated
-//!   second-order term of the difference of neighbouring pixels' rays; at a
-//!   triangle hit, every derivative within
-//!   [`triangle_hit_differentials_error`] of the exact transfer.
-//! - **Exact metamorphic identities**, bit for bit: scaling the direction or
-//!   all positions by a power of two scales every `t` accordingly; mirroring
-//!   an axis and translating on a coarse grid change nothing; reversing a
-//!   triangle's winding swaps `u` and `v` and the side.
-//!
-//! Invalid input (NaN, infinities, zero direction, inverted box, NaN or
-//! negative `t_max`) gives `None` or a [`CameraError`]: never a panic, never
-//! a NaN or negative `t`. A camera's bad parameters are errors when it is
-//! made; a NaN raster position gives a NaN ray (which every kernel
-//! rejects), and positions outside the image give finite rays (each
-//! camera says which). Zero-area triangles are not invalid: they can be
-//! hit where rounding leaves them a sliver, which keeps meshes that close
-//! T-junctions with them watertight (see [`Triangle`]).
+//! Exact metamorphic identities hold bit for bit: scaling the direction or
+//! all positions by a power of two scales every `t` accordingly; mirroring
+//! an axis and translating on a coarse grid change nothing; reversing a
+//! triangle's winding swaps `u` and `v` and the side.
 //!
 //! # Features
 //!
@@ -440,8 +365,8 @@
 //!   release as vector types (see "Precision").
 //! - `mint-05`: `from_mint` constructors for [`Ray`], [`Aabb`], [`Triangle`]
 //!   and [`Plane`] (see the `mint` module), and glam's own mint conversions.
-//! - `exact`: the public `exact` module, exact answers to every kernel's
-//!   question and verdicts on claimed answers (turns on `std`).
+//! - `exact`: the public `exact` module, exact answers to every query and
+//!   verdicts on claimed answers (turns on `std`).
 //! - `approx-05`: `approx`'s `AbsDiffEq`, `RelativeEq` and `UlpsEq` for the
 //!   public types and triangle hits (see the `approx` module for what each
 //!   comparison means).
@@ -466,14 +391,18 @@ extern crate std;
 pub use glam;
 
 // The modules, in the order their dependencies point: numbers, then SIMD
-// lanes, then the ray, then the shapes, then the BVH-node form and the
-// batch kernels on a chosen instruction set, then surface points and
-// cameras; the interop modules and `exact` on top. CONTRIBUTING.md has the
-// map, file by file.
+// lanes, then the ray and the point a ray leaves a surface from, then the
+// query traits, then the shapes, then the BVH-node form and the batch
+// kernels on a chosen instruction set, then cameras and instances; the
+// interop modules and `exact` on top. CONTRIBUTING.md has the map, file by
+// file.
 mod num;
 mod simd;
 
 mod ray;
+mod surface;
+
+mod query;
 
 mod aabb;
 mod plane;
@@ -482,10 +411,9 @@ mod triangle;
 mod quantized;
 mod with_simd;
 
-mod camera;
-mod surface;
+pub mod camera;
 
-mod instance;
+pub mod instance;
 
 #[cfg(feature = "approx-05")]
 #[cfg_attr(docsrs, doc(cfg(feature = "approx-05")))]
@@ -511,87 +439,86 @@ pub mod strategies;
 #[cfg(test)]
 mod testing;
 
-pub use aabb::{
-    Aabb, AabbBatch, AabbBatchHits, BoxFace, BoxHit, SlabBox, ValidAabb, aabb_entry_face, ray_aabb,
-    ray_aabb_batch, ray_aabb_batch_in, ray_aabb_face, ray_aabb_face_in, ray_aabb_in,
-    ray_aabb_naive, ray_aabb_prepared, ray_aabb_prepared_face, ray_aabb_prepared_face_in,
-    ray_aabb_prepared_in,
-};
-pub use camera::{
-    CameraError, ClipSpace, Columns, EqualAreaCamera, EquirectangularCamera, FocusPoint,
-    HitDifferentials, MatrixCamera, OrthographicCamera, PinholeCamera, RayCone, RayDifferential,
-    ThinLensCamera, triangle_cone_width, triangle_hit_differentials,
-    triangle_hit_differentials_error,
-};
-pub use instance::{Instance, InstanceError, InstanceRayError};
-pub use num::{Scalar, Vector};
-pub use plane::{Plane, ray_plane, ray_plane_hit_point, ray_plane_in, ray_plane_t_error};
-pub use quantized::{
-    QuantizedChildren, quantize_bounds, ray_quantized_children, ray_quantized_children_in,
-};
-pub use ray::{Interval, PreparedRay, Ray};
-pub use simd::TargetSimd;
-#[cfg(rayhit_runtime_avx)]
-pub use simd::{Avx2, Avx512};
-pub use surface::{SurfacePoint, offset_ray_origin};
-pub use triangle::{
-    Side, Triangle, TriangleBatch, TriangleBatchHits, TriangleHit, TriangleHitError, ray_triangle,
-    ray_triangle_batch, ray_triangle_batch_in, ray_triangle_batch_occluded,
-    ray_triangle_error_bounds, ray_triangle_in, ray_triangle_mt, ray_triangle_occluded,
-    ray_triangle_one_hit, ray_triangle_one_hit_in, ray_triangle_prepared, ray_triangle_prepared_in,
-    ray_triangle_prepared_occluded, triangle_hit_point,
-};
-pub use with_simd::{Simd, SimdWork, with_simd};
+/// Several shapes against one ray at once, for BVH nodes and leaves: the
+/// batches, a compressed wide BVH node read in place, and the choice of
+/// SIMD instruction set.
+///
+/// A batch answers the same queries as its shapes ([`Bounds`] for boxes and
+/// nodes, [`IntersectLanes`] for triangles), every lane bit for bit the
+/// scalar answer, eight lanes at a time in SIMD registers. On x86-64 with `std`
+/// each call picks an AVX2 copy where the CPU has it; [`with_simd`](crate::batch::with_simd) makes
+/// that choice once for a whole traversal, and a ray put on the chosen
+/// instruction set ([`Simd::ray`](crate::batch::Simd::ray)) runs every batch query on it with no
+/// check per call.
+///
+/// ```
+/// use rayhit::{Aabb, Bounds, PreparedRay, Ray, glam::Vec3};
+/// use rayhit::batch::AabbBatch;
+/// let boxes = [Aabb::new(Vec3::splat(1.0), Vec3::splat(2.0)), Aabb::new(Vec3::splat(-2.0), Vec3::splat(-1.0))];
+/// let batch = AabbBatch::<Vec3, 8>::from_slice(&boxes).unwrap();
+/// let ray = PreparedRay::new(&Ray::new(Vec3::ZERO, Vec3::ONE));
+/// let hits = batch.clip(&ray, f32::INFINITY);
+/// assert_eq!(hits.mask, 0b01);
+/// assert_eq!(hits.enter[0], 1.0);
+/// ```
+pub mod batch {
+    pub use crate::aabb::{AabbBatch, AabbBatchHits};
+    pub use crate::quantized::QuantizedChildren;
+    pub use crate::simd::TargetSimd;
+    #[cfg(rayhit_runtime_avx)]
+    pub use crate::simd::{Avx2, Avx512};
+    pub use crate::triangle::{TriangleBatch, TriangleBatchHits};
+    pub use crate::with_simd::{Simd, SimdRay, SimdWork, with_simd};
 
-/// `f64` names, glam-style (see the crate docs, "Precision").
-mod f64_names {
+    #[cfg(doc)]
+    use crate::{Bounds, IntersectLanes};
+
+    /// [`AabbBatch`] in `f64`.
+    pub type DAabbBatch<const N: usize = 8> = AabbBatch<glam::DVec3, N>;
+    /// [`TriangleBatch`] in `f64`.
+    pub type DTriangleBatch<const N: usize = 8> = TriangleBatch<glam::DVec3, N>;
+}
+
+/// The crate root's items, one list: the root re-exports it, and so does
+/// [`prelude`].
+mod root {
+    pub use crate::aabb::{Aabb, BoxFace, BoxHit, ValidAabb, ray_aabb};
+    pub use crate::camera::{Camera, CameraSample, DPinholeCamera, PinholeCamera};
+    pub use crate::instance::{DInstance, Instance};
+    pub use crate::num::{Scalar, Vector};
+    pub use crate::plane::{Plane, ray_plane};
+    pub use crate::query::{Bounds, EdgeRule, Intersect, IntersectLanes, RayForm, Search, Surface};
+    pub use crate::ray::{Interval, PreparedRay, Ray};
+    pub use crate::surface::SurfacePoint;
+    pub use crate::triangle::{Side, Triangle, TriangleHit, TriangleHitError, ray_triangle};
+
     use glam::DVec3;
 
-    /// [`Ray`](crate::Ray) in `f64`.
-    pub type DRay = crate::Ray<DVec3>;
-    /// [`Aabb`](crate::Aabb) in `f64`.
-    pub type DAabb = crate::Aabb<DVec3>;
-    /// [`ValidAabb`](crate::ValidAabb) in `f64`.
-    pub type DValidAabb = crate::ValidAabb<DVec3>;
-    /// [`PreparedRay`](crate::PreparedRay) in `f64`.
-    pub type DPreparedRay = crate::PreparedRay<DVec3>;
-    /// [`Plane`](crate::Plane) in `f64`.
-    pub type DPlane = crate::Plane<DVec3>;
-    /// [`Triangle`](crate::Triangle) in `f64`.
-    pub type DTriangle = crate::Triangle<DVec3>;
-    /// [`TriangleHit`](crate::TriangleHit) in `f64`.
-    pub type DTriangleHit = crate::TriangleHit<f64>;
-    /// [`TriangleHitError`](crate::TriangleHitError) in `f64`.
-    pub type DTriangleHitError = crate::TriangleHitError<f64>;
-    /// [`AabbBatch`](crate::AabbBatch) in `f64`.
-    pub type DAabbBatch<const N: usize = 8> = crate::AabbBatch<DVec3, N>;
-    /// [`TriangleBatch`](crate::TriangleBatch) in `f64`.
-    pub type DTriangleBatch<const N: usize = 8> = crate::TriangleBatch<DVec3, N>;
-    /// [`PinholeCamera`](crate::PinholeCamera) in `f64`.
-    pub type DPinholeCamera = crate::PinholeCamera<DVec3>;
-    /// [`ThinLensCamera`](crate::ThinLensCamera) in `f64`.
-    pub type DThinLensCamera = crate::ThinLensCamera<DVec3>;
-    /// [`OrthographicCamera`](crate::OrthographicCamera) in `f64`.
-    pub type DOrthographicCamera = crate::OrthographicCamera<DVec3>;
-    /// [`MatrixCamera`](crate::MatrixCamera) in `f64`.
-    pub type DMatrixCamera = crate::MatrixCamera<DVec3>;
-    /// [`EquirectangularCamera`](crate::EquirectangularCamera) in `f64`.
-    pub type DEquirectangularCamera = crate::EquirectangularCamera<DVec3>;
-    /// [`EqualAreaCamera`](crate::EqualAreaCamera) in `f64`.
-    pub type DEqualAreaCamera = crate::EqualAreaCamera<DVec3>;
-    /// [`RayDifferential`](crate::RayDifferential) in `f64`.
-    pub type DRayDifferential = crate::RayDifferential<DVec3>;
-    /// [`HitDifferentials`](crate::HitDifferentials) in `f64`.
-    pub type DHitDifferentials = crate::HitDifferentials<DVec3>;
-    /// [`SurfacePoint`](crate::SurfacePoint) in `f64`.
-    pub type DSurfacePoint = crate::SurfacePoint<DVec3>;
-    /// [`Instance`](crate::Instance) in `f64`.
-    pub type DInstance = crate::Instance<DVec3>;
+    /// [`Ray`] in `f64`.
+    pub type DRay = Ray<DVec3>;
+    /// [`PreparedRay`] in `f64`.
+    pub type DPreparedRay = PreparedRay<DVec3>;
+    /// [`Aabb`] in `f64`.
+    pub type DAabb = Aabb<DVec3>;
+    /// [`ValidAabb`] in `f64`.
+    pub type DValidAabb = ValidAabb<DVec3>;
+    /// [`BoxHit`] in `f64`.
+    pub type DBoxHit = BoxHit<f64>;
+    /// [`Plane`] in `f64`.
+    pub type DPlane = Plane<DVec3>;
+    /// [`Triangle`] in `f64`.
+    pub type DTriangle = Triangle<DVec3>;
+    /// [`TriangleHit`] in `f64`.
+    pub type DTriangleHit = TriangleHit<f64>;
+    /// [`TriangleHitError`] in `f64`.
+    pub type DTriangleHitError = TriangleHitError<f64>;
+    /// [`SurfacePoint`] in `f64`.
+    pub type DSurfacePoint = SurfacePoint<DVec3>;
 }
-pub use f64_names::*;
+pub use root::*;
 
-/// Every type, trait and function of the crate root except the re-exported
-/// `glam`, for `use rayhit::prelude::*;`.
+/// The crate root's items except the re-exported `glam` and the modules,
+/// for `use rayhit::prelude::*;`: the same list, so the two never differ.
 ///
 /// A glob import of the crate root itself (`use rayhit::*;`) brings in
 /// `rayhit::glam` too, which is ambiguous (E0659) next to a crate's own
@@ -602,34 +529,43 @@ pub use f64_names::*;
 /// use rayhit::prelude::*;
 /// let ray = Ray::new(Vec3::new(0.25, 0.25, 1.0), Vec3::NEG_Z);
 /// let tri = Triangle::new(Vec3::ZERO, Vec3::X, Vec3::Y);
+/// assert!(tri.hit(&ray, f32::INFINITY).is_some());
 /// assert!(ray_triangle(&ray, &tri, f32::INFINITY).is_some());
 /// ```
 pub mod prelude {
-    pub use crate::{
-        Aabb, AabbBatch, AabbBatchHits, BoxFace, BoxHit, CameraError, ClipSpace, Columns, DAabb,
-        DAabbBatch, DEqualAreaCamera, DEquirectangularCamera, DHitDifferentials, DInstance,
-        DMatrixCamera, DOrthographicCamera, DPinholeCamera, DPlane, DPreparedRay, DRay,
-        DRayDifferential, DSurfacePoint, DThinLensCamera, DTriangle, DTriangleBatch, DTriangleHit,
-        DTriangleHitError, DValidAabb, EqualAreaCamera, EquirectangularCamera, FocusPoint,
-        HitDifferentials, Interval, MatrixCamera, OrthographicCamera, PinholeCamera, Plane,
-        PreparedRay, QuantizedChildren, Ray, RayCone, RayDifferential, Scalar, Side, Simd,
-        SimdWork, SlabBox, SurfacePoint, TargetSimd, ThinLensCamera, Triangle, TriangleBatch,
-        TriangleBatchHits, TriangleHit, TriangleHitError, ValidAabb, Vector, aabb_entry_face,
-        offset_ray_origin, quantize_bounds, ray_aabb, ray_aabb_batch, ray_aabb_batch_in,
-        ray_aabb_face, ray_aabb_face_in, ray_aabb_in, ray_aabb_naive, ray_aabb_prepared,
-        ray_aabb_prepared_face, ray_aabb_prepared_face_in, ray_aabb_prepared_in, ray_plane,
-        ray_plane_hit_point, ray_plane_in, ray_plane_t_error, ray_quantized_children,
-        ray_quantized_children_in, ray_triangle, ray_triangle_batch, ray_triangle_error_bounds,
-        ray_triangle_in, ray_triangle_mt, ray_triangle_occluded, ray_triangle_one_hit,
-        ray_triangle_one_hit_in, ray_triangle_prepared, ray_triangle_prepared_in,
-        ray_triangle_prepared_occluded, triangle_cone_width, triangle_hit_differentials,
-        triangle_hit_differentials_error, triangle_hit_point, with_simd,
-    };
-    #[cfg(rayhit_runtime_avx)]
-    pub use crate::{Avx2, Avx512};
+    pub use crate::root::*;
 }
 
 /// The README's code blocks, compiled and run as doc tests.
 #[cfg(doctest)]
 #[doc = include_str!("../README.md")]
 struct ReadmeDoctests;
+
+#[cfg(test)]
+mod root_tests {
+    /// The crate root and the prelude are one list: the root publishes
+    /// `mod root` and the modules, the prelude `mod root` alone, and nothing
+    /// else is re-exported at either (a `pub use` added beside them would
+    /// put an item in one and not the other).
+    #[test]
+    fn root_and_prelude_are_one_list() {
+        let src = include_str!("lib.rs");
+        // Top-level lines only (the crate docs and nested items indent or
+        // comment theirs).
+        let top: std::vec::Vec<&str> = src.lines().filter(|l| l.starts_with("pub ")).collect();
+        let uses: std::vec::Vec<&str> =
+            top.iter().copied().filter(|l| l.starts_with("pub use")).collect();
+        assert_eq!(uses, ["pub use glam;", "pub use root::*;"], "{top:?}");
+        let prelude = src
+            .split("pub mod prelude {")
+            .nth(1)
+            .and_then(|rest| rest.split('}').next())
+            .expect("a prelude module");
+        assert_eq!(prelude.trim(), "pub use crate::root::*;");
+        // The names in the list are at the root, and so in the prelude.
+        use crate::prelude as p;
+        let _: fn(&p::Ray, &p::Triangle, f32) -> Option<p::TriangleHit> = crate::ray_triangle;
+        let _: fn(&p::Ray, &p::Plane, f32) -> Option<f32> = crate::ray_plane;
+        let _: fn(&p::Ray, &p::Aabb, f32) -> Option<(f32, f32)> = crate::ray_aabb;
+    }
+}

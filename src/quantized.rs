@@ -8,8 +8,9 @@ use glam::Vec3;
 
 use crate::aabb::{Aabb, AabbBatch, AabbBatchHits, Slab8, slab_ends};
 use crate::num::{Lanes8, Vector};
-use crate::ray::{Interval, PreparedRay, t_max_ok};
-use crate::simd::{Isa, Kernel, per_call};
+use crate::query::{Bounds, Range, RayForm, Search};
+use crate::ray::{PreparedRay, t_max_ok};
+use crate::simd::{Isa, Kernel};
 
 /// The eight child boxes of a compressed wide BVH node, read in place:
 /// the quantized format of Ylitie, Karras and Laine ("Efficient Incoherent
@@ -32,7 +33,7 @@ use crate::simd::{Isa, Kernel, per_call};
 /// the answer with the node's occupied slots.
 ///
 /// ```
-/// use rayhit::{QuantizedChildren, glam::Vec3};
+/// use rayhit::{batch::QuantizedChildren, glam::Vec3};
 /// // Step 2^(125 - 127) = 0.25 on every axis, children measured from (1, 2, 3).
 /// let (lo, hi) = ([0, 4, 0, 0, 0, 0, 0, 0], [4, 8, 0, 0, 0, 0, 0, 0]);
 /// let node = QuantizedChildren {
@@ -145,9 +146,8 @@ impl<V: Vector<Scalar = f32>> QuantizedChildren<'_, V> {
     }
 
     /// The eight boxes of [`QuantizedChildren::child_box`] as a batch
-    /// (empty children and invalid nodes give empty lanes):
-    /// [`ray_aabb_batch`](crate::ray_aabb_batch) on it gives, bit for bit,
-    /// what [`ray_quantized_children`] gives on the node.
+    /// (empty children and invalid nodes give empty lanes): its
+    /// [`clip`](Bounds::clip) gives, bit for bit, what the node's gives.
     #[must_use]
     pub fn boxes(&self) -> AabbBatch<V, 8> {
         let mut batch = AabbBatch::empty();
@@ -160,141 +160,128 @@ impl<V: Vector<Scalar = f32>> QuantizedChildren<'_, V> {
     }
 }
 
-/// Quantizes one axis of a child's bounds for a node with origin `origin`
-/// and biased exponent `exponent` on that axis, conservatively: the bytes
-/// `(lo, hi)` with the tightest box whose decoded form
-/// ([`QuantizedChildren::child_box`]) contains `[min, max]`, or `None`
-/// when no byte pair does (the node's box does not contain the child's, or
-/// its step is too small) or the input is not finite or inverted.
-///
-/// A BVH builder that quantizes with this (or checks its own bytes against
-/// `child_box`) gets nodes whose test never misses a child the ray meets.
-///
-/// ```
-/// use rayhit::quantize_bounds;
-/// // Origin 1, step 0.25 (exponent 125): [1.6, 2.2] needs [1.5, 2.25].
-/// assert_eq!(quantize_bounds(1.0, 125, 1.6, 2.2), Some((2, 5)));
-/// // Below the origin: no byte reaches it.
-/// assert_eq!(quantize_bounds(1.0, 125, 0.5, 2.0), None);
-/// ```
-#[must_use]
-pub fn quantize_bounds(origin: f32, exponent: u8, min: f32, max: f32) -> Option<(u8, u8)> {
-    if !(origin.is_finite() && exponent < 255 && min.is_finite() && max.is_finite() && min <= max) {
-        return None;
+impl QuantizedChildren<'_, Vec3> {
+    /// Quantizes one axis of a child's bounds for a node with origin `origin`
+    /// and biased exponent `exponent` on that axis, conservatively: the bytes
+    /// `(lo, hi)` with the tightest box whose decoded form
+    /// ([`QuantizedChildren::child_box`]) contains `[min, max]`, or `None`
+    /// when no byte pair does (the node's box does not contain the child's, or
+    /// its step is too small) or the input is not finite or inverted.
+    ///
+    /// A BVH builder that quantizes with this (or checks its own bytes against
+    /// `child_box`) gets nodes whose test never misses a child the ray meets.
+    ///
+    /// ```
+    /// use rayhit::batch::QuantizedChildren;
+    /// // Origin 1, step 0.25 (exponent 125): [1.6, 2.2] needs [1.5, 2.25].
+    /// assert_eq!(QuantizedChildren::quantize(1.0, 125, 1.6, 2.2), Some((2, 5)));
+    /// // Below the origin: no byte reaches it.
+    /// assert_eq!(QuantizedChildren::quantize(1.0, 125, 0.5, 2.0), None);
+    /// ```
+    #[must_use]
+    pub fn quantize(origin: f32, exponent: u8, min: f32, max: f32) -> Option<(u8, u8)> {
+        if !(origin.is_finite()
+            && exponent < 255
+            && min.is_finite()
+            && max.is_finite()
+            && min <= max)
+        {
+            return None;
+        }
+        let s = step_of(exponent);
+        let w = widening(origin, s);
+        let lo_of = |q: u8| (s * f32::from(q) + origin) - w;
+        let hi_of = |q: u8| (s * f32::from(q) + origin) + w;
+        // A first guess from the quotient, then the exact decode decides (the
+        // decoded coordinates grow with the byte).
+        let guess = |x: f32| {
+            let q = if s > 0.0 { (x - origin) / s } else { 0.0 };
+            if q.is_nan() { 0.0 } else { q.clamp(0.0, 255.0) }
+        };
+        // (`as u8` truncates, which the loops below correct either way; no
+        // `floor` or `ceil` without `std`.)
+        let mut lo = guess(min) as u8;
+        while lo_of(lo) > min {
+            lo = lo.checked_sub(1)?;
+        }
+        while lo < 255 && lo_of(lo + 1) <= min {
+            lo += 1;
+        }
+        let mut hi = guess(max) as u8;
+        while hi_of(hi) < max {
+            hi = hi.checked_add(1)?;
+        }
+        while hi > lo && hi_of(hi - 1) >= max {
+            hi -= 1;
+        }
+        // For bounds thinner than the widening, `lo` can pass `hi`; then every
+        // byte between them decodes to a box containing the bounds (the decoded
+        // coordinates grow with the byte), `hi` among them.
+        Some(if lo > hi { (hi, hi) } else { (lo, hi) })
     }
-    let s = step_of(exponent);
-    let w = widening(origin, s);
-    let lo_of = |q: u8| (s * f32::from(q) + origin) - w;
-    let hi_of = |q: u8| (s * f32::from(q) + origin) + w;
-    // A first guess from the quotient, then the exact decode decides (the
-    // decoded coordinates grow with the byte).
-    let guess = |x: f32| {
-        let q = if s > 0.0 { (x - origin) / s } else { 0.0 };
-        if q.is_nan() { 0.0 } else { q.clamp(0.0, 255.0) }
-    };
-    // (`as u8` truncates, which the loops below correct either way; no
-    // `floor` or `ceil` without `std`.)
-    let mut lo = guess(min) as u8;
-    while lo_of(lo) > min {
-        lo = lo.checked_sub(1)?;
-    }
-    while lo < 255 && lo_of(lo + 1) <= min {
-        lo += 1;
-    }
-    let mut hi = guess(max) as u8;
-    while hi_of(hi) < max {
-        hi = hi.checked_add(1)?;
-    }
-    while hi > lo && hi_of(hi - 1) >= max {
-        hi -= 1;
-    }
-    // For bounds thinner than the widening, `lo` can pass `hi`; then every
-    // byte between them decodes to a box containing the bounds (the decoded
-    // coordinates grow with the byte), `hi` among them.
-    Some(if lo > hi { (hi, hi) } else { (lo, hi) })
 }
 
-/// The slab test of one prepared ray against the eight children of a
-/// compressed wide BVH node, read from the node itself: which children the
-/// ray meets on `[0, t_max]`, and where it enters each.
-///
-/// Each child's box is decoded with outward rounding
-/// ([`QuantizedChildren::child_box`]), so it contains the exact quantized
-/// box, and tested with the conservative slab test: the answer is, bit for
-/// bit, [`ray_aabb_batch`](crate::ray_aabb_batch) on
-/// [`QuantizedChildren::boxes`], so every guarantee of
-/// [`ray_aabb_prepared`](crate::ray_aabb_prepared) holds per child. In
-/// particular: no false miss against exact arithmetic on the quantized
-/// boxes. With a builder whose quantized boxes contain the children's
-/// geometry (see [`quantize_bounds`]), a traversal with this node test and
-/// [`ray_triangle`](crate::ray_triangle) in the leaves is watertight. False
-/// hits only within a few ulps of a decoded box (about four ulps of the
-/// node's largest coordinate, from the outward rounding, plus the slab
-/// test's band).
-///
-/// An invalid node, an invalid ray and a NaN or negative `t_max` give no
-/// hits; empty children are never hit. Never panics. On x86-64 with `std`
-/// it picks an AVX2 copy at run time like the batch kernels (see
-/// [`with_simd`](crate::with_simd) to choose once per traversal).
-///
-/// ```
-/// use rayhit::{PreparedRay, QuantizedChildren, Ray, ray_quantized_children, glam::Vec3};
-/// let (lo, hi) = ([0, 4, 0, 0, 0, 0, 0, 0], [4, 8, 0, 0, 0, 0, 0, 0]);
-/// let node = QuantizedChildren {
-///     origin: Vec3::ZERO,
-///     exponents: [127; 3], // step 1
-///     min: [&lo, &lo, &lo],
-///     max: [&hi, &hi, &hi],
-/// };
-/// // Along the diagonal: child 0 is [0, 4]^3, child 1 is [4, 8]^3.
-/// let ray = PreparedRay::new(&Ray::new(Vec3::splat(-1.0), Vec3::ONE));
-/// let hits = ray_quantized_children(&ray, &node, f32::INFINITY);
-/// assert_eq!(hits.mask & 0b11, 0b11);
-/// assert!(hits.enter[1] <= 5.0 && hits.enter[1] > 4.99);
-/// ```
-#[inline]
-#[must_use]
-pub fn ray_quantized_children<V: Vector<Scalar = f32>>(
-    ray: &PreparedRay<V>,
-    node: &QuantizedChildren<'_, V>,
-    t_max: f32,
-) -> AabbBatchHits<f32, 8> {
-    per_call::<QuantizedKernel<'_, V>>(ray, node, (0.0, t_max))
-}
+/// The node test, conservative, on the children as stored.
+impl<V: Vector<Scalar = f32>> Bounds<V> for QuantizedChildren<'_, V> {
+    /// The children hit, and each one's entry.
+    type Clip = AabbBatchHits<f32, 8>;
 
-/// [`ray_quantized_children`] over an interval: each child's box, decoded
-/// and widened as there, culled against `(t_min, t_max]` as
-/// [`ray_aabb_batch_in`](crate::ray_aabb_batch_in) culls it: lane by lane,
-/// bit for bit what [`ray_aabb_prepared_in`](crate::ray_aabb_prepared_in)
-/// gives for [`child_box`](QuantizedChildren::child_box), so never a false
-/// miss of a child whose box the exact ray crosses within the interval.
-/// With `interval = (0, t_max]`, the answer of [`ray_quantized_children`],
-/// bit for bit.
-///
-/// ```
-/// use rayhit::{Interval, PreparedRay, QuantizedChildren, Ray, ray_quantized_children_in, glam::Vec3};
-/// let (lo, hi) = ([0, 4, 0, 0, 0, 0, 0, 0], [4, 8, 0, 0, 0, 0, 0, 0]);
-/// let node = QuantizedChildren {
-///     origin: Vec3::ZERO,
-///     exponents: [127; 3], // step 1
-///     min: [&lo, &lo, &lo],
-///     max: [&hi, &hi, &hi],
-/// };
-/// // Along the diagonal from (-1, -1, -1): child 0 ([0, 4]^3) is left at
-/// // t = 5, child 1 ([4, 8]^3) entered there. Past t = 6, only child 1.
-/// let ray = PreparedRay::new(&Ray::new(Vec3::splat(-1.0), Vec3::ONE));
-/// let hits = ray_quantized_children_in(&ray, &node, Interval::new(6.0, f32::INFINITY).unwrap());
-/// assert_eq!(hits.mask & 0b11, 0b10);
-/// assert_eq!(hits.enter[1], 6.0);
-/// ```
-#[inline]
-#[must_use]
-pub fn ray_quantized_children_in<V: Vector<Scalar = f32>>(
-    ray: &PreparedRay<V>,
-    node: &QuantizedChildren<'_, V>,
-    interval: Interval<f32>,
-) -> AabbBatchHits<f32, 8> {
-    per_call::<QuantizedKernel<'_, V>>(ray, node, slab_ends(interval))
+    /// The slab test of one ray against the eight children of a compressed
+    /// wide BVH node, read from the node itself: which children the ray meets
+    /// within `search` (a `t_max` or an [`Interval`](crate::Interval)), and where it enters
+    /// each.
+    ///
+    /// Each child's box is decoded with outward rounding
+    /// ([`QuantizedChildren::child_box`]), so it contains the exact quantized
+    /// box, and tested with the conservative slab test: the answer is, bit for
+    /// bit, the [`clip`](Bounds::clip) of [`QuantizedChildren::boxes`], so
+    /// every guarantee of [`Aabb`]'s [`clip`](Bounds::clip) holds per child. In
+    /// particular: no false miss against exact arithmetic on the quantized
+    /// boxes. With a builder whose quantized boxes contain the children's
+    /// geometry (see [`QuantizedChildren::quantize`]), a traversal with this node test and
+    /// [`ray_triangle`](crate::ray_triangle) in the leaves is watertight. False
+    /// hits only within a few ulps of a decoded box (about four ulps of the
+    /// node's largest coordinate, from the outward rounding, plus the slab
+    /// test's band).
+    ///
+    /// With an [`Interval`](crate::Interval) `(t_min, t_max]`, each child is culled as
+    /// [`Aabb`]'s [`clip`](Bounds::clip) culls it over the interval: never a
+    /// false miss of a child whose box the exact ray crosses within it.
+    ///
+    /// An invalid node, an invalid ray and a NaN or negative `t_max` give no
+    /// hits; empty children are never hit. Never panics. On x86-64 with `std`
+    /// it picks an AVX2 copy at run time like the batches (a prepared ray on
+    /// an instruction set, [`SimdRay`](crate::batch::SimdRay), chooses once
+    /// per traversal).
+    ///
+    /// ```
+    /// use rayhit::{Bounds, Interval, PreparedRay, Ray, glam::Vec3};
+    /// use rayhit::batch::QuantizedChildren;
+    /// let (lo, hi) = ([0, 4, 0, 0, 0, 0, 0, 0], [4, 8, 0, 0, 0, 0, 0, 0]);
+    /// let node = QuantizedChildren {
+    ///     origin: Vec3::ZERO,
+    ///     exponents: [127; 3], // step 1
+    ///     min: [&lo, &lo, &lo],
+    ///     max: [&hi, &hi, &hi],
+    /// };
+    /// // Along the diagonal: child 0 is [0, 4]^3, child 1 is [4, 8]^3.
+    /// let ray = PreparedRay::new(&Ray::new(Vec3::splat(-1.0), Vec3::ONE));
+    /// let hits = node.clip(&ray, f32::INFINITY);
+    /// assert_eq!(hits.mask & 0b11, 0b11);
+    /// assert!(hits.enter[1] <= 5.0 && hits.enter[1] > 4.99);
+    /// // Past t = 6, only child 1.
+    /// let later = node.clip(&ray, Interval::new(6.0, f32::INFINITY).unwrap());
+    /// assert_eq!(later.mask & 0b11, 0b10);
+    /// assert_eq!(later.enter[1], 6.0);
+    /// ```
+    #[inline(always)]
+    fn clip(&self, ray: &impl RayForm<V>, search: impl Into<Search<f32>>) -> Self::Clip {
+        let ends = match search.into().range {
+            Range::UpTo(t_max) => (0.0, t_max),
+            Range::Within(i) => slab_ends(i),
+        };
+        ray.batch::<QuantizedKernel<'_, V>>(self, ends)
+    }
 }
 
 /// [`ray_quantized_children`] as a kernel, for any instruction set (see

@@ -1,8 +1,10 @@
 //! Leaving a surface: a hit point with its error bounds ([`SurfacePoint`]),
 //! the offset origin of a ray that cannot hit that surface again
-//! ([`offset_ray_origin`]), and the segment between two surface points, or
-//! from one to a point light, that hits neither end
-//! ([`SurfacePoint::spawn_to`], [`SurfacePoint::spawn_to_point`]).
+//! ([`SurfacePoint::spawn`]), and the segment between two surface points,
+//! or from one to a point light, that hits neither end
+//! ([`SurfacePoint::spawn_to`], [`SurfacePoint::spawn_to_point`]). Shapes
+//! give their points through [`Surface`](crate::Surface), so this sits
+//! below them and reads no shape.
 
 use glam::Vec3;
 
@@ -17,11 +19,8 @@ use crate::ray::{Interval, Ray};
 /// `|point_i - q_i| <= point_error_i`; the surface's `normal` (any length)
 /// and a per-component bound `normal_error` on its difference from the
 /// exact plane's normal `N` (zero when the normal is exact, as for a
-/// [`Plane`](crate::Plane)); and the new ray's `dir`. The functions
-/// [`ray_plane_hit_point`](crate::ray_plane_hit_point),
-/// [`triangle_hit_point`](crate::triangle_hit_point) and
-/// [`Triangle::normal_with_error`](crate::Triangle::normal_with_error) give
-/// these.
+/// [`Plane`](crate::Plane)); and the new ray's `dir`. A shape's
+/// [`surface_point`](crate::Surface::surface_point) gives these.
 ///
 /// Returns `point + s * lambda * normal`, each component rounded away from
 /// `point`, with `s` the sign of `dir . normal`. Guarantee: the returned
@@ -49,21 +48,8 @@ use crate::ray::{Interval, Ray};
 /// normal). And the normal must be known well enough that the denominator
 /// above is positive; otherwise, and for non-finite input, the point is
 /// returned unchanged. Never panics.
-///
-/// ```
-/// use rayhit::{Plane, Ray, offset_ray_origin, ray_plane, ray_plane_hit_point, glam::Vec3};
-/// let floor = Plane::new(Vec3::ZERO, Vec3::Y);
-/// let ray = Ray::new(Vec3::new(0.1, 3.0, 0.2), Vec3::new(0.3, -1.0, 0.7));
-/// let t = ray_plane(&ray, &floor, f32::INFINITY).unwrap();
-/// let (p, err) = ray_plane_hit_point(&ray, &floor, t);
-/// // Bounce up and away: the new origin is strictly above the floor.
-/// let bounce = Vec3::new(0.3, 1.0, 0.7);
-/// let origin = offset_ray_origin(p, err, floor.normal, Vec3::ZERO, bounce);
-/// assert!(origin.y > 0.0);
-/// assert_eq!(ray_plane(&Ray::new(origin, bounce), &floor, f32::INFINITY), None);
-/// ```
 #[must_use]
-pub fn offset_ray_origin<V: Vector>(
+pub(crate) fn offset_ray_origin<V: Vector>(
     point: V,
     point_error: V,
     normal: V,
@@ -76,7 +62,7 @@ pub fn offset_ray_origin<V: Vector>(
     offset_to_side(point, point_error, normal, normal_error, side(dir, normal)).unwrap_or(point)
 }
 
-/// The side [`offset_ray_origin`] moves to for `dir`: the sign of the
+/// The side [`SurfacePoint::spawn`](crate::SurfacePoint::spawn) moves to for `dir`: the sign of the
 /// computed `dir . normal`, `+1` where it is zero.
 #[inline(always)]
 fn side<V: Vector>(dir: V, normal: V) -> S<V> {
@@ -87,7 +73,7 @@ fn side<V: Vector>(dir: V, normal: V) -> S<V> {
     }
 }
 
-/// [`offset_ray_origin`] to a given side (`+1` or `-1` times `normal`), or
+/// [`SurfacePoint::spawn`](crate::SurfacePoint::spawn) to a given side (`+1` or `-1` times `normal`), or
 /// `None` where it returns the point unmoved (non-finite input, a normal
 /// not known well enough).
 fn offset_to_side<V: Vector>(
@@ -139,23 +125,25 @@ fn offset_to_side<V: Vector>(
     Some(V::new(moved(0), moved(1), moved(2)))
 }
 
-/// A point on a surface with the error bounds needed to leave it safely:
-/// what [`offset_ray_origin`] takes, gathered so that the arguments cannot be
-/// passed in the wrong order.
+/// A point on a surface with the error bounds needed to leave it safely,
+/// gathered so that they cannot be passed in the wrong order.
 ///
-/// Build it from a hit with [`SurfacePoint::on_triangle`],
-/// [`SurfacePoint::on_plane`] or [`SurfacePoint::on_box`], then
-/// [`spawn`](SurfacePoint::spawn) shadow and bounce rays from it.
+/// Get it from a hit with the shape's
+/// [`surface_point`](crate::Surface::surface_point) (a box's is
+/// [`Aabb::surface_point`](crate::Aabb::surface_point)), or fill in the
+/// fields for a surface of your own; then [`spawn`](SurfacePoint::spawn)
+/// bounce rays from it and [`spawn_to`](SurfacePoint::spawn_to) shadow
+/// segments.
 ///
 /// ```
-/// use rayhit::{Ray, SurfacePoint, Triangle, ray_triangle, glam::Vec3};
+/// use rayhit::{Intersect, Ray, Surface, Triangle, glam::Vec3};
 /// let tri = Triangle::new(Vec3::new(-1.0, 0.0, -1.0), Vec3::new(0.0, 0.0, 1.0), Vec3::new(1.0, 0.0, -1.0));
 /// let ray = Ray::new(Vec3::new(0.1, 2.0, 0.0), Vec3::new(0.0, -1.0, -0.1));
-/// let hit = ray_triangle(&ray, &tri, f32::INFINITY).unwrap();
-/// let surface = SurfacePoint::on_triangle(&tri, &hit);
+/// let hit = tri.hit(&ray, f32::INFINITY).unwrap();
+/// let surface = tri.surface_point(&ray, &hit);
 /// // A shadow ray towards a light above: it cannot hit the triangle it left.
 /// let shadow = surface.spawn(Vec3::new(0.3, 1.0, 0.2));
-/// assert!(ray_triangle(&shadow, &tri, f32::INFINITY).is_none());
+/// assert!(tri.hit(&shadow, f32::INFINITY).is_none());
 /// ```
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct SurfacePoint<V = Vec3> {
@@ -172,88 +160,53 @@ pub struct SurfacePoint<V = Vec3> {
 }
 
 impl<V: Vector> SurfacePoint<V> {
-    /// The point of a triangle hit, from its barycentrics, with the
-    /// triangle's normal: [`triangle_hit_point`](crate::triangle_hit_point)
-    /// and [`Triangle::normal_with_error`](crate::Triangle::normal_with_error).
-    #[must_use]
-    pub fn on_triangle(tri: &crate::Triangle<V>, hit: &crate::TriangleHit<S<V>>) -> Self {
-        let (point, point_error) = crate::triangle_hit_point(tri, hit);
-        let (normal, normal_error) = tri.normal_with_error();
-        Self {
-            point,
-            point_error,
-            normal,
-            normal_error,
-        }
-    }
-
-    /// The point where `ray` meets `plane` at `t` (from
-    /// [`ray_plane`](crate::ray_plane)), with the plane's exact normal:
-    /// [`ray_plane_hit_point`](crate::ray_plane_hit_point).
-    #[must_use]
-    pub fn on_plane(ray: &Ray<V>, plane: &crate::Plane<V>, t: S<V>) -> Self {
-        let (point, point_error) = crate::ray_plane_hit_point(ray, plane, t);
-        Self {
-            point,
-            point_error,
-            normal: plane.normal,
-            normal_error: V::ZERO,
-        }
-    }
-
-    /// The point where `ray` enters a box through the face of `hit` (from
-    /// [`ray_aabb_face`](crate::ray_aabb_face) or
-    /// [`ray_aabb_prepared_face`](crate::ray_aabb_prepared_face)), with the
-    /// face's exact outward normal; `None` when the hit has no entry face
-    /// (the ray starts inside the box).
+    /// A ray leaving the surface along `dir`, from an origin moved off the
+    /// surface to the side `dir` points into: it does not meet the surface
+    /// again (for `dir` not within rounding of tangent).
     ///
-    /// The point is `ray.at(hit.enter)` with its coordinate on the face's
-    /// axis replaced by the face's plane, so it lies exactly on that plane
-    /// (its other coordinates carry the rounding of `origin + enter dir`,
-    /// and near an edge can be a rounding outside the face). The bounds are
-    /// those of an exact point on an exact plane, so
-    /// [`spawn`](SurfacePoint::spawn) moves a new ray's origin one ulp off
-    /// the plane, to the side its direction points into.
+    /// The origin is `point + s * lambda * normal`, each component rounded
+    /// away from `point`, with `s` the sign of `dir . normal`, and it lies
+    /// strictly on the side of the exact plane (through a point `q` of the
+    /// exact surface within `point_error` of `point`, normal `N` within
+    /// `normal_error` of `normal`) that `dir` points into. So the new ray's
+    /// exact crossing with that plane is behind it (`t < 0`), and no query
+    /// reports it: the watertight triangle test decides `t > 0`
+    /// conservatively, and the interval forms decide it exactly.
     ///
-    /// ```
-    /// use rayhit::{Aabb, Ray, SurfacePoint, ray_aabb, ray_aabb_face, glam::Vec3};
-    /// let unit = Aabb::new(Vec3::ZERO, Vec3::ONE);
-    /// let ray = Ray::new(Vec3::new(0.3, 3.0, 0.6), Vec3::new(0.1, -1.0, 0.2));
-    /// let hit = ray_aabb_face(&ray, &unit, f32::INFINITY).unwrap();
-    /// let surface = SurfacePoint::on_box(&ray, &unit, &hit).unwrap();
-    /// assert_eq!((surface.point.y, surface.normal), (1.0, Vec3::Y));
-    /// // A bounce off the top face does not touch the box again.
-    /// let bounce = surface.spawn(Vec3::new(0.1, 1.0, 0.2));
-    /// assert!(bounce.origin.y > 1.0);
-    /// assert_eq!(ray_aabb(&bounce, &unit, f32::INFINITY), None);
-    /// ```
-    #[must_use]
-    pub fn on_box(ray: &Ray<V>, aabb: &crate::Aabb<V>, hit: &crate::BoxHit<S<V>>) -> Option<Self> {
-        let face = hit.face?;
-        let k = face.axis();
-        let p = ray.at(hit.enter);
-        let on = |i: usize| if i == k { face.plane(aabb) } else { p[i] };
-        // The point is exactly on the plane: an error of the smallest
-        // subnormal on the axis (a bound, and not zero, so that the offset
-        // is not zero either) and none elsewhere, which the exact normal
-        // ignores.
-        let error = |i: usize| if i == k { S::<V>::TINY } else { S::<V>::ZERO };
-        Some(Self {
-            point: V::new(on(0), on(1), on(2)),
-            point_error: V::new(error(0), error(1), error(2)),
-            normal: face.normal(),
-            normal_error: V::ZERO,
-        })
-    }
-
-    /// A ray leaving the surface along `dir`, from an origin offset by
-    /// [`offset_ray_origin`] to the side `dir` points into: it does not meet
-    /// the surface again (for `dir` not within rounding of tangent).
+    /// Derivation: `|(point - q) . N| <= A = sum point_error_i (|n_i| +
+    /// eta_i)` (`eta` the normal's error). Moving by `lambda * n` changes
+    /// `(x - q) . N` by `lambda n . N >= lambda (|n|^2 - sum |n_i| eta_i)`;
+    /// rounding each moved component away from `point` adds, in the
+    /// components whose sign agrees with `N_i`, only more, and in the
+    /// others (where `|n_i| <= eta_i`) takes back at most two ulps of
+    /// `|point_i| + lambda |n_i|`, below `4u` of it. So `lambda = (A + 4u
+    /// sum |point_i| eta_i) / (|n|^2 - (1 + 4u) sum |n_i| eta_i)` suffices;
+    /// it is evaluated with outward rounding. pbrt-v4's `OffsetRayOrigin`
+    /// (the same idea with an exact normal) is the special case `eta = 0`.
     ///
-    /// Where the normal is not known well enough to pick a side (a zero or
-    /// nearly zero normal, as on a zero-area triangle), the ray starts at
+    /// Precondition: `dir` is not within rounding of tangent, so that `s`,
+    /// the sign of the *computed* `dir . normal`, is the side exact
+    /// arithmetic would pick: `|fl(dir . normal)|` must exceed the dot
+    /// product's own rounding bound `gamma(3) sum |dir_i normal_i|` plus the
+    /// normal's error `sum |dir_i| eta_i` (a few ulps of the angle for an
+    /// exact normal).
+    ///
+    /// Where the normal is not known well enough to pick a side (the
+    /// denominator above not positive: a zero or nearly zero normal, as on
+    /// a zero-area triangle), and for non-finite input, the ray starts at
     /// `point` itself, unmoved: finite, but it may meet the surfaces through
-    /// that point again at a tiny `t`.
+    /// that point again at a tiny `t`. Never panics.
+    ///
+    /// ```
+    /// use rayhit::{Intersect, Plane, Ray, Surface, glam::Vec3};
+    /// let floor = Plane::new(Vec3::ZERO, Vec3::Y);
+    /// let ray = Ray::new(Vec3::new(0.1, 3.0, 0.2), Vec3::new(0.3, -1.0, 0.7));
+    /// let t = floor.hit(&ray, f32::INFINITY).unwrap();
+    /// // Bounce up and away: the new origin is strictly above the floor.
+    /// let bounce = floor.surface_point(&ray, &t).spawn(Vec3::new(0.3, 1.0, 0.7));
+    /// assert!(bounce.origin.y > 0.0);
+    /// assert_eq!(floor.hit(&bounce, f32::INFINITY), None);
+    /// ```
     #[inline]
     #[must_use]
     pub fn spawn(&self, dir: V) -> Ray<V> {
@@ -272,16 +225,16 @@ impl<V: Vector> SurfacePoint<V> {
     /// path): a ray and the interval `(0, 1]` that hits neither end's
     /// surface and finds every occluder in between that is farther than the
     /// ends' error bounds from them, with no epsilon. Trace it with the
-    /// interval forms ([`ray_triangle_occluded`](crate::ray_triangle_occluded),
-    /// [`ray_plane_in`](crate::ray_plane_in),
-    /// [`ray_aabb_face_in`](crate::ray_aabb_face_in)).
+    /// interval forms ([`occluded`](crate::Intersect::occluded),
+    /// [`Plane`'s `hit` over an interval](crate::Plane#method.hit),
+    /// [`Aabb`'s `hit` over an interval](crate::Aabb#method.hit)).
     ///
     /// pbrt-v4's `SpawnRayTo` offsets both ends with `OffsetRayOrigin` and
     /// still stops at `1 - ShadowEpsilon`; here the end's offset also covers
     /// the rounding of the direction, and both ends are proved clear.
     ///
     /// The ray is `origin + t dir` with `origin` this point moved off its
-    /// surface towards the target ([`offset_ray_origin`], the side of
+    /// surface towards the target ([`SurfacePoint::spawn`](crate::SurfacePoint::spawn), the side of
     /// `(target.point - self.point) . self.normal`), and `dir = end -
     /// origin` rounded, where `end` is the target moved off its surface
     /// towards the origin by its error bound plus a bound on that rounding.
@@ -320,7 +273,7 @@ impl<V: Vector> SurfacePoint<V> {
     ///    bounds to `B_o` and `B_e`.
     ///
     /// The moves are about the error bounds: `B_o` is the offset of
-    /// [`offset_ray_origin`], `lambda |normal|` plus two ulps per
+    /// [`SurfacePoint::spawn`](crate::SurfacePoint::spawn), `lambda |normal|` plus two ulps per
     /// component (for an exact normal, `lambda |normal| <= |point_error|`;
     /// a computed normal adds its relative error), and `B_e` the same for
     /// the target with its error widened by `r` below, plus the rounding
@@ -338,7 +291,7 @@ impl<V: Vector> SurfacePoint<V> {
     /// fixed beforehand, with slack: with `m_i` the computed `|q_i - o_i|`
     /// stepped up one ulp (at least the exact value) and `L = max_i m_i`,
     /// take `r_i = u (m_i + L)`, rounded up. Offset `q` by
-    /// [`offset_ray_origin`] with the point error `e + r`; afterwards
+    /// [`SurfacePoint::spawn`](crate::SurfacePoint::spawn) with the point error `e + r`; afterwards
     /// check that no component moved by more than `L` (stepped up one
     /// ulp). So `|end_i - o_i| <= m_i + L` and `|delta_i| <= r_i`.
     /// `offset_ray_origin`'s derivation moves the point across `Q` by more
@@ -389,24 +342,24 @@ impl<V: Vector> SurfacePoint<V> {
     /// [`Instance::spawn_to_through`](crate::Instance::spawn_to_through).
     ///
     /// ```
-    /// use rayhit::{Interval, Plane, Ray, SurfacePoint, Triangle};
-    /// use rayhit::{ray_plane, ray_plane_in, ray_triangle, ray_triangle_occluded, glam::Vec3};
+    /// use rayhit::{Intersect, Interval, Plane, Ray, Surface, SurfacePoint, Triangle};
+    /// use rayhit::{glam::Vec3, ray_plane, ray_triangle};
     /// // A point on the floor, and a point on a ceiling light facing down.
     /// let floor = Plane::new(Vec3::ZERO, Vec3::Y);
     /// let down = Ray::new(Vec3::new(0.3, 5.0, 0.1), Vec3::new(0.1, -1.0, 0.2));
-    /// let on_floor = SurfacePoint::on_plane(&down, &floor, ray_plane(&down, &floor, f32::INFINITY).unwrap());
+    /// let on_floor = floor.surface_point(&down, &ray_plane(&down, &floor, f32::INFINITY).unwrap());
     /// let light = Triangle::new(Vec3::new(-1.0, 3.0, -1.0), Vec3::new(0.0, 3.0, 2.0), Vec3::new(2.0, 3.0, -1.0));
     /// let up = Ray::new(Vec3::new(0.2, 0.0, 0.3), Vec3::new(0.0, 1.0, 0.05));
-    /// let on_light = SurfacePoint::on_triangle(&light, &ray_triangle(&up, &light, f32::INFINITY).unwrap());
+    /// let on_light = light.surface_point(&up, &ray_triangle(&up, &light, f32::INFINITY).unwrap());
     ///
     /// let (shadow, segment) = on_floor.spawn_to(&on_light).unwrap();
     /// assert_eq!(segment, Interval::up_to(1.0).unwrap());
     /// // Neither end's surface is hit...
-    /// assert!(!ray_triangle_occluded(&shadow, &light, segment));
-    /// assert_eq!(ray_plane_in(&shadow, &floor, segment), None);
+    /// assert!(!light.occluded(&shadow, segment));
+    /// assert_eq!(floor.hit(&shadow, segment), None);
     /// // ...and a shelf half way up is.
     /// let shelf = Triangle::new(Vec3::new(-5.0, 1.5, -5.0), Vec3::new(0.0, 1.5, 5.0), Vec3::new(5.0, 1.5, -5.0));
-    /// assert!(ray_triangle_occluded(&shadow, &shelf, segment));
+    /// assert!(shelf.occluded(&shadow, segment));
     /// // Coincident ends give no segment.
     /// assert!(on_floor.spawn_to(&on_floor).is_none());
     /// ```
@@ -432,15 +385,15 @@ impl<V: Vector> SurfacePoint<V> {
     /// points included: count it as blocked. Never panics.
     ///
     /// ```
-    /// use rayhit::{Interval, Plane, Ray, SurfacePoint, ray_plane, ray_plane_in, glam::DVec3};
+    /// use rayhit::{Intersect, Interval, Plane, Ray, Surface, SurfacePoint, glam::DVec3, ray_plane};
     /// let wall = Plane::new(DVec3::new(0.0, 0.0, 4.0), DVec3::Z);
     /// let eye = Ray::new(DVec3::new(0.1, 0.2, 0.0), DVec3::new(0.3, -0.2, 1.0));
-    /// let here = SurfacePoint::on_plane(&eye, &wall, ray_plane(&eye, &wall, f64::INFINITY).unwrap());
+    /// let here = wall.surface_point(&eye, &ray_plane(&eye, &wall, f64::INFINITY).unwrap());
     /// let (shadow, segment) = here.spawn_to_point(DVec3::new(2.0, 1.0, 0.5)).unwrap();
-    /// assert_eq!(ray_plane_in(&shadow, &wall, segment), None);
+    /// assert_eq!(wall.hit(&shadow, segment), None);
     /// // A pane of glass at z = 2 is between the wall and the light.
     /// let pane = Plane::new(DVec3::new(0.0, 0.0, 2.0), DVec3::Z);
-    /// assert!(ray_plane_in(&shadow, &pane, segment).is_some());
+    /// assert!(pane.hit(&shadow, segment).is_some());
     /// // A light in the wall's plane: no segment.
     /// assert!(here.spawn_to_point(DVec3::new(5.0, 5.0, 4.0)).is_none());
     /// ```
@@ -453,7 +406,7 @@ impl<V: Vector> SurfacePoint<V> {
 /// A bound on how far the object ray of a world ray, mapped through a
 /// path of instances, is from the world ray: per component, at `t = 0`
 /// and per unit of `t` (the path's
-/// [`InstanceRayError`](crate::InstanceRayError)).
+/// [`InstanceRayError`](crate::instance::InstanceRayError)).
 pub(crate) type RayMapBound<'a, V> = &'a dyn Fn(&Ray<V>) -> (V, V);
 
 /// A point offset off a surface with its error widened by `extra`, for a

@@ -1,28 +1,26 @@
-//! The batch kernels on a chosen instruction set: [`Simd`], the kernels
-//! of one instruction set, and [`with_simd`], which picks the widest the
-//! CPU has once for a whole traversal ([`SimdWork`]). The instruction sets
-//! themselves, their tokens and the dispatch are `crate::simd`'s; every
-//! batch kernel is a kernel body there, and a method here.
+//! The batch kernels on a chosen instruction set: [`Simd`], an instruction
+//! set, [`SimdRay`], a prepared ray on one (a [`RayForm`] that the batch
+//! queries run on that instruction set), and [`with_simd`], which picks the
+//! widest the CPU has once for a whole traversal ([`SimdWork`]). The
+//! instruction sets themselves, their tokens and the dispatch are
+//! `crate::simd`'s; every batch kernel is a kernel body there.
 
-use crate::aabb::{AabbBatch, AabbBatchHits, AabbBatchKernel, slab_ends};
-use crate::num::{S, Scalar, Vector};
-use crate::quantized::{QuantizedChildren, QuantizedKernel};
-use crate::ray::{Interval, PreparedRay};
+use glam::Vec3;
+
+use crate::num::Vector;
+use crate::query::{Form, RayForm, sealed::Sealed};
+use crate::ray::{PreparedRay, Ray};
 #[cfg(rayhit_runtime_avx)]
 use crate::simd::Work;
-use crate::simd::{Isa, TargetSimd};
-use crate::triangle::{
-    TriangleBatch, TriangleBatchHits, TriangleBatchInKernel, TriangleBatchKernel,
-};
+use crate::simd::{Isa, Kernel, TargetSimd};
 
 /// Work that [`with_simd`] runs compiled for the CPU's widest SIMD: a BVH
 /// traversal, a tile of primary rays, any loop that calls the batch
 /// kernels many times.
 ///
-/// [`SimdWork::run`] gets the chosen instruction set as `simd`; calling the
-/// batch kernels through it ([`Simd::ray_aabb_batch`],
-/// [`Simd::ray_triangle_batch`]) runs them with no check and no call per
-/// batch. Implement `run` with `#[inline(always)]`: `with_simd` compiles
+/// [`SimdWork::run`] gets the chosen instruction set as `simd`; a query on
+/// a ray put on it ([`Simd::ray`]) runs the batch kernels with no check and
+/// no call per batch. Implement `run` with `#[inline(always)]`: `with_simd` compiles
 /// it once per instruction set, and the attribute is what makes the
 /// compiler copy the body into each (functions it calls need at least
 /// `#[inline]`, and closures are not always inlined: write the loop out).
@@ -38,97 +36,55 @@ pub trait SimdWork {
 ///
 /// Sealed. The kernels' answers are the same bits whichever it is.
 pub trait Simd: Copy + core::fmt::Debug + Isa {
-    /// [`ray_aabb_batch`](crate::ray_aabb_batch), compiled for this
-    /// instruction set.
+    /// `ray` on this instruction set: every query on it
+    /// ([`Intersect`](crate::Intersect), [`Bounds`](crate::Bounds)) runs
+    /// the batch kernels compiled for this instruction set, with no check
+    /// and no call per batch, and answers as on `ray` itself, bit for bit.
     #[inline(always)]
     #[must_use]
-    fn ray_aabb_batch<V: Vector, const N: usize>(
-        self,
-        ray: &PreparedRay<V>,
-        batch: &AabbBatch<V, N>,
-        t_max: S<V>,
-    ) -> AabbBatchHits<S<V>, N> {
-        self.kernel::<AabbBatchKernel<V, N>>(ray, batch, (S::<V>::ZERO, t_max))
+    fn ray<V: Vector>(self, ray: &PreparedRay<V>) -> SimdRay<'_, Self, V> {
+        SimdRay { ray, isa: self }
+    }
+}
+
+/// A prepared ray on an instruction set (from [`Simd::ray`]), a
+/// [`RayForm`]: the form of a ray that the batch queries take inside
+/// [`with_simd`]. Scalar queries read it as the prepared ray.
+#[derive(Clone, Copy, Debug)]
+pub struct SimdRay<'a, I, V: Vector = Vec3> {
+    ray: &'a PreparedRay<V>,
+    isa: I,
+}
+
+impl<I, V: Vector> SimdRay<'_, I, V> {
+    /// The prepared ray.
+    #[inline]
+    #[must_use]
+    pub fn prepared(&self) -> &PreparedRay<V> {
+        self.ray
+    }
+}
+
+impl<I: Simd, V: Vector> Sealed<V> for SimdRay<'_, I, V> {
+    #[inline(always)]
+    fn form(&self) -> Form<'_, V> {
+        Form::Prepared(self.ray)
     }
 
-    /// [`ray_aabb_batch_in`](crate::ray_aabb_batch_in), compiled for this
-    /// instruction set.
     #[inline(always)]
-    #[must_use]
-    fn ray_aabb_batch_in<V: Vector, const N: usize>(
-        self,
-        ray: &PreparedRay<V>,
-        batch: &AabbBatch<V, N>,
-        interval: Interval<S<V>>,
-    ) -> AabbBatchHits<S<V>, N> {
-        self.kernel::<AabbBatchKernel<V, N>>(ray, batch, slab_ends(interval))
+    fn batch<K: Kernel<Ray = PreparedRay<V>>>(
+        &self,
+        shapes: &K::Shapes,
+        limit: K::Limit,
+    ) -> K::Output {
+        self.isa.kernel::<K>(self.ray, shapes, limit)
     }
+}
 
-    /// [`ray_triangle_batch`](crate::ray_triangle_batch), compiled for this
-    /// instruction set.
+impl<I: Simd, V: Vector> RayForm<V> for SimdRay<'_, I, V> {
     #[inline(always)]
-    #[must_use]
-    fn ray_triangle_batch<V: Vector, const N: usize>(
-        self,
-        ray: &PreparedRay<V>,
-        batch: &TriangleBatch<V, N>,
-        t_max: S<V>,
-    ) -> TriangleBatchHits<S<V>, N> {
-        self.kernel::<TriangleBatchKernel<V, N>>(ray, batch, t_max)
-    }
-
-    /// [`ray_triangle_batch_in`](crate::ray_triangle_batch_in), its lane
-    /// part compiled for this instruction set.
-    #[inline(always)]
-    #[must_use]
-    fn ray_triangle_batch_in<V: Vector, const N: usize>(
-        self,
-        ray: &PreparedRay<V>,
-        batch: &TriangleBatch<V, N>,
-        interval: Interval<S<V>>,
-    ) -> TriangleBatchHits<S<V>, N> {
-        self.kernel::<TriangleBatchInKernel<V, N, false>>(ray, batch, interval)
-    }
-
-    /// [`ray_triangle_batch_occluded`](crate::ray_triangle_batch_occluded),
-    /// its lane part compiled for this instruction set.
-    #[inline(always)]
-    #[must_use]
-    fn ray_triangle_batch_occluded<V: Vector, const N: usize>(
-        self,
-        ray: &PreparedRay<V>,
-        batch: &TriangleBatch<V, N>,
-        interval: Interval<S<V>>,
-    ) -> bool {
-        self.kernel::<TriangleBatchInKernel<V, N, true>>(ray, batch, interval)
-            .mask
-            != 0
-    }
-
-    /// [`ray_quantized_children`](crate::ray_quantized_children), compiled
-    /// for this instruction set.
-    #[inline(always)]
-    #[must_use]
-    fn ray_quantized_children<V: Vector<Scalar = f32>>(
-        self,
-        ray: &PreparedRay<V>,
-        node: &QuantizedChildren<'_, V>,
-        t_max: f32,
-    ) -> AabbBatchHits<f32, 8> {
-        self.kernel::<QuantizedKernel<'_, V>>(ray, node, (0.0, t_max))
-    }
-
-    /// [`ray_quantized_children_in`](crate::ray_quantized_children_in),
-    /// compiled for this instruction set.
-    #[inline(always)]
-    #[must_use]
-    fn ray_quantized_children_in<V: Vector<Scalar = f32>>(
-        self,
-        ray: &PreparedRay<V>,
-        node: &QuantizedChildren<'_, V>,
-        interval: Interval<f32>,
-    ) -> AabbBatchHits<f32, 8> {
-        self.kernel::<QuantizedKernel<'_, V>>(ray, node, slab_ends(interval))
+    fn to_ray(&self) -> Ray<V> {
+        self.ray.ray()
     }
 }
 
@@ -158,9 +114,11 @@ impl<W: SimdWork, T: Simd> Work for WorkBody<W, T> {
 /// and gives it that instruction set to call the batch kernels with: the
 /// choice is made once, here, instead of on every batch.
 ///
-/// [`ray_aabb_batch`](crate::ray_aabb_batch) and
-/// [`ray_triangle_batch`](crate::ray_triangle_batch) pick their SIMD copy
-/// at run time on each call (on x86-64 with `std`, AVX2 where the CPU has
+/// The batch queries ([`AabbBatch`](crate::batch::AabbBatch)'s and
+/// [`QuantizedChildren`](crate::batch::QuantizedChildren)'s
+/// [`clip`](crate::Bounds::clip), [`TriangleBatch`](crate::batch::TriangleBatch)'s
+/// [`hit`](crate::IntersectLanes::hit)) on a plain or prepared ray pick their
+/// SIMD copy at run time on each call (on x86-64 with `std`, AVX2 where the CPU has
 /// it and the build does not already assume it): a check and a function
 /// call per batch, a large part of the cost of testing 8 boxes. Inside
 /// `with_simd`, on a CPU with AVX-512 the work is compiled with it enabled
@@ -170,7 +128,8 @@ impl<W: SimdWork, T: Simd> Work for WorkBody<W, T> {
 /// ([`TargetSimd`]). The answers are the same bits either way.
 ///
 /// ```
-/// use rayhit::{Aabb, AabbBatch, PreparedRay, Ray, Simd, SimdWork, with_simd, glam::Vec3};
+/// use rayhit::{Aabb, Bounds, Camera, PreparedRay, Ray, glam::Vec3};
+/// use rayhit::batch::{AabbBatch, Simd, SimdWork, with_simd};
 ///
 /// /// Counts, for every ray, the boxes of one node it hits.
 /// struct CountHits<'a> {
@@ -184,7 +143,8 @@ impl<W: SimdWork, T: Simd> Work for WorkBody<W, T> {
 ///     fn run<I: Simd>(self, simd: I) -> u32 {
 ///         let mut hits = 0;
 ///         for ray in self.rays {
-///             hits += simd.ray_aabb_batch(ray, self.node, f32::INFINITY).mask.count_ones();
+///             let ray = simd.ray(ray);
+///             hits += self.node.clip(&ray, f32::INFINITY).mask.count_ones();
 ///         }
 ///         hits
 ///     }
@@ -213,8 +173,11 @@ pub fn with_simd<W: SimdWork>(work: W) -> W::Output {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::IntersectLanes;
+    use crate::aabb::AabbBatch;
     use crate::testing::Draws;
-    use crate::{Aabb, Ray, Side, Triangle, TriangleHit};
+    use crate::triangle::TriangleBatch;
+    use crate::{Aabb, Bounds, Side, Triangle, TriangleHit};
     use glam::Vec3;
     use std::vec;
 
@@ -246,20 +209,21 @@ mod tests {
             let p = PreparedRay::new(&ray);
             let bb = AabbBatch::<Vec3, 8>::from_slice(&boxes).unwrap();
             let tb = TriangleBatch::<Vec3, 8>::from_slice(&tris).unwrap();
-            let mut box_answers = vec![TargetSimd.ray_aabb_batch(&p, &bb, t_max)];
-            let mut tri_answers = vec![TargetSimd.ray_triangle_batch(&p, &tb, t_max)];
+            let target = TargetSimd.ray(&p);
+            let mut box_answers = vec![bb.clip(&target, t_max)];
+            let mut tri_answers = vec![tb.hit(&target, t_max)];
             #[cfg(rayhit_runtime_avx)]
             if let Some(isa) = crate::simd::Avx2::detect() {
-                box_answers.push(isa.ray_aabb_batch(&p, &bb, t_max));
-                tri_answers.push(isa.ray_triangle_batch(&p, &tb, t_max));
+                box_answers.push(bb.clip(&isa.ray(&p), t_max));
+                tri_answers.push(tb.hit(&isa.ray(&p), t_max));
             }
             #[cfg(rayhit_runtime_avx)]
             if let Some(isa) = crate::simd::Avx512::detect() {
-                box_answers.push(isa.ray_aabb_batch(&p, &bb, t_max));
-                tri_answers.push(isa.ray_triangle_batch(&p, &tb, t_max));
+                box_answers.push(bb.clip(&isa.ray(&p), t_max));
+                tri_answers.push(tb.hit(&isa.ray(&p), t_max));
             }
             for l in 0..8 {
-                let scalar = crate::ray_aabb_prepared(&p, &boxes[l], t_max).map(|(e, _)| e);
+                let scalar = boxes[l].clip(&p, t_max).map(|(e, _)| e);
                 for a in &box_answers {
                     assert_eq!(
                         a.get(l).map(f32::to_bits),

@@ -22,10 +22,10 @@ use proptest::prelude::*;
 use rayhit::glam::{DVec3, Vec3};
 use rayhit::strategies as strat;
 use rayhit::{
-    Aabb, AabbBatch, Interval, PreparedRay, Ray, Scalar, Simd, TargetSimd, Triangle, TriangleBatch,
-    TriangleHit, Vector, ray_aabb_batch, ray_aabb_batch_in, ray_aabb_prepared,
-    ray_aabb_prepared_in, ray_triangle, ray_triangle_batch, ray_triangle_batch_in,
-    ray_triangle_batch_occluded, ray_triangle_prepared, ray_triangle_prepared_in,
+    Aabb, Bounds, Intersect, IntersectLanes, Interval, PreparedRay, Ray, Scalar, Triangle,
+    TriangleHit, Vector,
+    batch::{AabbBatch, Simd, TargetSimd, TriangleBatch},
+    ray_triangle,
 };
 use rayhit_testkit::bits::{bits, hit_bits};
 use rayhit_testkit::source::Source;
@@ -55,10 +55,10 @@ fn check_boxes<V: Vector, const N: usize>(
         }
     }
     let prepared = PreparedRay::new(ray);
-    let hits = ray_aabb_batch(&prepared, &batch, t_max);
+    let hits = batch.clip(&prepared, t_max);
     for lane in 0..N {
         let expected = match boxes.get(lane) {
-            Some(Some(b)) => ray_aabb_prepared(&prepared, b, t_max).map(|(enter, _)| enter),
+            Some(Some(b)) => b.clip(&prepared, t_max).map(|(enter, _)| enter),
             _ => None,
         };
         let got = hits.get(lane);
@@ -82,7 +82,7 @@ fn check_boxes<V: Vector, const N: usize>(
     // first box's entry and exit, and halfway to `t_max`.
     let mut lower = vec![S::<V>::ZERO, -S::<V>::ZERO, t_max * S::<V>::HALF];
     if let Some(Some(b)) = boxes.first()
-        && let Some((enter, exit)) = ray_aabb_prepared(&prepared, b, t_max)
+        && let Some((enter, exit)) = b.clip(&prepared, t_max)
     {
         lower.extend([enter, enter.next_up(), exit, exit.next_down()]);
     }
@@ -90,12 +90,10 @@ fn check_boxes<V: Vector, const N: usize>(
         let Some(interval) = Interval::new(lo, t_max) else {
             continue;
         };
-        let hits = ray_aabb_batch_in(&prepared, &batch, interval);
+        let hits = batch.clip(&prepared, interval);
         for lane in 0..N {
             let expected = match boxes.get(lane) {
-                Some(Some(b)) => {
-                    ray_aabb_prepared_in(&prepared, b, interval).map(|(enter, _)| enter)
-                }
+                Some(Some(b)) => b.clip(&prepared, interval).map(|(enter, _)| enter),
                 _ => None,
             };
             let got = hits.get(lane);
@@ -173,7 +171,7 @@ fn check_triangles<V: Vector, const N: usize>(
         }
     }
     let prepared = PreparedRay::new(ray);
-    let hits = ray_triangle_batch(&prepared, &batch, t_max);
+    let hits = batch.hit(&prepared, t_max);
     let mut nearest: Option<(usize, TriangleHit<S<V>>)> = None;
     for lane in 0..N {
         let expected = match tris.get(lane) {
@@ -188,7 +186,7 @@ fn check_triangles<V: Vector, const N: usize>(
             ));
         }
         if let Some(Some(t)) = tris.get(lane) {
-            let prepared_hit = ray_triangle_prepared(&prepared, t, t_max);
+            let prepared_hit = t.hit(&prepared, t_max);
             if hit_bits(prepared_hit) != hit_bits(expected) {
                 return Err(format!(
                     "ray_triangle_prepared {prepared_hit:?} != ray_triangle {expected:?}"
@@ -222,10 +220,10 @@ fn check_triangles<V: Vector, const N: usize>(
         let Some(interval) = Interval::new(lo, t_max) else {
             continue;
         };
-        let hits = ray_triangle_batch_in(&prepared, &batch, interval);
+        let hits = batch.hit(&prepared, interval);
         for lane in 0..N {
             let expected = match tris.get(lane) {
-                Some(Some(t)) => ray_triangle_prepared_in(&prepared, t, interval),
+                Some(Some(t)) => t.hit(&prepared, interval),
                 _ => None,
             };
             let got = hits.get(lane);
@@ -239,15 +237,15 @@ fn check_triangles<V: Vector, const N: usize>(
                 ));
             }
         }
-        let via_simd = TargetSimd.ray_triangle_batch_in(&prepared, &batch, interval);
+        let via_simd = batch.hit(&TargetSimd.ray(&prepared), interval);
         if via_simd.mask != hits.mask || via_simd.t.map(bits) != hits.t.map(bits) {
             return Err(format!(
                 "Simd::ray_triangle_batch_in differs over {interval:?}"
             ));
         }
-        let occluded = ray_triangle_batch_occluded(&prepared, &batch, interval);
+        let occluded = batch.occluded(&prepared, interval);
         if occluded != (hits.mask != 0)
-            || occluded != TargetSimd.ray_triangle_batch_occluded(&prepared, &batch, interval)
+            || occluded != batch.occluded(&TargetSimd.ray(&prepared), interval)
         {
             return Err(format!(
                 "occluded {occluded} but mask {:b} over {interval:?}; ray {ray:?}",
@@ -428,12 +426,10 @@ fn exact_zero_edge_functions_and_face_planes() {
             let ray = Ray::new(o, dir);
             check_all_box_sizes(&ray, &boxes, f32::INFINITY).unwrap();
             assert_eq!(
-                ray_aabb_batch(
-                    &PreparedRay::new(&ray),
-                    &AabbBatch::<Vec3, 8>::from_slice(&[unit; 8]).unwrap(),
-                    f32::INFINITY
-                )
-                .mask,
+                AabbBatch::<Vec3, 8>::from_slice(&[unit; 8])
+                    .unwrap()
+                    .clip(&PreparedRay::new(&ray), f32::INFINITY)
+                    .mask,
                 0xff,
                 "a ray in a face plane of the closed box hits"
             );
@@ -458,8 +454,8 @@ fn invalid_rays_prepare_alike_and_hit_nothing() {
     for ray in bad {
         let p = PreparedRay::new(&ray);
         assert_eq!(p, PreparedRay::new(&bad[1]));
-        assert_eq!(ray_aabb_batch(&p, &boxes, f32::INFINITY).mask, 0);
-        assert_eq!(ray_triangle_batch(&p, &tris, f32::INFINITY).mask, 0);
-        assert_eq!(ray_triangle_prepared(&p, &tri, f32::INFINITY), None);
+        assert_eq!(boxes.clip(&p, f32::INFINITY).mask, 0);
+        assert_eq!(tris.hit(&p, f32::INFINITY).mask, 0);
+        assert_eq!(tri.hit(&p, f32::INFINITY), None);
     }
 }

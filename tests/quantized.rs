@@ -12,9 +12,8 @@
 use num_traits::{One, Signed, Zero};
 use rayhit::glam::Vec3;
 use rayhit::{
-    AabbBatchHits, Interval, PreparedRay, QuantizedChildren, Ray, Simd, SimdWork, TargetSimd,
-    quantize_bounds, ray_aabb_batch, ray_aabb_batch_in, ray_quantized_children,
-    ray_quantized_children_in, with_simd,
+    Bounds, Interval, PreparedRay, Ray,
+    batch::{AabbBatchHits, QuantizedChildren, Simd, SimdWork, TargetSimd, with_simd},
 };
 use rayhit_testkit::oracle;
 use rayhit_testkit::oracle::{R, r};
@@ -151,7 +150,7 @@ impl SimdWork for ViaWithSimd<'_> {
     type Output = AabbBatchHits<f32, 8>;
     #[inline(always)]
     fn run<I: Simd>(self, simd: I) -> Self::Output {
-        simd.ray_quantized_children(self.ray, &self.node, self.t_max)
+        self.node.clip(&simd.ray(self.ray), self.t_max)
     }
 }
 
@@ -180,10 +179,10 @@ fn node_test_is_the_box_batch_on_the_decoded_boxes() {
         };
         let ray = PreparedRay::new(&Ray::new(origin, dir));
         for t_max in [f32::INFINITY, 1.0, -1.0, f32::NAN] {
-            let expected = ray_aabb_batch(&ray, &boxes, t_max);
+            let expected = boxes.clip(&ray, t_max);
             let ours = [
-                ray_quantized_children(&ray, &view, t_max),
-                TargetSimd.ray_quantized_children(&ray, &view, t_max),
+                view.clip(&ray, t_max),
+                view.clip(&TargetSimd.ray(&ray), t_max),
                 with_simd(ViaWithSimd {
                     ray: &ray,
                     node: view,
@@ -204,10 +203,10 @@ fn node_test_is_the_box_batch_on_the_decoded_boxes() {
                 let Some(interval) = Interval::new(lo, t_max) else {
                     continue;
                 };
-                let expected = ray_aabb_batch_in(&ray, &boxes, interval);
+                let expected = boxes.clip(&ray, interval);
                 for got in [
-                    ray_quantized_children_in(&ray, &view, interval),
-                    TargetSimd.ray_quantized_children_in(&ray, &view, interval),
+                    view.clip(&ray, interval),
+                    view.clip(&TargetSimd.ray(&ray), interval),
                 ] {
                     assert_eq!(got.mask, expected.mask, "{ray:?} {interval:?}");
                     for l in 0..8 {
@@ -282,7 +281,7 @@ fn no_false_miss_against_the_exact_quantized_boxes() {
         checked += 1;
         if exact_hit(&ray, &lo, &hi) {
             exact_hits += 1;
-            let hits = ray_quantized_children(&PreparedRay::new(&ray), &view, f32::INFINITY);
+            let hits = view.clip(&PreparedRay::new(&ray), f32::INFINITY);
             assert!(
                 hits.mask & (1 << child) != 0,
                 "false miss: {ray:?} {:?} {:?} child {child}",
@@ -320,7 +319,7 @@ fn quantize_bounds_is_tight_and_conservative() {
             };
             v.child_box(0).map(|b| (b.min.x, b.max.x))
         };
-        match quantize_bounds(p, e, min, max) {
+        match QuantizedChildren::quantize(p, e, min, max) {
             Some((lo, hi)) => {
                 some += 1;
                 let (dlo, dhi) = decoded((lo, hi)).expect("lo <= hi");
@@ -344,10 +343,13 @@ fn quantize_bounds_is_tight_and_conservative() {
     }
     assert!(some > 30_000, "{some}");
     // Bad input.
-    assert_eq!(quantize_bounds(f32::NAN, 127, 0.0, 1.0), None);
-    assert_eq!(quantize_bounds(0.0, 255, 0.0, 1.0), None);
-    assert_eq!(quantize_bounds(0.0, 127, 2.0, 1.0), None);
-    assert_eq!(quantize_bounds(0.0, 127, 0.0, f32::INFINITY), None);
+    assert_eq!(QuantizedChildren::quantize(f32::NAN, 127, 0.0, 1.0), None);
+    assert_eq!(QuantizedChildren::quantize(0.0, 255, 0.0, 1.0), None);
+    assert_eq!(QuantizedChildren::quantize(0.0, 127, 2.0, 1.0), None);
+    assert_eq!(
+        QuantizedChildren::quantize(0.0, 127, 0.0, f32::INFINITY),
+        None
+    );
 }
 
 #[test]
@@ -360,10 +362,7 @@ fn invalid_nodes_and_rays_hit_nothing() {
         max: [&hi; 3],
     };
     let ray = PreparedRay::new(&Ray::new(Vec3::splat(-1.0), Vec3::ONE));
-    assert_eq!(
-        ray_quantized_children(&ray, &good, f32::INFINITY).mask,
-        0xff
-    );
+    assert_eq!(good.clip(&ray, f32::INFINITY).mask, 0xff);
     for bad in [
         QuantizedChildren {
             origin: Vec3::new(f32::NAN, 0.0, 0.0),
@@ -383,18 +382,15 @@ fn invalid_nodes_and_rays_hit_nothing() {
         },
     ] {
         assert!(!bad.is_valid());
-        let hits = ray_quantized_children(&ray, &bad, f32::INFINITY);
+        let hits = bad.clip(&ray, f32::INFINITY);
         assert_eq!(hits.mask, 0);
         assert!(hits.enter.iter().all(|e| *e == f32::INFINITY));
         assert!(bad.child_box(0).is_none());
     }
     for t_max in [f32::NAN, -1.0] {
-        assert_eq!(ray_quantized_children(&ray, &good, t_max).mask, 0);
+        assert_eq!(good.clip(&ray, t_max).mask, 0);
     }
     let invalid = PreparedRay::new(&Ray::new(Vec3::ZERO, Vec3::ZERO));
-    assert_eq!(
-        ray_quantized_children(&invalid, &good, f32::INFINITY).mask,
-        0
-    );
+    assert_eq!(good.clip(&invalid, f32::INFINITY).mask, 0);
     assert!(good.child_box(8).is_none());
 }

@@ -50,7 +50,7 @@ use std::fmt::Write as _;
 
 use rayhit::exact::{self, Case, Field, Judgement, Tally, Verdict};
 use rayhit::glam::{DVec3, Vec3};
-use rayhit::{Scalar, Side, TriangleHit, Vector};
+use rayhit::{Scalar, Side, Surface, TriangleHit, Vector};
 
 /// The documented box bound used by default, in ulps.
 const BOX_ULPS: f64 = 16.0;
@@ -94,18 +94,14 @@ fn judge_line<V: Vector>(
                     v: h.v.rounded,
                     side: h.side,
                 };
-                let err = rayhit::ray_triangle_error_bounds(ray, tri, &probe)
-                    .t
-                    .to_f64();
+                let err = tri.hit_error(ray, &probe).t.to_f64();
                 err / ulp::<V::Scalar>(h.t.rounded.to_f64())
             })
         }
-        (Case::Plane(ray, plane, t_max), None) => {
-            exact::ray_plane(ray, plane, *t_max).map_or(f64::INFINITY, |t| {
-                rayhit::ray_plane_t_error(ray, plane, t.rounded).to_f64()
-                    / ulp::<V::Scalar>(t.rounded.to_f64())
-            })
-        }
+        (Case::Plane(ray, plane, t_max), None) => exact::ray_plane(ray, plane, *t_max)
+            .map_or(f64::INFINITY, |t| {
+                plane.hit_error(ray, &t.rounded).to_f64() / ulp::<V::Scalar>(t.rounded.to_f64())
+            }),
     };
     let mut j = exact::judge(&case, &claim, bound);
     // Only t, entry and exit count against the bound here.

@@ -24,7 +24,7 @@
 use proptest::strategy::{Strategy, ValueTree};
 use proptest::test_runner::{Config, TestRng, TestRunner};
 use rayhit::glam::Vec3;
-use rayhit::{Ray, Triangle, ray_triangle, ray_triangle_error_bounds, strategies};
+use rayhit::{Ray, Surface, Triangle, ray_triangle, strategies};
 
 /// The kernel under test: Moller-Trumbore with `EPSILON = 1e-7`, one-sided.
 fn their_ray_triangle(o: Vec3, d: Vec3, a: Vec3, b: Vec3, c: Vec3) -> Option<(f32, f32, f32)> {
@@ -180,7 +180,7 @@ fn main() {
         dump.push(dump_line("generated", &ray, &tri, f32::INFINITY, full));
         let theirs = full.map(|h| h.0);
         if let (Some(t), Some(h)) = (theirs, reference)
-            && (t - h.t).abs() > ray_triangle_error_bounds(&ray, &tri, &h).t
+            && (t - h.t).abs() > tri.hit_error(&ray, &h).t
         {
             beyond_bound += 1;
         }

@@ -38,14 +38,12 @@ use std::fmt::Write as _;
 use std::path::PathBuf;
 
 use num_traits::Signed;
-use rayhit::exact;
 use rayhit::glam::{DVec3, Vec3};
 use rayhit::{
-    Aabb, BoxFace, Instance, Plane, Ray, RayDifferential, Scalar, Side, SurfacePoint, Triangle,
-    Vector, ray_aabb, ray_aabb_face, ray_aabb_naive, ray_plane, ray_plane_t_error, ray_triangle,
-    ray_triangle_error_bounds, ray_triangle_mt, ray_triangle_one_hit, triangle_hit_differentials,
-    triangle_hit_differentials_error,
+    Aabb, BoxFace, Instance, IntersectLanes, Plane, Ray, Scalar, Side, SurfacePoint, Triangle,
+    Vector, camera::RayDifferential, ray_aabb, ray_plane, ray_triangle,
 };
+use rayhit::{EdgeRule, Intersect, Surface, exact};
 use rayhit_testkit::cases::Generator;
 use rayhit_testkit::cases::boxes;
 use rayhit_testkit::cases::boxes::BoxCase;
@@ -294,14 +292,14 @@ fn check_boxes<V: Vector>(lines: &[String]) -> Failures {
         // face is defined by the entry planes alone).
         if exact.is_some() {
             let want = ans.word().to_string();
-            let got = ray_aabb_face(&ray, &b, t_max).map(|h| face_name(h.face));
+            let got = b.hit(&ray, t_max).map(|h| face_name(h.face));
             fail.check(got.is_none_or(|g| g == want), i, || {
                 format!("entry face {got:?}, exact {want}")
             });
         }
         let clear = parts[2].trim() == "clear";
         let slab = ray_aabb(&ray, &b, t_max);
-        let naive = ray_aabb_naive(&ray, &b, t_max);
+        let naive = b.clip_by_faces(&ray, t_max);
         fail.check(exact.is_none() || slab.is_some(), i, || {
             format!("slab false miss: {line}")
         });
@@ -406,8 +404,8 @@ fn check_triangles<V: Vector>(lines: &[String]) -> Failures {
         let clear = parts[2].trim() == "clear";
         let wt = ray_triangle(&ray, &tri, t_max);
         if clear {
-            let mt = ray_triangle_mt(&ray, &tri, t_max);
-            let one = ray_triangle_one_hit(&ray, &tri, t_max);
+            let mt = tri.moller_trumbore(&ray, t_max);
+            let one = tri.hit(&ray, (t_max, EdgeRule::OneHit));
             for (name, got) in [
                 ("watertight", wt.is_some()),
                 ("Moller-Trumbore", mt.is_some()),
@@ -419,7 +417,7 @@ fn check_triangles<V: Vector>(lines: &[String]) -> Failures {
             }
         }
         if let (Some(h), Some((t, u, v, side))) = (wt, exact) {
-            let err = ray_triangle_error_bounds(&ray, &tri, &h);
+            let err = tri.hit_error(&ray, &h);
             let within = |got: S<V>, want: S<V>, bound: S<V>| {
                 !bound.is_finite()
                     || (r(got) - r(want)).abs() <= r(bound) + ulp(want) / R::from_integer(2.into())
@@ -488,7 +486,7 @@ fn check_planes<V: Vector>(lines: &[String]) -> Failures {
             });
         }
         if let (Some(t), Some(te)) = (got, exact) {
-            let err = ray_plane_t_error(&ray, &plane, t);
+            let err = plane.hit_error(&ray, &t);
             let ok = (r(t) - r(te)).abs() <= r(err) + ulp(te) / R::from_integer(2.into());
             fail.check(ok, i, || format!("t {t:?} vs exact {te:?}, bound {err:?}"));
         }
@@ -592,10 +590,7 @@ fn tri_in_line<V: Vector>(i: usize, (tri, ray, _): &TriCase<V>) -> Option<String
 /// between `t_min` and that float); and, where the inside test is clear
 /// of rounding, hit or miss as the exact answer.
 fn check_triangle_intervals<V: Vector>(lines: &[String]) -> Failures {
-    use rayhit::{
-        Interval, PreparedRay, TriangleBatch, ray_triangle_batch_in, ray_triangle_batch_occluded,
-        ray_triangle_in, ray_triangle_occluded, ray_triangle_prepared_in,
-    };
+    use rayhit::{Interval, PreparedRay, batch::TriangleBatch};
     let mut fail = Failures::default();
     for (i, line) in lines.iter().enumerate() {
         let parts: Vec<&str> = line.split(" | ").collect();
@@ -613,21 +608,21 @@ fn check_triangle_intervals<V: Vector>(lines: &[String]) -> Failures {
             fail.check(false, i, || "not an interval".into());
             continue;
         };
-        let got = ray_triangle_in(&ray, &tri, window);
+        let got = tri.hit(&ray, window);
         let prepared = PreparedRay::new(&ray);
         let batch = TriangleBatch::<V, 8>::from_slice(&[tri]).expect("one triangle");
         let bits = |h: Option<rayhit::TriangleHit<S<V>>>| {
             h.map(|h| (hex(h.t), hex(h.u), hex(h.v), h.side))
         };
         fail.check(
-            bits(ray_triangle_prepared_in(&prepared, &tri, window)) == bits(got)
-                && bits(ray_triangle_batch_in(&prepared, &batch, window).get(0)) == bits(got),
+            bits(tri.hit(&prepared, window)) == bits(got)
+                && bits(batch.hit(&prepared, window).get(0)) == bits(got),
             i,
             || "the prepared or batch form differs".into(),
         );
         fail.check(
-            ray_triangle_occluded(&ray, &tri, window) == got.is_some()
-                && ray_triangle_batch_occluded(&prepared, &batch, window) == got.is_some(),
+            tri.occluded(&ray, window) == got.is_some()
+                && batch.occluded(&prepared, window) == got.is_some(),
             i,
             || "an any-hit form differs".into(),
         );
@@ -641,7 +636,7 @@ fn check_triangle_intervals<V: Vector>(lines: &[String]) -> Failures {
                 format!("hit {h:?} with t* {place} the interval")
             });
             if let Some(te) = exact {
-                let err = ray_triangle_error_bounds(&ray, &tri, &h).t;
+                let err = tri.hit_error(&ray, &h).t;
                 let ok = !err.is_finite() || within_or_above_lo(h.t, te, err, lo);
                 fail.check(ok, i, || {
                     format!("t {:?} vs exact {te:?}, bound {err:?}", h.t)
@@ -680,7 +675,7 @@ fn plane_in_line<V: Vector>(
 /// (decided exactly, no band), `t` in the interval and within
 /// `ray_plane_t_error` of the exact `T` (or of one float above `t_min`).
 fn check_plane_intervals<V: Vector>(lines: &[String]) -> Failures {
-    use rayhit::{Interval, ray_plane_in};
+    use rayhit::Interval;
     let mut fail = Failures::default();
     for (i, line) in lines.iter().enumerate() {
         let parts: Vec<&str> = line.split(" | ").collect();
@@ -697,12 +692,12 @@ fn check_plane_intervals<V: Vector>(lines: &[String]) -> Failures {
             fail.check(false, i, || "not an interval".into());
             continue;
         };
-        let got = ray_plane_in(&ray, &plane, window);
+        let got = plane.hit(&ray, window);
         fail.check(got.is_some() == exact.is_some(), i, || {
             format!("hit/miss {got:?} vs exact {exact:?}")
         });
         if let (Some(t), Some(te)) = (got, exact) {
-            let err = ray_plane_t_error(&ray, &plane, t);
+            let err = plane.hit_error(&ray, &t);
             let ok = window.contains(t) && (!err.is_finite() || within_or_above_lo(t, te, err, lo));
             fail.check(ok, i, || format!("t {t:?} vs exact {te:?}, bound {err:?}"));
         }
@@ -759,11 +754,11 @@ fn check_differentials<V: Vector>(lines: &[String]) -> Failures {
         let t: S<V> = f.f();
         let mut ans = Fields(parts[1].split_whitespace());
         let exact: Vec<S<V>> = (0..10).map(|_| ans.f()).collect();
-        let Some(got) = triangle_hit_differentials(&diff, &tri, t) else {
+        let Some(got) = tri.hit_differentials(&diff, t) else {
             fail.check(false, i, || "no transfer".into());
             continue;
         };
-        let err = triangle_hit_differentials_error(&diff, &tri, t);
+        let err = tri.hit_differentials_error(&diff, t);
         let values = [
             (got.dp_dx.x(), err.dp_dx.x()),
             (got.dp_dx.y(), err.dp_dx.y()),

@@ -25,8 +25,8 @@
 
 use rayhit::glam::{Affine3A, EulerRot, Mat3, Quat, Vec3};
 use rayhit::{
-    Aabb, Instance, PinholeCamera, Plane, PreparedRay, Ray, SurfacePoint, Triangle, TriangleHit,
-    ray_aabb_prepared, ray_plane,
+    Aabb, Bounds, Camera, CameraSample, Instance, PinholeCamera, Plane, PreparedRay, Ray, Surface,
+    SurfacePoint, Triangle, TriangleHit, ray_plane,
 };
 
 use crate::mesh::{Bvh, Kernel, Mesh, torus};
@@ -580,7 +580,7 @@ impl InstanceScene {
             None => ground.map(|t| InstanceHit {
                 t,
                 on: On::Ground,
-                surface: SurfacePoint::on_plane(ray, &self.ground, t),
+                surface: self.ground.surface_point(ray, &t),
                 shading: self.ground.normal.normalize(),
             }),
         }
@@ -621,7 +621,7 @@ impl InstanceScene {
         found: &mut Found,
     ) -> bool {
         for (k, node) in nodes.iter().enumerate() {
-            if ray_aabb_prepared(prepared, &node.bounds, *t_max).is_none() {
+            if node.bounds.clip(prepared, *t_max).is_none() {
                 continue;
             }
             let object = node.instance.world_to_object(ray);
@@ -664,7 +664,7 @@ impl InstanceScene {
         let (nodes, len) = self.chain(&path);
         let (bvh, _) = self.leaf(&path);
         let tri = bvh.mesh.triangle(triangle as usize);
-        let object = SurfacePoint::on_triangle(&tri, hit);
+        let object = tri.surface_point_at(hit.u, hit.v);
         let surface = nodes[..len]
             .iter()
             .rev()
@@ -794,7 +794,7 @@ pub fn render_instances(
         samples,
         row_done,
         |x, y, _, rng, counts| {
-            let ray = camera.ray(x, y);
+            let ray = camera.ray(CameraSample::new(x, y));
             let hit = scene.nearest(&ray, f32::INFINITY);
             let colour = match hit {
                 Some(hit) => scene.shade(&ray, &hit, 0, rng, &mut counts[0]),

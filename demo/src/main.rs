@@ -52,8 +52,9 @@ use std::time::Instant;
 
 use indicatif::{ProgressBar, ProgressStyle};
 
+use rayhit::Camera;
+use rayhit::camera::{EquirectangularCamera, OrthographicCamera, ThinLensCamera};
 use rayhit::glam::Vec3;
-use rayhit::{EquirectangularCamera, OrthographicCamera, ThinLensCamera};
 use rayhit_demo::instances::{Content, On, instance_scene, render_instances};
 use rayhit_demo::mesh::Kernel;
 use rayhit_demo::scene::{Filter, Scene, Shape, View, demo_scene, leak_scene, render, to_srgb8};
@@ -207,17 +208,17 @@ fn parse(mut args: impl Iterator<Item = String>) -> Result<Option<Options>, Stri
 /// or an orthographic or equirectangular camera on its frame.
 fn view(scene: &Scene, options: &Options) -> Result<View, String> {
     let cam = &scene.camera;
-    let err = |e: rayhit::CameraError| format!("camera: {e}");
+    let err = |e: rayhit::camera::CameraError| format!("camera: {e}");
     Ok(match (options.camera, options.lens) {
-        (CameraKind::Pinhole, None) => View::Pinhole,
+        (CameraKind::Pinhole, None) => Box::new(*cam),
         (CameraKind::Pinhole, Some((radius, focus))) => {
-            View::ThinLens(ThinLensCamera::new(*cam, radius, focus).map_err(err)?)
+            Box::new(ThinLensCamera::new(*cam, radius, focus).map_err(err)?)
         }
         (CameraKind::Orthographic, _) => {
             // The pinhole's view at the target's distance: 4.5 units
             // across the image's height.
             let size = 4.5 / cam.height() as f32;
-            View::Orthographic(
+            Box::new(
                 OrthographicCamera::new(
                     cam.eye(),
                     cam.forward(),
@@ -229,7 +230,7 @@ fn view(scene: &Scene, options: &Options) -> Result<View, String> {
                 .map_err(err)?,
             )
         }
-        (CameraKind::Equirectangular, _) => View::Equirectangular(
+        (CameraKind::Equirectangular, _) => Box::new(
             EquirectangularCamera::new(
                 cam.eye(),
                 cam.forward(),

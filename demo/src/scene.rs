@@ -13,9 +13,10 @@
 
 use rayhit::glam::{Mat3, Vec3};
 use rayhit::{
-    Aabb, EquirectangularCamera, OrthographicCamera, PinholeCamera, Plane, PreparedRay, Ray,
-    RayCone, RayDifferential, Side, SurfacePoint, ThinLensCamera, Triangle, ray_aabb_prepared,
-    ray_aabb_prepared_face, ray_plane, triangle_cone_width, triangle_hit_differentials,
+    Aabb, Bounds, Camera, CameraSample, Intersect, PinholeCamera, Plane, PreparedRay, Ray, Side,
+    Surface, SurfacePoint, Triangle,
+    camera::{RayCone, RayDifferential},
+    ray_plane,
 };
 use rayon::prelude::*;
 
@@ -166,18 +167,9 @@ impl Rng {
 }
 
 /// The camera the primary rays come from: the scene's pinhole camera, or
-/// another built on its frame.
-#[derive(Clone, Copy, Debug)]
-pub enum View {
-    /// [`Scene::camera`] itself.
-    Pinhole,
-    /// A lens on it: depth of field.
-    ThinLens(ThinLensCamera),
-    /// Parallel rays from the pinhole's eye plane.
-    Orthographic(OrthographicCamera),
-    /// The whole sphere around the eye.
-    Equirectangular(EquirectangularCamera),
-}
+/// another built on its frame (a thin lens on it, an orthographic or an
+/// equirectangular camera), any [`Camera`].
+pub type View = Box<dyn Camera + Send + Sync>;
 
 /// How the checkered ground is textured.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -231,7 +223,7 @@ impl Scene {
                     .intersect(ray, &prepared, t_max, self.kernel, false)
                     .map(|(hit, id)| {
                         let tri = bvh.mesh.triangle(id as usize);
-                        let surface = SurfacePoint::on_triangle(&tri, &hit);
+                        let surface = tri.surface_point_at(hit.u, hit.v);
                         let shading = bvh.mesh.shading_normal(id as usize, hit.u, hit.v);
                         Hit {
                             t: hit.t,
@@ -262,7 +254,7 @@ impl Scene {
         let prepared = PreparedRay::new(ray);
         self.objects.iter().any(|object| match &object.shape {
             Shape::Plane(plane) => ray_plane(ray, plane, t_max).is_some(),
-            Shape::Box(aabb) => ray_aabb_prepared(&prepared, aabb, t_max).is_some(),
+            Shape::Box(aabb) => aabb.clip(&prepared, t_max).is_some(),
             Shape::Mesh(bvh) => bvh
                 .intersect(ray, &prepared, t_max, self.kernel, true)
                 .is_some(),
@@ -342,7 +334,7 @@ fn plane_hit(ray: &Ray, plane: &Plane, t: f32) -> Hit {
         t,
         object: 0,
         // A plane's normal is given, not computed: it has no error.
-        surface: SurfacePoint::on_plane(ray, plane, t),
+        surface: plane.surface_point(ray, &t),
         shading: plane.normal.normalize(),
     }
 }
@@ -353,8 +345,8 @@ fn plane_hit(ray: &Ray, plane: &Plane, t: f32) -> Hit {
 /// in front of it to shade, and gets `None`; `Scene::occluded` treats such
 /// a ray as blocked.
 fn box_hit(ray: &Ray, prepared: &PreparedRay, aabb: &Aabb, t_max: f32) -> Option<Hit> {
-    let hit = ray_aabb_prepared_face(prepared, aabb, t_max)?;
-    let surface = SurfacePoint::on_box(ray, aabb, &hit)?;
+    let hit = aabb.hit(prepared, t_max)?;
+    let surface = aabb.surface_point(ray, &hit)?;
     Some(Hit {
         t: hit.enter,
         object: 0,
@@ -433,7 +425,7 @@ pub fn demo_scene(width: u32, height: u32) -> Scene {
     ];
     Scene {
         camera,
-        view: View::Pinhole,
+        view: Box::new(camera),
         filter: Filter::Differentials,
         objects,
         sun: Vec3::new(-1.0, 0.9, 0.45).normalize(),
@@ -513,7 +505,7 @@ pub fn random_point_on(tri: &Triangle, rng: &mut Rng) -> SurfacePoint {
         v,
         side: Side::Front,
     };
-    SurfacePoint::on_triangle(tri, &at)
+    tri.surface_point_at(at.u, at.v)
 }
 
 /// The geometric normal (unit, or the shading normal where it has no
@@ -589,12 +581,8 @@ impl Scene {
     /// The primary ray of raster position `(x, y)` and lens sample `lens`,
     /// with its differentials and its ray cone, from [`Scene::view`].
     pub fn primary(&self, x: f32, y: f32, lens: (f32, f32)) -> (RayDifferential, RayCone) {
-        match &self.view {
-            View::Pinhole => (self.camera.ray_differential(x, y), self.camera.ray_cone()),
-            View::ThinLens(cam) => (cam.ray_differential(x, y, lens.0, lens.1), cam.ray_cone()),
-            View::Orthographic(cam) => (cam.ray_differential(x, y), cam.ray_cone()),
-            View::Equirectangular(cam) => (cam.ray_differential(x, y), cam.ray_cone()),
-        }
+        let sample = CameraSample::new(x, y).with_lens(lens.0, lens.1);
+        (self.view.ray_differential(sample), self.view.ray_cone())
     }
 
     /// The footprint of a primary ray's pixel on the checkered ground at
@@ -615,14 +603,14 @@ impl Scene {
             Filter::Off => None,
             Filter::Differentials => {
                 // On GROUND, u is world x and v world z.
-                let d = triangle_hit_differentials(diff, &GROUND, hit.t)?;
+                let d = GROUND.hit_differentials(diff, hit.t)?;
                 Some((
                     d.du_dx.abs().max(d.du_dy.abs()),
                     d.dv_dx.abs().max(d.dv_dy.abs()),
                 ))
             }
             Filter::Cones => {
-                let w = triangle_cone_width(cone, &diff.ray, &GROUND, hit.t)?;
+                let w = GROUND.cone_width(cone, &diff.ray, hit.t)?;
                 Some((w, w))
             }
         }

@@ -26,9 +26,8 @@
 
 use rayhit::glam::{Mat3, Vec3};
 use rayhit::{
-    Aabb, Interval, PinholeCamera, Plane, PreparedRay, Ray, SurfacePoint, Triangle, TriangleHit,
-    ray_aabb_prepared_face_in, ray_plane_in, ray_triangle_error_bounds, ray_triangle_prepared_in,
-    ray_triangle_prepared_occluded,
+    Aabb, Camera, CameraSample, Intersect, Interval, PinholeCamera, Plane, PreparedRay, Ray,
+    Surface, SurfacePoint, Triangle, TriangleHit,
 };
 
 use crate::mesh::{Bvh, icosphere, torus};
@@ -234,28 +233,28 @@ impl ShadowScene {
         let mut best = None;
         for (index, object) in self.opaque.iter().enumerate() {
             let hit = match &object.shape {
-                Solid::Plane(plane) => ray_plane_in(ray, plane, window).map(|t| OpaqueHit {
+                Solid::Plane(plane) => plane.hit(ray, window).map(|t| OpaqueHit {
                     t,
                     object: Some(index),
-                    surface: SurfacePoint::on_plane(ray, plane, t),
+                    surface: plane.surface_point(ray, &t),
                     shading: plane.normal.normalize(),
                 }),
-                Solid::Box(aabb) => {
-                    ray_aabb_prepared_face_in(&prepared, aabb, window).and_then(|hit| {
-                        let surface = SurfacePoint::on_box(ray, aabb, &hit)?;
-                        Some(OpaqueHit {
-                            t: hit.enter,
-                            object: Some(index),
-                            surface,
-                            shading: surface.normal,
-                        })
+                Solid::Box(aabb) => aabb.hit(&prepared, window).and_then(|hit| {
+                    let surface = aabb.surface_point(ray, &hit)?;
+                    Some(OpaqueHit {
+                        t: hit.enter,
+                        object: Some(index),
+                        surface,
+                        shading: surface.normal,
                     })
-                }
+                }),
                 Solid::Mesh(bvh) => {
                     bvh.nearest_one_hit_in(ray, &prepared, window)
                         .map(|(hit, id)| {
-                            let surface =
-                                SurfacePoint::on_triangle(&bvh.mesh.triangle(id as usize), &hit);
+                            let surface = bvh
+                                .mesh
+                                .triangle(id as usize)
+                                .surface_point(&prepared, &hit);
                             let shading = bvh
                                 .mesh
                                 .shading_normal(id as usize, hit.u, hit.v)
@@ -276,12 +275,12 @@ impl ShadowScene {
             }
         }
         for tri in &self.light.triangles {
-            if let Some(hit) = ray_triangle_prepared_in(&prepared, tri, window) {
+            if let Some(hit) = tri.hit(&prepared, window) {
                 window = up_to(window, hit.t);
                 best = Some(OpaqueHit {
                     t: hit.t,
                     object: None,
-                    surface: SurfacePoint::on_triangle(tri, &hit),
+                    surface: tri.surface_point(&prepared, &hit),
                     shading: self.light.normal,
                 });
             }
@@ -294,8 +293,9 @@ impl ShadowScene {
     pub fn blocked(&self, ray: &Ray, interval: Interval<f32>) -> bool {
         let prepared = PreparedRay::new(ray);
         let opaque = self.opaque.iter().any(|object| match &object.shape {
-            Solid::Plane(plane) => ray_plane_in(ray, plane, interval).is_some(),
-            Solid::Box(aabb) => ray_aabb_prepared_face_in(&prepared, aabb, interval)
+            Solid::Plane(plane) => plane.hit(ray, interval).is_some(),
+            Solid::Box(aabb) => aabb
+                .hit(&prepared, interval)
                 .is_some_and(|hit| hit.face.is_some()),
             Solid::Mesh(bvh) => bvh.occluded_in(&prepared, interval),
         });
@@ -304,7 +304,7 @@ impl ShadowScene {
                 .light
                 .triangles
                 .iter()
-                .any(|tri| ray_triangle_prepared_occluded(&prepared, tri, interval))
+                .any(|tri| tri.occluded(&prepared, interval))
     }
 
     /// Every crossing of `ray` with the glass within `interval`, in order
@@ -325,7 +325,7 @@ impl ShadowScene {
             // sum) keeps the bound. An infinite bound takes the rest of the
             // interval at once.
             let tri = self.glass.mesh.triangle(id as usize);
-            let bound = ray_triangle_error_bounds(ray, &tri, &nearest).t;
+            let bound = tri.hit_error(ray, &nearest).t;
             let t_hi = (nearest.t + bound).next_up().min(t_max);
             // `nearest.t > t_lo`, so the window is not empty, holds the
             // nearest crossing, and the walk moves on by at least one
@@ -482,7 +482,9 @@ pub fn render_shadows(
         (width, height),
         samples,
         row_done,
-        |x, y, _, rng, counts| scene.radiance(&camera.ray(x, y), rng, &mut counts[1]),
+        |x, y, _, rng, counts| {
+            scene.radiance(&camera.ray(CameraSample::new(x, y)), rng, &mut counts[1])
+        },
     );
     let image = ShadowImage {
         width,

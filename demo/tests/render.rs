@@ -24,8 +24,8 @@ use rayhit::exact::AffineMap;
 use rayhit::exact::oracle::rv;
 use rayhit::glam::Vec3;
 use rayhit::{
-    Aabb, Instance, Interval, PinholeCamera, PreparedRay, Ray, Side, SurfacePoint, Triangle, exact,
-    ray_aabb, ray_plane, ray_triangle,
+    Aabb, Camera, Instance, Interval, PinholeCamera, PreparedRay, Ray, Side, Surface, SurfacePoint,
+    Triangle, exact, ray_aabb, ray_plane, ray_triangle,
 };
 use rayhit_demo::instances::{
     Content, InstanceHit, InstanceScene, On, Path, instance_scene, render_instances, slab,
@@ -390,9 +390,9 @@ fn the_filtered_checker_is_the_box_average() {
 /// there (it picks one square at random), the filtered values much less.
 #[test]
 fn filtering_the_ground_removes_the_moire() {
-    use rayhit_demo::scene::{Filter, View};
+    use rayhit_demo::scene::Filter;
     let mut scene = demo_scene(WIDTH, HEIGHT);
-    scene.view = View::Pinhole;
+    scene.view = Box::new(scene.camera);
     let ground = object(&scene, "ground");
     let material = scene.objects[ground].material;
     let odd = |p: Vec3| {
@@ -518,7 +518,7 @@ fn ground_point(x: f32, z: f32) -> SurfacePoint {
     let ground = rayhit::Plane::new(Vec3::ZERO, Vec3::Y);
     let down = Ray::new(Vec3::new(x, 5.0, z), Vec3::new(0.0, -1.0, 0.0));
     let t = ray_plane(&down, &ground, f32::INFINITY).unwrap();
-    SurfacePoint::on_plane(&down, &ground, t)
+    ground.surface_point(&down, &t)
 }
 
 /// No acne: every shadow segment from a surface the camera sees to a point

@@ -1,7 +1,7 @@
 //! The slab test on a batch: [`AabbBatch`], up to 32 boxes
-//! structure-of-arrays, and [`ray_aabb_batch`], which tests one prepared ray
+//! structure-of-arrays, and [`AabbBatch`'s `clip`](crate::batch::AabbBatch#method.clip), which tests one prepared ray
 //! against eight of them at a time, each lane bit for bit the answer of
-//! [`ray_aabb_prepared`](crate::ray_aabb_prepared) on its box (the
+//! [`Aabb`'s `clip`](crate::Aabb#method.clip) on its box (the
 //! definition's operations, lane by lane).
 
 use core::marker::PhantomData;
@@ -11,11 +11,11 @@ use glam::Vec3;
 use super::Aabb;
 use super::definition::{exit_slack, exit_widening};
 use crate::num::{Lanes, Lanes8, S, Scalar, Vector};
-use crate::ray::{Interval, PreparedRay, t_max_ok};
-use crate::simd::{Isa, Kernel, check_lanes, lanes_at, per_call, put};
+use crate::ray::{PreparedRay, t_max_ok};
+use crate::simd::{Isa, Kernel, check_lanes, lanes_at, put};
 
 /// One axis of the slab test's NaN-safe fold (see
-/// [`ray_aabb_prepared`](crate::ray_aabb_prepared)): the entry and exit
+/// [`Aabb`'s `clip`](crate::Aabb#method.clip)): the entry and exit
 /// through the slab with plane distances `t0`, `t1`, clipped to `[lo, hi]`.
 #[inline(always)]
 fn fold<W: Lanes8>(t0: W, t1: W, lo: W, hi: W) -> (W, W) {
@@ -60,8 +60,8 @@ where
     /// The slab test of eight valid boxes (for `0 <= t_min <= t_max`,
     /// `t_min` not `-0`): the lanes hit, and the entry `t` of each (`+inf`
     /// where not hit), bit for bit what
-    /// [`ray_aabb_prepared_in`](crate::ray_aabb_prepared_in) gives for each
-    /// (and so [`ray_aabb_prepared`](crate::ray_aabb_prepared) for `t_min =
+    /// [`Aabb`'s `clip` over an interval](crate::Aabb#method.clip) gives for each
+    /// (and so [`Aabb`'s `clip`](crate::Aabb#method.clip) for `t_min =
     /// 0`).
     ///
     /// For rays whose reciprocals are all normal (every component
@@ -131,7 +131,8 @@ where
 /// hit mask is also and-ed with the lanes in use.
 ///
 /// ```
-/// use rayhit::{Aabb, AabbBatch, PreparedRay, Ray, ray_aabb_batch, glam::Vec3};
+/// use rayhit::{Aabb, Bounds, PreparedRay, Ray, glam::Vec3};
+/// use rayhit::batch::AabbBatch;
 /// let boxes: Vec<Aabb> = (0..8)
 ///     .map(|i| {
 ///         let x = 2.0 * i as f32;
@@ -141,7 +142,7 @@ where
 /// let batch = AabbBatch::<Vec3, 8>::from_slice(&boxes).unwrap();
 /// // Along +x from x = 5.5: boxes 3 (x in [6, 7]) to 7 are ahead.
 /// let ray = PreparedRay::new(&Ray::new(Vec3::new(5.5, 0.0, 0.0), Vec3::X));
-/// let hits = ray_aabb_batch(&ray, &batch, f32::INFINITY);
+/// let hits = batch.clip(&ray, f32::INFINITY);
 /// assert_eq!(hits.mask, 0b1111_1000);
 /// assert_eq!(hits.get(3), Some(0.5));
 /// assert_eq!(hits.get(2), None);
@@ -249,11 +250,11 @@ impl<V: Vector, const N: usize> AabbBatch<V, N> {
     }
 }
 
-/// The answer of [`ray_aabb_batch`]: which lanes are hit, and where the ray
+/// The answer of [`AabbBatch`]'s [`clip`](crate::Bounds::clip): which lanes are hit, and where the ray
 /// enters each box hit.
 ///
 /// For a lane in `mask`, `enter[lane]` is the entry `t` that
-/// [`ray_aabb_prepared`](crate::ray_aabb_prepared) returns for that box;
+/// [`Aabb`'s `clip`](crate::Aabb#method.clip) returns for that box;
 /// for any other lane it is `+inf`, so the smallest `enter` is the nearest
 /// box hit. (The exit, rarely wanted in traversal, is left out; the scalar
 /// test gives it for a lane that needs it.)
@@ -275,77 +276,7 @@ impl<F: Scalar, const N: usize> AabbBatchHits<F, N> {
     }
 }
 
-/// The slab test of one prepared ray against every box of a batch.
-///
-/// Lane by lane, the answer is exactly (bit for bit) what
-/// [`ray_aabb_prepared`](crate::ray_aabb_prepared) returns for that box:
-/// hit or miss, and the entry `t`. So all of its guarantees hold per lane:
-/// no false miss against exact arithmetic, false hits only within a few
-/// ulps of an edge, `0 <= enter <= t_max`, `enter` finite. Empty lanes, an
-/// invalid ray and a NaN or negative `t_max` give no hits. Never panics.
-///
-/// ```
-/// use rayhit::{Aabb, AabbBatch, PreparedRay, Ray, ray_aabb_batch, ray_aabb_prepared, glam::Vec3};
-/// let a = Aabb::new(Vec3::new(-1.0, -1.0, 2.0), Vec3::new(1.0, 1.0, 3.0));
-/// let b = Aabb::new(Vec3::new(4.0, 4.0, 2.0), Vec3::new(5.0, 5.0, 3.0));
-/// let batch = AabbBatch::<Vec3, 4>::from_slice(&[a, b]).unwrap();
-/// let ray = PreparedRay::new(&Ray::new(Vec3::ZERO, Vec3::Z));
-/// let hits = ray_aabb_batch(&ray, &batch, f32::INFINITY);
-/// assert_eq!(hits.mask, 0b01);
-/// assert_eq!(hits.get(0), Some(2.0));
-/// assert_eq!(hits.get(0), ray_aabb_prepared(&ray, &a, f32::INFINITY).map(|(enter, _)| enter));
-/// ```
-#[inline]
-#[must_use]
-pub fn ray_aabb_batch<V: Vector, const N: usize>(
-    ray: &PreparedRay<V>,
-    batch: &AabbBatch<V, N>,
-    t_max: S<V>,
-) -> AabbBatchHits<S<V>, N> {
-    per_call::<AabbBatchKernel<V, N>>(ray, batch, (S::<V>::ZERO, t_max))
-}
-
-/// [`ray_aabb_batch`] over an interval: lane by lane, bit for bit what
-/// [`ray_aabb_prepared_in`](crate::ray_aabb_prepared_in) returns for that
-/// box (hit or miss, and the entry `t`), so its guarantees hold per lane:
-/// conservative culling against `(t_min, t_max]`, never a false miss when
-/// the exact segment inside the closed box meets the interval, and
-/// `t_min <= enter <= t_max`. With `interval = (0, t_max]`, the answer of
-/// [`ray_aabb_batch`], bit for bit.
-///
-/// For traversal past a hit already found (every hit along a ray in
-/// order, or the next window of a shadow ray): the children that end
-/// before `t_min` are culled.
-///
-/// ```
-/// use rayhit::{Aabb, AabbBatch, Interval, PreparedRay, Ray, ray_aabb_batch_in, ray_aabb_prepared_in, glam::Vec3};
-/// let boxes: Vec<Aabb> = (0..4)
-///     .map(|i| {
-///         let z = 2.0 * i as f32;
-///         Aabb::new(Vec3::new(-1.0, -1.0, z), Vec3::new(1.0, 1.0, z + 1.0))
-///     })
-///     .collect();
-/// let batch = AabbBatch::<Vec3, 4>::from_slice(&boxes).unwrap();
-/// let ray = PreparedRay::new(&Ray::new(Vec3::new(0.0, 0.0, -1.0), Vec3::Z));
-/// // Past t = 3.5 (z = 2.5): box 1 (z in [2, 3]) is still being crossed,
-/// // box 0 is behind, boxes 2 and 3 are ahead.
-/// let window = Interval::new(3.5, f32::INFINITY).unwrap();
-/// let hits = ray_aabb_batch_in(&ray, &batch, window);
-/// assert_eq!(hits.mask, 0b1110);
-/// assert_eq!(hits.get(1), Some(3.5));
-/// assert_eq!(hits.get(2), ray_aabb_prepared_in(&ray, &boxes[2], window).map(|(enter, _)| enter));
-/// ```
-#[inline]
-#[must_use]
-pub fn ray_aabb_batch_in<V: Vector, const N: usize>(
-    ray: &PreparedRay<V>,
-    batch: &AabbBatch<V, N>,
-    interval: Interval<S<V>>,
-) -> AabbBatchHits<S<V>, N> {
-    per_call::<AabbBatchKernel<V, N>>(ray, batch, super::slab::ends(interval))
-}
-
-/// [`ray_aabb_batch`] as a kernel, for any instruction set (see
+/// [`AabbBatch`'s `clip`](crate::batch::AabbBatch#method.clip) as a kernel, for any instruction set (see
 /// `crate::simd`).
 pub(crate) struct AabbBatchKernel<V, const N: usize>(PhantomData<V>);
 
@@ -367,7 +298,7 @@ impl<V: Vector, const N: usize> Kernel for AabbBatchKernel<V, N> {
     }
 }
 
-/// The body of [`ray_aabb_batch`] with the eight-lane type `W`, eight lanes
+/// The body of [`AabbBatch`'s `clip`](crate::batch::AabbBatch#method.clip) with the eight-lane type `W`, eight lanes
 /// at a time.
 #[inline(always)]
 fn aabb_batch_body<W: Lanes8<F = S<V>>, V: Vector, const N: usize>(

@@ -85,9 +85,9 @@ impl BoxFace {
 /// A box hit: the slab test's interval and the face the ray enters through.
 ///
 /// `enter` and `exit` are exactly what [`ray_aabb`](crate::ray_aabb) (or
-/// [`ray_aabb_prepared`](crate::ray_aabb_prepared), or for the interval
-/// forms [`ray_aabb_in`](crate::ray_aabb_in)) returns. `face` is decided in exact arithmetic:
-/// see [`ray_aabb_face`], and [`ray_aabb_face_in`] for the interval forms,
+/// [`Aabb`'s `clip`](crate::Aabb#method.clip), or for the interval
+/// forms [`Aabb`'s `clip` over an interval](crate::Aabb#method.clip)) returns. `face` is decided in exact arithmetic:
+/// see [`Aabb`'s `hit`](crate::Aabb#method.hit), and [`Aabb`'s `hit` over an interval](crate::Aabb#method.hit) for the interval forms,
 /// where it is also `None` when the entry is not within the interval.
 #[derive(Clone, Copy, Debug, PartialEq)]
 #[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
@@ -209,23 +209,12 @@ fn crosses_later<F: Scalar>(
 /// factor `2^300` of each other, and the nonzero direction components are
 /// within a factor `2^300` of each other (beyond that a product in the
 /// exact comparison can underflow, and a tie can be decided wrongly).
-///
-/// ```
-/// use rayhit::{Aabb, BoxFace, Ray, ray_aabb_face, glam::Vec3};
-/// let unit = Aabb::new(Vec3::ZERO, Vec3::ONE);
-/// // From the left, enters through x = 0.
-/// let hit = ray_aabb_face(&Ray::new(Vec3::new(-1.0, 0.5, 0.5), Vec3::X), &unit, f32::INFINITY).unwrap();
-/// assert_eq!((hit.enter, hit.face), (1.0, Some(BoxFace::MinX)));
-/// assert_eq!(BoxFace::MinX.normal::<Vec3>(), -Vec3::X);
-/// // Through the edge x = 0, y = 1: both planes at t = 1; x is chosen.
-/// let edge = Ray::new(Vec3::new(-1.0, 2.0, 0.5), Vec3::new(1.0, -1.0, 0.0));
-/// assert_eq!(ray_aabb_face(&edge, &unit, f32::INFINITY).unwrap().face, Some(BoxFace::MinX));
-/// // From inside: no entry face.
-/// let inside = Ray::new(Vec3::splat(0.5), Vec3::Y);
-/// assert_eq!(ray_aabb_face(&inside, &unit, f32::INFINITY).unwrap().face, None);
-/// ```
 #[must_use]
-pub fn ray_aabb_face<V: Vector>(ray: &Ray<V>, aabb: &Aabb<V>, t_max: S<V>) -> Option<BoxHit<S<V>>> {
+pub(crate) fn ray_aabb_face<V: Vector>(
+    ray: &Ray<V>,
+    aabb: &Aabb<V>,
+    t_max: S<V>,
+) -> Option<BoxHit<S<V>>> {
     let (enter, exit) = ray_aabb(ray, aabb, t_max)?;
     Some(BoxHit {
         enter,
@@ -234,17 +223,10 @@ pub fn ray_aabb_face<V: Vector>(ray: &Ray<V>, aabb: &Aabb<V>, t_max: S<V>) -> Op
     })
 }
 
-/// [`ray_aabb_prepared`](crate::ray_aabb_prepared) with the face the ray enters through: the same
-/// interval, bit for bit, and the face as [`ray_aabb_face`] decides it.
-///
-/// ```
-/// use rayhit::{Aabb, BoxFace, PreparedRay, Ray, ray_aabb_prepared_face, glam::Vec3};
-/// let ray = PreparedRay::new(&Ray::new(Vec3::new(0.5, 5.0, 0.5), -Vec3::Y));
-/// let hit = ray_aabb_prepared_face(&ray, &Aabb::new(Vec3::ZERO, Vec3::ONE), 10.0).unwrap();
-/// assert_eq!((hit.enter, hit.face), (4.0, Some(BoxFace::MaxY)));
-/// ```
+/// [`Aabb`'s `clip`](crate::Aabb#method.clip) with the face the ray enters through: the same
+/// interval, bit for bit, and the face as [`Aabb`'s `hit`](crate::Aabb#method.hit) decides it.
 #[must_use]
-pub fn ray_aabb_prepared_face<V: Vector>(
+pub(crate) fn ray_aabb_prepared_face<V: Vector>(
     ray: &PreparedRay<V>,
     aabb: &Aabb<V>,
     t_max: S<V>,
@@ -257,28 +239,6 @@ pub fn ray_aabb_prepared_face<V: Vector>(
     })
 }
 
-/// The face a prepared ray enters `aabb` through, as [`ray_aabb_face`]
-/// decides it, whether or not the ray hits the box (for a box batch's hit
-/// lanes: [`AabbBatch::get`](crate::AabbBatch::get) gives the box).
-/// `None` for an invalid ray or box, and where the ray starts inside.
-///
-/// ```
-/// use rayhit::{Aabb, AabbBatch, BoxFace, PreparedRay, Ray, aabb_entry_face, ray_aabb_batch, glam::Vec3};
-/// let boxes = [Aabb::new(Vec3::new(2.0, -1.0, -1.0), Vec3::new(3.0, 1.0, 1.0))];
-/// let batch = AabbBatch::<Vec3, 8>::from_slice(&boxes).unwrap();
-/// let ray = PreparedRay::new(&Ray::new(Vec3::ZERO, Vec3::X));
-/// let hits = ray_aabb_batch(&ray, &batch, f32::INFINITY);
-/// assert_eq!(hits.mask, 1);
-/// assert_eq!(aabb_entry_face(&ray, &batch.get(0).unwrap()), Some(BoxFace::MinX));
-/// ```
-#[must_use]
-pub fn aabb_entry_face<V: Vector>(ray: &PreparedRay<V>, aabb: &Aabb<V>) -> Option<BoxFace> {
-    if !(ray.is_valid() && aabb.is_valid()) {
-        return None;
-    }
-    entry_face(ray.origin(), ray.dir, aabb)
-}
-
 /// The entry face of `ray` into `aabb` (as [`entry_face`] decides it) if
 /// its exact crossing is in `interval`, decided exactly.
 ///
@@ -286,7 +246,7 @@ pub fn aabb_entry_face<V: Vector>(ray: &PreparedRay<V>, aabb: &Aabb<V>) -> Optio
 /// the origin with the face's coordinate on its axis, normal the axis.
 /// Its point differs from the origin on that axis only, so the exact
 /// signs see one difference and one direction component (the
-/// preconditions of [`ray_aabb_face`] cover them), and the quotient is
+/// preconditions of [`Aabb`'s `hit`](crate::Aabb#method.hit) cover them), and the quotient is
 /// `fl(fl(plane - o) / d)`, as [`entry_face`] computes it.
 fn entry_face_in<V: Vector>(
     origin: V,
@@ -306,18 +266,18 @@ fn entry_face_in<V: Vector>(
     crossing_in(origin, dir, point, normal, interval).map(|_| face)
 }
 
-/// [`ray_aabb_face`] over an interval: [`ray_aabb_in`]'s conservative
+/// [`Aabb`'s `hit`](crate::Aabb#method.hit) over an interval: [`Aabb`'s `clip` over an interval](crate::Aabb#method.clip)'s conservative
 /// interval, and the face the ray enters through when it enters within
 /// `(t_min, t_max]`, decided exactly.
 ///
-/// `enter` and `exit` are exactly what [`ray_aabb_in`] returns (so
+/// `enter` and `exit` are exactly what [`Aabb`'s `clip` over an interval](crate::Aabb#method.clip) returns (so
 /// `t_min <= enter <= exit <= t_max`), and `None` exactly when it does.
-/// `face` is the entry face as [`ray_aabb_face`] defines it (the face
+/// `face` is the entry face as [`Aabb`'s `hit`](crate::Aabb#method.hit) defines it (the face
 /// whose plane the exact ray crosses at the exact entry distance `E*`,
 /// the lowest axis at an edge or corner; decided in exact arithmetic),
 /// reported only when `t_min < E* <= t_max`, decided exactly (`E*` is the
 /// crossing of one face plane, placed against both ends as
-/// [`ray_plane_in`](crate::ray_plane_in) places a crossing). Otherwise
+/// [`Plane`'s `hit` over an interval](crate::Plane#method.hit) places a crossing). Otherwise
 /// `face` is `None`: the ray entered at or before `t_min` (it is inside the
 /// closed box at `t_min`, or started inside), or, for a box reported
 /// within rounding of a miss, `E*` lies beyond `t_max`.
@@ -330,32 +290,18 @@ fn entry_face_in<V: Vector>(
 /// misses the box by a few ulps and the conservative test still reports
 /// it, the face appears at most once.
 ///
-/// With `interval = (0, t_max]` the answer is [`ray_aabb_face`]'s, bit
+/// With `interval = (0, t_max]` the answer is [`Aabb`'s `hit`](crate::Aabb#method.hit)'s, bit
 /// for bit (its face is `None` exactly when `E* <= 0`), except that a
 /// face whose `E*` is beyond `t_max` (or beyond `MAX`, which no float `t`
 /// reaches) is not reported here.
 ///
-/// Cost: [`ray_aabb_in`], the entry face, and for a face, one plane
+/// Cost: [`Aabb`'s `clip` over an interval](crate::Aabb#method.clip), the entry face, and for a face, one plane
 /// crossing decided against the ends (a filter, and exact signs within
 /// rounding of an end). Precondition of the exact face and of the exact
-/// decision, for `f64` only: that of [`ray_aabb_face`]. Invalid rays and
+/// decision, for `f64` only: that of [`Aabb`'s `hit`](crate::Aabb#method.hit). Invalid rays and
 /// boxes give `None`; bad intervals cannot be built ([`Interval::new`]).
-///
-/// ```
-/// use rayhit::{Aabb, BoxFace, Interval, Ray, ray_aabb_face_in, glam::Vec3};
-/// let unit = Aabb::new(Vec3::ZERO, Vec3::ONE);
-/// // From the left: enters through x = 0 at exactly t = 1.
-/// let ray = Ray::new(Vec3::new(-1.0, 0.5, 0.5), Vec3::X);
-/// let window = |lo: f32, hi: f32| Interval::new(lo, hi).unwrap();
-/// let first = ray_aabb_face_in(&ray, &unit, window(0.0, 1.0)).unwrap();
-/// assert_eq!((first.enter, first.face), (1.0, Some(BoxFace::MinX)));
-/// // The next window starts at the entry: the box is there, its entry is not.
-/// let next = ray_aabb_face_in(&ray, &unit, window(1.0, 1.5)).unwrap();
-/// assert_eq!((next.enter, next.face), (1.0, None));
-/// assert!(ray_aabb_face_in(&ray, &unit, window(0.0, 0.5)).is_none());
-/// ```
 #[must_use]
-pub fn ray_aabb_face_in<V: Vector>(
+pub(crate) fn ray_aabb_face_in<V: Vector>(
     ray: &Ray<V>,
     aabb: &Aabb<V>,
     interval: Interval<S<V>>,
@@ -368,20 +314,10 @@ pub fn ray_aabb_face_in<V: Vector>(
     })
 }
 
-/// [`ray_aabb_face_in`] on a [`PreparedRay`]: the same answer, bit for
+/// [`Aabb`'s `hit` over an interval](crate::Aabb#method.hit) on a [`PreparedRay`]: the same answer, bit for
 /// bit.
-///
-/// ```
-/// use rayhit::{Aabb, BoxFace, Interval, PreparedRay, Ray, ray_aabb_prepared_face_in, glam::Vec3};
-/// let ray = PreparedRay::new(&Ray::new(Vec3::new(0.5, 5.0, 0.5), -Vec3::Y));
-/// let unit = Aabb::new(Vec3::ZERO, Vec3::ONE);
-/// let hit = ray_aabb_prepared_face_in(&ray, &unit, Interval::new(3.0, 10.0).unwrap()).unwrap();
-/// assert_eq!((hit.enter, hit.face), (4.0, Some(BoxFace::MaxY)));
-/// let late = ray_aabb_prepared_face_in(&ray, &unit, Interval::new(4.0, 10.0).unwrap()).unwrap();
-/// assert_eq!(late.face, None);
-/// ```
 #[must_use]
-pub fn ray_aabb_prepared_face_in<V: Vector>(
+pub(crate) fn ray_aabb_prepared_face_in<V: Vector>(
     ray: &PreparedRay<V>,
     aabb: &Aabb<V>,
     interval: Interval<S<V>>,

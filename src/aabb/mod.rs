@@ -3,35 +3,35 @@
 //! - `mod.rs`: [`Aabb`], [`ValidAabb`] and the boxes the tests take.
 //! - `definition.rs`: the slab test's reference definition, one axis at a
 //!   time, and its rounding bounds (the exit's widening and slack).
-//! - `slab.rs`: [`ray_aabb`] and [`ray_aabb_prepared`], the slab test on
+//! - `slab.rs`: [`ray_aabb`] and `ray_aabb_prepared`, the slab test on
 //!   lanes, held to the definition bit for bit, and their interval forms
-//!   [`ray_aabb_in`] and [`ray_aabb_prepared_in`] (the same code with a
-//!   lower end).
-//! - `face.rs`: the face a ray enters through, decided exactly, over
-//!   `[0, t_max]` and over an interval.
-//! - `naive.rs`: [`ray_aabb_naive`], the face-by-face reference.
-//! - `batch.rs`: [`AabbBatch`] and [`ray_aabb_batch`], the slab test on
-//!   eight lanes of boxes at a time, held to the definition bit for bit.
+//!   (the same code with a lower end).
+//! - `face.rs`: [`BoxFace`], [`BoxHit`]: the face a ray enters through,
+//!   decided exactly, over `[0, t_max]` and over an interval.
+//! - `naive.rs`: [`Aabb::clip_by_faces`], the face-by-face reference.
+//! - `batch.rs`: [`AabbBatch`], the slab test on eight lanes of boxes at a
+//!   time, held to the definition bit for bit.
+//! - `query.rs`: the [`Bounds`](crate::Bounds) and
+//!   [`Intersect`](crate::Intersect) implementations, and a box's surface
+//!   point.
 
 mod batch;
 mod definition;
 mod face;
 mod naive;
+mod query;
 mod slab;
 
 use glam::Vec3;
 
 use crate::num::{S, Scalar, Vector};
 
-pub use batch::{AabbBatch, AabbBatchHits, ray_aabb_batch, ray_aabb_batch_in};
-pub(crate) use batch::{AabbBatchKernel, Slab8};
-pub use face::{
-    BoxFace, BoxHit, aabb_entry_face, ray_aabb_face, ray_aabb_face_in, ray_aabb_prepared_face,
-    ray_aabb_prepared_face_in,
-};
-pub use naive::ray_aabb_naive;
+pub(crate) use batch::Slab8;
+pub use batch::{AabbBatch, AabbBatchHits};
+pub use face::{BoxFace, BoxHit};
 pub(crate) use slab::ends as slab_ends;
-pub use slab::{ray_aabb, ray_aabb_in, ray_aabb_prepared, ray_aabb_prepared_in};
+pub use slab::ray_aabb;
+pub(crate) use slab::{ray_aabb_in, ray_aabb_prepared, ray_aabb_prepared_in};
 
 /// The closed box `min <= p <= max` (component-wise).
 ///
@@ -39,6 +39,12 @@ pub use slab::{ray_aabb, ray_aabb_in, ray_aabb_prepared, ray_aabb_prepared_in};
 /// axis; a box of zero thickness on some axes (a rectangle, a segment, a
 /// point) is valid. An invalid box (inverted on any axis, NaN or infinite)
 /// is hit by nothing.
+///
+/// Its queries: [`Bounds`](crate::Bounds) (the conservative slab test, for
+/// BVH nodes; [`ray_aabb`] on a plain ray and a `t_max`) and
+/// [`Intersect`](crate::Intersect) (the box as a closed solid, with the face
+/// the ray enters through, decided exactly, and
+/// [`Aabb::surface_point`]).
 ///
 /// ```
 /// use rayhit::{Aabb, glam::Vec3};
@@ -73,23 +79,24 @@ impl<V: Vector> Aabb<V> {
 }
 
 /// A box known to be valid ([`Aabb::is_valid`]): checked once, when it is
-/// made, so that the slab tests ([`ray_aabb_prepared`], [`ray_aabb`]) need
-/// not check it on every call. Store a BVH's node boxes this way.
+/// made, so that its tests ([`Bounds::clip`](crate::Bounds::clip), the
+/// node test) need not check it on every call. Store a BVH's node boxes
+/// this way.
 ///
 /// Its corners can be read, not changed, so the check holds for as long
 /// as the value lives. The tests give the same answers, bit for bit, as for
 /// the [`Aabb`] it holds.
 ///
 /// ```
-/// use rayhit::{Aabb, PreparedRay, Ray, ValidAabb, ray_aabb_prepared, glam::Vec3};
+/// use rayhit::{Aabb, Bounds, PreparedRay, Ray, ValidAabb, glam::Vec3};
 /// let b = Aabb::new(Vec3::ZERO, Vec3::ONE);
 /// let node = ValidAabb::new(b).unwrap();
 /// assert!(ValidAabb::new(Aabb::new(Vec3::ONE, Vec3::ZERO)).is_none());
 /// let ray = PreparedRay::new(&Ray::new(Vec3::new(-1.0, 0.5, 0.5), Vec3::X));
-/// let (enter, exit) = ray_aabb_prepared(&ray, &node, f32::INFINITY).unwrap();
+/// let (enter, exit) = node.clip(&ray, f32::INFINITY).unwrap();
 /// // The exit is widened by its rounding bound (see `ray_aabb`).
 /// assert!(enter == 1.0 && exit >= 2.0 && exit < 2.0001);
-/// assert_eq!(ray_aabb_prepared(&ray, &b, f32::INFINITY), Some((enter, exit)));
+/// assert_eq!(b.clip(&ray, f32::INFINITY), Some((enter, exit)));
 /// ```
 #[derive(Clone, Copy, Debug, PartialEq)]
 #[repr(transparent)]
@@ -130,7 +137,7 @@ mod sealed {
 /// The boxes the slab tests take: an [`Aabb`], whose validity they check on
 /// every call (an invalid box is hit by nothing), or a [`ValidAabb`],
 /// checked once when it was made. Sealed.
-pub trait SlabBox<V: Vector>: sealed::Sealed {
+pub(crate) trait SlabBox<V: Vector>: sealed::Sealed {
     /// The box.
     fn corners(&self) -> &Aabb<V>;
 }

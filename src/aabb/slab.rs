@@ -4,7 +4,7 @@
 //! code with a lower end.
 
 use super::definition::{exit_slack, exit_widening};
-use super::{SlabBox, sealed as sealed_check};
+use super::{Aabb, SlabBox, sealed as sealed_check};
 use crate::num::round::at_most;
 use crate::num::{L, Lanes, S, Scalar, Vector, lanes};
 use crate::ray::{Interval, PreparedRay, Ray, SlabRay, t_max_ok};
@@ -17,7 +17,7 @@ use crate::ray::{Interval, PreparedRay, Ray, SlabRay, t_max_ok};
 /// the reciprocal computed once per ray.
 #[inline]
 #[must_use]
-pub fn ray_aabb_prepared<V: Vector>(
+pub(crate) fn ray_aabb_prepared<V: Vector>(
     ray: &PreparedRay<V>,
     aabb: &impl SlabBox<V>,
     t_max: S<V>,
@@ -163,7 +163,7 @@ fn slab_test<V: Vector, B: SlabBox<V>>(
 ///   box, NaN or negative `t_max`) gives `None`. Never panics.
 ///
 /// ```
-/// use rayhit::{Aabb, Ray, ray_aabb, glam::Vec3};
+/// use rayhit::{Aabb, Ray, glam::Vec3, ray_aabb};
 /// let unit = Aabb::new(Vec3::ZERO, Vec3::ONE);
 /// let ray = Ray::new(Vec3::new(-1.0, 0.5, 0.5), Vec3::new(2.0, 0.0, 0.0));
 /// // x = -1 + 2t is in [0, 1] for t in [0.5, 1]; the exit is widened by a
@@ -177,7 +177,13 @@ fn slab_test<V: Vector, B: SlabBox<V>>(
 /// ```
 #[inline]
 #[must_use]
-pub fn ray_aabb<V: Vector>(
+pub fn ray_aabb<V: Vector>(ray: &Ray<V>, aabb: &Aabb<V>, t_max: S<V>) -> Option<(S<V>, S<V>)> {
+    ray_slab_box(ray, aabb, t_max)
+}
+
+/// [`ray_aabb`] on any box the slab tests take.
+#[inline(always)]
+pub(crate) fn ray_slab_box<V: Vector>(
     ray: &Ray<V>,
     aabb: &impl SlabBox<V>,
     t_max: S<V>,
@@ -214,24 +220,9 @@ pub fn ray_aabb<V: Vector>(
 ///   bit.
 /// - Invalid rays and boxes give `None`; bad intervals cannot be built
 ///   ([`Interval::new`]). Never panics.
-///
-/// ```
-/// use rayhit::{Aabb, Interval, Ray, ray_aabb, ray_aabb_in, glam::Vec3};
-/// let unit = Aabb::new(Vec3::ZERO, Vec3::ONE);
-/// // x = -1 + 2t is in [0, 1] for t in [0.5, 1].
-/// let ray = Ray::new(Vec3::new(-1.0, 0.5, 0.5), Vec3::new(2.0, 0.0, 0.0));
-/// let window = |lo: f32, hi: f32| Interval::new(lo, hi).unwrap();
-/// let (enter, exit) = ray_aabb_in(&ray, &unit, window(0.75, 4.0)).unwrap();
-/// assert_eq!(enter, 0.75); // already inside at t_min
-/// assert!(exit >= 1.0 && exit <= 1.0 + 8.0 * f32::EPSILON); // widened
-/// assert_eq!(ray_aabb_in(&ray, &unit, window(2.0, 4.0)), None); // left before t_min
-/// assert_eq!(ray_aabb_in(&ray, &unit, window(0.0, 0.25)), None); // not yet entered
-/// let all = Interval::up_to(f32::INFINITY).unwrap();
-/// assert_eq!(ray_aabb_in(&ray, &unit, all), ray_aabb(&ray, &unit, f32::INFINITY));
-/// ```
 #[inline]
 #[must_use]
-pub fn ray_aabb_in<V: Vector>(
+pub(crate) fn ray_aabb_in<V: Vector>(
     ray: &Ray<V>,
     aabb: &impl SlabBox<V>,
     interval: Interval<S<V>>,
@@ -242,19 +233,9 @@ pub fn ray_aabb_in<V: Vector>(
 
 /// [`ray_aabb_in`] on a [`PreparedRay`]: the same answer, bit for bit,
 /// with the reciprocals computed once per ray.
-///
-/// ```
-/// use rayhit::{Aabb, Interval, PreparedRay, Ray, ValidAabb, ray_aabb_in, ray_aabb_prepared_in, glam::Vec3};
-/// let node = ValidAabb::new(Aabb::new(Vec3::new(2.0, -1.0, -1.0), Vec3::new(3.0, 1.0, 1.0))).unwrap();
-/// let ray = Ray::new(Vec3::ZERO, Vec3::X);
-/// let window = Interval::new(2.5, 10.0).unwrap();
-/// let hit = ray_aabb_prepared_in(&PreparedRay::new(&ray), &node, window);
-/// assert_eq!(hit, ray_aabb_in(&ray, &node, window));
-/// assert_eq!(hit.unwrap().0, 2.5);
-/// ```
 #[inline]
 #[must_use]
-pub fn ray_aabb_prepared_in<V: Vector>(
+pub(crate) fn ray_aabb_prepared_in<V: Vector>(
     ray: &PreparedRay<V>,
     aabb: &impl SlabBox<V>,
     interval: Interval<S<V>>,

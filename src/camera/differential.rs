@@ -20,16 +20,16 @@ use crate::ray::Ray;
 /// orthogonal to `dir`.
 ///
 /// ```
-/// use rayhit::{PinholeCamera, glam::Vec3};
+/// use rayhit::{Camera, CameraSample, PinholeCamera, glam::Vec3};
 /// let cam = PinholeCamera::new(Vec3::ZERO, -Vec3::Z, Vec3::Y, 100.0, 201, 201).unwrap();
-/// let diff = cam.ray_differential(100.5, 100.5);
+/// let diff = cam.ray_differential(CameraSample::new(100.5, 100.5));
 /// // At the centre, one pixel turns the ray by 1/100 radian, to the right.
 /// assert!((diff.dx_dir - Vec3::X / 100.0).length() < 1e-8);
 /// assert!((diff.dy_dir + Vec3::Y / 100.0).length() < 1e-8);
 /// assert_eq!(diff.dx_origin, Vec3::ZERO);
 /// // The ray one pixel to the right, to first order.
 /// let next = diff.offset(1.0, 0.0);
-/// assert!((next.dir - cam.ray(101.5, 100.5).dir).length() < 1e-4);
+/// assert!((next.dir - cam.ray(CameraSample::new(101.5, 100.5)).dir).length() < 1e-4);
 /// ```
 #[derive(Clone, Copy, Debug, Default, PartialEq)]
 pub struct RayDifferential<V = Vec3> {
@@ -70,7 +70,7 @@ impl<V: Vector> RayDifferential<V> {
 /// spread` to third order in the angle, which is a pixel's).
 ///
 /// ```
-/// use rayhit::{PinholeCamera, glam::Vec3};
+/// use rayhit::{Camera, PinholeCamera, glam::Vec3};
 /// let cam = PinholeCamera::new(Vec3::ZERO, -Vec3::Z, Vec3::Y, 500.0, 640, 480).unwrap();
 /// let cone = cam.ray_cone();
 /// // One pixel is 1/500 of the distance wide, to first order.
@@ -316,41 +316,111 @@ fn tracked<V: Vector>(v: V) -> [Tracked<S<V>>; 3] {
     arr(v).map(Tracked::exact)
 }
 
-/// The differentials of a triangle hit at `t` (Igehy, "Tracing Ray
-/// Differentials", 1999): with `n = (b - a) x (c - a)` and, per raster
-/// direction, `q = d_origin + t d_dir`,
-///
-/// `dt = -(q . n) / (dir . n)`, `dp = q + dt dir`,
-/// `du = dp . ((c - a) x n) / |n|^2`, `dv = dp . (n x (b - a)) / |n|^2`.
-///
-/// `t` is the hit's distance ([`TriangleHit::t`](crate::TriangleHit)).
-/// `None` when `dir . n` or `|n|^2` is zero (a ray in the triangle's plane, a
-/// zero-area triangle), so that nothing divides by zero; a ray within
-/// rounding of parallel gives huge differentials, as the exact ones are.
-/// Non-finite input gives non-finite output.
-///
-/// Each value is within [`triangle_hit_differentials_error`] of the
-/// same formulas evaluated exactly on the same floats (the exact derivative
-/// of the hit point at parameter `t`). The exact hit is at `t*`, not `t`:
-/// that moves `dp` by `(t - t*) (d_dir - dir (d_dir . n) / (dir . n))`,
-/// with `|t - t*|` from [`ray_triangle_error_bounds`](crate::ray_triangle_error_bounds).
-///
-/// ```
-/// use rayhit::{PinholeCamera, Triangle, ray_triangle, triangle_hit_differentials, glam::Vec3};
-/// // A camera 10 units above a floor of two big triangles, looking down.
-/// let cam = PinholeCamera::new(Vec3::new(0.0, 10.0, 0.0), -Vec3::Y, -Vec3::Z, 100.0, 201, 201).unwrap();
-/// let floor = Triangle::new(Vec3::new(-50.0, 0.0, 50.0), Vec3::new(50.0, 0.0, 50.0), Vec3::new(-50.0, 0.0, -50.0));
-/// let diff = cam.ray_differential(100.5, 100.5);
-/// let hit = ray_triangle(&diff.ray, &floor, f32::INFINITY).unwrap();
-/// let d = triangle_hit_differentials(&diff, &floor, hit.t).unwrap();
-/// // One pixel is 10/100 = 0.1 units on the floor, to the right (+x) and down (+z).
-/// assert!((d.dp_dx - Vec3::new(0.1, 0.0, 0.0)).length() < 1e-5);
-/// assert!((d.dp_dy - Vec3::new(0.0, 0.0, 0.1)).length() < 1e-5);
-/// // The edge b - a is 100 units along x: u moves by 0.1 / 100 per pixel.
-/// assert!((d.du_dx - 0.001).abs() < 1e-7);
-/// ```
-#[must_use]
-pub fn triangle_hit_differentials<V: Vector>(
+impl<V: Vector> crate::Triangle<V> {
+    /// The differentials of a triangle hit at `t` (Igehy, "Tracing Ray
+    /// Differentials", 1999): with `n = (b - a) x (c - a)` and, per raster
+    /// direction, `q = d_origin + t d_dir`,
+    ///
+    /// `dt = -(q . n) / (dir . n)`, `dp = q + dt dir`,
+    /// `du = dp . ((c - a) x n) / |n|^2`, `dv = dp . (n x (b - a)) / |n|^2`.
+    ///
+    /// `t` is the hit's distance ([`TriangleHit::t`](crate::TriangleHit)); `diff`
+    /// the ray's differentials ([`Camera::ray_differential`](crate::Camera::ray_differential)).
+    /// `None` when `dir . n` or `|n|^2` is zero (a ray in the triangle's plane, a
+    /// zero-area triangle), so that nothing divides by zero; a ray within
+    /// rounding of parallel gives huge differentials, as the exact ones are.
+    /// Non-finite input gives non-finite output.
+    ///
+    /// Each value is within [`hit_differentials_error`](Self::hit_differentials_error) of the
+    /// same formulas evaluated exactly on the same floats (the exact derivative
+    /// of the hit point at parameter `t`). The exact hit is at `t*`, not `t`:
+    /// that moves `dp` by `(t - t*) (d_dir - dir (d_dir . n) / (dir . n))`,
+    /// with `|t - t*|` from [`hit_error`](crate::Surface::hit_error).
+    ///
+    /// ```
+    /// use rayhit::{Camera, CameraSample, Intersect, PinholeCamera, Triangle, glam::Vec3};
+    /// // A camera 10 units above a floor of two big triangles, looking down.
+    /// let cam = PinholeCamera::new(Vec3::new(0.0, 10.0, 0.0), -Vec3::Y, -Vec3::Z, 100.0, 201, 201).unwrap();
+    /// let floor = Triangle::new(Vec3::new(-50.0, 0.0, 50.0), Vec3::new(50.0, 0.0, 50.0), Vec3::new(-50.0, 0.0, -50.0));
+    /// let diff = cam.ray_differential(CameraSample::new(100.5, 100.5));
+    /// let hit = floor.hit(&diff.ray, f32::INFINITY).unwrap();
+    /// let d = floor.hit_differentials(&diff, hit.t).unwrap();
+    /// // One pixel is 10/100 = 0.1 units on the floor, to the right (+x) and down (+z).
+    /// assert!((d.dp_dx - Vec3::new(0.1, 0.0, 0.0)).length() < 1e-5);
+    /// assert!((d.dp_dy - Vec3::new(0.0, 0.0, 0.1)).length() < 1e-5);
+    /// // The edge b - a is 100 units along x: u moves by 0.1 / 100 per pixel.
+    /// assert!((d.du_dx - 0.001).abs() < 1e-7);
+    /// ```
+    #[must_use]
+    pub fn hit_differentials(
+        &self,
+        diff: &RayDifferential<V>,
+        t: S<V>,
+    ) -> Option<HitDifferentials<V>> {
+        triangle_hit_differentials(diff, self, t)
+    }
+
+    /// Bounds on the rounding errors of [`hit_differentials`](Self::hit_differentials): each
+    /// field bounds the distance of the same field (per component for the
+    /// points' derivatives) from the same formulas evaluated exactly on the
+    /// same inputs, `t` included; every bound is infinite where the function
+    /// returns `None`, where a divisor's sign is not certain (`|dir . n|` or
+    /// `|n|^2` within its own rounding error) or for non-finite input.
+    ///
+    /// The bound is a running error analysis of the very operations the
+    /// function performs, in the same order: each operation adds the
+    /// propagated bounds of its operands and one rounding of its result (the
+    /// rules are in the source, each derived there), evaluated rounding
+    /// upward. It is tight to a small factor where nothing cancels, and
+    /// grows as `dir . n` approaches its rounding error (a grazing ray, whose
+    /// exact differentials grow too).
+    ///
+    /// ```
+    /// use rayhit::{Camera, CameraSample, Intersect, PinholeCamera, Triangle, glam::Vec3};
+    /// let cam = PinholeCamera::new(Vec3::new(0.0, 10.0, 0.0), -Vec3::Y, -Vec3::Z, 100.0, 201, 201).unwrap();
+    /// let floor = Triangle::new(Vec3::new(-50.0, 0.0, 50.0), Vec3::new(50.0, 0.0, 50.0), Vec3::new(-50.0, 0.0, -50.0));
+    /// let diff = cam.ray_differential(CameraSample::new(30.5, 150.5));
+    /// let hit = floor.hit(&diff.ray, f32::INFINITY).unwrap();
+    /// let d = floor.hit_differentials(&diff, hit.t).unwrap();
+    /// let err = floor.hit_differentials_error(&diff, hit.t);
+    /// assert!(err.du_dx < 1e-5 * d.du_dx.abs());
+    /// ```
+    #[must_use]
+    pub fn hit_differentials_error(
+        &self,
+        diff: &RayDifferential<V>,
+        t: S<V>,
+    ) -> HitDifferentials<V> {
+        triangle_hit_differentials_error(diff, self, t)
+    }
+
+    /// The width of a ray cone's footprint on a triangle hit at `t` by `ray`: the cone's
+    /// width at the hit's distance (`t |dir|`), divided by the cosine of the
+    /// angle between the ray and the triangle's normal (the footprint's long
+    /// axis on the surface; Ray Tracing Gems, chapter 20, eq. 20.3's `|n .
+    /// d|`). `None` for a ray in the triangle's plane or a zero-area
+    /// triangle (a zero dot product or length), so that nothing divides by
+    /// zero.
+    ///
+    /// Rounded: the width, the lengths and the quotient are a dozen roundings
+    /// of non-negative quantities (within `gamma(12)` of the same formula on
+    /// the computed normal and dot product); the computed normal and `dir .
+    /// n` carry the errors [`Triangle::normal_error`](crate::Triangle::normal_error)
+    /// and a dot product's, which grow relative to the result as the triangle
+    /// thins and as the ray grazes it (where the footprint itself grows
+    /// without bound). It is a filter's width: a few roundings do not matter,
+    /// a NaN would, and none comes out of finite input.
+    ///
+    /// A texture level of detail follows as in the chapter: `log2(width /
+    /// texel_size)`, with the texel size in world units at the hit.
+    #[must_use]
+    pub fn cone_width(&self, cone: &RayCone<S<V>>, ray: &Ray<V>, t: S<V>) -> Option<S<V>> {
+        triangle_cone_width(cone, ray, self, t)
+    }
+}
+
+/// See [`Triangle::hit_differentials`](crate::Triangle).
+pub(crate) fn triangle_hit_differentials<V: Vector>(
     diff: &RayDifferential<V>,
     tri: &crate::Triangle<V>,
     t: S<V>,
@@ -372,34 +442,8 @@ pub fn triangle_hit_differentials<V: Vector>(
     })
 }
 
-/// Bounds on the rounding errors of [`triangle_hit_differentials`]: each
-/// field bounds the distance of the same field (per component for the
-/// points' derivatives) from the same formulas evaluated exactly on the
-/// same inputs, `t` included; every bound is infinite where the function
-/// returns `None`, where a divisor's sign is not certain (`|dir . n|` or
-/// `|n|^2` within its own rounding error) or for non-finite input.
-///
-/// The bound is a running error analysis of the very operations the
-/// function performs, in the same order: each operation adds the
-/// propagated bounds of its operands and one rounding of its result (the
-/// rules are in the source, each derived there), evaluated rounding
-/// upward. It is tight to a small factor where nothing cancels, and
-/// grows as `dir . n` approaches its rounding error (a grazing ray, whose
-/// exact differentials grow too).
-///
-/// ```
-/// use rayhit::{PinholeCamera, Triangle, ray_triangle, triangle_hit_differentials};
-/// use rayhit::{triangle_hit_differentials_error, glam::Vec3};
-/// let cam = PinholeCamera::new(Vec3::new(0.0, 10.0, 0.0), -Vec3::Y, -Vec3::Z, 100.0, 201, 201).unwrap();
-/// let floor = Triangle::new(Vec3::new(-50.0, 0.0, 50.0), Vec3::new(50.0, 0.0, 50.0), Vec3::new(-50.0, 0.0, -50.0));
-/// let diff = cam.ray_differential(30.5, 150.5);
-/// let hit = ray_triangle(&diff.ray, &floor, f32::INFINITY).unwrap();
-/// let d = triangle_hit_differentials(&diff, &floor, hit.t).unwrap();
-/// let err = triangle_hit_differentials_error(&diff, &floor, hit.t);
-/// assert!(err.du_dx < 1e-5 * d.du_dx.abs());
-/// ```
-#[must_use]
-pub fn triangle_hit_differentials_error<V: Vector>(
+/// See [`Triangle::hit_differentials_error`](crate::Triangle).
+pub(crate) fn triangle_hit_differentials_error<V: Vector>(
     diff: &RayDifferential<V>,
     tri: &crate::Triangle<V>,
     t: S<V>,
@@ -449,27 +493,8 @@ pub fn triangle_hit_differentials_error<V: Vector>(
     }
 }
 
-/// The width of a ray cone's footprint on a triangle hit at `t`: the cone's
-/// width at the hit's distance (`t |dir|`), divided by the cosine of the
-/// angle between the ray and the triangle's normal (the footprint's long
-/// axis on the surface; Ray Tracing Gems, chapter 20, eq. 20.3's `|n .
-/// d|`). `None` for a ray in the triangle's plane or a zero-area
-/// triangle (a zero dot product or length), so that nothing divides by
-/// zero.
-///
-/// Rounded: the width, the lengths and the quotient are a dozen roundings
-/// of non-negative quantities (within `gamma(12)` of the same formula on
-/// the computed normal and dot product); the computed normal and `dir .
-/// n` carry the errors [`Triangle::normal_with_error`](crate::Triangle::normal_with_error)
-/// and a dot product's, which grow relative to the result as the triangle
-/// thins and as the ray grazes it (where the footprint itself grows
-/// without bound). It is a filter's width: a few roundings do not matter,
-/// a NaN would, and none comes out of finite input.
-///
-/// A texture level of detail follows as in the chapter: `log2(width /
-/// texel_size)`, with the texel size in world units at the hit.
-#[must_use]
-pub fn triangle_cone_width<V: Vector>(
+/// See [`Triangle::cone_width`](crate::Triangle).
+pub(crate) fn triangle_cone_width<V: Vector>(
     cone: &RayCone<S<V>>,
     ray: &Ray<V>,
     tri: &crate::Triangle<V>,

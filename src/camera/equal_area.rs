@@ -3,7 +3,10 @@
 
 use glam::Vec3;
 
-use super::{Basis, CameraError, RayCone, RayDifferential, by_components, centred, zero_vector};
+use super::{
+    Basis, Camera, CameraError, CameraSample, RayCone, RayDifferential, by_components, centred,
+    zero_vector,
+};
 use crate::num::trig::{atan2_turns, sin_cos_quadrant};
 use crate::num::{Bits, Repr, S, Scalar, Vector, unit, unit_near};
 use crate::ray::Ray;
@@ -38,20 +41,20 @@ use crate::ray::Ray;
 /// unit within `4 u`.
 ///
 /// ```
-/// use rayhit::{EqualAreaCamera, glam::Vec3};
+/// use rayhit::{Camera, CameraSample, camera::EqualAreaCamera, glam::Vec3};
 /// let cam = EqualAreaCamera::new(Vec3::ZERO, -Vec3::Z, Vec3::Y, 256, 256).unwrap();
 /// // The centre looks ahead, the middle of the right edge to the right
 /// // (the diamond's corner), a corner of the image straight back.
-/// assert!((cam.ray(128.0, 128.0).dir - -Vec3::Z).length() < 1e-6);
-/// assert!((cam.ray(256.0, 128.0).dir - Vec3::X).length() < 1e-6);
+/// assert!((cam.ray(CameraSample::new(128.0, 128.0)).dir - -Vec3::Z).length() < 1e-6);
+/// assert!((cam.ray(CameraSample::new(256.0, 128.0)).dir - Vec3::X).length() < 1e-6);
 /// // Halfway to the right edge (r = 1/2), the cosine to the view is 1 - r^2:
 /// // the cap within it is 1/8 of the sphere, as the diamond |u| + |v| <= 1/2
 /// // is 1/8 of the square.
-/// assert!((cam.ray(192.0, 128.0).dir.dot(-Vec3::Z) - 0.75).abs() < 1e-6);
-/// assert!((cam.ray(0.0, 0.0).dir - Vec3::Z).length() < 1e-6);
+/// assert!((cam.ray(CameraSample::new(192.0, 128.0)).dir.dot(-Vec3::Z) - 0.75).abs() < 1e-6);
+/// assert!((cam.ray(CameraSample::new(0.0, 0.0)).dir - Vec3::Z).length() < 1e-6);
 /// // And back.
 /// let (x, y) = cam.raster_position(Vec3::new(0.3, -0.2, 0.5)).unwrap();
-/// let back = cam.ray(x, y).dir;
+/// let back = cam.ray(CameraSample::new(x, y)).dir;
 /// assert!((back - Vec3::new(0.3, -0.2, 0.5).normalize()).length() < 1e-5);
 /// ```
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -171,6 +174,58 @@ impl<V: Vector> EqualAreaCamera<V> {
         (dir, sin, cos, ring)
     }
 
+    /// The raster position whose ray has the direction of `dir` (any
+    /// length): the inverse of [`ray`](Self::ray), in `[0, width] x [0,
+    /// height]`; `None` for a zero or non-finite `dir`.
+    ///
+    /// With `(a, b, c)` the components along `right`, `true_up` and
+    /// `forward` and `n` their length: `r = sqrt(1 - |c|/n)`, computed as
+    /// `sqrt((a^2 + b^2) / (n (n + |c|)))` (no cancellation at the pole),
+    /// the angle `atan(min/max)` of `|a|, |b|` (the crate's arctangent), and
+    /// pbrt-v4's `EqualAreaSphereToSquare` from there. Round trip:
+    /// `raster_position(ray(x, y).dir)` is `(x, y)` (or, within that much
+    /// of the image's edge, its mirror image across the centre line: the
+    /// square's edges fold onto each other) within `225 u` of the width in
+    /// `x` and of the height in `y` in `f32`, `313 u` in `f64` (the basis
+    /// being orthonormal within `gamma(13)`, for every up vector the camera
+    /// accepts). Derived, term by term, and held to in the test kit's
+    /// panorama checks.
+    #[must_use]
+    pub fn raster_position(&self, dir: V) -> Option<(S<V>, S<V>)> {
+        if !dir.is_finite() || dir == V::ZERO {
+            return None;
+        }
+        // Unit length first (scaled by a power of two where its square
+        // would under- or overflow), so that no square below does.
+        let dir = unit(dir);
+        let b = &self.basis;
+        let (a, bb, c) = (dir.dot(b.right), dir.dot(b.up), dir.dot(b.forward));
+        let local = V::new(a, bb, c);
+        let n = local.length();
+        let (ax, ay, az) = (a.abs(), bb.abs(), c.abs());
+        let r = ((ax * ax + ay * ay) / (n * (n + az))).sqrt();
+        let (lo, hi) = if ax < ay { (ax, ay) } else { (ay, ax) };
+        // atan(lo / hi) / (pi / 2), in [0, 1/2]: four times the turns.
+        let mut phi = atan2_turns(lo, hi) * S::<V>::from_u32(4);
+        if ax < ay {
+            phi = S::<V>::ONE - phi;
+        }
+        let mut v = phi * r;
+        let mut u = r - v;
+        if c < S::<V>::ZERO {
+            (u, v) = (S::<V>::ONE - v, S::<V>::ONE - u);
+        }
+        let u = <S<V> as Repr>::Bits::copysign(u, a);
+        let v = <S<V> as Repr>::Bits::copysign(v, bb);
+        let half = S::<V>::HALF;
+        let (w, h) = (S::<V>::from_u32(self.width), S::<V>::from_u32(self.height));
+        Some((w * half + u * (w * half), h * half - v * (h * half)))
+    }
+
+    super::basis_accessors!();
+}
+
+impl<V: Vector> Camera<V> for EqualAreaCamera<V> {
     /// The ray through raster position `(x, y)`: from the eye along the
     /// octahedral map's direction (see [`EqualAreaCamera`]), normalised.
     ///
@@ -178,8 +233,8 @@ impl<V: Vector> EqualAreaCamera<V> {
     /// of its edge (each coordinate clamped, infinities included); a NaN
     /// position gives a NaN direction, which every kernel rejects.
     #[inline(always)]
-    #[must_use]
-    pub fn ray(&self, x: S<V>, y: S<V>) -> Ray<V> {
+    fn ray(&self, sample: CameraSample<S<V>>) -> Ray<V> {
+        let [x, y] = sample.film;
         let (dir, ..) = self.local(&self.square(x, y));
         Ray::new(by_components(self.basis.eye), unit_near(dir))
     }
@@ -212,8 +267,8 @@ impl<V: Vector> EqualAreaCamera<V> {
     /// times `2 / width` or `2 / height` long). They are the derivatives
     /// of the exact map's unnormalised direction, whose length is 1.
     #[inline(always)]
-    #[must_use]
-    pub fn ray_differential(&self, x: S<V>, y: S<V>) -> RayDifferential<V> {
+    fn ray_differential(&self, sample: CameraSample<S<V>>) -> RayDifferential<V> {
+        let [x, y] = sample.film;
         let q = self.square(x, y);
         let (dir, sin, cos, _) = self.local(&q);
         let one = S::<V>::ONE;
@@ -266,8 +321,7 @@ impl<V: Vector> EqualAreaCamera<V> {
     /// `4 / sqrt(width height)` (from `pi spread^2 / 4`, the small cone's
     /// solid angle). Equal area makes it the same for every pixel.
     #[inline]
-    #[must_use]
-    pub fn ray_cone(&self) -> RayCone<S<V>> {
+    fn ray_cone(&self) -> RayCone<S<V>> {
         let area = S::<V>::from_u32(self.width) * S::<V>::from_u32(self.height);
         RayCone {
             width: S::<V>::ZERO,
@@ -275,55 +329,5 @@ impl<V: Vector> EqualAreaCamera<V> {
         }
     }
 
-    /// The raster position whose ray has the direction of `dir` (any
-    /// length): the inverse of [`ray`](Self::ray), in `[0, width] x [0,
-    /// height]`; `None` for a zero or non-finite `dir`.
-    ///
-    /// With `(a, b, c)` the components along `right`, `true_up` and
-    /// `forward` and `n` their length: `r = sqrt(1 - |c|/n)`, computed as
-    /// `sqrt((a^2 + b^2) / (n (n + |c|)))` (no cancellation at the pole),
-    /// the angle `atan(min/max)` of `|a|, |b|` (the crate's arctangent), and
-    /// pbrt-v4's `EqualAreaSphereToSquare` from there. Round trip:
-    /// `raster_position(ray(x, y).dir)` is `(x, y)` (or, within that much
-    /// of the image's edge, its mirror image across the centre line: the
-    /// square's edges fold onto each other) within `225 u` of the width in
-    /// `x` and of the height in `y` in `f32`, `313 u` in `f64` (the basis
-    /// being orthonormal within `gamma(13)`, for every up vector the camera
-    /// accepts). Derived, term by term, and held to in the test kit's
-    /// panorama checks.
-    #[must_use]
-    pub fn raster_position(&self, dir: V) -> Option<(S<V>, S<V>)> {
-        if !dir.is_finite() || dir == V::ZERO {
-            return None;
-        }
-        // Unit length first (scaled by a power of two where its square
-        // would under- or overflow), so that no square below does.
-        let dir = unit(dir);
-        let b = &self.basis;
-        let (a, bb, c) = (dir.dot(b.right), dir.dot(b.up), dir.dot(b.forward));
-        let local = V::new(a, bb, c);
-        let n = local.length();
-        let (ax, ay, az) = (a.abs(), bb.abs(), c.abs());
-        let r = ((ax * ax + ay * ay) / (n * (n + az))).sqrt();
-        let (lo, hi) = if ax < ay { (ax, ay) } else { (ay, ax) };
-        // atan(lo / hi) / (pi / 2), in [0, 1/2]: four times the turns.
-        let mut phi = atan2_turns(lo, hi) * S::<V>::from_u32(4);
-        if ax < ay {
-            phi = S::<V>::ONE - phi;
-        }
-        let mut v = phi * r;
-        let mut u = r - v;
-        if c < S::<V>::ZERO {
-            (u, v) = (S::<V>::ONE - v, S::<V>::ONE - u);
-        }
-        let u = <S<V> as Repr>::Bits::copysign(u, a);
-        let v = <S<V> as Repr>::Bits::copysign(v, bb);
-        let half = S::<V>::HALF;
-        let (w, h) = (S::<V>::from_u32(self.width), S::<V>::from_u32(self.height));
-        Some((w * half + u * (w * half), h * half - v * (h * half)))
-    }
-
-    super::basis_accessors!();
-
-    super::film_accessors!();
+    super::film_size!();
 }

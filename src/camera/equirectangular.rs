@@ -2,7 +2,10 @@
 
 use glam::Vec3;
 
-use super::{Basis, CameraError, RayCone, RayDifferential, by_components, centred, zero_vector};
+use super::{
+    Basis, Camera, CameraError, CameraSample, RayCone, RayDifferential, by_components, centred,
+    zero_vector,
+};
 use crate::num::trig::{atan2_turns, sin_cos_turns};
 use crate::num::{S, Scalar, Vector, unit, unit_near};
 use crate::ray::Ray;
@@ -38,14 +41,14 @@ use crate::ray::Ray;
 /// no square root or division: the returned direction is unit within `4 u`.
 ///
 /// ```
-/// use rayhit::{EquirectangularCamera, glam::Vec3};
+/// use rayhit::{Camera, CameraSample, camera::EquirectangularCamera, glam::Vec3};
 /// let cam = EquirectangularCamera::new(Vec3::ZERO, -Vec3::Z, Vec3::Y, 360, 180).unwrap();
 /// // The centre looks ahead, the top row up, the left edge behind.
-/// assert!((cam.ray(180.0, 90.0).dir - -Vec3::Z).length() < 1e-6);
-/// assert!((cam.ray(180.0, 0.0).dir - Vec3::Y).length() < 1e-6);
-/// assert!((cam.ray(0.0, 90.0).dir - Vec3::Z).length() < 1e-6);
+/// assert!((cam.ray(CameraSample::new(180.0, 90.0)).dir - -Vec3::Z).length() < 1e-6);
+/// assert!((cam.ray(CameraSample::new(180.0, 0.0)).dir - Vec3::Y).length() < 1e-6);
+/// assert!((cam.ray(CameraSample::new(0.0, 90.0)).dir - Vec3::Z).length() < 1e-6);
 /// // Straight to the right is a quarter of the way from the centre.
-/// assert!((cam.ray(270.0, 90.0).dir - Vec3::X).length() < 1e-6);
+/// assert!((cam.ray(CameraSample::new(270.0, 90.0)).dir - Vec3::X).length() < 1e-6);
 /// // And back: the direction's raster position.
 /// let (x, y) = cam.raster_position(Vec3::new(1.0, 1.0, 0.0)).unwrap();
 /// assert!((x - 270.0).abs() < 1e-3 && (y - 45.0).abs() < 1e-3);
@@ -97,73 +100,6 @@ impl<V: Vector> EquirectangularCamera<V> {
         [sin_cos_turns(dx * tx), sin_cos_turns(dy * ty)]
     }
 
-    /// The ray through raster position `(x, y)`: from the eye, along the
-    /// unit direction of longitude `2 pi (x / width - 1/2)` and latitude
-    /// `pi (1/2 - y / height)` (see [`EquirectangularCamera`]).
-    ///
-    /// Positions outside the image wrap around in longitude and go over
-    /// the pole in latitude (the formula is periodic); a NaN or infinite
-    /// position gives a NaN direction, which every kernel rejects.
-    #[inline(always)]
-    #[must_use]
-    pub fn ray(&self, x: S<V>, y: S<V>) -> Ray<V> {
-        let [(sl, cl), (sa, ca)] = self.angles(x, y);
-        let b = &self.basis;
-        let dir = b.right * (ca * sl) + b.up * sa + b.forward * (ca * cl);
-        Ray::new(by_components(b.eye), unit_near(dir))
-    }
-
-    /// The ray through `(x, y)`, bit for bit [`ray`](Self::ray), with its
-    /// differentials: the origin does not move, and the direction's
-    /// derivatives are
-    ///
-    /// `dx_dir = (2 pi / width) cos(lat) (cos(lon) right - sin(lon) forward)`,
-    /// `dy_dir = (pi / height) (sin(lat) (sin(lon) right + cos(lon) forward) - cos(lat) true_up)`,
-    ///
-    /// those of the exact mapping before normalising (the normalisation
-    /// changes them by as much as the basis departs from orthonormal, a
-    /// few roundings). Second order: the mapping's second derivatives in
-    /// longitude and latitude are at most 1 long, so the rays of `(x + 1,
-    /// y)` and `(x, y + 1)` are within `(2 pi / width)^2 / 2` and `(pi /
-    /// height)^2 / 2` of `dir + dx_dir` and `dir + dy_dir`, plus rounding.
-    /// Near the poles a pixel spans little longitude: `dx_dir` shrinks with
-    /// `cos(lat)`.
-    #[inline(always)]
-    #[must_use]
-    pub fn ray_differential(&self, x: S<V>, y: S<V>) -> RayDifferential<V> {
-        let [(sl, cl), (sa, ca)] = self.angles(x, y);
-        let b = &self.basis;
-        let dir = unit_near(b.right * (ca * sl) + b.up * sa + b.forward * (ca * cl));
-        let tau = S::<V>::from_f64(core::f64::consts::TAU);
-        let (kx, ky) = (
-            tau / S::<V>::from_u32(self.width),
-            S::<V>::PI / S::<V>::from_u32(self.height),
-        );
-        RayDifferential {
-            ray: Ray::new(by_components(b.eye), dir),
-            dx_origin: zero_vector(),
-            dx_dir: (b.right * cl - b.forward * sl) * (ca * kx),
-            dy_origin: zero_vector(),
-            dy_dir: ((b.right * sl + b.forward * cl) * sa - b.up * ca) * ky,
-        }
-    }
-
-    /// The ray cone of every ray: zero width, and the spread angle of a
-    /// pixel at the horizon, the larger of `2 pi / width` and `pi /
-    /// height` (towards the poles a pixel spans less longitude, and the
-    /// cone errs on the wide side).
-    #[inline]
-    #[must_use]
-    pub fn ray_cone(&self) -> RayCone<S<V>> {
-        let tau = S::<V>::from_f64(core::f64::consts::TAU);
-        let across = tau / S::<V>::from_u32(self.width);
-        let down = S::<V>::PI / S::<V>::from_u32(self.height);
-        RayCone {
-            width: S::<V>::ZERO,
-            spread: if across > down { across } else { down },
-        }
-    }
-
     /// The raster position whose ray has the direction of `dir` (any
     /// length): the inverse of [`ray`](Self::ray), `x` in `[0, width]` and
     /// `y` in `[0, height]`; `None` for a zero or non-finite `dir`.
@@ -210,6 +146,74 @@ impl<V: Vector> EquirectangularCamera<V> {
     }
 
     super::basis_accessors!();
+}
 
-    super::film_accessors!();
+impl<V: Vector> Camera<V> for EquirectangularCamera<V> {
+    /// The ray through raster position `(x, y)`: from the eye, along the
+    /// unit direction of longitude `2 pi (x / width - 1/2)` and latitude
+    /// `pi (1/2 - y / height)` (see [`EquirectangularCamera`]).
+    ///
+    /// Positions outside the image wrap around in longitude and go over
+    /// the pole in latitude (the formula is periodic); a NaN or infinite
+    /// position gives a NaN direction, which every kernel rejects.
+    #[inline(always)]
+    fn ray(&self, sample: CameraSample<S<V>>) -> Ray<V> {
+        let [x, y] = sample.film;
+        let [(sl, cl), (sa, ca)] = self.angles(x, y);
+        let b = &self.basis;
+        let dir = b.right * (ca * sl) + b.up * sa + b.forward * (ca * cl);
+        Ray::new(by_components(b.eye), unit_near(dir))
+    }
+
+    /// The ray through `(x, y)`, bit for bit [`ray`](Self::ray), with its
+    /// differentials: the origin does not move, and the direction's
+    /// derivatives are
+    ///
+    /// `dx_dir = (2 pi / width) cos(lat) (cos(lon) right - sin(lon) forward)`,
+    /// `dy_dir = (pi / height) (sin(lat) (sin(lon) right + cos(lon) forward) - cos(lat) true_up)`,
+    ///
+    /// those of the exact mapping before normalising (the normalisation
+    /// changes them by as much as the basis departs from orthonormal, a
+    /// few roundings). Second order: the mapping's second derivatives in
+    /// longitude and latitude are at most 1 long, so the rays of `(x + 1,
+    /// y)` and `(x, y + 1)` are within `(2 pi / width)^2 / 2` and `(pi /
+    /// height)^2 / 2` of `dir + dx_dir` and `dir + dy_dir`, plus rounding.
+    /// Near the poles a pixel spans little longitude: `dx_dir` shrinks with
+    /// `cos(lat)`.
+    #[inline(always)]
+    fn ray_differential(&self, sample: CameraSample<S<V>>) -> RayDifferential<V> {
+        let [x, y] = sample.film;
+        let [(sl, cl), (sa, ca)] = self.angles(x, y);
+        let b = &self.basis;
+        let dir = unit_near(b.right * (ca * sl) + b.up * sa + b.forward * (ca * cl));
+        let tau = S::<V>::from_f64(core::f64::consts::TAU);
+        let (kx, ky) = (
+            tau / S::<V>::from_u32(self.width),
+            S::<V>::PI / S::<V>::from_u32(self.height),
+        );
+        RayDifferential {
+            ray: Ray::new(by_components(b.eye), dir),
+            dx_origin: zero_vector(),
+            dx_dir: (b.right * cl - b.forward * sl) * (ca * kx),
+            dy_origin: zero_vector(),
+            dy_dir: ((b.right * sl + b.forward * cl) * sa - b.up * ca) * ky,
+        }
+    }
+
+    /// The ray cone of every ray: zero width, and the spread angle of a
+    /// pixel at the horizon, the larger of `2 pi / width` and `pi /
+    /// height` (towards the poles a pixel spans less longitude, and the
+    /// cone errs on the wide side).
+    #[inline]
+    fn ray_cone(&self) -> RayCone<S<V>> {
+        let tau = S::<V>::from_f64(core::f64::consts::TAU);
+        let across = tau / S::<V>::from_u32(self.width);
+        let down = S::<V>::PI / S::<V>::from_u32(self.height);
+        RayCone {
+            width: S::<V>::ZERO,
+            spread: if across > down { across } else { down },
+        }
+    }
+
+    super::film_size!();
 }

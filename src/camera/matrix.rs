@@ -2,14 +2,17 @@
 
 use glam::{DMat4, DVec3, Mat4, Vec3};
 
-use super::{CameraError, RayCone, RayDifferential, by_components, centred, zero_vector};
+use super::{
+    Camera, CameraError, CameraSample, RayCone, RayDifferential, by_components, centred,
+    zero_vector,
+};
 use crate::num::trig::atan2_turns;
 use crate::num::{S, Scalar, Vector, unit, unit_and_inverse_length};
 use crate::ray::Ray;
 
 /// A 4x4 matrix as glam stores it: four columns of four components
 /// (`Mat4::to_cols_array_2d`), acting on column vectors.
-pub type Columns<F> = [[F; 4]; 4];
+type Columns<F> = [[F; 4]; 4];
 
 /// The graphics API's clip-space convention, which the matrices alone do
 /// not tell: which way normalised device `y` points, and where depth
@@ -100,7 +103,7 @@ enum Projection {
 /// in the repository's test kit, `testkit/src/fuzz/matrix_camera.rs`).
 ///
 /// ```
-/// use rayhit::{ClipSpace, MatrixCamera, PinholeCamera, glam::{Mat4, Vec3}};
+/// use rayhit::{Camera, PinholeCamera, camera::{ClipSpace, MatrixCamera}, glam::{Mat4, Vec3}};
 /// use rayhit::glam::camera::rh::{proj::directx, view};
 /// let (eye, dir) = (Vec3::new(1.0, 2.0, 5.0), Vec3::new(0.0, -0.3, -1.0).normalize());
 /// let view = view::look_to_mat4(eye, dir, Vec3::Y);
@@ -283,6 +286,33 @@ impl<V: Vector> MatrixCamera<V> {
         self.c + self.a * dx + self.b * dy
     }
 
+    /// The ray's linear form `[c, a, b]`: the direction (perspective,
+    /// before normalising) or the origin (orthographic) of raster position
+    /// `(x, y)` is `c + (x - width/2) a + (height/2 - y) b`, evaluated in
+    /// that order, three roundings per component.
+    #[inline]
+    #[must_use]
+    pub fn linear_form(&self) -> [V; 3] {
+        [self.c, self.a, self.b]
+    }
+
+    /// The eye (perspective: where every ray starts) or the direction of
+    /// every ray (orthographic).
+    #[inline]
+    #[must_use]
+    pub fn fixed(&self) -> V {
+        self.fixed
+    }
+
+    /// True for an orthographic projection (parallel rays).
+    #[inline]
+    #[must_use]
+    pub fn is_orthographic(&self) -> bool {
+        self.projection == Projection::Orthographic
+    }
+}
+
+impl<V: Vector> Camera<V> for MatrixCamera<V> {
     /// The ray through raster position `(x, y)`: for a perspective
     /// projection from the eye with a unit direction, for an orthographic
     /// one from the near plane with the one unit direction (see
@@ -295,8 +325,8 @@ impl<V: Vector> MatrixCamera<V> {
     /// infinite position gives a non-finite ray, which every kernel
     /// rejects.
     #[inline(always)]
-    #[must_use]
-    pub fn ray(&self, x: S<V>, y: S<V>) -> Ray<V> {
+    fn ray(&self, sample: CameraSample<S<V>>) -> Ray<V> {
+        let [x, y] = sample.film;
         let p = self.linear(x, y);
         match self.projection {
             Projection::Perspective => Ray::new(by_components(self.fixed), unit(p)),
@@ -313,8 +343,8 @@ impl<V: Vector> MatrixCamera<V> {
     /// origin moves by `a` and `-b` per pixel, exactly linearly, and the
     /// direction not at all.
     #[inline(always)]
-    #[must_use]
-    pub fn ray_differential(&self, x: S<V>, y: S<V>) -> RayDifferential<V> {
+    fn ray_differential(&self, sample: CameraSample<S<V>>) -> RayDifferential<V> {
+        let [x, y] = sample.film;
         let p = self.linear(x, y);
         let (a, b) = (self.a, self.b);
         match self.projection {
@@ -344,8 +374,7 @@ impl<V: Vector> MatrixCamera<V> {
     /// with `b`, with the crate's arctangent). Orthographic: the larger of
     /// `|a|` and `|b|` wide, not spreading.
     #[inline]
-    #[must_use]
-    pub fn ray_cone(&self) -> RayCone<S<V>> {
+    fn ray_cone(&self) -> RayCone<S<V>> {
         let zero = S::<V>::ZERO;
         let max = |p: S<V>, q: S<V>| if p > q { p } else { q };
         match self.projection {
@@ -367,32 +396,7 @@ impl<V: Vector> MatrixCamera<V> {
         }
     }
 
-    /// The ray's linear form `[c, a, b]`: the direction (perspective,
-    /// before normalising) or the origin (orthographic) of raster position
-    /// `(x, y)` is `c + (x - width/2) a + (height/2 - y) b`, evaluated in
-    /// that order, three roundings per component.
-    #[inline]
-    #[must_use]
-    pub fn linear_form(&self) -> [V; 3] {
-        [self.c, self.a, self.b]
-    }
-
-    /// The eye (perspective: where every ray starts) or the direction of
-    /// every ray (orthographic).
-    #[inline]
-    #[must_use]
-    pub fn fixed(&self) -> V {
-        self.fixed
-    }
-
-    /// True for an orthographic projection (parallel rays).
-    #[inline]
-    #[must_use]
-    pub fn is_orthographic(&self) -> bool {
-        self.projection == Projection::Orthographic
-    }
-
-    super::film_accessors!();
+    super::film_size!();
 }
 
 impl MatrixCamera<Vec3> {

@@ -1,16 +1,27 @@
-//! Cameras: raster positions to primary rays.
+//! Cameras: the [`Camera`] trait, its six implementations, and what they
+//! give beside a ray (differentials, ray cones, their transfer to a hit).
 //!
-//! - `mod.rs`: [`CameraError`], and what every camera shares: the
-//!   orthonormal basis from eye, view and up, and the raster offset from
-//!   the image centre.
-//! - `pinhole.rs`: [`PinholeCamera`].
-//! - `thin_lens.rs`: [`ThinLensCamera`] and its [`FocusPoint`].
-//! - `orthographic.rs`: [`OrthographicCamera`].
-//! - `matrix.rs`: [`MatrixCamera`], from a rasterizer's matrices.
-//! - `equirectangular.rs`: [`EquirectangularCamera`].
-//! - `equal_area.rs`: [`EqualAreaCamera`] (Clarberg's octahedral map).
-//! - `differential.rs`: [`RayDifferential`] and [`RayCone`], and their
-//!   transfer to a triangle hit ([`HitDifferentials`]).
+//! | camera | rays | beside the trait |
+//! | --- | --- | --- |
+//! | [`PinholeCamera`] | perspective, from an eye | the frame's accessors |
+//! | [`ThinLensCamera`] | depth of field: rays of one film point meet at its focus point exactly | [`ThinLensCamera::focus`] once per film point, [`ThinLensCamera::ray_through`] per lens sample |
+//! | [`OrthographicCamera`] | parallel, one direction bit for bit | |
+//! | [`MatrixCamera`] | from a rasterizer's view and projection matrices | [`MatrixCamera::from_mat4`] |
+//! | [`EquirectangularCamera`] | latitude and longitude over the whole sphere | the inverse, `raster_position` |
+//! | [`EqualAreaCamera`] | the whole sphere, every pixel the same solid angle | the inverse, `raster_position` |
+//!
+//! Every camera is built from checked parameters ([`CameraError`] says
+//! which is bad) and answers [`Camera::ray`], [`Camera::ray_differential`]
+//! ([`RayDifferential`]) and [`Camera::ray_cone`] ([`RayCone`]) for a
+//! [`CameraSample`]; [`Triangle::hit_differentials`](crate::Triangle::hit_differentials)
+//! carries the differentials to a hit ([`HitDifferentials`]).
+
+// Files: `mod.rs`, the trait, the sample, the errors and what every camera
+// shares (the orthonormal basis from eye, view and up, the raster offset
+// from the image centre); one file per camera (`pinhole.rs`,
+// `thin_lens.rs`, `orthographic.rs`, `matrix.rs`, `equirectangular.rs`,
+// `equal_area.rs`); `differential.rs`, ray differentials and cones and
+// their transfer to a triangle hit.
 
 mod differential;
 mod equal_area;
@@ -22,18 +33,37 @@ mod thin_lens;
 
 use core::fmt;
 
-use crate::num::{S, Scalar, Vector, unit};
+use glam::Vec3;
 
-pub use differential::{
-    HitDifferentials, RayCone, RayDifferential, triangle_cone_width, triangle_hit_differentials,
-    triangle_hit_differentials_error,
-};
+use crate::num::{S, Scalar, Vector, unit};
+use crate::ray::Ray;
+
+pub use differential::{HitDifferentials, RayCone, RayDifferential};
 pub use equal_area::EqualAreaCamera;
 pub use equirectangular::EquirectangularCamera;
-pub use matrix::{ClipSpace, Columns, MatrixCamera};
+pub use matrix::{ClipSpace, MatrixCamera};
 pub use orthographic::OrthographicCamera;
 pub use pinhole::PinholeCamera;
 pub use thin_lens::{FocusPoint, ThinLensCamera};
+
+/// [`PinholeCamera`] in `f64`.
+pub type DPinholeCamera = PinholeCamera<glam::DVec3>;
+/// [`ThinLensCamera`] in `f64`.
+pub type DThinLensCamera = ThinLensCamera<glam::DVec3>;
+/// [`OrthographicCamera`] in `f64`.
+pub type DOrthographicCamera = OrthographicCamera<glam::DVec3>;
+/// [`MatrixCamera`] in `f64`.
+pub type DMatrixCamera = MatrixCamera<glam::DVec3>;
+/// [`EquirectangularCamera`] in `f64`.
+pub type DEquirectangularCamera = EquirectangularCamera<glam::DVec3>;
+/// [`EqualAreaCamera`] in `f64`.
+pub type DEqualAreaCamera = EqualAreaCamera<glam::DVec3>;
+/// [`RayDifferential`] in `f64`.
+pub type DRayDifferential = RayDifferential<glam::DVec3>;
+/// [`HitDifferentials`] in `f64`.
+pub type DHitDifferentials = HitDifferentials<glam::DVec3>;
+/// [`CameraSample`] in `f64`.
+pub type DCameraSample = CameraSample<f64>;
 
 /// Why a camera could not be built.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
@@ -125,34 +155,154 @@ macro_rules! basis_accessors {
 }
 use basis_accessors;
 
-/// What every camera with a `ray(x, y)` and fields `width` and `height`
-/// has: `pixel_ray`, `width` and `height`, written once.
-macro_rules! film_accessors {
+/// A camera's `width` and `height` from its fields of those names, for its
+/// [`Camera`] implementation.
+macro_rules! film_size {
     () => {
-        /// The ray through the centre of pixel `(i, j)`: `ray(i + 0.5, j + 0.5)`.
-        #[inline(always)]
-        #[must_use]
-        pub fn pixel_ray(&self, i: u32, j: u32) -> Ray<V> {
-            let (x, y) = super::pixel_centre(i, j);
-            self.ray(x, y)
-        }
-
-        /// The image width in pixels.
         #[inline]
-        #[must_use]
-        pub fn width(&self) -> u32 {
+        fn width(&self) -> u32 {
             self.width
         }
 
-        /// The image height in pixels.
         #[inline]
-        #[must_use]
-        pub fn height(&self) -> u32 {
+        fn height(&self) -> u32 {
             self.height
         }
     };
 }
-use film_accessors;
+use film_size;
+
+/// Where on the film, where on the lens and when a camera ray starts:
+/// what a renderer's sampler gives a [`Camera`] (pbrt-v4's
+/// `CameraSample`).
+///
+/// `film` is the raster position `(x, y)`, continuous, in pixels from the
+/// image's top-left corner, `y` down: pixel `(i, j)` covers `[i, i + 1) x
+/// [j, j + 1)` and has its centre at `(i + 0.5, j + 0.5)`. `lens` is a
+/// point of `[0, 1]^2` that a camera with a lens maps onto it
+/// (`(0.5, 0.5)` is the lens centre); cameras without one ignore it.
+/// `time` is in `[0, 1)`, the shutter interval; no camera reads it yet
+/// (there for moving cameras and geometry).
+///
+/// ```
+/// use rayhit::{Camera, CameraSample, PinholeCamera, glam::Vec3};
+/// let cam = PinholeCamera::from_fov(Vec3::ZERO, -Vec3::Z, Vec3::Y, 1.0, 64, 48).unwrap();
+/// let sample = CameraSample::new(32.0, 24.0); // the image's centre
+/// assert_eq!(cam.ray(sample).dir, -Vec3::Z);
+/// let pixel: CameraSample = CameraSample::pixel(3, 4);
+/// assert_eq!(pixel.film, [3.5, 4.5]);
+/// assert_eq!(pixel.with_lens(0.25, 0.75).lens, [0.25, 0.75]);
+/// ```
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct CameraSample<F = f32> {
+    /// The raster position `(x, y)`, in pixels.
+    pub film: [F; 2],
+    /// The lens sample, in `[0, 1]^2`.
+    pub lens: [F; 2],
+    /// The time, in `[0, 1)`.
+    pub time: F,
+}
+
+impl<F: Scalar> CameraSample<F> {
+    /// Raster position `(x, y)`, at the lens centre, at time 0.
+    #[inline(always)]
+    #[must_use]
+    pub fn new(x: F, y: F) -> Self {
+        Self {
+            film: [x, y],
+            lens: [F::HALF, F::HALF],
+            time: F::ZERO,
+        }
+    }
+
+    /// The centre of pixel `(i, j)`, `(i + 0.5, j + 0.5)`, at the lens
+    /// centre, at time 0.
+    #[inline(always)]
+    #[must_use]
+    pub fn pixel(i: u32, j: u32) -> Self {
+        let (x, y) = pixel_centre(i, j);
+        Self::new(x, y)
+    }
+
+    /// The same sample at lens sample `(s, t)`.
+    #[inline(always)]
+    #[must_use]
+    pub fn with_lens(self, s: F, t: F) -> Self {
+        Self {
+            lens: [s, t],
+            ..self
+        }
+    }
+
+    /// The same sample at `time`.
+    #[inline(always)]
+    #[must_use]
+    pub fn with_time(self, time: F) -> Self {
+        Self { time, ..self }
+    }
+}
+
+/// A camera: the ray of a [`CameraSample`], with its differentials and its
+/// ray cone, for every camera the same way (pbrt-v4's `Camera`).
+///
+/// Implemented by [`PinholeCamera`], [`ThinLensCamera`],
+/// [`OrthographicCamera`], [`MatrixCamera`], [`EquirectangularCamera`]
+/// and [`EqualAreaCamera`]; each implementation states its guarantees.
+/// Object safe: a renderer choosing its camera at run time holds a
+/// `Box<dyn Camera>` (which is `Debug`, as every camera is).
+///
+/// Conventions, for every camera: right-handed world, raster `(0, 0)` at
+/// the image's top-left corner, `x` right, `y` down. A NaN raster position
+/// gives a ray with a NaN direction (which every query rejects); positions
+/// outside the image give finite rays (each camera says which).
+///
+/// ```
+/// use rayhit::{Camera, CameraSample, PinholeCamera, glam::Vec3};
+/// use rayhit::camera::OrthographicCamera;
+/// let cameras: [Box<dyn Camera>; 2] = [
+///     Box::new(PinholeCamera::from_fov(Vec3::new(0.0, 0.0, 5.0), -Vec3::Z, Vec3::Y, 1.0, 32, 32).unwrap()),
+///     Box::new(OrthographicCamera::new(Vec3::new(0.0, 0.0, 5.0), -Vec3::Z, Vec3::Y, 0.1, 32, 32).unwrap()),
+/// ];
+/// for cam in &cameras {
+///     // The centre pixel of an even-sized image is half a pixel off the axis.
+///     let ray = cam.ray(CameraSample::new(16.0, 16.0));
+///     assert_eq!(ray.dir, -Vec3::Z);
+///     assert_eq!((cam.width(), cam.height()), (32, 32));
+/// }
+/// ```
+pub trait Camera<V: Vector = Vec3>: fmt::Debug {
+    /// The ray of `sample`, in world space.
+    #[must_use]
+    fn ray(&self, sample: CameraSample<S<V>>) -> Ray<V>;
+
+    /// The ray of `sample`, bit for bit [`ray`](Camera::ray), with its
+    /// derivatives per pixel in raster `x` and `y` (for texture
+    /// filtering: carry them to a hit with
+    /// [`Triangle::hit_differentials`](crate::Triangle::hit_differentials)).
+    #[must_use]
+    fn ray_differential(&self, sample: CameraSample<S<V>>) -> RayDifferential<V>;
+
+    /// The ray cone of the camera's rays (a cheaper footprint than
+    /// differentials: one width and one spread angle).
+    #[must_use]
+    fn ray_cone(&self) -> RayCone<S<V>>;
+
+    /// The image width in pixels.
+    #[must_use]
+    fn width(&self) -> u32;
+
+    /// The image height in pixels.
+    #[must_use]
+    fn height(&self) -> u32;
+
+    /// The ray through the centre of pixel `(i, j)`, at the lens centre:
+    /// `ray(CameraSample::pixel(i, j))`.
+    #[inline(always)]
+    #[must_use]
+    fn pixel_ray(&self, i: u32, j: u32) -> Ray<V> {
+        self.ray(CameraSample::pixel(i, j))
+    }
+}
 
 /// `v` rebuilt from its components: the same bits, moved as floats. A
 /// vector copied whole from the camera into every ray (the eye, a fixed

@@ -2,7 +2,10 @@
 
 use glam::Vec3;
 
-use super::{Basis, CameraError, RayCone, RayDifferential, by_components, centred, zero_vector};
+use super::{
+    Basis, Camera, CameraError, CameraSample, RayCone, RayDifferential, by_components, centred,
+    zero_vector,
+};
 use crate::num::{S, Scalar, Vector};
 use crate::ray::Ray;
 
@@ -34,7 +37,7 @@ use crate::ray::Ray;
 /// bit for bit: the rays are exactly parallel.
 ///
 /// ```
-/// use rayhit::{OrthographicCamera, glam::Vec3};
+/// use rayhit::{Camera, camera::OrthographicCamera, glam::Vec3};
 /// // Looking down at the ground from y = 10, 0.5 units per pixel, 4x2 pixels.
 /// let cam = OrthographicCamera::new(Vec3::new(0.0, 10.0, 0.0), -Vec3::Y, -Vec3::Z, 0.5, 4, 2).unwrap();
 /// let ray = cam.pixel_ray(0, 0);
@@ -88,58 +91,6 @@ impl<V: Vector> OrthographicCamera<V> {
         })
     }
 
-    /// The ray through raster position `(x, y)`: from
-    /// `centre + ((x - width/2) s) right + ((height/2 - y) s) true_up`
-    /// (`s` the pixel size) along `forward`.
-    ///
-    /// Each origin component carries four roundings (the offset's product
-    /// by `s`, its product with the basis vector, the sum of the two
-    /// offsets and the sum with the centre), so it is within `gamma(4)
-    /// (|centre_i| + |dx s right_i| + |dy s up_i|)` of the exact point, and
-    /// within the same of the plane through `centre` (up to the basis's
-    /// own rounding). Positions outside the image give rays outside the
-    /// view; a NaN or infinite position gives a non-finite origin, which
-    /// every kernel rejects.
-    #[inline(always)]
-    #[must_use]
-    pub fn ray(&self, x: S<V>, y: S<V>) -> Ray<V> {
-        let (dx, dy) = centred(x, y, self.width, self.height);
-        let s = self.pixel_size;
-        let b = &self.basis;
-        Ray::new(
-            b.eye + (b.right * (dx * s) + b.up * (dy * s)),
-            by_components(b.forward),
-        )
-    }
-
-    /// The ray through `(x, y)`, bit for bit [`ray`](Self::ray), with its
-    /// differentials: the origin moves by `pixel_size right` per pixel to
-    /// the right and `-pixel_size true_up` per pixel down (one rounding
-    /// each; exact second order, the origin being linear in the position),
-    /// the direction does not move.
-    #[inline(always)]
-    #[must_use]
-    pub fn ray_differential(&self, x: S<V>, y: S<V>) -> RayDifferential<V> {
-        let s = self.pixel_size;
-        RayDifferential {
-            ray: self.ray(x, y),
-            dx_origin: self.basis.right * s,
-            dx_dir: zero_vector(),
-            dy_origin: -(self.basis.up * s),
-            dy_dir: zero_vector(),
-        }
-    }
-
-    /// The ray cone of every ray: one pixel wide, not spreading.
-    #[inline]
-    #[must_use]
-    pub fn ray_cone(&self) -> RayCone<S<V>> {
-        RayCone {
-            width: self.pixel_size,
-            spread: S::<V>::ZERO,
-        }
-    }
-
     /// Where the centre ray starts.
     #[inline]
     #[must_use]
@@ -174,6 +125,58 @@ impl<V: Vector> OrthographicCamera<V> {
     pub fn pixel_size(&self) -> S<V> {
         self.pixel_size
     }
+}
 
-    super::film_accessors!();
+impl<V: Vector> Camera<V> for OrthographicCamera<V> {
+    /// The ray through raster position `(x, y)`: from
+    /// `centre + ((x - width/2) s) right + ((height/2 - y) s) true_up`
+    /// (`s` the pixel size) along `forward`.
+    ///
+    /// Each origin component carries four roundings (the offset's product
+    /// by `s`, its product with the basis vector, the sum of the two
+    /// offsets and the sum with the centre), so it is within `gamma(4)
+    /// (|centre_i| + |dx s right_i| + |dy s up_i|)` of the exact point, and
+    /// within the same of the plane through `centre` (up to the basis's
+    /// own rounding). Positions outside the image give rays outside the
+    /// view; a NaN or infinite position gives a non-finite origin, which
+    /// every kernel rejects.
+    #[inline(always)]
+    fn ray(&self, sample: CameraSample<S<V>>) -> Ray<V> {
+        let [x, y] = sample.film;
+        let (dx, dy) = centred(x, y, self.width, self.height);
+        let s = self.pixel_size;
+        let b = &self.basis;
+        Ray::new(
+            b.eye + (b.right * (dx * s) + b.up * (dy * s)),
+            by_components(b.forward),
+        )
+    }
+
+    /// The ray through `(x, y)`, bit for bit [`ray`](Self::ray), with its
+    /// differentials: the origin moves by `pixel_size right` per pixel to
+    /// the right and `-pixel_size true_up` per pixel down (one rounding
+    /// each; exact second order, the origin being linear in the position),
+    /// the direction does not move.
+    #[inline(always)]
+    fn ray_differential(&self, sample: CameraSample<S<V>>) -> RayDifferential<V> {
+        let s = self.pixel_size;
+        RayDifferential {
+            ray: self.ray(sample),
+            dx_origin: self.basis.right * s,
+            dx_dir: zero_vector(),
+            dy_origin: -(self.basis.up * s),
+            dy_dir: zero_vector(),
+        }
+    }
+
+    /// The ray cone of every ray: one pixel wide, not spreading.
+    #[inline]
+    fn ray_cone(&self) -> RayCone<S<V>> {
+        RayCone {
+            width: self.pixel_size,
+            spread: S::<V>::ZERO,
+        }
+    }
+
+    super::film_size!();
 }

@@ -3,7 +3,10 @@
 
 use glam::Vec3;
 
-use super::{Basis, CameraError, RayCone, RayDifferential, by_components, centred, zero_vector};
+use super::{
+    Basis, Camera, CameraError, CameraSample, RayCone, RayDifferential, by_components, centred,
+    zero_vector,
+};
 use crate::num::trig::atan2_turns;
 use crate::num::{S, Scalar, Vector, unit, unit_and_inverse_length};
 use crate::ray::Ray;
@@ -26,13 +29,13 @@ use crate::ray::Ray;
 /// Rays start at the eye and have unit-length directions (to a few ulps).
 ///
 /// ```
-/// use rayhit::{PinholeCamera, glam::Vec3};
+/// use rayhit::{Camera, CameraSample, PinholeCamera, glam::Vec3};
 /// // 3x3 image, 90 degree vertical field of view: focal length 1.5 pixels.
 /// let cam = PinholeCamera::new(Vec3::ZERO, -Vec3::Z, Vec3::Y, 1.5, 3, 3).unwrap();
 /// // The centre pixel looks straight along the view direction.
 /// assert_eq!(cam.pixel_ray(1, 1).dir, -Vec3::Z);
 /// // The top-left corner of the image is up and to the left: (-1.5, 1.5, -1.5) normalised.
-/// let corner = cam.ray(0.0, 0.0).dir;
+/// let corner = cam.ray(CameraSample::new(0.0, 0.0)).dir;
 /// assert!((corner - Vec3::new(-1.0, 1.0, -1.0).normalize()).length() < 1e-6);
 /// ```
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -131,24 +134,6 @@ impl<V: Vector> PinholeCamera<V> {
         Self::new(eye, view_dir, up, focal, width, height)
     }
 
-    /// The ray through raster position `(x, y)` (continuous, in pixels, from
-    /// the top-left corner, `y` down), starting at the eye, with a
-    /// unit-length direction.
-    ///
-    /// `dir = normalize(focal * forward + (x - width/2) * right +
-    /// (height/2 - y) * true_up)`. Positions outside the image give rays
-    /// outside the field of view; a NaN or infinite position gives a ray with
-    /// a non-finite direction, which every kernel rejects.
-    #[inline(always)]
-    #[must_use]
-    pub fn ray(&self, x: S<V>, y: S<V>) -> Ray<V> {
-        // A NaN position stays visible as a NaN direction (normalize_or_zero
-        // would hide it as a zero one), and a focal length far outside the
-        // usual range (whose squared length overflows) still gives a unit
-        // direction. (by_components: so that a loop of rays vectorises.)
-        Ray::new(by_components(self.eye), unit(self.film(x, y)))
-    }
-
     /// The unnormalised direction towards raster position `(x, y)`:
     /// `focal * forward + (x - width/2) * right + (height/2 - y) * true_up`.
     #[inline(always)]
@@ -160,69 +145,6 @@ impl<V: Vector> PinholeCamera<V> {
     #[inline(always)]
     fn film_at(&self, (dx, dy): (S<V>, S<V>)) -> V {
         self.forward * self.focal_length + self.right * dx + self.up * dy
-    }
-
-    /// The ray through raster position `(x, y)`, bit for bit
-    /// [`ray(x, y)`](PinholeCamera::ray), with its differentials: the
-    /// origin does not move, and with `p` the unnormalised direction
-    /// (`dir = p / |p|`, `dp/dx = right`, `dp/dy = -true_up`),
-    ///
-    /// `dx_dir = (right - dir (dx / |p|)) / |p|`,
-    /// `dy_dir = (dir (dy / |p|) - true_up) / |p|`,
-    ///
-    /// the derivatives of the unit direction (`1 / |p|` is the factor the
-    /// normalisation used; `(dx, dy)` the offsets from the image centre,
-    /// `p . right / |p|` and `p . true_up / |p|` for an orthonormal basis,
-    /// which saves two dot products). `|p| >= focal_length` up to the
-    /// basis's rounding, so each is at most `1 / focal_length` long: a
-    /// pixel's angle.
-    ///
-    /// Bounds. Second order: with `dp/dx` of length 1, the unit direction's
-    /// second derivative is at most `4 / |p|^2` long (its three terms are
-    /// `2 (p . p') p' / |p|^4`, `p |p'|^2 / |p|^3` and `3 p (p . p')^2 /
-    /// |p|^5`, the last two along `p` and of opposite signs), so
-    /// `ray(x + 1, y).dir` is within `2 / (|p| - 1)^2 <= 2 / (focal_length -
-    /// 1)^2` (roughly) of `dir + dx_dir`, and likewise for `y`. Rounding:
-    /// with `K` the vector of `|focal forward_i| + |dx right_i| + |dy
-    /// up_i|` (`p`'s magnitudes), `dx_dir` is within `(gamma(28) + 5
-    /// gamma(3) |K| / |p|) / |p| + gamma(13) (focal_length + |dx| + |dy|) /
-    /// |p|^2` of the exact derivative at the camera's (rounded) basis and
-    /// the given position, as a vector (the last term: the basis is
-    /// orthonormal within `gamma(13)`, so `dx` is that close to `p .
-    /// right`, and `dy` to `p . true_up`; derived, and
-    /// held to in exact arithmetic, in the test kit's camera checks). A
-    /// NaN or infinite position gives NaN differentials, as it gives a NaN
-    /// direction.
-    #[inline(always)]
-    #[must_use]
-    pub fn ray_differential(&self, x: S<V>, y: S<V>) -> RayDifferential<V> {
-        let (dx, dy) = centred(x, y, self.width, self.height);
-        let (dir, inv) = unit_and_inverse_length(self.film_at((dx, dy)));
-        let (r, u) = (self.right, self.up);
-        RayDifferential {
-            ray: Ray::new(by_components(self.eye), dir),
-            dx_origin: zero_vector(),
-            dx_dir: (r - dir * (dx * inv)) * inv,
-            dy_origin: zero_vector(),
-            dy_dir: (dir * (dy * inv) - u) * inv,
-        }
-    }
-
-    /// The ray cone of every ray: zero width at the eye, and the spread
-    /// angle `atan(1 / focal_length)` (the chapter's `atan(2 tan(fov_y / 2)
-    /// / height)`), the angle the centre pixel subtends, to first order.
-    ///
-    /// The arctangent is the crate's own (its error derived in the
-    /// source): within `2 pi gamma(12)` radians in `f32` and `2 pi
-    /// gamma(24)` in `f64`.
-    #[inline]
-    #[must_use]
-    pub fn ray_cone(&self) -> RayCone<S<V>> {
-        let tau = S::<V>::from_f64(core::f64::consts::TAU);
-        RayCone {
-            width: S::<V>::ZERO,
-            spread: atan2_turns(S::<V>::ONE, self.focal_length) * tau,
-        }
     }
 
     /// The eye position: where every ray starts.
@@ -259,6 +181,88 @@ impl<V: Vector> PinholeCamera<V> {
     pub fn focal_length(&self) -> S<V> {
         self.focal_length
     }
+}
 
-    super::film_accessors!();
+impl<V: Vector> Camera<V> for PinholeCamera<V> {
+    /// The ray through raster position `(x, y)` (continuous, in pixels, from
+    /// the top-left corner, `y` down), starting at the eye, with a
+    /// unit-length direction.
+    ///
+    /// `dir = normalize(focal * forward + (x - width/2) * right +
+    /// (height/2 - y) * true_up)`. Positions outside the image give rays
+    /// outside the field of view; a NaN or infinite position gives a ray with
+    /// a non-finite direction, which every kernel rejects.
+    #[inline(always)]
+    fn ray(&self, sample: CameraSample<S<V>>) -> Ray<V> {
+        let [x, y] = sample.film;
+        // A NaN position stays visible as a NaN direction (normalize_or_zero
+        // would hide it as a zero one), and a focal length far outside the
+        // usual range (whose squared length overflows) still gives a unit
+        // direction. (by_components: so that a loop of rays vectorises.)
+        Ray::new(by_components(self.eye), unit(self.film(x, y)))
+    }
+
+    /// The ray through raster position `(x, y)`, bit for bit
+    /// [`ray(x, y)`](PinholeCamera::ray), with its differentials: the
+    /// origin does not move, and with `p` the unnormalised direction
+    /// (`dir = p / |p|`, `dp/dx = right`, `dp/dy = -true_up`),
+    ///
+    /// `dx_dir = (right - dir (dx / |p|)) / |p|`,
+    /// `dy_dir = (dir (dy / |p|) - true_up) / |p|`,
+    ///
+    /// the derivatives of the unit direction (`1 / |p|` is the factor the
+    /// normalisation used; `(dx, dy)` the offsets from the image centre,
+    /// `p . right / |p|` and `p . true_up / |p|` for an orthonormal basis,
+    /// which saves two dot products). `|p| >= focal_length` up to the
+    /// basis's rounding, so each is at most `1 / focal_length` long: a
+    /// pixel's angle.
+    ///
+    /// Bounds. Second order: with `dp/dx` of length 1, the unit direction's
+    /// second derivative is at most `4 / |p|^2` long (its three terms are
+    /// `2 (p . p') p' / |p|^4`, `p |p'|^2 / |p|^3` and `3 p (p . p')^2 /
+    /// |p|^5`, the last two along `p` and of opposite signs), so
+    /// `ray(x + 1, y).dir` is within `2 / (|p| - 1)^2 <= 2 / (focal_length -
+    /// 1)^2` (roughly) of `dir + dx_dir`, and likewise for `y`. Rounding:
+    /// with `K` the vector of `|focal forward_i| + |dx right_i| + |dy
+    /// up_i|` (`p`'s magnitudes), `dx_dir` is within `(gamma(28) + 5
+    /// gamma(3) |K| / |p|) / |p| + gamma(13) (focal_length + |dx| + |dy|) /
+    /// |p|^2` of the exact derivative at the camera's (rounded) basis and
+    /// the given position, as a vector (the last term: the basis is
+    /// orthonormal within `gamma(13)`, so `dx` is that close to `p .
+    /// right`, and `dy` to `p . true_up`; derived, and
+    /// held to in exact arithmetic, in the test kit's camera checks). A
+    /// NaN or infinite position gives NaN differentials, as it gives a NaN
+    /// direction.
+    #[inline(always)]
+    fn ray_differential(&self, sample: CameraSample<S<V>>) -> RayDifferential<V> {
+        let [x, y] = sample.film;
+        let (dx, dy) = centred(x, y, self.width, self.height);
+        let (dir, inv) = unit_and_inverse_length(self.film_at((dx, dy)));
+        let (r, u) = (self.right, self.up);
+        RayDifferential {
+            ray: Ray::new(by_components(self.eye), dir),
+            dx_origin: zero_vector(),
+            dx_dir: (r - dir * (dx * inv)) * inv,
+            dy_origin: zero_vector(),
+            dy_dir: (dir * (dy * inv) - u) * inv,
+        }
+    }
+
+    /// The ray cone of every ray: zero width at the eye, and the spread
+    /// angle `atan(1 / focal_length)` (the chapter's `atan(2 tan(fov_y / 2)
+    /// / height)`), the angle the centre pixel subtends, to first order.
+    ///
+    /// The arctangent is the crate's own (its error derived in the
+    /// source): within `2 pi gamma(12)` radians in `f32` and `2 pi
+    /// gamma(24)` in `f64`.
+    #[inline]
+    fn ray_cone(&self) -> RayCone<S<V>> {
+        let tau = S::<V>::from_f64(core::f64::consts::TAU);
+        RayCone {
+            width: S::<V>::ZERO,
+            spread: atan2_turns(S::<V>::ONE, self.focal_length) * tau,
+        }
+    }
+
+    super::film_size!();
 }

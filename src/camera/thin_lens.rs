@@ -3,7 +3,9 @@
 
 use glam::Vec3;
 
-use super::{CameraError, PinholeCamera, RayCone, RayDifferential, zero_vector};
+use super::{
+    Camera, CameraError, CameraSample, PinholeCamera, RayCone, RayDifferential, zero_vector,
+};
 use crate::num::round::{bound_up, max2};
 use crate::num::trig::{sin_cos_quarter, trig_n};
 use crate::num::{Bits, Repr};
@@ -60,7 +62,7 @@ use crate::ray::Ray;
 /// point); `t` is in units of `dir` as for every ray.
 ///
 /// ```
-/// use rayhit::{PinholeCamera, ThinLensCamera, glam::Vec3};
+/// use rayhit::{Camera, CameraSample, PinholeCamera, camera::ThinLensCamera, glam::Vec3};
 /// let pinhole = PinholeCamera::from_fov(Vec3::new(0.0, 1.0, 5.0), -Vec3::Z, Vec3::Y, 0.7, 320, 240).unwrap();
 /// // A lens of radius 0.1, focused 5 units ahead.
 /// let cam = ThinLensCamera::new(pinhole, 0.1, 5.0).unwrap();
@@ -71,7 +73,7 @@ use crate::ray::Ray;
 ///     assert_eq!(ray.at(1.0), focus.point());
 /// }
 /// // The lens centre gives the pinhole ray.
-/// assert_eq!(cam.ray(100.5, 80.5, 0.5, 0.5), pinhole.ray(100.5, 80.5));
+/// assert_eq!(cam.ray(CameraSample::new(100.5, 80.5).with_lens(0.5, 0.5)), pinhole.ray(CameraSample::new(100.5, 80.5)));
 /// ```
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct ThinLensCamera<V = Vec3>
@@ -186,7 +188,7 @@ impl<V: Vector> ThinLensCamera<V> {
     /// underflows to zero or overflows. A zero radius is the pinhole camera.
     ///
     /// ```
-    /// use rayhit::{CameraError, PinholeCamera, ThinLensCamera, glam::Vec3};
+    /// use rayhit::{PinholeCamera, camera::{CameraError, ThinLensCamera}, glam::Vec3};
     /// let pinhole = PinholeCamera::new(Vec3::ZERO, -Vec3::Z, Vec3::Y, 100.0, 64, 64).unwrap();
     /// assert_eq!(ThinLensCamera::new(pinhole, -0.1, 5.0), Err(CameraError::InvalidLensRadius));
     /// assert_eq!(ThinLensCamera::new(pinhole, 0.1, 0.0), Err(CameraError::InvalidFocalDistance));
@@ -328,69 +330,11 @@ impl<V: Vector> ThinLensCamera<V> {
         // (BENCHMARKS.md, Cameras).
         let (offset, centre) = self.lens_offset(s, t);
         if centre {
-            return self.pinhole.ray(focus.raster.0, focus.raster.1);
+            return self
+                .pinhole
+                .ray(CameraSample::new(focus.raster.0, focus.raster.1));
         }
         self.through(focus, offset)
-    }
-
-    /// The ray of raster position `(x, y)` and lens sample `(s, t)`:
-    /// [`ray_through(&focus(x, y), s, t)`](ThinLensCamera::ray_through).
-    /// A renderer taking many lens samples per film point computes the
-    /// focus point once and calls `ray_through`.
-    #[inline(always)]
-    #[must_use]
-    pub fn ray(&self, x: S<V>, y: S<V>, s: S<V>, t: S<V>) -> Ray<V> {
-        self.ray_through(&self.focus(x, y), s, t)
-    }
-
-    /// The ray through the centre of pixel `(i, j)` for lens sample `(s,
-    /// t)`: `ray(i + 0.5, j + 0.5, s, t)`.
-    #[inline(always)]
-    #[must_use]
-    pub fn pixel_ray(&self, i: u32, j: u32, s: S<V>, t: S<V>) -> Ray<V> {
-        let (x, y) = super::pixel_centre(i, j);
-        self.ray(x, y, s, t)
-    }
-
-    /// The ray of `(x, y)` and lens sample `(s, t)`, bit for bit
-    /// [`ray`](ThinLensCamera::ray), with its differentials: for a fixed
-    /// lens point the origin does not move and the direction `F - L`
-    /// moves with the focus point, `dx_dir = (focal_distance /
-    /// focal_length) right` and `dy_dir = -(focal_distance / focal_length)
-    /// true_up` (one rounding each, and exact second order: the focus point
-    /// is linear in the raster position; the grid rounding adds at most
-    /// `g_i` per component to the difference of neighbouring rays). At the
-    /// lens centre, the pinhole camera's differentials.
-    #[inline(always)]
-    #[must_use]
-    pub fn ray_differential(&self, x: S<V>, y: S<V>, s: S<V>, t: S<V>) -> RayDifferential<V> {
-        // A branch, as in `ray_through`: a loop storing rays with
-        // differentials (72 bytes each) mostly stays scalar, and there the
-        // branch (taken only at the centre) is cheaper than computing the
-        // pinhole camera's differentials for every ray (BENCHMARKS.md,
-        // Cameras).
-        let (offset, centre) = self.lens_offset(s, t);
-        if centre {
-            return self.pinhole.ray_differential(x, y);
-        }
-        RayDifferential {
-            ray: self.through(&self.focus(x, y), offset),
-            dx_origin: zero_vector(),
-            dx_dir: self.pinhole.right() * self.scale,
-            dy_origin: zero_vector(),
-            dy_dir: -(self.pinhole.up() * self.scale),
-        }
-    }
-
-    /// The ray cone of every ray: the pinhole camera's
-    /// ([`PinholeCamera::ray_cone`]), a cone from the lens point with one
-    /// pixel's angle (the film point's footprint on the plane of focus is
-    /// `focal_distance / focal_length` wide, seen from `focal_distance`
-    /// away).
-    #[inline]
-    #[must_use]
-    pub fn ray_cone(&self) -> RayCone<S<V>> {
-        self.pinhole.ray_cone()
     }
 
     /// The pinhole camera: the film, the eye and the basis.
@@ -412,5 +356,67 @@ impl<V: Vector> ThinLensCamera<V> {
     #[must_use]
     pub fn focal_distance(&self) -> S<V> {
         self.focal_distance
+    }
+}
+
+impl<V: Vector> Camera<V> for ThinLensCamera<V> {
+    /// The ray of raster position `(x, y)` and lens sample `(s, t)`:
+    /// [`ray_through(&focus(x, y), s, t)`](ThinLensCamera::ray_through).
+    /// A renderer taking many lens samples per film point computes the
+    /// focus point once and calls `ray_through`.
+    #[inline(always)]
+    fn ray(&self, sample: CameraSample<S<V>>) -> Ray<V> {
+        let ([x, y], [s, t]) = (sample.film, sample.lens);
+        self.ray_through(&self.focus(x, y), s, t)
+    }
+
+    /// The ray of `(x, y)` and lens sample `(s, t)`, bit for bit
+    /// [`ray`](ThinLensCamera::ray), with its differentials: for a fixed
+    /// lens point the origin does not move and the direction `F - L`
+    /// moves with the focus point, `dx_dir = (focal_distance /
+    /// focal_length) right` and `dy_dir = -(focal_distance / focal_length)
+    /// true_up` (one rounding each, and exact second order: the focus point
+    /// is linear in the raster position; the grid rounding adds at most
+    /// `g_i` per component to the difference of neighbouring rays). At the
+    /// lens centre, the pinhole camera's differentials.
+    #[inline(always)]
+    fn ray_differential(&self, sample: CameraSample<S<V>>) -> RayDifferential<V> {
+        let ([x, y], [s, t]) = (sample.film, sample.lens);
+        // A branch, as in `ray_through`: a loop storing rays with
+        // differentials (72 bytes each) mostly stays scalar, and there the
+        // branch (taken only at the centre) is cheaper than computing the
+        // pinhole camera's differentials for every ray (BENCHMARKS.md,
+        // Cameras).
+        let (offset, centre) = self.lens_offset(s, t);
+        if centre {
+            return self.pinhole.ray_differential(sample);
+        }
+        RayDifferential {
+            ray: self.through(&self.focus(x, y), offset),
+            dx_origin: zero_vector(),
+            dx_dir: self.pinhole.right() * self.scale,
+            dy_origin: zero_vector(),
+            dy_dir: -(self.pinhole.up() * self.scale),
+        }
+    }
+
+    /// The ray cone of every ray: the pinhole camera's
+    /// ([`PinholeCamera::ray_cone`]), a cone from the lens point with one
+    /// pixel's angle (the film point's footprint on the plane of focus is
+    /// `focal_distance / focal_length` wide, seen from `focal_distance`
+    /// away).
+    #[inline]
+    fn ray_cone(&self) -> RayCone<S<V>> {
+        self.pinhole.ray_cone()
+    }
+
+    #[inline]
+    fn width(&self) -> u32 {
+        self.pinhole.width()
+    }
+
+    #[inline]
+    fn height(&self) -> u32 {
+        self.pinhole.height()
     }
 }

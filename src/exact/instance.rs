@@ -526,7 +526,7 @@ pub fn judge_world_point<V: Vector>(
 
 /// Judges a claimed bound on how far a world ray and its object ray are
 /// apart at `t` ([`instance_ray_gap`]; the claim
-/// [`InstanceRayError::at`](crate::InstanceRayError::at) makes): whether
+/// [`InstanceRayError::at`](crate::instance::InstanceRayError::at) makes): whether
 /// the exact gap is within `bound` in every component. The error in ulps
 /// is measured at the world ray's point at `t`. `None` when an input
 /// (but the bound) is not finite.

@@ -8,12 +8,12 @@
 //! against it ([`judge`]), with the conventions of the crate's kernels:
 //!
 //! - box ([`ray_aabb`]): the closed box against `t` in `[0, t_max]`; over
-//!   an interval ([`ray_aabb_in`]), against `t_min < t <= t_max`;
+//!   an interval ([`Aabb`'s `clip` over an interval](crate::Aabb#method.clip)), against `t_min < t <= t_max`;
 //! - triangle ([`ray_triangle`], [`ray_mesh`]): closed and two-sided,
-//!   `0 < t <= t_max`; over an interval ([`ray_triangle_in`]),
+//!   `0 < t <= t_max`; over an interval ([`Triangle`'s `hit` over an interval](crate::Triangle#method.hit)),
 //!   `t_min < t <= t_max`;
 //! - plane ([`ray_plane`]): `0 < t <= t_max`, no hit when parallel; over
-//!   an interval ([`ray_plane_in`]), `t_min < t <= t_max`;
+//!   an interval ([`Plane`'s `hit` over an interval](crate::Plane#method.hit)), `t_min < t <= t_max`;
 //! - invalid input (a non-finite coordinate, a zero direction, an inverted
 //!   box, a zero plane normal, a NaN `t_max`) is a miss, never a panic.
 //!
@@ -326,13 +326,13 @@ pub fn ray_aabb<V: Vector>(
 /// entry and exit); `None` when that part is empty (the box is left at or
 /// before `t_min`, entered after `t_max`, or missed), for invalid input,
 /// and for an interval that is not `0 <= t_min <= t_max` (NaN included).
-/// The question [`ray_aabb_in`](crate::ray_aabb_in) answers
+/// The question [`Aabb`'s `clip` over an interval](crate::Aabb#method.clip) answers
 /// conservatively: where this is `Some`, it must be `Some`.
 ///
 /// `entry_faces` lists the faces crossed at `E` only when the entry is
 /// within the interval (`t_min < E`), and is empty otherwise (the ray is
 /// inside at `t_min`); where it is not empty, its first face is the one
-/// [`ray_aabb_face_in`](crate::ray_aabb_face_in) reports. `exit_faces` as
+/// [`Aabb`'s `hit` over an interval](crate::Aabb#method.hit) reports. `exit_faces` as
 /// for [`ray_aabb`]. With `t_min = 0` this differs from [`ray_aabb`] in
 /// two ways, both from the open lower end: a box the ray leaves exactly at
 /// `t = 0` is not hit, and a ray entering exactly at `t = 0` lists no
@@ -538,7 +538,7 @@ fn triangle_input_valid<V: Vector>(ray: &Ray<V>, tri: &Triangle<V>, t_max: V::Sc
 /// crossing); `None` for a miss, a line parallel to the triangle's plane
 /// (including a degenerate triangle), invalid input, or an interval that
 /// is not `0 <= t_min <= t_max` (NaN included). The same question as
-/// [`ray_triangle_in`](crate::ray_triangle_in) answers; with `t_min = 0`
+/// [`Triangle`'s `hit` over an interval](crate::Triangle#method.hit) answers; with `t_min = 0`
 /// it is [`ray_triangle`]'s.
 ///
 /// ```
@@ -652,7 +652,7 @@ pub fn ray_plane<V: Vector>(
 /// when the ray is parallel to the plane, crosses it outside the interval,
 /// the input is invalid (as for [`ray_plane`]), or the interval is not
 /// `0 <= t_min <= t_max` (NaN included). The question
-/// [`ray_plane_in`](crate::ray_plane_in) answers exactly (for crossings up
+/// [`Plane`'s `hit` over an interval](crate::Plane#method.hit) answers exactly (for crossings up
 /// to `MAX`, the largest float `t` it can report); with `t_min = 0` it is
 /// [`ray_plane`]'s.
 ///

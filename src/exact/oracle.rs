@@ -23,14 +23,14 @@
 //!
 //! ```
 //! use rayhit::exact::oracle;
-//! use rayhit::{Plane, Ray, glam::Vec3, ray_plane, ray_plane_t_error};
+//! use rayhit::{Plane, Ray, Surface, glam::Vec3, ray_plane};
 //!
 //! let ray = Ray::new(Vec3::new(0.1, 0.2, 0.3), Vec3::new(0.3, 0.7, 1.1));
 //! let plane = Plane::new(Vec3::new(0.0, 0.0, 5.0), Vec3::new(0.1, 0.2, 1.0));
 //! let t = ray_plane(&ray, &plane, f32::INFINITY).unwrap();
 //! // The kernel's t is within its documented bound of the exact crossing.
 //! let exact_t = oracle::plane_t(&ray, &plane).unwrap();
-//! assert!(oracle::close(t, &exact_t, ray_plane_t_error(&ray, &plane, t)));
+//! assert!(oracle::close(t, &exact_t, plane.hit_error(&ray, &t)));
 //! // Floats without an exact value give None, never a panic.
 //! assert!(oracle::r(f32::NAN).is_none());
 //! ```
@@ -576,7 +576,7 @@ pub fn mt_bounds<V: Vector>(ray: &Ray<V>, tri: &Triangle<V>, u: &R, v: &R) -> Op
 /// corner that is not finite.
 ///
 /// The band is the watertight test's documented error bound
-/// ([`ray_triangle_error_bounds`](crate::ray_triangle_error_bounds), held
+/// ([`Triangle`'s `hit_error`](crate::Triangle#method.hit_error), held
 /// to exact arithmetic by the crate's tests) evaluated at the exact crossing:
 /// the edge weight `w = 1 - u - v` gets `err_u + err_v`, and for `t` the
 /// conservative `t > 0` test's band. That test accepts a hit only if its
@@ -607,7 +607,7 @@ pub fn triangle_decided<V: Vector>(
         v: as_s(ve),
         side: crate::Side::Front,
     };
-    let err = crate::ray_triangle_error_bounds(ray, tri, &probe);
+    let err = crate::Surface::hit_error(tri, ray, &probe);
     if !(err.u.is_finite() && err.v.is_finite() && err.t.is_finite()) {
         return None;
     }
@@ -1252,7 +1252,7 @@ pub fn plane_clear<V: Vector>(ray: &Ray<V>, plane: &Plane<V>, t_max: V::Scalar) 
     resolved
         && plane_t(ray, plane).is_none_or(|t| {
             let bound =
-                crate::ray_plane_t_error(ray, plane, V::Scalar::from_f64(to_f64(&t))).next_up();
+                crate::Surface::hit_error(plane, ray, &V::Scalar::from_f64(to_f64(&t))).next_up();
             // An unbounded error (an overflow) decides nothing.
             let Some(err) = r(bound) else {
                 return false;
@@ -1263,7 +1263,7 @@ pub fn plane_clear<V: Vector>(ray: &Ray<V>, plane: &Plane<V>, t_max: V::Scalar) 
 }
 
 /// The exact transfer of one ray differential to a triangle at parameter
-/// `t` (the formulas of [`triangle_hit_differentials`](crate::triangle_hit_differentials),
+/// `t` (the formulas of [`Triangle::hit_differentials`](crate::Triangle::hit_differentials),
 /// evaluated exactly on the given floats): with `n = (b - a) x (c - a)`
 /// and `q = d_origin + t d_dir`, `dp = q - dir (q . n) / (dir . n)`, `du =
 /// dp . ((c - a) x n) / |n|^2`, `dv = dp . (n x (b - a)) / |n|^2`: the
@@ -1301,6 +1301,7 @@ pub fn hit_differential<V: Vector>(
 mod tests {
     use super::*;
     use crate::testing::Draws;
+    use crate::{EdgeRule, Intersect};
     use glam::{DVec3, Vec3};
 
     #[test]
@@ -1639,11 +1640,11 @@ mod tests {
             let window = crate::Interval::up_to(t_max).unwrap();
             let answers = [
                 crate::ray_triangle(&ray, &tri, t_max).is_some(),
-                crate::ray_triangle_one_hit(&ray, &tri, t_max).is_some(),
-                crate::ray_triangle_prepared(&prepared, &tri, t_max).is_some(),
-                crate::ray_triangle_in(&ray, &tri, window).is_some(),
-                crate::ray_triangle_one_hit_in(&ray, &tri, window).is_some(),
-                crate::ray_triangle_prepared_in(&prepared, &tri, window).is_some(),
+                tri.hit(&ray, (t_max, EdgeRule::OneHit)).is_some(),
+                tri.hit(&prepared, t_max).is_some(),
+                tri.hit(&ray, window).is_some(),
+                tri.hit(&ray, (window, EdgeRule::OneHit)).is_some(),
+                tri.hit(&prepared, window).is_some(),
             ];
             assert!(
                 answers.iter().all(|&a| a == expect),

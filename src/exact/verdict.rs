@@ -239,14 +239,14 @@ pub fn distance_ulps<V: Vector>(case: &Case<V>) -> f64 {
 ///   component is subnormal;
 /// - triangle: a hit or a miss behind the origin or past `t_max` decided
 ///   outside the watertight test's error bounds
-///   ([`ray_triangle_error_bounds`](crate::ray_triangle_error_bounds)) widened
+///   ([`Triangle`'s `hit_error`](crate::Triangle#method.hit_error)) widened
 ///   by Moller-Trumbore's, in `u`, `v`, `1 - u - v` and `t`; or a miss whose
 ///   line crosses the plane outside the triangle by more than either test's
 ///   rounding (of the edge functions, and of `u`, `v`, `1 - u - v`). A line
 ///   parallel to the plane and a triangle of zero area are never clear (the
 ///   exact determinant is zero, a rounded one need not be);
 /// - plane: not within rounding of parallel and the crossing farther than
-///   [`ray_plane_t_error`](crate::ray_plane_t_error) from 0 and `t_max`.
+///   [`Plane`'s `hit_error`](crate::Plane#method.hit_error) from 0 and `t_max`.
 #[must_use]
 pub fn band<V: Vector>(case: &Case<V>) -> Band {
     let clear = !valid(case)

@@ -1,16 +1,12 @@
-//! Instances: one object placed in the world by an affine map, with the
-//! crate's guarantees carried through the map and back.
-//!
-//! - `mod.rs`: [`Instance`] and [`InstanceError`], the accessors.
-//! - `inverse.rs`: construction: the stored inverse, and the bounds on its
-//!   error derived from the matrix itself (the residual `M A - I`).
-//! - `ray.rs`: a world ray into object space, and [`InstanceRayError`], the
-//!   bound relating the two rays' points at the same `t`.
-//! - `bounds.rs`: an object box to a world box, rounded outward.
-//! - `surface.rs`: an object hit to a world [`SurfacePoint`], and the rays
-//!   that leave it ([`Instance::spawn`], [`Instance::spawn_through`]), and
-//!   shadow-ray segments between such points
-//!   ([`Instance::spawn_to_through`], [`Instance::spawn_to_point_through`]).
+//! Instances: one object placed in the world by an affine map
+//! ([`Instance`]), with the crate's guarantees carried through the map and
+//! back: a world box that contains the exact image of the object's box, one
+//! object ray per world ray ([`InstanceRayError`] bounds how far apart the
+//! two are), a world [`SurfacePoint`] for an object hit, and rays and
+//! shadow segments that leave it ([`Instance::spawn`],
+//! [`Instance::spawn_through`], [`Instance::spawn_to_through`],
+//! [`Instance::spawn_to_point_through`]). [`InstanceError`] says why a
+//! matrix cannot be an instance.
 //!
 //! # Notation, used by every derivation in this module
 //!
@@ -28,6 +24,13 @@
 //!
 //! [`SurfacePoint`]: crate::SurfacePoint
 
+// Files: `mod.rs`, the type, its errors and accessors; `inverse.rs`, the
+// stored inverse and the bounds on its error derived from the matrix
+// itself (the residual `M A - I`); `ray.rs`, a world ray into object space
+// and the bound relating the two rays; `bounds.rs`, an object box to a
+// world box, rounded outward; `surface.rs`, an object hit to a world
+// surface point, the rays that leave it and shadow segments.
+
 mod bounds;
 mod inverse;
 mod ray;
@@ -40,6 +43,9 @@ use glam::{Affine3A, DAffine3, DVec3, Vec3, Vec3A};
 use crate::num::{L, Lanes, S, Scalar, Vector, vector};
 
 pub use ray::InstanceRayError;
+
+/// [`Instance`] in `f64`.
+pub type DInstance = Instance<DVec3>;
 
 /// Why an [`Instance`] could not be built.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
@@ -117,7 +123,7 @@ impl core::error::Error for InstanceError {}
 /// [`SurfacePoint`]: crate::SurfacePoint
 ///
 /// ```
-/// use rayhit::{Instance, Ray, Triangle, ray_triangle, glam::{Affine3A, Quat, Vec3}};
+/// use rayhit::{Instance, Ray, Triangle, glam::{Affine3A, Quat, Vec3}, ray_triangle};
 /// let place = Affine3A::from_scale_rotation_translation(
 ///     Vec3::splat(2.0), Quat::from_rotation_y(0.5), Vec3::new(1e4, 0.0, 0.0),
 /// );
@@ -233,7 +239,7 @@ impl<V: Vector> Instance<V> {
     /// Never panics.
     ///
     /// ```
-    /// use rayhit::{Instance, InstanceError, glam::DVec3};
+    /// use rayhit::{Instance, glam::DVec3, instance::InstanceError};
     /// let shear = Instance::new([DVec3::X, DVec3::new(0.5, 1.0, 0.0), DVec3::Z], DVec3::new(0.0, 0.0, 1e5)).unwrap();
     /// assert_eq!(shear.translation(), DVec3::new(0.0, 0.0, 1e5));
     /// let flat = Instance::new([DVec3::X, DVec3::X, DVec3::Z], DVec3::ZERO);
@@ -288,7 +294,7 @@ impl Instance<Vec3> {
     /// Errors as for [`Instance::new`].
     ///
     /// ```
-    /// use rayhit::{Instance, InstanceError, glam::{Affine3A, Vec3}};
+    /// use rayhit::{Instance, glam::{Affine3A, Vec3}, instance::InstanceError};
     /// assert!(Instance::from_affine3a(Affine3A::from_translation(Vec3::X)).is_ok());
     /// assert_eq!(Instance::from_affine3a(Affine3A::from_scale(Vec3::ZERO)), Err(InstanceError::Singular));
     /// assert_eq!(Instance::from_affine3a(Affine3A::from_scale(Vec3::NAN)), Err(InstanceError::NotFinite));

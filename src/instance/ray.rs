@@ -59,7 +59,7 @@ impl<V: Vector> InstanceRayError<V> {
     /// The bound at `t` (`t >= 0`), rounded up: `at_origin + t * per_t`.
     ///
     /// ```
-    /// use rayhit::{InstanceRayError, glam::Vec3};
+    /// use rayhit::{glam::Vec3, instance::InstanceRayError};
     /// let e = InstanceRayError { at_origin: Vec3::splat(1.0), per_t: Vec3::splat(0.5) };
     /// assert!(e.at(4.0).x >= 3.0);
     /// ```
@@ -78,7 +78,7 @@ impl<V: Vector> InstanceRayError<V> {
     /// bound is `|M_1| inner + outer`, per `t` and at the origin.
     ///
     /// ```
-    /// use rayhit::{Instance, InstanceRayError, Ray, glam::{Affine3A, Vec3}};
+    /// use rayhit::{Instance, Ray, glam::{Affine3A, Vec3}, instance::InstanceRayError};
     /// let outer = Instance::from_affine3a(Affine3A::from_scale(Vec3::splat(2.0))).unwrap();
     /// let inner = Instance::from_affine3a(Affine3A::from_translation(Vec3::splat(3.0))).unwrap();
     /// let world = Ray::new(Vec3::new(1.0, 2.0, 3.0), Vec3::X);
@@ -194,7 +194,7 @@ impl<V: Vector> Instance<V> {
     /// ray's coordinates are near overflow.
     ///
     /// A hit found at `t` in object space, at object point `p` with error
-    /// `e` (from [`triangle_hit_point`](crate::triangle_hit_point)),
+    /// `e` (from [`Triangle::surface_point_at`](crate::Triangle::surface_point_at)),
     /// corresponds to the world point `ray.at(t)` within
     /// `at(t) + |M| e` plus the rounding of `at` itself.
     ///

@@ -49,7 +49,7 @@
 //!    `sum (e_w + D)_i (|n_w,i| + eta_w,i)`, measured as `(x - F(q)) . w`;
 //!    the point started at most `sum e_w,i |w_i|` from it, so the origin
 //!    `o` has `s (o - F(q)) . w >= sum D_i |w_i|`, with `s` the side `d`
-//!    points into (the derivation at [`offset_ray_origin`]).
+//!    points into (the derivation at [`SurfacePoint::spawn`](crate::SurfacePoint::spawn)).
 //! 2. If `D > K_o |o| + c_o >= |delta|` per component, then
 //!    `s (F(o') - F(q)) . w > s (o - F(q)) . w - sum D_i |w_i| >= 0`:
 //!    `F(o')` is strictly on side `s` of the world plane.
@@ -89,8 +89,9 @@ use crate::num::round::{bound_up, max2};
 use crate::num::{L, Lanes, S, Scalar, Vector};
 use crate::num::{lanes, vector};
 use crate::ray::Interval;
+use crate::surface::offset_ray_origin;
 use crate::surface::{RayMapBound, segment, settle};
-use crate::{Ray, SurfacePoint, offset_ray_origin};
+use crate::{Ray, SurfacePoint};
 
 impl<V: Vector> Instance<V> {
     /// An object-space surface point in world space: the point `M p + T`
@@ -107,13 +108,13 @@ impl<V: Vector> Instance<V> {
     /// Non-finite input gives non-finite output (never a panic).
     ///
     /// ```
-    /// use rayhit::{Instance, Ray, SurfacePoint, Triangle, ray_triangle, glam::{Affine3A, Quat, Vec3}};
+    /// use rayhit::{Instance, Ray, Surface, SurfacePoint, Triangle, glam::{Affine3A, Quat, Vec3}, ray_triangle};
     /// let place = Affine3A::from_rotation_translation(Quat::from_rotation_x(1.0), Vec3::new(0.0, 3e4, 0.0));
     /// let inst = Instance::from_affine3a(place).unwrap();
     /// let tri = Triangle::new(Vec3::ZERO, Vec3::X, Vec3::Y);
     /// let object_ray = Ray::new(Vec3::new(0.2, 0.3, 1.0), -Vec3::Z);
     /// let hit = ray_triangle(&object_ray, &tri, f32::INFINITY).unwrap();
-    /// let world = inst.surface_to_world(&SurfacePoint::on_triangle(&tri, &hit));
+    /// let world = inst.surface_to_world(&tri.surface_point(&object_ray, &hit));
     /// let exact_ish = place.transform_point3(Vec3::new(0.2, 0.3, 0.0));
     /// assert!((world.point - exact_ish).abs().max_element() < 1e-2);
     /// assert!(world.point_error.max_element() < 1e-2);
@@ -181,12 +182,13 @@ impl<V: Vector> Instance<V> {
     /// the guarantee and its precondition.
     ///
     /// ```
-    /// use rayhit::{Instance, Ray, SurfacePoint, Triangle, ray_triangle, glam::{Affine3A, Quat, Vec3}};
+    /// use rayhit::{Instance, Ray, Surface, SurfacePoint, Triangle, glam::{Affine3A, Quat, Vec3}, ray_triangle};
     /// let inst = Instance::from_affine3a(Affine3A::from_scale_rotation_translation(
     ///     Vec3::new(3.0, 0.5, 1e-2), Quat::from_rotation_y(2.0), Vec3::splat(-7e4))).unwrap();
     /// let tri = Triangle::new(Vec3::ZERO, Vec3::X, Vec3::Y);
-    /// let hit = ray_triangle(&Ray::new(Vec3::new(0.3, 0.3, 1.0), -Vec3::Z), &tri, f32::INFINITY).unwrap();
-    /// let world = inst.surface_to_world(&SurfacePoint::on_triangle(&tri, &hit));
+    /// let ray = Ray::new(Vec3::new(0.3, 0.3, 1.0), -Vec3::Z);
+    /// let hit = ray_triangle(&ray, &tri, f32::INFINITY).unwrap();
+    /// let world = inst.surface_to_world(&tri.surface_point(&ray, &hit));
     /// // A bounce back the way the ray came, and one through the surface.
     /// for dir in [world.normal, -world.normal + Vec3::X * world.normal.length()] {
     ///     let again = inst.world_to_object(&inst.spawn(&world, dir));
@@ -210,7 +212,7 @@ impl<V: Vector> Instance<V> {
     /// points away from, so its exact crossing with the plane is at `t < 0`
     /// and [`ray_triangle`](crate::ray_triangle) (which decides `t > 0`
     /// conservatively) does not report the surface. The proof is in the
-    /// source: the origin is offset by [`offset_ray_origin`] with the point
+    /// source: the origin is offset by [`SurfacePoint::spawn`](crate::SurfacePoint::spawn) with the point
     /// error widened by the round trip's error through the stored inverses,
     /// evaluated at the origin actually returned and checked.
     ///
@@ -232,12 +234,13 @@ impl<V: Vector> Instance<V> {
     /// panics.
     ///
     /// ```
-    /// use rayhit::{Instance, Ray, SurfacePoint, Triangle, ray_triangle, glam::{DAffine3, DQuat, DVec3}};
+    /// use rayhit::{Instance, Ray, Surface, SurfacePoint, Triangle, glam::{DAffine3, DQuat, DVec3}, ray_triangle};
     /// let outer = Instance::from_daffine3(DAffine3::from_rotation_translation(DQuat::from_rotation_z(0.7), DVec3::new(1e5, 0.0, 0.0))).unwrap();
     /// let inner = Instance::from_daffine3(DAffine3::from_scale(DVec3::new(1e3, 1e-3, 1.0))).unwrap();
     /// let tri = Triangle::new(DVec3::ZERO, DVec3::X, DVec3::Y);
-    /// let hit = ray_triangle(&Ray::new(DVec3::new(0.1, 0.6, 2.0), -DVec3::Z), &tri, f64::INFINITY).unwrap();
-    /// let world = outer.surface_to_world(&inner.surface_to_world(&SurfacePoint::on_triangle(&tri, &hit)));
+    /// let object_ray = Ray::new(DVec3::new(0.1, 0.6, 2.0), -DVec3::Z);
+    /// let hit = ray_triangle(&object_ray, &tri, f64::INFINITY).unwrap();
+    /// let world = outer.surface_to_world(&inner.surface_to_world(&tri.surface_point(&object_ray, &hit)));
     /// let ray = Instance::spawn_through(&[&outer, &inner], &world, -world.normal);
     /// let again = inner.world_to_object(&outer.world_to_object(&ray));
     /// assert!(ray_triangle(&again, &tri, f64::INFINITY).is_none());
@@ -288,7 +291,7 @@ impl<V: Vector> Instance<V> {
     ///
     /// How: each end is offset as `spawn_to` offsets it, its point error
     /// widened by the round trip's error at that end (the path's
-    /// [`InstanceRayError`](crate::InstanceRayError) at `t = 0` for the
+    /// [`InstanceRayError`](crate::instance::InstanceRayError) at `t = 0` for the
     /// start, at `t = 1` for the end), evaluated at the ends actually
     /// returned and checked, as [`Instance::spawn_through`] does; and the
     /// side tests of the direction include its mapped rounding (`per_t`).
@@ -300,7 +303,7 @@ impl<V: Vector> Instance<V> {
     /// condition numbers near `1 / u`). Never panics.
     ///
     /// ```
-    /// use rayhit::{Instance, Interval, Ray, SurfacePoint, Triangle, ray_triangle, ray_triangle_in};
+    /// use rayhit::{Instance, Intersect, Interval, Ray, Surface, SurfacePoint, Triangle, ray_triangle};
     /// use rayhit::glam::{Affine3A, Quat, Vec3};
     /// // A tile rotated and placed far away, and a lamp above it, each an instance of one triangle.
     /// let tri = Triangle::new(Vec3::new(-1.0, -1.0, 0.0), Vec3::new(2.0, -1.0, 0.0), Vec3::new(-1.0, 2.0, 0.0));
@@ -310,7 +313,7 @@ impl<V: Vector> Instance<V> {
     /// // Where a ray from the eye straight down (or up) meets an instance.
     /// let hit_on = |inst: &Instance, dir: Vec3| {
     ///     let ray = inst.world_to_object(&Ray::new(Vec3::new(2e4, 0.2, 1.5), dir));
-    ///     inst.surface_to_world(&SurfacePoint::on_triangle(&tri, &ray_triangle(&ray, &tri, f32::INFINITY).unwrap()))
+    ///     inst.surface_to_world(&tri.surface_point(&ray, &ray_triangle(&ray, &tri, f32::INFINITY).unwrap()))
     /// };
     /// let on_tile = hit_on(&tile, -Vec3::Z);
     /// let on_lamp = hit_on(&lamp, Vec3::Z);
@@ -318,7 +321,7 @@ impl<V: Vector> Instance<V> {
     /// assert_eq!(segment, Interval::up_to(1.0).unwrap());
     /// // Traced into either instance, the segment meets neither end's surface.
     /// for inst in [&tile, &lamp] {
-    ///     assert!(ray_triangle_in(&inst.world_to_object(&shadow), &tri, segment).is_none());
+    ///     assert!(tri.hit(&inst.world_to_object(&shadow), segment).is_none());
     /// }
     /// ```
     ///
@@ -346,16 +349,16 @@ impl<V: Vector> Instance<V> {
     /// it. The same guarantees for the start; `None` in the same cases.
     ///
     /// ```
-    /// use rayhit::{Instance, Ray, SurfacePoint, Triangle, ray_triangle, ray_triangle_in};
+    /// use rayhit::{Instance, Intersect, Ray, Surface, SurfacePoint, Triangle, ray_triangle};
     /// use rayhit::glam::{DAffine3, DQuat, DVec3};
     /// let tri = Triangle::new(DVec3::ZERO, DVec3::X, DVec3::Y);
     /// let inst = Instance::from_daffine3(DAffine3::from_scale_rotation_translation(
     ///     DVec3::new(1e3, 1e-3, 1.0), DQuat::from_rotation_y(0.4), DVec3::splat(1e5))).unwrap();
     /// let ray = Ray::new(DVec3::new(0.2, 0.3, 1.0), -DVec3::Z);
-    /// let here = inst.surface_to_world(&SurfacePoint::on_triangle(&tri, &ray_triangle(&ray, &tri, f64::INFINITY).unwrap()));
+    /// let here = inst.surface_to_world(&tri.surface_point(&ray, &ray_triangle(&ray, &tri, f64::INFINITY).unwrap()));
     /// let light = here.point + here.normal * 10.0 + DVec3::X;
     /// let (shadow, segment) = Instance::spawn_to_point_through(&[&inst], &here, light).unwrap();
-    /// assert!(ray_triangle_in(&inst.world_to_object(&shadow), &tri, segment).is_none());
+    /// assert!(tri.hit(&inst.world_to_object(&shadow), segment).is_none());
     /// ```
     #[must_use]
     pub fn spawn_to_point_through(

@@ -10,7 +10,7 @@ use core::cmp::Ordering;
 
 /// The half-open range `min < t <= max` of distances along a ray, in units
 /// of the ray's `dir`, that the interval forms of the kernels (such as
-/// [`ray_triangle_in`](crate::ray_triangle_in)) search.
+/// [`Triangle`'s `hit` over an interval](crate::Triangle#method.hit)) search.
 ///
 /// Open below, closed above, so that consecutive intervals `(t0, t1]`,
 /// `(t1, t2]`, ... cover the ray without overlap: each exact crossing

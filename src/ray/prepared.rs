@@ -11,24 +11,24 @@ use crate::num::{Axis, L, Lanes, S, Scalar, Vector, lanes, vector};
 /// magnitude, and the per-ray part of the watertight triangle test.
 ///
 /// Prepare once per ray, then call
-/// [`ray_aabb_prepared`](crate::ray_aabb_prepared) for each box (the inner
+/// [`Aabb`'s `clip`](crate::Aabb#method.clip) for each box (the inner
 /// loop of BVH traversal). An invalid ray (see [`Ray::is_valid`]) prepares
 /// into one that every kernel misses.
 ///
 /// ```
-/// use rayhit::{Aabb, PreparedRay, Ray, ray_aabb_prepared, glam::Vec3};
+/// use rayhit::{Aabb, Bounds, PreparedRay, Ray, glam::Vec3};
 /// let ray = PreparedRay::new(&Ray::new(Vec3::ZERO, Vec3::X));
 /// let near = Aabb::new(Vec3::new(1.0, -1.0, -1.0), Vec3::new(2.0, 1.0, 1.0));
 /// let far = Aabb::new(Vec3::new(5.0, -1.0, -1.0), Vec3::new(6.0, 1.0, 1.0));
-/// let (enter, _) = ray_aabb_prepared(&ray, &near, f32::INFINITY).unwrap();
+/// let (enter, _) = near.clip(&ray, f32::INFINITY).unwrap();
 /// assert_eq!(enter, 1.0);
-/// assert!(ray_aabb_prepared(&ray, &far, 4.0).is_none());
+/// assert!(far.clip(&ray, 4.0).is_none());
 /// ```
 ///
 /// The prepared ray also carries the per-ray part of the watertight
 /// triangle test (the axis permutation and shear of Woop et al.), so that
-/// [`ray_triangle_prepared`](crate::ray_triangle_prepared) and
-/// [`ray_triangle_batch`](crate::ray_triangle_batch) need not recompute it
+/// [`Triangle`'s `hit` on a prepared ray](crate::Triangle#method.hit) and
+/// [`TriangleBatch`'s `hit`](crate::batch::TriangleBatch#method.hit) need not recompute it
 /// per triangle.
 #[derive(Clone, Copy, Debug)]
 pub struct PreparedRay<V: Vector = Vec3> {
@@ -158,6 +158,13 @@ impl<V: Vector> PreparedRay<V> {
     pub fn origin(&self) -> V {
         let [x, y, z] = self.slab.origin.to_array();
         V::new(x, y, z)
+    }
+
+    /// The ray this was prepared from, bit for bit; for an invalid ray,
+    /// the stand-in every invalid ray is prepared as.
+    #[inline(always)]
+    pub(crate) fn ray(&self) -> Ray<V> {
+        Ray::new(self.origin(), self.dir)
     }
 }
 

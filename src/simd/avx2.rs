@@ -106,7 +106,7 @@ impl Lanes8 for F32x8 {
     }
 }
 
-/// AVX2, on a CPU that has it: [`with_simd`](crate::with_simd) makes one
+/// AVX2, on a CPU that has it: [`with_simd`](crate::batch::with_simd) makes one
 /// only after checking (x86-64 builds with `std` whose target does not
 /// already assume AVX2).
 #[cfg(rayhit_runtime_avx)]

@@ -10,7 +10,7 @@ use super::{Isa, Kernel, Work};
 use crate::num::{Repr, Scalar};
 
 /// AVX-512 (with its 256-bit forms, AVX-512VL), on a CPU that has it and
-/// AVX2: [`with_simd`](crate::with_simd) makes one only after checking
+/// AVX2: [`with_simd`](crate::batch::with_simd) makes one only after checking
 /// (the same builds as [`Avx2`]).
 ///
 /// The box kernels run on the same eight lanes as with [`Avx2`], compiled

@@ -1,8 +1,10 @@
 //! The watertight test on a batch: [`TriangleBatch`], up to 32 triangles
-//! structure-of-arrays, and [`ray_triangle_batch`], which tests one prepared
+//! structure-of-arrays, and `ray_triangle_batch`, which tests one prepared
 //! ray against eight of them at a time, each lane bit for bit the answer of
 //! [`ray_triangle`](crate::ray_triangle) on its triangle (the definition's
-//! common case, lane by lane; the rare lanes go to the definition itself).
+//! common case, lane by lane; the rare lanes go to the definition itself);
+//! `ray_triangle_batch_in`, the same over an interval; and the lanes of
+//! the one-hit rule, each the scalar test.
 
 use core::marker::PhantomData;
 
@@ -15,7 +17,7 @@ use super::{Side, Triangle, TriangleHit};
 use crate::num::round::max2;
 use crate::num::{Bits, Lanes, Lanes8, Repr, S, Scalar, Vector};
 use crate::ray::{Interval, PreparedRay, t_max_ok};
-use crate::simd::{Isa, Kernel, check_lanes, lanes_at, per_call, put};
+use crate::simd::{Isa, Kernel, check_lanes, lanes_at, put};
 
 /// Up to `N` triangles, structure-of-arrays.
 ///
@@ -24,7 +26,8 @@ use crate::simd::{Isa, Kernel, check_lanes, lanes_at, per_call, put};
 /// scalar test hits it); empty lanes hold NaN corners and are masked off.
 ///
 /// ```
-/// use rayhit::{PreparedRay, Ray, Triangle, TriangleBatch, ray_triangle_batch, glam::Vec3};
+/// use rayhit::{IntersectLanes, PreparedRay, Ray, Triangle, glam::Vec3};
+/// use rayhit::batch::TriangleBatch;
 /// // Four unit right triangles stacked along z at z = 1, 2, 3, 4.
 /// let tris: Vec<Triangle> = (1..=4)
 ///     .map(|k| {
@@ -34,11 +37,14 @@ use crate::simd::{Isa, Kernel, check_lanes, lanes_at, per_call, put};
 ///     .collect();
 /// let batch = TriangleBatch::<Vec3, 4>::from_slice(&tris).unwrap();
 /// let ray = PreparedRay::new(&Ray::new(Vec3::new(0.25, 0.25, 0.0), Vec3::Z));
-/// let hits = ray_triangle_batch(&ray, &batch, 3.5);
+/// let hits = batch.hit(&ray, 3.5);
 /// assert_eq!(hits.mask, 0b0111);
 /// let (lane, nearest) = hits.nearest().unwrap();
 /// assert_eq!((lane, nearest.t, nearest.u, nearest.v), (0, 1.0, 0.25, 0.25));
 /// ```
+///
+/// Its query is [`IntersectLanes`](crate::IntersectLanes): every lane's
+/// hit at once, each the scalar test's answer bit for bit.
 #[derive(Clone, Copy, Debug, PartialEq)]
 // Aligned as `AabbBatch` is, for the same reason.
 #[repr(C, align(32))]
@@ -171,7 +177,7 @@ pub(super) fn reach<V: Vector>(tri: &Triangle<V>) -> S<V> {
         .next_up()
 }
 
-/// The answer of [`ray_triangle_batch`]: which lanes are hit, where, and
+/// The answer of [`TriangleBatch`]'s [`hit`](crate::Intersect::hit): which lanes are hit, where, and
 /// from which side.
 ///
 /// For a lane in `mask`, `t`, `u`, `v` and the side (bit set in `front`
@@ -190,6 +196,14 @@ pub struct TriangleBatchHits<F = f32, const N: usize = 8> {
     pub u: [F; N],
     /// Per lane, the barycentric `v`.
     pub v: [F; N],
+}
+
+/// No lane hit: the answer of a batch nothing hits.
+impl<F: Scalar, const N: usize> Default for TriangleBatchHits<F, N> {
+    #[inline]
+    fn default() -> Self {
+        Self::none()
+    }
 }
 
 impl<F: Scalar, const N: usize> TriangleBatchHits<F, N> {
@@ -331,49 +345,7 @@ fn outside<W: Lanes8>([e0, e1, e2]: [W; 3], lo: W) -> (W::Mask, W, W) {
     (W::and(e_min.lt(lo), lo.lt(e_max)), e_min, e_max)
 }
 
-/// The watertight test ([`ray_triangle`](crate::ray_triangle)) of one
-/// prepared ray against every triangle of a batch.
-///
-/// Lane by lane, the answer is exactly (bit for bit) what
-/// [`ray_triangle`](crate::ray_triangle) returns for the ray the
-/// [`PreparedRay`] was made from and that lane's triangle, so all of its
-/// guarantees hold per lane: watertight across shared edges, `t > 0` in
-/// exact arithmetic, `t`, `u`, `v` within
-/// [`ray_triangle_error_bounds`](crate::ray_triangle_error_bounds).
-///
-/// How: every lane runs the scalar test's arithmetic, in the same order, on
-/// its own triangle. Two rare cases leave the vector path and run the
-/// scalar code itself for their lane: an edge function that rounds to
-/// exactly zero (the exact-sign recomputation), and a crossing inside the
-/// triangle and the `t` range for which the cheapest of the three
-/// sufficient tests for `t > 0` (all corners in front of the origin)
-/// fails, so that the other two must decide. The answer is the same either
-/// way; such a lane costs a scalar call more.
-///
-/// Empty lanes, an invalid ray and a NaN or negative `t_max` give no hits.
-/// Never panics.
-///
-/// ```
-/// use rayhit::{PreparedRay, Ray, Triangle, TriangleBatch, ray_triangle, ray_triangle_batch, glam::Vec3};
-/// let tri = Triangle::new(Vec3::ZERO, Vec3::new(2.0, 0.0, 0.0), Vec3::new(0.0, 2.0, 0.0));
-/// let ray = Ray::new(Vec3::new(0.5, 0.25, 4.0), Vec3::new(0.0, 0.0, -2.0));
-/// let batch = TriangleBatch::<Vec3, 8>::from_slice(&[tri, tri.flipped()]).unwrap();
-/// let hits = ray_triangle_batch(&PreparedRay::new(&ray), &batch, f32::INFINITY);
-/// assert_eq!((hits.mask, hits.front), (0b11, 0b01));
-/// assert_eq!(hits.get(0), ray_triangle(&ray, &tri, f32::INFINITY));
-/// assert_eq!(hits.get(1), ray_triangle(&ray, &tri.flipped(), f32::INFINITY));
-/// ```
-#[inline]
-#[must_use]
-pub fn ray_triangle_batch<V: Vector, const N: usize>(
-    ray: &PreparedRay<V>,
-    batch: &TriangleBatch<V, N>,
-    t_max: S<V>,
-) -> TriangleBatchHits<S<V>, N> {
-    per_call::<TriangleBatchKernel<V, N>>(ray, batch, t_max)
-}
-
-/// [`ray_triangle_batch`] as a kernel, for any instruction set (see
+/// [`TriangleBatch`'s `hit`](crate::batch::TriangleBatch#method.hit) as a kernel, for any instruction set (see
 /// `crate::simd`).
 pub(crate) struct TriangleBatchKernel<V, const N: usize>(PhantomData<V>);
 
@@ -397,7 +369,7 @@ impl<V: Vector, const N: usize> Kernel for TriangleBatchKernel<V, N> {
     }
 }
 
-/// The body of [`ray_triangle_batch`] with the eight-lane type `W`, eight
+/// The body of [`TriangleBatch`'s `hit`](crate::batch::TriangleBatch#method.hit) with the eight-lane type `W`, eight
 /// lanes at a time.
 #[inline(always)]
 fn triangle_batch_body<W: Lanes8<F = S<V>>, V: Vector, const N: usize>(
@@ -559,8 +531,8 @@ fn scalar_lanes<V: Vector, const N: usize>(
     out
 }
 
-/// [`ray_triangle_batch_in`] (`ANY = false`) and
-/// [`ray_triangle_batch_occluded`] (`ANY = true`) as a kernel: the answer
+/// `ray_triangle_batch_in` (`ANY = false`) and its any-hit form
+/// (`ANY = true`) as a kernel: the answer
 /// of every lane the corners' depths decide, and the scalar interval test
 /// for the lanes they leave. With `ANY`, it returns at the first lane hit,
 /// with only `mask` set.
@@ -696,7 +668,7 @@ fn triangle_batch_in_body<W: Lanes8<F = S<V>>, V: Vector, const N: usize, const 
 }
 
 /// The lanes in `slow` of a batch answer from the scalar interval test
-/// ([`ray_triangle_prepared_in`](crate::ray_triangle_prepared_in)), bit
+/// ([`Triangle`'s `hit` over an interval](crate::Triangle#method.hit)), bit
 /// for bit; with `any`, it stops at the first hit. Out of line (such lanes
 /// are rare).
 #[cold]
@@ -715,67 +687,24 @@ fn slow_lanes_in<V: Vector, const N: usize>(
     })
 }
 
-/// [`ray_triangle_batch`] over an interval: lane by lane, bit for bit what
-/// [`ray_triangle_prepared_in`](crate::ray_triangle_prepared_in) returns
-/// for that lane's triangle, so its guarantees hold per lane: watertight,
-/// and both ends of `(t_min, t_max]` decided exactly against the exact
-/// crossing, so that consecutive intervals report each triangle of the
-/// batch once (every hit along a ray, in order).
-///
-/// How: eight triangles at a time, the lanes run the scalar test's inside
-/// test and its common case (the corners' depths against the ends, where
-/// every edge function's sign is surely exact), with the same operations;
-/// the rare lanes these leave (a crossing near an edge or an end) go
-/// through the scalar interval test itself.
-///
-/// Empty lanes and an invalid ray give no hits. Never panics.
-///
-/// ```
-/// use rayhit::{Interval, PreparedRay, Ray, Triangle, TriangleBatch, ray_triangle_batch_in, glam::Vec3};
-/// // Four layers along z, at z = 1, 2, 3, 4, crossed at t = 1, 2, 3, 4.
-/// let tris: Vec<Triangle> = (1..=4)
-///     .map(|k| {
-///         let z = k as f32;
-///         Triangle::new(Vec3::new(0.0, 0.0, z), Vec3::new(1.0, 0.0, z), Vec3::new(0.0, 1.0, z))
-///     })
-///     .collect();
-/// let batch = TriangleBatch::<Vec3, 4>::from_slice(&tris).unwrap();
-/// let ray = PreparedRay::new(&Ray::new(Vec3::new(0.25, 0.25, 0.0), Vec3::Z));
-/// // Past the hit at t = 2: the next ones, and never layer 2 again.
-/// let hits = ray_triangle_batch_in(&ray, &batch, Interval::new(2.0, f32::INFINITY).unwrap());
-/// assert_eq!(hits.mask, 0b1100);
-/// assert_eq!(hits.nearest().unwrap().1.t, 3.0);
-/// ```
-#[inline]
-#[must_use]
-pub fn ray_triangle_batch_in<V: Vector, const N: usize>(
-    ray: &PreparedRay<V>,
+/// Every lane of the batch with the one-hit rule: the scalar test on each
+/// lane's triangle (the rule runs the definition, which has no lane form).
+pub(super) fn one_hit_lanes<V: Vector, const N: usize>(
+    ray: &crate::ray::Ray<V>,
     batch: &TriangleBatch<V, N>,
-    interval: Interval<S<V>>,
+    search: crate::query::Search<S<V>>,
 ) -> TriangleBatchHits<S<V>, N> {
-    per_call::<TriangleBatchInKernel<V, N, false>>(ray, batch, interval)
-}
-
-/// Whether any triangle of the batch blocks the ray within `interval`:
-/// the any-hit form of [`ray_triangle_batch_in`] for shadow rays, `true`
-/// exactly when its `mask` is not zero. It stops at the first chunk of
-/// eight lanes with a hit, and computes no `t`, `u` or `v`.
-///
-/// ```
-/// use rayhit::{Interval, PreparedRay, Ray, Triangle, TriangleBatch, ray_triangle_batch_occluded, glam::Vec3};
-/// let occluder = Triangle::new(Vec3::new(-1.0, -1.0, 1.0), Vec3::new(3.0, -1.0, 1.0), Vec3::new(-1.0, 3.0, 1.0));
-/// let batch = TriangleBatch::<Vec3, 8>::from_slice(&[occluder]).unwrap();
-/// // From the floor towards a light at t = 1, through the occluder at t = 0.5.
-/// let ray = PreparedRay::new(&Ray::new(Vec3::ZERO, Vec3::new(0.0, 0.0, 2.0)));
-/// assert!(ray_triangle_batch_occluded(&ray, &batch, Interval::new(0.0, 1.0).unwrap()));
-/// assert!(!ray_triangle_batch_occluded(&ray, &batch, Interval::new(0.0, 0.25).unwrap()));
-/// ```
-#[inline]
-#[must_use]
-pub fn ray_triangle_batch_occluded<V: Vector, const N: usize>(
-    ray: &PreparedRay<V>,
-    batch: &TriangleBatch<V, N>,
-    interval: Interval<S<V>>,
-) -> bool {
-    per_call::<TriangleBatchInKernel<V, N, true>>(ray, batch, interval).mask != 0
+    use crate::query::Intersect;
+    let mut hits = TriangleBatchHits::none();
+    for lane in 0..N {
+        let Some(hit) = batch.get(lane).and_then(|tri| tri.hit(ray, search)) else {
+            continue;
+        };
+        hits.mask |= 1 << lane;
+        if hit.side == Side::Front {
+            hits.front |= 1 << lane;
+        }
+        (hits.t[lane], hits.u[lane], hits.v[lane]) = (hit.t, hit.u, hit.v);
+    }
+    hits
 }

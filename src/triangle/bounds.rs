@@ -1,8 +1,8 @@
 //! The rounding error bounds of a watertight hit, all derived here: those
 //! of the sheared coordinates and edge functions ([`ErrorBounds`]), of the
 //! determinant's sign ([`HitCondition`]), of `t`, `u` and `v`
-//! ([`ray_triangle_error_bounds`]), of the `t` taken from a zero-area
-//! triangle's longest edge, and of a hit point ([`triangle_hit_point`]).
+//! ([`Triangle`'s `hit_error`](crate::Triangle#method.hit_error)), of the `t` taken from a zero-area
+//! triangle's longest edge, and of a hit point ([`Triangle::surface_point_at`](crate::Triangle::surface_point_at)).
 
 use super::frame::Frame;
 use super::{Triangle, TriangleHit};
@@ -353,32 +353,11 @@ impl<F: Scalar> HitCondition<F> {
     }
 }
 
-/// The point of a hit from its barycentrics, `a + u (b - a) + v (c - a)`,
-/// and a per-component bound on its distance from a point of the exact
-/// triangle's plane.
-///
-/// For any reals `u, v`, `q = a + u (b - a) + v (c - a)` lies exactly in the
-/// plane; the computed point differs from `q` only by rounding: the edges
-/// (one each), the products and the two sums, at most
-/// `gamma(5) (|a_j| + |u e1_j| + |v e2_j|)` with the computed edges, plus
-/// four roundings to evaluate that. This is the error that matters for
-/// spawning a ray off the surface (with [`offset_ray_origin`](crate::offset_ray_origin)
-/// and [`Triangle::normal_with_error`]); where on the triangle the point
-/// lies is the barycentrics' business ([`ray_triangle_error_bounds`]).
-///
-/// ```
-/// use rayhit::{Ray, Triangle, ray_triangle, triangle_hit_point, glam::Vec3};
-/// let tri = Triangle::new(Vec3::ZERO, Vec3::new(4.0, 0.0, 0.0), Vec3::new(0.0, 4.0, 0.0));
-/// let ray = Ray::new(Vec3::new(1.0, 2.0, 5.0), -Vec3::Z);
-/// let hit = ray_triangle(&ray, &tri, f32::INFINITY).unwrap();
-/// let (p, err) = triangle_hit_point(&tri, &hit);
-/// assert_eq!(p, Vec3::new(1.0, 2.0, 0.0));
-/// assert!(err.z == 0.0 && err.x < 1e-5);
-/// ```
+/// The hit point of [`Triangle`]'s `surface_point` and its bound, derived\nin its documentation.
 #[must_use]
-pub fn triangle_hit_point<V: Vector>(tri: &Triangle<V>, hit: &TriangleHit<S<V>>) -> (V, V) {
+pub(crate) fn triangle_hit_point<V: Vector>(tri: &Triangle<V>, u: S<V>, v: S<V>) -> (V, V) {
     let (e1, e2) = (tri.b - tri.a, tri.c - tri.a);
-    let (ue, ve) = (e1 * hit.u, e2 * hit.v);
+    let (ue, ve) = (e1 * u, e2 * v);
     let p = tri.a + (ue + ve);
     let g5 = S::<V>::gamma_n(5);
     let err = (tri.a.abs() + ue.abs() + ve.abs()) * g5;
@@ -389,7 +368,7 @@ pub fn triangle_hit_point<V: Vector>(tri: &Triangle<V>, hit: &TriangleHit<S<V>>)
 /// Bounds on the errors of a watertight hit: `|t - t_exact|`,
 /// `|u - u_exact|`, `|v - v_exact|`, where the exact values are those of the
 /// crossing of the ray's line with the triangle's plane, computed exactly
-/// from the same inputs. See [`ray_triangle_error_bounds`].
+/// from the same inputs. See [`Triangle`'s `hit_error`](crate::Triangle#method.hit_error).
 #[derive(Clone, Copy, Debug, PartialEq)]
 #[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 #[repr(C)]
@@ -402,42 +381,9 @@ pub struct TriangleHitError<F = f32> {
     pub v: F,
 }
 
-/// Bounds on the errors of a hit that [`ray_triangle`](crate::ray_triangle) or
-/// [`ray_triangle_one_hit`](crate::ray_triangle_one_hit) returned for the same ray and triangle.
-///
-/// The derivation is in the source, step by step: the rounding of the
-/// sheared coordinates and edge functions (as in pbrt-v4), then the
-/// sensitivity of `t = sum e_i z_i / sum e_i` and of `e_i / sum e_i` to
-/// them. The `t` bound grows with the spread of the corners' distances along
-/// the ray, not with the distance itself, so it stays within a few ulps of
-/// `t` for a triangle facing the ray, however far away.
-///
-/// Where the exact determinant's sign is not known, the bounds are infinite
-/// (the ray is within rounding of parallel to the triangle, or the triangle
-/// is so thin, seen from the ray, that rounding its corners could flip it:
-/// a sliver far away), with one exception: for a triangle of zero area
-/// (corners exactly collinear) the test takes `t` from the point of the
-/// longest edge (in the ray's frame) nearest the ray, and the `t` bound is
-/// finite, a bound on the distance from where the ray passes the segment
-/// (`u` and `v` are then only known to be in `[0, 1]`, and their bounds are
-/// infinite). Every bound is infinite for invalid input.
-///
-/// ```
-/// use rayhit::{Ray, Triangle, ray_triangle, ray_triangle_error_bounds, glam::Vec3};
-/// let cz = 3.1f32;
-/// let tri = Triangle::new(Vec3::new(0.0, 0.0, 3.0), Vec3::new(1.0, 0.0, 3.0), Vec3::new(0.0, 1.0, cz));
-/// let (dy, dz) = (0.2f32, 1.0f32);
-/// let ray = Ray::new(Vec3::ZERO, Vec3::new(0.1, dy, dz));
-/// let hit = ray_triangle(&ray, &tri, f32::INFINITY).unwrap();
-/// let err = ray_triangle_error_bounds(&ray, &tri, &hit);
-/// // The plane is z - 3 = (cz - 3) y, so t = 3 / (dz - (cz - 3) dy); f64
-/// // evaluates that far more accurately than the f32 bound.
-/// let exact = 3.0 / (f64::from(dz) - (f64::from(cz) - 3.0) * f64::from(dy));
-/// assert!((f64::from(hit.t) - exact).abs() <= f64::from(err.t));
-/// assert!(err.t < 1e-5 * hit.t);
-/// ```
+/// Bounds on the errors of a watertight hit (of `ray_triangle` or\n`ray_triangle_one_hit`, and of the interval forms before a `t` is\nbrought into the interval): [`Triangle`]'s `hit_error`, whose\ndocumentation states them; derived below.
 #[must_use]
-pub fn ray_triangle_error_bounds<V: Vector>(
+pub(crate) fn ray_triangle_error_bounds<V: Vector>(
     ray: &Ray<V>,
     tri: &Triangle<V>,
     hit: &TriangleHit<S<V>>,

@@ -1,16 +1,13 @@
 //! The reference definitions of the triangle tests, one component at a
 //! time: the watertight test (Woop, Benthin and Wald, JCGT 2013, as in
 //! pbrt-v4) with both edge rules, [`watertight_definition`], and
-//! Moller-Trumbore's, `mt_definition`. [`ray_triangle_one_hit`] is the
-//! first with the one-hit rule; [`ray_triangle`], [`ray_triangle_prepared`]
-//! and the triangle batches run its common case on lanes, hand it their
-//! rare cases, and their tests hold them to it bit for bit, as
-//! [`ray_triangle_mt`]'s test holds it to the second.
+//! Moller-Trumbore's, `mt_definition`. The one-hit rule
+//! ([`EdgeRule::OneHit`]) runs the first itself; [`ray_triangle`],
+//! `ray_triangle_prepared` and the triangle batches run its common case on
+//! lanes, hand it their rare cases, and their tests hold them to it bit for
+//! bit, as Moller-Trumbore's test holds it to the second.
 //!
 //! [`ray_triangle`]: crate::ray_triangle
-//! [`ray_triangle_prepared`]: crate::ray_triangle_prepared
-//! [`ray_triangle_one_hit`]: crate::ray_triangle_one_hit
-//! [`ray_triangle_mt`]: crate::ray_triangle_mt
 
 use super::bounds::{ErrorBounds, HitCondition, longest_edge_t, max3};
 use super::conditioning::det_sign_known;
@@ -18,20 +15,8 @@ use super::frame::Frame;
 use super::{Side, Triangle, TriangleHit};
 use crate::num::round::{max2, min2};
 use crate::num::{S, Scalar, Vector};
+pub(crate) use crate::query::EdgeRule;
 use crate::ray::Shear;
-
-/// Which edge rule the watertight core applies to an edge function of
-/// exactly zero.
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
-pub(crate) enum EdgeRule {
-    /// Zero counts as inside: edges and corners belong to every triangle
-    /// that has them.
-    Closed,
-    /// Zero is decided by the symbolic perturbation in `Frame::tie_break`:
-    /// each edge or corner point belongs to exactly one triangle of a
-    /// consistently wound mesh.
-    OneHit,
-}
 
 /// The watertight test for a valid ray, given its origin and shear, and a
 /// `t_max >= 0`. [`ray_triangle`], [`ray_triangle_prepared`] and the

@@ -305,78 +305,10 @@ fn crossing<V: Vector>(origin: V, dir: V, tri: &Triangle<V>) -> PlaneCrossing {
     PlaneCrossing::new(w(origin), w(dir), w(tri.a), w(tri.b), w(tri.c), wide)
 }
 
-/// The watertight ray/triangle test over an interval: a hit where the ray
-/// crosses the closed triangle at an exact distance `t*` with
-/// `interval.min() < t* <= interval.max()` (units of `ray.dir`).
-///
-/// The inside test is [`ray_triangle`](crate::ray_triangle)'s, bit for bit
-/// (closed, two-sided, watertight). The range is decided exactly, not up
-/// to rounding: `t*` is the exact crossing of the ray's line with the
-/// triangle's plane, computed from the input floats. The reported `t` is
-/// the same quotient as `ray_triangle`'s, within
-/// [`ray_triangle_error_bounds`](crate::ray_triangle_error_bounds) of
-/// `t*`, and brought into the interval when rounding put it outside: to
-/// `t_max`, which only moves it towards `t*`, or to the float just above
-/// `t_min`, which is within the larger of that bound and one ulp of
-/// `t_min` (`t*` may lie strictly between `t_min` and that float); `u`,
-/// `v` and the side are as for `ray_triangle`.
-///
-/// So consecutive intervals `(t0, t1]`, `(t1, t2]`, ... report each hit
-/// triangle in exactly one of them, whatever the ends: a loop that
-/// continues past a hit never skips a crossing and never reports one
-/// twice, and two triangles crossed at one exact point are both reported
-/// in the same interval. To walk every hit in order, take the nearest hit
-/// of `(t_lo, t_max]`, set `t_hi` to its `t` plus its error bound (rounded
-/// up), report every hit of `(t_lo, t_hi]` sorted by `t`, and continue
-/// from `t_lo = t_hi`.
-///
-/// Where the crossing is not defined (`dir . n` exactly zero: a triangle of
-/// zero area, or a ray exactly parallel to the plane that rounding shows a
-/// sliver of it), the reported `t` itself is the distance, compared
-/// exactly; for a zero-area triangle it is where the ray passes the longest
-/// edge, as in `ray_triangle`.
-///
-/// Relation to `ray_triangle(ray, tri, t_max)`: with `interval = (0,
-/// t_max]`, both give the same hit, bit for bit, wherever `t*` is farther
-/// than the error bound from `0` and `t_max`. Nearer to an end they can
-/// differ: `ray_triangle` compares its rounded `t` with `t_max` and drops a
-/// hit whose `t > 0` its sufficient tests cannot establish (right for a
-/// ray spawned off a surface, wrong for a sequence); this decides both
-/// ends exactly.
-///
-/// Cost: about that of `ray_triangle`. Where the inside test passes,
-/// the common case is decided from the corners' depths: when every edge
-/// function's sign is surely exact, `t*` lies between the corners' exact
-/// depths along the ray, and the ends are compared with those (with a
-/// margin of a few ulps). The error bound of `t` is computed only for
-/// crossings near an edge or an end, and the exact signs (a few hundred
-/// operations) only where `t*` is within that bound of an end. The
-/// `t_max`-only kernels are unchanged.
-///
-/// Invalid rays and triangles with a NaN or infinite coordinate miss;
-/// bad intervals cannot be built ([`Interval::new`]). The range decision
-/// is exact for every `f32` input and any ends; for `f64`, for any ends,
-/// while the nonzero coordinate differences between the origin and the
-/// corners and between corners (and their rounding errors) are within a
-/// factor `2^250` of the largest, and the direction's nonzero components
-/// within `2^250` of its largest (so that no exact product underflows);
-/// beyond that it is not guaranteed. The preconditions of `ray_triangle`
-/// (no overflow of the edge functions) apply.
-///
-/// ```
-/// use rayhit::{Interval, Ray, Triangle, ray_triangle_in, glam::Vec3};
-/// // The plane z = 0, crossed at exactly t = 2.
-/// let tri = Triangle::new(Vec3::new(-1.0, -1.0, 0.0), Vec3::new(3.0, -1.0, 0.0), Vec3::new(-1.0, 3.0, 0.0));
-/// let ray = Ray::new(Vec3::new(0.0, 0.0, 4.0), Vec3::new(0.0, 0.0, -2.0));
-/// let hit = |lo: f32, hi: f32| ray_triangle_in(&ray, &tri, Interval::new(lo, hi).unwrap());
-/// assert_eq!(hit(0.0, 10.0).unwrap().t, 2.0);
-/// assert!(hit(1.0, 2.0).is_some()); // closed above
-/// assert!(hit(2.0, 3.0).is_none()); // open below: no repeat past t = 2
-/// assert!(hit(2.0f32.next_down(), 3.0).is_some());
-/// ```
+/// The watertight test over an interval, both ends decided exactly: the\n`Within` case of [`Triangle`]'s `hit`, whose documentation has the\nguarantees. The inside test is `ray_triangle`'s, bit for bit; the range\nis decided by `watertight_in` (this module's steps 0 to 2).
 #[inline]
 #[must_use]
-pub fn ray_triangle_in<V: Vector>(
+pub(crate) fn ray_triangle_in<V: Vector>(
     ray: &Ray<V>,
     tri: &Triangle<V>,
     interval: Interval<S<V>>,
@@ -384,22 +316,12 @@ pub fn ray_triangle_in<V: Vector>(
     on_ray(ray, tri, interval, EdgeRule::Closed)
 }
 
-/// [`ray_triangle_in`] on a [`PreparedRay`]: the same answer, bit for bit.
-///
-/// ```
-/// use rayhit::{Interval, PreparedRay, Ray, Triangle, ray_triangle_in, ray_triangle_prepared_in, glam::Vec3};
-/// let tri = Triangle::new(Vec3::ZERO, Vec3::new(2.0, 0.0, 0.0), Vec3::new(0.0, 2.0, 0.0));
-/// let ray = Ray::new(Vec3::new(0.5, 0.25, 4.0), Vec3::new(0.0, 0.0, -2.0));
-/// let window = Interval::new(1.0, 3.0).unwrap();
-/// let hit = ray_triangle_prepared_in(&PreparedRay::new(&ray), &tri, window);
-/// assert_eq!(hit, ray_triangle_in(&ray, &tri, window));
-/// assert_eq!(hit.unwrap().t, 2.0);
-/// ```
+/// [`ray_triangle_in`] on a prepared ray: the same answer, bit for bit.
 // (Always inlined, as `ray_triangle_prepared` is: the body of a
 // traversal's inner loop, its rare paths out of line.)
 #[inline(always)]
 #[must_use]
-pub fn ray_triangle_prepared_in<V: Vector>(
+pub(crate) fn ray_triangle_prepared_in<V: Vector>(
     ray: &PreparedRay<V>,
     tri: &Triangle<V>,
     interval: Interval<S<V>>,
@@ -408,34 +330,10 @@ pub fn ray_triangle_prepared_in<V: Vector>(
     watertight_in_lanes(ray, lanes, tri, interval, EdgeRule::Closed)
 }
 
-/// [`ray_triangle_one_hit`](crate::ray_triangle_one_hit) over an interval:
-/// its inside test (each point of a shared edge or corner belongs to
-/// exactly one triangle of a consistently wound mesh) with the exact range
-/// decision of [`ray_triangle_in`].
-///
-/// Together: over a sequence of consecutive intervals `(t0, t1]`, `(t1,
-/// t2]`, ..., each crossing of a closed, consistently wound mesh (locally a
-/// surface seen from one side, shared edges with bit-identical corners) is
-/// reported exactly once, so the number of hits over the sequence is the
-/// number the single interval `(t0, t_last]` gives, whose parity tells
-/// inside from outside.
-///
-/// ```
-/// use rayhit::{Interval, Ray, Triangle, ray_triangle_one_hit_in, glam::Vec3};
-/// // Two triangles of the unit square, sharing the diagonal from (1,0) to (0,1).
-/// let (p00, p10, p01, p11) = (Vec3::ZERO, Vec3::X, Vec3::Y, Vec3::new(1.0, 1.0, 0.0));
-/// let mesh = [Triangle::new(p00, p10, p01), Triangle::new(p10, p11, p01)];
-/// // Straight down through the middle of the shared diagonal, at t = 1.
-/// let ray = Ray::new(Vec3::new(0.5, 0.5, 1.0), Vec3::new(0.0, 0.0, -1.0));
-/// let count = |lo: f32, hi: f32| {
-///     let window = Interval::new(lo, hi).unwrap();
-///     mesh.iter().filter(|t| ray_triangle_one_hit_in(&ray, t, window).is_some()).count()
-/// };
-/// assert_eq!(count(0.0, 1.0) + count(1.0, 2.0), 1);
-/// ```
+/// [`ray_triangle_in`] with the one-hit edge rule.
 #[inline]
 #[must_use]
-pub fn ray_triangle_one_hit_in<V: Vector>(
+pub(crate) fn ray_triangle_one_hit_in<V: Vector>(
     ray: &Ray<V>,
     tri: &Triangle<V>,
     interval: Interval<S<V>>,
@@ -443,59 +341,10 @@ pub fn ray_triangle_one_hit_in<V: Vector>(
     on_ray(ray, tri, interval, EdgeRule::OneHit)
 }
 
-/// Whether anything blocks the ray within `interval`: the any-hit form of
-/// [`ray_triangle_in`] for shadow rays, `true` exactly when
-/// `ray_triangle_in(ray, tri, interval)` is `Some`.
-///
-/// Same conventions and guarantees (closed, two-sided, watertight, both
-/// ends of `(t_min, t_max]` decided exactly against the exact crossing).
-/// Nothing of the hit is returned, so a shadow ray's loop can stop at the
-/// first `true`.
-///
-/// ```
-/// use rayhit::{Interval, Ray, Triangle, ray_triangle_occluded, glam::Vec3};
-/// let occluder = Triangle::new(Vec3::new(-1.0, -1.0, 1.0), Vec3::new(3.0, -1.0, 1.0), Vec3::new(-1.0, 3.0, 1.0));
-/// // From the floor towards a light at t = 1, through the occluder at t = 0.5.
-/// let ray = Ray::new(Vec3::ZERO, Vec3::new(0.0, 0.0, 2.0));
-/// assert!(ray_triangle_occluded(&ray, &occluder, Interval::new(0.0, 1.0).unwrap()));
-/// // A light below the occluder is not blocked.
-/// assert!(!ray_triangle_occluded(&ray, &occluder, Interval::new(0.0, 0.25).unwrap()));
-/// ```
-#[inline]
-#[must_use]
-pub fn ray_triangle_occluded<V: Vector>(
-    ray: &Ray<V>,
-    tri: &Triangle<V>,
-    interval: Interval<S<V>>,
-) -> bool {
-    ray_triangle_in(ray, tri, interval).is_some()
-}
-
-/// [`ray_triangle_occluded`] on a [`PreparedRay`]: the same answer.
-///
-/// ```
-/// use rayhit::{Interval, PreparedRay, Ray, Triangle, ray_triangle_prepared_occluded, glam::Vec3};
-/// let occluder = Triangle::new(Vec3::new(-1.0, -1.0, 1.0), Vec3::new(3.0, -1.0, 1.0), Vec3::new(-1.0, 3.0, 1.0));
-/// let ray = PreparedRay::new(&Ray::new(Vec3::ZERO, Vec3::new(0.0, 0.0, 2.0)));
-/// // The occluder is crossed at exactly t = 0.5: open below, closed above.
-/// assert!(ray_triangle_prepared_occluded(&ray, &occluder, Interval::new(0.25, 0.5).unwrap()));
-/// assert!(!ray_triangle_prepared_occluded(&ray, &occluder, Interval::new(0.5, 1.0).unwrap()));
-/// ```
-// (Always inlined, as `ray_triangle_prepared` is: the body of a
-// traversal's inner loop, its rare paths out of line.)
-#[inline(always)]
-#[must_use]
-pub fn ray_triangle_prepared_occluded<V: Vector>(
-    ray: &PreparedRay<V>,
-    tri: &Triangle<V>,
-    interval: Interval<S<V>>,
-) -> bool {
-    ray_triangle_prepared_in(ray, tri, interval).is_some()
-}
-
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::IntersectLanes;
     use crate::testing::Draws;
     use glam::{DVec3, Vec3};
 
@@ -584,10 +433,10 @@ mod tests {
                                 );
                                 // The batch forms, with the triangle in
                                 // lanes 0 and 9 of two chunks.
-                                let mut batch = crate::TriangleBatch::<V, 16>::empty();
+                                let mut batch = crate::batch::TriangleBatch::<V, 16>::empty();
                                 batch.set(0, &tri);
                                 batch.set(9, &tri);
-                                let hits = crate::ray_triangle_batch_in(&prepared, &batch, window);
+                                let hits = batch.hit(&prepared, window);
                                 for lane in [0, 9] {
                                     assert_eq!(
                                         bits(hits.get(lane)),
@@ -596,10 +445,7 @@ mod tests {
                                     );
                                 }
                                 assert_eq!(hits.mask & !0b10_0000_0001, 0);
-                                assert_eq!(
-                                    crate::ray_triangle_batch_occluded(&prepared, &batch, window),
-                                    expected.is_some()
-                                );
+                                assert_eq!(batch.occluded(&prepared, window), expected.is_some());
                                 ray_triangle_in(&ray, &tri, window)
                             }
                             EdgeRule::OneHit => ray_triangle_one_hit_in(&ray, &tri, window),

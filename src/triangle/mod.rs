@@ -8,16 +8,18 @@
 //! - `conditioning.rs`: whether the determinant's sign is known, the
 //!   predicate that lets a fast path return the plain answer.
 //! - `bounds.rs`: the rounding error bounds of a hit, and the hit point's.
-//! - `watertight.rs`: [`ray_triangle`], [`ray_triangle_prepared`],
-//!   [`ray_triangle_one_hit`], held to the definition bit for bit.
-//! - `interval.rs`: [`ray_triangle_in`], [`ray_triangle_prepared_in`],
-//!   [`ray_triangle_one_hit_in`]: the watertight tests over an interval
-//!   `(t_min, t_max]`, decided exactly; [`ray_triangle_occluded`] and
-//!   [`ray_triangle_prepared_occluded`], their any-hit forms.
-//! - `mt.rs`: [`ray_triangle_mt`] (Moller-Trumbore) and its definition.
-//! - `batch.rs`: [`TriangleBatch`] and [`ray_triangle_batch`], the
-//!   watertight test on eight lanes of triangles at a time, held to the
-//!   definition bit for bit.
+//! - `watertight.rs`: [`ray_triangle`] (a plain ray: every main axis at
+//!   once), `ray_triangle_prepared` and `ray_triangle_one_hit`, held to
+//!   the definition bit for bit.
+//! - `interval.rs`: the watertight tests over an interval `(t_min,
+//!   t_max]`, both ends decided exactly.
+//! - `mt.rs`: Moller-Trumbore ([`Triangle::moller_trumbore`]) and its
+//!   definition.
+//! - `batch.rs`: [`TriangleBatch`], the watertight test on eight lanes of
+//!   triangles at a time, held to the definition bit for bit.
+//! - `query.rs`: the [`Intersect`](crate::Intersect) and
+//!   [`Surface`](crate::Surface) implementations: each combination of ray
+//!   form, range and edge rule sent to its kernel.
 
 mod batch;
 mod bounds;
@@ -26,6 +28,7 @@ mod definition;
 mod frame;
 mod interval;
 mod mt;
+mod query;
 mod watertight;
 
 use glam::Vec3;
@@ -34,18 +37,9 @@ use crate::num::exact_sign::{scale_to_one, sum_of_products_sign, two_diff};
 use crate::num::round::bound_up;
 use crate::num::{S, Scalar, Vector};
 
-pub use batch::{
-    TriangleBatch, TriangleBatchHits, ray_triangle_batch, ray_triangle_batch_in,
-    ray_triangle_batch_occluded,
-};
-pub(crate) use batch::{TriangleBatchInKernel, TriangleBatchKernel};
-pub use bounds::{TriangleHitError, ray_triangle_error_bounds, triangle_hit_point};
-pub use interval::{
-    ray_triangle_in, ray_triangle_occluded, ray_triangle_one_hit_in, ray_triangle_prepared_in,
-    ray_triangle_prepared_occluded,
-};
-pub use mt::ray_triangle_mt;
-pub use watertight::{ray_triangle, ray_triangle_one_hit, ray_triangle_prepared};
+pub use batch::{TriangleBatch, TriangleBatchHits};
+pub use bounds::TriangleHitError;
+pub use watertight::ray_triangle;
 
 /// The triangle with corners `a`, `b`, `c`.
 ///
@@ -65,13 +59,19 @@ pub use watertight::{ray_triangle, ray_triangle_one_hit, ray_triangle_prepared};
 /// the sliver between the neighbours' edges; dropping it would open a crack
 /// just there. A hit on one has `u`, `v` in range, the side of its rounded
 /// determinant, and the `t` where the ray passes the segment, within the
-/// finite bound [`ray_triangle_error_bounds`] gives; its normal is zero or
-/// meaningless, so shade it with a neighbour's. [`SurfacePoint::on_triangle`] and
+/// finite bound [`hit_error`](crate::Surface::hit_error) gives; its normal
+/// is zero or meaningless, so shade it with a neighbour's.
+/// [`surface_point`](crate::Surface::surface_point) and
 /// [`SurfacePoint::spawn`] stay finite: with a zero normal the spawned
 /// ray starts at the hit point itself. Use [`Triangle::is_degenerate`] to
 /// drop such triangles when loading a mesh that does not need them.
 ///
-/// [`SurfacePoint::on_triangle`]: crate::SurfacePoint::on_triangle
+/// The queries are [`Intersect`](crate::Intersect) (the closest hit and the
+/// any-hit answer over a `t_max` or an [`Interval`](crate::Interval), with
+/// either [`EdgeRule`](crate::EdgeRule); the guarantees are on its
+/// [`hit`](#method.hit)) and [`Surface`](crate::Surface) (the hit's error
+/// bounds and the point it leaves from).
+///
 /// [`SurfacePoint::spawn`]: crate::SurfacePoint::spawn
 ///
 /// ```
@@ -107,29 +107,37 @@ impl<V: Vector> Triangle<V> {
         (self.b - self.a).cross(self.c - self.a)
     }
 
-    /// The geometric normal [`Triangle::normal`] and a per-component bound on
-    /// its difference from the exact `(b - a) x (c - a)`.
+    /// A per-component bound on the difference between
+    /// [`Triangle::normal`] and the exact `(b - a) x (c - a)`.
     ///
     /// Each monomial `e1_j e2_k` of a component carries four roundings (two
     /// edge subtractions, the product, the difference), so the error is at
     /// most `gamma(4) (|e1_j e2_k| + |e1_k e2_j|)`, and `gamma(6)` with the
     /// computed edges; evaluating that adds three roundings. For a sliver
     /// triangle the bound can be as large as the normal itself: its
-    /// direction is then not known, and [`offset_ray_origin`](crate::offset_ray_origin)
-    /// offsets accordingly.
+    /// direction is then not known, and
+    /// [`SurfacePoint::spawn`](crate::SurfacePoint::spawn) offsets
+    /// accordingly.
+    ///
+    /// ```
+    /// use rayhit::{Triangle, glam::Vec3};
+    /// let t = Triangle::new(Vec3::ZERO, Vec3::new(3.0, 0.0, 0.0), Vec3::new(0.0, 5.0, 0.0));
+    /// // Exact products of exact differences: tiny bounds, and a normal of (0, 0, 15).
+    /// assert_eq!(t.normal(), Vec3::new(0.0, 0.0, 15.0));
+    /// assert!(t.normal_error().z <= 15.0 * 4.0 * f32::EPSILON);
+    /// ```
     #[inline]
     #[must_use]
-    pub fn normal_with_error(&self) -> (V, V) {
+    pub fn normal_error(&self) -> V {
         let (e1, e2) = (self.b - self.a, self.c - self.a);
         let g6 = S::<V>::gamma_n(6);
         let m = |j: usize, k: usize| (e1[j] * e2[k]).abs() + (e1[k] * e2[j]).abs();
         let err = V::new(m(1, 2), m(2, 0), m(0, 1)) * g6;
-        let err = V::new(
+        V::new(
             bound_up(err.x(), 3),
             bound_up(err.y(), 3),
             bound_up(err.z(), 3),
-        );
-        (e1.cross(e2), err)
+        )
     }
 
     /// True when the corners are collinear or coincide, in exact arithmetic:
@@ -161,7 +169,7 @@ impl<V: Vector> Triangle<V> {
     /// ```
     #[must_use]
     pub fn is_degenerate(&self) -> bool {
-        let (n, err) = self.normal_with_error();
+        let (n, err) = (self.normal(), self.normal_error());
         if n.abs().x() > err.x() || n.abs().y() > err.y() || n.abs().z() > err.z() {
             return false;
         }
@@ -243,7 +251,7 @@ pub struct TriangleHit<F = f32> {
     pub v: F,
     /// The side the ray arrived from: the sign of the computed determinant
     /// (`dir . normal`), which is the exact sign whenever
-    /// [`ray_triangle_error_bounds`] for the hit is finite (it is infinite
+    /// [`hit_error`](crate::Surface::hit_error) for the hit is finite (it is infinite
     /// exactly when that sign is not certain: a ray within rounding of
     /// parallel, or a sliver seen edge-on).
     pub side: Side,

@@ -1,4 +1,4 @@
-//! Moller-Trumbore: [`ray_triangle_mt`], the fast test that is not
+//! Moller-Trumbore: [`Triangle::moller_trumbore`], the fast test that is not
 //! watertight, on lanes, held bit for bit to its definition
 //! (`super::definition::mt_definition`).
 
@@ -7,34 +7,44 @@ use crate::num::round::{bound_up, min2};
 use crate::num::{Bits, Lanes, Repr, S, Scalar, Vector, lanes};
 use crate::ray::Ray;
 
-/// Moller-Trumbore ray/triangle test: the fast path.
-///
-/// Moller and Trumbore, "Fast, Minimum Storage Ray/Triangle Intersection",
-/// JGT 1997: solve `origin + t dir = a + u (b - a) + v (c - a)` by Cramer's
-/// rule with the determinant `det = (b - a) . (dir x (c - a))`.
-///
-/// Same signature, conventions and invalid-input behaviour as
-/// [`ray_triangle`](crate::ray_triangle). **Not watertight**: `u`, `v` and `u + v <= 1` are
-/// tested on rounded values computed differently for each triangle, so a
-/// ray through a shared edge can miss both triangles. It agrees with
-/// [`ray_triangle`](crate::ray_triangle) away from edges.
-///
-/// The determinant test is relative, not an absolute epsilon: the ray is
-/// treated as parallel to the triangle when `|det|` is not larger than its
-/// own rounding error bound (a sum of products of the magnitudes that make
-/// it up), i.e. when the sign of `det` is not known. That test does not
-/// change when the scene or the direction is scaled.
-///
-/// ```
-/// use rayhit::{Ray, Side, Triangle, ray_triangle_mt, glam::Vec3};
-/// let tri = Triangle::new(Vec3::ZERO, Vec3::new(2.0, 0.0, 0.0), Vec3::new(0.0, 2.0, 0.0));
-/// let ray = Ray::new(Vec3::new(0.5, 0.25, -4.0), Vec3::new(0.0, 0.0, 2.0));
-/// let hit = ray_triangle_mt(&ray, &tri, f32::INFINITY).unwrap();
-/// assert_eq!((hit.t, hit.u, hit.v, hit.side), (2.0, 0.25, 0.125, Side::Back));
-/// ```
+impl<V: Vector> Triangle<V> {
+    /// The Moller-Trumbore ray/triangle test: the textbook fast path, not
+    /// watertight.
+    ///
+    /// Moller and Trumbore, "Fast, Minimum Storage Ray/Triangle Intersection",
+    /// JGT 1997: solve `origin + t dir = a + u (b - a) + v (c - a)` by Cramer's
+    /// rule with the determinant `det = (b - a) . (dir x (c - a))`.
+    ///
+    /// Same conventions and invalid-input behaviour as
+    /// [`ray_triangle`](crate::ray_triangle) (`0 < t <= t_max`, two-sided). **Not watertight**: `u`, `v` and `u + v <= 1` are
+    /// tested on rounded values computed differently for each triangle, so a
+    /// ray through a shared edge can miss both triangles. It agrees with
+    /// [`ray_triangle`](crate::ray_triangle) away from edges.
+    ///
+    /// The determinant test is relative, not an absolute epsilon: the ray is
+    /// treated as parallel to the triangle when `|det|` is not larger than its
+    /// own rounding error bound (a sum of products of the magnitudes that make
+    /// it up), i.e. when the sign of `det` is not known. That test does not
+    /// change when the scene or the direction is scaled.
+    ///
+    /// ```
+    /// use rayhit::{Ray, Side, Triangle, glam::Vec3};
+    /// let tri = Triangle::new(Vec3::ZERO, Vec3::new(2.0, 0.0, 0.0), Vec3::new(0.0, 2.0, 0.0));
+    /// let ray = Ray::new(Vec3::new(0.5, 0.25, -4.0), Vec3::new(0.0, 0.0, 2.0));
+    /// let hit = tri.moller_trumbore(&ray, f32::INFINITY).unwrap();
+    /// assert_eq!((hit.t, hit.u, hit.v, hit.side), (2.0, 0.25, 0.125, Side::Back));
+    /// ```
+    #[inline(always)]
+    #[must_use]
+    pub fn moller_trumbore(&self, ray: &Ray<V>, t_max: S<V>) -> Option<TriangleHit<S<V>>> {
+        ray_triangle_mt(ray, self, t_max)
+    }
+}
+
+/// Moller-Trumbore: see [`Triangle::moller_trumbore`].
 #[inline]
 #[must_use]
-pub fn ray_triangle_mt<V: Vector>(
+pub(crate) fn ray_triangle_mt<V: Vector>(
     ray: &Ray<V>,
     tri: &Triangle<V>,
     t_max: S<V>,

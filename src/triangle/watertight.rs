@@ -1,6 +1,6 @@
 //! The watertight test's fast paths: [`ray_triangle`] (every main axis at
-//! once, on lanes), [`ray_triangle_prepared`] (the three corners in lanes),
-//! and [`ray_triangle_one_hit`]; every rare case goes to the definition, out
+//! once, on lanes), [`Triangle`'s `hit` on a prepared ray](crate::Triangle#method.hit) (the three corners in lanes),
+//! and [`Triangle`'s `hit` with the one-hit rule](crate::Triangle#method.hit); every rare case goes to the definition, out
 //! of line, and a test holds each to it bit for bit.
 
 use super::conditioning::{
@@ -13,7 +13,7 @@ use crate::num::{Axis, Bits, L, Lanes, Repr, S, Scalar, Vector, lanes};
 use crate::ray::{PreparedRay, Ray, Shear, largest_axis, t_max_ok};
 
 /// The watertight test shared by [`ray_triangle`] and
-/// [`ray_triangle_one_hit`].
+/// [`Triangle`'s `hit` with the one-hit rule](crate::Triangle#method.hit).
 #[inline(always)]
 fn watertight<V: Vector>(
     ray: &Ray<V>,
@@ -433,8 +433,8 @@ fn plain_miss_lanes<V: Vector>(
 ///   point of its longest edge nearest the ray (where the ray passes the
 ///   segment, and then the reported `t`) exceeds its own error bound. Where
 ///   every corner is behind the origin there is no hit. A ray spawned from the triangle with
-///   [`offset_ray_origin`](crate::offset_ray_origin) does not hit it again.
-/// - `t`, `u` and `v` are within [`ray_triangle_error_bounds`](crate::ray_triangle_error_bounds) of the
+///   [`SurfacePoint::spawn`](crate::SurfacePoint::spawn) does not hit it again.
+/// - `t`, `u` and `v` are within [`Triangle`'s `hit_error`](crate::Triangle#method.hit_error) of the
 ///   exact crossing (where that bound is finite); `t` always lies between
 ///   the nearest and farthest corner's depth along the ray, up to rounding.
 /// - Triangles of zero area in the ray's sheared frame (after rounding),
@@ -446,7 +446,7 @@ fn plain_miss_lanes<V: Vector>(
 ///   (`|coordinate| < 2^63` in `f32`, `2^511` in `f64`).
 ///
 /// ```
-/// use rayhit::{Ray, Side, Triangle, ray_triangle, glam::Vec3};
+/// use rayhit::{Ray, Side, Triangle, glam::Vec3, ray_triangle};
 /// let tri = Triangle::new(Vec3::ZERO, Vec3::new(2.0, 0.0, 0.0), Vec3::new(0.0, 2.0, 0.0));
 /// let ray = Ray::new(Vec3::new(0.5, 0.25, 4.0), Vec3::new(0.0, 0.0, -2.0));
 /// let hit = ray_triangle(&ray, &tri, f32::INFINITY).unwrap();
@@ -467,24 +467,13 @@ pub fn ray_triangle<V: Vector>(
 
 /// [`ray_triangle`] on a [`PreparedRay`]: the same answer, bit for bit,
 /// without recomputing the ray's shear (three divisions) per triangle.
-///
-/// ```
-/// use rayhit::{PreparedRay, Ray, Triangle, ray_triangle, ray_triangle_prepared, glam::Vec3};
-/// let tri = Triangle::new(Vec3::ZERO, Vec3::new(2.0, 0.0, 0.0), Vec3::new(0.0, 2.0, 0.0));
-/// let ray = Ray::new(Vec3::new(0.5, 0.25, 4.0), Vec3::new(0.0, 0.0, -2.0));
-/// let prepared = PreparedRay::new(&ray);
-/// assert_eq!(
-///     ray_triangle_prepared(&prepared, &tri, f32::INFINITY),
-///     ray_triangle(&ray, &tri, f32::INFINITY),
-/// );
-/// ```
 // (Always inlined: it is the body of a traversal's inner loop, and its rare
 // paths are out of line. Left to the inliner, a program that calls it from
 // several places got one shared copy, which paid a call and returned its
 // answer through memory; BENCHMARKS.md has the measurement.)
 #[inline(always)]
 #[must_use]
-pub fn ray_triangle_prepared<V: Vector>(
+pub(crate) fn ray_triangle_prepared<V: Vector>(
     ray: &PreparedRay<V>,
     tri: &Triangle<V>,
     t_max: S<V>,
@@ -495,44 +484,10 @@ pub fn ray_triangle_prepared<V: Vector>(
     watertight_lanes(ray, tri, t_max)
 }
 
-/// The watertight test with exactly one hit per crossing of a mesh: each
-/// point of a shared edge or corner belongs to exactly one of the triangles
-/// around it.
-///
-/// Same test and guarantees as [`ray_triangle`], except for an edge function
-/// of exactly zero (the ray crosses the edge's line in the sheared plane).
-/// Instead of counting as inside, it is decided as if the ray were moved by
-/// an infinitesimal `(eps1, eps2)`, `0 < eps2 << eps1`, in its sheared plane
-/// (simulation of simplicity, Edelsbrunner and Mucke, 1990; the rasteriser's
-/// top-left rule is the same idea in screen space). The moved ray lies on no
-/// edge line, so every triangle's answer is the exact answer for the same
-/// moved ray.
-///
-/// What that gives: where a consistently wound mesh is, around the crossing
-/// point, a surface seen from one side (every interior edge shared by two
-/// triangles with bit-identical corners, and opposite directions), the ray
-/// hits exactly one triangle, so counting crossings gives the right parity
-/// for inside/outside tests and CSG. For a closed mesh the count is even
-/// for every ray line (up to the `t` range), even grazing a silhouette.
-///
-/// What it gives up: a point on the mesh's open boundary, or on the edge of
-/// a lone triangle, belongs to a triangle only if the perturbed ray is
-/// inside it, so about half of the boundary points hit nothing. Use
-/// [`ray_triangle`] for a lone triangle.
-///
-/// ```
-/// use rayhit::{Ray, Triangle, ray_triangle_one_hit, glam::Vec3};
-/// // Two triangles of the unit square, sharing the diagonal from (1,0) to (0,1).
-/// let (p00, p10, p01, p11) = (Vec3::ZERO, Vec3::X, Vec3::Y, Vec3::new(1.0, 1.0, 0.0));
-/// let mesh = [Triangle::new(p00, p10, p01), Triangle::new(p10, p11, p01)];
-/// // Straight down through the middle of the shared diagonal.
-/// let ray = Ray::new(Vec3::new(0.5, 0.5, 1.0), Vec3::new(0.0, 0.0, -1.0));
-/// let hits = mesh.iter().filter(|t| ray_triangle_one_hit(&ray, t, 10.0).is_some()).count();
-/// assert_eq!(hits, 1);
-/// ```
+/// [`ray_triangle`] with the one-hit edge rule (see [`Triangle`]'s `hit`): the definition, with `EdgeRule::OneHit`.
 #[inline]
 #[must_use]
-pub fn ray_triangle_one_hit<V: Vector>(
+pub(crate) fn ray_triangle_one_hit<V: Vector>(
     ray: &Ray<V>,
     tri: &Triangle<V>,
     t_max: S<V>,
@@ -543,6 +498,7 @@ pub fn ray_triangle_one_hit<V: Vector>(
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::IntersectLanes;
     use crate::testing::Draws;
     use glam::{DVec3, Vec3};
 
@@ -620,8 +576,8 @@ mod tests {
                     expected,
                     "{ray:?} {tri:?}"
                 );
-                if let Some(batch) = crate::TriangleBatch::<V, 8>::from_slice(&[tri]) {
-                    let h = crate::ray_triangle_batch(&prepared, &batch, t_max);
+                if let Some(batch) = crate::batch::TriangleBatch::<V, 8>::from_slice(&[tri]) {
+                    let h = batch.hit(&prepared, t_max);
                     let lane = (h.mask & 1 != 0).then(|| {
                         let side = if h.front & 1 != 0 {
                             Side::Front

@@ -15,9 +15,8 @@ use std::collections::HashMap;
 
 use rayhit::glam::{DVec3, Mat3, Vec3};
 use rayhit::{
-    Aabb, Interval, PreparedRay, Ray, Triangle, TriangleHit, ray_aabb_prepared,
-    ray_aabb_prepared_in, ray_triangle, ray_triangle_mt, ray_triangle_one_hit_in,
-    ray_triangle_prepared_occluded,
+    Aabb, Bounds, EdgeRule, Intersect, Interval, PreparedRay, Ray, Triangle, TriangleHit,
+    ray_triangle,
 };
 
 /// Which ray/triangle kernel a mesh is intersected with.
@@ -37,7 +36,7 @@ impl Kernel {
     pub fn name(self) -> &'static str {
         match self {
             Kernel::Watertight => "ray_triangle (watertight)",
-            Kernel::MollerTrumbore => "ray_triangle_mt (Moller-Trumbore)",
+            Kernel::MollerTrumbore => "moller_trumbore (Moller-Trumbore)",
         }
     }
 
@@ -46,7 +45,7 @@ impl Kernel {
     pub fn intersect(self, ray: &Ray, tri: &Triangle, t_max: f32) -> Option<TriangleHit> {
         match self {
             Kernel::Watertight => ray_triangle(ray, tri, t_max),
-            Kernel::MollerTrumbore => ray_triangle_mt(ray, tri, t_max),
+            Kernel::MollerTrumbore => tri.moller_trumbore(ray, t_max),
         }
     }
 }
@@ -412,7 +411,7 @@ impl Bvh {
         any: bool,
     ) -> Option<(TriangleHit, u32)> {
         let root = self.nodes.first()?;
-        ray_aabb_prepared(prepared, &root.bounds, t_max)?;
+        root.bounds.clip(prepared, t_max)?;
         let mut best = None;
         // A median split halves the triangles at each level, so the depth
         // is about log2(triangles / LEAF_SIZE); 64 levels is ample.
@@ -436,7 +435,10 @@ impl Bvh {
             }
             let (left, right) = (stack[len] + 1, node.index);
             let enter = |i: u32| {
-                ray_aabb_prepared(prepared, &self.nodes[i as usize].bounds, t_max).map(|(e, _)| e)
+                self.nodes[i as usize]
+                    .bounds
+                    .clip(prepared, t_max)
+                    .map(|(e, _)| e)
             };
             // Push the farther child first so that the nearer is visited
             // first and shrinks `t_max` for the other.
@@ -453,7 +455,7 @@ impl Bvh {
     pub fn occluded_in(&self, prepared: &PreparedRay, interval: Interval<f32>) -> bool {
         let mut window = interval;
         self.visit_in(prepared, &mut window, &mut |tri, _, window| {
-            ray_triangle_prepared_occluded(prepared, tri, *window)
+            tri.occluded(prepared, *window)
         })
     }
 
@@ -470,7 +472,7 @@ impl Bvh {
         let mut best = None;
         let mut window = interval;
         self.visit_in(prepared, &mut window, &mut |tri, id, window| {
-            if let Some(hit) = ray_triangle_one_hit_in(ray, tri, *window) {
+            if let Some(hit) = tri.hit(ray, (*window, EdgeRule::OneHit)) {
                 // The hit's `t` is in the window, above its lower end, so
                 // the shrunk window is valid; any nearer crossing is in it.
                 if let Some(nearer) = Interval::new(window.min(), hit.t) {
@@ -495,7 +497,7 @@ impl Bvh {
     ) {
         let mut window = interval;
         self.visit_in(prepared, &mut window, &mut |tri, id, window| {
-            if let Some(hit) = ray_triangle_one_hit_in(ray, tri, *window) {
+            if let Some(hit) = tri.hit(ray, (*window, EdgeRule::OneHit)) {
                 out.push((hit, id));
             }
             false
@@ -514,7 +516,7 @@ impl Bvh {
         let Some(root) = self.nodes.first() else {
             return false;
         };
-        if ray_aabb_prepared_in(prepared, &root.bounds, *window).is_none() {
+        if root.bounds.clip(prepared, *window).is_none() {
             return false;
         }
         let mut stack = [0u32; 64];
@@ -533,7 +535,9 @@ impl Bvh {
             }
             let (left, right) = (stack[len] + 1, node.index);
             let enter = |i: u32| {
-                ray_aabb_prepared_in(prepared, &self.nodes[i as usize].bounds, *window)
+                self.nodes[i as usize]
+                    .bounds
+                    .clip(prepared, *window)
                     .map(|(e, _)| e)
             };
             len = push_children(&mut stack, len, (left, enter(left)), (right, enter(right)));

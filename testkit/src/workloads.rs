@@ -20,7 +20,7 @@
 //! All of it is `f32`.
 
 use rayhit::glam::Vec3;
-use rayhit::{Aabb, PinholeCamera, Plane, Ray, Triangle};
+use rayhit::{Aabb, Camera, PinholeCamera, Plane, Ray, Triangle};
 
 /// Pairs per workload.
 pub const PAIRS: usize = 4096;

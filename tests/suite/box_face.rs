@@ -12,8 +12,7 @@ use proptest::prelude::*;
 use rayhit::glam::{DVec3, Vec3};
 use rayhit::strategies as strat;
 use rayhit::{
-    Aabb, AabbBatch, BoxFace, PreparedRay, Ray, Scalar, SurfacePoint, Vector, aabb_entry_face,
-    ray_aabb, ray_aabb_batch, ray_aabb_face, ray_aabb_prepared, ray_aabb_prepared_face,
+    Aabb, Bounds, BoxFace, Intersect, PreparedRay, Ray, Scalar, Vector, batch::AabbBatch, ray_aabb,
 };
 use rayhit_testkit::cases;
 use rayhit_testkit::cases::boxes;
@@ -31,20 +30,16 @@ fn check_generators<V: Vector>(cases: usize) -> (usize, usize, usize) {
         let mut rng = Source::seeded(seed ^ 0xface);
         for _ in 0..cases {
             let (aabb, ray, t_max) = generate(&mut rng);
-            let got = ray_aabb_face(&ray, &aabb, t_max);
+            let got = aabb.hit(&ray, t_max);
             assert_eq!(
                 got.map(|h| (h.enter, h.exit)),
                 ray_aabb(&ray, &aabb, t_max),
                 "{name}"
             );
             let prepared = PreparedRay::new(&ray);
+            assert_eq!(aabb.hit(&prepared, t_max), got, "{name}");
             assert_eq!(
-                ray_aabb_prepared_face(&prepared, &aabb, t_max),
-                got,
-                "{name}"
-            );
-            assert_eq!(
-                got.and_then(|_| aabb_entry_face(&prepared, &aabb)),
+                got.and_then(|_| aabb.hit(&prepared, S::<V>::INFINITY).and_then(|h| h.face)),
                 got.and_then(|h| h.face),
                 "{name}"
             );
@@ -116,7 +111,7 @@ fn every_face_is_reported<V: Vector>() {
         let dir = dir - n * S::<V>::from_f64(2.0);
         let origin = target - dir * S::<V>::from_f64(3.0);
         let ray = Ray::new(origin, target - origin);
-        let Some(hit) = ray_aabb_face(&ray, &aabb, S::<V>::INFINITY) else {
+        let Some(hit) = aabb.hit(&ray, S::<V>::INFINITY) else {
             // A target rounded off a grazing corner can miss; the exact
             // oracle says so.
             assert!(oracle::box_interval(&ray, &aabb, S::<V>::INFINITY).is_none());
@@ -178,10 +173,10 @@ fn spawn_leaves_the_box<V: Vector>(
     ray: Ray<V>,
     bounce: V,
 ) -> Result<(), TestCaseError> {
-    let Some(hit) = ray_aabb_face(&ray, &aabb, S::<V>::INFINITY) else {
+    let Some(hit) = aabb.hit(&ray, S::<V>::INFINITY) else {
         return Ok(());
     };
-    let Some(surface) = SurfacePoint::on_box(&ray, &aabb, &hit) else {
+    let Some(surface) = aabb.surface_point(&ray, &hit) else {
         prop_assert!(hit.face.is_none());
         return Ok(());
     };
@@ -213,14 +208,14 @@ proptest! {
 
     #[test]
     fn face_is_exact_f32((aabb, ray) in strat::aabb_and_ray::<Vec3>()) {
-        if let Some(hit) = ray_aabb_face(&ray, &aabb, f32::INFINITY) {
+        if let Some(hit) = aabb.hit(&ray, f32::INFINITY) {
             prop_assert_eq!(hit.face, oracle::box_face(&ray, &aabb).0);
         }
     }
 
     #[test]
     fn face_is_exact_f64((aabb, ray) in strat::aabb_and_ray::<DVec3>()) {
-        if let Some(hit) = ray_aabb_face(&ray, &aabb, f64::INFINITY) {
+        if let Some(hit) = aabb.hit(&ray, f64::INFINITY) {
             prop_assert_eq!(hit.face, oracle::box_face(&ray, &aabb).0);
         }
     }
@@ -240,15 +235,15 @@ proptest! {
     fn batch_lanes_get_their_faces((aabb, ray) in strat::aabb_and_ray::<Vec3>()) {
         let batch = AabbBatch::<Vec3, 8>::from_slice(&[aabb; 3]).expect("3 <= 8");
         let prepared = PreparedRay::new(&ray);
-        let hits = ray_aabb_batch(&prepared, &batch, f32::INFINITY);
+        let hits = batch.clip(&prepared, f32::INFINITY);
         for lane in 0..3 {
-            let expected = ray_aabb_prepared_face(&prepared, &aabb, f32::INFINITY);
+            let expected = aabb.hit(&prepared, f32::INFINITY);
             prop_assert_eq!(hits.get(lane).is_some(), expected.is_some());
             if let (Some(_), Some(b)) = (hits.get(lane), batch.get(lane)) {
-                prop_assert_eq!(aabb_entry_face(&prepared, &b), expected.and_then(|h| h.face));
+                prop_assert_eq!(b.hit(&prepared, f32::INFINITY).and_then(|h| h.face), expected.and_then(|h| h.face));
             }
         }
-        prop_assert_eq!(ray_aabb_prepared(&prepared, &aabb, f32::INFINITY).is_some(), hits.mask & 1 == 1);
+        prop_assert_eq!(aabb.clip(&prepared, f32::INFINITY).is_some(), hits.mask & 1 == 1);
     }
 }
 
@@ -263,11 +258,15 @@ fn invalid_input_has_no_face() {
         (ok, Aabb::new(Vec3::ONE, Vec3::ZERO)),
         (ok, Aabb::new(Vec3::ZERO, Vec3::INFINITY)),
     ] {
-        assert_eq!(ray_aabb_face(&ray, &aabb, f32::INFINITY), None);
-        assert_eq!(aabb_entry_face(&PreparedRay::new(&ray), &aabb), None);
+        assert_eq!(aabb.hit(&ray, f32::INFINITY), None);
+        assert_eq!(
+            aabb.hit(&PreparedRay::new(&ray), f32::INFINITY)
+                .and_then(|h| h.face),
+            None
+        );
     }
-    assert_eq!(ray_aabb_face(&ok, &b, f32::NAN), None);
-    assert_eq!(ray_aabb_face(&ok, &b, -1.0), None);
+    assert_eq!(b.hit(&ok, f32::NAN), None);
+    assert_eq!(b.hit(&ok, -1.0), None);
     // The exact sign comparison in a case the fast comparison cannot
     // decide: distances differing in the last bit.
     let near = 1.0f32;
@@ -275,9 +274,6 @@ fn invalid_input_has_no_face() {
         Vec3::new(-near, -near.next_up(), 0.5),
         Vec3::new(1.0, 1.0, 0.0),
     );
-    assert_eq!(
-        ray_aabb_face(&ray, &b, 10.0).and_then(|h| h.face),
-        Some(BoxFace::MinY)
-    );
+    assert_eq!(b.hit(&ray, 10.0).and_then(|h| h.face), Some(BoxFace::MinY));
     let _ = <f32 as Scalar>::ONE;
 }

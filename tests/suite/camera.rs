@@ -6,7 +6,7 @@ use num_traits::Signed;
 use proptest::prelude::*;
 use rayhit::glam::{DMat4, DVec3, DVec4, Vec3};
 use rayhit::strategies as strat;
-use rayhit::{CameraError, PinholeCamera, Scalar, Vector};
+use rayhit::{Camera, CameraSample, PinholeCamera, Scalar, Vector, camera::CameraError};
 use rayhit_testkit::oracle;
 use rayhit_testkit::oracle::{R, gamma, rv};
 
@@ -51,7 +51,7 @@ fn camera<V: Vector>() -> impl Strategy<Value = PinholeCamera<V>> {
 /// the result's length is within `gamma(6)` of 1, and its square within
 /// `2 gamma(6) + gamma(6)^2`.
 fn check_unit<V: Vector>(cam: PinholeCamera<V>, x: f64, y: f64) -> Result<(), TestCaseError> {
-    let ray = cam.ray(S::<V>::from_f64(x), S::<V>::from_f64(y));
+    let ray = cam.ray(CameraSample::new(S::<V>::from_f64(x), S::<V>::from_f64(y)));
     let d = rv(ray.dir);
     let len2 = oracle::dot(&d, &d);
     let g = gamma::<S<V>>(6);
@@ -176,7 +176,10 @@ fn check_glam(
         p.truncate() / p.w
     };
     let expect: DVec3 = (unproject(1.0) - unproject(0.0)).normalize();
-    let got = cam.ray(x as f32, y as f32).dir.as_dvec3();
+    let got = cam
+        .ray(CameraSample::new(x as f32, y as f32))
+        .dir
+        .as_dvec3();
 
     let u = f64::from(f32::UNIT_ROUNDOFF);
     let g = |n: f64| n * u / (1.0 - n * u);

@@ -5,7 +5,10 @@
 //! More cases: `CAMERA_CASES=100000 cargo test --release --test suite cameras::`.
 
 use rayhit::glam::{DVec3, Vec3};
-use rayhit::{CameraError, PinholeCamera, ThinLensCamera};
+use rayhit::{
+    Camera, CameraSample, PinholeCamera,
+    camera::{CameraError, ThinLensCamera},
+};
 use rayhit_testkit::fuzz::{Check, Input};
 use rayhit_testkit::source::Source;
 
@@ -49,12 +52,15 @@ fn thin_lens_by_hand() {
     // The pixel to the right: its focus point is half a unit over (one
     // pixel is 4 / 8 units on the plane of focus).
     assert_eq!(cam.focus(2.5, 1.5).point(), Vec3::new(0.5, 0.0, -4.0));
-    let diff = cam.ray_differential(1.5, 1.5, 1.0, 0.5);
+    let diff = cam.ray_differential(CameraSample::new(1.5, 1.5).with_lens(1.0, 0.5));
     assert_eq!(diff.dx_dir, Vec3::new(0.5, 0.0, 0.0));
     assert_eq!(diff.dy_dir, Vec3::new(0.0, -0.5, 0.0));
     // Zero radius: the pinhole camera, bit for bit, whatever the sample.
     let flat = ThinLensCamera::new(pinhole, 0.0, 4.0).unwrap();
-    assert_eq!(flat.ray(0.3, 2.9, 0.1, 0.7), pinhole.ray(0.3, 2.9));
+    assert_eq!(
+        flat.ray(CameraSample::new(0.3, 2.9).with_lens(0.1, 0.7)),
+        pinhole.ray(CameraSample::new(0.3, 2.9))
+    );
     // One error per bad input.
     let err = |r: f32, d: f32| ThinLensCamera::new(pinhole, r, d).err();
     for bad in [-1.0, f32::NAN, f32::INFINITY] {
@@ -78,7 +84,7 @@ fn orthographic_checks() {
 /// (0, 0) is `(0.125 * (0.5 - 2), 1000, ...)`.
 #[test]
 fn orthographic_by_hand() {
-    use rayhit::OrthographicCamera;
+    use rayhit::camera::OrthographicCamera;
     let cam = OrthographicCamera::new(
         Vec3::new(3.0, 1000.0, -2.0),
         -Vec3::Y,
@@ -91,7 +97,7 @@ fn orthographic_by_hand() {
     let ray = cam.pixel_ray(0, 0);
     assert_eq!(ray.origin, Vec3::new(3.0 - 0.1875, 1000.0, -2.0 - 0.1875));
     assert_eq!(ray.dir, -Vec3::Y);
-    let diff = cam.ray_differential(0.5, 0.5);
+    let diff = cam.ray_differential(CameraSample::new(0.5, 0.5));
     assert_eq!(diff.dx_origin, Vec3::new(0.125, 0.0, 0.0));
     assert_eq!(diff.dy_origin, Vec3::new(0.0, 0.0, 0.125));
     assert_eq!(cam.ray_cone().width, 0.125);
@@ -150,7 +156,10 @@ fn pinhole_checks() {
 #[test]
 fn matrix_agrees_with_pinhole() {
     use rayhit::glam::camera::rh::{proj::directx, view};
-    use rayhit::{ClipSpace, MatrixCamera, Scalar};
+    use rayhit::{
+        Scalar,
+        camera::{ClipSpace, MatrixCamera},
+    };
     let mut src = Source::seeded(0xa9e5);
     let u = f64::from(f32::UNIT_ROUNDOFF);
     let g = |n: u32| f64::from(f32::gamma_n(n));
@@ -222,9 +231,9 @@ fn matrix_agrees_with_pinhole() {
 /// runs down `-z`; Vulkan's `y` runs the other way.
 #[test]
 fn matrix_camera_by_hand() {
+    use rayhit::camera::{ClipSpace, MatrixCamera};
     use rayhit::glam::camera::rh::{proj::directx, proj::vulkan, view};
     use rayhit::glam::{Mat4, Vec4};
-    use rayhit::{ClipSpace, MatrixCamera};
     let v = view::look_to_mat4(Vec3::new(0.0, 0.0, 10.0), -Vec3::Z, Vec3::Y);
     let p = directx::orthographic(-2.0, 2.0, -1.0, 1.0, 1.0, 21.0);
     let cam = MatrixCamera::from_mat4(v, p, ClipSpace::Direct3D, 4, 2).unwrap();

@@ -6,8 +6,8 @@ use num_traits::Zero;
 use proptest::prelude::*;
 use rayhit::glam::{DVec3, Vec3};
 use rayhit::{
-    PreparedRay, Ray, Scalar, Side, SurfacePoint, Triangle, TriangleBatch, Vector, ray_triangle,
-    ray_triangle_batch, ray_triangle_error_bounds, ray_triangle_one_hit,
+    EdgeRule, Intersect, IntersectLanes, PreparedRay, Ray, Scalar, Side, Surface, Triangle, Vector,
+    batch::TriangleBatch, ray_triangle,
 };
 use rayhit_testkit::cases;
 use rayhit_testkit::oracle;
@@ -146,9 +146,9 @@ fn hits_are_safe<V: Vector>() {
             lo - slack <= th && th <= hi + slack,
             "{t:?} {ray:?} {hit:?} {z:?}"
         );
-        let (n, err) = t.normal_with_error();
+        let (n, err) = (t.normal(), t.normal_error());
         assert!(n.is_finite() && err.is_finite(), "{t:?}");
-        let surface = SurfacePoint::on_triangle(&t, &hit);
+        let surface = t.surface_point_at(hit.u, hit.v);
         assert!(surface.point.is_finite() && surface.point_error.is_finite());
         for dir in [ray.dir, -ray.dir, n, cases::v::<V>(rng.direction())] {
             let spawned = surface.spawn(dir);
@@ -272,8 +272,7 @@ fn t_junctions<V: Vector>() {
             let hits = found.map(|h| h.is_some());
             // The batch (the filler's lane marked zero-area when stored)
             // gives the scalar answers, bit for bit.
-            let lanes =
-                batch.map(|b| ray_triangle_batch(&PreparedRay::new(&ray), &b, S::<V>::INFINITY));
+            let lanes = batch.map(|b| b.hit(&PreparedRay::new(&ray), S::<V>::INFINITY));
             for (k, h) in found.iter().enumerate() {
                 assert_eq!(
                     lanes
@@ -298,7 +297,7 @@ fn t_junctions<V: Vector>() {
                 if k < 3 && rays % 16 != 0 {
                     continue;
                 }
-                let err = ray_triangle_error_bounds(&ray, tri, &hit);
+                let err = tri.hit_error(&ray, &hit);
                 let exact = if k == 3 {
                     oracle::segment_crossing(&ray, tri)
                 } else {
@@ -322,7 +321,7 @@ fn t_junctions<V: Vector>() {
             // filler, wound the other way there, is hit from the back.)
             let signed: i32 = tris
                 .iter()
-                .filter_map(|tri| ray_triangle_one_hit(&ray, tri, S::<V>::INFINITY))
+                .filter_map(|tri| tri.hit(&ray, (S::<V>::INFINITY, EdgeRule::OneHit)))
                 .map(|h| if h.side == Side::Front { 1 } else { -1 })
                 .sum();
             assert_eq!(signed.abs(), 1, "{ray:?} {tris:?}");

@@ -10,9 +10,8 @@
 
 use rayhit::glam::{DVec3, Vec3};
 use rayhit::{
-    Aabb, PinholeCamera, Plane, Ray, Side, Triangle, TriangleHit, ray_aabb, ray_aabb_naive,
-    ray_plane, ray_plane_hit_point, ray_plane_t_error, ray_triangle, ray_triangle_error_bounds,
-    ray_triangle_mt,
+    Aabb, Camera, CameraSample, PinholeCamera, Plane, Ray, Side, Surface, SurfacePoint, Triangle,
+    TriangleHit, ray_aabb, ray_plane, ray_triangle,
 };
 use rayhit_testkit::oracle;
 use rayhit_testkit::oracle::{R, r};
@@ -38,7 +37,7 @@ fn plane_raw_input_with_unbounded_error() {
     let t_max = f32::from_bits(0x00ef_0bac);
     if let Some(t) = ray_plane(&ray, &plane, t_max) {
         assert!(t > 0.0 && t <= t_max);
-        assert!(!ray_plane_t_error(&ray, &plane, t).is_nan());
+        assert!(!plane.hit_error(&ray, &t).is_nan());
     }
 }
 
@@ -58,7 +57,7 @@ fn aabb_diagonal_through_two_corners() {
     let (ee, xx) = oracle::box_interval(&ray, &b, t_max).expect("exact hit");
     assert!(r(exit) >= xx);
     assert!(r(enter) <= xx && ee > R::from_integer(0.into()));
-    assert!(ray_aabb_naive(&ray, &b, t_max).is_some());
+    assert!(b.clip_by_faces(&ray, t_max).is_some());
 }
 
 /// `camera` (raw): a finite, nonzero view direction whose squared length
@@ -118,7 +117,10 @@ fn plane_hit_point_bound_with_underflow() {
         bits([0x3a2b_3f5f, 0x4000_f7fb, 0x0000_00ff]),
     );
     let t = ray_plane(&ray, &plane, f32::INFINITY).expect("hit");
-    let (p, err) = ray_plane_hit_point(&ray, &plane, t);
+    let (p, err) = {
+        let s = plane.surface_point(&ray, &t);
+        (s.point, s.point_error)
+    };
     // Outside the precondition: a product of the hit point underflows.
     let td = ray.dir * t;
     let underflows = |j: usize| ray.dir[j] != 0.0 && td[j].abs() < f32::MIN_POSITIVE;
@@ -155,8 +157,11 @@ fn plane_hit_point_bound_is_never_nan() {
     // certain); the hit point function still gets any `t` a caller passes.
     assert_eq!(ray_plane(&ray, &plane, f32::INFINITY), None);
     let t = 0.125;
-    assert!(ray_plane_t_error(&ray, &plane, t).is_infinite());
-    let (p, err) = ray_plane_hit_point(&ray, &plane, t);
+    assert!(plane.hit_error(&ray, &t).is_infinite());
+    let (p, err) = {
+        let s = plane.surface_point(&ray, &t);
+        (s.point, s.point_error)
+    };
     assert!(!err.is_nan(), "bound {err}");
     // x is exact; its bound is the rounding term alone,
     // bound_up(gamma(2) |o_x|, 3) = (2u / (1 - 2u)) (1 + gamma(4)) |o_x|
@@ -212,7 +217,7 @@ fn aabb_naive_distances_underflow() {
     let (ee, xx) = oracle::box_interval(&ray, &b, t_max).expect("exact hit");
     let (enter, exit) = ray_aabb(&ray, &b, t_max).expect("slab hit");
     assert!(r(exit) >= xx && r(enter) <= xx && ee >= R::from_integer(0.into()));
-    let (e, x) = ray_aabb_naive(&ray, &b, t_max).expect("naive hit");
+    let (e, x) = b.clip_by_faces(&ray, t_max).expect("naive hit");
     assert!(0.0 <= e && e <= x && x <= t_max);
 }
 
@@ -254,7 +259,14 @@ fn spawn_from_plane_nearly_parallel_goes_to_the_wrong_side() {
         r(computed.abs()) <= oracle::gamma::<f32>(3) * magnitude,
         "outside the documented precondition"
     );
-    let origin = rayhit::offset_ray_origin(point, point_error, plane.normal, Vec3::ZERO, dir);
+    let origin = SurfacePoint {
+        point,
+        point_error,
+        normal: plane.normal,
+        normal_error: Vec3::ZERO,
+    }
+    .spawn(dir)
+    .origin;
     assert!(origin.is_finite());
 }
 
@@ -272,8 +284,18 @@ fn spawn_from_plane_hit_at_subnormal_t() {
     let dir = Vec3::splat(b);
     let t = ray_plane(&ray, &plane, f32::INFINITY).expect("hit");
     assert!(t < f32::MIN_POSITIVE, "t = {t} is subnormal");
-    let (p, err) = ray_plane_hit_point(&ray, &plane, t);
-    let origin = rayhit::offset_ray_origin(p, err, plane.normal, Vec3::ZERO, dir);
+    let (p, err) = {
+        let s = plane.surface_point(&ray, &t);
+        (s.point, s.point_error)
+    };
+    let origin = SurfacePoint {
+        point: p,
+        point_error: err,
+        normal: plane.normal,
+        normal_error: Vec3::ZERO,
+    }
+    .spawn(dir)
+    .origin;
     assert!(p.is_finite() && err.is_finite() && origin.is_finite());
 }
 
@@ -327,7 +349,7 @@ fn triangle_nan_t_max_is_a_miss() {
     );
     let ray = Ray::new(Vec3::new(0.5, 0.25, 4.0), Vec3::new(0.0, 0.0, -2.0));
     assert!(ray_triangle(&ray, &tri, f32::NAN).is_none());
-    assert!(ray_triangle_mt(&ray, &tri, f32::NAN).is_none());
+    assert!(tri.moller_trumbore(&ray, f32::NAN).is_none());
     assert!(ray_triangle(&ray, &tri, f32::INFINITY).is_some());
 }
 
@@ -355,7 +377,7 @@ fn triangle_subnormal_lift_outside_the_error_band() {
         v: 0.25,
         side: Side::Front,
     };
-    let err = ray_triangle_error_bounds(&ray, &tri, &probe);
+    let err = tri.hit_error(&ray, &probe);
     assert!(!err.t.is_nan() && !err.u.is_nan() && !err.v.is_nan());
     // Outside the precondition: the lift times a unit coordinate is a
     // subnormal product in the edge functions.
@@ -482,7 +504,7 @@ fn aabb_naive_false_hit_by_underflow() {
     assert_eq!(oracle::box_interval(&ray, &b, t_max), None);
     assert_eq!(ray_aabb(&ray, &b, t_max), None);
     // The naive answer (a hit, today) is allowed; it must be in range.
-    if let Some((e, x)) = ray_aabb_naive(&ray, &b, t_max) {
+    if let Some((e, x)) = b.clip_by_faces(&ray, t_max) {
         assert!(0.0 <= e && e <= x && x <= t_max);
     }
 }
@@ -518,7 +540,7 @@ fn triangle_underflowing_shear_factor() {
     assert!(ray.dir.z != 0.0 && ray.dir.z / ray.dir.y == 0.0);
     if let Some(hit) = ray_triangle(&ray, &tri, t_max) {
         assert!(hit.t > 0.0 && hit.t <= t_max);
-        let err = ray_triangle_error_bounds(&ray, &tri, &hit);
+        let err = tri.hit_error(&ray, &hit);
         assert!(!err.t.is_nan());
     }
 }
@@ -566,7 +588,7 @@ fn triangle_conservative_t_rejection_near_the_origin() {
             v: oracle::to_f64(&v) as f32,
             side: Side::Back,
         };
-        let err = ray_triangle_error_bounds(&ray, &tri, &probe);
+        let err = tri.hit_error(&ray, &probe);
         let int = |n: i64| R::from_integer(n.into());
         let band = int(2) * r(err.t) / (int(1) - int(3) * r(err.u.max(err.v)));
         assert!(t_exact <= band, "a miss outside the conservative band");
@@ -607,7 +629,7 @@ fn triangle_hit_parallel_to_the_plane_has_infinite_bounds() {
     assert!(exact.t.is_none(), "exactly parallel");
     if let Some(hit) = ray_triangle(&ray, &tri, f64::INFINITY) {
         assert!(hit.t > 0.0 && hit.t.is_finite());
-        let err = ray_triangle_error_bounds(&ray, &tri, &hit);
+        let err = tri.hit_error(&ray, &hit);
         assert!(err.t.is_infinite() && err.u.is_infinite() && err.v.is_infinite());
     }
 }
@@ -751,11 +773,14 @@ fn aabb_false_hit_band_with_subnormal_reciprocals() {
 /// bit, and now it is, whatever the sample.
 #[test]
 fn thin_lens_zero_radius_with_nan_sample_is_the_pinhole() {
-    use rayhit::ThinLensCamera;
+    use rayhit::camera::ThinLensCamera;
     let pinhole = PinholeCamera::new(Vec3::ZERO, -Vec3::Z, Vec3::Y, 100.0, 64, 64).unwrap();
     let cam = ThinLensCamera::new(pinhole, 0.0, 3.0).unwrap();
     for (s, t) in [(0.1, f32::NAN), (f32::NAN, f32::NAN), (f32::INFINITY, 0.3)] {
-        assert_eq!(cam.ray(10.0, 10.0, s, t), pinhole.ray(10.0, 10.0));
+        assert_eq!(
+            cam.ray(CameraSample::new(10.0, 10.0).with_lens(s, t)),
+            pinhole.ray(CameraSample::new(10.0, 10.0))
+        );
     }
 }
 
@@ -770,7 +795,7 @@ fn thin_lens_zero_radius_with_nan_sample_is_the_pinhole() {
 /// the bounds for that basis.
 #[test]
 fn panorama_round_trip_with_a_nearly_parallel_up_vector() {
-    use rayhit::{EqualAreaCamera, EquirectangularCamera};
+    use rayhit::camera::{EqualAreaCamera, EquirectangularCamera};
     use rayhit_testkit::fuzz::panoramic::{
         basis_skew, equal_area_round_trip, equirectangular_round_trip,
     };
@@ -781,7 +806,9 @@ fn panorama_round_trip_with_a_nearly_parallel_up_vector() {
     let g13 = f64::from(<f32 as rayhit::Scalar>::gamma_n(13));
     // basis_skew is never below gamma(13): equal means within it.
     assert_eq!(basis_skew([equi.right(), equi.up(), equi.forward()]), g13);
-    let (x, y) = equi.raster_position(equi.ray(0.5, 0.5).dir).unwrap();
+    let (x, y) = equi
+        .raster_position(equi.ray(CameraSample::new(0.5, 0.5)).dir)
+        .unwrap();
     let (bx, by) = equirectangular_round_trip::<f32>(1, 1, 0.0, g13);
     let (ex, ey) = ((x - 0.5).abs() as f64, (y - 0.5).abs() as f64);
     assert!(ex <= bx && ey <= by, "({ex}, {ey}) beyond ({bx}, {by})");
@@ -796,7 +823,9 @@ fn panorama_round_trip_with_a_nearly_parallel_up_vector() {
     let g13 = <f64 as rayhit::Scalar>::gamma_n(13);
     assert_eq!(basis_skew([area.right(), area.up(), area.forward()]), g13);
     let (bx, by) = equal_area_round_trip::<f64>(1, 1, g13);
-    let (x, y) = area.raster_position(area.ray(0.5, 0.5).dir).unwrap();
+    let (x, y) = area
+        .raster_position(area.ray(CameraSample::new(0.5, 0.5)).dir)
+        .unwrap();
     assert!((x - 0.5).abs() <= bx && (y - 0.5).abs() <= by);
 }
 
@@ -808,7 +837,7 @@ fn panorama_round_trip_with_a_nearly_parallel_up_vector() {
 /// meets the focus point exactly.
 #[test]
 fn thin_lens_subnormal_radius_meets_the_focus_point() {
-    use rayhit::ThinLensCamera;
+    use rayhit::camera::ThinLensCamera;
     let pinhole = PinholeCamera::new(
         Vec3::new(100000.0, -30000.0, 200000.0),
         Vec3::X,
@@ -822,7 +851,7 @@ fn thin_lens_subnormal_radius_meets_the_focus_point() {
     let focus = cam.focus(0.5, 1079.5);
     let ray = cam.ray_through(&focus, 0.3, 0.7);
     assert_eq!(ray.at(1.0), focus.point());
-    assert_ne!(ray, pinhole.ray(0.5, 1079.5));
+    assert_ne!(ray, pinhole.ray(CameraSample::new(0.5, 1079.5)));
 }
 
 // `equal_area` (structured, f64), `equirectangular` (structured, f64) and

@@ -51,8 +51,8 @@
 use rayhit::exact::{self, AffineMap};
 use rayhit::glam::{DVec3, Vec3};
 use rayhit::{
-    Instance, InstanceRayError, PreparedRay, Ray, Scalar, Triangle, Vector, ray_triangle_one_hit,
-    ray_triangle_prepared,
+    EdgeRule, Instance, Intersect, PreparedRay, Ray, Scalar, Triangle, Vector,
+    instance::InstanceRayError,
 };
 use rayhit_testkit::cases::{c, v};
 use rayhit_testkit::mesh;
@@ -391,12 +391,12 @@ fn check_ray<V: Vector>(
     let closed = solid
         .tris
         .iter()
-        .filter(|t| ray_triangle_prepared(&prepared, t, inf).is_some())
+        .filter(|t| t.hit(&prepared, inf).is_some())
         .count();
     let one = solid
         .tris
         .iter()
-        .filter(|t| ray_triangle_one_hit(&object, t, inf).is_some())
+        .filter(|t| t.hit(&object, (inf, EdgeRule::OneHit)).is_some())
         .count();
     tally.counts[one.min(4)] += 1;
     let convex = solid.shape == Shape::Sphere;

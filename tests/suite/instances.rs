@@ -32,8 +32,9 @@ use num_traits::{Signed, Zero};
 use rayhit::exact::{self, AffineMap};
 use rayhit::glam::{DVec3, Vec3};
 use rayhit::{
-    Aabb, Instance, InstanceError, InstanceRayError, Interval, Ray, Scalar, SurfacePoint, Triangle,
-    Vector, ray_triangle, ray_triangle_in,
+    Aabb, Instance, Intersect, Interval, Ray, Scalar, Surface, SurfacePoint, Triangle, Vector,
+    instance::{InstanceError, InstanceRayError},
+    ray_triangle,
 };
 use rayhit_testkit::oracle::{R, dot, r, rv};
 use rayhit_testkit::source::Source;
@@ -363,7 +364,7 @@ fn spawns<V: Vector>(seed: u64, n: usize) -> Spawns {
             continue;
         };
         out.hits += 1;
-        let osp = SurfacePoint::on_triangle(&tri, &hit);
+        let osp = tri.surface_point(&object, &hit);
         let wsp = insts
             .iter()
             .rev()
@@ -520,7 +521,7 @@ fn segments<V: Vector>(
     let end = insts
         .iter()
         .rev()
-        .fold(SurfacePoint::on_triangle(&far, &hit), |sp, inst| {
+        .fold(far.surface_point_at(hit.u, hit.v), |sp, inst| {
             inst.surface_to_world(&sp)
         });
     let light = wsp.point + (wt - wsp.point) * S::<V>::from_f64(src.range(0.5, 2.0));
@@ -535,8 +536,7 @@ fn segments<V: Vector>(
         out.segments += 1;
         let obj = back(&ray);
         let reported = |obj: &Ray<V>, interval| {
-            ray_triangle_in(obj, tri, interval).is_some()
-                || (to_far && ray_triangle_in(obj, &far, interval).is_some())
+            tri.hit(obj, interval).is_some() || (to_far && far.hit(obj, interval).is_some())
         };
         let crossed = |obj: &Ray<V>| {
             crossing_where(obj, tri, |t| !t.is_negative())

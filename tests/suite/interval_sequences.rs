@@ -55,8 +55,8 @@
 use rayhit::exact::{self, oracle};
 use rayhit::glam::{DVec3, Vec3};
 use rayhit::{
-    Aabb, Interval, PreparedRay, Ray, Scalar, Triangle, TriangleHit, Vector, ray_aabb,
-    ray_triangle_error_bounds, ray_triangle_in, ray_triangle_one_hit_in, ray_triangle_prepared_in,
+    Aabb, EdgeRule, Intersect, Interval, PreparedRay, Ray, Scalar, Surface, Triangle, TriangleHit,
+    Vector, ray_aabb,
 };
 use rayhit_testkit::mesh::{self, Mesh};
 use rayhit_testkit::rng::Pcg32;
@@ -171,7 +171,7 @@ fn windows<V: Vector>(
         };
         // The window with the margin: the nearest hit's `t*` is within the
         // bound of its `t`, so the nearest hit is in it.
-        let err = ray_triangle_error_bounds(ray, tri, &hit).t;
+        let err = tri.hit_error(ray, &hit).t;
         let wide = (hit.t + err).next_up();
         let wide = if wide.is_finite() { wide } else { inf };
         // Tight: up to the nearest hit's `t`; empty when its `t*` is above
@@ -204,7 +204,7 @@ fn prepared_in<V: Vector>(
     tri: &Triangle<V>,
     i: Interval<S<V>>,
 ) -> Option<TriangleHit<S<V>>> {
-    ray_triangle_prepared_in(&PreparedRay::new(ray), tri, i)
+    tri.hit(&PreparedRay::new(ray), i)
 }
 
 #[derive(Default, Debug)]
@@ -295,9 +295,9 @@ fn check_ray<V: Vector>(
     tally.clear_rays += usize::from(all_clear);
     for (one_hit, kernel, margin) in [
         (false, prepared_in::<V> as Kernel<V>, true),
-        (true, ray_triangle_one_hit_in::<V>, true),
+        (true, one_hit_in::<V>, true),
         (false, prepared_in::<V>, false),
-        (true, ray_triangle_one_hit_in::<V>, false),
+        (true, one_hit_in::<V>, false),
     ] {
         let (seq, count) = windows(ray, tris, kernel, margin);
         tally.windows += count;
@@ -309,9 +309,9 @@ fn check_ray<V: Vector>(
         assert_eq!(ids.len(), n, "a triangle reported twice: {ray:?} {seq:?}");
         // No skip: the same test over (0, inf] in one call.
         let single = if one_hit {
-            ray_triangle_one_hit_in::<V>
+            one_hit_in::<V>
         } else {
-            ray_triangle_in::<V>
+            closed_in::<V>
         };
         let expected: Vec<usize> = (0..tris.len())
             .filter(|&i| single(ray, &tris[i], all).is_some())
@@ -574,4 +574,22 @@ mod properties {
             }
         }
     }
+}
+
+/// The closed rule over an interval, as a [`Kernel`].
+fn closed_in<V: Vector>(
+    ray: &Ray<V>,
+    tri: &Triangle<V>,
+    window: Interval<S<V>>,
+) -> Option<TriangleHit<S<V>>> {
+    tri.hit(ray, window)
+}
+
+/// The one-hit rule over an interval, as a [`Kernel`].
+fn one_hit_in<V: Vector>(
+    ray: &Ray<V>,
+    tri: &Triangle<V>,
+    window: Interval<S<V>>,
+) -> Option<TriangleHit<S<V>>> {
+    tri.hit(ray, (window, EdgeRule::OneHit))
 }

@@ -58,8 +58,8 @@ use rayhit::exact::num_traits::Signed;
 use rayhit::exact::{self, Rational, oracle};
 use rayhit::glam::{DVec3, Vec3};
 use rayhit::{
-    Aabb, BoxFace, Interval, Plane, PreparedRay, Ray, Scalar, Vector, ray_aabb, ray_aabb_face_in,
-    ray_aabb_in, ray_aabb_prepared_face_in, ray_aabb_prepared_in, ray_plane, ray_plane_in,
+    Aabb, Bounds, BoxFace, Intersect, Interval, Plane, PreparedRay, Ray, Scalar, Vector, ray_aabb,
+    ray_plane,
 };
 use rayhit_testkit::rng::Pcg32;
 
@@ -253,7 +253,7 @@ fn plane_window<V: Vector>(
     tally: &mut Tally,
 ) -> Option<S<V>> {
     let window = Interval::new(lo, hi).unwrap();
-    let got = ray_plane_in(ray, plane, window);
+    let got = plane.hit(ray, window);
     let expected = t_star.is_some_and(|t| in_window(t, lo, hi));
     assert_eq!(
         got.is_some(),
@@ -346,7 +346,7 @@ fn plane_cases<V: Vector>(seed: u64, n: usize) -> Tally {
                 if plain.is_some() && oracle::plane_clear(&ray, &plane, t_max) {
                     let window = Interval::up_to(t_max).unwrap();
                     assert_eq!(
-                        ray_plane_in(&ray, &plane, window).map(bits),
+                        plane.hit(&ray, window).map(bits),
                         plain.map(bits),
                         "{ray:?} {plane:?} {t_max:?}"
                     );
@@ -395,7 +395,7 @@ fn plane_partition<V: Vector>(
     let cuts = partition::<V>(rng, t_star);
     let reports = cuts
         .windows(2)
-        .filter(|w| ray_plane_in(ray, plane, Interval::new(w[0], w[1]).unwrap()).is_some())
+        .filter(|w| plane.hit(ray, Interval::new(w[0], w[1]).unwrap()).is_some())
         .count();
     let expected = t_star.is_some_and(|t| in_window(t, S::<V>::ZERO, S::<V>::INFINITY));
     assert_eq!(reports, usize::from(expected), "{cuts:?} {ray:?} {plane:?}");
@@ -561,15 +561,12 @@ fn box_window<V: Vector>(
     tally: &mut Tally,
 ) -> Answer<S<V>> {
     let window = Interval::new(lo, hi).unwrap();
-    let got = ray_aabb_in(ray, b, window);
+    let got = b.clip(ray, window);
     let prepared = PreparedRay::new(ray);
     let pair_bits = |h: Option<(S<V>, S<V>)>| h.map(|(e, x)| (bits(e), bits(x)));
-    assert_eq!(
-        pair_bits(ray_aabb_prepared_in(&prepared, b, window)),
-        pair_bits(got)
-    );
-    let face_hit = ray_aabb_face_in(ray, b, window);
-    assert_eq!(ray_aabb_prepared_face_in(&prepared, b, window), face_hit);
+    assert_eq!(pair_bits(b.clip(&prepared, window)), pair_bits(got));
+    let face_hit = b.hit(ray, window);
+    assert_eq!(b.hit(&prepared, window), face_hit);
     assert_eq!(
         pair_bits(face_hit.map(|h| (h.enter, h.exit))),
         pair_bits(got)
@@ -688,7 +685,7 @@ fn box_cases<V: Vector>(seed: u64, n: usize) -> Tally {
             // (0, t_max]: ray_aabb's answer, bit for bit.
             for &t_max in ends.iter().chain([&inf]) {
                 let all = Interval::up_to(t_max).unwrap();
-                assert_eq!(ray_aabb_in(&ray, &b, all), ray_aabb(&ray, &b, t_max));
+                assert_eq!(b.clip(&ray, all), ray_aabb(&ray, &b, t_max));
             }
             // A partition: the entry face once.
             let cuts = partition::<V>(&mut rng, ex.face.as_ref().map(|f| &f.1));
@@ -696,7 +693,7 @@ fn box_cases<V: Vector>(seed: u64, n: usize) -> Tally {
                 .windows(2)
                 .filter(|w| {
                     let window = Interval::new(w[0], w[1]).unwrap();
-                    ray_aabb_face_in(&ray, &b, window).is_some_and(|h| h.face.is_some())
+                    b.hit(&ray, window).is_some_and(|h| h.face.is_some())
                 })
                 .count();
             let entry_ahead = ex
@@ -797,21 +794,18 @@ fn bad_input_misses() {
     let floor = Plane::new(Vec3::ZERO, Vec3::Y);
     let unit = Aabb::new(Vec3::ZERO, Vec3::ONE);
     let ray = Ray::new(Vec3::new(0.5, 2.0, 0.5), Vec3::NEG_Y);
-    assert_eq!(ray_plane_in(&ray, &floor, all), Some(2.0));
-    assert!(ray_aabb_in(&ray, &unit, all).is_some());
+    assert_eq!(floor.hit(&ray, all), Some(2.0));
+    assert!(unit.clip(&ray, all).is_some());
     for bad in [
         Ray::new(Vec3::NAN, Vec3::NEG_Y),
         Ray::new(Vec3::ZERO, Vec3::ZERO),
         Ray::new(Vec3::ZERO, Vec3::new(0.0, f32::INFINITY, 0.0)),
         Ray::new(Vec3::new(0.0, f32::NEG_INFINITY, 0.0), Vec3::Y),
     ] {
-        assert_eq!(ray_plane_in(&bad, &floor, all), None);
-        assert_eq!(ray_aabb_in(&bad, &unit, all), None);
-        assert_eq!(
-            ray_aabb_prepared_in(&PreparedRay::new(&bad), &unit, all),
-            None
-        );
-        assert_eq!(ray_aabb_face_in(&bad, &unit, all), None);
+        assert_eq!(floor.hit(&bad, all), None);
+        assert_eq!(unit.clip(&bad, all), None);
+        assert_eq!(unit.clip(&PreparedRay::new(&bad), all), None);
+        assert_eq!(unit.hit(&bad, all), None);
         assert!(exact::ray_plane_in(&bad, &floor, 0.0, f32::INFINITY).is_none());
         assert!(exact::ray_aabb_in(&bad, &unit, 0.0, f32::INFINITY).is_none());
     }
@@ -821,19 +815,16 @@ fn bad_input_misses() {
         Plane::new(Vec3::ZERO, Vec3::new(f32::INFINITY, 1.0, 0.0)),
         Plane::new(Vec3::ZERO, Vec3::ZERO),
     ] {
-        assert_eq!(ray_plane_in(&ray, &plane, all), None);
+        assert_eq!(plane.hit(&ray, all), None);
     }
     for b in [
         Aabb::new(Vec3::NAN, Vec3::ONE),
         Aabb::new(Vec3::ONE, Vec3::ZERO),
         Aabb::new(Vec3::ZERO, Vec3::new(1.0, f32::INFINITY, 1.0)),
     ] {
-        assert_eq!(ray_aabb_in(&ray, &b, all), None);
-        assert_eq!(ray_aabb_face_in(&ray, &b, all), None);
-        assert_eq!(
-            ray_aabb_prepared_face_in(&PreparedRay::new(&ray), &b, all),
-            None
-        );
+        assert_eq!(b.clip(&ray, all), None);
+        assert_eq!(b.hit(&ray, all), None);
+        assert_eq!(b.hit(&PreparedRay::new(&ray), all), None);
         assert!(exact::ray_aabb_in(&ray, &b, 0.0, f32::INFINITY).is_none());
     }
     // The exact module's intervals: inverted and NaN ends are no interval.
@@ -847,7 +838,7 @@ fn bad_input_misses() {
         Vec3::new(1.0, -(2f32.powi(-127)), 0.0),
     );
     assert!(exact::ray_plane_in(&steep, &floor, 0.0, f32::INFINITY).is_some());
-    assert_eq!(ray_plane_in(&steep, &floor, all), None);
+    assert_eq!(floor.hit(&steep, all), None);
     let past_max = Interval::new(f32::MAX, f32::INFINITY).unwrap();
-    assert_eq!(ray_plane_in(&steep, &floor, past_max), None);
+    assert_eq!(floor.hit(&steep, past_max), None);
 }

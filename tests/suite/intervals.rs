@@ -19,7 +19,7 @@
 //!   reverse; and the same triangle with one corner moved by an ulp, so
 //!   that `t*` is a rational just beside `t0`.
 //! - *Any-hit*: `ray_triangle_occluded` and `ray_triangle_prepared_occluded`
-//!   are `ray_triangle_in(...).is_some()` on every interval above.
+//!   are `tri.hit(ray, window).is_some()` on every interval above.
 //! - *Near the origin*: rays starting a few ulps off a triangle's centroid
 //!   (its plane crossed at a tiny `t*` of either sign, or zero), along
 //!   directions well away from the plane: with `(0, inf]` a hit exactly
@@ -37,9 +37,8 @@ use super::draw::{f, point, signed, v};
 use rayhit::exact::{self, oracle};
 use rayhit::glam::{DVec3, Vec3};
 use rayhit::{
-    Interval, PreparedRay, Ray, Scalar, Triangle, TriangleHit, Vector, ray_triangle,
-    ray_triangle_error_bounds, ray_triangle_in, ray_triangle_occluded, ray_triangle_one_hit_in,
-    ray_triangle_prepared_in, ray_triangle_prepared_occluded,
+    EdgeRule, Intersect, Interval, PreparedRay, Ray, Scalar, Surface, Triangle, TriangleHit,
+    Vector, ray_triangle,
 };
 use rayhit_testkit::rng::Pcg32;
 
@@ -80,19 +79,16 @@ fn closed_in<V: Vector>(
     tri: &Triangle<V>,
     i: Interval<S<V>>,
 ) -> Option<TriangleHit<S<V>>> {
-    let hit = ray_triangle_in(ray, tri, i);
+    let hit = tri.hit(ray, i);
     // The any-hit forms: exactly whether there is a hit.
-    assert_eq!(ray_triangle_occluded(ray, tri, i), hit.is_some());
+    assert_eq!(tri.occluded(ray, i), hit.is_some());
+    assert_eq!(tri.occluded(&PreparedRay::new(ray), i), hit.is_some());
     assert_eq!(
-        ray_triangle_prepared_occluded(&PreparedRay::new(ray), tri, i),
-        hit.is_some()
-    );
-    assert_eq!(
-        bits(ray_triangle_prepared_in(&PreparedRay::new(ray), tri, i)),
+        bits(tri.hit(&PreparedRay::new(ray), i)),
         bits(hit),
         "{ray:?} {tri:?} {i:?}"
     );
-    let one = ray_triangle_one_hit_in(ray, tri, i);
+    let one = tri.hit(ray, (i, EdgeRule::OneHit));
     if let Some(h) = one {
         assert!(
             hit.is_some(),
@@ -186,7 +182,7 @@ fn random_ends<V: Vector>(seed: u64) -> Tally {
             (Some(_), _) => assert_eq!(bits(plain), bits(inside), "{ray:?} {tri:?}"),
             (None, Some(h)) => {
                 tally.only_interval += 1;
-                let err = ray_triangle_error_bounds(&ray, &tri, &h).t;
+                let err = tri.hit_error(&ray, &h).t;
                 assert!(
                     h.t <= err,
                     "plain test dropped a hit far from 0: {h:?} err {err:?} {ray:?} {tri:?}"
@@ -284,9 +280,11 @@ fn exact_ends<V: Vector>(seed: u64) -> Tally {
                 "{i:?} t* = {t0:?} {ray:?} {tri:?}"
             );
             assert_eq!(
-                ray_triangle_one_hit_in(&ray, &tri, i).is_some(),
+                tri.hit(&ray, (i, EdgeRule::OneHit)).is_some(),
                 expected
-                    && ray_triangle_one_hit_in(&ray, &tri, Interval::up_to(inf).unwrap()).is_some()
+                    && tri
+                        .hit(&ray, (Interval::up_to(inf).unwrap(), EdgeRule::OneHit))
+                        .is_some()
             );
         };
         check(Interval::new(t0, inf).unwrap(), false);
@@ -392,7 +390,7 @@ fn near_origin<V: Vector>(seed: u64) -> Tally {
             (Some(_), _) => assert_eq!(bits(plain), bits(hit), "{ray:?} {tri:?}"),
             (None, Some(h)) => {
                 tally.only_interval += 1;
-                let err = ray_triangle_error_bounds(&ray, &tri, &h).t;
+                let err = tri.hit_error(&ray, &h).t;
                 assert!(
                     h.t <= err,
                     "plain test dropped a hit far from 0: {h:?} {err:?}"
@@ -457,25 +455,21 @@ fn bad_input_misses() {
     assert!(Interval::new(-1.0, 1.0).is_none());
     assert!(Interval::new(f32::NEG_INFINITY, 1.0).is_none());
     let all = Interval::up_to(f32::INFINITY).unwrap();
-    assert_eq!(ray_triangle_in(&ray, &tri, all).unwrap().t, 1.0);
+    assert_eq!(tri.hit(&ray, all).unwrap().t, 1.0);
     for bad in [
         Ray::new(Vec3::NAN, Vec3::NEG_Z),
         Ray::new(Vec3::ZERO, Vec3::ZERO),
         Ray::new(Vec3::ZERO, Vec3::INFINITY),
     ] {
-        assert!(ray_triangle_in(&bad, &tri, all).is_none());
-        assert!(ray_triangle_one_hit_in(&bad, &tri, all).is_none());
-        assert!(ray_triangle_prepared_in(&PreparedRay::new(&bad), &tri, all).is_none());
+        assert!(tri.hit(&bad, all).is_none());
+        assert!(tri.hit(&bad, (all, EdgeRule::OneHit)).is_none());
+        assert!(tri.hit(&PreparedRay::new(&bad), all).is_none());
     }
     let nan_tri = Triangle::new(Vec3::NAN, Vec3::X, Vec3::Y);
-    assert!(ray_triangle_in(&ray, &nan_tri, all).is_none());
+    assert!(nan_tri.hit(&ray, all).is_none());
     assert!(
-        ray_triangle_in(
-            &ray,
-            &tri,
-            Interval::new(f32::INFINITY, f32::INFINITY).unwrap()
-        )
-        .is_none()
+        tri.hit(&ray, Interval::new(f32::INFINITY, f32::INFINITY).unwrap())
+            .is_none()
     );
     assert!(exact::ray_triangle_in(&ray, &tri, 2.0, 1.0).is_none());
     assert!(exact::ray_triangle_in(&ray, &tri, f32::NAN, 1.0).is_none());

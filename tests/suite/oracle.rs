@@ -23,8 +23,8 @@ use std::fmt;
 use num_traits::{Signed, Zero};
 use rayhit::glam::{DVec3, Vec3};
 use rayhit::{
-    Aabb, Ray, Scalar, Triangle, Vector, ray_aabb, ray_aabb_naive, ray_plane, ray_plane_t_error,
-    ray_triangle, ray_triangle_error_bounds, ray_triangle_mt, ray_triangle_one_hit,
+    Aabb, EdgeRule, Intersect, Ray, Scalar, Surface, Triangle, Vector, ray_aabb, ray_plane,
+    ray_triangle,
 };
 use rayhit_testkit::cases::boxes::{self, BoxCase};
 use rayhit_testkit::cases::planes;
@@ -143,7 +143,7 @@ fn run_boxes<V: Vector>(name: &str, seed: u64, n: usize, generator: fn(&mut Sour
         let exact = interval.is_some();
         let got = ray_aabb(&ray, &b, t_max);
         slab.record(got.is_some(), exact, || box_gap_ulps(&ray, &b, t_max));
-        naive.record(ray_aabb_naive(&ray, &b, t_max).is_some(), exact, || {
+        naive.record(b.clip_by_faces(&ray, t_max).is_some(), exact, || {
             box_gap_ulps(&ray, &b, t_max)
         });
         assert!(
@@ -212,18 +212,18 @@ fn run_triangles<V: Vector>(
         let wt = ray_triangle(&ray, &tri, t_max);
         tallies.watertight.record(wt.is_some(), exact, gap);
         tallies.one_hit.record(
-            ray_triangle_one_hit(&ray, &tri, t_max).is_some(),
+            tri.hit(&ray, (t_max, EdgeRule::OneHit)).is_some(),
             exact,
             gap,
         );
         tallies
             .mt
-            .record(ray_triangle_mt(&ray, &tri, t_max).is_some(), exact, gap);
+            .record(tri.moller_trumbore(&ray, t_max).is_some(), exact, gap);
         // Every watertight hit is within its error bounds (or reports them
         // unbounded); the exact t of a reported hit is positive whenever the
         // bound is finite.
         if let Some(h) = wt {
-            let err = ray_triangle_error_bounds(&ray, &tri, &h);
+            let err = tri.hit_error(&ray, &h);
             if err.t.is_finite() {
                 let t = ex.t.as_ref().expect("a bounded hit on a parallel triangle");
                 let actual = (h.t.to_f64() - f(t)).abs();
@@ -303,7 +303,7 @@ fn run_planes<V: Vector>(n: usize) {
         let ulps = || rayhit::exact::distance_ulps(&rayhit::exact::Case::Plane(ray, plane, t_max));
         tally.record(got.is_some(), exact.is_some(), ulps);
         if let (Some(t), Some(te)) = (got, oracle::plane_t(&ray, &plane)) {
-            let err = ray_plane_t_error(&ray, &plane, t);
+            let err = plane.hit_error(&ray, &t);
             assert!(
                 oracle::close(t, &te, err),
                 "plane case {i}: t {t:?} exact {} bound {err:?}",
@@ -657,11 +657,11 @@ fn run_mesh<V: Vector>(name: &str, seed: u64, n: usize, build: fn(&mut Source) -
             .count();
         let mt = tris
             .iter()
-            .filter(|t| ray_triangle_mt(&ray, t, inf).is_some())
+            .filter(|t| t.moller_trumbore(&ray, inf).is_some())
             .count();
         let one = tris
             .iter()
-            .filter(|t| ray_triangle_one_hit(&ray, t, inf).is_some())
+            .filter(|t| t.hit(&ray, (inf, EdgeRule::OneHit)).is_some())
             .count();
         // The exact line crosses the star in front of the origin (checked,
         // not assumed: the target is only within rounding of the edge or
@@ -705,7 +705,7 @@ fn run_mesh<V: Vector>(name: &str, seed: u64, n: usize, build: fn(&mut Source) -
                 .count();
             let one_all = all
                 .iter()
-                .filter(|t| ray_triangle_one_hit(&ray, t, inf).is_some())
+                .filter(|t| t.hit(&ray, (inf, EdgeRule::OneHit)).is_some())
                 .count();
             assert!(wt_all >= 1, "{name} ray {i}: escaped from inside: {ray:?}");
             assert!(

@@ -9,9 +9,8 @@ use proptest::prelude::*;
 use rayhit::glam::{DVec3, Vec3};
 use rayhit::strategies as strat;
 use rayhit::{
-    Aabb, Plane, PreparedRay, Ray, Scalar, Side, Triangle, ValidAabb, Vector, offset_ray_origin,
-    ray_aabb, ray_aabb_naive, ray_aabb_prepared, ray_plane, ray_plane_hit_point, ray_plane_t_error,
-    ray_triangle, ray_triangle_error_bounds, ray_triangle_mt, triangle_hit_point,
+    Aabb, Bounds, EdgeRule, Intersect, Plane, PreparedRay, Ray, Scalar, Side, Surface,
+    SurfacePoint, Triangle, ValidAabb, Vector, ray_aabb, ray_plane, ray_triangle,
 };
 use rayhit_testkit::oracle;
 use rayhit_testkit::oracle::{R, gamma, r, rv};
@@ -44,7 +43,7 @@ fn check_plane<V: Vector>(plane: Plane<V>, ray: Ray<V>, t_max: S<V>) -> Result<(
         let exact = exact
             .as_ref()
             .expect("a hit on a plane the ray is parallel to");
-        let err = ray_plane_t_error(&ray, &plane, t);
+        let err = plane.hit_error(&ray, &t);
         prop_assert!(
             oracle::close(t, exact, err),
             "t = {t:?}, exact {}, bound {err:?}",
@@ -74,7 +73,7 @@ fn check_plane<V: Vector>(plane: Plane<V>, ray: Ray<V>, t_max: S<V>) -> Result<(
         let limit = oracle::limit(t_max);
         if exact > R::from_integer(0.into()) && limit.as_ref().is_none_or(|m| &exact <= m) {
             let t = S::<V>::from_f64(oracle::to_f64(&exact));
-            let err = r(ray_plane_t_error(&ray, &plane, t).next_up());
+            let err = r(plane.hit_error(&ray, &t).next_up());
             let near_zero = exact <= err;
             let near_max = limit.as_ref().is_some_and(|m| m - &exact <= err);
             let overflow = !t.is_finite();
@@ -93,7 +92,7 @@ fn check_plane<V: Vector>(plane: Plane<V>, ray: Ray<V>, t_max: S<V>) -> Result<(
 fn check_box<V: Vector>(aabb: Aabb<V>, ray: Ray<V>, t_max: S<V>) -> Result<(), TestCaseError> {
     let zero = S::<V>::ZERO;
     let slab = ray_aabb(&ray, &aabb, t_max);
-    let prepared = ray_aabb_prepared(&PreparedRay::new(&ray), &aabb, t_max);
+    let prepared = aabb.clip(&PreparedRay::new(&ray), t_max);
     prop_assert_eq!(slab, prepared, "prepared and unprepared differ");
     // The same box checked once, when made: the same answers, bit for bit.
     // (The strategy's boxes are valid; the unit test of `ValidAabb` and the
@@ -101,10 +100,10 @@ fn check_box<V: Vector>(aabb: Aabb<V>, ray: Ray<V>, t_max: S<V>) -> Result<(), T
     let valid = ValidAabb::new(aabb).expect("strategy boxes are valid");
     let bits =
         |h: Option<(S<V>, S<V>)>| h.map(|(e, x)| (e.to_f64().to_bits(), x.to_f64().to_bits()));
-    prop_assert_eq!(bits(ray_aabb(&ray, &valid, t_max)), bits(slab));
-    let p = ray_aabb_prepared(&PreparedRay::new(&ray), &valid, t_max);
+    prop_assert_eq!(bits(valid.clip(&ray, t_max)), bits(slab));
+    let p = valid.clip(&PreparedRay::new(&ray), t_max);
     prop_assert_eq!(bits(p), bits(slab));
-    let naive = ray_aabb_naive(&ray, &aabb, t_max);
+    let naive = aabb.clip_by_faces(&ray, t_max);
     let raw = oracle::box_raw(&ray, &aabb, t_max);
     let exact = raw.clone().filter(|(e, x)| e <= x);
     let u = r(S::<V>::UNIT_ROUNDOFF);
@@ -247,7 +246,7 @@ fn check_triangle<V: Vector>(
     let zero = S::<V>::ZERO;
     let one = S::<V>::ONE;
     let wt = ray_triangle(&ray, &tri, t_max);
-    let mt = ray_triangle_mt(&ray, &tri, t_max);
+    let mt = tri.moller_trumbore(&ray, t_max);
     for (name, hit) in [("watertight", wt), ("mt", mt)] {
         if let Some(h) = hit {
             prop_assert!(
@@ -265,7 +264,7 @@ fn check_triangle<V: Vector>(
     let exact = oracle::triangle(&ray, &tri);
     let mut unbounded = false;
     if let Some(h) = wt {
-        let err = ray_triangle_error_bounds(&ray, &tri, &h);
+        let err = tri.hit_error(&ray, &h);
         unbounded = !err.t.is_finite();
         let t_exact = exact
             .t
@@ -397,18 +396,14 @@ fn check_all_kernels_map<V: Vector>(
         ray_aabb(&ray, &aabb, inf).map(|(e, x)| (map(e), map(x)))
     );
     prop_assert_eq!(
-        ray_aabb_naive(&ray2, &aabb2, inf),
-        ray_aabb_naive(&ray, &aabb, inf).map(|(e, x)| (map(e), map(x)))
+        aabb2.clip_by_faces(&ray2, inf),
+        aabb.clip_by_faces(&ray, inf).map(|(e, x)| (map(e), map(x)))
     );
     prop_assert_eq!(
         ray_plane(&ray2, &plane2, inf),
         ray_plane(&ray, &plane, inf).map(&map)
     );
-    for kernel in [
-        ray_triangle::<V>,
-        ray_triangle_mt::<V>,
-        rayhit::ray_triangle_one_hit::<V>,
-    ] {
+    for kernel in [ray_triangle::<V>, moller_trumbore::<V>, one_hit::<V>] {
         let a = kernel(&ray2, &tri2, inf);
         let b = kernel(&ray, &tri, inf).map(|h| rayhit::TriangleHit { t: map(h.t), ..h });
         prop_assert_eq!(a, b);
@@ -462,15 +457,15 @@ fn check_mirror<V: Vector>(
         ray_aabb(&ray, &aabb, inf)
     );
     prop_assert_eq!(
-        ray_aabb_naive(&mray, &Aabb::new(lo, hi), inf),
-        ray_aabb_naive(&ray, &aabb, inf)
+        Aabb::new(lo, hi).clip_by_faces(&mray, inf),
+        aabb.clip_by_faces(&ray, inf)
     );
     prop_assert_eq!(
         ray_plane(&mray, &Plane::new(m(plane.point), m(plane.normal)), inf),
         ray_plane(&ray, &plane, inf)
     );
     let mtri = Triangle::new(m(tri.a), m(tri.b), m(tri.c));
-    for kernel in [ray_triangle::<V>, ray_triangle_mt::<V>] {
+    for kernel in [ray_triangle::<V>, moller_trumbore::<V>] {
         let flip = |h: rayhit::TriangleHit<S<V>>| rayhit::TriangleHit {
             side: if h.side == Side::Front {
                 Side::Back
@@ -496,14 +491,14 @@ fn check_winding<V: Vector>(tri: Triangle<V>, ray: Ray<V>) -> Result<(), TestCas
     match (a, b) {
         (Some(a), Some(b)) => {
             prop_assert_ne!(a.side, b.side);
-            let ea = ray_triangle_error_bounds(&ray, &tri, &a);
+            let ea = tri.hit_error(&ray, &a);
             prop_assert!((a.t - b.t).abs() <= ea.t + ea.t, "t moved beyond its bound");
             prop_assert!((a.u - b.v).abs() <= ea.u + ea.u && (a.v - b.u).abs() <= ea.v + ea.v);
         }
         (None, None) => {}
         (Some(h), None) | (None, Some(h)) => {
             // Only the conservative t > 0 test may differ.
-            let err = ray_triangle_error_bounds(&ray, &tri, &h);
+            let err = tri.hit_error(&ray, &h);
             prop_assert!(
                 h.t <= err.t + err.t,
                 "winding changed the answer away from t = 0"
@@ -547,11 +542,7 @@ fn check_translation<V: Vector>(
         ray_aabb(&ray, &Aabb::new(lo, hi), inf)
     );
     let mtri = Triangle::new(tri.a + t, tri.b + t, tri.c + t);
-    for kernel in [
-        ray_triangle::<V>,
-        ray_triangle_mt::<V>,
-        rayhit::ray_triangle_one_hit::<V>,
-    ] {
+    for kernel in [ray_triangle::<V>, moller_trumbore::<V>, one_hit::<V>] {
         prop_assert_eq!(kernel(&moved, &mtri, inf), kernel(&ray, &tri, inf));
     }
     Ok(())
@@ -569,21 +560,34 @@ fn check_spawn<V: Vector>(tri: Triangle<V>, ray: Ray<V>, w: V) -> Result<(), Tes
     let Some(hit) = ray_triangle(&ray, &tri, inf) else {
         return Ok(());
     };
-    let (p, perr) = triangle_hit_point(&tri, &hit);
-    let (n, nerr) = tri.normal_with_error();
+    let (p, perr) = {
+        let s = tri.surface_point(&ray, &hit);
+        (s.point, s.point_error)
+    };
+    let (n, nerr) = (tri.normal(), tri.normal_error());
     let (wn, wl, nl) = (w.dot(n).to_f64(), w.length().to_f64(), n.length().to_f64());
     let side_known = w.dot(n).abs() > w.abs().dot(nerr) * S::<V>::TWO;
     if !(wn.abs() > wl * nl / 1024.0 && side_known) {
         return Ok(());
     }
-    let spawned = rayhit::SurfacePoint::on_triangle(&tri, &hit).spawn(w);
-    prop_assert_eq!(spawned.origin, offset_ray_origin(p, perr, n, nerr, w));
+    let spawned = tri.surface_point(&ray, &hit).spawn(w);
+    prop_assert_eq!(
+        spawned.origin,
+        SurfacePoint {
+            point: p,
+            point_error: perr,
+            normal: n,
+            normal_error: nerr
+        }
+        .spawn(w)
+        .origin
+    );
     prop_assert!(
         ray_triangle(&spawned, &tri, inf).is_none(),
         "spawned ray re-hit its triangle: {spawned:?}"
     );
     prop_assert!(
-        rayhit::ray_triangle_one_hit(&spawned, &tri, inf).is_none(),
+        tri.hit(&spawned, (inf, EdgeRule::OneHit)).is_none(),
         "one-hit variant re-hit"
     );
     // Exactly: the crossing with the triangle's plane is behind the origin.
@@ -605,13 +609,26 @@ fn check_spawn_plane<V: Vector>(plane: Plane<V>, ray: Ray<V>, w: V) -> Result<()
     let Some(t) = ray_plane(&ray, &plane, inf) else {
         return Ok(());
     };
-    let (p, perr) = ray_plane_hit_point(&ray, &plane, t);
+    let (p, perr) = {
+        let s = plane.surface_point(&ray, &t);
+        (s.point, s.point_error)
+    };
     let n = plane.normal;
     if !(w.dot(n).to_f64().abs() > w.length().to_f64() * n.length().to_f64() / 1024.0) {
         return Ok(());
     }
-    let spawned = rayhit::SurfacePoint::on_plane(&ray, &plane, t).spawn(w);
-    prop_assert_eq!(spawned.origin, offset_ray_origin(p, perr, n, V::ZERO, w));
+    let spawned = plane.surface_point(&ray, &t).spawn(w);
+    prop_assert_eq!(
+        spawned.origin,
+        SurfacePoint {
+            point: p,
+            point_error: perr,
+            normal: n,
+            normal_error: V::ZERO
+        }
+        .spawn(w)
+        .origin
+    );
     prop_assert!(
         ray_plane(&spawned, &plane, inf).is_none(),
         "spawned ray re-hit its plane"
@@ -715,4 +732,22 @@ in_both_precisions! {
     fn mirror_triangle((tri, ray) in strat::triangle_and_ray::<V>(), aabb in strat::aabb::<V>(), plane in strat::plane::<V>(), axis in 0..3usize) {
         check_mirror(aabb, tri, plane, ray, axis)?;
     }
+}
+
+/// Moller-Trumbore as a kernel of the same shape as `ray_triangle`.
+fn moller_trumbore<V: Vector>(
+    ray: &Ray<V>,
+    tri: &Triangle<V>,
+    t_max: S<V>,
+) -> Option<rayhit::TriangleHit<S<V>>> {
+    tri.moller_trumbore(ray, t_max)
+}
+
+/// The one-hit rule as a kernel of the same shape as `ray_triangle`.
+fn one_hit<V: Vector>(
+    ray: &Ray<V>,
+    tri: &Triangle<V>,
+    t_max: S<V>,
+) -> Option<rayhit::TriangleHit<S<V>>> {
+    tri.hit(ray, (t_max, rayhit::EdgeRule::OneHit))
 }

@@ -55,9 +55,8 @@
 use super::draw::signed;
 use rayhit::glam::{DVec3, Vec3};
 use rayhit::{
-    Aabb, BoxFace, Interval, Plane, Ray, Scalar, SurfacePoint, Triangle, Vector, ray_aabb_face,
-    ray_aabb_face_in, ray_plane, ray_plane_in, ray_triangle, ray_triangle_in,
-    ray_triangle_occluded,
+    Aabb, BoxFace, Intersect, Interval, Plane, Ray, Scalar, Surface as _, SurfacePoint, Triangle,
+    Vector, ray_plane, ray_triangle,
 };
 use rayhit_testkit::cases::{c, v};
 use rayhit_testkit::mesh;
@@ -159,12 +158,12 @@ impl<V: Vector> Surface<V> {
     /// Whether the interval kernels report this surface on the segment.
     fn reported(&self, ray: &Ray<V>, interval: Interval<S<V>>) -> bool {
         match self {
-            Surface::Tri(t) => ray_triangle_in(ray, t, interval).is_some(),
-            Surface::Plane(p) => ray_plane_in(ray, p, interval).is_some(),
+            Surface::Tri(t) => t.hit(ray, interval).is_some(),
+            Surface::Plane(p) => p.hit(ray, interval).is_some(),
             Surface::Face(b, f) => {
                 let (point, normal) = face_plane(b, *f);
-                ray_aabb_face_in(ray, b, interval).is_some_and(|h| h.face == Some(*f))
-                    || ray_plane_in(ray, &Plane::new(point, normal), interval).is_some()
+                b.hit(ray, interval).is_some_and(|h| h.face == Some(*f))
+                    || Plane::new(point, normal).hit(ray, interval).is_some()
             }
         }
     }
@@ -305,7 +304,7 @@ fn end_on_triangle<V: Vector>(rng: &mut Pcg32, sc: &Scene<V>, i: usize) -> Optio
     let ray = aimed::<V>(rng, sc.scale, target, random_unit);
     let hit = ray_triangle(&ray, &tri, S::<V>::INFINITY)?;
     Some(End {
-        sp: SurfacePoint::on_triangle(&tri, &hit),
+        sp: tri.surface_point(&ray, &hit),
         surface: Surface::Tri(tri),
         tri: Some(i),
     })
@@ -329,7 +328,7 @@ fn end_on<V: Vector>(rng: &mut Pcg32, sc: &Scene<V>) -> Option<End<V>> {
             let ray = aimed::<V>(rng, sc.scale, target, random_unit);
             let t = ray_plane(&ray, &pl, S::<V>::INFINITY)?;
             Some(End {
-                sp: SurfacePoint::on_plane(&ray, &pl, t),
+                sp: pl.surface_point(&ray, &t),
                 surface: Surface::Plane(pl),
                 tri: None,
             })
@@ -347,10 +346,10 @@ fn end_on<V: Vector>(rng: &mut Pcg32, sc: &Scene<V>) -> Option<End<V>> {
                 return None;
             }
             let ray = aimed::<V>(rng, sc.scale, target, |_| out);
-            let hit = ray_aabb_face(&ray, &b, S::<V>::INFINITY)?;
+            let hit = b.hit(&ray, S::<V>::INFINITY)?;
             let f = hit.face?;
             Some(End {
-                sp: SurfacePoint::on_box(&ray, &b, &hit)?,
+                sp: b.surface_point(&ray, &hit)?,
                 surface: Surface::Face(b, f),
                 tri: None,
             })
@@ -505,7 +504,7 @@ fn check<V: Vector>(
             let mut hit = false;
             for &j in &solid.neighbours[i] {
                 let tri = sc.tris[j];
-                if ray_triangle_in(&ray, &tri, interval).is_none() {
+                if tri.hit(&ray, interval).is_none() {
                     continue;
                 }
                 hit = true;
@@ -648,7 +647,7 @@ fn place_occluders<V: Vector>(
             }
             tally.occluders_placed += 1;
             let plane = Plane::new(atv, nv);
-            if ray_plane_in(ray, &plane, interval).is_some() {
+            if plane.hit(ray, interval).is_some() {
                 tally.occluders_found += 1;
             } else {
                 tally
@@ -720,7 +719,7 @@ fn place_occluders<V: Vector>(
             };
             tally.ratio(to_f64(&h).abs() / (b * to_f64(&exact_norm2(&tn)).sqrt()));
         }
-        if ray_triangle_occluded(ray, &tri, interval) {
+        if tri.occluded(ray, interval) {
             tally.occluders_found += 1;
         } else {
             tally
@@ -761,8 +760,7 @@ fn place_occluders<V: Vector>(
             return;
         }
         tally.midpoint_placed += 1;
-        let found = ray_plane_in(ray, &plane, interval).is_some()
-            && ray_triangle_occluded(ray, &tri, interval);
+        let found = plane.hit(ray, interval).is_some() && tri.occluded(ray, interval);
         if found {
             tally.midpoint_found += 1;
         } else {
@@ -989,7 +987,7 @@ fn bad_input<V: Vector>() {
     );
     let ray = Ray::new(v::<V>([0.1, 2.0, 0.0]), v::<V>([0.0, -1.0, -0.1]));
     let hit = ray_triangle(&ray, &tri, S::<V>::INFINITY).unwrap();
-    let good = SurfacePoint::on_triangle(&tri, &hit);
+    let good = tri.surface_point(&ray, &hit);
     let above = SurfacePoint {
         point: v::<V>([0.3, 2.0, 0.1]),
         point_error: V::ZERO,

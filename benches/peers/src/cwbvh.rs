@@ -1,8 +1,8 @@
 //! rayhit inside a real compressed wide BVH: obvhs's CWBVH (Ylitie et al.
 //! 2017) over closed meshes, traversed with obvhs's own traversal order and
 //! either obvhs's node and triangle tests or rayhit's
-//! (`ray_quantized_children` on the node as obvhs stores it, and
-//! `ray_triangle_prepared` in the leaves).
+//! (`QuantizedChildren::clip` on the node as obvhs stores it, and the
+//! triangles' `hit` in the leaves).
 //!
 //! The meshes have shared vertices and every coordinate on a grid of
 //! `2^-14`, so that a vertex or an edge midpoint minus a grid point is
@@ -22,11 +22,9 @@ use obvhs::cwbvh::node::{CwBvhNode, extract_byte64};
 use obvhs::ray::Ray as ObRay;
 use obvhs::triangle::Triangle as ObTriangle;
 use obvhs::{BvhBuildParams, traverse};
+use rayhit::batch::{QuantizedChildren, Simd, SimdWork, with_simd};
 use rayhit::glam::{UVec2, Vec3, Vec3A};
-use rayhit::{
-    PreparedRay, QuantizedChildren, Ray, Simd, SimdWork, Triangle, quantize_bounds,
-    ray_triangle_prepared, with_simd,
-};
+use rayhit::{Bounds, Intersect, PreparedRay, Ray, Triangle};
 
 /// A closed mesh: vertices and index triples, consistently wound, every
 /// edge shared by exactly two triangles.
@@ -295,8 +293,9 @@ impl Scene {
                         (&mut node.child_min_z, &mut node.child_max_z),
                     ];
                     for (k, (min, max)) in rows.into_iter().enumerate() {
-                        let (q0, q1) = quantize_bounds(node.p[k], node.e[k], lo[k], hi[k])
-                            .expect("the node's box contains its children's");
+                        let (q0, q1) =
+                            QuantizedChildren::quantize(node.p[k], node.e[k], lo[k], hi[k])
+                                .expect("the node's box contains its children's");
                         min[c] = q0;
                         max[c] = q1;
                     }
@@ -323,7 +322,7 @@ impl Scene {
         let mut hit = obvhs::ray::RayHit::none();
         self.bvh.ray_traverse(ob, &mut hit, |r, id| {
             let t = &self.tris[self.bvh.primitive_indices[id] as usize];
-            ray_triangle_prepared(&p, t, r.tmax).map_or(f32::INFINITY, |h| h.t)
+            t.hit(&p, r.tmax).map_or(f32::INFINITY, |h| h.t)
         });
         hit.t
     }
@@ -333,6 +332,7 @@ impl Scene {
     #[inline(always)]
     pub fn rayhit_closest<I: Simd>(&self, simd: I, ray: &PreparedRay, dir: Vec3A) -> f32 {
         let bvh = &self.bvh;
+        let on_simd = simd.ray(ray);
         let mut t_max = f32::INFINITY;
         let mut state = bvh.new_traversal(dir);
         let mut node;
@@ -341,9 +341,7 @@ impl Scene {
             node,
             state,
             {
-                let hits = simd
-                    .ray_quantized_children(ray, &children(node), t_max)
-                    .mask;
+                let hits = children(node).clip(&on_simd, t_max).mask;
                 // obvhs's hit mask: each hit child's bits (one for an inner
                 // node, the unary primitive count for a leaf) at its index.
                 let (child_bits8, bit_index8) = node.get_child_and_index_bits(state.oct_inv4);
@@ -359,7 +357,7 @@ impl Scene {
             },
             {
                 let t = &self.tris[bvh.primitive_indices[state.primitive_id as usize] as usize];
-                if let Some(hit) = ray_triangle_prepared(ray, t, t_max) {
+                if let Some(hit) = t.hit(ray, t_max) {
                     t_max = hit.t;
                 }
             }

@@ -49,12 +49,14 @@ fn ray_a(r: &Ray) -> Ray<Vec3A> {
     Ray::new(r.origin.into(), r.dir.into())
 }
 use rayhit::{
-    Aabb, AabbBatch, ClipSpace, EqualAreaCamera, EquirectangularCamera, Interval, MatrixCamera,
-    OrthographicCamera, PinholeCamera, PreparedRay, Ray, RayDifferential, Side, Simd, SimdWork,
-    ThinLensCamera, Triangle, TriangleBatch, TriangleBatchHits, ValidAabb, ray_aabb,
-    ray_aabb_batch, ray_aabb_prepared, ray_triangle, ray_triangle_batch, ray_triangle_batch_in,
-    ray_triangle_batch_occluded, ray_triangle_mt, ray_triangle_prepared, ray_triangle_prepared_in,
-    ray_triangle_prepared_occluded, with_simd,
+    Aabb, Bounds, Camera, CameraSample, Intersect, IntersectLanes, Interval, PinholeCamera,
+    PreparedRay, Ray, Side, Triangle, ValidAabb,
+    batch::{AabbBatch, Simd, SimdWork, TriangleBatch, TriangleBatchHits, with_simd},
+    camera::{
+        ClipSpace, EqualAreaCamera, EquirectangularCamera, MatrixCamera, OrthographicCamera,
+        RayDifferential, ThinLensCamera,
+    },
+    ray_aabb, ray_triangle,
 };
 use rayhit_peers::cwbvh;
 
@@ -412,7 +414,7 @@ impl<const N: usize> SimdWork for BatchRows<'_, AabbBatch<Vec3, N>> {
         if self.per_ray == 0 {
             for r in self.rays {
                 for b in self.batches {
-                    c += u64::from(simd.ray_aabb_batch(r, b, INF).mask);
+                    c += u64::from(b.clip(&simd.ray(r), INF).mask);
                 }
             }
         } else {
@@ -422,7 +424,7 @@ impl<const N: usize> SimdWork for BatchRows<'_, AabbBatch<Vec3, N>> {
                 .zip(self.batches.chunks_exact(self.per_ray))
             {
                 for b in group {
-                    c += u64::from(simd.ray_aabb_batch(r, b, INF).mask);
+                    c += u64::from(b.clip(&simd.ray(r), INF).mask);
                 }
             }
         }
@@ -441,12 +443,7 @@ impl<const N: usize> SimdWork for BatchRows<'_, TriangleBatch<Vec3, N>> {
             .zip(self.batches.chunks_exact(self.per_ray))
         {
             for b in group {
-                let h = simd.ray_triangle_batch(r, b, INF);
-                let mut m = h.mask;
-                while m != 0 {
-                    c += bits(h.t[m.trailing_zeros() as usize]);
-                    m &= m - 1;
-                }
+                c += batch_t_sum(&b.hit(&simd.ray(r), INF));
             }
         }
         c
@@ -928,7 +925,7 @@ fn box_kernels<'a>(d: &'a BoxData, out: &mut Vec<Kernel<'a>>) {
             n,
             None,
             pairwise(&d.order, &d.prepared, &d.boxes, move |r, b| {
-                hit(ray_aabb_prepared(r, b, INF))
+                hit(b.clip(r, INF))
             }),
         ),
         kernel(
@@ -938,7 +935,7 @@ fn box_kernels<'a>(d: &'a BoxData, out: &mut Vec<Kernel<'a>>) {
             n,
             None,
             pairwise(&d.order, &d.prepared, &d.valid, move |r, b| {
-                hit(ray_aabb_prepared(r, b, INF))
+                hit(b.clip(r, INF))
             }),
         ),
         kernel(
@@ -948,7 +945,7 @@ fn box_kernels<'a>(d: &'a BoxData, out: &mut Vec<Kernel<'a>>) {
             n,
             None,
             pairwise(&d.order, &d.prepared_a, &d.boxes_a, move |r, b| {
-                hit(ray_aabb_prepared(r, b, INF))
+                hit(b.clip(r, INF))
             }),
         ),
         kernel(
@@ -1008,7 +1005,7 @@ fn triangle_kernels<'a>(d: &'a TriData, out: &mut Vec<Kernel<'a>>) {
     );
     // (Against `ray_triangle_mt`, whose answers this floor must give.)
     let floor_mt_agree = agree(
-        (0..n).map(|i| ray_triangle_mt(&d.rays[i], &d.tris[i], INF).is_some()),
+        (0..n).map(|i| d.tris[i].moller_trumbore(&d.rays[i], INF).is_some()),
         (0..n).map(|i| floor_mt(&d.rays[i], &d.tris[i], INF).is_some()),
     );
     let woop_agree = agree(
@@ -1040,7 +1037,7 @@ fn triangle_kernels<'a>(d: &'a TriData, out: &mut Vec<Kernel<'a>>) {
             n,
             None,
             pairwise(&d.order, &d.prepared, &d.tris, |r, t| {
-                t_sum(ray_triangle_prepared(r, t, INF).map(|h| h.t))
+                t_sum(t.hit(r, INF).map(|h| h.t))
             }),
         ),
         kernel(
@@ -1050,7 +1047,7 @@ fn triangle_kernels<'a>(d: &'a TriData, out: &mut Vec<Kernel<'a>>) {
             n,
             None,
             pairwise(&d.order, &d.prepared_a, &d.tris_a, |r, t| {
-                t_sum(ray_triangle_prepared(r, t, INF).map(|h| h.t))
+                t_sum(t.hit(r, INF).map(|h| h.t))
             }),
         ),
         kernel(
@@ -1060,7 +1057,7 @@ fn triangle_kernels<'a>(d: &'a TriData, out: &mut Vec<Kernel<'a>>) {
             n,
             None,
             pairwise(&d.order, &d.rays, &d.tris, |r, t| {
-                t_sum(ray_triangle_mt(r, t, INF).map(|h| h.t))
+                t_sum(t.moller_trumbore(r, INF).map(|h| h.t))
             }),
         ),
         kernel(
@@ -1172,10 +1169,10 @@ fn batch_floor_kernels<'a>(
         )
     };
     let plain = agree_with(Question::UpTo, &|i| {
-        ray_triangle_batch(&t.prepared[i / per_ray], &tb8[i], INF).mask
+        tb8[i].hit(&t.prepared[i / per_ray], INF).mask
     });
     let within = agree_with(Question::Within, &|i| {
-        ray_triangle_batch_in(&t.prepared[i / per_ray], &tb8[i], all).mask
+        tb8[i].hit(&t.prepared[i / per_ray], all).mask
     });
     let w = "groups of 8";
     let row = |q, name: &str, agreement| {
@@ -1241,7 +1238,7 @@ fn group_kernels<'a>(
             nb,
             None,
             chunked(&b.prepared, &b.boxes, GROUP, |r, x| {
-                u64::from(ray_aabb_prepared(r, x, INF).is_some())
+                u64::from(x.clip(r, INF).is_some())
             }),
         ),
         kernel(
@@ -1251,7 +1248,7 @@ fn group_kernels<'a>(
             nb,
             None,
             chunked(&b.prepared, bb4, GROUP / 4, |r, x| {
-                u64::from(ray_aabb_batch(r, x, INF).mask)
+                u64::from(x.clip(r, INF).mask)
             }),
         ),
         kernel(
@@ -1261,7 +1258,7 @@ fn group_kernels<'a>(
             nb,
             None,
             chunked(&b.prepared, bb8, GROUP / 8, |r, x| {
-                u64::from(ray_aabb_batch(r, x, INF).mask)
+                u64::from(x.clip(r, INF).mask)
             }),
         ),
         kernel(
@@ -1324,7 +1321,7 @@ fn group_kernels<'a>(
             nt,
             None,
             chunked(&t.prepared, &t.tris, GROUP, |r, x| {
-                t_sum(ray_triangle_prepared(r, x, INF).map(|h| h.t))
+                t_sum(x.hit(r, INF).map(|h| h.t))
             }),
         ),
         kernel(
@@ -1334,7 +1331,7 @@ fn group_kernels<'a>(
             nt,
             None,
             chunked(&t.prepared, tb4, GROUP / 4, |r, x| {
-                batch_t_sum(&ray_triangle_batch(r, x, INF))
+                batch_t_sum(&x.hit(r, INF))
             }),
         ),
         kernel(
@@ -1344,7 +1341,7 @@ fn group_kernels<'a>(
             nt,
             None,
             chunked(&t.prepared, tb8, GROUP / 8, |r, x| {
-                batch_t_sum(&ray_triangle_batch(r, x, INF))
+                batch_t_sum(&x.hit(r, INF))
             }),
         ),
         kernel(
@@ -1354,7 +1351,7 @@ fn group_kernels<'a>(
             nt,
             None,
             chunked(&t.prepared, &t.tris, GROUP, move |r, x| {
-                t_sum(ray_triangle_prepared_in(r, x, all).map(|h| h.t))
+                t_sum(x.hit(r, all).map(|h| h.t))
             }),
         ),
         kernel(
@@ -1364,7 +1361,7 @@ fn group_kernels<'a>(
             nt,
             None,
             chunked(&t.prepared, &t.tris, GROUP, move |r, x| {
-                u64::from(ray_triangle_prepared_occluded(r, x, all))
+                u64::from(x.occluded(r, all))
             }),
         ),
         kernel(
@@ -1374,7 +1371,7 @@ fn group_kernels<'a>(
             nt,
             None,
             chunked(&t.prepared, tb8, GROUP / 8, move |r, x| {
-                batch_t_sum(&ray_triangle_batch_in(r, x, all))
+                batch_t_sum(&x.hit(r, all))
             }),
         ),
         kernel(
@@ -1384,7 +1381,7 @@ fn group_kernels<'a>(
             nt,
             None,
             chunked(&t.prepared, tb8, GROUP / 8, move |r, x| {
-                u64::from(ray_triangle_batch_occluded(r, x, all))
+                u64::from(x.occluded(r, all))
             }),
         ),
         kernel(
@@ -1513,7 +1510,7 @@ fn sweep_kernels<'a>(s: &'a Sweep, out: &mut Vec<Kernel<'a>>) {
                 tests,
                 None,
                 every(&s.rays, &s.boxes[..n], |r, x| {
-                    u64::from(ray_aabb_prepared(r, x, INF).is_some())
+                    u64::from(x.clip(r, INF).is_some())
                 }),
             ),
             kernel(
@@ -1522,9 +1519,7 @@ fn sweep_kernels<'a>(s: &'a Sweep, out: &mut Vec<Kernel<'a>>) {
                 w,
                 tests,
                 None,
-                every(&s.rays, &s.b8[i], move |r, x| {
-                    count(ray_aabb_batch(r, x, INF).mask)
-                }),
+                every(&s.rays, &s.b8[i], move |r, x| count(x.clip(r, INF).mask)),
             ),
             kernel(
                 sec,
@@ -1532,9 +1527,7 @@ fn sweep_kernels<'a>(s: &'a Sweep, out: &mut Vec<Kernel<'a>>) {
                 w,
                 tests,
                 None,
-                every(&s.rays, &s.b16[i], move |r, x| {
-                    count(ray_aabb_batch(r, x, INF).mask)
-                }),
+                every(&s.rays, &s.b16[i], move |r, x| count(x.clip(r, INF).mask)),
             ),
             kernel(
                 sec,
@@ -1581,7 +1574,7 @@ fn sweep_kernels<'a>(s: &'a Sweep, out: &mut Vec<Kernel<'a>>) {
                 tests,
                 None,
                 nearest(&s.t_rays, &s.tris[..n], |r, x, t_max| {
-                    ray_triangle_prepared(r, x, t_max).map(|h| h.t)
+                    x.hit(r, t_max).map(|h| h.t)
                 }),
             ),
             kernel(
@@ -1591,7 +1584,7 @@ fn sweep_kernels<'a>(s: &'a Sweep, out: &mut Vec<Kernel<'a>>) {
                 tests,
                 None,
                 nearest(&s.t_rays, &s.t8[i], |r, x, t_max| {
-                    ray_triangle_batch(r, x, t_max).nearest().map(|(_, h)| h.t)
+                    x.hit(r, t_max).nearest().map(|(_, h)| h.t)
                 }),
             ),
             kernel(
@@ -1601,7 +1594,7 @@ fn sweep_kernels<'a>(s: &'a Sweep, out: &mut Vec<Kernel<'a>>) {
                 tests,
                 None,
                 nearest(&s.t_rays, &s.t16[i], |r, x, t_max| {
-                    ray_triangle_batch(r, x, t_max).nearest().map(|(_, h)| h.t)
+                    x.hit(r, t_max).nearest().map(|(_, h)| h.t)
                 }),
             ),
             // bvh's test has no limit to cull with: it computes every hit.
@@ -1676,7 +1669,7 @@ impl InstanceData {
                     v: 0.5,
                     side: Side::Front,
                 };
-                rayhit::SurfacePoint::on_triangle(&tri, &hit)
+                tri.surface_point_at(hit.u, hit.v)
             })
             .collect();
         Self {
@@ -1777,7 +1770,7 @@ fn over_pairs<'a, I: 'a, X: 'a, T: 'a>(
 
 fn instance_kernels<'a>(d: &'a InstanceData, out: &mut Vec<Kernel<'a>>) {
     let n = d.instances.len() * d.rays.len();
-    let prepared_sum = |p: &(PreparedRay, rayhit::InstanceRayError<Vec3>)| {
+    let prepared_sum = |p: &(PreparedRay, rayhit::instance::InstanceRayError<Vec3>)| {
         let b = |v: Vec3| {
             u64::from(v.x.to_bits() ^ v.y.to_bits().rotate_left(7) ^ v.z.to_bits().rotate_left(13))
         };
@@ -2016,6 +2009,7 @@ fn fill<T>(
 /// to the pinhole ray; the textbook rows what the crate's cameras replace.
 mod camera_refs {
     use rayhit::glam::Vec3;
+    use rayhit::{Camera, CameraSample};
 
     /// `(sin(pi r / 2), cos(pi r / 2))` for `|r| <= 1/2`: the crate's
     /// quarter-turn polynomials, by Horner's rule in `f32`.
@@ -2161,7 +2155,7 @@ mod camera_refs {
         let snap = |v: Vec3| (v + grid) - grid;
         let (p_focus, origin) = (snap(p_focus), snap(lens));
         let ray = (origin, p_focus - origin);
-        let pr = pin.ray(position.0, position.1);
+        let pr = pin.ray(CameraSample::new(position.0, position.1));
         let sel = centre & ((radius == 0.0) | at_centre);
         let pick = |p: Vec3, q: Vec3| {
             Vec3::new(
@@ -2367,7 +2361,8 @@ fn camera_reference_kernels<'a>(d: &'a CameraData, out: &mut Vec<Kernel<'a>>) {
     // (The origin rebuilt from its components, as the crate's cameras do,
     // so that the loops can vectorise.)
     let as_ray = |(o, dir): (Vec3, Vec3)| Ray::new(Vec3::new(o.x, o.y, o.z), dir);
-    let thin = move |x, y, l: (f32, f32)| d.thin_lens.ray(x, y, l.0, l.1);
+    let thin =
+        move |x, y, l: (f32, f32)| d.thin_lens.ray(CameraSample::new(x, y).with_lens(l.0, l.1));
     let eye = frame.eye.to_array();
     let pin = d.pinhole;
     // A bound on the lens points' coordinates, as the camera's own.
@@ -2387,23 +2382,23 @@ fn camera_reference_kernels<'a>(d: &'a CameraData, out: &mut Vec<Kernel<'a>>) {
         }),
         camera_agreement(
             d,
-            |x, y, _| d.equirect.ray(x, y),
+            |x, y, _| d.equirect.ray(CameraSample::new(x, y)),
             |x, y, _| equirect_textbook(&equi, x, y),
         ),
         camera_agreement(
             d,
-            |x, y, _| d.equal_area.ray(x, y),
+            |x, y, _| d.equal_area.ray(CameraSample::new(x, y)),
             |x, y, _| equal_area_textbook(&area, x, y),
         ),
         camera_agreement(
             d,
-            |x, y, _| d.equirect.ray(x, y),
+            |x, y, _| d.equirect.ray(CameraSample::new(x, y)),
             |x, y, _| (frame.eye, equirect_floor(&equi, x, y)),
         ),
         // (The front half only: the diamond, half the image.)
         camera_agreement(
             d,
-            |x, y, _| d.equal_area.ray(x, y),
+            |x, y, _| d.equal_area.ray(CameraSample::new(x, y)),
             |x, y, _| (frame.eye, equal_area_floor(&area, x, y)),
         ),
     ];
@@ -2518,27 +2513,42 @@ struct Cameras {
     equal_area: EqualAreaCamera,
 }
 
-/// How a row's closure reaches the cameras: a copy it owns (`Cameras`), as
+/// How a row's closure reaches its camera: a copy it owns ([`Owned`]), as
 /// a renderer's `self.camera` belongs to the renderer, so that the compiler
 /// knows the camera does not change while rays are stored and may compute
-/// several rays at once; or a reference it captures (`&Cameras`), as a
+/// several rays at once; or a reference it captures ([`Borrowed`]), as a
 /// renderer's `camera: &'a ThinLensCamera` field, which the compiler must
 /// reload for every ray, keeping every such loop scalar.
-trait CameraAccess: Copy {
-    fn get(&self) -> &Cameras;
+trait Access<C>: Copy {
+    fn get(&self) -> &C;
 }
 
-impl CameraAccess for Cameras {
-    #[inline(always)]
-    fn get(&self) -> &Cameras {
-        self
+/// A camera the row's closure owns.
+#[derive(Clone, Copy)]
+struct Owned<C>(C);
+
+/// A camera the row's closure reaches through a reference.
+struct Borrowed<'a, C>(&'a C);
+
+impl<C> Clone for Borrowed<'_, C> {
+    fn clone(&self) -> Self {
+        *self
     }
 }
 
-impl CameraAccess for &Cameras {
+impl<C> Copy for Borrowed<'_, C> {}
+
+impl<C: Copy> Access<C> for Owned<C> {
     #[inline(always)]
-    fn get(&self) -> &Cameras {
-        self
+    fn get(&self) -> &C {
+        &self.0
+    }
+}
+
+impl<C> Access<C> for Borrowed<'_, C> {
+    #[inline(always)]
+    fn get(&self) -> &C {
+        self.0
     }
 }
 
@@ -2562,105 +2572,97 @@ fn camera_row<'a, T: Copy + Default + 'a>(
     )
 }
 
-/// Every camera's ray (section `sections.0`) and ray with differentials
-/// (`sections.1`), the closures reaching the cameras through `c`.
-fn camera_kernels<'a>(
-    c: impl CameraAccess + 'a,
+/// The camera sample of a position and a lens sample (cameras without a
+/// lens ignore it).
+#[inline(always)]
+fn sample(x: f32, y: f32, (s, t): (f32, f32)) -> CameraSample {
+    CameraSample::new(x, y).with_lens(s, t)
+}
+
+/// One camera's ray (section `sections.0`) and ray with differentials
+/// (`sections.1`), through the [`Camera`] trait, the closures reaching the
+/// camera through `c`.
+fn camera_rows<'a, C: Camera + 'a>(
+    c: impl Access<C> + 'a,
+    name: &str,
     d: &'a CameraData,
     (rs, ds): (&'static str, &'static str),
     out: &mut Vec<Kernel<'a>>,
 ) {
-    let [p, t, o, m, e, a] = CAMERAS;
     for (w, order) in [("scanline", &d.scanline), ("shuffled", &d.shuffled)] {
         let ol = (&order[..], &d.lens[..]);
-        let ray = |name: &str| (rs, format!("rayhit {name}::ray"), w);
-        let diff = |name: &str| (ds, format!("rayhit {name}::ray_differential"), w);
-        out.extend([
-            camera_row(
-                ray(p),
-                ol,
-                #[inline(always)]
-                move |x, y, _| c.get().pinhole.ray(x, y),
-                ray_sum,
+        out.push(camera_row(
+            (rs, format!("rayhit {name}::ray"), w),
+            ol,
+            #[inline(always)]
+            move |x, y, s| c.get().ray(sample(x, y, s)),
+            ray_sum,
+        ));
+        out.push(camera_row(
+            (ds, format!("rayhit {name}::ray_differential"), w),
+            ol,
+            #[inline(always)]
+            move |x, y, s| c.get().ray_differential(sample(x, y, s)),
+            diff_sum,
+        ));
+    }
+}
+
+/// Every camera's rows ([`camera_rows`]), each camera owned by its
+/// closures or, with `by_reference`, borrowed from `c`.
+fn camera_kernels<'a>(
+    c: &'a Cameras,
+    by_reference: bool,
+    d: &'a CameraData,
+    sections: (&'static str, &'static str),
+    out: &mut Vec<Kernel<'a>>,
+) {
+    let [p, t, o, m, e, a] = CAMERAS;
+    macro_rules! rows {
+        ($($field:ident $name:ident),*) => {$(
+            if by_reference {
+                camera_rows(Borrowed(&c.$field), $name, d, sections, out);
+            } else {
+                camera_rows(Owned(c.$field), $name, d, sections, out);
+            }
+        )*};
+    }
+    rows!(pinhole p, thin_lens t, ortho o, matrix m, equirect e, equal_area a);
+}
+
+/// The differentials' floor of one camera: its ray alone, stored as a ray
+/// with differentials whose four derivatives are zero (see
+/// [`differential_floor_kernels`]).
+fn zero_differential_rows<'a, C: Camera + Copy + 'a>(
+    c: C,
+    name: &str,
+    d: &'a CameraData,
+    out: &mut Vec<Kernel<'a>>,
+) {
+    // (A zero the compiler cannot see through: the constant `Vec3::ZERO`,
+    // or one written with literals, is stored by a call to `memset`, which
+    // keeps the loop scalar. The crate's cameras, generic over the vector
+    // type, build theirs from three zeros after the fact, which the
+    // compiler stores as floats.)
+    let z: f32 = black_box(0.0);
+    for (w, order) in [("scanline", &d.scanline), ("shuffled", &d.shuffled)] {
+        out.push(camera_row(
+            (
+                "camera differentials",
+                format!("floor: {name}::ray with zero differentials"),
+                w,
             ),
-            camera_row(
-                ray(t),
-                ol,
-                #[inline(always)]
-                move |x, y, s| c.get().thin_lens.ray(x, y, s.0, s.1),
-                ray_sum,
-            ),
-            camera_row(
-                ray(o),
-                ol,
-                #[inline(always)]
-                move |x, y, _| c.get().ortho.ray(x, y),
-                ray_sum,
-            ),
-            camera_row(
-                ray(m),
-                ol,
-                #[inline(always)]
-                move |x, y, _| c.get().matrix.ray(x, y),
-                ray_sum,
-            ),
-            camera_row(
-                ray(e),
-                ol,
-                #[inline(always)]
-                move |x, y, _| c.get().equirect.ray(x, y),
-                ray_sum,
-            ),
-            camera_row(
-                ray(a),
-                ol,
-                #[inline(always)]
-                move |x, y, _| c.get().equal_area.ray(x, y),
-                ray_sum,
-            ),
-            camera_row(
-                diff(p),
-                ol,
-                #[inline(always)]
-                move |x, y, _| c.get().pinhole.ray_differential(x, y),
-                diff_sum,
-            ),
-            camera_row(
-                diff(t),
-                ol,
-                #[inline(always)]
-                move |x, y, s| c.get().thin_lens.ray_differential(x, y, s.0, s.1),
-                diff_sum,
-            ),
-            camera_row(
-                diff(o),
-                ol,
-                #[inline(always)]
-                move |x, y, _| c.get().ortho.ray_differential(x, y),
-                diff_sum,
-            ),
-            camera_row(
-                diff(m),
-                ol,
-                #[inline(always)]
-                move |x, y, _| c.get().matrix.ray_differential(x, y),
-                diff_sum,
-            ),
-            camera_row(
-                diff(e),
-                ol,
-                #[inline(always)]
-                move |x, y, _| c.get().equirect.ray_differential(x, y),
-                diff_sum,
-            ),
-            camera_row(
-                diff(a),
-                ol,
-                #[inline(always)]
-                move |x, y, _| c.get().equal_area.ray_differential(x, y),
-                diff_sum,
-            ),
-        ]);
+            (&order[..], &d.lens[..]),
+            #[inline(always)]
+            move |x, y, s| RayDifferential {
+                ray: c.ray(sample(x, y, s)),
+                dx_origin: Vec3::new(z, z, z),
+                dx_dir: Vec3::new(z, z, z),
+                dy_origin: Vec3::new(z, z, z),
+                dy_dir: Vec3::new(z, z, z),
+            },
+            diff_sum,
+        ));
     }
 }
 
@@ -2670,19 +2672,8 @@ fn camera_kernels<'a>(
 /// bytes, so these rows bound from below what any camera's
 /// `ray_differential` costs in this loop.
 fn differential_floor_kernels<'a>(c: Cameras, d: &'a CameraData, out: &mut Vec<Kernel<'a>>) {
-    // (A zero the compiler cannot see through: the constant `Vec3::ZERO`,
-    // or one written with literals, is stored by a call to `memset`, which
-    // keeps the loop scalar. The crate's cameras, generic over the vector
-    // type, build theirs from three zeros after the fact, which the
-    // compiler stores as floats.)
+    // (A zero the compiler cannot see through: see `zero_differential_rows`.)
     let z: f32 = black_box(0.0);
-    let zero = move |ray: Ray| RayDifferential {
-        ray,
-        dx_origin: Vec3::new(z, z, z),
-        dx_dir: Vec3::new(z, z, z),
-        dy_origin: Vec3::new(z, z, z),
-        dy_dir: Vec3::new(z, z, z),
-    };
     // The pinhole camera's ray with differentials written directly with
     // glam: the film direction, its length's reciprocal (no rescaling of a
     // squared length that over- or underflows), and the two derivatives
@@ -2708,16 +2699,8 @@ fn differential_floor_kernels<'a>(c: Cameras, d: &'a CameraData, out: &mut Vec<K
             dy_dir: (dir * (dy * inv) - up) * inv,
         }
     };
-    let [p, t, o, m, e, a] = CAMERAS;
     for (w, order) in [("scanline", &d.scanline), ("shuffled", &d.shuffled)] {
         let ol = (&order[..], &d.lens[..]);
-        let row = |name: &str| {
-            (
-                "camera differentials",
-                format!("floor: {name}::ray with zero differentials"),
-                w,
-            )
-        };
         out.push(camera_row(
             (
                 "camera differentials",
@@ -2729,51 +2712,14 @@ fn differential_floor_kernels<'a>(c: Cameras, d: &'a CameraData, out: &mut Vec<K
             move |x, y, _| pinhole_floor(x, y),
             diff_sum,
         ));
-        out.extend([
-            camera_row(
-                row(p),
-                ol,
-                #[inline(always)]
-                move |x, y, _| zero(c.pinhole.ray(x, y)),
-                diff_sum,
-            ),
-            camera_row(
-                row(t),
-                ol,
-                #[inline(always)]
-                move |x, y, s| zero(c.thin_lens.ray(x, y, s.0, s.1)),
-                diff_sum,
-            ),
-            camera_row(
-                row(o),
-                ol,
-                #[inline(always)]
-                move |x, y, _| zero(c.ortho.ray(x, y)),
-                diff_sum,
-            ),
-            camera_row(
-                row(m),
-                ol,
-                #[inline(always)]
-                move |x, y, _| zero(c.matrix.ray(x, y)),
-                diff_sum,
-            ),
-            camera_row(
-                row(e),
-                ol,
-                #[inline(always)]
-                move |x, y, _| zero(c.equirect.ray(x, y)),
-                diff_sum,
-            ),
-            camera_row(
-                row(a),
-                ol,
-                #[inline(always)]
-                move |x, y, _| zero(c.equal_area.ray(x, y)),
-                diff_sum,
-            ),
-        ]);
     }
+    let [p, t, o, m, e, a] = CAMERAS;
+    zero_differential_rows(c.pinhole, p, d, out);
+    zero_differential_rows(c.thin_lens, t, d, out);
+    zero_differential_rows(c.ortho, o, d, out);
+    zero_differential_rows(c.matrix, m, d, out);
+    zero_differential_rows(c.equirect, e, d, out);
+    zero_differential_rows(c.equal_area, a, d, out);
 }
 
 /// The rows rayhit is compared against: the other crates and the
@@ -2986,17 +2932,17 @@ fn main() {
         cwbvh_kernels(d, &mut kernels);
     }
     camera_kernels(
-        camera_set,
+        &camera_set,
+        false,
         &cameras,
         ("camera", "camera differentials"),
         &mut kernels,
     );
     camera_reference_kernels(&cameras, &mut kernels);
     differential_floor_kernels(camera_set, &cameras, &mut kernels);
-    // (The borrow is the point: the closures capture the reference.)
-    #[allow(clippy::needless_borrows_for_generic_args)]
     camera_kernels(
         &camera_set,
+        true,
         &cameras,
         ("camera, by reference", "camera differentials, by reference"),
         &mut kernels,
@@ -3110,10 +3056,7 @@ fn main() {
         for peer in ["bvh intersects_aabb", "textbook plain slab"] {
             for (ours, name) in [
                 ("rayhit ray_aabb_prepared", "ray_aabb_prepared"),
-                (
-                    "rayhit ray_aabb_prepared, ValidAabb",
-                    "ray_aabb_prepared (ValidAabb)",
-                ),
+                ("rayhit ray_aabb_prepared, ValidAabb", "clip (ValidAabb)"),
             ] {
                 target(
                     &format!("{name} vs {peer}, {w}"),

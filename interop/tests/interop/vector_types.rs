@@ -13,11 +13,10 @@
 
 use rayhit::glam::Vec3;
 use rayhit::{
-    Aabb, AabbBatch, PinholeCamera, Plane, PreparedRay, Ray, Scalar, SurfacePoint, Triangle,
-    TriangleBatch, Vector, ray_aabb, ray_aabb_batch, ray_aabb_face, ray_aabb_naive,
-    ray_aabb_prepared, ray_aabb_prepared_face, ray_plane, ray_plane_hit_point, ray_plane_t_error,
-    ray_triangle, ray_triangle_batch, ray_triangle_error_bounds, ray_triangle_mt,
-    ray_triangle_one_hit, ray_triangle_prepared, triangle_hit_point,
+    Aabb, Bounds, Camera, CameraSample, EdgeRule, Intersect, IntersectLanes, PinholeCamera, Plane,
+    PreparedRay, Ray, Scalar, Surface, Triangle, Vector,
+    batch::{AabbBatch, TriangleBatch},
+    ray_aabb, ray_plane, ray_triangle,
 };
 use rayhit_testkit::bits::{bits, hit_bits, interval_bits, vector_bits};
 use rayhit_testkit::cases::{boxes, planes, triangles};
@@ -79,24 +78,18 @@ fn check_box<V: Vector, W: Vector<Scalar = S<V>>>(b: &Aabb<V>, r: &Ray<V>, t_max
     assert_eq!(interval_bits(got), interval_bits(ray_aabb(&ra, &ba, t_max)));
     let (p, pa) = (PreparedRay::new(r), PreparedRay::new(&ra));
     assert_eq!(
-        interval_bits(ray_aabb_prepared(&p, b, t_max)),
-        interval_bits(ray_aabb_prepared(&pa, &ba, t_max))
+        interval_bits(b.clip(&p, t_max)),
+        interval_bits(ba.clip(&pa, t_max))
     );
     assert_eq!(
-        interval_bits(ray_aabb_naive(r, b, t_max)),
-        interval_bits(ray_aabb_naive(&ra, &ba, t_max))
+        interval_bits(b.clip_by_faces(r, t_max)),
+        interval_bits(ba.clip_by_faces(&ra, t_max))
     );
-    let (f, fa) = (ray_aabb_face(r, b, t_max), ray_aabb_face(&ra, &ba, t_max));
+    let (f, fa) = (b.hit(r, t_max), ba.hit(&ra, t_max));
     assert_eq!(f.map(|h| h.face), fa.map(|h| h.face));
-    assert_eq!(
-        ray_aabb_prepared_face(&pa, &ba, t_max).map(|h| h.face),
-        f.map(|h| h.face)
-    );
+    assert_eq!(ba.hit(&pa, t_max).map(|h| h.face), f.map(|h| h.face));
     if let (Some(f), Some(fa)) = (f, fa) {
-        let (s, sa) = (
-            SurfacePoint::on_box(r, b, &f),
-            SurfacePoint::on_box(&ra, &ba, &fa),
-        );
+        let (s, sa) = (b.surface_point(r, &f), ba.surface_point(&ra, &fa));
         assert_eq!(
             s.map(|s| vector_bits(s.point)),
             sa.map(|s| vector_bits(s.point))
@@ -117,10 +110,7 @@ fn check_box<V: Vector, W: Vector<Scalar = S<V>>>(b: &Aabb<V>, r: &Ray<V>, t_max
         AabbBatch::<V, 8>::from_slice(&[*b]),
         AabbBatch::<W, 8>::from_slice(&[ba]),
     ) {
-        let (h, ha) = (
-            ray_aabb_batch(&p, &batch, t_max),
-            ray_aabb_batch(&pa, &batch_a, t_max),
-        );
+        let (h, ha) = (batch.clip(&p, t_max), batch_a.clip(&pa, t_max));
         assert_eq!(h.mask, ha.mask);
         assert_eq!(h.enter.map(bits::<S<V>>), ha.enter.map(bits::<S<V>>));
     }
@@ -141,31 +131,29 @@ fn check_triangle<V: Vector, W: Vector<Scalar = S<V>>>(
     let got = ray_triangle(r, t, t_max);
     assert_eq!(hit_bits(got), hit_bits(ray_triangle(&ra, &ta, t_max)));
     let (p, pa) = (PreparedRay::new(r), PreparedRay::new(&ra));
+    assert_eq!(hit_bits(t.hit(&p, t_max)), hit_bits(ta.hit(&pa, t_max)));
     assert_eq!(
-        hit_bits(ray_triangle_prepared(&p, t, t_max)),
-        hit_bits(ray_triangle_prepared(&pa, &ta, t_max))
+        hit_bits(t.hit(r, (t_max, EdgeRule::OneHit))),
+        hit_bits(ta.hit(&ra, (t_max, EdgeRule::OneHit)))
     );
     assert_eq!(
-        hit_bits(ray_triangle_one_hit(r, t, t_max)),
-        hit_bits(ray_triangle_one_hit(&ra, &ta, t_max))
-    );
-    assert_eq!(
-        hit_bits(ray_triangle_mt(r, t, t_max)),
-        hit_bits(ray_triangle_mt(&ra, &ta, t_max))
+        hit_bits(t.moller_trumbore(r, t_max)),
+        hit_bits(ta.moller_trumbore(&ra, t_max))
     );
     assert_eq!(t.is_degenerate(), ta.is_degenerate());
-    let (n, na) = (t.normal_with_error(), ta.normal_with_error());
+    let (n, na) = (
+        (t.normal(), t.normal_error()),
+        (ta.normal(), ta.normal_error()),
+    );
     assert_eq!(
         (vector_bits(n.0), vector_bits(n.1)),
         (vector_bits(na.0), vector_bits(na.1))
     );
     if let Some(h) = got {
-        let (e, ea) = (
-            ray_triangle_error_bounds(r, t, &h),
-            ray_triangle_error_bounds(&ra, &ta, &h),
-        );
+        let (e, ea) = (t.hit_error(r, &h), ta.hit_error(&ra, &h));
         assert_eq!([e.t, e.u, e.v].map(bits), [ea.t, ea.u, ea.v].map(bits));
-        let (q, qa) = (triangle_hit_point(t, &h), triangle_hit_point(&ta, &h));
+        let (s, sa) = (t.surface_point(r, &h), ta.surface_point(&ra, &h));
+        let (q, qa) = ((s.point, s.point_error), (sa.point, sa.point_error));
         assert_eq!(
             (vector_bits(q.0), vector_bits(q.1)),
             (vector_bits(qa.0), vector_bits(qa.1))
@@ -176,18 +164,15 @@ fn check_triangle<V: Vector, W: Vector<Scalar = S<V>>>(
             S::<V>::from_f64(0.4),
         );
         assert_eq!(
-            vector_bits(SurfacePoint::on_triangle(t, &h).spawn(d).origin),
-            vector_bits(SurfacePoint::on_triangle(&ta, &h).spawn(to(d)).origin)
+            vector_bits(t.surface_point_at(h.u, h.v).spawn(d).origin),
+            vector_bits(ta.surface_point_at(h.u, h.v).spawn(to(d)).origin)
         );
     }
     if let (Some(batch), Some(batch_a)) = (
         TriangleBatch::<V, 8>::from_slice(&[*t]),
         TriangleBatch::<W, 8>::from_slice(&[ta]),
     ) {
-        let (h, ha) = (
-            ray_triangle_batch(&p, &batch, t_max),
-            ray_triangle_batch(&pa, &batch_a, t_max),
-        );
+        let (h, ha) = (batch.hit(&p, t_max), batch_a.hit(&pa, t_max));
         assert_eq!((h.mask, h.front), (ha.mask, ha.front));
         assert_eq!(h.t.map(bits::<S<V>>), ha.t.map(bits::<S<V>>));
     }
@@ -206,13 +191,16 @@ fn check_plane<V: Vector, W: Vector<Scalar = S<V>>>(
         ray_plane(&ra, &pa, t_max).map(bits::<S<V>>)
     );
     if let Some(t) = got {
-        assert_eq!(
-            bits(ray_plane_t_error(r, pl, t)),
-            bits(ray_plane_t_error(&ra, &pa, t))
-        );
+        assert_eq!(bits(pl.hit_error(r, &t)), bits(pa.hit_error(&ra, &t)));
         let (q, qa) = (
-            ray_plane_hit_point(r, pl, t),
-            ray_plane_hit_point(&ra, &pa, t),
+            {
+                let s = pl.surface_point(r, &t);
+                (s.point, s.point_error)
+            },
+            {
+                let s = pa.surface_point(&ra, &t);
+                (s.point, s.point_error)
+            },
         );
         assert_eq!(
             (vector_bits(q.0), vector_bits(q.1)),
@@ -277,7 +265,7 @@ where
 /// Every camera's rays and differentials (and the panoramas' inverses),
 /// in `V` and in `W`, bit for bit.
 fn same_camera_rays<V: Vector, W: Vector<Scalar = S<V>>>() {
-    use rayhit::{
+    use rayhit::camera::{
         ClipSpace, EqualAreaCamera, EquirectangularCamera, MatrixCamera, OrthographicCamera,
         RayDifferential, ThinLensCamera,
     };
@@ -329,36 +317,39 @@ fn same_camera_rays<V: Vector, W: Vector<Scalar = S<V>>>() {
             let (s, t) = (f(f64::from(i) / 64.0), f(f64::from(j) / 48.0));
             assert_eq!(ray(cam.pixel_ray(i, j)), ray_w(cam_w.pixel_ray(i, j)));
             assert_eq!(
-                diff(cam.ray_differential(x, y)),
-                diff_w(cam_w.ray_differential(x, y))
-            );
-            assert_eq!(ray(lens.ray(x, y, s, t)), ray_w(lens_w.ray(x, y, s, t)));
-            assert_eq!(
-                diff(lens.ray_differential(x, y, s, t)),
-                diff_w(lens_w.ray_differential(x, y, s, t))
+                diff(cam.ray_differential(CameraSample::new(x, y))),
+                diff_w(cam_w.ray_differential(CameraSample::new(x, y)))
             );
             assert_eq!(
-                diff(ortho.ray_differential(x, y)),
-                diff_w(ortho_w.ray_differential(x, y))
+                ray(lens.ray(CameraSample::new(x, y).with_lens(s, t))),
+                ray_w(lens_w.ray(CameraSample::new(x, y).with_lens(s, t)))
             );
             assert_eq!(
-                diff(matrix.ray_differential(x, y)),
-                diff_w(matrix_w.ray_differential(x, y))
+                diff(lens.ray_differential(CameraSample::new(x, y).with_lens(s, t))),
+                diff_w(lens_w.ray_differential(CameraSample::new(x, y).with_lens(s, t)))
             );
             assert_eq!(
-                diff(equi.ray_differential(x, y)),
-                diff_w(equi_w.ray_differential(x, y))
+                diff(ortho.ray_differential(CameraSample::new(x, y))),
+                diff_w(ortho_w.ray_differential(CameraSample::new(x, y)))
             );
             assert_eq!(
-                diff(area.ray_differential(x, y)),
-                diff_w(area_w.ray_differential(x, y))
+                diff(matrix.ray_differential(CameraSample::new(x, y))),
+                diff_w(matrix_w.ray_differential(CameraSample::new(x, y)))
             );
-            let d = equi.ray(x, y).dir;
+            assert_eq!(
+                diff(equi.ray_differential(CameraSample::new(x, y))),
+                diff_w(equi_w.ray_differential(CameraSample::new(x, y)))
+            );
+            assert_eq!(
+                diff(area.ray_differential(CameraSample::new(x, y))),
+                diff_w(area_w.ray_differential(CameraSample::new(x, y)))
+            );
+            let d = equi.ray(CameraSample::new(x, y)).dir;
             assert_eq!(
                 back(equi.raster_position(d)),
                 back(equi_w.raster_position(to(d)))
             );
-            let d = area.ray(x, y).dir;
+            let d = area.ray(CameraSample::new(x, y)).dir;
             assert_eq!(
                 back(area.raster_position(d)),
                 back(area_w.raster_position(to(d)))

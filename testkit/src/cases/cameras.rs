@@ -9,8 +9,8 @@
 //! corners of `[0, 1)^2`, and anywhere in it.
 
 use rayhit::{
-    EquirectangularCamera, OrthographicCamera, PinholeCamera, Ray, RayDifferential, Scalar,
-    ThinLensCamera, Triangle, Vector,
+    Camera, CameraSample, PinholeCamera, Ray, Scalar, Triangle, Vector,
+    camera::{EquirectangularCamera, OrthographicCamera, RayDifferential, ThinLensCamera},
 };
 
 use super::{S, direction, point, v};
@@ -112,22 +112,22 @@ pub fn differential<V: Vector>(src: &mut Source) -> Option<RayDifferential<V>> {
     let (x, y) = raster::<S<V>>(src, f.width, f.height);
     let pinhole = PinholeCamera::from_fov(f.eye, f.view, f.up, fov(src), f.width, f.height);
     Some(match src.below(4) {
-        0 => pinhole.ok()?.ray_differential(x, y),
+        0 => pinhole.ok()?.ray_differential(CameraSample::new(x, y)),
         1 => {
             let (radius, distance) = lens::<V>(src);
             let cam = ThinLensCamera::new(pinhole.ok()?, radius, distance).ok()?;
             let (s, t) = lens_sample::<S<V>>(src);
-            cam.ray_differential(x, y, s, t)
+            cam.ray_differential(CameraSample::new(x, y).with_lens(s, t))
         }
         2 => {
             let size = S::<V>::from_f64(src.log2_range(-8.0, 2.0));
             OrthographicCamera::new(f.eye, f.view, f.up, size, f.width, f.height)
                 .ok()?
-                .ray_differential(x, y)
+                .ray_differential(CameraSample::new(x, y))
         }
         _ => EquirectangularCamera::new(f.eye, f.view, f.up, f.width, f.height)
             .ok()?
-            .ray_differential(x, y),
+            .ray_differential(CameraSample::new(x, y)),
     })
 }
 

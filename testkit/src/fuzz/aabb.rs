@@ -6,8 +6,7 @@
 
 use arbitrary::Arbitrary;
 use rayhit::{
-    Aabb, BoxFace, PreparedRay, Ray, Scalar, ValidAabb, Vector, ray_aabb, ray_aabb_face,
-    ray_aabb_naive, ray_aabb_prepared, ray_aabb_prepared_face,
+    Aabb, Bounds, BoxFace, Intersect, PreparedRay, Ray, Scalar, ValidAabb, Vector, ray_aabb,
 };
 
 use super::exact::{R, abs, gamma, int, r, rv};
@@ -139,26 +138,25 @@ pub fn check_slab<V: Vector>(ray: &Ray<V>, b: &Aabb<V>, t_max: S<V>, detailed: b
     let zero = S::<V>::ZERO;
     let ctx = || format!("ray {ray:?}, box {b:?}, t_max {t_max:?}");
     let slab = ray_aabb(ray, b, t_max);
-    let prepared = ray_aabb_prepared(&PreparedRay::new(ray), b, t_max);
+    let prepared = b.clip(&PreparedRay::new(ray), t_max);
     assert!(
         interval_bits(slab) == interval_bits(prepared),
         "prepared {prepared:?} and unprepared {slab:?} differ: {}",
         ctx()
     );
     in_range::<V>("slab", slab, t_max, &ctx);
-    let face = ray_aabb_face(ray, b, t_max);
+    let face = b.hit(ray, t_max);
     assert!(
         interval_bits(face.map(|h| (h.enter, h.exit))) == interval_bits(slab)
-            && face == ray_aabb_prepared_face(&PreparedRay::new(ray), b, t_max),
+            && face == b.hit(&PreparedRay::new(ray), t_max),
         "face test {face:?} differs from the slab test {slab:?}: {}",
         ctx()
     );
     // A valid box checked once (`ValidAabb`): the same answers.
     if let Some(v) = ValidAabb::new(*b) {
         assert!(
-            interval_bits(ray_aabb(ray, &v, t_max)) == interval_bits(slab)
-                && interval_bits(ray_aabb_prepared(&PreparedRay::new(ray), &v, t_max))
-                    == interval_bits(slab),
+            interval_bits(v.clip(ray, t_max)) == interval_bits(slab)
+                && interval_bits(v.clip(&PreparedRay::new(ray), t_max)) == interval_bits(slab),
             "ValidAabb answers differ from the slab test's {slab:?}: {}",
             ctx()
         );
@@ -326,7 +324,7 @@ fn entry_point_on_surface<V: Vector>(
 pub fn check_slab_vs_naive<V: Vector>(ray: &Ray<V>, b: &Aabb<V>, t_max: S<V>) {
     let ctx = || format!("ray {ray:?}, box {b:?}, t_max {t_max:?}");
     let slab = ray_aabb(ray, b, t_max);
-    let naive = ray_aabb_naive(ray, b, t_max);
+    let naive = b.clip_by_faces(ray, t_max);
     in_range::<V>("naive", naive, t_max, &ctx);
     let inf = S::<V>::INFINITY;
     if slab != Some((inf, inf)) {

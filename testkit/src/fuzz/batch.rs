@@ -17,8 +17,9 @@
 
 use arbitrary::Arbitrary;
 use rayhit::{
-    Aabb, AabbBatch, PreparedRay, Ray, Scalar, Triangle, TriangleBatch, Vector, ray_aabb_batch,
-    ray_aabb_prepared, ray_triangle, ray_triangle_batch, ray_triangle_prepared,
+    Aabb, Bounds, Intersect, IntersectLanes, PreparedRay, Ray, Scalar, Triangle, Vector,
+    batch::{AabbBatch, TriangleBatch},
+    ray_triangle,
 };
 
 use super::{Check, Input, S, raw};
@@ -147,12 +148,12 @@ where
 fn check_boxes<V: Vector, const N: usize>(ray: &Ray<V>, boxes: &[Aabb<V>], t_max: S<V>) {
     let batch = AabbBatch::<V, N>::from_slice(boxes).expect("at most N boxes");
     let prepared = PreparedRay::new(ray);
-    let hits = ray_aabb_batch(&prepared, &batch, t_max);
+    let hits = batch.clip(&prepared, t_max);
     let ctx = || format!("ray {ray:?}, boxes {boxes:?}, t_max {t_max:?}");
     for lane in 0..N {
         let scalar = boxes
             .get(lane)
-            .and_then(|b| ray_aabb_prepared(&prepared, b, t_max))
+            .and_then(|b| b.clip(&prepared, t_max))
             .map(|(enter, _)| enter);
         assert!(
             hits.get(lane).map(bits) == scalar.map(bits),
@@ -173,13 +174,13 @@ fn check_boxes<V: Vector, const N: usize>(ray: &Ray<V>, boxes: &[Aabb<V>], t_max
 fn check_triangles<V: Vector, const N: usize>(ray: &Ray<V>, tris: &[Triangle<V>], t_max: S<V>) {
     let batch = TriangleBatch::<V, N>::from_slice(tris).expect("at most N triangles");
     let prepared = PreparedRay::new(ray);
-    let hits = ray_triangle_batch(&prepared, &batch, t_max);
+    let hits = batch.hit(&prepared, t_max);
     let ctx = || format!("ray {ray:?}, triangles {tris:?}, t_max {t_max:?}");
     let mut nearest: Option<(usize, S<V>)> = None;
     for lane in 0..N {
         let tri = tris.get(lane);
         let scalar = tri.and_then(|t| ray_triangle(ray, t, t_max));
-        let from_prepared = tri.and_then(|t| ray_triangle_prepared(&prepared, t, t_max));
+        let from_prepared = tri.and_then(|t| t.hit(&prepared, t_max));
         let got = hits.get(lane);
         assert!(
             hit_bits(got) == hit_bits(scalar) && hit_bits(from_prepared) == hit_bits(scalar),

@@ -19,7 +19,7 @@
 //! tests/suite/camera.rs bound.
 
 use arbitrary::Arbitrary;
-use rayhit::{CameraError, PinholeCamera, Scalar, Vector};
+use rayhit::{Camera as _, CameraSample, PinholeCamera, Scalar, Vector, camera::CameraError};
 
 use super::exact::{R, cross, dot, gamma, int, rv};
 use super::{Check, Input, S, raw, raw_vec};
@@ -145,7 +145,7 @@ fn normalisable<V: Vector>(d: V) -> bool {
 
 fn check_rays<V: Vector>(cam: &PinholeCamera<V>, x: S<V>, y: S<V>, i: u32, j: u32) {
     let ctx = || format!("camera {cam:?}, position ({x:?}, {y:?}), pixel ({i}, {j})");
-    let ray = cam.ray(x, y);
+    let ray = cam.ray(CameraSample::new(x, y));
     assert_eq!(ray.origin, cam.eye(), "{}", ctx());
     if !(x.is_finite() && y.is_finite()) {
         assert!(
@@ -159,7 +159,7 @@ fn check_rays<V: Vector>(cam: &PinholeCamera<V>, x: S<V>, y: S<V>, i: u32, j: u3
     let half = S::<V>::HALF;
     let (pi, pj) = (S::<V>::from_u32(i) + half, S::<V>::from_u32(j) + half);
     let a = cam.pixel_ray(i, j);
-    let b = cam.ray(pi, pj);
+    let b = cam.ray(CameraSample::new(pi, pj));
     assert!(
         vector_bits(a.dir) == vector_bits(b.dir) && vector_bits(a.origin) == vector_bits(b.origin),
         "pixel_ray {a:?} is not ray(i + 0.5, j + 0.5) {b:?}: {}",
@@ -318,8 +318,8 @@ pub fn check_pinhole_differential<V: Vector>(cam: &PinholeCamera<V>, i: u32, j: 
     let ctx = || format!("{cam:?} at pixel ({i}, {j})");
     let half = S::<V>::HALF;
     let (x, y) = (S::<V>::from_u32(i) + half, S::<V>::from_u32(j) + half);
-    let diff = cam.ray_differential(x, y);
-    let ray = cam.ray(x, y);
+    let diff = cam.ray_differential(CameraSample::new(x, y));
+    let ray = cam.ray(CameraSample::new(x, y));
     assert!(
         vector_bits(diff.ray.dir) == vector_bits(ray.dir)
             && vector_bits(diff.ray.origin) == vector_bits(ray.origin),
@@ -339,8 +339,8 @@ pub fn check_pinhole_differential<V: Vector>(cam: &PinholeCamera<V>, i: u32, j: 
     let dx = x - S::<V>::from_u32(cam.width()) * half;
     let dy = S::<V>::from_u32(cam.height()) * half - y;
     let one = S::<V>::ONE;
-    let next_x = cam.ray(x + one, y).dir;
-    let next_y = cam.ray(x, y + one).dir;
+    let next_x = cam.ray(CameraSample::new(x + one, y)).dir;
+    let next_y = cam.ray(CameraSample::new(x, y + one)).dir;
     check_linear_differential(&lin, dx, dy, lin.a, ray.dir, next_x, diff.dx_dir, &ctx);
     check_linear_differential(&lin, dx, dy, -lin.b, ray.dir, next_y, diff.dy_dir, &ctx);
 }

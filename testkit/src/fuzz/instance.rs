@@ -22,8 +22,8 @@
 
 use arbitrary::Arbitrary;
 use rayhit::{
-    Aabb, Instance, InstanceError, Ray, Scalar, SurfacePoint, Triangle, Vector, exact,
-    ray_triangle, ray_triangle_in, ray_triangle_one_hit_in, strategies,
+    Aabb, EdgeRule, Instance, Intersect, Ray, Scalar, Surface, Triangle, Vector, exact,
+    instance::InstanceError, ray_triangle, strategies,
 };
 
 use super::{Check, Input, S, raw, raw_vec};
@@ -121,7 +121,7 @@ fn segment_to_a_light<V: Vector>(inst: &Instance<V>, object: &Aabb<V>, ray: &Ray
     let Some(hit) = ray_triangle(ray, &tri, S::<V>::INFINITY) else {
         return;
     };
-    let world = inst.surface_to_world(&SurfacePoint::on_triangle(&tri, &hit));
+    let world = inst.surface_to_world(&tri.surface_point(&ray, &hit));
     let n = world.normal.length();
     if !(n > S::<V>::ZERO && n.is_finite()) {
         return;
@@ -133,8 +133,8 @@ fn segment_to_a_light<V: Vector>(inst: &Instance<V>, object: &Aabb<V>, ray: &Ray
     };
     let back = inst.world_to_object(&shadow);
     assert!(
-        ray_triangle_in(&back, &tri, interval).is_none()
-            && ray_triangle_one_hit_in(&back, &tri, interval).is_none(),
+        tri.hit(&back, interval).is_none()
+            && tri.hit(&back, (interval, EdgeRule::OneHit)).is_none(),
         "the segment {shadow:?} reports its start triangle {tri:?} through {inst:?}"
     );
     let crossing = crate::oracle::triangle(&back, &tri);

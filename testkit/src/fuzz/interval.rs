@@ -22,11 +22,8 @@
 //! and a box exact arithmetic puts in the window is never culled.
 
 use arbitrary::Arbitrary;
-use rayhit::exact;
-use rayhit::{
-    Aabb, Interval, Plane, Ray, Scalar, Triangle, Vector, ray_aabb_face_in, ray_aabb_in,
-    ray_plane_in, ray_triangle_in, ray_triangle_one_hit_in,
-};
+use rayhit::{Aabb, Interval, Plane, Ray, Scalar, Triangle, Vector};
+use rayhit::{Bounds, EdgeRule, Intersect, exact};
 
 use super::{Check, Input, S, raw, raw_vec};
 use crate::cases;
@@ -86,9 +83,9 @@ fn structured_case<V: Vector>(src: &mut Source) -> Case<V> {
     // either side, zero, and anywhere up to 8.
     let mut near = vec![S::<V>::ZERO, S::<V>::INFINITY];
     let all = Interval::up_to(S::<V>::INFINITY).expect("(0, inf]");
-    near.extend(ray_triangle_in(&ray, &tri, all).map(|h| h.t));
-    near.extend(ray_plane_in(&ray, &plane, all));
-    near.extend(ray_aabb_face_in(&ray, &aabb, all).map(|h| h.enter));
+    near.extend(tri.hit(&ray, all).map(|h| h.t));
+    near.extend(plane.hit(&ray, all));
+    near.extend(aabb.hit(&ray, all).map(|h| h.enter));
     let mut end = || {
         let base = near[src.index(near.len())];
         match src.index(4) {
@@ -155,9 +152,9 @@ fn check<V: Vector>(case: &Case<V>, structured: bool) {
     // In range, finite, in every window.
     for w in [whole, first, second] {
         for t in [
-            ray_triangle_in(ray, tri, w).map(|h| h.t),
-            ray_triangle_one_hit_in(ray, tri, w).map(|h| h.t),
-            ray_plane_in(ray, plane, w),
+            tri.hit(ray, w).map(|h| h.t),
+            tri.hit(ray, (w, EdgeRule::OneHit)).map(|h| h.t),
+            plane.hit(ray, w),
         ]
         .into_iter()
         .flatten()
@@ -168,8 +165,8 @@ fn check<V: Vector>(case: &Case<V>, structured: bool) {
                 ctx()
             );
         }
-        let face = ray_aabb_face_in(ray, aabb, w).map(|h| (h.enter, h.exit));
-        assert_eq!(face, ray_aabb_in(ray, aabb, w), "{}", ctx());
+        let face = aabb.hit(ray, w).map(|h| (h.enter, h.exit));
+        assert_eq!(face, aabb.clip(ray, w), "{}", ctx());
         if let Some((enter, exit)) = face {
             assert!(
                 w.min() <= enter && enter <= exit && exit <= w.max() && enter.is_finite(),
@@ -187,23 +184,19 @@ fn check<V: Vector>(case: &Case<V>, structured: bool) {
         assert_eq!(w, a || b, "{name}: whole {w}, halves {a} {b}: {}", ctx());
         assert!(!(a && b), "{name}: reported in both halves: {}", ctx());
     };
-    once("ray_triangle_in", &|w| {
-        ray_triangle_in(ray, tri, w).is_some()
-    });
+    once("ray_triangle_in", &|w| tri.hit(ray, w).is_some());
     once("ray_triangle_one_hit_in", &|w| {
-        ray_triangle_one_hit_in(ray, tri, w).is_some()
+        tri.hit(ray, (w, EdgeRule::OneHit)).is_some()
     });
-    once("ray_plane_in", &|w| ray_plane_in(ray, plane, w).is_some());
+    once("ray_plane_in", &|w| plane.hit(ray, w).is_some());
     once("ray_aabb_face_in's face", &|w| {
-        ray_aabb_face_in(ray, aabb, w)
-            .and_then(|h| h.face)
-            .is_some()
+        aabb.hit(ray, w).and_then(|h| h.face).is_some()
     });
     // A box the whole window reports: some half reports it too (the halves
     // cover the window; the culling is conservative in each).
-    if ray_aabb_in(ray, aabb, whole).is_some() {
+    if aabb.clip(ray, whole).is_some() {
         assert!(
-            ray_aabb_in(ray, aabb, first).is_some() || ray_aabb_in(ray, aabb, second).is_some(),
+            aabb.clip(ray, first).is_some() || aabb.clip(ray, second).is_some(),
             "box culled by both halves: {}",
             ctx()
         );
@@ -216,14 +209,14 @@ fn check<V: Vector>(case: &Case<V>, structured: bool) {
         let exact_plane = exact::ray_plane_in(ray, plane, w.min(), w.max())
             .filter(|t| t.value <= exact::oracle::r(S::<V>::MAX).expect("finite"));
         assert_eq!(
-            ray_plane_in(ray, plane, w).is_some(),
+            plane.hit(ray, w).is_some(),
             exact_plane.is_some(),
             "ray_plane_in over {w:?} against exact: {}",
             ctx()
         );
         if exact::ray_aabb_in(ray, aabb, w.min(), w.max()).is_some() {
             assert!(
-                ray_aabb_in(ray, aabb, w).is_some(),
+                aabb.clip(ray, w).is_some(),
                 "ray_aabb_in culled a box exact arithmetic puts in {w:?}: {}",
                 ctx()
             );

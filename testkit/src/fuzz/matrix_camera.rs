@@ -23,7 +23,10 @@
 use arbitrary::Arbitrary;
 use rayhit::glam::dcamera::{lh, rh};
 use rayhit::glam::{DMat4, DVec3};
-use rayhit::{ClipSpace, Columns, MatrixCamera, Scalar, Vector};
+use rayhit::{
+    Camera, CameraSample, Scalar, Vector,
+    camera::{ClipSpace, MatrixCamera},
+};
 
 use super::camera::{Linear, check_linear_differential};
 use super::exact::{R, R3, abs, cross, dot, gamma, int, r, rv};
@@ -102,7 +105,7 @@ fn projection(src: &mut Source, aspect: f64) -> (DMat4, ClipSpace, bool) {
 }
 
 /// A glam `f64` matrix's columns rounded to precision `F`.
-fn columns<F: Scalar>(m: DMat4) -> Columns<F> {
+fn columns<F: Scalar>(m: DMat4) -> [[F; 4]; 4] {
     m.to_cols_array_2d().map(|c| c.map(F::from_f64))
 }
 
@@ -122,13 +125,13 @@ impl Check for MatrixCameraCheck {
                 let (x, y) = (raw::<S<V>>(u), raw::<S<V>>(u));
                 let _ = raw_vec::<V>(u);
                 let cam = MatrixCamera::<V>::new(view, proj, clip, w, h);
-                let finite = |m: &Columns<S<V>>| m.iter().flatten().all(|c| c.is_finite());
+                let finite = |m: &[[S<V>; 4]; 4]| m.iter().flatten().all(|c| c.is_finite());
                 match cam {
-                    Err(rayhit::CameraError::NonFiniteMatrix) => {}
-                    Err(rayhit::CameraError::EmptyImage) => {
+                    Err(rayhit::camera::CameraError::NonFiniteMatrix) => {}
+                    Err(rayhit::camera::CameraError::EmptyImage) => {
                         assert!(w == 0 || h == 0)
                     }
-                    Err(rayhit::CameraError::SingularMatrix) => {
+                    Err(rayhit::camera::CameraError::SingularMatrix) => {
                         assert!(finite(&view) && finite(&proj))
                     }
                     Err(e) => panic!("{e:?} from matrices"),
@@ -186,8 +189,8 @@ pub struct Exact {
 
 impl Exact {
     /// The product of two matrices given as columns.
-    pub fn new<F: Scalar>(view: &Columns<F>, proj: &Columns<F>) -> Self {
-        let at = |c: &Columns<F>, i: usize, j: usize| r(c[j][i]);
+    pub fn new<F: Scalar>(view: &[[F; 4]; 4], proj: &[[F; 4]; 4]) -> Self {
+        let at = |c: &[[F; 4]; 4], i: usize, j: usize| r(c[j][i]);
         let m = core::array::from_fn(|i| {
             core::array::from_fn(|j| (0..4).map(|k| at(proj, i, k) * at(view, k, j)).sum())
         });
@@ -358,10 +361,10 @@ fn check_pixel<V: Vector>(cam: &MatrixCamera<V>, ex: &Exact, clip: ClipSpace, i:
             );
         }
     }
-    let diff = cam.ray_differential(
+    let diff = cam.ray_differential(CameraSample::new(
         S::<V>::from_u32(i) + S::<V>::HALF,
         S::<V>::from_u32(j) + S::<V>::HALF,
-    );
+    ));
     assert!(
         vector_bits(diff.ray.dir) == vector_bits(ray.dir)
             && vector_bits(diff.ray.origin) == vector_bits(ray.origin),
@@ -433,7 +436,7 @@ fn check_neighbours<V: Vector>(
     cam: &MatrixCamera<V>,
     i: u32,
     j: u32,
-    diff: &rayhit::RayDifferential<V>,
+    diff: &rayhit::camera::RayDifferential<V>,
 ) {
     let ctx = || format!("{cam:?} at pixel ({i}, {j})");
     let [c, a, b] = cam.linear_form();
@@ -442,7 +445,10 @@ fn check_neighbours<V: Vector>(
     let dx = x - S::<V>::from_u32(cam.width()) * half;
     let dy = S::<V>::from_u32(cam.height()) * half - y;
     let one = S::<V>::ONE;
-    let (next_x, next_y) = (cam.ray(x + one, y), cam.ray(x, y + one));
+    let (next_x, next_y) = (
+        cam.ray(CameraSample::new(x + one, y)),
+        cam.ray(CameraSample::new(x, y + one)),
+    );
     if !cam.is_orthographic() {
         let lin = Linear {
             c: [0, 1, 2].map(|k| c[k].to_f64()),
@@ -490,8 +496,8 @@ fn check_neighbours<V: Vector>(
 }
 
 fn check_ray_raw<V: Vector>(cam: &MatrixCamera<V>, x: S<V>, y: S<V>) {
-    let ray = cam.ray(x, y);
-    let diff = cam.ray_differential(x, y);
+    let ray = cam.ray(CameraSample::new(x, y));
+    let diff = cam.ray_differential(CameraSample::new(x, y));
     assert_eq!(vector_bits(diff.ray.dir), vector_bits(ray.dir));
     assert_eq!(vector_bits(diff.ray.origin), vector_bits(ray.origin));
     // The camera's fixed part is finite (checked when it was made).

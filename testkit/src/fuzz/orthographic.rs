@@ -19,7 +19,10 @@
 //! bounds and its own rounding.
 
 use arbitrary::Arbitrary;
-use rayhit::{CameraError, OrthographicCamera, Scalar, Vector};
+use rayhit::{
+    Camera, CameraSample, Scalar, Vector,
+    camera::{CameraError, OrthographicCamera},
+};
 
 use super::exact::{R, abs, dot, gamma, int, r, rv};
 use super::{Check, Input, S, raw, raw_vec};
@@ -104,14 +107,14 @@ fn origin_bound<V: Vector>(cam: &OrthographicCamera<V>, x: S<V>, y: S<V>) -> ([R
 
 fn check_ray<V: Vector>(cam: &OrthographicCamera<V>, x: S<V>, y: S<V>, bounded: bool) {
     let ctx = || format!("{cam:?} at ({x:?}, {y:?})");
-    let ray = cam.ray(x, y);
+    let ray = cam.ray(CameraSample::new(x, y));
     assert_eq!(
         vector_bits(ray.dir),
         vector_bits(cam.forward()),
         "not parallel: {}",
         ctx()
     );
-    let diff = cam.ray_differential(x, y);
+    let diff = cam.ray_differential(CameraSample::new(x, y));
     assert!(
         vector_bits(diff.ray.origin) == vector_bits(ray.origin)
             && vector_bits(diff.ray.dir) == vector_bits(ray.dir),
@@ -155,7 +158,7 @@ fn check_ray<V: Vector>(cam: &OrthographicCamera<V>, x: S<V>, y: S<V>, bounded: 
         (x, y + S::<V>::ONE, diff.dy_origin, rv(-cam.up())),
     ] {
         let (exact1, b1) = origin_bound(cam, nx, ny);
-        let next = rv(cam.ray(nx, ny).origin);
+        let next = rv(cam.ray(CameraSample::new(nx, ny)).origin);
         let (dv, sr) = (rv(d), r(s));
         // The exact origins are a pixel apart where the computed offsets
         // are (always on the half-pixel grid).

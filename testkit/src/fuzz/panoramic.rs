@@ -23,7 +23,8 @@
 use arbitrary::Arbitrary;
 use rayhit::glam::DVec3;
 use rayhit::{
-    CameraError, EqualAreaCamera, EquirectangularCamera, RayDifferential, Scalar, Vector,
+    Camera, CameraSample, Scalar, Vector,
+    camera::{CameraError, EqualAreaCamera, EquirectangularCamera},
 };
 
 use super::exact::{abs, dot, gamma, int, rv};
@@ -39,15 +40,13 @@ pub struct Equirectangular;
 #[derive(Debug)]
 pub struct EqualArea;
 
-/// What the checks need of either camera.
-trait Panorama<V: Vector>: core::fmt::Debug + Sized {
+/// What the checks need of either camera beyond [`Camera`]: how to make
+/// one, and its inverse and frame.
+trait Panorama<V: Vector>: Camera<V> + core::fmt::Debug + Sized {
     /// True for the equal-area map, whose square's edges fold.
     const FOLDS: bool;
     fn make(f: &Frame<V>) -> Result<Self, CameraError>;
-    fn ray(&self, x: S<V>, y: S<V>) -> rayhit::Ray<V>;
-    fn diff(&self, x: S<V>, y: S<V>) -> RayDifferential<V>;
     fn back(&self, dir: V) -> Option<(S<V>, S<V>)>;
-    fn size(&self) -> (u32, u32);
     fn forward(&self) -> V;
     fn basis(&self) -> [V; 3];
 }
@@ -57,17 +56,8 @@ impl<V: Vector> Panorama<V> for EquirectangularCamera<V> {
     fn make(f: &Frame<V>) -> Result<Self, CameraError> {
         EquirectangularCamera::new(f.eye, f.view, f.up, f.width, f.height)
     }
-    fn ray(&self, x: S<V>, y: S<V>) -> rayhit::Ray<V> {
-        EquirectangularCamera::ray(self, x, y)
-    }
-    fn diff(&self, x: S<V>, y: S<V>) -> RayDifferential<V> {
-        self.ray_differential(x, y)
-    }
     fn back(&self, dir: V) -> Option<(S<V>, S<V>)> {
         self.raster_position(dir)
-    }
-    fn size(&self) -> (u32, u32) {
-        (self.width(), self.height())
     }
     fn forward(&self) -> V {
         EquirectangularCamera::forward(self)
@@ -86,17 +76,8 @@ impl<V: Vector> Panorama<V> for EqualAreaCamera<V> {
     fn make(f: &Frame<V>) -> Result<Self, CameraError> {
         EqualAreaCamera::new(f.eye, f.view, f.up, f.width, f.height)
     }
-    fn ray(&self, x: S<V>, y: S<V>) -> rayhit::Ray<V> {
-        EqualAreaCamera::ray(self, x, y)
-    }
-    fn diff(&self, x: S<V>, y: S<V>) -> RayDifferential<V> {
-        self.ray_differential(x, y)
-    }
     fn back(&self, dir: V) -> Option<(S<V>, S<V>)> {
         self.raster_position(dir)
-    }
-    fn size(&self) -> (u32, u32) {
-        (self.width(), self.height())
     }
     fn forward(&self) -> V {
         EqualAreaCamera::forward(self)
@@ -146,8 +127,8 @@ where
 /// The ray, its differential's ray, and its direction's length.
 fn check_ray<V: Vector, C: Panorama<V>>(cam: &C, x: S<V>, y: S<V>) {
     let ctx = || format!("{cam:?} at ({x:?}, {y:?})");
-    let ray = cam.ray(x, y);
-    let diff = cam.diff(x, y);
+    let ray = cam.ray(CameraSample::new(x, y));
+    let diff = cam.ray_differential(CameraSample::new(x, y));
     assert!(
         vector_bits(diff.ray.dir) == vector_bits(ray.dir)
             && vector_bits(diff.ray.origin) == vector_bits(ray.origin),
@@ -177,7 +158,7 @@ fn check_ray<V: Vector, C: Panorama<V>>(cam: &C, x: S<V>, y: S<V>) {
 
 /// `None` exactly for a zero or non-finite direction, else in the image.
 fn check_back<V: Vector, C: Panorama<V>>(cam: &C, dir: V) {
-    let (w, h) = cam.size();
+    let (w, h) = (cam.width(), cam.height());
     match cam.back(dir) {
         None => assert!(!dir.is_finite() || dir == V::ZERO, "{cam:?}: {dir:?}"),
         Some((x, y)) => {
@@ -377,16 +358,16 @@ impl Check for EqualArea {
 /// (within `gamma(6)` per component of `forward / |forward|`, itself unit
 /// within `gamma(6)`).
 fn check_centre<V: Vector, C: Panorama<V>>(cam: &C) {
-    let (w, h) = cam.size();
+    let (w, h) = (cam.width(), cam.height());
     if w % 2 == 0 || h % 2 == 0 {
         return;
     }
     let half = S::<V>::HALF;
     let d = cam
-        .ray(
+        .ray(CameraSample::new(
             S::<V>::from_u32(w / 2) + half,
             S::<V>::from_u32(h / 2) + half,
-        )
+        ))
         .dir;
     let f = cam.forward();
     let g = 4.0 * S::<V>::gamma_n(6).to_f64();
@@ -406,10 +387,10 @@ fn check_centre<V: Vector, C: Panorama<V>>(cam: &C) {
 /// likewise `(1, v)` and `(1, -v)`), for positions within the bound of an
 /// edge.
 fn check_round_trip<V: Vector, C: Panorama<V>>(cam: &C, x: S<V>, y: S<V>, bx: f64, by: f64) {
-    let dir = cam.ray(x, y).dir;
+    let dir = cam.ray(CameraSample::new(x, y)).dir;
     let (rx, ry) = cam.back(dir).expect("a unit direction");
     let (rx, ry) = (rx.to_f64(), ry.to_f64());
-    let (w, h) = (f64::from(cam.size().0), f64::from(cam.size().1));
+    let (w, h) = (f64::from(cam.width()), f64::from(cam.height()));
     let (x, y) = (x.to_f64(), y.to_f64());
     let near = |p: f64, n: f64, b: f64| p <= b || p >= n - b;
     let mut same = vec![(x, y), (x - w, y), (x + w, y)];
@@ -450,7 +431,7 @@ fn check_equirectangular_neighbours<V: Vector>(cam: &EquirectangularCamera<V>, x
     let g = |n: u32| S::<V>::gamma_n(n).to_f64();
     let pi = core::f64::consts::PI;
     let (w, h) = (f64::from(cam.width()), f64::from(cam.height()));
-    let diff = cam.ray_differential(x, y);
+    let diff = cam.ray_differential(CameraSample::new(x, y));
     // The forward map alone: no inverse, so no dot products and no skew.
     let ray_error = direction_angle::<S<V>>(0.0)
         - 3f64.sqrt() * g(3)
@@ -460,7 +441,7 @@ fn check_equirectangular_neighbours<V: Vector>(cam: &EquirectangularCamera<V>, x
         (2.0 * pi / w, x + S::<V>::ONE, y, diff.dx_dir),
         (pi / h, x, y + S::<V>::ONE, diff.dy_dir),
     ] {
-        let next = cam.ray(nx, ny).dir;
+        let next = cam.ray(CameraSample::new(nx, ny)).dir;
         // The differential is the unnormalised map's derivative; the rays
         // are normalised. With the basis orthonormal within `skew`, the
         // map's length is 1 within `2 skew` and its derivative along it at
@@ -554,7 +535,7 @@ fn check_equal_area_derivatives<V: Vector>(cam: &EqualAreaCamera<V>, x: S<V>, y:
     let scale = 2.0 / f64::from(w.min(h));
     let e64 = direction_angle::<f64>(0.0);
     let truncation = step * step * 250.0 * scale.powi(3) / (r * r) / 6.0 + e64 / step;
-    let diff = cam.ray_differential(x, y);
+    let diff = cam.ray_differential(CameraSample::new(x, y));
     for (dx, dy, got) in [(step, 0.0, diff.dx_dir), (0.0, step, diff.dy_dir)] {
         let (a, b) = (map(xf + dx, yf + dy), map(xf - dx, yf - dy));
         let central = (a - b) / (2.0 * step);

@@ -12,7 +12,7 @@
 //! the exact crossing is within that bound of `0` or `t_max` (or overflows).
 
 use arbitrary::Arbitrary;
-use rayhit::{Plane, Ray, Scalar, Vector, ray_plane, ray_plane_hit_point, ray_plane_t_error};
+use rayhit::{Plane, Ray, Scalar, Surface, Vector, ray_plane};
 
 use super::exact::{abs, int, r, rv};
 use super::{Check, Input, S, far_from_underflow, product_far_from_underflow, raw};
@@ -82,7 +82,7 @@ pub fn check<V: Vector>(ray: &Ray<V>, plane: &Plane<V>, t_max: S<V>, bounded: bo
     let exact = oracle::plane_t(ray, plane);
     if let Some(t) = got {
         let exact = exact.expect("a hit on a plane the ray is parallel to");
-        let err = ray_plane_t_error(ray, plane, t);
+        let err = plane.hit_error(ray, &t);
         assert!(err >= zero, "t error bound {err:?}: {}", ctx());
         assert!(
             !err.is_finite() || oracle::close(t, &exact, err),
@@ -92,7 +92,10 @@ pub fn check<V: Vector>(ray: &Ray<V>, plane: &Plane<V>, t_max: S<V>, bounded: bo
         );
         // The hit point is within its per-component bound of the exact
         // crossing o + t* d (which lies on the plane).
-        let (p, perr) = ray_plane_hit_point(ray, plane, t);
+        let (p, perr) = {
+            let s = plane.surface_point(ray, &t);
+            (s.point, s.point_error)
+        };
         let (o, d, p) = (rv(ray.origin), rv(ray.dir), p);
         for j in 0..3 {
             let e = perr[j];
@@ -115,7 +118,7 @@ pub fn check<V: Vector>(ray: &Ray<V>, plane: &Plane<V>, t_max: S<V>, bounded: bo
         let limit = oracle::limit(t_max);
         if exact > int(0) && limit.as_ref().is_none_or(|m| &exact <= m) {
             let t = S::<V>::from_f64(super::exact::f(&exact));
-            let err = ray_plane_t_error(ray, plane, t).next_up();
+            let err = plane.hit_error(ray, &t).next_up();
             let unknown = !t.is_finite() || !err.is_finite();
             let near_zero = unknown || exact <= r(err);
             let near_max = !unknown && limit.as_ref().is_some_and(|m| m - &exact <= r(err));

@@ -8,8 +8,7 @@
 //! the surface (an edge direction plus `2^-k` times the normal, `k` up to
 //! 40), to press on the precondition.
 //!
-//! The new ray starts at `offset_ray_origin(point, point_error, normal,
-//! normal_error, dir)` and runs along `dir`. Checks: no panic; non-finite
+//! The new ray starts at `SurfacePoint { point, point_error, normal, normal_error: //! normal_error }.spawn(dir).origin` and runs along `dir`. Checks: no panic; non-finite
 //! input returns the point unchanged (bit for bit); and where the documented
 //! precondition holds (`|dir . normal| > sum |dir_i| normal_error_i`, decided
 //! exactly, and the origin moved; for planes also the dot product's own
@@ -19,8 +18,8 @@
 
 use arbitrary::Arbitrary;
 use rayhit::{
-    Plane, Ray, Scalar, Triangle, Vector, offset_ray_origin, ray_plane, ray_plane_hit_point,
-    ray_triangle, ray_triangle_one_hit, triangle_hit_point,
+    EdgeRule, Intersect, Plane, Ray, Scalar, Surface, SurfacePoint, Triangle, Vector, ray_plane,
+    ray_triangle,
 };
 
 use super::exact::{R, abs, cross, dot, gamma, int, rv, sub};
@@ -48,8 +47,11 @@ impl Check for Spawn {
                     raw_vec::<V>(u),
                 );
                 if let Some(hit) = ray_triangle(&ray, &tri, inf) {
-                    let (p, perr) = triangle_hit_point(&tri, &hit);
-                    let (n, nerr) = tri.normal_with_error();
+                    let (p, perr) = {
+                        let s = tri.surface_point(&ray, &hit);
+                        (s.point, s.point_error)
+                    };
+                    let (n, nerr) = (tri.normal(), tri.normal_error());
                     let (e1, e2) = (tri.b - tri.a, tri.c - tri.a);
                     let ranges = [tri.a, tri.b, tri.c, e1, e2, p, perr, n, nerr, dir];
                     let bounded =
@@ -62,7 +64,10 @@ impl Check for Spawn {
                     raw_vec::<V>(u),
                 );
                 if let Some(t) = ray_plane(&ray, &plane, inf) {
-                    let (p, perr) = ray_plane_hit_point(&ray, &plane, t);
+                    let (p, perr) = {
+                        let s = plane.surface_point(&ray, &t);
+                        (s.point, s.point_error)
+                    };
                     let bounded = super::plane::no_underflow(&ray, &plane)
                         && in_normal_range(&[plane.point, plane.normal, p, perr, dir]);
                     spawn_plane(&plane, p, perr, dir, bounded);
@@ -74,7 +79,14 @@ impl Check for Spawn {
                     raw_vec::<V>(u),
                     raw_vec::<V>(u),
                 );
-                let o = offset_ray_origin(p, pe, n, ne, d);
+                let o = SurfacePoint {
+                    point: p,
+                    point_error: pe,
+                    normal: n,
+                    normal_error: ne,
+                }
+                .spawn(d)
+                .origin;
                 if !(p.is_finite()
                     && pe.is_finite()
                     && n.is_finite()
@@ -94,7 +106,10 @@ impl Check for Spawn {
                     let Some(t) = ray_plane(&ray, &plane, inf) else {
                         return;
                     };
-                    let (p, perr) = ray_plane_hit_point(&ray, &plane, t);
+                    let (p, perr) = {
+                        let s = plane.surface_point(&ray, &t);
+                        (s.point, s.point_error)
+                    };
                     // A direction in the plane (rounded): normal x random.
                     let along = plane.normal.cross(cases::direction::<V>(src));
                     let dir = new_dir(src, plane.normal, along);
@@ -104,7 +119,10 @@ impl Check for Spawn {
                     let Some(hit) = ray_triangle(&ray, &tri, inf) else {
                         return;
                     };
-                    let (p, perr) = triangle_hit_point(&tri, &hit);
+                    let (p, perr) = {
+                        let s = tri.surface_point(&ray, &hit);
+                        (s.point, s.point_error)
+                    };
                     let dir = new_dir(src, tri.normal(), tri.b - tri.a);
                     spawn_triangle(&tri, p, perr, dir, true);
                 }
@@ -212,7 +230,14 @@ fn offset_to_dir_side<V: Vector>(
     bounded: bool,
     surface: &dyn Fn() -> String,
 ) -> Option<V> {
-    let origin = offset_ray_origin(p, perr, n, nerr, dir);
+    let origin = SurfacePoint {
+        point: p,
+        point_error: perr,
+        normal: n,
+        normal_error: nerr,
+    }
+    .spawn(dir)
+    .origin;
     let ctx = || {
         format!(
             "{}, point {p:?} +- {perr:?}, normal {n:?} +- {nerr:?}, dir {dir:?} -> origin {origin:?}",
@@ -249,7 +274,7 @@ fn spawn_triangle<V: Vector>(tri: &Triangle<V>, p: V, perr: V, dir: V, bounded: 
     let (a, b, c) = (rv(tri.a), rv(tri.b), rv(tri.c));
     let exact_normal = cross(&sub(&b, &a), &sub(&c, &a));
     let surface = || format!("triangle {tri:?}");
-    let normal = tri.normal_with_error();
+    let normal = (tri.normal(), tri.normal_error());
     let Some(origin) = offset_to_dir_side(
         (p, perr),
         normal,
@@ -271,7 +296,7 @@ fn spawn_triangle<V: Vector>(tri: &Triangle<V>, p: V, perr: V, dir: V, bounded: 
         "spawned ray re-hits its triangle {again:?}: {}",
         ctx()
     );
-    let again = ray_triangle_one_hit(&ray, tri, inf);
+    let again = tri.hit(&ray, (inf, EdgeRule::OneHit));
     assert!(
         again.is_none(),
         "spawned ray re-hits (one-hit) {again:?}: {}",

@@ -21,8 +21,8 @@
 
 use arbitrary::Arbitrary;
 use rayhit::{
-    Interval, Plane, Ray, Scalar, SurfacePoint, Triangle, Vector, ray_plane, ray_plane_in,
-    ray_triangle, ray_triangle_in, ray_triangle_one_hit, ray_triangle_one_hit_in,
+    EdgeRule, Intersect, Interval, Plane, Ray, Scalar, Surface, SurfacePoint, Triangle, Vector,
+    ray_plane, ray_triangle,
 };
 
 use super::spawn::{triangle_no_underflow, within_binades};
@@ -51,7 +51,7 @@ impl Check for SpawnTo {
                 let on_triangle = |u: &mut arbitrary::Unstructured<'a>| {
                     let (tri, ray) = (raw::<Triangle<V>>(u), raw::<Ray<V>>(u));
                     ray_triangle(&ray, &tri, S::<V>::INFINITY).map(|hit| {
-                        let point = SurfacePoint::on_triangle(&tri, &hit);
+                        let point = tri.surface_point(&ray, &hit);
                         let (e1, e2) = (tri.b - tri.a, tri.c - tri.a);
                         let bounded = triangle_no_underflow(&tri, hit.u, hit.v)
                             && in_range(&[
@@ -75,7 +75,7 @@ impl Check for SpawnTo {
                 let light = raw_vec::<V>(u);
                 let (plane, ray) = (raw::<Plane<V>>(u), raw::<Ray<V>>(u));
                 let on_plane = ray_plane(&ray, &plane, S::<V>::INFINITY).map(|t| {
-                    let point = SurfacePoint::on_plane(&ray, &plane, t);
+                    let point = plane.surface_point(&ray, &t);
                     let bounded = super::plane::no_underflow(&ray, &plane)
                         && in_range(&[plane.point, plane.normal, point.point, point.point_error]);
                     (End::Plane(plane), point, bounded)
@@ -94,22 +94,22 @@ impl Check for SpawnTo {
                 let Some(hit) = ray_triangle(&ray, &tri, inf) else {
                     return;
                 };
-                let start = (End::Tri(tri), SurfacePoint::on_triangle(&tri, &hit), true);
+                let start = (End::Tri(tri), tri.surface_point(&ray, &hit), true);
                 let target = match src.index(3) {
                     0 => {
                         let (other, ray, _) = cases::triangles::with_fillers::<V>(src);
                         ray_triangle(&ray, &other, inf)
-                            .map(|h| (End::Tri(other), SurfacePoint::on_triangle(&other, &h)))
+                            .map(|h| (End::Tri(other), other.surface_point(&ray, &h)))
                     }
                     1 => {
                         let ray = cases::triangles::ray_at(src, &tri);
                         ray_triangle(&ray, &tri, inf)
-                            .map(|h| (End::Tri(tri), SurfacePoint::on_triangle(&tri, &h)))
+                            .map(|h| (End::Tri(tri), tri.surface_point(&ray, &h)))
                     }
                     _ => {
                         let (plane, ray, _) = cases::planes::plane::<V>(src);
                         ray_plane(&ray, &plane, inf)
-                            .map(|t| (End::Plane(plane), SurfacePoint::on_plane(&ray, &plane, t)))
+                            .map(|t| (End::Plane(plane), plane.surface_point(&ray, &t)))
                     }
                 };
                 let Some((surface, point)) = target else {
@@ -178,7 +178,7 @@ fn not_start<V: Vector>(ray: &Ray<V>, start: &End<V>, interval: Interval<S<V>>) 
     let inf = S::<V>::INFINITY;
     let plain = match start {
         End::Tri(t) => {
-            ray_triangle(ray, t, inf).is_some() || ray_triangle_one_hit(ray, t, inf).is_some()
+            ray_triangle(ray, t, inf).is_some() || t.hit(ray, (inf, EdgeRule::OneHit)).is_some()
         }
         End::Plane(p) => ray_plane(ray, p, inf).is_some(),
     };
@@ -192,9 +192,8 @@ fn not_start<V: Vector>(ray: &Ray<V>, start: &End<V>, interval: Interval<S<V>>) 
 fn reported<V: Vector>(ray: &Ray<V>, surface: &End<V>, interval: Interval<S<V>>) -> bool {
     match surface {
         End::Tri(t) => {
-            ray_triangle_in(ray, t, interval).is_some()
-                || ray_triangle_one_hit_in(ray, t, interval).is_some()
+            t.hit(ray, interval).is_some() || t.hit(ray, (interval, EdgeRule::OneHit)).is_some()
         }
-        End::Plane(p) => ray_plane_in(ray, p, interval).is_some(),
+        End::Plane(p) => p.hit(ray, interval).is_some(),
     }
 }

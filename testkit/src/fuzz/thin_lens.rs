@@ -23,7 +23,10 @@
 //! centres within the focus points' bounds.
 
 use arbitrary::Arbitrary;
-use rayhit::{CameraError, FocusPoint, PinholeCamera, Scalar, ThinLensCamera, Vector};
+use rayhit::{
+    Camera, CameraSample, PinholeCamera, Scalar, Vector,
+    camera::{CameraError, FocusPoint, ThinLensCamera},
+};
 
 use super::exact::{R, abs, gamma, int, r, rv};
 use super::{Check, Input, S, raw, raw_vec};
@@ -144,14 +147,14 @@ fn check_ray<V: Vector>(cam: &ThinLensCamera<V>, x: S<V>, y: S<V>, s: S<V>, t: S
     let ctx = || format!("{cam:?} at ({x:?}, {y:?}), lens ({s:?}, {t:?})");
     let focus = cam.focus(x, y);
     let ray = cam.ray_through(&focus, s, t);
-    let again = cam.ray(x, y, s, t);
+    let again = cam.ray(CameraSample::new(x, y).with_lens(s, t));
     assert!(
         vector_bits(ray.origin) == vector_bits(again.origin)
             && vector_bits(ray.dir) == vector_bits(again.dir),
         "ray is not ray_through(focus): {}",
         ctx()
     );
-    let diff = cam.ray_differential(x, y, s, t);
+    let diff = cam.ray_differential(CameraSample::new(x, y).with_lens(s, t));
     assert!(
         vector_bits(diff.ray.origin) == vector_bits(ray.origin)
             && vector_bits(diff.ray.dir) == vector_bits(ray.dir),
@@ -159,7 +162,7 @@ fn check_ray<V: Vector>(cam: &ThinLensCamera<V>, x: S<V>, y: S<V>, s: S<V>, t: S
         ctx()
     );
     let centre = s == S::<V>::HALF && t == S::<V>::HALF;
-    let pinhole = cam.pinhole().ray(x, y);
+    let pinhole = cam.pinhole().ray(CameraSample::new(x, y));
     if centre || cam.lens_radius() == S::<V>::ZERO {
         assert!(
             vector_bits(ray.origin) == vector_bits(pinhole.origin)
@@ -280,7 +283,7 @@ fn check_neighbours<V: Vector>(cam: &ThinLensCamera<V>, i: u32, j: u32, s: S<V>,
     let k = cam.focal_distance() / p.focal_length();
     let half = S::<V>::HALF;
     let (x, y) = (S::<V>::from_u32(i) + half, S::<V>::from_u32(j) + half);
-    let diff = cam.ray_differential(x, y, s, t);
+    let diff = cam.ray_differential(CameraSample::new(x, y).with_lens(s, t));
     let centre = s == half && t == half;
     if centre || cam.lens_radius() == S::<V>::ZERO {
         return;
@@ -292,7 +295,7 @@ fn check_neighbours<V: Vector>(cam: &ThinLensCamera<V>, i: u32, j: u32, s: S<V>,
         ("x", (x + S::<V>::ONE, y), diff.dx_dir),
         ("y", (x, y + S::<V>::ONE), diff.dy_dir),
     ] {
-        let next = cam.ray(nx, ny, s, t);
+        let next = cam.ray(CameraSample::new(nx, ny).with_lens(s, t));
         let (b0, b1) = (focus_bound(cam, x, y).1, focus_bound(cam, nx, ny).1);
         let (f0, f1) = (cam.focus(x, y).point(), cam.focus(nx, ny).point());
         // Half a grid spacing each: 4 u max(|F_i| before the grid, M_i).

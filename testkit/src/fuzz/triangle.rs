@@ -9,8 +9,7 @@
 
 use arbitrary::Arbitrary;
 use rayhit::{
-    Ray, Scalar, Side, SurfacePoint, Triangle, TriangleHit, Vector, ray_triangle,
-    ray_triangle_error_bounds, ray_triangle_mt, ray_triangle_one_hit,
+    EdgeRule, Intersect, Ray, Scalar, Side, Surface, Triangle, TriangleHit, Vector, ray_triangle,
 };
 
 use super::exact::{R, abs, cross, dot, int, rv, sub};
@@ -138,8 +137,8 @@ pub fn precondition<V: Vector>(ray: &Ray<V>, tri: &Triangle<V>) -> bool {
 pub fn check<V: Vector>(ray: &Ray<V>, tri: &Triangle<V>, t_max: S<V>, detailed: bool) {
     let ctx = || ctx(ray, tri, t_max);
     let wt = ray_triangle(ray, tri, t_max);
-    let one = ray_triangle_one_hit(ray, tri, t_max);
-    let mt = ray_triangle_mt(ray, tri, t_max);
+    let one = tri.hit(ray, (t_max, EdgeRule::OneHit));
+    let mt = tri.moller_trumbore(ray, t_max);
     in_range("watertight", wt, t_max, &ctx);
     in_range("one-hit", one, t_max, &ctx);
     in_range("mt", mt, t_max, &ctx);
@@ -159,7 +158,7 @@ pub fn check<V: Vector>(ray: &Ray<V>, tri: &Triangle<V>, t_max: S<V>, detailed: 
         return;
     }
     if let Some(h) = wt {
-        let err = ray_triangle_error_bounds(ray, tri, &h);
+        let err = tri.hit_error(ray, &h);
         for e in [err.t, err.u, err.v] {
             assert!(e >= S::<V>::ZERO, "error bound {err:?}: {}", ctx());
         }
@@ -184,7 +183,7 @@ fn check_hit<V: Vector>(
     detailed: bool,
     ctx: &dyn Fn() -> String,
 ) {
-    let err = ray_triangle_error_bounds(ray, tri, h);
+    let err = tri.hit_error(ray, h);
     // An infinite bound says the determinant's sign is not certain: the ray
     // can even be exactly parallel (tests/suite/fuzz_regressions.rs).
     if !err.t.is_finite() {
@@ -260,7 +259,7 @@ fn spawns_are_finite<V: Vector>(
     ray: &Ray<V>,
     ctx: &dyn Fn() -> String,
 ) {
-    let surface = SurfacePoint::on_triangle(tri, h);
+    let surface = tri.surface_point_at(h.u, h.v);
     if !(tri.a.is_finite() && tri.b.is_finite() && tri.c.is_finite()) {
         return;
     }
@@ -392,7 +391,7 @@ fn agreement<V: Vector>(
 pub fn check_vs_mt<V: Vector>(ray: &Ray<V>, tri: &Triangle<V>, t_max: S<V>) {
     let ctx = || ctx(ray, tri, t_max);
     let wt = ray_triangle(ray, tri, t_max);
-    let mt = ray_triangle_mt(ray, tri, t_max);
+    let mt = tri.moller_trumbore(ray, t_max);
     in_range("watertight", wt, t_max, &ctx);
     in_range("mt", mt, t_max, &ctx);
     if !(ray.is_valid() && t_max >= S::<V>::ZERO) {
@@ -554,7 +553,7 @@ pub fn tetrahedron<V: Vector>(src: &mut Source) {
         .count();
     let one = faces
         .iter()
-        .filter(|t| ray_triangle_one_hit(&ray, t, inf).is_some())
+        .filter(|t| t.hit(&ray, (inf, EdgeRule::OneHit)).is_some())
         .count();
     let ctx = || format!("ray {ray:?}, tetrahedron {vs:?}");
     if inside {
