@@ -553,8 +553,11 @@ mod root_tests {
         // Top-level lines only (the crate docs and nested items indent or
         // comment theirs).
         let top: std::vec::Vec<&str> = src.lines().filter(|l| l.starts_with("pub ")).collect();
-        let uses: std::vec::Vec<&str> =
-            top.iter().copied().filter(|l| l.starts_with("pub use")).collect();
+        let uses: std::vec::Vec<&str> = top
+            .iter()
+            .copied()
+            .filter(|l| l.starts_with("pub use"))
+            .collect();
         assert_eq!(uses, ["pub use glam;", "pub use root::*;"], "{top:?}");
         let prelude = src
             .split("pub mod prelude {")

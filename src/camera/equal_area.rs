@@ -4,10 +4,10 @@
 use glam::Vec3;
 
 use super::{
-    Basis, Camera, CameraError, CameraSample, RayCone, RayDifferential, by_components, centred,
-    zero_vector,
+    Basis, Camera, CameraError, CameraSample, RayCone, RayDifferential, bound_from_f64,
+    by_components, centred, direction_angle, zero_vector,
 };
-use crate::num::trig::{atan2_turns, sin_cos_quadrant};
+use crate::num::trig::{atan_n, atan2_turns, sin_cos_quadrant};
 use crate::num::{Bits, Repr, S, Scalar, Vector, unit, unit_near};
 use crate::ray::Ray;
 
@@ -185,11 +185,8 @@ impl<V: Vector> EqualAreaCamera<V> {
     /// pbrt-v4's `EqualAreaSphereToSquare` from there. Round trip:
     /// `raster_position(ray(x, y).dir)` is `(x, y)` (or, within that much
     /// of the image's edge, its mirror image across the centre line: the
-    /// square's edges fold onto each other) within `225 u` of the width in
-    /// `x` and of the height in `y` in `f32`, `313 u` in `f64` (the basis
-    /// being orthonormal within `gamma(13)`, for every up vector the camera
-    /// accepts). Derived, term by term, and held to in the test kit's
-    /// panorama checks.
+    /// square's edges fold onto each other) within
+    /// [`raster_position_error`](Self::raster_position_error).
     #[must_use]
     pub fn raster_position(&self, dir: V) -> Option<(S<V>, S<V>)> {
         if !dir.is_finite() || dir == V::ZERO {
@@ -220,6 +217,63 @@ impl<V: Vector> EqualAreaCamera<V> {
         let half = S::<V>::HALF;
         let (w, h) = (S::<V>::from_u32(self.width), S::<V>::from_u32(self.height));
         Some((w * half + u * (w * half), h * half - v * (h * half)))
+    }
+
+    /// The bound on the round trip at `(x, y)`, in pixels, `(across,
+    /// down)`: for a position in the image, `raster_position(ray(x,
+    /// y).dir)` is within it of `(x, y)` or, that close to the image's
+    /// edge, of its mirror image across the centre line (the square's
+    /// edges fold onto each other). The same everywhere in the image (about
+    /// `225 u` of the width and of the height in `f32`, `313 u` in `f64`);
+    /// infinite outside it.
+    ///
+    /// Derivation. Forward: the angle `phi` is `p / (4 r)` turns from
+    /// values within three roundings each, so within `gamma(7) / 4` turns,
+    /// which moves the direction by at most `2 pi gamma(7) / 4` (radians,
+    /// times the distance from the axis, at most 1); `r sqrt(2 - r^2)` and
+    /// `1 - r^2` add `3 gamma(10)`; and the direction is within the
+    /// equirectangular camera's `theta` of the exact one of its values
+    /// (see [`EquirectangularCamera::raster_position_error`]). Inverse: `r`
+    /// of a direction `psi` from the view has `dr/dpsi = sqrt(2 - r^2) / 2
+    /// <= 1 / sqrt(2)` and is computed within `gamma(5)`, relative; the
+    /// angle's part of the square's coordinates, `phi' r` with `phi' = phi
+    /// / (pi/2)`, moves by at most `(2 / pi) theta' / sqrt(2 - r^2) <= (2
+    /// / pi) theta'`, plus `4 gamma(A)` (the arctangent's turns times four)
+    /// and three roundings (`v = phi' r`, `u = r - v`, `1 - u`). So each
+    /// square coordinate is within `(2/pi + 1/sqrt(2)) theta' + gamma(5) +
+    /// 4 gamma(A) + 3 u`, and the pixels within `w/2` (or `h/2`) times that
+    /// plus two roundings. Evaluated in `f64` and rounded up; held to in
+    /// exact arithmetic by the test kit's panorama checks.
+    ///
+    /// [`EquirectangularCamera::raster_position_error`]: super::EquirectangularCamera::raster_position_error
+    ///
+    /// ```
+    /// use rayhit::{Camera, CameraSample, camera::EqualAreaCamera, glam::Vec3};
+    /// let cam = EqualAreaCamera::new(Vec3::ZERO, -Vec3::Z, Vec3::Y, 2048, 2048).unwrap();
+    /// let (x, y) = (300.25, 1700.5);
+    /// let (bx, by) = cam.raster_position_error(x, y);
+    /// let (rx, ry) = cam.raster_position(cam.ray(CameraSample::new(x, y)).dir).unwrap();
+    /// assert!((rx - x).abs() <= bx && (ry - y).abs() <= by);
+    /// assert!(bx < 0.03); // 225 u of 2048 pixels
+    /// ```
+    #[must_use]
+    pub fn raster_position_error(&self, x: S<V>, y: S<V>) -> (S<V>, S<V>) {
+        let (w, h) = (f64::from(self.width), f64::from(self.height));
+        let (x, y) = (x.to_f64(), y.to_f64());
+        let inf = S::<V>::INFINITY;
+        if !((0.0..=w).contains(&x) && (0.0..=h).contains(&y)) {
+            return (inf, inf);
+        }
+        let g = |n: u32| S::<V>::gamma_n(n).to_f64();
+        let u = S::<V>::UNIT_ROUNDOFF.to_f64();
+        let a = atan_n::<S<V>>();
+        let theta = direction_angle::<S<V>>(self.basis.skew())
+            + 3.0 * g(10)
+            + core::f64::consts::TAU * g(7) / 4.0;
+        let square =
+            (2.0 / core::f64::consts::PI + 0.5f64.sqrt()) * theta + g(5) + 4.0 * g(a) + 3.0 * u;
+        let px = |n: f64| bound_from_f64(n / 2.0 * square + 2.0 * u * n);
+        (px(w), px(h))
     }
 
     super::basis_accessors!();

@@ -3,10 +3,10 @@
 use glam::Vec3;
 
 use super::{
-    Basis, Camera, CameraError, CameraSample, RayCone, RayDifferential, by_components, centred,
-    zero_vector,
+    Basis, Camera, CameraError, CameraSample, RayCone, RayDifferential, bound_from_f64,
+    by_components, centred, direction_angle, zero_vector,
 };
-use crate::num::trig::{atan2_turns, sin_cos_turns};
+use crate::num::trig::{atan_n, atan2_turns, sin_cos_turns, trig_n};
 use crate::num::{S, Scalar, Vector, unit, unit_near};
 use crate::ray::Ray;
 
@@ -111,20 +111,8 @@ impl<V: Vector> EquirectangularCamera<V> {
     /// column.
     ///
     /// Round trip: `raster_position(ray(x, y).dir)` is `(x, y)`, or the
-    /// same direction a turn away in longitude, for positions in the
-    /// image, within `w (theta / (2 pi cos(lat)) + gamma(A) + gamma(2)/2 +
-    /// 2u)` pixels in `x` and `2h ((theta + 2u) / (2 pi) + gamma(A) +
-    /// gamma(2)/4) + 2uh` in `y`, where the direction's angular error is
-    /// `theta = 3 gamma(2T + 15) + 2 sqrt(3) u + sqrt(3) gamma(3) +
-    /// 3 gamma(13)`, with `T = 26` and `A = 12` in `f32`, `T = 42` and
-    /// `A = 24` in `f64`: about `w (40 u / cos(lat) + 15 u)` and `107 u h`
-    /// in `f32`, `w (55 u / cos(lat) + 27 u)` and `161 u h` in `f64`. Its
-    /// last term is three times the basis's departure from orthonormal
-    /// (the largest entry of `B^T B - I`), at most `gamma(13)` for every up
-    /// vector the camera accepts. The
-    /// longitude is known to an angle over `cos(lat)`, so the columns crowd
-    /// near the poles. (Derived, and held to, in the test kit's panorama
-    /// checks.)
+    /// same direction a turn away in longitude, within
+    /// [`raster_position_error`](Self::raster_position_error)`(x, y)`.
     #[must_use]
     pub fn raster_position(&self, dir: V) -> Option<(S<V>, S<V>)> {
         if !dir.is_finite() || dir == V::ZERO {
@@ -143,6 +131,77 @@ impl<V: Vector> EquirectangularCamera<V> {
             w * S::<V>::HALF + lon * w,
             h * S::<V>::HALF - lat * (h * S::<V>::TWO),
         ))
+    }
+
+    /// The bound on the round trip at `(x, y)`, in pixels, `(across,
+    /// down)`: for a position in the image, `raster_position(ray(x,
+    /// y).dir)` is within it of `(x, y)`, or of the same direction a turn
+    /// away in longitude. Infinite for positions outside the image, and
+    /// across at the poles, where the longitude is undefined.
+    ///
+    /// `w (theta / (2 pi cos(lat)) + gamma(A) + gamma(2)/2 + 2u)` across
+    /// and `2h ((theta + 2u) / (2 pi) + gamma(A) + gamma(2)/4) + 2uh` down,
+    /// where `lat = pi (1/2 - y/h)` and `theta` is the direction's angular
+    /// error: `3 gamma(2T + 15) + 2 sqrt(3) u + sqrt(3) gamma(3) + 3 skew`,
+    /// with `T = 26` and `A = 12` in `f32`, `T = 42` and `A = 24` in `f64`,
+    /// and `skew` the basis's departure from orthonormal (the largest entry
+    /// of `B^T B - I`, at most `gamma(13)` for every up vector the camera
+    /// accepts): about `w (40 u / cos(lat) + 15 u)` and `107 u h` in `f32`,
+    /// `w (55 u / cos(lat) + 27 u)` and `161 u h` in `f64`. The longitude
+    /// is known to an angle over `cos(lat)`, so the columns crowd near the
+    /// poles.
+    ///
+    /// Derivation. The longitude's turns `fl(dx fl(1 / w))` are within
+    /// `gamma(2) |t| <= gamma(2) / 2` turns of `dx / w`, the latitude's
+    /// within `gamma(2) / 4`. The direction is within `theta` (radians) of
+    /// the exact one of its angles (its terms: the local components, two
+    /// sines or cosines and a rounding; the world vector, three roundings
+    /// more times the basis's magnitudes; normalising, in the map and again
+    /// in the inverse; the inverse's dot products with the basis and the
+    /// basis's skew); moving a direction by `theta` moves its longitude by
+    /// at most `theta / cos(lat)` and its latitude by `theta`. The
+    /// arctangents add `gamma(A)` turns each (the latitude's argument
+    /// `hypot` two roundings more, relative: `2 u` radians). Back to
+    /// pixels, `x = w/2 + lon w` and `y = h/2 - lat 2h` round twice: `2 u
+    /// w` and `2 u h` in the image. `cos(lat)` is taken from below (the
+    /// crate's cosine, less its error bound). Evaluated in `f64` and
+    /// rounded up; held to in exact arithmetic by the test kit's panorama
+    /// checks.
+    ///
+    /// ```
+    /// use rayhit::{Camera, CameraSample, camera::EquirectangularCamera, glam::Vec3};
+    /// let cam = EquirectangularCamera::new(Vec3::ZERO, -Vec3::Z, Vec3::Y, 3600, 1800).unwrap();
+    /// let (x, y) = (1234.5, 456.25);
+    /// let (bx, by) = cam.raster_position_error(x, y);
+    /// let (rx, ry) = cam.raster_position(cam.ray(CameraSample::new(x, y)).dir).unwrap();
+    /// assert!((rx - x).abs() <= bx && (ry - y).abs() <= by);
+    /// assert!(bx < 0.02 && by < 0.05); // hundredths of a pixel in f32
+    /// ```
+    #[must_use]
+    pub fn raster_position_error(&self, x: S<V>, y: S<V>) -> (S<V>, S<V>) {
+        let (w, h) = (f64::from(self.width), f64::from(self.height));
+        let (x, y) = (x.to_f64(), y.to_f64());
+        let inf = S::<V>::INFINITY;
+        if !((0.0..=w).contains(&x) && (0.0..=h).contains(&y)) {
+            return (inf, inf);
+        }
+        let g = |n: u32| S::<V>::gamma_n(n).to_f64();
+        let u = S::<V>::UNIT_ROUNDOFF.to_f64();
+        let a = atan_n::<S<V>>();
+        let tau = core::f64::consts::TAU;
+        let theta = direction_angle::<S<V>>(self.basis.skew());
+        // cos(lat) from below: the cosine's `gamma(T)` absolute bound in
+        // `f64`, and the argument's two roundings (below `1e-16` turns).
+        let (_, cos) = sin_cos_turns::<f64>((0.5 - y / h) / 2.0);
+        let t64 = trig_n::<f64>() + 2;
+        let cos = cos - f64::gamma_n(t64) - 1e-15;
+        let across = if cos > 0.0 {
+            w * (theta / (tau * cos) + g(a) + g(2) / 2.0) + 2.0 * u * w
+        } else {
+            f64::INFINITY
+        };
+        let down = 2.0 * h * ((theta + 2.0 * u) / tau + g(a) + g(2) / 4.0) + 2.0 * u * h;
+        (bound_from_f64(across), bound_from_f64(down))
     }
 
     super::basis_accessors!();

@@ -374,6 +374,66 @@ impl<V: Vector> Basis<V> {
     }
 }
 
+impl<V: Vector> Basis<V> {
+    /// The basis's departure from orthonormal: the largest entry of `B^T B
+    /// - I` (`B` with columns `right`, `up`, `forward`), and at least
+    /// `gamma(13)`, the bound every accepted up vector gives (see
+    /// [`Basis::new`]): measured, not assumed, for the panoramas' bounds.
+    /// Evaluated in `f64`: for `f32` the products are exact and the sums
+    /// within a few `f64` ulps; for `f64` each entry within `5` of its
+    /// ulps; the `4 eps64` added covers both.
+    pub(crate) fn skew(&self) -> f64 {
+        let b = [self.right, self.up, self.forward];
+        let d = |p: V, q: V| (0..3).map(|k| p[k].to_f64() * q[k].to_f64()).sum::<f64>();
+        let mut m = S::<V>::gamma_n(13).to_f64();
+        for i in 0..3 {
+            for j in 0..3 {
+                let target = if i == j { 1.0 } else { 0.0 };
+                m = m.max((d(b[i], b[j]) - target).abs() + 4.0 * f64::EPSILON);
+            }
+        }
+        m
+    }
+}
+
+/// The angle, in radians, between a panorama's computed direction and the
+/// exact direction of its computed angles, plus the inverse's recovery of
+/// the local components, for a basis of departure `skew`
+/// ([`Basis::skew`]); `T = trig_n + 2` is the sines' and cosines'
+/// `gamma(T)` absolute bound (`num::trig::sin_cos_turns`):
+///
+/// - the local components `(X, Y, Z)`: products of two sines or cosines
+///   and a rounding, within `gamma(2T + 2)`;
+/// - the world vector `X right + Y up + Z forward`: the components' errors
+///   times `|right_i| + |up_i| + |forward_i|`, and three roundings of the
+///   sum: per component within `(|right_i| + |up_i| + |forward_i|)
+///   gamma(2T + 15)`, a vector at most `3 gamma(2T + 15)` long (the basis
+///   vectors have length 1 within `gamma(6)`);
+/// - normalising, in the forward map and again in the inverse: a common
+///   factor, and one rounding per component each time (`2 sqrt(3) u`);
+/// - the inverse's dot products with the basis (`gamma(3)` each, `sqrt(3)
+///   gamma(3)` as a vector) and the basis's departure from orthonormal:
+///   `3 skew`.
+pub(crate) fn direction_angle<F: Scalar>(skew: f64) -> f64 {
+    let t = crate::num::trig::trig_n::<F>() + 2;
+    let g = |n: u32| F::gamma_n(n).to_f64();
+    let u = F::UNIT_ROUNDOFF.to_f64();
+    let root3 = 3f64.sqrt();
+    3.0 * g(2 * t + 15) + 2.0 * root3 * u + root3 * g(3) + 3.0 * skew
+}
+
+/// A bound evaluated in `f64` as the precision's: the `f64` evaluation's
+/// own error covered (a relative `1e-9`, far above the few `f64` roundings
+/// of these formulas), then rounded up. Positive infinity where the bound
+/// is infinite or NaN.
+pub(crate) fn bound_from_f64<F: Scalar>(bound: f64) -> F {
+    let b = bound * (1.0 + 1e-9);
+    if b.is_nan() {
+        return F::INFINITY;
+    }
+    F::from_f64(b).next_up()
+}
+
 /// Raster position `(x, y)` (from the top-left, `y` down) as offsets from
 /// the centre of a `width x height` image: `(x - width/2, height/2 - y)`,
 /// right and up.

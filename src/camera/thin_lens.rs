@@ -245,15 +245,9 @@ impl<V: Vector> ThinLensCamera<V> {
     /// camera's unnormalised direction), rounded to the grid on which every
     /// lens point's difference from it is exact (see [`ThinLensCamera`]).
     ///
-    /// It lies on the plane of focus and on the pinhole ray of `(x, y)`:
-    /// each component is within `gamma(5) (|eye_i| + focal_distance
-    /// |forward_i| + k |dx right_i| + k |dy up_i|)` of the exact `eye +
-    /// focal_distance forward + k (dx right + dy true_up)` for the camera's
-    /// (rounded) basis (five roundings along the longest path: `k`, the two
-    /// products, the two sums; the plane's centre two, and the last sum),
-    /// and the grid moves it by at most two ulps of the larger of the
-    /// point's and the lens's coordinates. A NaN or infinite position
-    /// gives a NaN point.
+    /// It lies on the plane of focus and on the pinhole ray of `(x, y)`,
+    /// within [`focus_error`](Self::focus_error). A NaN or infinite
+    /// position gives a NaN point.
     #[inline(always)]
     #[must_use]
     pub fn focus(&self, x: S<V>, y: S<V>) -> FocusPoint<V> {
@@ -271,6 +265,71 @@ impl<V: Vector> ThinLensCamera<V> {
             grid,
             raster: (x, y),
         }
+    }
+
+    /// A per-component bound on the distance of [`focus`](Self::focus)`(x,
+    /// y)` from the exact point it stands for, `eye + focal_distance
+    /// forward + k (dx right + dy true_up)` with `k = focal_distance /
+    /// focal_length` exactly, for the camera's (rounded) basis and offsets
+    /// `(dx, dy)` from the image centre. Infinite for a NaN or infinite
+    /// position.
+    ///
+    /// `gamma(5) (|eye_i| + focal_distance |forward_i| + k |dx right_i| + k
+    /// |dy up_i|) + 4u max(|F_i|, M_i) (1 + 8u)`, with `F` the focus point
+    /// and `M` the lens's reach (`|eye_i| + radius (|right_i| + |up_i|)`,
+    /// rounded up). Derivation: the plane's centre `fl(eye +
+    /// fl(focal_distance forward))` is computed once (two roundings),
+    /// `fl(dx fl(k))` and `fl(dy fl(k))` (two each), their products with
+    /// `right` and `up` (one each), the sum of those (one) and the sum with
+    /// the centre (one): along the longest path five roundings, so each
+    /// component is within the first term of the exact value. The grid then
+    /// moves it by at most `2^(e + 2 - p) = 4u 2^e <= 4u max(|F'_i|, M_i)`
+    /// (`F'` before the grid, within `8u` of `F`: see `grid`). The terms
+    /// are evaluated in the camera's precision, with `k` taken from above
+    /// and the result rounded up; held to in exact arithmetic by the test
+    /// kit's thin-lens checks.
+    ///
+    /// ```
+    /// use rayhit::{PinholeCamera, camera::ThinLensCamera, glam::Vec3};
+    /// let pinhole = PinholeCamera::from_fov(Vec3::new(0.0, 1.0, 5.0), -Vec3::Z, Vec3::Y, 0.7, 320, 240).unwrap();
+    /// let cam = ThinLensCamera::new(pinhole, 0.1, 5.0).unwrap();
+    /// let err = cam.focus_error(100.5, 80.5);
+    /// // A few ulps of coordinates of about 5.
+    /// assert!(err.max_element() < 2e-5);
+    /// ```
+    #[must_use]
+    pub fn focus_error(&self, x: S<V>, y: S<V>) -> V {
+        use crate::num::round::outward::{add_up, mul_up};
+        let p = &self.pinhole;
+        let (dx, dy) = super::centred(x, y, p.width(), p.height());
+        let f = self.focus(x, y).point;
+        if !(dx.is_finite() && dy.is_finite() && f.is_finite()) {
+            return V::splat(S::<V>::INFINITY);
+        }
+        let u = S::<V>::UNIT_ROUNDOFF;
+        // The exact k is within one rounding of `scale`.
+        let k = mul_up(self.scale, S::<V>::ONE + u + u);
+        let (g5, u4, grow) = (
+            S::<V>::gamma_n(5).next_up(),
+            u * S::<V>::from_u32(4),
+            (S::<V>::ONE + u * S::<V>::from_u32(8)).next_up(),
+        );
+        let (eye, fwd, right, up) = (p.eye(), p.forward(), p.right(), p.up());
+        let component = |i: usize| {
+            let m = add_up(
+                add_up(eye[i].abs(), mul_up(self.focal_distance, fwd[i].abs())),
+                mul_up(
+                    k,
+                    add_up(
+                        mul_up(dx.abs(), right[i].abs()),
+                        mul_up(dy.abs(), up[i].abs()),
+                    ),
+                ),
+            );
+            let big = max2(mul_up(f[i].abs(), grow), self.lens_bound[i]);
+            add_up(mul_up(g5, m), mul_up(u4, big))
+        };
+        V::new(component(0), component(1), component(2))
     }
 
     /// The point of the lens for sample `(s, t)` in `[0, 1)^2`, before

@@ -197,7 +197,6 @@ const ATAN: [f64; 21] = [
 
 /// The bound, in turns, on the absolute error of [`atan2_turns`]:
 /// `gamma(ATAN)` with 12 for `f32` and 24 for `f64` (derived there).
-#[cfg(test)]
 pub(crate) fn atan_n<F: Scalar>() -> u32 {
     if single::<F>() { 12 } else { 24 }
 }

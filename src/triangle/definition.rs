@@ -195,10 +195,10 @@ mod moller_trumbore {
     use crate::triangle::{Side, Triangle, TriangleHit};
 
     /// Moller-Trumbore's definition: the test as written with glam's `cross`
-    /// and `dot`, one component at a time, which [`ray_triangle_mt`] (on
+    /// and `dot`, one component at a time, which [`Triangle::moller_trumbore`] (on
     /// lanes) must match bit for bit. (Compiled for the tests.)
     ///
-    /// [`ray_triangle_mt`]: crate::ray_triangle_mt
+    /// [`Triangle::moller_trumbore`]: crate::Triangle::moller_trumbore
     pub(crate) fn mt_definition<V: Vector>(
         ray: &Ray<V>,
         tri: &Triangle<V>,

@@ -34,77 +34,66 @@ impl<V: Vector> Triangle<V> {
     /// let hit = tri.moller_trumbore(&ray, f32::INFINITY).unwrap();
     /// assert_eq!((hit.t, hit.u, hit.v, hit.side), (2.0, 0.25, 0.125, Side::Back));
     /// ```
-    #[inline(always)]
+    #[inline]
     #[must_use]
     pub fn moller_trumbore(&self, ray: &Ray<V>, t_max: S<V>) -> Option<TriangleHit<S<V>>> {
-        ray_triangle_mt(ray, self, t_max)
+        let (zero, one) = (S::<V>::ZERO, S::<V>::ONE);
+        // Invalid input needs no test of its own: a zero direction gives
+        // `det = 0`, so `u` is NaN or infinite, a NaN or infinite coordinate
+        // makes `det` or `u`, `v`, `t` NaN or infinite, and each fails a range
+        // test, as does a NaN or negative `t_max`.
+        let (a, d) = (lanes(self.a), lanes(ray.dir));
+        let e1 = lanes(self.b).sub(a);
+        let e2 = lanes(self.c).sub(a);
+        // p = d x e2, lane k = d[k+1] e2[k+2] - d[k+2] e2[k+1], with the two
+        // products of each component kept for the determinant's error bound.
+        let (m1, m2) = (d.rot1().mul(e2.rot2()), d.rot2().mul(e2.rot1()));
+        let p = m1.sub(m2);
+        let det = e1.mul(p).sum3();
+        let inv_det = one / det;
+        let s = lanes(ray.origin).sub(a);
+        let u = s.mul(p).sum3() * inv_det;
+        // (One branch for both of `u`'s limits: on rays that mostly miss, `u`
+        // falls on either side about equally, and two branches were each
+        // unpredictable where one is not.)
+        if !<<S<V> as Repr>::Bits as Bits>::in_unit_interval(u) {
+            return None;
+        }
+        // q = s x e1.
+        let q = s.rot1().mul(e1.rot2()).sub(s.rot2().mul(e1.rot1()));
+        let v = d.mul(q).sum3() * inv_det;
+        if !(v >= zero && u + v <= one) {
+            return None;
+        }
+        let t = e2.mul(q).sum3() * inv_det;
+        // (`t > 0` makes `is_finite` the same as `t <= MAX`, so the two upper
+        // limits are one comparison; `min2` returns its second argument when
+        // the comparison fails, so a NaN `t_max` stays NaN and fails it.)
+        if !(t > zero && t <= min2(S::<V>::MAX, t_max)) {
+            return None;
+        }
+        // The determinant's sign must be certain, or the ray is taken as
+        // parallel. (Tested last, so that the common misses above skip it;
+        // every test is a pure function of the same values, so the order
+        // changes no answer: a determinant of zero makes `u` NaN or infinite,
+        // which the first test rejects.)
+        //
+        // Each monomial e1_i d_j e2_k of det carries at most 7 roundings (two
+        // edge subtractions, a product, a difference, a product, two sums), so
+        // |det - det_exact| <= gamma(7) sum_i |e1_i| (|d_j e2_k| + |d_k e2_j|).
+        // The sum is evaluated from the computed e1 and products m, which are
+        // rounded versions of the exact ones (at most 6 roundings along any
+        // path, with the sum's own), and `bound_up` makes it an upper bound.
+        let mag = m1.abs().add(m2.abs());
+        let det_bound = bound_up(S::<V>::gamma_n(7) * e1.abs().mul(mag).sum3(), 7);
+        if !(det.abs() > det_bound) {
+            return None;
+        }
+        // det = e1 . (d x e2) = -d . ((b - a) x (c - a)): positive when the ray
+        // runs against the normal.
+        let side = if det > zero { Side::Front } else { Side::Back };
+        Some(TriangleHit { t, u, v, side })
     }
-}
-
-/// Moller-Trumbore: see [`Triangle::moller_trumbore`].
-#[inline]
-#[must_use]
-pub(crate) fn ray_triangle_mt<V: Vector>(
-    ray: &Ray<V>,
-    tri: &Triangle<V>,
-    t_max: S<V>,
-) -> Option<TriangleHit<S<V>>> {
-    let (zero, one) = (S::<V>::ZERO, S::<V>::ONE);
-    // Invalid input needs no test of its own: a zero direction gives
-    // `det = 0`, so `u` is NaN or infinite, a NaN or infinite coordinate
-    // makes `det` or `u`, `v`, `t` NaN or infinite, and each fails a range
-    // test, as does a NaN or negative `t_max`.
-    let (a, d) = (lanes(tri.a), lanes(ray.dir));
-    let e1 = lanes(tri.b).sub(a);
-    let e2 = lanes(tri.c).sub(a);
-    // p = d x e2, lane k = d[k+1] e2[k+2] - d[k+2] e2[k+1], with the two
-    // products of each component kept for the determinant's error bound.
-    let (m1, m2) = (d.rot1().mul(e2.rot2()), d.rot2().mul(e2.rot1()));
-    let p = m1.sub(m2);
-    let det = e1.mul(p).sum3();
-    let inv_det = one / det;
-    let s = lanes(ray.origin).sub(a);
-    let u = s.mul(p).sum3() * inv_det;
-    // (One branch for both of `u`'s limits: on rays that mostly miss, `u`
-    // falls on either side about equally, and two branches were each
-    // unpredictable where one is not.)
-    if !<<S<V> as Repr>::Bits as Bits>::in_unit_interval(u) {
-        return None;
-    }
-    // q = s x e1.
-    let q = s.rot1().mul(e1.rot2()).sub(s.rot2().mul(e1.rot1()));
-    let v = d.mul(q).sum3() * inv_det;
-    if !(v >= zero && u + v <= one) {
-        return None;
-    }
-    let t = e2.mul(q).sum3() * inv_det;
-    // (`t > 0` makes `is_finite` the same as `t <= MAX`, so the two upper
-    // limits are one comparison; `min2` returns its second argument when
-    // the comparison fails, so a NaN `t_max` stays NaN and fails it.)
-    if !(t > zero && t <= min2(S::<V>::MAX, t_max)) {
-        return None;
-    }
-    // The determinant's sign must be certain, or the ray is taken as
-    // parallel. (Tested last, so that the common misses above skip it;
-    // every test is a pure function of the same values, so the order
-    // changes no answer: a determinant of zero makes `u` NaN or infinite,
-    // which the first test rejects.)
-    //
-    // Each monomial e1_i d_j e2_k of det carries at most 7 roundings (two
-    // edge subtractions, a product, a difference, a product, two sums), so
-    // |det - det_exact| <= gamma(7) sum_i |e1_i| (|d_j e2_k| + |d_k e2_j|).
-    // The sum is evaluated from the computed e1 and products m, which are
-    // rounded versions of the exact ones (at most 6 roundings along any
-    // path, with the sum's own), and `bound_up` makes it an upper bound.
-    let mag = m1.abs().add(m2.abs());
-    let det_bound = bound_up(S::<V>::gamma_n(7) * e1.abs().mul(mag).sum3(), 7);
-    if !(det.abs() > det_bound) {
-        return None;
-    }
-    // det = e1 . (d x e2) = -d . ((b - a) x (c - a)): positive when the ray
-    // runs against the normal.
-    let side = if det > zero { Side::Front } else { Side::Back };
-    Some(TriangleHit { t, u, v, side })
 }
 
 #[cfg(test)]
@@ -114,7 +103,7 @@ mod tests {
     use crate::testing::Draws;
     use glam::{DVec3, Vec3};
 
-    /// `ray_triangle_mt` (on lanes, with no separate validity test) is bit
+    /// `Triangle::moller_trumbore` (on lanes, with no separate validity test) is bit
     /// for bit its definition, invalid input included.
     #[test]
     fn mt_lanes_are_the_definition() {
@@ -151,7 +140,7 @@ mod tests {
                 let expected = bits(mt_definition(&ray, &tri, t_max));
                 hits += usize::from(expected.is_some());
                 assert_eq!(
-                    bits(ray_triangle_mt(&ray, &tri, t_max)),
+                    bits(tri.moller_trumbore(&ray, t_max)),
                     expected,
                     "{ray:?} {tri:?} {t_max:?}"
                 );

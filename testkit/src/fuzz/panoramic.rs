@@ -12,8 +12,8 @@
 //! a zero or non-finite direction and otherwise in the image. Structured
 //! inputs also: the centre pixel of an odd-sized image looks along the
 //! view (within `4 gamma(6)` per component); the round trip
-//! `raster_position(ray(x, y).dir)` is `(x, y)` within the bound derived at
-//! [`equirectangular_round_trip`] and [`equal_area_round_trip`]; the
+//! `raster_position(ray(x, y).dir)` is `(x, y)` within the crate's
+//! `raster_position_error`; the
 //! differentials are the difference of the neighbouring pixels' rays within
 //! the second-order bound plus the rays' errors (equirectangular), or a
 //! central difference of the `f64` map within its truncation and rounding
@@ -230,58 +230,6 @@ fn direction_angle<F: Scalar>(skew: f64) -> f64 {
     3.0 * g(2 * tr + 15) + 2.0 * 3f64.sqrt() * u + 3f64.sqrt() * g(3) + 3.0 * skew
 }
 
-/// The equirectangular round trip's bound in pixels, `(in x, in y)`, at
-/// latitude `lat`.
-///
-/// Angles: the longitude's turns `fl(dx fl(1 / w))` are within `gamma(2)
-/// |t| <= gamma(2) / 2` turns of `dx / w`, the latitude's within `gamma(2)
-/// / 4`. The direction is within [`direction_angle`] `theta` (radians) of
-/// the exact one of its angles; moving a direction by `theta` moves its
-/// longitude by at most `theta / cos(lat)` and its latitude by `theta`
-/// (radians; `/ 2 pi` for turns). The arctangents add `gamma(ATAN)` turns
-/// each (the latitude's argument `hypot` adds two roundings, relative, so
-/// `2 u` radians). Back to pixels: `x = w/2 + lon w` and `y = h/2 - lat
-/// 2h` round twice, `2 u w` and `2 u h` at most in the image.
-pub fn equirectangular_round_trip<F: Scalar>(w: u32, h: u32, lat: f64, skew: f64) -> (f64, f64) {
-    let (_, at) = trig::<F>();
-    let g = |n: u32| F::gamma_n(n).to_f64();
-    let u = F::UNIT_ROUNDOFF.to_f64();
-    let tau = core::f64::consts::TAU;
-    let theta = direction_angle::<F>(skew);
-    let (w, h) = (f64::from(w), f64::from(h));
-    let x = w * (theta / (tau * lat.cos()) + g(at) + g(2) / 2.0) + 2.0 * u * w;
-    let y = 2.0 * h * ((theta + 2.0 * u) / tau + g(at) + g(2) / 4.0) + 2.0 * u * h;
-    (x * (1.0 + 1e-9), y * (1.0 + 1e-9))
-}
-
-/// The equal-area round trip's bound in pixels, `(in x, in y)`.
-///
-/// Forward: the angle `phi` is `p / (4 r)` turns from values within three
-/// roundings each, so within `gamma(7) / 4` turns, which moves the
-/// direction by at most `2 pi gamma(7) / 4` (radians, times the distance
-/// from the axis, at most 1); the direction is within `theta` of the
-/// exact one of its values ([`direction_angle`]). Inverse: `r` of a
-/// direction `psi` from the view has `dr/dpsi = sqrt(2 - r^2) / 2 <= 1 /
-/// sqrt(2)`, and is computed within `gamma(5)` relative; the angle's part
-/// of the square's coordinates, `phi' r` with `phi' = phi / (pi/2)`, moves
-/// by at most `(2 / pi) theta / sqrt(2 - r^2) <= (2 / pi) theta`, plus
-/// `4 gamma(ATAN)` (the arctangent's turns times four) and three
-/// roundings (`v = phi' r`, `u = r - v`, `1 - u`). So each square
-/// coordinate is within `(2/pi + 1/sqrt(2)) theta' + gamma(5) + 4
-/// gamma(ATAN) + 3 u`, `theta' = theta + 2 pi gamma(7) / 4`, and the
-/// pixels within `w/2` (or `h/2`) times that plus two roundings.
-pub fn equal_area_round_trip<F: Scalar>(w: u32, h: u32, skew: f64) -> (f64, f64) {
-    let (_, at) = trig::<F>();
-    let g = |n: u32| F::gamma_n(n).to_f64();
-    let u = F::UNIT_ROUNDOFF.to_f64();
-    let theta = direction_angle::<F>(skew) + 3.0 * g(10) + core::f64::consts::TAU * g(7) / 4.0;
-    let square =
-        (2.0 / core::f64::consts::PI + 0.5f64.sqrt()) * theta + g(5) + 4.0 * g(at) + 3.0 * u;
-    let (w, h) = (f64::from(w), f64::from(h));
-    let px = |n: f64| (n / 2.0 * square + 2.0 * u * n) * (1.0 + 1e-9);
-    (px(w), px(h))
-}
-
 impl Check for Equirectangular {
     fn run<'a, V>(input: &mut Input<'a>)
     where
@@ -306,13 +254,8 @@ impl Check for Equirectangular {
                     if !inside {
                         continue;
                     }
-                    let lat = core::f64::consts::PI * (0.5 - y.to_f64() / f64::from(f.height));
-                    if lat.abs() < core::f64::consts::FRAC_PI_2 * (1.0 - 1e-6) {
-                        let skew = basis_skew(cam.basis());
-                        let (bx, by) =
-                            equirectangular_round_trip::<S<V>>(f.width, f.height, lat, skew);
-                        check_round_trip(&cam, x, y, bx, by);
-                    }
+                    let (bx, by) = cam.raster_position_error(x, y);
+                    check_round_trip(&cam, x, y, bx.to_f64(), by.to_f64());
                     check_equirectangular_neighbours(&cam, x, y);
                 }
             }
@@ -334,8 +277,6 @@ impl Check for EqualArea {
                     return;
                 };
                 check_centre(&cam);
-                let skew = basis_skew(cam.basis());
-                let (bx, by) = equal_area_round_trip::<S<V>>(f.width, f.height, skew);
                 for _ in 0..3 {
                     let (x, y) = raster::<S<V>>(src, f.width, f.height);
                     check_ray(&cam, x, y);
@@ -344,7 +285,8 @@ impl Check for EqualArea {
                         && y.to_f64() >= 0.0
                         && y.to_f64() <= f64::from(f.height);
                     if inside {
-                        check_round_trip(&cam, x, y, bx, by);
+                        let (bx, by) = cam.raster_position_error(x, y);
+                        check_round_trip(&cam, x, y, bx.to_f64(), by.to_f64());
                         check_equal_area_derivatives(&cam, x, y);
                     }
                 }

@@ -199,18 +199,10 @@ fn check_ray<V: Vector>(cam: &ThinLensCamera<V>, x: S<V>, y: S<V>, s: S<V>, t: S
     }
 }
 
-/// The focus point is within its bound of the exact `eye + focal_distance
-/// forward + k (dx right + dy up)`, `k = focal_distance / focal_length`
-/// exactly, with the camera's (rounded) basis and offsets.
-///
-/// Derivation: the camera computes the plane's centre `fl(eye +
-/// fl(focal_distance forward))` once (two roundings), `fl(dx fl(k))` and
-/// `fl(dy fl(k))` (two each), their products with `right` and `up` (one
-/// each), the sum of those (one) and the sum with the centre (one): along
-/// the longest path five roundings, so each component is within `gamma(5)
-/// (|eye_i| + focal_distance |forward_i| + k |dx right_i| + k |dy up_i|)`
-/// of the exact value. The grid moves it by at most `2^(e + 2 - p) = 4 u
-/// 2^e <= 4 u max(|F_i|, M_i)` (see the camera's `grid`).
+/// The exact point `focus(x, y)` stands for, `eye + focal_distance forward
+/// + k (dx right + dy up)` with `k = focal_distance / focal_length`
+/// exactly and the camera's (rounded) basis and offsets, and the crate's
+/// bound on the distance, `focus_error` (derived there), as rationals.
 pub fn focus_bound<V: Vector>(cam: &ThinLensCamera<V>, x: S<V>, y: S<V>) -> ([R; 3], [R; 3]) {
     let p = cam.pinhole();
     let (w, h) = (p.width(), p.height());
@@ -220,19 +212,9 @@ pub fn focus_bound<V: Vector>(cam: &ThinLensCamera<V>, x: S<V>, y: S<V>) -> ([R;
     let k = r(cam.focal_distance()) / r(p.focal_length());
     let (f, rt, up, eye) = (rv(p.forward()), rv(p.right()), rv(p.up()), rv(p.eye()));
     let (fd, dxr, dyr) = (r(cam.focal_distance()), r(dx), r(dy));
-    let focus = cam.focus(x, y).point();
-    let u4 = int(4) * r(S::<V>::UNIT_ROUNDOFF);
     let exact =
         core::array::from_fn(|i| &eye[i] + &fd * &f[i] + &k * (&dxr * &rt[i] + &dyr * &up[i]));
-    let bound = core::array::from_fn(|i| {
-        let m = abs(&eye[i])
-            + abs(&(&fd * &f[i]))
-            + &k * (abs(&(&dxr * &rt[i])) + abs(&(&dyr * &up[i])));
-        let reach = R::from_float(lens_reach(cam, i)).expect("finite");
-        let big = abs(&r(focus[i])).max(reach) * (int(1) + &u4 * int(2));
-        gamma::<S<V>>(5) * m + &u4 * big
-    });
-    (exact, bound)
+    (exact, rv(cam.focus_error(x, y)))
 }
 
 /// [`focus_bound`] held.
