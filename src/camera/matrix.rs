@@ -3,8 +3,8 @@
 use glam::{DMat4, DVec3, Mat4, Vec3};
 
 use super::{
-    Camera, CameraError, CameraSample, RayCone, RayDifferential, by_components, centred,
-    zero_vector,
+    Camera, CameraError, CameraSample, RayCone, RayDifferential, bound_from_f64, by_components,
+    centred, zero_vector,
 };
 use crate::num::trig::atan2_turns;
 use crate::num::{S, Scalar, Vector, unit, unit_and_inverse_length};
@@ -94,13 +94,16 @@ enum Projection {
 /// |view|` (absolute values taken entry by entry). For a well-conditioned
 /// camera (glam's perspective and a view whose up vector is well away from
 /// the view direction) that is a few tens of `u` times the image size in
-/// pixels: a few thousandths of a pixel for a 4K image in `f32`. The eye is
-/// the camera centre within a bound of the same kind; an orthographic
-/// ray's origin projects to `(nx, ny)` within its own (Cramer's rule's
-/// magnitudes times `e (1 + kappa)`, `kappa` the determinant's growth
-/// factor), and its direction keeps it there to the vanishing-point form
-/// with `m_2` in place of `m_3` (derived, and held to in exact arithmetic,
-/// in the repository's test kit, `testkit/src/fuzz/matrix_camera.rs`).
+/// pixels: a few thousandths of a pixel for a 4K image in `f32`
+/// ([`raster_error`](Self::raster_error) evaluates it). The eye is the
+/// camera centre within a bound of the same kind
+/// ([`eye_error`](Self::eye_error)); an orthographic ray's origin projects
+/// to `(nx, ny)` within its own (Cramer's rule's magnitudes times `e (1 +
+/// kappa)`, `kappa` the determinant's growth factor;
+/// [`raster_error`](Self::raster_error) too), and its direction keeps it
+/// there to the vanishing-point form with `m_2` in place of `m_3`, per
+/// unit of depth. Each is held to in exact arithmetic by the test kit's
+/// matrix camera checks.
 ///
 /// ```
 /// use rayhit::{Camera, PinholeCamera, camera::{ClipSpace, MatrixCamera}, glam::{Mat4, Vec3}};
@@ -131,6 +134,46 @@ where
     b: V,
     width: u32,
     height: u32,
+    /// The matrices given, for the bounds ([`MatrixCamera::eye_error`],
+    /// [`MatrixCamera::raster_error`]), which the rays never read.
+    view: Columns<S<V>>,
+    proj: Columns<S<V>>,
+    clip: ClipSpace,
+}
+
+/// `M = projection * view` by rows, in `f64` (exact products for `f32`
+/// input; for `f64`, each product rounded), and its magnitudes `|projection|
+/// * |view|` entry by entry, rounded up: each row of `M` is within
+/// `gamma_64(5)` of the same row of the magnitudes of the exact product.
+fn product<F: Scalar>(view: &Columns<F>, proj: &Columns<F>) -> ([[f64; 4]; 4], [[f64; 4]; 4]) {
+    let at = |m: &Columns<F>, i: usize, j: usize| m[j][i].to_f64();
+    let mut rows = [[0.0f64; 4]; 4];
+    let mut mags = [[0.0f64; 4]; 4];
+    for i in 0..4 {
+        for j in 0..4 {
+            rows[i][j] = (0..4).map(|k| at(proj, i, k) * at(view, k, j)).sum();
+            let mag: f64 = (0..4)
+                .map(|k| (at(proj, i, k) * at(view, k, j)).abs())
+                .sum();
+            mags[i][j] = mag * (1.0 + gamma64(6));
+        }
+    }
+    (rows, mags)
+}
+
+/// `gamma(n)` in `f64`.
+fn gamma64(n: u32) -> f64 {
+    f64::gamma_n(n)
+}
+
+/// The cross product's magnitudes: `(a x b)_k` with every product taken in
+/// absolute value and added (for non-negative `a`, `b`), rounded up.
+fn cross_mag(a: DVec3, b: DVec3) -> DVec3 {
+    DVec3::new(
+        a.y * b.z + a.z * b.y,
+        a.z * b.x + a.x * b.z,
+        a.x * b.y + a.y * b.x,
+    ) * (1.0 + gamma64(3))
 }
 
 /// `(x, y, z)` of a row.
@@ -170,15 +213,7 @@ impl<V: Vector> MatrixCamera<V> {
         // M = projection * view, in f64 (exact products for f32 input),
         // by rows: M[i][j] = sum_k P[i][k] V[k][j], with A[i][j] the
         // entry of row i, column j (= cols[j][i]).
-        let at = |m: &Columns<S<V>>, i: usize, j: usize| m[j][i].to_f64();
-        let mut rows = [[0.0f64; 4]; 4];
-        for (i, row) in rows.iter_mut().enumerate() {
-            for (j, entry) in row.iter_mut().enumerate() {
-                *entry = (0..4)
-                    .map(|k| at(&projection, i, k) * at(&view, k, j))
-                    .sum();
-            }
-        }
+        let (rows, _) = product(&view, &projection);
         if !rows.iter().flatten().all(|x| x.is_finite()) {
             return Err(CameraError::NonFiniteMatrix);
         }
@@ -254,6 +289,9 @@ impl<V: Vector> MatrixCamera<V> {
             b,
             width,
             height,
+            view,
+            proj: projection,
+            clip,
         })
     }
 
@@ -309,6 +347,176 @@ impl<V: Vector> MatrixCamera<V> {
     #[must_use]
     pub fn is_orthographic(&self) -> bool {
         self.projection == Projection::Orthographic
+    }
+
+    /// A per-component bound on the distance of the eye (where every ray
+    /// of a perspective camera starts, [`fixed`](Self::fixed)) from the
+    /// exact camera centre of the matrices given, the point `e*` that
+    /// every row of `M = projection * view` but the depth row maps to
+    /// zero: `e* = -(d0 X + d1 Y + d3 Z) / D`, exactly (`X = m1 x m3`, `Y =
+    /// m3 x m0`, `Z = m0 x m1`, `D = m0 . X`, `m_i` and `d_i` the rows'
+    /// first three entries and the last). Infinite for an orthographic
+    /// camera, and where the matrices are too ill-conditioned for the
+    /// bound (below).
+    ///
+    /// `(gamma_64(14) N_k / |D| + delta |eye_k|) / (1 - 2 delta) +
+    /// (gamma_64(1) + u) |eye_k| (1 + u)` plus the smallest subnormal,
+    /// with `N_k` the magnitudes of `d0 X + d1 Y + d3 Z` and `delta =
+    /// gamma_64(14) |m0| . |X| / |D|` (magnitudes: every product in
+    /// absolute value). Derivation: the rows are within `gamma_64(5)` of
+    /// their magnitudes in `f64`; the cross products and the sum within
+    /// `gamma_64(14)` of theirs, the determinant likewise, so `|eye_64 -
+    /// e*| <= (gamma_64(14) N / |D| + delta |e*|) / (1 - delta)`, and with
+    /// `|e*| <= |eye_64| + |eye_64 - e*|` that is the first term for
+    /// `delta < 1/2`; rounding to the camera's precision adds the second
+    /// (the quotient's rounding and the conversion's). `|D|` is taken from
+    /// below (its `f64` value less `gamma_64(12) |m0| . |X|`) and the
+    /// bound is infinite unless `delta < 1/4`. Evaluated in `f64` and
+    /// rounded up; held to in exact arithmetic by the test kit's matrix
+    /// camera checks.
+    ///
+    /// ```
+    /// use rayhit::camera::{ClipSpace, MatrixCamera};
+    /// use rayhit::glam::{Vec3, camera::rh::{proj::directx, view}};
+    /// let (eye, dir) = (Vec3::new(1.0, 2.0, 5.0), Vec3::new(0.0, -0.3, -1.0).normalize());
+    /// let cam = MatrixCamera::from_mat4(view::look_to_mat4(eye, dir, Vec3::Y),
+    ///     directx::perspective(1.0, 1.5, 0.1, 100.0), ClipSpace::Direct3D, 600, 400).unwrap();
+    /// assert!((cam.fixed() - eye).abs().max_element() < 1e-5);
+    /// assert!(cam.eye_error().max_element() < 1e-5); // a few ulps of 5
+    /// ```
+    #[must_use]
+    pub fn eye_error(&self) -> V {
+        let inf = V::splat(S::<V>::INFINITY);
+        if self.is_orthographic() {
+            return inf;
+        }
+        let (m, mag) = product(&self.view, &self.proj);
+        let (m0, m1, m3) = (xyz(m[0]), xyz(m[1]), xyz(m[3]));
+        let (a0, a1, a3) = (xyz(mag[0]), xyz(mag[1]), xyz(mag[3]));
+        let (x, y, z) = (m1.cross(m3), m3.cross(m0), m0.cross(m1));
+        let (xm, ym, zm) = (cross_mag(a1, a3), cross_mag(a3, a0), cross_mag(a0, a1));
+        let big = a0.dot(xm) * (1.0 + gamma64(3));
+        let det = m0.dot(x).abs() - gamma64(12) * big;
+        let delta = gamma64(14) * big / det;
+        if !(det > 0.0 && delta < 0.25) {
+            return inf;
+        }
+        let eye = -(x * m[0][3] + y * m[1][3] + z * m[3][3]) / m0.dot(x);
+        let n = (xm * mag[0][3] + ym * mag[1][3] + zm * mag[3][3]) * (1.0 + gamma64(3));
+        let u = S::<V>::UNIT_ROUNDOFF.to_f64();
+        let fixed = self.fixed;
+        let k = |i: usize| {
+            let f64_part = (gamma64(14) * n[i] / det + delta * eye[i].abs()) / (1.0 - 2.0 * delta);
+            let rounding = (gamma64(1) + u) * fixed[i].to_f64().abs() * (1.0 + u);
+            bound_from_f64::<S<V>>(f64_part + rounding + S::<V>::TINY.to_f64())
+        };
+        V::new(k(0), k(1), k(2))
+    }
+
+    /// A bound, in pixels `(across, down)`, on how far the exact projection
+    /// of the ray of raster position `(x, y)` lands from `(x, y)`, for the
+    /// matrices given, in exact arithmetic: for a perspective camera the
+    /// ray's vanishing point (where the projection of `origin + t dir`
+    /// goes as `t` grows, which every point of the ray is on for an exact
+    /// eye); for an orthographic camera the ray's origin. Infinite where
+    /// the camera is too ill-conditioned for the bound (its denominator
+    /// not positive) or the position not finite.
+    ///
+    /// Perspective: in normalised device coordinates `sum_k |n_k| (e K_k +
+    /// s) / (|D| - sum_k |m_3k| (e K_k + s))`, times `width / 2` (or
+    /// `height / 2`), where `n = m_0 - nx m_3` (or `m_1 - ny m_3`), `(nx,
+    /// ny)` the position's device coordinates, `D = m_0 . (m_1 x m_3)`, `e
+    /// = gamma(5) + gamma_64(17)` (the rays' linear form's relative error)
+    /// and `K_k` the `k`-th component of `|m_0| x |m_1| + |nx| |m_1| x
+    /// |m_3| + |ny| |m_3| x |m_0|` (magnitudes: every product in absolute
+    /// value), `s` the subnormal slack (half the smallest subnormal per
+    /// rounding that can land there: `TINY (4 + |dx| + |dy| + sum K)`).
+    /// Orthographic: the origin's device coordinates `(m_i . o + d_i) /
+    /// d_3` within `sum_k |m_ik| (e (1 + kappa) O_k + s) / |d_3|`, with `O`
+    /// Cramer's rule's magnitudes over `|D|` (`D = m_0 . (m_1 x m_2)`) and
+    /// `kappa = |m_0| . |m_1 x m_2| / |D|`. Derived in the camera's
+    /// documentation ([`MatrixCamera`]); evaluated in `f64` with the rows'
+    /// `f64` rounding added and the result rounded up; held to in exact
+    /// arithmetic by the test kit's matrix camera checks.
+    ///
+    /// ```
+    /// use rayhit::camera::{ClipSpace, MatrixCamera};
+    /// use rayhit::glam::{Vec3, camera::rh::{proj::directx, view}};
+    /// let cam = MatrixCamera::from_mat4(view::look_to_mat4(Vec3::ZERO, -Vec3::Z, Vec3::Y),
+    ///     directx::perspective(1.0, 16.0 / 9.0, 0.1, 100.0), ClipSpace::Direct3D, 3840, 2160).unwrap();
+    /// let (bx, by) = cam.raster_error(100.5, 2000.5);
+    /// assert!(bx < 0.01 && by < 0.01); // thousandths of a pixel for a 4K image
+    /// ```
+    #[must_use]
+    pub fn raster_error(&self, x: S<V>, y: S<V>) -> (S<V>, S<V>) {
+        let inf = (S::<V>::INFINITY, S::<V>::INFINITY);
+        let (dx, dy) = centred(x, y, self.width, self.height);
+        let (dx, dy) = (dx.to_f64(), dy.to_f64());
+        if !(dx.is_finite() && dy.is_finite()) {
+            return inf;
+        }
+        let (w, h) = (f64::from(self.width), f64::from(self.height));
+        let nx = 2.0 * dx / w;
+        let ny = if self.clip == ClipSpace::Vulkan {
+            -2.0 * dy / h
+        } else {
+            2.0 * dy / h
+        };
+        let (m, mag) = product(&self.view, &self.proj);
+        let rows = [xyz(m[0]), xyz(m[1]), xyz(m[2]), xyz(m[3])];
+        let mags = [xyz(mag[0]), xyz(mag[1]), xyz(mag[2]), xyz(mag[3])];
+        let e = S::<V>::gamma_n(5).to_f64() + gamma64(17);
+        let tiny = S::<V>::TINY.to_f64();
+        // A row of M, or n = m_i - c m_j, in absolute value from above:
+        // its f64 value's and the rows' rounding (within gamma_64(5) of
+        // the magnitudes, and two more roundings for n).
+        let abs_up = |v: DVec3, bound: DVec3| v.abs() + bound * gamma64(8);
+        let px = |ndc: f64, n: f64| bound_from_f64::<S<V>>(ndc * n / 2.0);
+        if !self.is_orthographic() {
+            let (m0, m1, m3) = (rows[0], rows[1], rows[3]);
+            let (a0, a1, a3) = (mags[0], mags[1], mags[3]);
+            let k = cross_mag(a0, a1) + cross_mag(a1, a3) * nx.abs() + cross_mag(a3, a0) * ny.abs();
+            let k = k * (1.0 + gamma64(3));
+            let slack = tiny * (4.0 + dx.abs() + dy.abs() + k.element_sum());
+            let err = k * e + DVec3::splat(slack);
+            let big = a0.dot(cross_mag(a1, a3)) * (1.0 + gamma64(3));
+            let det = m0.dot(m1.cross(m3)).abs() - gamma64(12) * big;
+            let den = det - abs_up(m3, a3).dot(err);
+            if !(den > 0.0) {
+                return inf;
+            }
+            let bound = |n: DVec3, nb: DVec3| abs_up(n, nb).dot(err) / den;
+            (
+                px(bound(m0 - m3 * nx, a0 + a3 * nx.abs()), w),
+                px(bound(m1 - m3 * ny, a1 + a3 * ny.abs()), h),
+            )
+        } else {
+            let (m0, m1, m2) = (rows[0], rows[1], rows[2]);
+            let (a0, a1, a2) = (mags[0], mags[1], mags[2]);
+            let d3 = m[3][3];
+            let (cx, cy, cz) = (cross_mag(a1, a2), cross_mag(a2, a0), cross_mag(a0, a1));
+            let big = a0.dot(cx) * (1.0 + gamma64(3));
+            let det = m0.dot(m1.cross(m2)).abs() - gamma64(12) * big;
+            // d3 within a rounding of its magnitude, taken from below.
+            let d3_lo = d3.abs() - gamma64(5) * mag[3][3];
+            if !(det > 0.0 && d3_lo > 0.0) {
+                return inf;
+            }
+            let kappa = big / det;
+            let z0 = self.clip.near_depth();
+            // |c d3| + |d_i|, from above (d_i within gamma_64(5) of its
+            // magnitude).
+            let coeff =
+                |c: f64, i: usize| (c * mag[3][3]).abs() + m[i][3].abs() + gamma64(5) * mag[i][3];
+            let origin = (cx * coeff(nx, 0) + cy * coeff(ny, 1) + cz * coeff(z0, 2))
+                * (1.0 + gamma64(4))
+                / det;
+            let eo = e * (1.0 + kappa);
+            let slack = tiny * (4.0 + dx.abs() + dy.abs());
+            let err = origin * eo + DVec3::splat(slack);
+            let bound = |row: DVec3, rb: DVec3| abs_up(row, rb).dot(err) / d3_lo;
+            (px(bound(m0, a0), w), px(bound(m1, a1), h))
+        }
     }
 }
 

@@ -294,12 +294,22 @@ fn check_pixel<V: Vector>(cam: &MatrixCamera<V>, ex: &Exact, clip: ClipSpace, i:
         assert!(w_rate > int(0), "looks away from positive w: {}", ctx());
         let length: R = k.iter().sum();
         let tiny = subnormal_slack::<S<V>>(&dx, &dy, &length);
-        for (coord, n) in [
-            ("x", core::array::from_fn(|q| &m0[q] - &nx * &m3[q])),
-            ("y", core::array::from_fn(|q| &m1[q] - &ny * &m3[q])),
+        let half = S::<V>::HALF;
+        let (bx, by) = cam.raster_error(S::<V>::from_u32(i) + half, S::<V>::from_u32(j) + half);
+        for (coord, n, pixels, crate_bound) in [
+            ("x", core::array::from_fn(|q| &m0[q] - &nx * &m3[q]), w, bx),
+            ("y", core::array::from_fn(|q| &m1[q] - &ny * &m3[q]), h, by),
         ] {
             let n: R3 = n;
             let bound = ndc_bound(&n, &m3, &det, &k, &e, &tiny).expect("a well-conditioned camera");
+            // The crate's bound (pixels) is at least the derivation's.
+            let crate_bound = r(crate_bound) * int(2) / int(i64::from(pixels));
+            assert!(
+                bound <= crate_bound,
+                "raster_error's {coord} below its derivation: {}",
+                ctx()
+            );
+            let bound = crate_bound;
             let off = abs(&(dot(&n, &d) / &w_rate));
             assert!(
                 off <= bound,
@@ -336,12 +346,24 @@ fn check_pixel<V: Vector>(cam: &MatrixCamera<V>, ex: &Exact, clip: ClipSpace, i:
         let length: R = z.iter().sum();
         let tiny = subnormal_slack::<S<V>>(&int(0), &int(0), &length);
         let o = rv(ray.origin);
-        for (coord, mrow, target, dd) in [("x", &m0, &nx, d0), ("y", &m1, &ny, d1)] {
+        let half = S::<V>::HALF;
+        let (bx, by) = cam.raster_error(S::<V>::from_u32(i) + half, S::<V>::from_u32(j) + half);
+        for (coord, mrow, target, dd, pixels, crate_bound) in
+            [("x", &m0, &nx, d0, w, bx), ("y", &m1, &ny, d1, h, by)]
+        {
             let value = (dot(mrow, &o) + dd) / &d3;
             let bound: R = (0..3)
                 .map(|q| abs(&mrow[q]) * (&eo * &origin_mag[q] + &slack))
                 .sum::<R>()
                 / abs(&d3);
+            // The crate's bound (pixels) is at least the derivation's.
+            let crate_bound = r(crate_bound) * int(2) / int(i64::from(pixels));
+            assert!(
+                bound <= crate_bound,
+                "raster_error's {coord} below its derivation: {}",
+                ctx()
+            );
+            let bound = crate_bound;
             assert!(
                 abs(&(value - target)) <= bound,
                 "origin's {coord} off its pixel: {}",
@@ -408,17 +430,21 @@ pub fn eye_bound(ex: &Exact) -> Option<(R3, R3)> {
     Some((eye, bound))
 }
 
+/// The crate's `eye_error` held: the eye within it of the exact centre.
 fn check_eye<V: Vector>(cam: &MatrixCamera<V>, ex: &Exact) {
-    let Some((eye, bound)) = eye_bound(ex) else {
+    let Some((eye, _)) = eye_bound(ex) else {
         return;
     };
     let got = rv(cam.pixel_ray(0, 0).origin);
-    let u = r(S::<V>::UNIT_ROUNDOFF);
+    let bound = cam.eye_error();
+    assert!(
+        bound.is_finite(),
+        "no eye bound for glam's well-conditioned matrices: {cam:?}"
+    );
+    let bound = rv(bound);
     for k in 0..3 {
-        // A component rounded into the subnormal range: half a subnormal.
-        let rounding = (gamma::<f64>(1) + &u) * abs(&got[k]) * (int(1) + &u) + r(S::<V>::TINY);
         assert!(
-            abs(&(&got[k] - &eye[k])) <= &bound[k] + rounding,
+            abs(&(&got[k] - &eye[k])) <= bound[k],
             "eye {:?} off the camera centre in component {k}: {cam:?}",
             cam.pixel_ray(0, 0).origin
         );
