@@ -4,7 +4,7 @@ use glam::{DMat4, DVec3, Mat4, Vec3};
 
 use super::{
     Camera, CameraError, CameraSample, RayCone, RayDifferential, bound_from_f64, by_components,
-    centred, zero_vector,
+    centred, dvec, linear_differential_error, zero_vector,
 };
 use crate::num::trig::atan2_turns;
 use crate::num::{S, Scalar, Vector, unit, unit_and_inverse_length};
@@ -413,6 +413,42 @@ impl<V: Vector> MatrixCamera<V> {
         V::new(k(0), k(1), k(2))
     }
 
+    /// A bound on the length of the difference between each direction
+    /// derivative of [`ray_differential`](Camera::ray_differential) at `(x,
+    /// y)` (`dx_dir`, `dy_dir`) and the exact derivative of the unit
+    /// direction at the camera's linear form ([`linear_form`](Self::linear_form))
+    /// and the position. Perspective: with `p = c + dx a + dy b` and `K`
+    /// its magnitudes `|c| + |dx| |a| + |dy| |b|`, `(|step| / |p|)
+    /// (gamma(28) + 5 gamma(3) |K| / |p|)` with `|step|` the larger of
+    /// `|a|` and `|b|` (the direction's error twice through `dir (dir .
+    /// step)`, the dot product's, two more roundings and the factor `1 /
+    /// |p|`'s). Orthographic: zero, as the origin derivatives are `a` and
+    /// `-b` exactly and the direction's is zero, at any position.
+    /// Evaluated in `f64` and rounded up; for a perspective camera,
+    /// infinite for a NaN or infinite position, or where `|p|` is not above
+    /// twice the step. Held to in exact arithmetic, against
+    /// the neighbouring pixels' rays, by the test kit's matrix camera
+    /// checks.
+    ///
+    /// ```
+    /// use rayhit::camera::{ClipSpace, MatrixCamera};
+    /// use rayhit::glam::{Vec3, camera::rh::{proj::directx, view}};
+    /// let cam = MatrixCamera::from_mat4(view::look_to_mat4(Vec3::ZERO, -Vec3::Z, Vec3::Y),
+    ///     directx::perspective(1.0, 1.5, 0.1, 100.0), ClipSpace::Direct3D, 600, 400).unwrap();
+    /// // A few ulps of the derivative's length, about 1 / 350.
+    /// assert!(cam.ray_differential_error(10.5, 20.5) < 1e-8);
+    /// ```
+    #[must_use]
+    pub fn ray_differential_error(&self, x: S<V>, y: S<V>) -> S<V> {
+        match self.projection {
+            Projection::Orthographic => S::<V>::ZERO,
+            Projection::Perspective => {
+                let offsets = centred(x, y, self.width, self.height);
+                linear_differential_error(dvec(self.c), [self.a, self.b], offsets, 0.0)
+            }
+        }
+    }
+
     /// A bound, in pixels `(across, down)`, on how far the exact projection
     /// of the ray of raster position `(x, y)` lands from `(x, y)`, for the
     /// matrices given, in exact arithmetic: for a perspective camera the
@@ -547,9 +583,10 @@ impl<V: Vector> Camera<V> for MatrixCamera<V> {
     /// [`PinholeCamera::ray_differential`](crate::PinholeCamera::ray_differential)
     /// with `a` and `-b` for `right` and `-true_up`, `dx_dir = (a - dir (dir
     /// . a)) / |p|`, `dy_dir = (dir (dir . b) - b) / |p|` (`p = c + dx a + dy
-    /// b`; second order within `2 (|a| + |b|)^2 / |p|^2`). Orthographic: the
-    /// origin moves by `a` and `-b` per pixel, exactly linearly, and the
-    /// direction not at all.
+    /// b`; second order within `2 (|a| + |b|)^2 / |p|^2`; rounding within
+    /// [`ray_differential_error`](MatrixCamera::ray_differential_error)).
+    /// Orthographic: the origin moves by `a` and `-b` per pixel, exactly
+    /// linearly, and the direction not at all.
     #[inline(always)]
     fn ray_differential(&self, sample: CameraSample<S<V>>) -> RayDifferential<V> {
         let [x, y] = sample.film;

@@ -33,7 +33,7 @@ mod thin_lens;
 
 use core::fmt;
 
-use glam::Vec3;
+use glam::{DVec3, Vec3};
 
 use crate::num::{S, Scalar, Vector, unit};
 use crate::ray::Ray;
@@ -420,6 +420,53 @@ pub(crate) fn direction_angle<F: Scalar>(skew: f64) -> f64 {
     let u = F::UNIT_ROUNDOFF.to_f64();
     let root3 = 3f64.sqrt();
     3.0 * g(2 * t + 15) + 2.0 * root3 * u + root3 * g(3) + 3.0 * skew
+}
+
+/// The rounding bound of a linear camera's direction derivatives (the
+/// pinhole camera's and a perspective matrix camera's), as a length: for
+/// the direction `p / |p|` of `p = c + dx a + dy b`, the computed
+/// derivative along a step `a` (or `-b`) is within
+///
+/// `(|step| / |p|) (gamma(28) + 5 gamma(3) |K| / |p|) + e (|c| + |dx| |a|
+/// + |dy| |b|) / ((1 - e) |p|^2)`
+///
+/// of the exact derivative at the camera's `c` (given in `f64`: exact, or
+/// the exact product for the pinhole's `focal forward`), `a`, `b` and the
+/// given offsets, where `K = |c| + |dx| |a| + |dy| |b|` (components'
+/// magnitudes) and `e` the frame's departure from orthonormal for a camera
+/// that uses `dx` and `dy` for `p . a` and `p . b` (zero for one that
+/// computes the dot products). The first term: the direction's error twice
+/// through `dir (dir . step)`, the dot product's `gamma(3)`, two more
+/// roundings, and the factor `1 / |p|`'s error (`gamma(4)` and `p`'s own
+/// `gamma(3) |K|`); the second: with `c = focal forward`, `p . a` is
+/// within `e (focal + |dx| + |dy|)` of `dx`, and each unit vector at
+/// least `1 - e` long, which through `dir (dir . step) / |p|` moves the
+/// derivative by that over `|p|^2`. `|p|` is taken from below (its `f64`
+/// value less `1e-15 |K|`). Infinite where `|p|` is not above twice the
+/// step (there the derivative says nothing of the neighbour).
+pub(crate) fn linear_differential_error<V: Vector>(
+    c: DVec3,
+    [a, b]: [V; 2],
+    (dx, dy): (S<V>, S<V>),
+    frame: f64,
+) -> S<V> {
+    let (a, b, dx, dy) = (dvec(a), dvec(b), dx.to_f64(), dy.to_f64());
+    let k = c.abs() + a.abs() * dx.abs() + b.abs() * dy.abs();
+    let step = a.length().max(b.length());
+    let p = (c + a * dx + b * dy).length() - 1e-15 * k.length();
+    if !(p > 2.0 * step) {
+        return S::<V>::INFINITY;
+    }
+    let g = |n: u32| S::<V>::gamma_n(n).to_f64();
+    let own = step / p * (g(28) + 5.0 * g(3) * k.length() / p);
+    let reach = c.length() + dx.abs() * a.length() + dy.abs() * b.length();
+    let shortcut = frame * reach / ((1.0 - frame) * p * p);
+    bound_from_f64(own + shortcut)
+}
+
+/// A vector's components in `f64` (exactly).
+pub(crate) fn dvec<V: Vector>(v: V) -> DVec3 {
+    DVec3::new(v.x().to_f64(), v.y().to_f64(), v.z().to_f64())
 }
 
 /// A bound evaluated in `f64` as the precision's: the `f64` evaluation's

@@ -125,6 +125,47 @@ impl<V: Vector> OrthographicCamera<V> {
     pub fn pixel_size(&self) -> S<V> {
         self.pixel_size
     }
+
+    /// A per-component bound on the distance of the origin of the ray of
+    /// `(x, y)` from the exact point `centre + (dx s) right + (dy s)
+    /// true_up` (`s` the pixel size, `(dx, dy)` the offsets from the image
+    /// centre, the camera's own basis): `gamma(4) (|centre_i| + |dx s
+    /// right_i| + |dy s up_i|)`. Each origin component carries four
+    /// roundings (the offset's product by `s`, its product with the basis
+    /// vector, the sum of the two offsets and the sum with the centre).
+    /// Evaluated with outward rounding; infinite for a NaN or infinite
+    /// position. Held to in exact arithmetic by the test kit's
+    /// orthographic checks.
+    ///
+    /// ```
+    /// use rayhit::camera::OrthographicCamera;
+    /// use rayhit::glam::Vec3;
+    /// let cam = OrthographicCamera::new(Vec3::new(0.0, 10.0, 0.0), -Vec3::Y, -Vec3::Z, 0.5, 640, 480).unwrap();
+    /// // A few ulps of coordinates of about 10 and 160.
+    /// assert!(cam.origin_error(0.5, 0.5).max_element() < 1e-4);
+    /// ```
+    #[must_use]
+    pub fn origin_error(&self, x: S<V>, y: S<V>) -> V {
+        use crate::num::round::outward::{add_up, mul_up};
+        let (dx, dy) = super::centred(x, y, self.width, self.height);
+        if !(dx.is_finite() && dy.is_finite()) {
+            return V::splat(S::<V>::INFINITY);
+        }
+        let b = &self.basis;
+        let g4 = S::<V>::gamma_n(4).next_up();
+        let (a, c) = (
+            mul_up(dx.abs(), self.pixel_size),
+            mul_up(dy.abs(), self.pixel_size),
+        );
+        let k = |i: usize| {
+            let m = add_up(
+                add_up(b.eye[i].abs(), mul_up(a, b.right[i].abs())),
+                mul_up(c, b.up[i].abs()),
+            );
+            mul_up(g4, m)
+        };
+        V::new(k(0), k(1), k(2))
+    }
 }
 
 impl<V: Vector> Camera<V> for OrthographicCamera<V> {
@@ -132,12 +173,10 @@ impl<V: Vector> Camera<V> for OrthographicCamera<V> {
     /// `centre + ((x - width/2) s) right + ((height/2 - y) s) true_up`
     /// (`s` the pixel size) along `forward`.
     ///
-    /// Each origin component carries four roundings (the offset's product
-    /// by `s`, its product with the basis vector, the sum of the two
-    /// offsets and the sum with the centre), so it is within `gamma(4)
-    /// (|centre_i| + |dx s right_i| + |dy s up_i|)` of the exact point, and
-    /// within the same of the plane through `centre` (up to the basis's
-    /// own rounding). Positions outside the image give rays outside the
+    /// Each origin component is within
+    /// [`origin_error`](OrthographicCamera::origin_error) of the exact
+    /// point, and within the same of the plane through `centre` (up to the
+    /// basis's own rounding). Positions outside the image give rays outside the
     /// view; a NaN or infinite position gives a non-finite origin, which
     /// every kernel rejects.
     #[inline(always)]

@@ -5,7 +5,7 @@ use glam::Vec3;
 
 use super::{
     Basis, Camera, CameraError, CameraSample, RayCone, RayDifferential, by_components, centred,
-    zero_vector,
+    dvec, linear_differential_error, zero_vector,
 };
 use crate::num::trig::atan2_turns;
 use crate::num::{S, Scalar, Vector, unit, unit_and_inverse_length};
@@ -147,6 +147,37 @@ impl<V: Vector> PinholeCamera<V> {
         self.forward * self.focal_length + self.right * dx + self.up * dy
     }
 
+    /// A bound on the length of the difference between each derivative of
+    /// [`ray_differential`](Camera::ray_differential) at `(x, y)` (`dx_dir`,
+    /// `dy_dir`) and the exact derivative of the unit direction at the
+    /// camera's (rounded) basis and the position: with `p` the
+    /// unnormalised direction and `K` the vector of `|focal forward_i| +
+    /// |dx right_i| + |dy up_i|` (its magnitudes), `(|step| / |p|)
+    /// (gamma(28) + 5 gamma(3) |K| / |p|)` for the computation (`|step|`
+    /// the larger of `|right|` and `|true_up|`, one within `gamma(13)`),
+    /// and `gamma(13) (focal_length + |dx| |right| + |dy| |true_up|) /
+    /// ((1 - gamma(13)) |p|^2)` for using `dx` and `dy` in place of `p . right`
+    /// and `p . true_up` (the basis is orthonormal within `gamma(13)`).
+    /// Evaluated in `f64` and rounded up; infinite for a NaN or infinite
+    /// position, or where `|p|` is not above twice the step. Held to in exact
+    /// arithmetic, against the neighbouring pixels' rays, by the test
+    /// kit's camera checks.
+    ///
+    /// ```
+    /// use rayhit::{PinholeCamera, glam::Vec3};
+    /// let cam = PinholeCamera::new(Vec3::ZERO, -Vec3::Z, Vec3::Y, 500.0, 640, 480).unwrap();
+    /// // A few ulps of the derivative's length, 1 / 500.
+    /// assert!(cam.ray_differential_error(10.5, 20.5) < 1e-8);
+    /// ```
+    #[must_use]
+    pub fn ray_differential_error(&self, x: S<V>, y: S<V>) -> S<V> {
+        let offsets = centred(x, y, self.width, self.height);
+        // `focal forward` exactly for `f32`, within a relative 2^-53 for `f64`.
+        let c = dvec(self.forward) * self.focal_length.to_f64();
+        let frame = S::<V>::gamma_n(13).to_f64();
+        linear_differential_error(c, [self.right, self.up], offsets, frame)
+    }
+
     /// The eye position: where every ray starts.
     #[inline]
     #[must_use]
@@ -223,16 +254,11 @@ impl<V: Vector> Camera<V> for PinholeCamera<V> {
     /// |p|^5`, the last two along `p` and of opposite signs), so
     /// `ray(x + 1, y).dir` is within `2 / (|p| - 1)^2 <= 2 / (focal_length -
     /// 1)^2` (roughly) of `dir + dx_dir`, and likewise for `y`. Rounding:
-    /// with `K` the vector of `|focal forward_i| + |dx right_i| + |dy
-    /// up_i|` (`p`'s magnitudes), `dx_dir` is within `(gamma(28) + 5
-    /// gamma(3) |K| / |p|) / |p| + gamma(13) (focal_length + |dx| + |dy|) /
-    /// |p|^2` of the exact derivative at the camera's (rounded) basis and
-    /// the given position, as a vector (the last term: the basis is
-    /// orthonormal within `gamma(13)`, so `dx` is that close to `p .
-    /// right`, and `dy` to `p . true_up`; derived, and
-    /// held to in exact arithmetic, in the test kit's camera checks). A
-    /// NaN or infinite position gives NaN differentials, as it gives a NaN
-    /// direction.
+    /// `dx_dir` and `dy_dir` are within
+    /// [`ray_differential_error`](PinholeCamera::ray_differential_error)
+    /// of the exact derivatives at the camera's (rounded) basis and the
+    /// given position. A NaN or infinite position gives NaN
+    /// differentials, as it gives a NaN direction.
     #[inline(always)]
     fn ray_differential(&self, sample: CameraSample<S<V>>) -> RayDifferential<V> {
         let [x, y] = sample.film;

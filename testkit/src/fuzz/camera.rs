@@ -255,8 +255,11 @@ pub struct Linear<V> {
 ///   - e`; through `dir (dir . step) / |p|` that moves the differential by
 ///   that over `|p~|^2`.
 ///
-/// The norms are taken in `f64` (a relative `1e-15`, covered by a factor
-/// `1 + 1e-9` on the bound); the comparison is exact.
+/// `error` is the camera's own bound on the differential's rounding (its
+/// `ray_differential_error`), checked here to be at least `t_diff +
+/// t_frame` and used in their place. The norms are taken in `f64` (a
+/// relative `1e-15`, covered by a factor `1 + 1e-9` on the bound); the
+/// comparison is exact.
 #[allow(clippy::too_many_arguments)]
 pub fn check_linear_differential<V: Vector>(
     lin: &Linear<V>,
@@ -266,6 +269,7 @@ pub fn check_linear_differential<V: Vector>(
     dir: V,
     next: V,
     diff: V,
+    error: S<V>,
     ctx: &dyn Fn() -> String,
 ) {
     let f = |x: S<V>| x.to_f64();
@@ -300,7 +304,13 @@ pub fn check_linear_differential<V: Vector>(
     let e = lin.orthonormal;
     let reach = norm(lin.c) + f(dx).abs() * norm(a) + f(dy).abs() * norm(b);
     let t_frame = e * reach / ((1.0 - e) * p0 * p0);
-    let bound = (t(p0, k0) + t(p1, k1) + t_diff + t_2 + t_frame) * (1.0 + 1e-9);
+    assert!(
+        t_diff + t_frame <= error.to_f64(),
+        "ray_differential_error {error:?} below its derivation {}: {}",
+        t_diff + t_frame,
+        ctx()
+    );
+    let bound = (t(p0, k0) + t(p1, k1) + error.to_f64() + t_2) * (1.0 + 1e-9);
     let (d0, d1, dd) = (rv(dir), rv(next), rv(diff));
     let res: [R; 3] = core::array::from_fn(|k| &d1[k] - &d0[k] - &dd[k]);
     let b2 = R::from_float(bound * bound).expect("a finite bound");
@@ -341,6 +351,8 @@ pub fn check_pinhole_differential<V: Vector>(cam: &PinholeCamera<V>, i: u32, j: 
     let one = S::<V>::ONE;
     let next_x = cam.ray(CameraSample::new(x + one, y)).dir;
     let next_y = cam.ray(CameraSample::new(x, y + one)).dir;
-    check_linear_differential(&lin, dx, dy, lin.a, ray.dir, next_x, diff.dx_dir, &ctx);
-    check_linear_differential(&lin, dx, dy, -lin.b, ray.dir, next_y, diff.dy_dir, &ctx);
+    let error = cam.ray_differential_error(x, y);
+    let (a, b) = (lin.a, -lin.b);
+    check_linear_differential(&lin, dx, dy, a, ray.dir, next_x, diff.dx_dir, error, &ctx);
+    check_linear_differential(&lin, dx, dy, b, ray.dir, next_y, diff.dy_dir, error, &ctx);
 }

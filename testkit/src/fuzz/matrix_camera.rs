@@ -453,7 +453,7 @@ fn check_eye<V: Vector>(cam: &MatrixCamera<V>, ex: &Exact) {
 
 /// The differentials against the neighbouring pixels' rays, on the
 /// camera's own linear form: perspective, [`check_linear_differential`];
-/// orthographic, the origins `fl(fl(c + fl(a dx)) + fl(b dy))` are each
+/// orthographic (where `ray_differential_error` is zero, checked), the origins `fl(fl(c + fl(a dx)) + fl(b dy))` are each
 /// within `gamma(3) K` (per component, `K = |c| + |dx| |a| + |dy| |b|`) of
 /// the exact `c + dx a + dy b`, a pixel apart exactly, and the
 /// differential is `a` (or `-b`) itself, so the neighbours' origins less
@@ -482,19 +482,13 @@ fn check_neighbours<V: Vector>(
             b,
             orthonormal: 0.0,
         };
-        check_linear_differential(&lin, dx, dy, a, diff.ray.dir, next_x.dir, diff.dx_dir, &ctx);
-        check_linear_differential(
-            &lin,
-            dx,
-            dy,
-            -b,
-            diff.ray.dir,
-            next_y.dir,
-            diff.dy_dir,
-            &ctx,
-        );
+        let error = cam.ray_differential_error(x, y);
+        let dir = diff.ray.dir;
+        check_linear_differential(&lin, dx, dy, a, dir, next_x.dir, diff.dx_dir, error, &ctx);
+        check_linear_differential(&lin, dx, dy, -b, dir, next_y.dir, diff.dy_dir, error, &ctx);
         return;
     }
+    assert_eq!(cam.ray_differential_error(x, y), S::<V>::ZERO, "{}", ctx());
     assert_eq!(vector_bits(diff.dx_origin), vector_bits(a), "{}", ctx());
     assert_eq!(vector_bits(diff.dy_origin), vector_bits(-b), "{}", ctx());
     let (cr, ar, br) = (rv(c), rv(a), rv(b));

@@ -90,7 +90,8 @@ fn check_error<V: Vector>(e: CameraError, centre: V, view: V, up: V, size: S<V>,
 }
 
 /// The exact origin of `(x, y)` for the camera's basis and the computed
-/// offsets, and its bound (see the module docs).
+/// offsets, and the crate's bound on its distance, `origin_error`, which
+/// is checked to be at least the derivation's.
 fn origin_bound<V: Vector>(cam: &OrthographicCamera<V>, x: S<V>, y: S<V>) -> ([R; 3], [R; 3]) {
     let half = S::<V>::HALF;
     let dx = x - S::<V>::from_u32(cam.width()) * half;
@@ -99,9 +100,16 @@ fn origin_bound<V: Vector>(cam: &OrthographicCamera<V>, x: S<V>, y: S<V>) -> ([R
     let s = r(cam.pixel_size());
     let (a, b) = (r(dx) * &s, r(dy) * &s);
     let exact = core::array::from_fn(|i| &c[i] + &a * &rt[i] + &b * &up[i]);
-    let bound = core::array::from_fn(|i| {
+    let derived: [R; 3] = core::array::from_fn(|i| {
         gamma::<S<V>>(4) * (abs(&c[i]) + abs(&(&a * &rt[i])) + abs(&(&b * &up[i])))
     });
+    let bound = rv(cam.origin_error(x, y));
+    for i in 0..3 {
+        assert!(
+            derived[i] <= bound[i],
+            "origin_error below its derivation in component {i}: {cam:?} at ({x:?}, {y:?})"
+        );
+    }
     (exact, bound)
 }
 
