@@ -5,7 +5,7 @@ use glam::Vec3;
 
 use super::{
     Basis, Camera, CameraError, CameraSample, RayCone, RayDifferential, bound_from_f64,
-    by_components, centred, direction_angle, zero_vector,
+    by_components, centred, direction_angle, on_film, zero_vector,
 };
 use crate::num::trig::{atan_n, atan2_turns, sin_cos_quadrant};
 use crate::num::{Bits, Repr, S, Scalar, Vector, unit, unit_near};
@@ -258,12 +258,10 @@ impl<V: Vector> EqualAreaCamera<V> {
     /// ```
     #[must_use]
     pub fn raster_position_error(&self, x: S<V>, y: S<V>) -> (S<V>, S<V>) {
-        let (w, h) = (f64::from(self.width), f64::from(self.height));
-        let (x, y) = (x.to_f64(), y.to_f64());
         let inf = S::<V>::INFINITY;
-        if !((0.0..=w).contains(&x) && (0.0..=h).contains(&y)) {
+        let Some([_, _, w, h]) = on_film(x, y, self.width, self.height) else {
             return (inf, inf);
-        }
+        };
         let g = |n: u32| S::<V>::gamma_n(n).to_f64();
         let u = S::<V>::UNIT_ROUNDOFF.to_f64();
         let a = atan_n::<S<V>>();

@@ -464,6 +464,14 @@ pub(crate) fn linear_differential_error<V: Vector>(
     bound_from_f64(own + shortcut)
 }
 
+/// `[x, y, width, height]` in `f64` for a raster position on the image
+/// (its edges included); `None` off it, or for a NaN position.
+pub(crate) fn on_film<F: Scalar>(x: F, y: F, width: u32, height: u32) -> Option<[f64; 4]> {
+    let (w, h) = (f64::from(width), f64::from(height));
+    let (x, y) = (x.to_f64(), y.to_f64());
+    ((0.0..=w).contains(&x) && (0.0..=h).contains(&y)).then_some([x, y, w, h])
+}
+
 /// A vector's components in `f64` (exactly).
 pub(crate) fn dvec<V: Vector>(v: V) -> DVec3 {
     DVec3::new(v.x().to_f64(), v.y().to_f64(), v.z().to_f64())

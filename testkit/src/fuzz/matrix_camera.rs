@@ -302,14 +302,7 @@ fn check_pixel<V: Vector>(cam: &MatrixCamera<V>, ex: &Exact, clip: ClipSpace, i:
         ] {
             let n: R3 = n;
             let bound = ndc_bound(&n, &m3, &det, &k, &e, &tiny).expect("a well-conditioned camera");
-            // The crate's bound (pixels) is at least the derivation's.
-            let crate_bound = r(crate_bound) * int(2) / int(i64::from(pixels));
-            assert!(
-                bound <= crate_bound,
-                "raster_error's {coord} below its derivation: {}",
-                ctx()
-            );
-            let bound = crate_bound;
+            let bound = in_ndc(crate_bound, pixels, &bound, coord, &ctx);
             let off = abs(&(dot(&n, &d) / &w_rate));
             assert!(
                 off <= bound,
@@ -356,14 +349,7 @@ fn check_pixel<V: Vector>(cam: &MatrixCamera<V>, ex: &Exact, clip: ClipSpace, i:
                 .map(|q| abs(&mrow[q]) * (&eo * &origin_mag[q] + &slack))
                 .sum::<R>()
                 / abs(&d3);
-            // The crate's bound (pixels) is at least the derivation's.
-            let crate_bound = r(crate_bound) * int(2) / int(i64::from(pixels));
-            assert!(
-                bound <= crate_bound,
-                "raster_error's {coord} below its derivation: {}",
-                ctx()
-            );
-            let bound = crate_bound;
+            let bound = in_ndc(crate_bound, pixels, &bound, coord, &ctx);
             assert!(
                 abs(&(value - target)) <= bound,
                 "origin's {coord} off its pixel: {}",
@@ -449,6 +435,24 @@ fn check_eye<V: Vector>(cam: &MatrixCamera<V>, ex: &Exact) {
             cam.pixel_ray(0, 0).origin
         );
     }
+}
+
+/// The crate's `raster_error` coordinate (pixels across `pixels`) in
+/// device units, checked to be at least the derivation's `derived`.
+fn in_ndc<F: Scalar>(
+    crate_bound: F,
+    pixels: u32,
+    derived: &R,
+    coord: &str,
+    ctx: &dyn Fn() -> String,
+) -> R {
+    let bound = r(crate_bound) * int(2) / int(i64::from(pixels));
+    assert!(
+        *derived <= bound,
+        "raster_error's {coord} below its derivation: {}",
+        ctx()
+    );
+    bound
 }
 
 /// The differentials against the neighbouring pixels' rays, on the

@@ -190,7 +190,9 @@ fn trig<F: Scalar>() -> (u32, u32) {
 /// basis is orthonormal within `gamma(13)` (`2 gamma(6) + gamma(6)^2` on
 /// the diagonal, the cross products' and the re-orthogonalisation's
 /// rounding off it), also for up vectors nearly parallel to the view; the
-/// checks measure it rather than assume it.
+/// checks measure it rather than assume it. The crate measures it the same
+/// way for its own bounds; this copy is the checks' own, so that a change
+/// there cannot move the derivation the crate's bounds are held to.
 pub fn basis_skew<V: Vector>(b: [V; 3]) -> f64 {
     let d = |p: V, q: V| (0..3).map(|k| p[k].to_f64() * q[k].to_f64()).sum::<f64>();
     let mut m = S::<V>::gamma_n(13).to_f64();
