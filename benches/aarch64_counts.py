@@ -22,13 +22,13 @@ import tempfile
 TARGET = "aarch64-unknown-linux-gnu"
 SYSROOT = "/usr/aarch64-linux-gnu"
 KERNELS = [
-    ("box_prepared", "`ray_aabb_prepared` (4 lanes)"),
-    ("triangle_prepared", "`ray_triangle_prepared` (4 lanes)"),
-    ("box_batch_8", "`ray_aabb_batch`, 8 boxes"),
-    ("box_batch_16", "`ray_aabb_batch`, 16 boxes"),
-    ("triangle_batch_8", "`ray_triangle_batch`, 8 triangles"),
-    ("triangle_batch_16", "`ray_triangle_batch`, 16 triangles"),
-    ("quantized_children", "`ray_quantized_children` (8 children)"),
+    ("box_prepared", "`Aabb::clip`, `PreparedRay` (4 lanes)"),
+    ("triangle_prepared", "`Triangle::hit`, `PreparedRay` (4 lanes)"),
+    ("box_batch_8", "`AabbBatch::clip`, 8 boxes"),
+    ("box_batch_16", "`AabbBatch::clip`, 16 boxes"),
+    ("triangle_batch_8", "`TriangleBatch::hit`, 8 triangles"),
+    ("triangle_batch_16", "`TriangleBatch::hit`, 16 triangles"),
+    ("quantized_children", "`QuantizedChildren::clip` (8 children)"),
 ]
 # Where qemu-user loads a position-independent aarch64 executable.
 LOAD_BASE = 0x55_0000_0000

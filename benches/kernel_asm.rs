@@ -13,25 +13,25 @@ use rayhit::{
     batch::{AabbBatch, AabbBatchHits, QuantizedChildren, TriangleBatch, TriangleBatchHits},
 };
 
-/// `ray_aabb_prepared`: one box, the slab test on four lanes.
+/// `Aabb::clip` with a `PreparedRay`: one box, the slab test on four lanes.
 #[inline(never)]
 pub fn box_prepared(ray: &PreparedRay, aabb: &Aabb, t_max: f32) -> Option<(f32, f32)> {
     aabb.clip(ray, t_max)
 }
 
-/// `ray_triangle_prepared`: one triangle, the watertight test.
+/// `Triangle::hit` with a `PreparedRay`: one triangle, the watertight test.
 #[inline(never)]
 pub fn triangle_prepared(ray: &PreparedRay, tri: &Triangle, t_max: f32) -> Option<TriangleHit> {
     tri.hit(ray, t_max)
 }
 
-/// `ray_aabb_batch` on 8 boxes.
+/// `AabbBatch::clip` on 8 boxes.
 #[inline(never)]
 pub fn box_batch_8(ray: &PreparedRay, b: &AabbBatch<Vec3, 8>, t_max: f32) -> AabbBatchHits<f32, 8> {
     b.clip(ray, t_max)
 }
 
-/// `ray_aabb_batch` on 16 boxes.
+/// `AabbBatch::clip` on 16 boxes.
 #[inline(never)]
 pub fn box_batch_16(
     ray: &PreparedRay,
@@ -41,7 +41,7 @@ pub fn box_batch_16(
     b.clip(ray, t_max)
 }
 
-/// `ray_triangle_batch` on 8 triangles.
+/// `TriangleBatch::hit` on 8 triangles.
 #[inline(never)]
 pub fn triangle_batch_8(
     ray: &PreparedRay,
@@ -51,7 +51,7 @@ pub fn triangle_batch_8(
     b.hit(ray, t_max)
 }
 
-/// `ray_triangle_batch` on 16 triangles.
+/// `TriangleBatch::hit` on 16 triangles.
 #[inline(never)]
 pub fn triangle_batch_16(
     ray: &PreparedRay,
@@ -61,7 +61,7 @@ pub fn triangle_batch_16(
     b.hit(ray, t_max)
 }
 
-/// `ray_quantized_children`: the eight children of a compressed node.
+/// `QuantizedChildren::clip`: the eight children of a compressed node.
 #[inline(never)]
 pub fn quantized_children(
     ray: &PreparedRay,

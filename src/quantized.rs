@@ -284,7 +284,7 @@ impl<V: Vector<Scalar = f32>> Bounds<V> for QuantizedChildren<'_, V> {
     }
 }
 
-/// [`ray_quantized_children`] as a kernel, for any instruction set (see
+/// [`QuantizedChildren`]'s `clip` as a kernel, for any instruction set (see
 /// `crate::simd`).
 pub(crate) struct QuantizedKernel<'n, V>(PhantomData<&'n V>);
 
@@ -321,7 +321,7 @@ fn decode<W: Lanes8<F = f32>, V: Vector<Scalar = f32>>(
     (a.mul(s).add(p).sub(w), b.mul(s).add(p).add(w), a.le(b))
 }
 
-/// The body of [`ray_quantized_children`] with the eight-lane type `W`.
+/// The body of [`QuantizedChildren`]'s `clip` with the eight-lane type `W`.
 #[inline(always)]
 fn quantized_body<W: Lanes8<F = f32>, V: Vector<Scalar = f32>>(
     ray: &PreparedRay<V>,

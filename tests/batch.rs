@@ -1,15 +1,15 @@
 //! The batch kernels against the scalar ones, bit for bit.
 //!
-//! `ray_aabb_batch` must give, in every lane, the hit or miss and the entry
-//! `t` of `ray_aabb_prepared` on that lane's box (and `ray_aabb_batch_in`
-//! those of `ray_aabb_prepared_in`, over intervals whose lower end lies
-//! before, at and within the lanes' boxes); `ray_triangle_batch` the
-//! hit or miss, `t`, `u`, `v` and side of `ray_triangle` on that lane's
-//! triangle (and `ray_triangle_batch_in` those of `ray_triangle_prepared_in`
-//! over intervals, with `ray_triangle_batch_occluded` true exactly when it
-//! hits a lane); and `ray_triangle_prepared` exactly `ray_triangle`. Since the
-//! scalar kernels are held to the exact oracle elsewhere (`properties`,
-//! `oracle`, `corpus`), identity carries every guarantee over.
+//! `AabbBatch::clip` must give, in every lane, the hit or miss and the
+//! entry `t` of `Aabb::clip` with a `PreparedRay` on that lane's box (and
+//! likewise over intervals whose lower end lies before, at and within the
+//! lanes' boxes); `TriangleBatch::hit` the hit or miss, `t`, `u`, `v` and
+//! side of `ray_triangle` on that lane's triangle (and over intervals those
+//! of `Triangle::hit` with a `PreparedRay`, with `TriangleBatch::occluded`
+//! true exactly when it hits a lane); and `Triangle::hit` with a
+//! `PreparedRay` exactly `ray_triangle`. Since the scalar kernels are held
+//! to the exact oracle elsewhere (`properties`, `oracle`, `corpus`),
+//! identity carries every guarantee over.
 //!
 //! Inputs: the crate's aimed strategies, with the other lanes filled by
 //! copies of the aimed shape moved along the ray (several hits per batch,
@@ -189,7 +189,7 @@ fn check_triangles<V: Vector, const N: usize>(
             let prepared_hit = t.hit(&prepared, t_max);
             if hit_bits(prepared_hit) != hit_bits(expected) {
                 return Err(format!(
-                    "ray_triangle_prepared {prepared_hit:?} != ray_triangle {expected:?}"
+                    "Triangle::hit, PreparedRay {prepared_hit:?} != ray_triangle {expected:?}"
                 ));
             }
         }
@@ -240,7 +240,7 @@ fn check_triangles<V: Vector, const N: usize>(
         let via_simd = batch.hit(&TargetSimd.ray(&prepared), interval);
         if via_simd.mask != hits.mask || via_simd.t.map(bits) != hits.t.map(bits) {
             return Err(format!(
-                "Simd::ray_triangle_batch_in differs over {interval:?}"
+                "TriangleBatch::hit through Simd::ray differs over {interval:?}"
             ));
         }
         let occluded = batch.occluded(&prepared, interval);

@@ -6,8 +6,8 @@
 //!   the target's copy and in the one `with_simd` picks).
 //! - No false miss: a ray that meets an exact quantized box, decided with
 //!   big rationals, is reported hitting that child.
-//! - `quantize_bounds` gives the tightest bytes whose decoded box contains
-//!   the bounds it was given.
+//! - `QuantizedChildren::quantize` gives the tightest bytes whose decoded
+//!   box contains the bounds it was given.
 
 use num_traits::{One, Signed, Zero};
 use rayhit::glam::Vec3;

@@ -42,7 +42,7 @@
 //!   the back counts as a miss.
 //! - `--t-ulps N`: the bound on `t` (and box entry and exit) in ulps of the
 //!   exact value. By default it is rayhit's own documented bound for the
-//!   case: `ray_triangle_error_bounds` and `ray_plane_t_error` at the exact
+//!   case: `Triangle::hit_error` and `Plane::hit_error` at the exact
 //!   answer, and for boxes 16 ulps.
 
 use std::collections::BTreeMap;

@@ -10,11 +10,11 @@
 //!   the slab entry within `gamma(3)` of it and the exit at least the exact
 //!   exit and at most `1 + 16u` times it; the naive test's within `gamma(2)`
 //!   where its faces are unambiguous; the watertight test's `t`, `u`, `v`
-//!   within `ray_triangle_error_bounds`; the plane's `t` within
-//!   `ray_plane_t_error`;
+//!   within `Triangle::hit_error`; the plane's `t` within
+//!   `Plane::hit_error`;
 //! - every transferred ray differential at a triangle hit (each component of
 //!   `dp_dx`, `dp_dy` and `du_dx` ... `dv_dy`) within
-//!   `triangle_hit_differentials_error` of the exact transfer;
+//!   `Triangle::hit_differentials_error` of the exact transfer;
 //! - every instance's world box (`Instance::object_to_world_box`) contains
 //!   the exact image of the object box (stored rounded outward, so the
 //!   comparison is exact) and is at most `16 u` of the terms' magnitudes
@@ -22,10 +22,10 @@
 //!   (`Instance::surface_to_world`) within its `point_error` of the exact
 //!   image (stored rounded to nearest, so half an ulp is added);
 //! - over an interval `(t_min, t_max]` (ends at and around the exact
-//!   crossing): `ray_triangle_in` hits only where the exact plane crossing
+//!   crossing): `Triangle::hit` hits only where the exact plane crossing
 //!   is in the interval, and as the exact answer where the inside test is
 //!   clear of rounding, its prepared, batch and any-hit forms alike;
-//!   `ray_plane_in` hits exactly as the exact answer; each `t` in the
+//!   `Plane::hit` hits exactly as the exact answer; each `t` in the
 //!   interval and within its bound of the exact one (or of the float above
 //!   `t_min`).
 //!
@@ -671,9 +671,9 @@ fn plane_in_line<V: Vector>(
     ))
 }
 
-/// `ray_plane_in` against the corpus: hit or miss as the exact answer
-/// (decided exactly, no band), `t` in the interval and within
-/// `ray_plane_t_error` of the exact `T` (or of one float above `t_min`).
+/// `Plane::hit` over an interval against the corpus: hit or miss as the
+/// exact answer (decided exactly, no band), `t` in the interval and within
+/// `Plane::hit_error` of the exact `T` (or of one float above `t_min`).
 fn check_plane_intervals<V: Vector>(lines: &[String]) -> Failures {
     use rayhit::Interval;
     let mut fail = Failures::default();

@@ -19,20 +19,20 @@
 //! (bounding boxes and a small BVH tested with the prepared slab test before
 //! any triangle), sunlight with soft shadows, sky light with ambient
 //! occlusion and a mirror, every secondary ray spawned with
-//! `offset_ray_origin`.
+//! `SurfacePoint::spawn`.
 //!
 //! The `leak` scene: a closed box mesh whose vertices sit on pixel centres,
 //! so that every camera ray runs through a shared edge or vertex; it is
 //! traced once with the watertight `ray_triangle` and once with
-//! `ray_triangle_mt`, and the rays that get into the mesh without any
-//! triangle reporting it are counted and drawn in red (watertight on the
-//! left, Moller-Trumbore on the right).
+//! `Triangle::moller_trumbore`, and the rays that get into the mesh without
+//! any triangle reporting it are counted and drawn in red (watertight on
+//! the left, Moller-Trumbore on the right).
 //!
 //! The `shadows` scene: a square light and two point lights, every shadow
 //! ray a segment from `SurfacePoint::spawn_to` or `spawn_to_point` tested
 //! with the interval and any-hit kernels, and a glass torus whose surfaces
 //! each tint what is behind them, found in order along each ray by walking
-//! consecutive intervals with `ray_triangle_one_hit_in` (see
+//! consecutive intervals with `Triangle::hit` and `EdgeRule::OneHit` (see
 //! `rayhit_demo::shadows`).
 //!
 //! The `instances` scene: one torus mesh placed many times by `Instance`s

@@ -6,10 +6,10 @@
 //! `PinholeCamera`, the ground from `ray_plane`, the boxes from the prepared
 //! slab test and a `ray_plane` on the face it reports, the meshes from the
 //! slab test on their bounding boxes and BVH nodes and then `ray_triangle`
-//! (or `ray_triangle_mt`). Every ray that leaves a surface (towards the sun,
-//! towards the sky, or reflected) starts from `SurfacePoint::spawn`, which
-//! offsets the origin (`offset_ray_origin`) by the hit point's error bound
-//! and the normal's, so it cannot hit the surface it left.
+//! (or `Triangle::moller_trumbore`). Every ray that leaves a surface
+//! (towards the sun, towards the sky, or reflected) starts from
+//! `SurfacePoint::spawn`, which offsets the origin by the hit point's error
+//! bound and the normal's, so it cannot hit the surface it left.
 
 use rayhit::glam::{Mat3, Vec3};
 use rayhit::{
@@ -491,21 +491,15 @@ pub fn render(scene: &Scene, samples: u32, row_done: &(dyn Fn() + Sync)) -> (Ima
     (image, rays)
 }
 
-/// A uniformly random point of `tri` as a surface point (barycentrics
-/// drawn from `rng`, folded into the triangle): `SurfacePoint::on_triangle`
-/// holds for any barycentrics, and the hit's `t` is not used.
+/// A uniformly random point of `tri` as a surface point (barycentrics drawn
+/// from `rng`, folded into the triangle), with its error bound:
+/// `Triangle::surface_point_at` holds for any barycentrics.
 pub fn random_point_on(tri: &Triangle, rng: &mut Rng) -> SurfacePoint {
     let (mut u, mut v) = (rng.next_f32(), rng.next_f32());
     if u + v > 1.0 {
         (u, v) = (1.0 - u, 1.0 - v);
     }
-    let at = rayhit::TriangleHit {
-        t: 0.0,
-        u,
-        v,
-        side: Side::Front,
-    };
-    tri.surface_point_at(at.u, at.v)
+    tri.surface_point_at(u, v)
 }
 
 /// The geometric normal (unit, or the shading normal where it has no

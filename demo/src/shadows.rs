@@ -5,24 +5,24 @@
 //!
 //! Every shadow ray is a segment `(ray, (0, 1])` between a shading point
 //! and a point on a light, and every occluder is asked about that interval
-//! with an interval or any-hit kernel: `ray_plane_in` for the ground,
-//! `ray_aabb_prepared_face_in` for the box (blocked when it enters the box
-//! within the segment), `ray_aabb_prepared_in` and
-//! `ray_triangle_prepared_occluded` for the meshes behind their BVH and for
-//! the light's own two triangles. The segment's ends are placed off both
-//! surfaces by their error bounds, so the light's triangles never block a
-//! segment that ends on them and the shading point's surface never blocks
-//! one that starts on it: there is no epsilon anywhere.
+//! with an interval or any-hit kernel: `Plane::hit` for the ground,
+//! `Aabb::hit` for the box (blocked when it enters the box within the
+//! segment: the `BoxHit` has an entry face), `Aabb::clip` and
+//! `Triangle::occluded` for the meshes behind their BVH and for the light's
+//! own two triangles. The segment's ends are placed off both surfaces by
+//! their error bounds, so the light's triangles never block a segment that
+//! ends on them and the shading point's surface never blocks one that
+//! starts on it: there is no epsilon anywhere.
 //!
 //! The glass torus is walked hit by hit: take the nearest crossing of
 //! `(t_lo, t_max]`, widen it to `t_hi = t + bound` (its error bound from
-//! `ray_triangle_error_bounds`, rounded up), take every crossing of `(t_lo,
+//! `Triangle::hit_error`, rounded up), take every crossing of `(t_lo,
 //! t_hi]` sorted by `t`, and go on from `t_lo = t_hi`. Consecutive
 //! intervals `(t0, t1]`, `(t1, t2]`, ... hold each exact crossing exactly
-//! once, and `ray_triangle_one_hit_in` gives a crossing through a shared
-//! edge or corner to exactly one triangle, so no surface is skipped or
-//! counted twice. Each surface crossed tints the light behind it, on
-//! camera rays and on shadow rays alike.
+//! once, and `Triangle::hit` with `EdgeRule::OneHit` gives a crossing
+//! through a shared edge or corner to exactly one triangle, so no surface
+//! is skipped or counted twice. Each surface crossed tints the light behind
+//! it, on camera rays and on shadow rays alike.
 
 use rayhit::glam::{Mat3, Vec3};
 use rayhit::{

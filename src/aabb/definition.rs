@@ -1,5 +1,5 @@
 //! The slab test's reference definition: one axis at a time, with scalar
-//! comparisons. [`ray_aabb_prepared`](crate::ray_aabb_prepared),
+//! comparisons. [`ray_aabb_prepared`](super::slab::ray_aabb_prepared),
 //! [`ray_aabb`](crate::ray_aabb), the box batches and the compressed
 //! node test run the same operations on lanes, and their tests hold them to
 //! [`slab_definition`] bit for bit. The exit's widening and slack, which
@@ -67,7 +67,7 @@ mod reference {
     /// The slab test's definition: its arithmetic for one box, one axis at a
     /// time, without the checks of the box's validity and of `t_max >= 0`:
     /// `(hit, enter, exit)`, where `enter` and `exit` are the answer when `hit`
-    /// holds. [`ray_aabb_prepared`](crate::ray_aabb_prepared) and the box
+    /// holds. [`ray_aabb_prepared`](super::slab::ray_aabb_prepared) and the box
     /// batches must give exactly these bits. (Compiled for the tests: the
     /// kernels run its operations on lanes.)
     pub(crate) fn slab_definition<F: Scalar>(

@@ -214,7 +214,7 @@ pub(crate) fn ray_slab_box<V: Vector>(
 ///   the same few ulps (`1 + 16u` relative, plus four subnormals), for
 ///   example a box that the ray leaves just before `t_min`. A box the ray
 ///   leaves exactly at `t_min` is reported: it is a conservative test, and
-///   the ends are not decided exactly (use [`ray_aabb_face_in`](crate::ray_aabb_face_in)
+///   the ends are not decided exactly (use [`ray_aabb_face_in`](super::face::ray_aabb_face_in)
 ///   for an exactly decided entry).
 /// - With `interval = (0, t_max]` the answer is [`ray_aabb`]'s, bit for
 ///   bit.

@@ -8,7 +8,7 @@ use super::{
     by_components, centred, direction_angle, on_film, zero_vector,
 };
 use crate::num::trig::{atan_n, atan2_turns, sin_cos_quadrant};
-use crate::num::{Bits, Repr, S, Scalar, Vector, unit, unit_near};
+use crate::num::{Bits, Repr, S, Scalar, Vector, unit_near};
 use crate::ray::Ray;
 
 /// An equal-area panoramic camera: the whole sphere of directions around
@@ -189,14 +189,7 @@ impl<V: Vector> EqualAreaCamera<V> {
     /// [`raster_position_error`](Self::raster_position_error).
     #[must_use]
     pub fn raster_position(&self, dir: V) -> Option<(S<V>, S<V>)> {
-        if !dir.is_finite() || dir == V::ZERO {
-            return None;
-        }
-        // Unit length first (scaled by a power of two where its square
-        // would under- or overflow), so that no square below does.
-        let dir = unit(dir);
-        let b = &self.basis;
-        let (a, bb, c) = (dir.dot(b.right), dir.dot(b.up), dir.dot(b.forward));
+        let (a, bb, c) = self.basis.local(dir)?;
         let local = V::new(a, bb, c);
         let n = local.length();
         let (ax, ay, az) = (a.abs(), bb.abs(), c.abs());

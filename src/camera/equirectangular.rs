@@ -7,7 +7,7 @@ use super::{
     by_components, centred, direction_angle, on_film, zero_vector,
 };
 use crate::num::trig::{atan_n, atan2_turns, sin_cos_turns, trig_n};
-use crate::num::{S, Scalar, Vector, unit, unit_near};
+use crate::num::{S, Scalar, Vector, unit_near};
 use crate::ray::Ray;
 
 /// An equirectangular panoramic camera: the whole sphere of directions
@@ -115,14 +115,7 @@ impl<V: Vector> EquirectangularCamera<V> {
     /// [`raster_position_error`](Self::raster_position_error)`(x, y)`.
     #[must_use]
     pub fn raster_position(&self, dir: V) -> Option<(S<V>, S<V>)> {
-        if !dir.is_finite() || dir == V::ZERO {
-            return None;
-        }
-        // Unit length first (scaled by a power of two where its square
-        // would under- or overflow), so that no square below does.
-        let dir = unit(dir);
-        let b = &self.basis;
-        let (a, c, up) = (dir.dot(b.right), dir.dot(b.forward), dir.dot(b.up));
+        let (a, up, c) = self.basis.local(dir)?;
         let lon = atan2_turns(a, c);
         let horizontal = V::new(a, c, S::<V>::ZERO).length();
         let lat = atan2_turns(up, horizontal);

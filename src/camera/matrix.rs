@@ -14,6 +14,9 @@ use crate::ray::Ray;
 /// (`Mat4::to_cols_array_2d`), acting on column vectors.
 type Columns<F> = [[F; 4]; 4];
 
+/// `projection * view` by rows in `f64`, and its magnitudes ([`product`]).
+type Product = ([[f64; 4]; 4], [[f64; 4]; 4]);
+
 /// The graphics API's clip-space convention, which the matrices alone do
 /// not tell: which way normalised device `y` points, and where depth
 /// starts (used only for an orthographic projection's ray origins).
@@ -134,18 +137,17 @@ where
     b: V,
     width: u32,
     height: u32,
-    /// The matrices given, for the bounds ([`MatrixCamera::eye_error`],
-    /// [`MatrixCamera::raster_error`]), which the rays never read.
-    view: Columns<S<V>>,
-    proj: Columns<S<V>>,
     clip: ClipSpace,
+    // (The matrices are not kept: the bounds take them again. Holding
+    // them, 128 more bytes, kept the benchmarks' loop of rays from
+    // vectorising, 2.7 times the time per ray; see BENCHMARKS.md.)
 }
 
 /// `M = projection * view` by rows, in `f64` (exact products for `f32`
 /// input; for `f64`, each product rounded), and its magnitudes `|projection|
 /// * |view|` entry by entry, rounded up: each row of `M` is within
 /// `gamma_64(5)` of the same row of the magnitudes of the exact product.
-fn product<F: Scalar>(view: &Columns<F>, proj: &Columns<F>) -> ([[f64; 4]; 4], [[f64; 4]; 4]) {
+fn product<F: Scalar>(view: &Columns<F>, proj: &Columns<F>) -> Product {
     let at = |m: &Columns<F>, i: usize, j: usize| m[j][i].to_f64();
     let mut rows = [[0.0f64; 4]; 4];
     let mut mags = [[0.0f64; 4]; 4];
@@ -289,8 +291,6 @@ impl<V: Vector> MatrixCamera<V> {
             b,
             width,
             height,
-            view,
-            proj: projection,
             clip,
         })
     }
@@ -355,9 +355,14 @@ impl<V: Vector> MatrixCamera<V> {
     /// every row of `M = projection * view` but the depth row maps to
     /// zero: `e* = -(d0 X + d1 Y + d3 Z) / D`, exactly (`X = m1 x m3`, `Y =
     /// m3 x m0`, `Z = m0 x m1`, `D = m0 . X`, `m_i` and `d_i` the rows'
-    /// first three entries and the last). Infinite for an orthographic
-    /// camera, and where the matrices are too ill-conditioned for the
-    /// bound (below).
+    /// first three entries and the last). `view` and `projection` are
+    /// the matrices the camera was made from, as columns (for
+    /// [`from_view_projection`](Self::from_view_projection), the identity
+    /// and the product; for [`from_mat4`](Self::from_mat4), each
+    /// `to_cols_array_2d()`); the camera does not keep them. Infinite for
+    /// other matrices (the camera is rebuilt from them and compared), for
+    /// an orthographic camera, and where the matrices are too
+    /// ill-conditioned for the bound (below).
     ///
     /// `(gamma_64(14) N_k / |D| + delta |eye_k|) / (1 - 2 delta) +
     /// (gamma_64(1) + u) |eye_k| (1 + u)` plus the smallest subnormal,
@@ -379,18 +384,21 @@ impl<V: Vector> MatrixCamera<V> {
     /// use rayhit::camera::{ClipSpace, MatrixCamera};
     /// use rayhit::glam::{Vec3, camera::rh::{proj::directx, view}};
     /// let (eye, dir) = (Vec3::new(1.0, 2.0, 5.0), Vec3::new(0.0, -0.3, -1.0).normalize());
-    /// let cam = MatrixCamera::from_mat4(view::look_to_mat4(eye, dir, Vec3::Y),
-    ///     directx::perspective(1.0, 1.5, 0.1, 100.0), ClipSpace::Direct3D, 600, 400).unwrap();
+    /// let (v, p) = (view::look_to_mat4(eye, dir, Vec3::Y), directx::perspective(1.0, 1.5, 0.1, 100.0));
+    /// let cam = MatrixCamera::from_mat4(v, p, ClipSpace::Direct3D, 600, 400).unwrap();
+    /// let bound = cam.eye_error(&v.to_cols_array_2d(), &p.to_cols_array_2d());
     /// assert!((cam.fixed() - eye).abs().max_element() < 1e-5);
-    /// assert!(cam.eye_error().max_element() < 1e-5); // a few ulps of 5
+    /// assert!(bound.max_element() < 1e-5); // a few ulps of 5
     /// ```
     #[must_use]
-    pub fn eye_error(&self) -> V {
+    pub fn eye_error(&self, view: &Columns<S<V>>, projection: &Columns<S<V>>) -> V {
         let inf = V::splat(S::<V>::INFINITY);
+        let Some((m, mag)) = self.made_from(view, projection) else {
+            return inf;
+        };
         if self.is_orthographic() {
             return inf;
         }
-        let (m, mag) = product(&self.view, &self.proj);
         let (m0, m1, m3) = (xyz(m[0]), xyz(m[1]), xyz(m[3]));
         let (a0, a1, a3) = (xyz(mag[0]), xyz(mag[1]), xyz(mag[3]));
         let (x, y, z) = (m1.cross(m3), m3.cross(m0), m0.cross(m1));
@@ -411,6 +419,14 @@ impl<V: Vector> MatrixCamera<V> {
             bound_from_f64::<S<V>>(f64_part + rounding + S::<V>::TINY.to_f64())
         };
         V::new(k(0), k(1), k(2))
+    }
+
+    /// `projection * view` and its magnitudes ([`product`]) if this camera
+    /// is the one [`new`](Self::new) makes of `view` and `projection` (and
+    /// its clip space and size); `None` otherwise.
+    fn made_from(&self, view: &Columns<S<V>>, projection: &Columns<S<V>>) -> Option<Product> {
+        let again = Self::new(*view, *projection, self.clip, self.width, self.height);
+        (again.ok() == Some(*self)).then(|| product(view, projection))
     }
 
     /// A bound on the length of the difference between each direction
@@ -454,7 +470,9 @@ impl<V: Vector> MatrixCamera<V> {
     /// matrices given, in exact arithmetic: for a perspective camera the
     /// ray's vanishing point (where the projection of `origin + t dir`
     /// goes as `t` grows, which every point of the ray is on for an exact
-    /// eye); for an orthographic camera the ray's origin. Infinite where
+    /// eye); for an orthographic camera the ray's origin. `view` and
+    /// `projection` are the matrices the camera was made from, as for
+    /// [`eye_error`](Self::eye_error). Infinite for other matrices, where
     /// the camera is too ill-conditioned for the bound (its denominator
     /// not positive) or the position not finite.
     ///
@@ -478,14 +496,27 @@ impl<V: Vector> MatrixCamera<V> {
     /// ```
     /// use rayhit::camera::{ClipSpace, MatrixCamera};
     /// use rayhit::glam::{Vec3, camera::rh::{proj::directx, view}};
-    /// let cam = MatrixCamera::from_mat4(view::look_to_mat4(Vec3::ZERO, -Vec3::Z, Vec3::Y),
-    ///     directx::perspective(1.0, 16.0 / 9.0, 0.1, 100.0), ClipSpace::Direct3D, 3840, 2160).unwrap();
-    /// let (bx, by) = cam.raster_error(100.5, 2000.5);
+    /// let v = view::look_to_mat4(Vec3::ZERO, -Vec3::Z, Vec3::Y);
+    /// let p = directx::perspective(1.0, 16.0 / 9.0, 0.1, 100.0);
+    /// let cam = MatrixCamera::from_mat4(v, p, ClipSpace::Direct3D, 3840, 2160).unwrap();
+    /// let (v, p) = (v.to_cols_array_2d(), p.to_cols_array_2d());
+    /// let (bx, by) = cam.raster_error(&v, &p, 100.5, 2000.5);
     /// assert!(bx < 0.01 && by < 0.01); // thousandths of a pixel for a 4K image
+    /// // Matrices the camera was not made from have no bound.
+    /// assert!(cam.raster_error(&v, &v, 100.5, 2000.5).0.is_infinite());
     /// ```
     #[must_use]
-    pub fn raster_error(&self, x: S<V>, y: S<V>) -> (S<V>, S<V>) {
+    pub fn raster_error(
+        &self,
+        view: &Columns<S<V>>,
+        projection: &Columns<S<V>>,
+        x: S<V>,
+        y: S<V>,
+    ) -> (S<V>, S<V>) {
         let inf = (S::<V>::INFINITY, S::<V>::INFINITY);
+        let Some((m, mag)) = self.made_from(view, projection) else {
+            return inf;
+        };
         let (dx, dy) = centred(x, y, self.width, self.height);
         let (dx, dy) = (dx.to_f64(), dy.to_f64());
         if !(dx.is_finite() && dy.is_finite()) {
@@ -498,7 +529,6 @@ impl<V: Vector> MatrixCamera<V> {
         } else {
             2.0 * dy / h
         };
-        let (m, mag) = product(&self.view, &self.proj);
         let rows = [xyz(m[0]), xyz(m[1]), xyz(m[2]), xyz(m[3])];
         let mags = [xyz(mag[0]), xyz(mag[1]), xyz(mag[2]), xyz(mag[3])];
         let e = S::<V>::gamma_n(5).to_f64() + gamma64(17);

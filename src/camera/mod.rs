@@ -375,6 +375,18 @@ impl<V: Vector> Basis<V> {
 }
 
 impl<V: Vector> Basis<V> {
+    /// The components of `dir` brought to unit length (scaled by a power
+    /// of two where its square would under- or overflow, so that no square
+    /// of them does) along `right`, `up` and `forward`; `None` for a zero
+    /// or non-finite direction. The panoramas' inverse starts here.
+    pub(crate) fn local(&self, dir: V) -> Option<(S<V>, S<V>, S<V>)> {
+        if !dir.is_finite() || dir == V::ZERO {
+            return None;
+        }
+        let dir = unit(dir);
+        Some((dir.dot(self.right), dir.dot(self.up), dir.dot(self.forward)))
+    }
+
     /// The basis's departure from orthonormal: the largest entry of `B^T B
     /// - I` (`B` with columns `right`, `up`, `forward`), and at least
     /// `gamma(13)`, the bound every accepted up vector gives (see

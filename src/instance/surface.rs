@@ -82,7 +82,7 @@
 //! evaluated innermost first.
 //!
 //! [`SurfacePoint`]: crate::SurfacePoint
-//! [`offset_ray_origin`]: crate::offset_ray_origin
+//! [`offset_ray_origin`]: crate::surface::offset_ray_origin
 
 use super::{Instance, apply, bound_up_l, load3};
 use crate::num::round::{bound_up, max2};

@@ -19,7 +19,7 @@ pub(crate) fn quotient<V: Vector>(origin: V, dir: V, point: V, normal: V) -> (S<
     (numer, denom, numer / denom)
 }
 
-/// The bound of [`ray_plane_t_error`](crate::ray_plane_t_error) (derived
+/// The bound of [`ray_plane_t_error`](crate::plane::ray_plane_t_error) (derived
 /// there), for a plane given by a point and a normal.
 #[inline(always)]
 pub(crate) fn t_error<V: Vector>(origin: V, dir: V, point: V, normal: V, t: S<V>) -> S<V> {

@@ -16,7 +16,7 @@ use crate::num::{F32Bits, F64Bits, Lanes8, Repr, Scalar};
 /// (the target's own always, the others by run-time detection), so that
 /// holding one is what makes running code compiled for it sound.
 ///
-/// Public only as the sealed supertrait of [`Simd`](crate::Simd); it is
+/// Public only as the sealed supertrait of [`Simd`](crate::batch::Simd); it is
 /// not reachable from outside the crate.
 pub trait Isa: Copy {
     /// The eight-lane type of precision `F` on this instruction set.
@@ -55,7 +55,7 @@ pub trait Kernel {
     ) -> Self::Output;
 }
 
-/// Work that runs many kernels (see [`SimdWork`](crate::SimdWork)),
+/// Work that runs many kernels (see [`SimdWork`](crate::batch::SimdWork)),
 /// compiled for one instruction set as a kernel is.
 pub trait Work {
     /// What the work returns.

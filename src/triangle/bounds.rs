@@ -353,7 +353,8 @@ impl<F: Scalar> HitCondition<F> {
     }
 }
 
-/// The hit point of [`Triangle`]'s `surface_point` and its bound, derived\nin its documentation.
+/// The hit point of [`Triangle`]'s `surface_point` and its bound, derived
+/// in its documentation.
 #[must_use]
 pub(crate) fn triangle_hit_point<V: Vector>(tri: &Triangle<V>, u: S<V>, v: S<V>) -> (V, V) {
     let (e1, e2) = (tri.b - tri.a, tri.c - tri.a);
@@ -381,7 +382,10 @@ pub struct TriangleHitError<F = f32> {
     pub v: F,
 }
 
-/// Bounds on the errors of a watertight hit (of `ray_triangle` or\n`ray_triangle_one_hit`, and of the interval forms before a `t` is\nbrought into the interval): [`Triangle`]'s `hit_error`, whose\ndocumentation states them; derived below.
+/// Bounds on the errors of a watertight hit (of `ray_triangle` or
+/// `ray_triangle_one_hit`, and of the interval forms before a `t` is
+/// brought into the interval): [`Triangle`]'s `hit_error`, whose
+/// documentation states them; derived below.
 #[must_use]
 pub(crate) fn ray_triangle_error_bounds<V: Vector>(
     ray: &Ray<V>,

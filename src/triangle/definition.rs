@@ -19,7 +19,8 @@ pub(crate) use crate::query::EdgeRule;
 use crate::ray::Shear;
 
 /// The watertight test for a valid ray, given its origin and shear, and a
-/// `t_max >= 0`. [`ray_triangle`], [`ray_triangle_prepared`] and the
+/// `t_max >= 0`. [`ray_triangle`](crate::ray_triangle),
+/// [`ray_triangle_prepared`](super::watertight::ray_triangle_prepared) and the
 /// triangle batches' undecided lanes all come here.
 #[inline(always)]
 pub(crate) fn watertight_definition<V: Vector>(

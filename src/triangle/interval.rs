@@ -18,7 +18,7 @@
 //!    `t_max`, or none past `t_min`, it is not. Nothing else is computed:
 //!    this decides what steps 1 and 2 would, and the answer is the same.
 //! 1. A filter: the reported `t` and its error bound `err` (the bound of
-//!    [`ray_triangle_error_bounds`](crate::ray_triangle_error_bounds),
+//!    [`ray_triangle_error_bounds`](super::bounds::ray_triangle_error_bounds),
 //!    `HitCondition::t_error`) place `t*` within `[t - err, t + err]`;
 //!    where that range lies on one side of an end, the end is decided.
 //! 2. Inside the band, the exact sign of `(a - o) . n - t_end (d . n)`
@@ -305,7 +305,10 @@ fn crossing<V: Vector>(origin: V, dir: V, tri: &Triangle<V>) -> PlaneCrossing {
     PlaneCrossing::new(w(origin), w(dir), w(tri.a), w(tri.b), w(tri.c), wide)
 }
 
-/// The watertight test over an interval, both ends decided exactly: the\n`Within` case of [`Triangle`]'s `hit`, whose documentation has the\nguarantees. The inside test is `ray_triangle`'s, bit for bit; the range\nis decided by `watertight_in` (this module's steps 0 to 2).
+/// The watertight test over an interval, both ends decided exactly: the
+/// `Within` case of [`Triangle`]'s `hit`, whose documentation has the
+/// guarantees. The inside test is `ray_triangle`'s, bit for bit; the range
+/// is decided by `watertight_in` (this module's steps 0 to 2).
 #[inline]
 #[must_use]
 pub(crate) fn ray_triangle_in<V: Vector>(

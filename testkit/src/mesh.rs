@@ -24,7 +24,7 @@ use rayhit::{
 pub enum Kernel {
     /// `ray_triangle`: watertight.
     Watertight,
-    /// `ray_triangle_mt`: Moller-Trumbore, not watertight.
+    /// `Triangle::moller_trumbore`: Moller-Trumbore, not watertight.
     MollerTrumbore,
 }
 
@@ -449,9 +449,9 @@ impl Bvh {
 
     /// Whether any triangle blocks the ray within `interval` (for a shadow
     /// segment from `SurfacePoint::spawn_to`, `(0, 1]`): nodes by
-    /// `ray_aabb_prepared_in`, which never misses a box exact arithmetic
-    /// puts in the interval, triangles by `ray_triangle_prepared_occluded`,
-    /// which decides both ends exactly; stops at the first triangle found.
+    /// `Aabb::clip` over the interval, which never misses a box exact
+    /// arithmetic puts in it, triangles by `Triangle::occluded`, which
+    /// decides both ends exactly; stops at the first triangle found.
     pub fn occluded_in(&self, prepared: &PreparedRay, interval: Interval<f32>) -> bool {
         let mut window = interval;
         self.visit_in(prepared, &mut window, &mut |tri, _, window| {
@@ -459,10 +459,11 @@ impl Bvh {
         })
     }
 
-    /// The nearest crossing within `interval` by `ray_triangle_one_hit_in`
-    /// (each crossing of a closed, consistently wound mesh belongs to
-    /// exactly one triangle, even through a shared edge or corner), with
-    /// the triangle's index in the mesh. `prepared` is `ray` prepared.
+    /// The nearest crossing within `interval` by `Triangle::hit` with
+    /// `EdgeRule::OneHit` (each crossing of a closed, consistently wound
+    /// mesh belongs to exactly one triangle, even through a shared edge or
+    /// corner), with the triangle's index in the mesh. `prepared` is `ray`
+    /// prepared.
     pub fn nearest_one_hit_in(
         &self,
         ray: &Ray,
@@ -485,9 +486,9 @@ impl Bvh {
         best
     }
 
-    /// Every crossing within `interval` by `ray_triangle_one_hit_in`, with
-    /// the triangles' indices in the mesh, in no particular order, added
-    /// to `out`.
+    /// Every crossing within `interval` by `Triangle::hit` with
+    /// `EdgeRule::OneHit`, with the triangles' indices in the mesh, in no
+    /// particular order, added to `out`.
     pub fn one_hits_in(
         &self,
         ray: &Ray,

@@ -1,6 +1,6 @@
 //! The face a ray enters a box through, against exact arithmetic.
 //!
-//! The face `ray_aabb_face` reports must be one whose plane the exact ray
+//! The face `Aabb::hit` reports must be one whose plane the exact ray
 //! crosses at the exact entry distance (the largest of the entry planes'
 //! distances, over the axes the ray moves along, when it is positive),
 //! the lowest such axis where several tie (edges and corners), and none
@@ -23,7 +23,7 @@ type S<V> = <V as Vector>::Scalar;
 
 /// Every generator, both precisions: the face of every hit is the exact
 /// one, the interval is `ray_aabb`'s bit for bit, and the prepared form
-/// and `aabb_entry_face` agree.
+/// and the entry face of `Aabb::hit` with an infinite `t_max` agree.
 fn check_generators<V: Vector>(cases: usize) -> (usize, usize, usize) {
     let (mut hits, mut faces, mut ties) = (0, 0, 0);
     for (name, seed, generate) in boxes::generators::<V>() {

@@ -101,8 +101,8 @@ fn camera_huge_focal_length_gives_unit_directions() {
     }
 }
 
-/// `plane` (raw): the hit point's error bound from `ray_plane_hit_point` is
-/// `0` on x, but the point's x (`t * d_x`, subnormal) carries a rounding
+/// `plane` (raw): the hit point's error bound from `Plane::surface_point`
+/// is `0` on x, but the point's x (`t * d_x`, subnormal) carries a rounding
 /// error of up to half a subnormal: the bound's products underflow to zero.
 /// The crate's error bounds assume no intermediate underflow, which the docs
 /// did not say (they named overflow only) and now do.
@@ -140,9 +140,10 @@ fn plane_hit_point_bound_with_underflow() {
 }
 
 /// `plane` (structured): a ray within rounding of parallel to the plane
-/// gets an infinite `t` bound (right), and `ray_plane_hit_point` multiplies
-/// it by the direction's zero x component: the x bound is NaN, not a bound.
-/// It is now finite there: the x coordinate is exact whatever `t` is.
+/// gets an infinite `t` bound (right), and `Plane::surface_point`
+/// multiplies it by the direction's zero x component: the x bound is NaN,
+/// not a bound. It is now finite there: the x coordinate is exact whatever
+/// `t` is.
 #[test]
 fn plane_hit_point_bound_is_never_nan() {
     let ray = Ray::new(
@@ -224,7 +225,7 @@ fn aabb_naive_distances_underflow() {
 /// `spawn` (structured): a bounce direction nearly in the plane. Exactly,
 /// `dir . normal = +7.4e-11` (the documented precondition holds: the plane's
 /// normal is exact, so its right-hand side is zero), but the rounded dot
-/// product is `-3.4e-10`, so `offset_ray_origin` moves the point to the
+/// product is `-3.4e-10`, so `SurfacePoint::spawn` moves the point to the
 /// wrong side of the plane: the new origin is behind the plane seen along
 /// `dir`. No offset can pick the side when the computed dot product cannot
 /// tell it; the precondition now says so (the dot product's own rounding
@@ -272,8 +273,9 @@ fn spawn_from_plane_nearly_parallel_goes_to_the_wrong_side() {
 
 /// `spawn` (raw): a ray with a huge x speed (`4.8e35`) crosses a plane at a
 /// subnormal `t` (`9.7e-43`); the hit point then lies farther from the
-/// plane than `ray_plane_hit_point`'s bound allows, and `offset_ray_origin`
-/// (correctly sized for that bound) leaves the new origin behind the plane.
+/// plane than `Plane::surface_point`'s bound allows, and
+/// `SurfacePoint::spawn` (correctly sized for that bound) leaves the new
+/// origin behind the plane.
 /// Same cause as `plane_hit_point_bound_with_underflow`: the bounds assume
 /// no underflow, and the docs now say so; `t` is subnormal here.
 #[test]
@@ -357,7 +359,7 @@ fn triangle_nan_t_max_is_a_miss() {
 /// triangle whose corner `a` is lifted by `5.3e-315` (both subnormal), so
 /// the ray crosses the triangle's plane at `t = 2.47`, well inside (exact
 /// `u = 0.735`, `v = 0.25`). The watertight test misses, and
-/// `ray_triangle_error_bounds` at the exact crossing is finite and small,
+/// `Triangle::hit_error` at the exact crossing is finite and small,
 /// so the miss lies outside the band the bounds promise. The edge functions'
 /// products underflow: the bounds assume no underflow, which the docs did
 /// not say and now do. The answer is still safe.

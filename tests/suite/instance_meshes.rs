@@ -5,9 +5,9 @@
 //! from `rayhit::strategies::transform` and by nested pairs of them. Each
 //! world ray is mapped into object space once (`Instance::world_to_object`,
 //! level by level for a nested pair), prepared once, and traced against
-//! every triangle of the mesh with the watertight test
-//! (`ray_triangle_prepared`) and the one-hit test (`ray_triangle_one_hit`),
-//! as a renderer traces an instance.
+//! every triangle of the mesh with the watertight test (`Triangle::hit`
+//! with the `PreparedRay`) and the one-hit test (`Triangle::hit` with
+//! `EdgeRule::OneHit`), as a renderer traces an instance.
 //!
 //! What is expected comes from the geometry, not from the code: a straight
 //! ray from outside a closed surface crosses it an even number of times,

@@ -395,7 +395,7 @@ fn spawns<V: Vector>(seed: u64, n: usize) -> Spawns {
             // The documented precondition, decided exactly: |dir . w| above
             // the direction's mapped rounding (per_t dotted with |w|), and
             // the computed side that of the exact one with the normal's own
-            // rounding bound (offset_ray_origin's precondition).
+            // rounding bound (SurfacePoint::spawn's precondition).
             let dr = rv(dir);
             let dw = dot(&dr, &w);
             let probe = Ray::new(wsp.point, dir);
@@ -474,7 +474,7 @@ fn crossing_where<V: Vector>(ray: &Ray<V>, tri: &Triangle<V>, bad: impl Fn(&R) -
 /// to a point of a second triangle of the same object space, facing the
 /// first a few sizes away along its normal, and to a point light; each
 /// segment traced back into the instances as a renderer does. Neither end's
-/// triangle may be reported over `(0, 1]` (`ray_triangle_in`) nor crossed
+/// triangle may be reported over `(0, 1]` (`Triangle::hit`) nor crossed
 /// there exactly (the start's plane at `t < 0`, the end's at `t > 1`).
 fn segments<V: Vector>(
     src: &mut Source,

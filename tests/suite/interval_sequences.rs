@@ -11,10 +11,10 @@
 //!
 //! The sequence is collected in windows: from `t_lo` (first 0), the
 //! nearest hit of `(t_lo, inf]` gives `t_hi` (its `t` plus its error bound
-//! from `ray_triangle_error_bounds`, rounded up); every hit of `(t_lo,
-//! t_hi]` is reported, sorted by `(t, triangle)`; then `t_lo = t_hi`. This
-//! runs with `ray_triangle_prepared_in` (closed) and
-//! `ray_triangle_one_hit_in`; and again with tight windows, `t_hi` the
+//! from `Triangle::hit_error`, rounded up); every hit of `(t_lo, t_hi]` is
+//! reported, sorted by `(t, triangle)`; then `t_lo = t_hi`. This runs with
+//! `Triangle::hit` over the interval on a `PreparedRay` (closed) and with
+//! `EdgeRule::OneHit`; and again with tight windows, `t_hi` the
 //! nearest hit's `t` itself, so that window ends fall right at crossings
 //! (the nearest triangle's `t*` is on either side of its rounded `t`;
 //! where that window is empty, the wide one is taken). Checked:

@@ -1,7 +1,7 @@
-//! The interval forms of the plane and box tests (`ray_plane_in`,
-//! `ray_aabb_in`, `ray_aabb_prepared_in`, `ray_aabb_face_in`,
-//! `ray_aabb_prepared_face_in`) held to exact arithmetic, in `f32` (`Vec3`)
-//! and `f64` (`DVec3`).
+//! The interval forms of the plane and box tests (`Plane::hit`,
+//! `Aabb::clip` and `Aabb::hit` over an interval, on a `Ray` and on a
+//! `PreparedRay`) held to exact arithmetic, in `f32` (`Vec3`) and `f64`
+//! (`DVec3`).
 //!
 //! Planes, decided exactly. The cases: random planes (scales 1e-3 to 1e3,
 //! translated by up to 1e5) and rays of any direction length; origins far
@@ -336,7 +336,7 @@ fn plane_cases<V: Vector>(seed: u64, n: usize) -> Tally {
                 }
             }
             // (0, t_max] against ray_plane, where the case is clear of
-            // rounding. Not for the tiny kind: `ray_plane_t_error` (and so
+            // rounding. Not for the tiny kind: `Plane::hit_error` (and so
             // `plane_clear`) assumes no product underflows (the crate's
             // standing precondition of its error bounds), which those
             // cases break on purpose; the interval form does not assume it.

@@ -1,6 +1,7 @@
-//! The interval forms of the watertight tests (`ray_triangle_in`,
-//! `ray_triangle_prepared_in`, `ray_triangle_one_hit_in`) held to exact
-//! arithmetic at the ends of their intervals.
+//! The interval forms of the watertight tests (`Triangle::hit` over an
+//! interval, on a `Ray` and on a `PreparedRay`, and with
+//! `EdgeRule::OneHit`) held to exact arithmetic at the ends of their
+//! intervals.
 //!
 //! - *Random ends*: triangles of every scale (1e-3 to 1e3) translated by up
 //!   to 1e5, rays from a few triangle sizes away aimed at points of the
@@ -18,8 +19,8 @@
 //!   `t0` as `t_min` is a miss and as `t_max` a hit, one ulp below the
 //!   reverse; and the same triangle with one corner moved by an ulp, so
 //!   that `t*` is a rational just beside `t0`.
-//! - *Any-hit*: `ray_triangle_occluded` and `ray_triangle_prepared_occluded`
-//!   are `tri.hit(ray, window).is_some()` on every interval above.
+//! - *Any-hit*: `Triangle::occluded`, on a `Ray` and on a `PreparedRay`,
+//!   is `tri.hit(ray, window).is_some()` on every interval above.
 //! - *Near the origin*: rays starting a few ulps off a triangle's centroid
 //!   (its plane crossed at a tiny `t*` of either sign, or zero), along
 //!   directions well away from the plane: with `(0, inf]` a hit exactly

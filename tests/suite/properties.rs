@@ -173,8 +173,8 @@ fn check_box<V: Vector>(aabb: Aabb<V>, ray: Ray<V>, t_max: S<V>) -> Result<(), T
     // Away from the boundary band the slab and naive tests agree on
     // hit/miss, and the naive distances are within their two roundings.
     // Band: the slab test can be wrong by 16u relative (its false-hit band),
-    // the naive face test by gamma(4) relative (see `ray_aabb_naive`); 32u
-    // covers both.
+    // the naive face test by gamma(4) relative (see
+    // `Aabb::clip_by_faces`); 32u covers both.
     if let Some((ee, xx)) = &raw {
         let scale = if abs(ee) > abs(xx) { abs(ee) } else { abs(xx) };
         let clear = abs(&(xx - ee)) > R::from_integer(32.into()) * &u * scale;
@@ -237,7 +237,7 @@ fn entry_point_on_surface<V: Vector>(
 
 /// Checks the triangle kernels against the oracle. Returns whether the
 /// watertight test hit with unbounded error bounds (a sliver seen nearly
-/// edge-on from afar; see `ray_triangle_error_bounds`), for the rate test.
+/// edge-on from afar; see `Triangle::hit_error`), for the rate test.
 fn check_triangle<V: Vector>(
     tri: Triangle<V>,
     ray: Ray<V>,
@@ -548,7 +548,7 @@ fn check_translation<V: Vector>(
     Ok(())
 }
 
-/// A ray spawned from a hit with `offset_ray_origin` never meets the
+/// A ray spawned from a hit with `SurfacePoint::spawn` never meets the
 /// surface it left: the watertight tests (both variants) report nothing, and
 /// exact arithmetic puts the spawned ray's crossing with the surface's plane
 /// behind it. The spawn direction is any direction at least 2^-10 radians

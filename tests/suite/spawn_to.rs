@@ -5,8 +5,9 @@
 //! Scenes: a closed mesh from the test kit (an icosphere, or a torus),
 //! a plane and a box, scaled by `1e-3` to `1e3` and translated by nothing
 //! or by `1e4` to `1e5`, rounded once to the precision. Ends are real
-//! hits of random rays: `SurfacePoint::on_triangle` (aimed at a face,
-//! an edge or a corner of a mesh triangle), `on_plane`, `on_box`.
+//! hits of random rays: `Triangle::surface_point` (aimed at a face, an
+//! edge or a corner of a mesh triangle), `Plane::surface_point`,
+//! `Aabb::surface_point`.
 //! Segments join two ends (for a quarter of the mesh ends, the other end
 //! is on the same triangle or one sharing a corner with it), or an end
 //! and a point light anywhere around it.
@@ -14,8 +15,8 @@
 //! - *Neither end is hit* (every segment returned): the exact crossing of
 //!   the returned ray with the start surface's exact plane is at `t < 0`
 //!   and with the target's at `t > 1`, in big rationals; and the interval
-//!   kernels (`ray_triangle_in`, `ray_plane_in`, `ray_aabb_face_in`'s
-//!   entry face, with the returned interval) report neither end's surface.
+//!   kernels (`Triangle::hit`, `Plane::hit`, `Aabb::hit`'s entry face,
+//!   over the returned interval) report neither end's surface.
 //!   Self-hits are counted and must be zero. The mesh triangles sharing
 //!   a corner with an end's triangle lie in other planes, which guarantee
 //!   1 does not cover: a hit on one must be explained, by the segment
@@ -29,7 +30,7 @@
 //!   midpoint; wherever exact arithmetic confirms the documented
 //!   precondition (the ends on opposite sides, farther than `B_o` and
 //!   `B_e` from the plane; for a triangle, from its own plane, its corners
-//!   being rounded), `ray_plane_in` and `ray_triangle_occluded` must
+//!   being rounded), `Plane::hit` and `Triangle::occluded` must
 //!   report them. "Just beyond" is `B (1 + 2^-8)` snapped outward to
 //!   the float grid for planes, and `B (1 + 2^-6)` plus the corners'
 //!   rounding for triangles; the distances reached, in units of `B`, are

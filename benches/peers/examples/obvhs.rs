@@ -1,6 +1,6 @@
 //! Watertight traversal of a compressed wide BVH that another crate built:
-//! obvhs's CWBVH over closed meshes, its nodes read in place by
-//! `rayhit::ray_quantized_children`, `rayhit::ray_triangle_prepared` in the
+//! obvhs's CWBVH over closed meshes, its nodes read in place by `rayhit`'s
+//! `QuantizedChildren::clip`, `Triangle::hit` on a `PreparedRay` in the
 //! leaves, in obvhs's own traversal order. Prints, for rays aimed exactly
 //! at vertices and edge midpoints, how many slip through with obvhs's
 //! kernels and with rayhit's.
@@ -19,8 +19,8 @@ fn main() {
         let mut scene = cwbvh::Scene::new(&mesh);
         // rayhit's node test is conservative for the boxes it decodes; a
         // traversal is watertight when those contain the geometry, which
-        // holds for obvhs's quantization here (else `quantize_bounds`
-        // rewrites the bytes in place).
+        // holds for obvhs's quantization here (else
+        // `QuantizedChildren::quantize` rewrites the bytes in place).
         let (children, bad) = scene.check_quantization(true);
         println!(
             "{} ({} triangles; {children} child boxes, {bad} re-quantized; {} rays from inside, {} from outside):",
@@ -35,11 +35,11 @@ fn main() {
                 cwbvh::count_leaks(&rays, |r| scene.obvhs_closest(r)),
             ),
             (
-                "obvhs node test, rayhit ray_triangle",
+                "obvhs node test, rayhit Triangle::hit",
                 cwbvh::count_leaks(&rays, |r| scene.obvhs_nodes_rayhit_triangles(r)),
             ),
             (
-                "rayhit ray_quantized_children and ray_triangle",
+                "rayhit QuantizedChildren::clip and Triangle::hit",
                 cwbvh::count_leaks(&rays, |r| cwbvh::rayhit_one(&scene, r)),
             ),
         ] {

@@ -270,7 +270,8 @@ impl Scene {
 
     /// How many occupied child boxes, decoded as rayhit decodes them, do not
     /// contain the geometry under them; and, with `fix`, rewrites those
-    /// bytes in place with `quantize_bounds` (the nodes stay obvhs's).
+    /// bytes in place with `QuantizedChildren::quantize` (the nodes stay
+    /// obvhs's).
     pub fn check_quantization(&mut self, fix: bool) -> (usize, usize) {
         let bounds = child_bounds(&self.bvh, &self.tris);
         let (mut occupied, mut bad) = (0, 0);
@@ -469,7 +470,7 @@ mod tests {
             // Their node test alone, with the watertight triangle test.
             let mixed = count_leaks(&rays, |r| scene.obvhs_nodes_rayhit_triangles(r));
             println!(
-                "{}: obvhs {theirs:?}, obvhs nodes + ray_triangle {mixed:?}, rayhit {ours:?}",
+                "{}: obvhs {theirs:?}, obvhs nodes + Triangle::hit {mixed:?}, rayhit {ours:?}",
                 mesh.name
             );
         }

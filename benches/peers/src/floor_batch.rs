@@ -2,17 +2,18 @@
 //! triangles at a time written directly in AVX2 intrinsics, the fastest way
 //! found for this core, with only what each question needs.
 //!
-//! - [`Question::UpTo`]: hits in `(0, t_max]`, what `ray_triangle_batch`
+//! - [`Question::UpTo`]: hits in `(0, t_max]`, what `TriangleBatch::hit`
 //!   answers, with the checks its guarantee needs beyond the textbook test
 //!   (an edge function of exactly zero leaves for an exact recomputation,
 //!   `t > 0` decided on the corners' depths, a finite `t`).
 //! - [`Question::Within`]: hits in `(t_min, t_max]` decided against the exact
-//!   crossing, what `ray_triangle_batch_in` answers: instead of the range
-//!   test on the computed `t`, the test that every edge function's sign is
-//!   exact (without it the corners' depths say nothing of where the exact
-//!   line crosses the plane), from the first corner and a reach stored with
-//!   the batch, then the corners' depths against both ends, with the lanes
-//!   neither accepted nor rejected leaving for the exact steps.
+//!   crossing, what `TriangleBatch::hit` over an interval answers: instead
+//!   of the range test on the computed `t`, the test that every edge
+//!   function's sign is exact (without it the corners' depths say nothing
+//!   of where the exact line crosses the plane), from the first corner and
+//!   a reach stored with the batch, then the corners' depths against both
+//!   ends, with the lanes neither accepted nor rejected leaving for the
+//!   exact steps.
 //!
 //! Both compute `t`, `u` and `v` for the lanes hit, as the batches do, and
 //! both leave their rare lanes to stubs out of line, so the pair measures

@@ -619,15 +619,15 @@ fn textbook_mt(r: &Ray, tri: &Triangle) -> Option<f32> {
     (t > EPS).then_some(t)
 }
 
-/// The floor for `ray_triangle_mt`: [`textbook_mt`] with only the
-/// operations `ray_triangle_mt`'s guarantees need beyond it, written as
-/// the textbook writes the rest (glam's `Vec3`): no epsilon, but a hit
-/// needs the determinant's sign certain (`|det|` above its rounding bound,
-/// `gamma(7) sum |e1_i| (|d_j e2_k| + |d_k e2_j|)`, stepped up for its own
-/// rounding, as `ray_triangle_mt` derives it); `0 < t <= t_max` and finite.
-/// Invalid input needs nothing more, as in `ray_triangle_mt`: NaN or
-/// infinite values fail the range tests. The bound is tested last, where
-/// only hits pay for it.
+/// The floor for `Triangle::moller_trumbore`: [`textbook_mt`] with only
+/// the operations `Triangle::moller_trumbore`'s guarantees need beyond it,
+/// written as the textbook writes the rest (glam's `Vec3`): no epsilon,
+/// but a hit needs the determinant's sign certain (`|det|` above its
+/// rounding bound, `gamma(7) sum |e1_i| (|d_j e2_k| + |d_k e2_j|)`, stepped
+/// up for its own rounding, as `Triangle::moller_trumbore` derives it);
+/// `0 < t <= t_max` and finite. Invalid input needs nothing more, as in
+/// `Triangle::moller_trumbore`: NaN or infinite values fail the range
+/// tests. The bound is tested last, where only hits pay for it.
 #[inline]
 fn floor_mt(r: &Ray, tri: &Triangle, t_max: f32) -> Option<f32> {
     let (e1, e2) = (tri.b - tri.a, tri.c - tri.a);
@@ -807,22 +807,23 @@ impl FloorRay {
     }
 }
 
-/// The floor for `ray_triangle_prepared`: the textbook watertight test
-/// with the ray's shear prepared once ([`FloorRay`]), as a BVH traversal
-/// uses it, written the fastest way found for this core: the three corners
-/// in the lanes of one SSE register (`glam::Vec4`), so that translating,
-/// shearing and the three edge functions are a handful of instructions
-/// each, and the sign test is two comparisons of the register. With
-/// `CHECKS`, only the operations `ray_triangle_prepared`'s guarantees need
-/// beyond it: the ray's validity and `t_max`; an edge function of exactly
-/// zero leaves for an exact recomputation; `t > 0` decided on the corners'
-/// depths (all in front: sure; none: no hit; else the full decision); the
-/// cheap test that the determinant's sign is known (`|det| > 200 u k^2`);
-/// a finite `t`. `t` is the scaled depth times the reciprocal of the
-/// determinant, as in the paper. The rare paths are stubs out of line. `t`
-/// and the side, of which the rows keep `t` only, like the other floors: returning the side as well
-/// compiled the checked form to 5 fewer instructions per aimed test under
-/// callgrind (122 against 127), and a floor should be the fastest form.
+/// The floor for `Triangle::hit` on a `PreparedRay`: the textbook
+/// watertight test with the ray's shear prepared once ([`FloorRay`]), as a
+/// BVH traversal uses it, written the fastest way found for this core: the
+/// three corners in the lanes of one SSE register (`glam::Vec4`), so that
+/// translating, shearing and the three edge functions are a handful of
+/// instructions each, and the sign test is two comparisons of the register.
+/// With `CHECKS`, only the operations the prepared `Triangle::hit`'s
+/// guarantees need beyond it: the ray's validity and `t_max`; an edge
+/// function of exactly zero leaves for an exact recomputation; `t > 0`
+/// decided on the corners' depths (all in front: sure; none: no hit; else
+/// the full decision); the cheap test that the determinant's sign is known
+/// (`|det| > 200 u k^2`); a finite `t`. `t` is the scaled depth times the
+/// reciprocal of the determinant, as in the paper. The rare paths are stubs
+/// out of line. `t` and the side, of which the rows keep `t` only, like the
+/// other floors: returning the side as well compiled the checked form to 5
+/// fewer instructions per aimed test under callgrind (122 against 127), and
+/// a floor should be the fastest form.
 #[inline]
 fn floor_watertight_prepared<const CHECKS: bool>(
     r: &FloorRay,
@@ -920,7 +921,7 @@ fn box_kernels<'a>(d: &'a BoxData, out: &mut Vec<Kernel<'a>>) {
         ),
         kernel(
             sec,
-            "rayhit ray_aabb_prepared",
+            "rayhit Aabb::clip, PreparedRay",
             w,
             n,
             None,
@@ -930,7 +931,7 @@ fn box_kernels<'a>(d: &'a BoxData, out: &mut Vec<Kernel<'a>>) {
         ),
         kernel(
             sec,
-            "rayhit ray_aabb_prepared, ValidAabb",
+            "rayhit ValidAabb::clip, PreparedRay",
             w,
             n,
             None,
@@ -940,7 +941,7 @@ fn box_kernels<'a>(d: &'a BoxData, out: &mut Vec<Kernel<'a>>) {
         ),
         kernel(
             sec,
-            "rayhit ray_aabb_prepared, Vec3A",
+            "rayhit Aabb::clip, PreparedRay, Vec3A",
             w,
             n,
             None,
@@ -1003,7 +1004,8 @@ fn triangle_kernels<'a>(d: &'a TriData, out: &mut Vec<Kernel<'a>>) {
         ours.iter().map(Option::is_some),
         (0..n).map(|i| textbook_mt(&d.rays[i], &d.tris[i]).is_some()),
     );
-    // (Against `ray_triangle_mt`, whose answers this floor must give.)
+    // (Against `Triangle::moller_trumbore`, whose answers this floor must
+    // give.)
     let floor_mt_agree = agree(
         (0..n).map(|i| d.tris[i].moller_trumbore(&d.rays[i], INF).is_some()),
         (0..n).map(|i| floor_mt(&d.rays[i], &d.tris[i], INF).is_some()),
@@ -1032,7 +1034,7 @@ fn triangle_kernels<'a>(d: &'a TriData, out: &mut Vec<Kernel<'a>>) {
         ),
         kernel(
             sec,
-            "rayhit ray_triangle_prepared",
+            "rayhit Triangle::hit, PreparedRay",
             w,
             n,
             None,
@@ -1042,7 +1044,7 @@ fn triangle_kernels<'a>(d: &'a TriData, out: &mut Vec<Kernel<'a>>) {
         ),
         kernel(
             sec,
-            "rayhit ray_triangle_prepared, Vec3A",
+            "rayhit Triangle::hit, PreparedRay, Vec3A",
             w,
             n,
             None,
@@ -1052,7 +1054,7 @@ fn triangle_kernels<'a>(d: &'a TriData, out: &mut Vec<Kernel<'a>>) {
         ),
         kernel(
             sec,
-            "rayhit ray_triangle_mt",
+            "rayhit Triangle::moller_trumbore",
             w,
             n,
             None,
@@ -1233,7 +1235,7 @@ fn group_kernels<'a>(
     out.extend([
         kernel(
             sec,
-            "rayhit ray_aabb_prepared",
+            "rayhit Aabb::clip, PreparedRay",
             w,
             nb,
             None,
@@ -1243,7 +1245,7 @@ fn group_kernels<'a>(
         ),
         kernel(
             sec,
-            "rayhit ray_aabb_batch, 4 lanes",
+            "rayhit AabbBatch::clip, 4 lanes",
             w,
             nb,
             None,
@@ -1253,7 +1255,7 @@ fn group_kernels<'a>(
         ),
         kernel(
             sec,
-            "rayhit ray_aabb_batch, 8 lanes",
+            "rayhit AabbBatch::clip, 8 lanes",
             w,
             nb,
             None,
@@ -1263,7 +1265,7 @@ fn group_kernels<'a>(
         ),
         kernel(
             sec,
-            "rayhit ray_aabb_batch, 8 lanes, with_simd",
+            "rayhit AabbBatch::clip, 8 lanes, with_simd",
             w,
             nb,
             None,
@@ -1316,7 +1318,7 @@ fn group_kernels<'a>(
     out.extend([
         kernel(
             sec,
-            "rayhit ray_triangle_prepared",
+            "rayhit Triangle::hit, PreparedRay",
             w,
             nt,
             None,
@@ -1326,7 +1328,7 @@ fn group_kernels<'a>(
         ),
         kernel(
             sec,
-            "rayhit ray_triangle_batch, 4 lanes",
+            "rayhit TriangleBatch::hit, 4 lanes",
             w,
             nt,
             None,
@@ -1336,7 +1338,7 @@ fn group_kernels<'a>(
         ),
         kernel(
             sec,
-            "rayhit ray_triangle_batch, 8 lanes",
+            "rayhit TriangleBatch::hit, 8 lanes",
             w,
             nt,
             None,
@@ -1346,7 +1348,7 @@ fn group_kernels<'a>(
         ),
         kernel(
             sec,
-            "rayhit ray_triangle_prepared_in, (0, inf]",
+            "rayhit Triangle::hit, PreparedRay, (0, inf]",
             w,
             nt,
             None,
@@ -1356,7 +1358,7 @@ fn group_kernels<'a>(
         ),
         kernel(
             sec,
-            "rayhit ray_triangle_prepared_occluded, (0, inf]",
+            "rayhit Triangle::occluded, PreparedRay, (0, inf]",
             w,
             nt,
             None,
@@ -1366,7 +1368,7 @@ fn group_kernels<'a>(
         ),
         kernel(
             sec,
-            "rayhit ray_triangle_batch_in, 8 lanes, (0, inf]",
+            "rayhit TriangleBatch::hit, 8 lanes, (0, inf]",
             w,
             nt,
             None,
@@ -1376,7 +1378,7 @@ fn group_kernels<'a>(
         ),
         kernel(
             sec,
-            "rayhit ray_triangle_batch_occluded, 8 lanes, (0, inf]",
+            "rayhit TriangleBatch::occluded, 8 lanes, (0, inf]",
             w,
             nt,
             None,
@@ -1386,7 +1388,7 @@ fn group_kernels<'a>(
         ),
         kernel(
             sec,
-            "rayhit ray_triangle_batch, 8 lanes, with_simd",
+            "rayhit TriangleBatch::hit, 8 lanes, with_simd",
             w,
             nt,
             None,
@@ -1505,7 +1507,7 @@ fn sweep_kernels<'a>(s: &'a Sweep, out: &mut Vec<Kernel<'a>>) {
         out.extend([
             kernel(
                 sec,
-                "rayhit ray_aabb_prepared",
+                "rayhit Aabb::clip, PreparedRay",
                 w,
                 tests,
                 None,
@@ -1515,7 +1517,7 @@ fn sweep_kernels<'a>(s: &'a Sweep, out: &mut Vec<Kernel<'a>>) {
             ),
             kernel(
                 sec,
-                "rayhit ray_aabb_batch, 8 lanes",
+                "rayhit AabbBatch::clip, 8 lanes",
                 w,
                 tests,
                 None,
@@ -1523,7 +1525,7 @@ fn sweep_kernels<'a>(s: &'a Sweep, out: &mut Vec<Kernel<'a>>) {
             ),
             kernel(
                 sec,
-                "rayhit ray_aabb_batch, 16 lanes",
+                "rayhit AabbBatch::clip, 16 lanes",
                 w,
                 tests,
                 None,
@@ -1531,7 +1533,7 @@ fn sweep_kernels<'a>(s: &'a Sweep, out: &mut Vec<Kernel<'a>>) {
             ),
             kernel(
                 sec,
-                "rayhit ray_aabb_batch, 8 lanes, with_simd",
+                "rayhit AabbBatch::clip, 8 lanes, with_simd",
                 w,
                 tests,
                 None,
@@ -1543,7 +1545,7 @@ fn sweep_kernels<'a>(s: &'a Sweep, out: &mut Vec<Kernel<'a>>) {
             ),
             kernel(
                 sec,
-                "rayhit ray_aabb_batch, 16 lanes, with_simd",
+                "rayhit AabbBatch::clip, 16 lanes, with_simd",
                 w,
                 tests,
                 None,
@@ -1569,7 +1571,7 @@ fn sweep_kernels<'a>(s: &'a Sweep, out: &mut Vec<Kernel<'a>>) {
         out.extend([
             kernel(
                 sec,
-                "rayhit ray_triangle_prepared",
+                "rayhit Triangle::hit, PreparedRay",
                 w,
                 tests,
                 None,
@@ -1579,7 +1581,7 @@ fn sweep_kernels<'a>(s: &'a Sweep, out: &mut Vec<Kernel<'a>>) {
             ),
             kernel(
                 sec,
-                "rayhit ray_triangle_batch, 8 lanes",
+                "rayhit TriangleBatch::hit, 8 lanes",
                 w,
                 tests,
                 None,
@@ -1589,7 +1591,7 @@ fn sweep_kernels<'a>(s: &'a Sweep, out: &mut Vec<Kernel<'a>>) {
             ),
             kernel(
                 sec,
-                "rayhit ray_triangle_batch, 16 lanes",
+                "rayhit TriangleBatch::hit, 16 lanes",
                 w,
                 tests,
                 None,
@@ -2736,7 +2738,8 @@ struct CwbvhData {
     /// obvhs's nodes as built, for obvhs's own pipeline.
     obvhs: cwbvh::Scene,
     /// The same build with the child bytes that rayhit's decoding would
-    /// not contain rewritten by `quantize_bounds`, for rayhit's.
+    /// not contain rewritten by `QuantizedChildren::quantize`, for
+    /// rayhit's.
     fixed: cwbvh::Scene,
     rays: Vec<Ray>,
     prepared: Vec<(PreparedRay, rayhit::glam::Vec3A)>,
@@ -2775,7 +2778,7 @@ fn cwbvh_kernels<'a>(d: &'a CwbvhData, out: &mut Vec<Kernel<'a>>) {
     out.extend([
         kernel(
             sec,
-            "rayhit ray_quantized_children + ray_triangle_prepared, with_simd",
+            "rayhit QuantizedChildren::clip + Triangle::hit, with_simd",
             w,
             n,
             None,
@@ -2831,15 +2834,15 @@ fn print_leaks(meshes: &[cwbvh::Mesh], count: usize) {
             cwbvh::count_leaks(&rays, |r| obvhs.obvhs_closest(r)),
         );
         row(
-            "obvhs nodes, rayhit ray_triangle",
+            "obvhs nodes, rayhit Triangle::hit",
             cwbvh::count_leaks(&rays, |r| obvhs.obvhs_nodes_rayhit_triangles(r)),
         );
         row(
-            "rayhit ray_quantized_children + ray_triangle",
+            "rayhit QuantizedChildren::clip + Triangle::hit",
             cwbvh::count_leaks(&rays, |r| cwbvh::rayhit_one(&fixed, r)),
         );
         println!(
-            "({}: {bad} of {children} occupied child boxes as obvhs quantized them were not contained in rayhit's decoding and were re-quantized with quantize_bounds.)",
+            "({}: {bad} of {children} occupied child boxes as obvhs quantized them were not contained in rayhit's decoding and were re-quantized with QuantizedChildren::quantize.)",
             mesh.name
         );
     }
@@ -3055,8 +3058,8 @@ fn main() {
     for w in ["random", "aimed", "axis", "camera"] {
         for peer in ["bvh intersects_aabb", "textbook plain slab"] {
             for (ours, name) in [
-                ("rayhit ray_aabb_prepared", "ray_aabb_prepared"),
-                ("rayhit ray_aabb_prepared, ValidAabb", "clip (ValidAabb)"),
+                ("rayhit Aabb::clip, PreparedRay", "Aabb::clip"),
+                ("rayhit ValidAabb::clip, PreparedRay", "ValidAabb::clip"),
             ] {
                 target(
                     &format!("{name} vs {peer}, {w}"),
@@ -3069,9 +3072,9 @@ fn main() {
     let mt = "textbook Moller-Trumbore (two-sided)";
     for w in ["random", "aimed"] {
         for (ours, goal) in [
-            ("rayhit ray_triangle_prepared", 1.0),
+            ("rayhit Triangle::hit, PreparedRay", 1.0),
             ("rayhit ray_triangle", 0.8),
-            ("rayhit ray_triangle_mt", 1.0),
+            ("rayhit Triangle::moller_trumbore", 1.0),
         ] {
             target(
                 &format!("{ours} vs {mt}, {w}"),
@@ -3090,11 +3093,11 @@ fn main() {
             "floor: textbook watertight + the guarantee's checks, shear per call",
         ),
         (
-            "rayhit ray_triangle_mt",
+            "rayhit Triangle::moller_trumbore",
             "floor: textbook Moller-Trumbore + the guarantee's checks",
         ),
         (
-            "rayhit ray_triangle_prepared",
+            "rayhit Triangle::hit, PreparedRay",
             "floor: textbook watertight + the guarantee's checks, prepared, four lanes",
         ),
     ] {
@@ -3110,40 +3113,40 @@ fn main() {
     // (`with_simd`), as a BVH uses them.
     let w = "groups of 8";
     target(
-        "ray_aabb_batch, 8 lanes, with_simd, per box vs bvh intersects_aabb (groups of 8)",
+        "AabbBatch::clip, 8 lanes, with_simd, per box vs bvh intersects_aabb (groups of 8)",
         ratio(
             "box x8",
             "bvh intersects_aabb",
-            "rayhit ray_aabb_batch, 8 lanes, with_simd",
+            "rayhit AabbBatch::clip, 8 lanes, with_simd",
             w,
         ),
         5.0,
     );
     target(
-        "ray_aabb_batch, 16 lanes, with_simd, per box vs bvh intersects_aabb (N = 1024 sweep)",
+        "AabbBatch::clip, 16 lanes, with_simd, per box vs bvh intersects_aabb (N = 1024 sweep)",
         ratio(
             "box sweep",
             "bvh intersects_aabb",
-            "rayhit ray_aabb_batch, 16 lanes, with_simd",
+            "rayhit AabbBatch::clip, 16 lanes, with_simd",
             "N = 1024",
         ),
         5.0,
     );
     target(
-        "ray_triangle_batch, 8 lanes, with_simd, per triangle vs bvh (groups of 8)",
+        "TriangleBatch::hit, 8 lanes, with_simd, per triangle vs bvh (groups of 8)",
         ratio(
             "triangle x8",
             "bvh intersects_triangle (front only)",
-            "rayhit ray_triangle_batch, 8 lanes, with_simd",
+            "rayhit TriangleBatch::hit, 8 lanes, with_simd",
             w,
         ),
         3.0,
     );
     for (section, name) in [
-        ("box sweep", "rayhit ray_aabb_batch, 8 lanes"),
-        ("box sweep", "rayhit ray_aabb_prepared"),
-        ("triangle sweep", "rayhit ray_triangle_batch, 8 lanes"),
-        ("triangle sweep", "rayhit ray_triangle_prepared"),
+        ("box sweep", "rayhit AabbBatch::clip, 8 lanes"),
+        ("box sweep", "rayhit Aabb::clip, PreparedRay"),
+        ("triangle sweep", "rayhit TriangleBatch::hit, 8 lanes"),
+        ("triangle sweep", "rayhit Triangle::hit, PreparedRay"),
     ] {
         let costs: Vec<f64> = SWEEP
             .iter()

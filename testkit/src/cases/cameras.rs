@@ -2,7 +2,7 @@
 //!
 //! A frame (eye, view, up, image size) in realistic ranges: the eye near
 //! the origin or far away (where the origins' rounding shows), view and up
-//! from [`direction`](super::direction) (so up is sometimes nearly parallel
+//! from [`direction`] (so up is sometimes nearly parallel
 //! to the view, and a camera then refuses), images from 1 to 2048 pixels
 //! each way, odd and even; raster positions on pixel centres, anywhere in
 //! the image, or outside it; lens samples at the centre, on the edges and

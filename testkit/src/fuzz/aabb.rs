@@ -1,5 +1,6 @@
-//! `aabb` and `aabb_slab_vs_naive`: [`ray_aabb`], [`ray_aabb_prepared`] and
-//! [`ray_aabb_naive`].
+//! `aabb` and `aabb_slab_vs_naive`: [`ray_aabb`],
+//! [`Aabb::clip`](rayhit::Bounds::clip) on a [`PreparedRay`] and
+//! [`Aabb::clip_by_faces`].
 //!
 //! Input: raw mode, an `Aabb`, a `Ray` and `t_max` as raw bits; structured
 //! mode, [`cases::boxes::uniform`].
@@ -25,11 +26,11 @@ use crate::oracle;
 /// false miss against the exact oracle, `exit` at least the exact exit, and
 /// a false hit only inside the documented band (exact entry at most the
 /// exact exit times `1 + 16u`, plus two subnormals). The entry face
-/// (`ray_aabb_face`, `ray_aabb_prepared_face`) and the same box as a
-/// `ValidAabb` where it is valid: the same interval bit for bit, and, where
-/// the precondition holds, exactly the documented face (the largest
-/// positive entry-plane distance, the lowest axis on a tie, none when no
-/// entry plane is ahead). Structured inputs also:
+/// (`Aabb::hit`'s `BoxHit`, on the ray and on the `PreparedRay`) and the
+/// same box as a `ValidAabb` where it is valid: the same interval bit for
+/// bit, and, where the precondition holds, exactly the documented face (the
+/// largest positive entry-plane distance, the lowest axis on a tie, none
+/// when no entry plane is ahead). Structured inputs also:
 /// `enter` within `gamma(3)` of the exact entry, `exit` at most the band
 /// above the exact exit, and the entry point on the box surface.
 #[derive(Debug)]

@@ -1,4 +1,5 @@
-//! `batch`: [`ray_aabb_batch`] and [`ray_triangle_batch`] against the scalar
+//! `batch`: [`AabbBatch::clip`](rayhit::Bounds::clip) and
+//! [`TriangleBatch::hit`](rayhit::IntersectLanes::hit) against the scalar
 //! kernels, lane by lane.
 //!
 //! Input: the first byte after the mode picks boxes or triangles, 8 or 16
@@ -10,10 +11,11 @@
 //! it, so that several lanes hit at once.
 //!
 //! Checks: each lane's answer is bit for bit the scalar kernel's on that
-//! lane's shape (`ray_aabb_prepared`'s entry for boxes; `ray_triangle` and
-//! `ray_triangle_prepared` for triangles, `t`, `u`, `v` and side), empty
-//! lanes never hit, the batch stores each valid shape as given, and
-//! `nearest` is the smallest `t` (lowest lane among equals).
+//! lane's shape (`Aabb::clip`'s entry on the `PreparedRay` for boxes;
+//! `ray_triangle` and `Triangle::hit` on the `PreparedRay` for triangles,
+//! `t`, `u`, `v` and side), empty lanes never hit, the batch stores each
+//! valid shape as given, and `nearest` is the smallest `t` (lowest lane
+//! among equals).
 
 use arbitrary::Arbitrary;
 use rayhit::{

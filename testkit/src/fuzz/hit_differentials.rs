@@ -1,11 +1,11 @@
-//! `hit_differentials`: [`triangle_hit_differentials`] and
-//! [`triangle_hit_differentials_error`], the transfer of a camera ray's
+//! `hit_differentials`: [`Triangle::hit_differentials`] and
+//! [`Triangle::hit_differentials_error`], the transfer of a camera ray's
 //! differentials to a triangle hit.
 //!
 //! Input: raw mode, a ray's direction and its four offsets as raw-bit
 //! vectors, a triangle and `t`; structured mode, a camera's ray
 //! differential (pinhole, thin lens, orthographic or equirectangular, from
-//! [`cases::cameras`]) and a triangle around a point of the ray, `1/2` to
+//! [`cases::cameras`](crate::cases::cameras)) and a triangle around a point of the ray, `1/2` to
 //! `2^7` along it, `2^-4` to `2^4` across, hit by the watertight test, at
 //! the hit's `t`.
 //!

@@ -1,7 +1,9 @@
-//! `interval`: the interval forms ([`ray_triangle_in`],
-//! [`ray_triangle_one_hit_in`], [`ray_plane_in`], [`ray_aabb_face_in`],
-//! [`ray_aabb_in`]) on one ray, one triangle, one plane and one box, over
-//! a window `(lo, hi]` cut in two at `mid`.
+//! `interval`: the queries over an [`Interval`]
+//! ([`Triangle::hit`](rayhit::Intersect::hit), also with
+//! [`EdgeRule::OneHit`], [`Plane::hit`](rayhit::Intersect::hit),
+//! [`Aabb::hit`](rayhit::Intersect::hit) and
+//! [`Aabb::clip`](rayhit::Bounds::clip)) on one ray, one triangle, one
+//! plane and one box, over a window `(lo, hi]` cut in two at `mid`.
 //!
 //! Input: raw mode, the shapes, the ray and the three ends as raw bits;
 //! structured mode, a triangle, a plane and a box case from
@@ -11,15 +13,16 @@
 //! Checks, any input: no panic; `Interval::new` refuses exactly the NaN,
 //! negative and inverted ends; every `t` reported lies in its interval and
 //! is finite; the box and face forms give the same `(enter, exit)`, with
-//! `t_min <= enter <= exit <= t_max`. Where the crossings are decided exactly (always
-//! for `f32`; for `f64` where every coordinate is zero or within `2^-100`
-//! to `2^100` in magnitude, inside the documented range): the two halves
-//! `(lo, mid]` and `(mid, hi]` report the triangle, the plane and the box's
-//! entry face (`BoxHit::face`) exactly once between them when the whole window reports it,
-//! and never otherwise (no skip, no repeat); and a box the whole window
-//! reports is reported by a half that ends past its entry. Structured
-//! inputs also: the plane's answer is the exact one (`exact::ray_plane_in`),
-//! and a box exact arithmetic puts in the window is never culled.
+//! `t_min <= enter <= exit <= t_max`. Where the crossings are decided
+//! exactly (always for `f32`; for `f64` where every coordinate is zero or
+//! within `2^-100` to `2^100` in magnitude, inside the documented range):
+//! the two halves `(lo, mid]` and `(mid, hi]` report the triangle, the
+//! plane and the box's entry face (`BoxHit::face`) exactly once between
+//! them when the whole window reports it, and never otherwise (no skip, no
+//! repeat); and a box the whole window reports is reported by a half that
+//! ends past its entry. Structured inputs also: the plane's answer is the
+//! exact one (`exact::ray_plane_in`), and a box exact arithmetic puts in
+//! the window is never culled.
 
 use arbitrary::Arbitrary;
 use rayhit::{Aabb, Interval, Plane, Ray, Scalar, Triangle, Vector};
@@ -184,12 +187,12 @@ fn check<V: Vector>(case: &Case<V>, structured: bool) {
         assert_eq!(w, a || b, "{name}: whole {w}, halves {a} {b}: {}", ctx());
         assert!(!(a && b), "{name}: reported in both halves: {}", ctx());
     };
-    once("ray_triangle_in", &|w| tri.hit(ray, w).is_some());
-    once("ray_triangle_one_hit_in", &|w| {
+    once("Triangle::hit", &|w| tri.hit(ray, w).is_some());
+    once("Triangle::hit, EdgeRule::OneHit", &|w| {
         tri.hit(ray, (w, EdgeRule::OneHit)).is_some()
     });
-    once("ray_plane_in", &|w| plane.hit(ray, w).is_some());
-    once("ray_aabb_face_in's face", &|w| {
+    once("Plane::hit", &|w| plane.hit(ray, w).is_some());
+    once("Aabb::hit's face", &|w| {
         aabb.hit(ray, w).and_then(|h| h.face).is_some()
     });
     // A box the whole window reports: some half reports it too (the halves
@@ -211,13 +214,13 @@ fn check<V: Vector>(case: &Case<V>, structured: bool) {
         assert_eq!(
             plane.hit(ray, w).is_some(),
             exact_plane.is_some(),
-            "ray_plane_in over {w:?} against exact: {}",
+            "Plane::hit over {w:?} against exact: {}",
             ctx()
         );
         if exact::ray_aabb_in(ray, aabb, w.min(), w.max()).is_some() {
             assert!(
                 aabb.clip(ray, w).is_some(),
-                "ray_aabb_in culled a box exact arithmetic puts in {w:?}: {}",
+                "Aabb::clip culled a box exact arithmetic puts in {w:?}: {}",
                 ctx()
             );
         }

@@ -3,7 +3,7 @@
 //!
 //! Input: raw mode, the two matrices' 32 entries as raw bits, a clip-space
 //! byte, width, height and a raster position; structured mode, a frame
-//! from [`cases::cameras`] and a projection drawn from glam's (`f64`)
+//! from [`cases::cameras`](crate::cases::cameras) and a projection drawn from glam's (`f64`)
 //! perspective, infinite reversed-depth, OpenGL, Vulkan, orthographic and
 //! off-centre frustum matrices, right- or left-handed, the entries
 //! rounded once to the camera's precision, and three pixel centres.
@@ -168,12 +168,13 @@ impl Check for MatrixCameraCheck {
                 let cam = MatrixCamera::<V>::new(view, proj, clip, f.width, f.height)
                     .expect("glam's matrices of a well-conditioned view");
                 let exact = Exact::new(&view, &proj);
+                let given = (&view, &proj);
                 if !cam.is_orthographic() {
-                    check_eye(&cam, &exact);
+                    check_eye(&cam, given, &exact);
                 }
                 for _ in 0..3 {
                     let (i, j) = (src.below(f.width), src.below(f.height));
-                    check_pixel(&cam, &exact, clip, i, j);
+                    check_pixel(&cam, given, &exact, clip, i, j);
                 }
             }
         }
@@ -268,7 +269,17 @@ fn ndc<F: Scalar>(w: u32, h: u32, clip: ClipSpace, i: u32, j: u32) -> (R, R) {
     (nx, if clip == ClipSpace::Vulkan { -ny } else { ny })
 }
 
-fn check_pixel<V: Vector>(cam: &MatrixCamera<V>, ex: &Exact, clip: ClipSpace, i: u32, j: u32) {
+/// The matrices a camera was made from, `(view, projection)`, as columns.
+type Given<'a, F> = (&'a [[F; 4]; 4], &'a [[F; 4]; 4]);
+
+fn check_pixel<V: Vector>(
+    cam: &MatrixCamera<V>,
+    (view, proj): Given<'_, S<V>>,
+    ex: &Exact,
+    clip: ClipSpace,
+    i: u32,
+    j: u32,
+) {
     let ctx = || format!("{cam:?} at pixel ({i}, {j})");
     let (w, h) = (cam.width(), cam.height());
     let ray = cam.pixel_ray(i, j);
@@ -295,7 +306,8 @@ fn check_pixel<V: Vector>(cam: &MatrixCamera<V>, ex: &Exact, clip: ClipSpace, i:
         let length: R = k.iter().sum();
         let tiny = subnormal_slack::<S<V>>(&dx, &dy, &length);
         let half = S::<V>::HALF;
-        let (bx, by) = cam.raster_error(S::<V>::from_u32(i) + half, S::<V>::from_u32(j) + half);
+        let (x, y) = (S::<V>::from_u32(i) + half, S::<V>::from_u32(j) + half);
+        let (bx, by) = cam.raster_error(view, proj, x, y);
         for (coord, n, pixels, crate_bound) in [
             ("x", core::array::from_fn(|q| &m0[q] - &nx * &m3[q]), w, bx),
             ("y", core::array::from_fn(|q| &m1[q] - &ny * &m3[q]), h, by),
@@ -340,7 +352,8 @@ fn check_pixel<V: Vector>(cam: &MatrixCamera<V>, ex: &Exact, clip: ClipSpace, i:
         let tiny = subnormal_slack::<S<V>>(&int(0), &int(0), &length);
         let o = rv(ray.origin);
         let half = S::<V>::HALF;
-        let (bx, by) = cam.raster_error(S::<V>::from_u32(i) + half, S::<V>::from_u32(j) + half);
+        let (x, y) = (S::<V>::from_u32(i) + half, S::<V>::from_u32(j) + half);
+        let (bx, by) = cam.raster_error(view, proj, x, y);
         for (coord, mrow, target, dd, pixels, crate_bound) in
             [("x", &m0, &nx, d0, w, bx), ("y", &m1, &ny, d1, h, by)]
         {
@@ -417,12 +430,23 @@ pub fn eye_bound(ex: &Exact) -> Option<(R3, R3)> {
 }
 
 /// The crate's `eye_error` held: the eye within it of the exact centre.
-fn check_eye<V: Vector>(cam: &MatrixCamera<V>, ex: &Exact) {
+fn check_eye<V: Vector>(cam: &MatrixCamera<V>, (view, proj): Given<'_, S<V>>, ex: &Exact) {
+    // Matrices the camera was not made from get no bound: the projection's
+    // horizontal scale doubled (glam's projections have it alone in their
+    // first row, so the product's first row doubles) halves the camera's
+    // step across exactly: another camera. (Matrices that give this camera bit for bit would
+    // rightly get a bound: it is derived from the matrices passed.)
+    let mut other = *proj;
+    other[0][0] = other[0][0] + other[0][0];
+    assert!(
+        !cam.eye_error(view, &other).is_finite(),
+        "an eye bound for matrices the camera was not made from: {cam:?}"
+    );
     let Some((eye, _)) = eye_bound(ex) else {
         return;
     };
     let got = rv(cam.pixel_ray(0, 0).origin);
-    let bound = cam.eye_error();
+    let bound = cam.eye_error(view, proj);
     assert!(
         bound.is_finite(),
         "no eye bound for glam's well-conditioned matrices: {cam:?}"

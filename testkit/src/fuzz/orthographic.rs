@@ -3,7 +3,7 @@
 //!
 //! Input: raw mode, the centre, view and up as raw-bit vectors, the pixel
 //! size, width and height, and a raster position; structured mode, a frame
-//! from [`cases::cameras`], a pixel size of `2^-10` to `2^4` and three
+//! from [`cases::cameras`](crate::cases::cameras), a pixel size of `2^-10` to `2^4` and three
 //! raster positions.
 //!
 //! Checks, any input: no panic; a camera only from valid input, each error

@@ -3,7 +3,7 @@
 //!
 //! Input: raw mode, eye, view and up as raw-bit vectors, width, height, a
 //! raster position and a direction; structured mode, a frame from
-//! [`cases::cameras`] and three raster positions in the image.
+//! [`cases::cameras`](crate::cases::cameras) and three raster positions in the image.
 //!
 //! Checks, any input: no panic; a camera only from valid input; the
 //! differential's ray is the ray bit for bit; a finite position gives a

@@ -1,4 +1,5 @@
-//! `plane`: [`ray_plane`], [`ray_plane_t_error`] and [`ray_plane_hit_point`].
+//! `plane`: [`ray_plane`], [`Plane::hit_error`](rayhit::Surface::hit_error)
+//! and [`Plane::surface_point`](rayhit::Surface::surface_point).
 //!
 //! Input: raw mode, a `Ray`, a `Plane` and `t_max` as raw bits; structured
 //! mode, [`cases::planes::plane`].
@@ -7,9 +8,10 @@
 //! `None` for a ray that is not valid, a zero or non-finite plane, and a NaN
 //! or negative `t_max`. When every input is finite (and, for raw inputs,
 //! nothing underflows: [`super::far_from_underflow`]): `t` within
-//! `ray_plane_t_error` of the exact crossing, the hit point within
-//! `ray_plane_hit_point`'s bound of the exact crossing, and a miss only where
-//! the exact crossing is within that bound of `0` or `t_max` (or overflows).
+//! `Plane::hit_error` of the exact crossing, the hit point within
+//! `Plane::surface_point`'s bound of the exact crossing, and a miss only
+//! where the exact crossing is within that bound of `0` or `t_max` (or
+//! overflows).
 
 use arbitrary::Arbitrary;
 use rayhit::{Plane, Ray, Scalar, Surface, Vector, ray_plane};

@@ -1,5 +1,7 @@
-//! `spawn`: [`offset_ray_origin`] with [`triangle_hit_point`],
-//! [`Triangle::normal_with_error`] and [`ray_plane_hit_point`].
+//! `spawn`: [`SurfacePoint::spawn`] with
+//! [`Triangle::surface_point`](rayhit::Surface::surface_point),
+//! [`Triangle::normal`] and [`Triangle::normal_error`], and with
+//! [`Plane::surface_point`](rayhit::Surface::surface_point).
 //!
 //! Input: raw mode, a `Triangle`, a `Ray` and a new direction as raw bits
 //! (then a plane, a ray and a direction, then five raw vectors for a direct
@@ -8,13 +10,15 @@
 //! the surface (an edge direction plus `2^-k` times the normal, `k` up to
 //! 40), to press on the precondition.
 //!
-//! The new ray starts at `SurfacePoint { point, point_error, normal, normal_error: //! normal_error }.spawn(dir).origin` and runs along `dir`. Checks: no panic; non-finite
-//! input returns the point unchanged (bit for bit); and where the documented
-//! precondition holds (`|dir . normal| > sum |dir_i| normal_error_i`, decided
-//! exactly, and the origin moved; for planes also the dot product's own
-//! rounding, see `precondition`): the new origin lies strictly on the side
-//! of the exact plane that `dir` points into (exactly), and the new ray
-//! never hits the triangle again, with either the closed or the one-hit rule.
+//! The new ray starts at `SurfacePoint { point, point_error, normal,
+//! normal_error }.spawn(dir).origin` and runs along `dir`. Checks: no
+//! panic; non-finite input returns the point unchanged (bit for bit); and
+//! where the documented precondition holds (`|dir . normal| > sum |dir_i|
+//! normal_error_i`, decided exactly, and the origin moved; for planes also
+//! the dot product's own rounding, see `precondition`): the new origin lies
+//! strictly on the side of the exact plane that `dir` points into
+//! (exactly), and the new ray never hits the triangle again, with either
+//! the closed or the one-hit rule.
 
 use arbitrary::Arbitrary;
 use rayhit::{
@@ -144,10 +148,11 @@ fn new_dir<V: Vector>(src: &mut Source, normal: V, along: V) -> V {
     a + n * S::<V>::from_f64(sign * 2f64.powi(-k))
 }
 
-/// Raw inputs: the bounds of `triangle_hit_point` and `normal_with_error`
-/// are relative-error arguments, which need their products in the normal
-/// range; every nonzero coordinate, edge component and barycentric product
-/// between `2^-40` and `2^40` (`f32`; `2^-300` and `2^300` for `f64`).
+/// Raw inputs: the bounds of `Triangle::surface_point`, `Triangle::normal`
+/// and `Triangle::normal_error` are relative-error arguments, which need
+/// their products in the normal range; every nonzero coordinate, edge
+/// component and barycentric product between `2^-40` and `2^40` (`f32`;
+/// `2^-300` and `2^300` for `f64`).
 pub(super) fn in_normal_range<V: Vector>(vs: &[V]) -> bool {
     within_binades(vs, 40, 300)
 }
@@ -169,9 +174,10 @@ pub(super) fn within_binades<V: Vector>(vs: &[V], k32: i32, k64: i32) -> bool {
     })
 }
 
-/// The products `triangle_hit_point` and `normal_with_error` form are far
-/// from underflow ([`super::far_from_underflow`]): `u (b - a)_j`,
-/// `v (c - a)_j` and `(b - a)_j (c - a)_k`.
+/// The products `Triangle::surface_point`, `Triangle::normal` and
+/// `Triangle::normal_error` form are far from underflow
+/// ([`super::far_from_underflow`]): `u (b - a)_j`, `v (c - a)_j` and
+/// `(b - a)_j (c - a)_k`.
 pub(super) fn triangle_no_underflow<V: Vector>(tri: &Triangle<V>, u: S<V>, v: S<V>) -> bool {
     let (e1, e2) = (tri.b - tri.a, tri.c - tri.a);
     (0..3).all(|j| {
@@ -181,7 +187,7 @@ pub(super) fn triangle_no_underflow<V: Vector>(tri: &Triangle<V>, u: S<V>, v: S<
     })
 }
 
-/// The precondition of `offset_ray_origin`, exactly:
+/// The precondition of `SurfacePoint::spawn`, exactly:
 /// `|dir . normal| > sum |dir_i| normal_error_i`, plus, with `dot_rounding`,
 /// the rounding error of the computed `dir . normal`,
 /// `gamma(3) sum |dir_i normal_i|`.
@@ -211,14 +217,15 @@ fn strictly_on_dir_side<V: Vector>(origin: V, on_plane: V, exact_normal: &[R; 3]
     (side > int(0) && heading > int(0)) || (side < int(0) && heading < int(0))
 }
 
-/// The checks both surfaces share, on the origin `offset_ray_origin` gives
-/// for `p +- perr`, normal `n +- nerr`, `dir`: non-finite input leaves the
-/// point where it is; otherwise, where the bounds hold (`bounded`: the
-/// inputs came from realistic ranges or passed the raw-input guards,
-/// [`in_normal_range`] and no underflow) and the precondition does
-/// (`dot_rounding` as in [`precondition`]), the origin lies strictly on the
-/// side of the exact plane (through `on_plane`, normal `exact_normal`) that
-/// `dir` points into. Returns the origin when it was checked so.
+/// The checks both surfaces share, on the origin `SurfacePoint::spawn`
+/// gives for `p +- perr`, normal `n +- nerr`, `dir`: non-finite input
+/// leaves the point where it is; otherwise, where the bounds hold
+/// (`bounded`: the inputs came from realistic ranges or passed the
+/// raw-input guards, [`in_normal_range`] and no underflow) and the
+/// precondition does (`dot_rounding` as in [`precondition`]), the origin
+/// lies strictly on the side of the exact plane (through `on_plane`, normal
+/// `exact_normal`) that `dir` points into. Returns the origin when it was
+/// checked so.
 #[allow(clippy::too_many_arguments)]
 fn offset_to_dir_side<V: Vector>(
     (p, perr): (V, V),

@@ -16,7 +16,7 @@
 //! and `2^40`, `2^-100` and `2^100` for `f64`, and the barycentric
 //! products far from underflow; every structured input): neither end's
 //! surface is reported over the interval by the interval kernels
-//! (`ray_triangle_in` with both edge rules, `ray_plane_in`), and the start
+//! (`Triangle::hit` with both edge rules, `Plane::hit`), and the start
 //! surface by the plain kernels for any `t_max` either.
 
 use arbitrary::Arbitrary;

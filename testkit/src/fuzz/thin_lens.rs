@@ -17,7 +17,7 @@
 //! `origin + dir` is the focus point in exact arithmetic and `ray.at(1)`
 //! is it bit for bit. Structured inputs also: the focus point is within
 //! its derived bound of the exact `eye + (focal_distance / focal_length)
-//! p` ([`check_focus`]), the lens point is on the lens, the differentials
+//! p` (`check_focus`), the lens point is on the lens, the differentials
 //! are `(focal_distance / focal_length)` times `right` and `-true_up` bit
 //! for bit, and they are the difference of the rays of neighbouring pixel
 //! centres within the focus points' bounds.

@@ -1,6 +1,7 @@
 //! `triangle` and `triangle_watertight_vs_mt`: [`ray_triangle`],
-//! [`ray_triangle_one_hit`], [`ray_triangle_mt`] and
-//! [`ray_triangle_error_bounds`].
+//! [`Triangle::hit`](rayhit::Intersect::hit) with [`EdgeRule::OneHit`],
+//! [`Triangle::moller_trumbore`] and
+//! [`Triangle::hit_error`](rayhit::Surface::hit_error).
 //!
 //! Input: raw mode, a `Triangle`, a `Ray` and `t_max` as raw bits;
 //! structured mode, [`cases::triangles::with_fillers`], or (in the
@@ -28,7 +29,7 @@ use crate::source::Source;
 /// the error bounds are non-negative or infinite, never NaN. Where the
 /// documented precondition holds (finite, corners within `2^63` (`f32`) or
 /// `2^511` (`f64`) of the origin, checked exactly): a hit has an exact
-/// crossing, `t`, `u`, `v` within `ray_triangle_error_bounds` of it, the
+/// crossing, `t`, `u`, `v` within `Triangle::hit_error` of it, the
 /// exact side where the bound is finite (for a zero-area triangle, `t`
 /// within its bound of where the ray passes the segment), rays spawned from
 /// the hit finite, and away from the rounding band the hit or miss is exact
