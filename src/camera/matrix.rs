@@ -537,24 +537,36 @@ impl<V: Vector> MatrixCamera<V> {
         // its f64 value's and the rows' rounding (within gamma_64(5) of
         // the magnitudes, and two more roundings for n).
         let abs_up = |v: DVec3, bound: DVec3| v.abs() + bound * gamma64(8);
-        let px = |ndc: f64, n: f64| bound_from_f64::<S<V>>(ndc * n / 2.0);
+        // The subnormal slack is `tiny` times `slack` per component: kept
+        // apart as a multiple of `tiny` until the last step, `p + tiny q`
+        // in pixels, so that for `f64` the only roundings below the normal
+        // range are that product's and that sum's (half of `2^-1074` each,
+        // which `bound_from_f64` covers).
+        let px =
+            |p: f64, q: f64, n: f64| bound_from_f64::<S<V>>(p * n / 2.0 + tiny * (q * n / 2.0));
         if !self.is_orthographic() {
             let (m0, m1, m3) = (rows[0], rows[1], rows[3]);
             let (a0, a1, a3) = (mags[0], mags[1], mags[3]);
             let k = cross_mag(a0, a1) + cross_mag(a1, a3) * nx.abs() + cross_mag(a3, a0) * ny.abs();
             let k = k * (1.0 + gamma64(3));
-            let slack = tiny * (4.0 + dx.abs() + dy.abs() + k.element_sum());
-            let err = k * e + DVec3::splat(slack);
+            let slack = 4.0 + dx.abs() + dy.abs() + k.element_sum();
+            let err = k * e;
             let big = a0.dot(cross_mag(a1, a3)) * (1.0 + gamma64(3));
             let det = m0.dot(m1.cross(m3)).abs() - gamma64(12) * big;
-            let den = det - abs_up(m3, a3).dot(err);
+            // (The slack's share from below: its product's rounding and one
+            // more `tiny`.)
+            let m3_up = abs_up(m3, a3);
+            let den = det - m3_up.dot(err) - tiny * (m3_up.element_sum() * slack) - tiny;
             if !(den > 0.0) {
                 return inf;
             }
-            let bound = |n: DVec3, nb: DVec3| abs_up(n, nb).dot(err) / den;
+            let bound = |n: DVec3, nb: DVec3, pixels: f64| {
+                let n = abs_up(n, nb);
+                px(n.dot(err) / den, n.element_sum() * slack / den, pixels)
+            };
             (
-                px(bound(m0 - m3 * nx, a0 + a3 * nx.abs()), w),
-                px(bound(m1 - m3 * ny, a1 + a3 * ny.abs()), h),
+                bound(m0 - m3 * nx, a0 + a3 * nx.abs(), w),
+                bound(m1 - m3 * ny, a1 + a3 * ny.abs(), h),
             )
         } else {
             let (m0, m1, m2) = (rows[0], rows[1], rows[2]);
@@ -578,10 +590,17 @@ impl<V: Vector> MatrixCamera<V> {
                 * (1.0 + gamma64(4))
                 / det;
             let eo = e * (1.0 + kappa);
-            let slack = tiny * (4.0 + dx.abs() + dy.abs());
-            let err = origin * eo + DVec3::splat(slack);
-            let bound = |row: DVec3, rb: DVec3| abs_up(row, rb).dot(err) / d3_lo;
-            (px(bound(m0, a0), w), px(bound(m1, a1), h))
+            let slack = 4.0 + dx.abs() + dy.abs();
+            let err = origin * eo;
+            let bound = |row: DVec3, rb: DVec3, pixels: f64| {
+                let row = abs_up(row, rb);
+                px(
+                    row.dot(err) / d3_lo,
+                    row.element_sum() * slack / d3_lo,
+                    pixels,
+                )
+            };
+            (bound(m0, a0, w), bound(m1, a1, h))
         }
     }
 }

@@ -494,7 +494,10 @@ pub(crate) fn dvec<V: Vector>(v: V) -> DVec3 {
 /// of these formulas), then rounded up. Positive infinity where the bound
 /// is infinite or NaN.
 pub(crate) fn bound_from_f64<F: Scalar>(bound: f64) -> F {
-    let b = bound * (1.0 + 1e-9);
+    // Four of the smallest subnormals more: below the normal range the
+    // relative margin is no margin, and a formula's last roundings there
+    // (each at most half of one) are absolute.
+    let b = bound * (1.0 + 1e-9) + 4.0 * f64::from_bits(1);
     if b.is_nan() {
         return F::INFINITY;
     }

@@ -875,3 +875,113 @@ fn thin_lens_subnormal_radius_meets_the_focus_point() {
 // room), and the check expected it finite for any hit that was not
 // grazing. The check's fault: it now also exempts slivers (reproducer in
 // fuzz/crashes/hit_differentials).
+
+/// `hit_differentials` (structured; an orthographic camera's ray): the ray
+/// is exactly parallel to the triangle's plane (every direction component
+/// `-0.57735026`, and `dir . n = 0` in exact arithmetic), yet the
+/// watertight test reports a hit: it decides on the sheared, rounded
+/// corners, which the ray does cross. The fuzzer's check took every hit to
+/// have an exact transfer; the kernel was right: the transfer's values are
+/// finite and every bound on them is infinite, since the computed `dir .
+/// n` is rounding alone.
+#[test]
+fn hit_differentials_of_a_ray_exactly_parallel_to_the_plane() {
+    use rayhit::camera::RayDifferential;
+    let dir = Vec3::splat(-0.577_350_26);
+    let diff = RayDifferential {
+        ray: Ray::new(Vec3::new(-13.125122, -2.718715, 5.558_819_3), dir),
+        dx_origin: Vec3::new(-1.194_736_2, 1.194_699_8, 3.643_913e-5),
+        dx_dir: Vec3::ZERO,
+        dy_origin: Vec3::new(0.689_739_3, 0.689_802_4, -1.379_541_6),
+        dy_dir: Vec3::ZERO,
+    };
+    let tri = Triangle::new(
+        Vec3::new(-25.340595, -7.755_673_4, 4.415_642_7),
+        Vec3::new(-13.488924, -3.082_516_7, 5.195_017_3),
+        Vec3::new(-15.758787, -12.530894, -8.147142),
+    );
+    let hit = ray_triangle(&diff.ray, &tri, f32::INFINITY).expect("the reported hit");
+    assert_eq!(hit.t, 5.631_909_4);
+    // Exactly parallel: the direction's dot product with the exact normal.
+    let rv = |v: Vec3| [r(v.x), r(v.y), r(v.z)];
+    let (a, b, c, d) = (rv(tri.a), rv(tri.b), rv(tri.c), rv(dir));
+    let e1: [R; 3] = core::array::from_fn(|k| &b[k] - &a[k]);
+    let e2: [R; 3] = core::array::from_fn(|k| &c[k] - &a[k]);
+    let n = [
+        &e1[1] * &e2[2] - &e1[2] * &e2[1],
+        &e1[2] * &e2[0] - &e1[0] * &e2[2],
+        &e1[0] * &e2[1] - &e1[1] * &e2[0],
+    ];
+    let dn = &d[0] * &n[0] + &d[1] * &n[1] + &d[2] * &n[2];
+    assert_eq!(dn, r(0.0f32));
+    let got = tri.hit_differentials(&diff, hit.t).expect("a transfer");
+    assert!(got.dp_dx.is_finite() && got.dp_dy.is_finite());
+    assert!(
+        [got.du_dx, got.dv_dx, got.du_dy, got.dv_dy]
+            .iter()
+            .all(|x| x.is_finite())
+    );
+    let err = tri.hit_differentials_error(&diff, hit.t);
+    assert!(err.dp_dx.min_element() == f32::INFINITY && err.dp_dy.min_element() == f32::INFINITY);
+    assert!(
+        [err.du_dx, err.dv_dx, err.du_dy, err.dv_dy]
+            .iter()
+            .all(|x| x.is_infinite())
+    );
+    rayhit_testkit::fuzz::hit_differentials::check(&diff, &tri, hit.t, true);
+}
+
+/// `matrix_camera` (structured, `f64`): an image one pixel high. At its
+/// only row the vertical `raster_error` is the subnormal slack alone,
+/// below the normal range, and its `f64` evaluation multiplied the
+/// smallest subnormal by the slack's factor first: rounded there, the
+/// bound came out 0.02% below the derivation. The kernel was at fault: the
+/// slack is now carried as a multiple of the smallest subnormal to the
+/// last step. Every perspective kind, both handednesses, a few fields of
+/// view and near planes.
+#[test]
+fn matrix_camera_one_pixel_high_in_f64() {
+    use rayhit::camera::ClipSpace;
+    use rayhit::glam::DMat4;
+    use rayhit::glam::dcamera::{lh, rh};
+    use rayhit_testkit::fuzz::matrix_camera::check_matrix_pixel;
+    let eye = DVec3::new(6.0004, -8.0006, 0.0);
+    let dir = DVec3::new(0.0, -1.0, -1.0).normalize();
+    let aspect = 1825.0;
+    let (d3d, gl, vk) = (ClipSpace::Direct3D, ClipSpace::OpenGl, ClipSpace::Vulkan);
+    for fov in [10.0f64, 40.0, 120.0].map(f64::to_radians) {
+        for near in [1.0 / 64.0, 0.1, 4.0] {
+            let far = near * 8.0;
+            let views = [
+                rh::view::look_to_mat4(eye, dir, DVec3::X),
+                lh::view::look_to_mat4(eye, dir, DVec3::X),
+            ];
+            let projections: [[(DMat4, ClipSpace); 4]; 2] = [
+                [
+                    (rh::proj::directx::perspective(fov, aspect, near, far), d3d),
+                    (
+                        rh::proj::directx::perspective_infinite_reverse(fov, aspect, near),
+                        d3d,
+                    ),
+                    (rh::proj::opengl::perspective(fov, aspect, near, far), gl),
+                    (rh::proj::vulkan::perspective(fov, aspect, near, far), vk),
+                ],
+                [
+                    (lh::proj::directx::perspective(fov, aspect, near, far), d3d),
+                    (
+                        lh::proj::directx::perspective_infinite_reverse(fov, aspect, near),
+                        d3d,
+                    ),
+                    (lh::proj::opengl::perspective(fov, aspect, near, far), gl),
+                    (lh::proj::vulkan::perspective(fov, aspect, near, far), vk),
+                ],
+            ];
+            for (view, projections) in views.iter().zip(projections) {
+                for (proj, clip) in projections {
+                    let m = (&view.to_cols_array_2d(), &proj.to_cols_array_2d());
+                    check_matrix_pixel::<DVec3>(m, clip, (1825, 1), (0, 0));
+                }
+            }
+        }
+    }
+}

@@ -270,7 +270,7 @@ fn ndc<F: Scalar>(w: u32, h: u32, clip: ClipSpace, i: u32, j: u32) -> (R, R) {
 }
 
 /// The matrices a camera was made from, `(view, projection)`, as columns.
-type Given<'a, F> = (&'a [[F; 4]; 4], &'a [[F; 4]; 4]);
+pub type Given<'a, F> = (&'a [[F; 4]; 4], &'a [[F; 4]; 4]);
 
 fn check_pixel<V: Vector>(
     cam: &MatrixCamera<V>,
@@ -473,7 +473,9 @@ fn in_ndc<F: Scalar>(
     let bound = r(crate_bound) * int(2) / int(i64::from(pixels));
     assert!(
         *derived <= bound,
-        "raster_error's {coord} below its derivation: {}",
+        "raster_error's {coord} {} below its derivation {}: {}",
+        super::exact::f(&bound),
+        super::exact::f(derived),
         ctx()
     );
     bound
@@ -561,4 +563,19 @@ fn check_ray_raw<V: Vector>(cam: &MatrixCamera<V>, x: S<V>, y: S<V>) {
             "{cam:?}: {ray:?}"
         );
     }
+}
+
+/// The structured checks of pixel `(i, j)` (its ray's reprojection and
+/// `raster_error` against their derivations) for the camera
+/// [`MatrixCamera::new`] makes of `view` and `proj` (columns): for the
+/// regression tests' literal cases.
+pub fn check_matrix_pixel<V: Vector>(
+    (view, proj): Given<'_, S<V>>,
+    clip: ClipSpace,
+    (width, height): (u32, u32),
+    (i, j): (u32, u32),
+) {
+    let cam = MatrixCamera::<V>::new(*view, *proj, clip, width, height)
+        .expect("a camera the matrices define");
+    check_pixel(&cam, (view, proj), &Exact::new(view, proj), clip, i, j);
 }
