@@ -393,9 +393,9 @@ pub use glam;
 // The modules, in the order their dependencies point: numbers, then SIMD
 // lanes, then the ray and the point a ray leaves a surface from, then the
 // query traits, then the shapes, then the BVH-node form and the batch
-// kernels on a chosen instruction set, then cameras and instances; the
-// interop modules and `exact` on top. CONTRIBUTING.md has the map, file by
-// file.
+// kernels on a chosen instruction set (`node/`), then cameras and
+// instances; the optional integrations (`features/`) and `exact` on top.
+// CONTRIBUTING.md has the map, file by file.
 mod num;
 mod simd;
 
@@ -408,8 +408,7 @@ mod aabb;
 mod plane;
 mod triangle;
 
-mod quantized;
-mod with_simd;
+mod node;
 
 pub mod camera;
 
@@ -417,23 +416,29 @@ pub mod instance;
 
 #[cfg(feature = "approx-05")]
 #[cfg_attr(docsrs, doc(cfg(feature = "approx-05")))]
+#[path = "features/approx.rs"]
 pub mod approx;
 #[cfg(feature = "arbitrary")]
+#[path = "features/arbitrary.rs"]
 mod arbitrary;
 #[cfg(feature = "bytemuck")]
 #[cfg_attr(docsrs, doc(cfg(feature = "bytemuck")))]
+#[path = "features/bytemuck.rs"]
 pub mod bytemuck;
 #[cfg(feature = "exact")]
 #[cfg_attr(docsrs, doc(cfg(feature = "exact")))]
 pub mod exact;
 #[cfg(feature = "mint-05")]
 #[cfg_attr(docsrs, doc(cfg(feature = "mint-05")))]
+#[path = "features/mint.rs"]
 pub mod mint;
 #[cfg(feature = "serde")]
 #[cfg_attr(docsrs, doc(cfg(feature = "serde")))]
+#[path = "features/serde.rs"]
 pub mod serde;
 #[cfg(feature = "proptest")]
 #[cfg_attr(docsrs, doc(cfg(feature = "proptest")))]
+#[path = "features/strategies.rs"]
 pub mod strategies;
 
 #[cfg(test)]
@@ -463,12 +468,12 @@ mod testing;
 /// ```
 pub mod batch {
     pub use crate::aabb::{AabbBatch, AabbBatchHits};
-    pub use crate::quantized::QuantizedChildren;
+    pub use crate::node::QuantizedChildren;
+    pub use crate::node::{Simd, SimdRay, SimdWork, with_simd};
     pub use crate::simd::TargetSimd;
     #[cfg(rayhit_runtime_avx)]
     pub use crate::simd::{Avx2, Avx512};
     pub use crate::triangle::{TriangleBatch, TriangleBatchHits};
-    pub use crate::with_simd::{Simd, SimdRay, SimdWork, with_simd};
 
     #[cfg(doc)]
     use crate::{Bounds, IntersectLanes};

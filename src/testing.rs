@@ -74,3 +74,40 @@ pub(crate) fn hit_bits<F: crate::Scalar>(
         )
     })
 }
+
+/// Marsaglia's xorshift64 from `state` as a closure: [`Draws`]'s sequence,
+/// for the exact-sign tests.
+#[cfg(feature = "exact")]
+pub(crate) fn xorshift(state: u64) -> impl FnMut() -> u64 {
+    let mut draws = Draws(state);
+    move || draws.next()
+}
+
+/// Three coordinates for the sign tests: with `wide`, `f64` values at
+/// `scale` times `2^-59` to 1 (and, with `zeros`, an exact zero one
+/// time in eight); otherwise arbitrary finite `f32` bit patterns.
+#[cfg(feature = "exact")]
+pub(crate) fn coords(
+    wide: bool,
+    zeros: bool,
+    scale: f64,
+    next: &mut dyn FnMut() -> u64,
+) -> [f64; 3] {
+    let unit =
+        |next: &mut dyn FnMut() -> u64| (next() >> 11) as f64 / (1u64 << 53) as f64 * 2.0 - 1.0;
+    [0, 1, 2].map(|_| {
+        if !wide {
+            return loop {
+                let x = f32::from_bits(next() as u32);
+                if x.is_finite() {
+                    break f64::from(x);
+                }
+            };
+        }
+        if zeros && next().is_multiple_of(8) {
+            return 0.0;
+        }
+        let spread = crate::num::exact_sign::scale2(1.0, -((next() % 60) as i32));
+        scale * spread * unit(next)
+    })
+}

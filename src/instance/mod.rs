@@ -186,7 +186,7 @@ pub struct Instance<V: Vector = Vec3> {
 /// code writes and a move need not copy, and which the compiler loaded
 /// along with the three lanes where the fourth lane's results go unread;
 /// on the peers' data it held halves of stack addresses, subnormal as
-/// floats, and cost `surface_to_world` about 15 ns a call. (This needs
+/// floats, and put `surface_to_world` on that slow path. (This needs
 /// `V: Vector`, the lanes' type being its precision's, on `Instance` too.)
 #[derive(Clone, Copy, Debug)]
 #[repr(C, align(16))]

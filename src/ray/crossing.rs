@@ -4,8 +4,8 @@
 //! interval form uses it, and so does the box's entry face (the plane of
 //! one face).
 
+use super::exact_crossing::PlaneCrossing;
 use super::interval::{Interval, bring_into, decide};
-use crate::num::exact_sign::PlaneCrossing;
 use crate::num::round::bound_up;
 use crate::num::{S, Scalar, Vector};
 

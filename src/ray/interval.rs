@@ -3,7 +3,7 @@
 //! ends, which every interval form shares (an error-bound filter, then
 //! exact signs).
 
-use crate::num::exact_sign::PlaneCrossing;
+use super::exact_crossing::PlaneCrossing;
 use crate::num::round::min2;
 use crate::num::{Bits, Repr, Scalar};
 use core::cmp::Ordering;

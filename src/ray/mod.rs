@@ -7,6 +7,9 @@
 //! - `crossing.rs`: a ray's line crossing a plane given by a point and a
 //!   normal (the plane test's and a box face's): the quotient, its error
 //!   bound, and the crossing over an interval.
+//! - `exact_crossing.rs`: the exact place of a crossing with a plane (a
+//!   triangle's, or a point and a normal) against a float `t`, the
+//!   interval forms' fallback.
 //! - `slab.rs`: the box tests' per-ray part, the directed reciprocals.
 //! - `shear.rs`: the watertight triangle test's per-ray part, the axis
 //!   permutation and shear.
@@ -14,6 +17,7 @@
 //!   encoding of an invalid ray.
 
 mod crossing;
+mod exact_crossing;
 mod interval;
 mod prepared;
 mod shear;
@@ -24,6 +28,7 @@ use glam::Vec3;
 use crate::num::{L, Lanes, S, Scalar, Vector, lanes};
 
 pub(crate) use crossing::{crossing_in, t_error};
+pub(crate) use exact_crossing::PlaneCrossing;
 pub use interval::Interval;
 pub(crate) use interval::{bring_into, decide};
 pub use prepared::PreparedRay;

@@ -94,7 +94,7 @@ impl<V: Vector> PreparedRay<V> {
         // reference, or a whole ray, made the compiler store a ray it had
         // just computed (a ray mapped into an instance, say) and load it
         // back in pieces that straddle its stores, a store-forwarding
-        // stall each time (10 ns of the instance row's 30 in
+        // stall each time (much of the instance row's time in
         // `benches/peers`).
         let (origin, dir) = (lanes(ray.origin), lanes(ray.dir));
         if valid_lanes::<V>(origin, dir) {

@@ -10,14 +10,13 @@ use core::marker::PhantomData;
 
 use glam::Vec3;
 
-use super::conditioning::edge_signs_known;
 use super::definition::{EdgeRule, watertight_definition};
-use super::interval::{DepthWindow, watertight_in};
+use super::lanes::{RayLanes, outside};
 use super::{Side, Triangle, TriangleHit};
 use crate::num::round::max2;
-use crate::num::{Bits, Lanes, Lanes8, Repr, S, Scalar, Vector};
-use crate::ray::{Interval, PreparedRay, t_max_ok};
-use crate::simd::{Isa, Kernel, check_lanes, lanes_at, put};
+use crate::num::{Lanes8, S, Scalar, Vector};
+use crate::ray::{PreparedRay, t_max_ok};
+use crate::simd::{Isa, Kernel, check_lanes, put};
 
 /// Up to `N` triangles, structure-of-arrays.
 ///
@@ -50,14 +49,14 @@ use crate::simd::{Isa, Kernel, check_lanes, lanes_at, put};
 #[repr(C, align(32))]
 pub struct TriangleBatch<V: Vector = Vec3, const N: usize = 8> {
     /// `p[corner][axis][lane]`, corners `a, b, c`.
-    p: [[[S<V>; N]; 3]; 3],
+    pub(super) p: [[[S<V>; N]; 3]; 3],
     /// Per lane, the triangle's reach from its first corner: at least
     /// `|p_i[a] - p_0[a]|` for the other corners `i` and every axis `a`
     /// (NaN in an empty lane, like its corners), for the interval forms' edge-sign test
     /// (`edge_signs_known`).
-    reach: [S<V>; N],
+    pub(super) reach: [S<V>; N],
     /// The lanes that hold a triangle.
-    used: u32,
+    pub(super) used: u32,
     /// The lanes whose triangle has zero area ([`Triangle::is_degenerate`]),
     /// decided once when stored: their hits take the scalar code's route
     /// for `t`.
@@ -254,97 +253,6 @@ impl<F: Scalar, const N: usize> TriangleBatchHits<F, N> {
     }
 }
 
-/// One corner of eight triangles in the ray's frame, as `Frame::new`
-/// computes it: translated, its axes in the ray's order `k`, sheared.
-#[inline(always)]
-fn sheared<W: Lanes8, const N: usize>(
-    p: &[[W::F; N]; 3],
-    c: usize,
-    k: [usize; 3],
-    o: [W; 3],
-    sx: W,
-    sy: W,
-) -> (W, W, W)
-where
-    W::F: Scalar,
-{
-    let px = lanes_at::<W, N>(&p[k[0]], c).sub(o[0]);
-    let py = lanes_at::<W, N>(&p[k[1]], c).sub(o[1]);
-    let pz = lanes_at::<W, N>(&p[k[2]], c).sub(o[2]);
-    (px.add(sx.mul(pz)), py.add(sy.mul(pz)), pz)
-}
-
-/// The ray's part of the lanes' frame: the axis order, the origin in it,
-/// and the shear, in every lane.
-struct RayLanes<W> {
-    k: [usize; 3],
-    o: [W; 3],
-    sx: W,
-    sy: W,
-}
-
-impl<W: Lanes8> RayLanes<W>
-where
-    W::F: Scalar,
-{
-    #[inline(always)]
-    fn new<V: Vector<Scalar = W::F>>(ray: &PreparedRay<V>) -> Self {
-        let sh = ray.shear();
-        // The origin in the ray's axis order, from the prepared lanes
-        // (indexing the origin by axis would branch on the axis).
-        let [ox, oy, oz] = ray.origin_lanes.map(|l| l.x());
-        Self {
-            k: [sh.kx as usize, sh.ky as usize, sh.kz as usize],
-            o: [W::splat(ox), W::splat(oy), W::splat(oz)],
-            sx: W::splat(sh.sx),
-            sy: W::splat(sh.sy),
-        }
-    }
-
-    /// Chunk `c` of the batch in the ray's frame: the edge functions
-    /// `e0`, `e1`, `e2` (the scalar test's, operation for operation) and
-    /// the corners' unscaled depths.
-    #[inline(always)]
-    fn edges<const N: usize>(&self, p: &[[[W::F; N]; 3]; 3], c: usize) -> ([W; 3], [W; 3]) {
-        let corners = self.corners(p, c);
-        let [(_, _, pz0), (_, _, pz1), (_, _, pz2)] = corners;
-        (edge_functions(&corners), [pz0, pz1, pz2])
-    }
-
-    /// Chunk `c` of the batch in the ray's frame: each corner's sheared
-    /// `x`, `y` and unscaled depth `p_z`.
-    #[inline(always)]
-    fn corners<const N: usize>(&self, p: &[[[W::F; N]; 3]; 3], c: usize) -> [(W, W, W); 3] {
-        let (k, o, sx, sy) = (self.k, self.o, self.sx, self.sy);
-        [
-            sheared::<W, N>(&p[0], c, k, o, sx, sy),
-            sheared::<W, N>(&p[1], c, k, o, sx, sy),
-            sheared::<W, N>(&p[2], c, k, o, sx, sy),
-        ]
-    }
-}
-
-/// The edge functions of three corners in the ray's frame, the scalar
-/// test's operations (`Frame::new`).
-#[inline(always)]
-fn edge_functions<W: Lanes8>([(x0, y0, _), (x1, y1, _), (x2, y2, _)]: &[(W, W, W); 3]) -> [W; 3] {
-    let e0 = x1.mul(*y2).sub(y1.mul(*x2));
-    let e1 = x2.mul(*y0).sub(y2.mul(*x0));
-    let e2 = x0.mul(*y1).sub(y0.mul(*x1));
-    [e0, e1, e2]
-}
-
-/// Inside test of `EdgeRule::Closed` on lanes: not both signs among the
-/// edge functions. For non-NaN values "some e_i < 0" is "min e_i < 0",
-/// which is cheaper; a NaN edge function leaves the lane not outside (the
-/// scalar test then misses it: its `det` is NaN). Returns `outside`, and
-/// the smallest and largest edge function.
-#[inline(always)]
-fn outside<W: Lanes8>([e0, e1, e2]: [W; 3], lo: W) -> (W::Mask, W, W) {
-    let (e_min, e_max) = (e0.min(e1.min(e2)), e0.max(e1.max(e2)));
-    (W::and(e_min.lt(lo), lo.lt(e_max)), e_min, e_max)
-}
-
 /// [`TriangleBatch`'s `hit`](crate::batch::TriangleBatch#method.hit) as a kernel, for any instruction set (see
 /// `crate::simd`).
 pub(crate) struct TriangleBatchKernel<V, const N: usize>(PhantomData<V>);
@@ -506,7 +414,7 @@ fn slow_lanes<V: Vector, const N: usize>(
 /// lane's triangle (a lane can arrive with an answer already written,
 /// which is replaced); with `any`, it stops at the first hit.
 #[inline(always)]
-fn scalar_lanes<V: Vector, const N: usize>(
+pub(super) fn scalar_lanes<V: Vector, const N: usize>(
     batch: &TriangleBatch<V, N>,
     mut slow: u32,
     any: bool,
@@ -529,162 +437,6 @@ fn scalar_lanes<V: Vector, const N: usize>(
         }
     }
     out
-}
-
-/// `ray_triangle_batch_in` (`ANY = false`) and its any-hit form
-/// (`ANY = true`) as a kernel: the answer
-/// of every lane the corners' depths decide, and the scalar interval test
-/// for the lanes they leave. With `ANY`, it returns at the first lane hit,
-/// with only `mask` set.
-pub(crate) struct TriangleBatchInKernel<V, const N: usize, const ANY: bool>(PhantomData<V>);
-
-impl<V: Vector, const N: usize, const ANY: bool> Kernel for TriangleBatchInKernel<V, N, ANY> {
-    type Ray = PreparedRay<V>;
-    type Shapes = TriangleBatch<V, N>;
-    type Limit = Interval<S<V>>;
-    type Output = TriangleBatchHits<S<V>, N>;
-    /// As for [`TriangleBatchKernel`].
-    const AVX512: bool = false;
-
-    #[inline(always)]
-    fn run<I: Isa>(
-        _: I,
-        ray: &PreparedRay<V>,
-        batch: &TriangleBatch<V, N>,
-        interval: Interval<S<V>>,
-    ) -> Self::Output {
-        triangle_batch_in_body::<I::W<S<V>>, V, N, ANY>(ray, batch, interval)
-    }
-}
-
-/// The body of [`TriangleBatchInKernel`] with the eight-lane type `W`: per
-/// lane, the scalar interval test's shortcut (`watertight_in_lanes`: the
-/// inside test, then, where every edge function's sign is surely exact,
-/// the corners' depths against the interval's ends), on the same values
-/// with the same operations, so the same answer, bit for bit (the
-/// depths' conditions through their smallest and largest, as
-/// `corner_verdict` notes).
-#[inline(always)]
-fn triangle_batch_in_body<W: Lanes8<F = S<V>>, V: Vector, const N: usize, const ANY: bool>(
-    ray: &PreparedRay<V>,
-    batch: &TriangleBatch<V, N>,
-    interval: Interval<S<V>>,
-) -> TriangleBatchHits<S<V>, N> {
-    const { check_lanes::<N>() };
-    let (zero, one) = (S::<V>::ZERO, S::<V>::ONE);
-    let mut out = TriangleBatchHits::none();
-    if !ray.is_valid() {
-        return out;
-    }
-    let sh = ray.shear();
-    let window = DepthWindow::new(interval, sh.sz);
-    if !window.usable {
-        // Every lane to the scalar test (a direction near the ends of the
-        // float range).
-        return slow_lanes_in(ray, batch, interval, batch.used, ANY, out);
-    }
-    let frame = RayLanes::<W>::new(ray);
-    let splat = W::splat;
-    let (lo, ones, sz) = (splat(zero), splat(one), splat(sh.sz));
-    let (down, up) = DepthWindow::<S<V>>::factors();
-    let (down, up) = (splat(down), splat(up));
-    let (t_lo, t_hi) = (splat(window.lo), splat(window.hi));
-    let (t_lo_normal, t_hi_normal) = (splat(window.lo_normal), splat(window.hi_normal));
-    let normal = splat(S::<V>::MIN_POSITIVE);
-    let neg_normal = lo.sub(normal);
-    let (mut hit, mut slow, mut front) = (0, 0, 0);
-    let all = lo.le(lo);
-    for c in 0..N.div_ceil(8) {
-        // Lanes past N hold NaN, and are not in `batch.used`.
-        let corners = frame.corners(&batch.p, c);
-        let [e0, e1, e2] = edge_functions(&corners);
-        let (outside, e_min, e_max) = outside([e0, e1, e2], lo);
-        let inside = W::and_not(all, outside);
-        if W::bits(inside) == 0 {
-            // (As in `triangle_batch_body`.)
-            if N <= 8 {
-                return out;
-            }
-            continue;
-        }
-        let [(x0, y0, pz0), (_, _, pz1), (_, _, pz2)] = corners;
-        // Inside, the edge functions share a sign, so the smallest |e_i|
-        // is e_min where they are positive and -e_max where negative.
-        let min_abs_e = e_min.max(lo.sub(e_max));
-        let det = e0.add(e1).add(e2);
-        // (`det - det` is zero exactly when `det` is finite.)
-        let finite = det.sub(det).eq(lo);
-        let reach = lanes_at::<W, N>(&batch.reach, c);
-        let signs_known = edge_signs_known(min_abs_e, (x0, y0, pz0), reach);
-        let known = W::and(W::and(signs_known, finite), inside);
-        let (z0, z1, z2) = (pz0.mul(sz), pz1.mul(sz), pz2.mul(sz));
-        let (z_min, z_max) = (z0.min(z1.min(z2)), z0.max(z1.max(z2)));
-        let (low, high) = (z_min.mul(down), z_max.mul(up));
-        let accept = W::and(t_lo_normal.lt(low), high.le(t_hi));
-        let reject = W::or(
-            W::or(t_hi_normal.lt(low), z_max.le(neg_normal)),
-            W::and(normal.le(z_min), high.le(t_lo)),
-        );
-        let hit_c = W::and(known, accept);
-        let shift = 8 * c;
-        slow |= W::bits(W::and_not(inside, W::and(known, W::or(accept, reject)))) << shift;
-        hit |= W::bits(hit_c) << shift;
-        if W::bits(hit_c) & (batch.used >> shift) == 0 {
-            // (Most chunks with a lane inside have no lane hit: for random
-            // rays, half the triangles the line crosses are behind.)
-            continue;
-        }
-        if ANY {
-            out.mask = hit & batch.used;
-            return out;
-        }
-        let inv_det = ones.div(det);
-        let t = e0.mul(z0).add(e1.mul(z1)).add(e2.mul(z2)).mul(inv_det);
-        // `bring_into`: `t` above `t_min`, at most `t_max` (the float
-        // above `t_min` computed here, for chunks with a hit only).
-        let above_lo = splat(<S<V> as Repr>::Bits::successor(window.lo));
-        let t = W::select(t_lo.lt(t), t, above_lo).min(t_hi);
-        let u = e1.mul(inv_det).min(ones);
-        let v = e2.mul(inv_det).min(ones);
-        front |= W::bits(lo.lt(det)) << shift;
-        put(&mut out.t, c, W::select(hit_c, t, splat(S::<V>::INFINITY)));
-        put(&mut out.u, c, W::select(hit_c, u, lo));
-        put(&mut out.v, c, W::select(hit_c, v, lo));
-    }
-    let hit = hit & batch.used;
-    out.mask = hit;
-    // A hit is from the front when the sign of its determinant differs
-    // from that of the ray's main component (see `watertight_definition`).
-    out.front = if sh.dz > zero {
-        !front & hit
-    } else {
-        front & hit
-    };
-    let slow = slow & batch.used;
-    if slow != 0 {
-        out = slow_lanes_in(ray, batch, interval, slow, ANY, out);
-    }
-    out
-}
-
-/// The lanes in `slow` of a batch answer from the scalar interval test
-/// ([`Triangle`'s `hit` over an interval](crate::Triangle#method.hit)), bit
-/// for bit; with `any`, it stops at the first hit. Out of line (such lanes
-/// are rare).
-#[cold]
-#[inline(never)]
-fn slow_lanes_in<V: Vector, const N: usize>(
-    ray: &PreparedRay<V>,
-    batch: &TriangleBatch<V, N>,
-    interval: Interval<S<V>>,
-    slow: u32,
-    any: bool,
-    out: TriangleBatchHits<S<V>, N>,
-) -> TriangleBatchHits<S<V>, N> {
-    let (origin, shear) = (ray.origin(), ray.shear());
-    scalar_lanes(batch, slow, any, out, |tri| {
-        watertight_in(origin, ray.dir, &shear, tri, interval, EdgeRule::Closed)
-    })
 }
 
 /// Every lane of the batch with the one-hit rule: the scalar test on each

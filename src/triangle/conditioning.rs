@@ -222,7 +222,7 @@ mod tests {
     use crate::num::{L, S, Vector};
     use crate::simd::Portable8;
     use crate::testing::Draws;
-    use crate::triangle::watertight::frame_lanes;
+    use crate::triangle::lanes::frame_lanes;
     use crate::{PreparedRay, Ray, Triangle};
     use glam::{DVec3, Vec3};
 

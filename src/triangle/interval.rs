@@ -39,11 +39,10 @@ use super::bounds::{ErrorBounds, HitCondition, longest_edge_t};
 use super::conditioning::edge_signs_known_at_corners;
 use super::definition::{EdgeRule, hit_at, inside};
 use super::frame::Frame;
-use super::watertight::{DefinitionRay, Packed, frame_lanes, lanes_hit, pack, unpack};
+use super::lanes::{DefinitionRay, Packed, frame_lanes, lanes_hit, pack, unpack};
 use super::{Triangle, TriangleHit};
-use crate::num::exact_sign::PlaneCrossing;
 use crate::num::{Axis, L, Lanes, S, Scalar, Vector};
-use crate::ray::{Interval, PreparedRay, Ray, Shear, bring_into, decide};
+use crate::ray::{Interval, PlaneCrossing, PreparedRay, Ray, Shear, bring_into, decide};
 use core::cmp::Ordering;
 
 /// An interval's ends as the corners' depths are compared with them

@@ -15,18 +15,25 @@
 //!   t_max]`, both ends decided exactly.
 //! - `mt.rs`: Moller-Trumbore ([`Triangle::moller_trumbore`]) and its
 //!   definition.
+//! - `lanes.rs`: what the lane forms share (packed hits, a triangle's frame
+//!   in the ray's lanes, the ray forms the definition takes).
 //! - `batch.rs`: [`TriangleBatch`], the watertight test on eight lanes of
-//!   triangles at a time, held to the definition bit for bit.
+//!   triangles at a time, held to the definition bit for bit, and the
+//!   one-hit rule's lanes.
+//! - `batch_interval.rs`: the batch over an interval, each lane the scalar
+//!   interval test's answer bit for bit.
 //! - `query.rs`: the [`Intersect`](crate::Intersect) and
 //!   [`Surface`](crate::Surface) implementations: each combination of ray
 //!   form, range and edge rule sent to its kernel.
 
 mod batch;
+mod batch_interval;
 mod bounds;
 mod conditioning;
 mod definition;
 mod frame;
 mod interval;
+mod lanes;
 mod mt;
 mod query;
 mod watertight;

@@ -2,7 +2,8 @@
 //! triangle batch ([`Intersect`]): each combination of ray form, range and
 //! edge rule, sent to its kernel.
 
-use super::batch::{TriangleBatchInKernel, TriangleBatchKernel, one_hit_lanes};
+use super::batch::{TriangleBatchKernel, one_hit_lanes};
+use super::batch_interval::TriangleBatchInKernel;
 use super::bounds::{ray_triangle_error_bounds, triangle_hit_point};
 use super::interval::{ray_triangle_in, ray_triangle_one_hit_in, ray_triangle_prepared_in};
 use super::watertight::{ray_triangle, ray_triangle_one_hit, ray_triangle_prepared};

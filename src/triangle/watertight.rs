@@ -7,9 +7,10 @@ use super::conditioning::{
     det_sign_known_at_corners, det_sign_known_lanes, det_sign_known_roughly,
 };
 use super::definition::{EdgeRule, watertight_definition};
+use super::lanes::{DefinitionRay, Packed, frame_lanes, lanes_hit, pack, unpack};
 use super::{Side, Triangle, TriangleHit};
 use crate::num::round::min2;
-use crate::num::{Axis, Bits, L, Lanes, Repr, S, Scalar, Vector, lanes};
+use crate::num::{L, Lanes, S, Scalar, Vector, lanes};
 use crate::ray::{PreparedRay, Ray, Shear, largest_axis, t_max_ok};
 
 /// The watertight test shared by [`ray_triangle`] and
@@ -225,103 +226,6 @@ pub(crate) fn watertight_lanes<V: Vector>(
     Some(lanes_hit(t, e, det, inv_det, sz.x()))
 }
 
-/// The hit at `t` with the corners' edge functions in lanes `e`, as
-/// `hit_at` computes it: `u` and `v` lanes 1 and 2 of `min(e / det, 1)`
-/// (finite where `1 / det` is: each `|e_i| <= |det|`, the `e_i` sharing a
-/// sign), the side from the signs of `det` and `sz = 1 / d_z` (which has
-/// the sign of `d_z`, and is not zero: `|d_z| <= MAX`).
-#[inline(always)]
-pub(super) fn lanes_hit<F: Scalar, W: Lanes<F = F>>(
-    t: F,
-    e: W,
-    det: F,
-    inv_det: F,
-    sz: F,
-) -> TriangleHit<F> {
-    let w = e.mul(W::splat(inv_det)).min(W::splat(F::ONE));
-    let [_, u, v] = w.to_array();
-    let side = if (det > F::ZERO) != (sz > F::ZERO) {
-        Side::Front
-    } else {
-        Side::Back
-    };
-    TriangleHit { t, u, v, side }
-}
-
-/// A triangle test's answer as the rare paths return it: packed so that
-/// it comes back in registers (see `crate::num::repr::Bits`). Returned
-/// through memory, the rare paths' answer made the inlined common path
-/// write its own answer through memory as well.
-pub(super) type Packed<F> = <<F as Repr>::Bits as Bits>::Packed;
-
-/// `hit` packed: `t`, `u`, `v` and a code, 0 for a miss, 1 for a hit from
-/// the front, 2 from the back.
-#[inline(always)]
-pub(super) fn pack<F: Scalar>(hit: Option<TriangleHit<F>>) -> Packed<F> {
-    let (values, code) = match hit {
-        None => ([F::ZERO; 3], 0),
-        Some(h) => (
-            [h.t, h.u, h.v],
-            match h.side {
-                Side::Front => 1,
-                Side::Back => 2,
-            },
-        ),
-    };
-    F::Bits::pack(values, code)
-}
-
-/// The inverse of [`pack`], bit for bit.
-#[inline(always)]
-pub(super) fn unpack<F: Scalar>(packed: Packed<F>) -> Option<TriangleHit<F>> {
-    let ([t, u, v], code) = F::Bits::unpack(packed);
-    let side = match code {
-        0 => return None,
-        1 => Side::Front,
-        _ => Side::Back,
-    };
-    Some(TriangleHit { t, u, v, side })
-}
-
-/// A ray the definition can be run on, from what a fast path was given: its
-/// origin and shear (rebuilt where the fast path kept only its lanes), its
-/// direction, and whether it is valid.
-pub(super) trait DefinitionRay<V: Vector> {
-    fn origin_and_shear(&self) -> (V, Shear<S<V>>);
-    fn direction(&self) -> V;
-    fn valid(&self) -> bool;
-}
-
-impl<V: Vector> DefinitionRay<V> for Ray<V> {
-    #[inline(always)]
-    fn origin_and_shear(&self) -> (V, Shear<S<V>>) {
-        (self.origin, Shear::new(&self.dir))
-    }
-    #[inline(always)]
-    fn direction(&self) -> V {
-        self.dir
-    }
-    #[inline(always)]
-    fn valid(&self) -> bool {
-        self.is_valid()
-    }
-}
-
-impl<V: Vector> DefinitionRay<V> for PreparedRay<V> {
-    #[inline(always)]
-    fn origin_and_shear(&self) -> (V, Shear<S<V>>) {
-        (self.origin(), self.shear())
-    }
-    #[inline(always)]
-    fn direction(&self) -> V {
-        self.dir
-    }
-    #[inline(always)]
-    fn valid(&self) -> bool {
-        self.is_valid()
-    }
-}
-
 /// [`definition_out_of_line`]'s answer, unpacked. (Called with what the
 /// fast path was given, where a closure would build its environment on the
 /// common path.)
@@ -352,32 +256,6 @@ fn definition_out_of_line<V: Vector, R: DefinitionRay<V>>(
         t_max,
         EdgeRule::Closed,
     ))
-}
-
-/// The corners of `tri` in the frame of the ray with origin lanes
-/// `origin_lanes` and shear `shear`, a corner per lane: the sheared `x` and
-/// `y`, the unscaled depth `p_z`, and the edge functions.
-#[inline(always)]
-pub(super) fn frame_lanes<V: Vector>(
-    origin_lanes: &[L<V>; 3],
-    shear_lanes: &[L<V>; 3],
-    axes: &[Axis; 3],
-    tri: &Triangle<V>,
-) -> (L<V>, L<V>, L<V>, L<V>) {
-    let corners = |k: Axis| L::<V>::new(tri.a.get(k), tri.b.get(k), tri.c.get(k));
-    let [sx, sy, _] = *shear_lanes;
-    let [ox, oy, oz] = *origin_lanes;
-    let [kx, ky, kz] = *axes;
-    // Translate, permute (the corners' coordinates are read in the ray's
-    // axis order), shear.
-    let px = corners(kx).sub(ox);
-    let py = corners(ky).sub(oy);
-    let pz = corners(kz).sub(oz);
-    let x = px.add(sx.mul(pz));
-    let y = py.add(sy.mul(pz));
-    // Edge functions: lane i is x[i+1] y[i+2] - y[i+1] x[i+2].
-    let e = x.rot1().mul(y.rot2()).sub(y.rot1().mul(x.rot2()));
-    (x, y, pz, e)
 }
 
 /// The answer to a plain miss of [`watertight_lanes`] with some corner in

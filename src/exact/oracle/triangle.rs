@@ -1,0 +1,369 @@
+//! The triangle in exact arithmetic: the edge signs, crossing and
+//! barycentrics of a ray's line (in integers), Moller-Trumbore's error
+//! bounds, the watertight test's rounding band, and the checks of a
+//! hit's point.
+
+use super::values::*;
+use crate::{Ray, Scalar, Triangle, TriangleHit, TriangleHitError, Vector};
+use core::cmp::Ordering;
+use num_bigint::{BigInt, Sign};
+use num_traits::{Signed, Zero};
+
+/// The exact answer for a ray against a triangle (two-sided, closed).
+#[derive(Debug, Clone)]
+pub struct ExactTriangle {
+    /// Orientation of the ray's line against each edge (`a->b`, `b->c`,
+    /// `c->a`): the sign of the Plucker product `((p - o) x (q - o)) . d`.
+    pub signs: [Ordering; 3],
+    /// The line's crossing with the plane, when not parallel.
+    pub t: Option<R>,
+    /// Barycentric weights of `b` and `c` at the crossing.
+    pub uv: Option<(R, R)>,
+}
+
+impl ExactTriangle {
+    /// The line passes through the closed triangle (not parallel to it).
+    #[must_use]
+    pub fn line_hits(&self) -> bool {
+        self.t.is_some()
+            && !(self.signs.contains(&Ordering::Less) && self.signs.contains(&Ordering::Greater))
+    }
+
+    /// The kernel's question: the closed triangle is crossed at `0 < t <= t_max`.
+    #[must_use]
+    pub fn hits(&self, t_max: &Option<R>) -> bool {
+        self.line_hits()
+            && self
+                .t
+                .as_ref()
+                .is_some_and(|t| t.is_positive() && within(t, t_max))
+    }
+
+    /// The line crosses the triangle's interior (no edge product is zero).
+    #[must_use]
+    pub fn interior(&self) -> bool {
+        self.line_hits() && !self.signs.contains(&Ordering::Equal)
+    }
+}
+
+/// Exact ray/triangle: signs of the three edge Plucker products, the plane
+/// crossing `t` and the barycentrics `(u, v)` there; `None` when a
+/// coordinate is not finite.
+///
+/// Computed in integers: every float is `m 2^e` with an integer `m`, so
+/// with `E` the smallest exponent among the origin's and corners'
+/// coordinates and `F` among the direction's, the coordinates are the
+/// integers `x 2^-E` (`d 2^-F`) and every product and sum below is an
+/// integer; only the three quotients are reduced (one greatest common
+/// divisor each, not one per operation). The values are those of the
+/// rational formulas, exactly.
+#[must_use]
+pub fn triangle<V: Vector>(ray: &Ray<V>, tri: &Triangle<V>) -> Option<ExactTriangle> {
+    let w = |p: V| [p.x().to_f64(), p.y().to_f64(), p.z().to_f64()];
+    let points = [w(ray.origin), w(tri.a), w(tri.b), w(tri.c)];
+    let dir = w(ray.dir);
+    if !points.iter().chain([&dir]).flatten().all(|x| x.is_finite()) {
+        return None;
+    }
+    let (pts, e) = integers(points);
+    let ([d], f) = integers([dir]);
+    let [o, a, b, c] = pts;
+    let (a, b, c) = (isub(&a, &o), isub(&b, &o), isub(&c, &o));
+    let s_ab = idot(&icross(&a, &b), &d);
+    let s_bc = idot(&icross(&b, &c), &d);
+    let s_ca = idot(&icross(&c, &a), &d);
+    let signs = [&s_ab, &s_bc, &s_ca].map(|x| x.sign().cmp(&Sign::NoSign));
+    // The three in units of 2^(2E + F), so their sum, `d . n` with `n =
+    // (b - a) x (c - a)`, too.
+    let sum = &s_ab + &s_bc + &s_ca;
+    if sum.is_zero() {
+        return Some(ExactTriangle {
+            signs,
+            t: None,
+            uv: None,
+        });
+    }
+    // The weight of each corner is the product of the edge opposite it, and
+    // the sum of the three is `d . n`.
+    let u = R::new(s_ca, sum.clone());
+    let v = R::new(s_ab, sum.clone());
+    // `t = (a . n) / (d . n)`: `a . n` in units of `2^3E`, so `t` is the
+    // integers' quotient times `2^(E - F)`.
+    let n = icross(&isub(&b, &a), &isub(&c, &a));
+    let num = idot(&a, &n);
+    let shift = e - f;
+    let t = if shift >= 0 {
+        R::new(num << shift.unsigned_abs(), sum)
+    } else {
+        R::new(num, sum << shift.unsigned_abs())
+    };
+    Some(ExactTriangle {
+        signs,
+        t: Some(t),
+        uv: Some((u, v)),
+    })
+}
+
+/// An integer 3-vector.
+type I3 = [BigInt; 3];
+
+/// Finite floats as integers of one scale: `(x 2^-E, E)` with `E` the
+/// smallest exponent `e` of the nonzero values written `m 2^e` with an odd
+/// integer `m` (0 when all are zero).
+fn integers<const N: usize>(points: [[f64; 3]; N]) -> ([I3; N], i64) {
+    let parts = points.map(|p| p.map(odd_parts));
+    let e = parts
+        .iter()
+        .flatten()
+        .filter(|(m, _)| *m != 0)
+        .map(|&(_, e)| e)
+        .min()
+        .unwrap_or(0);
+    let scaled = parts.map(|p| p.map(|(m, x)| BigInt::from(m) << (x - e).unsigned_abs()));
+    (scaled, e)
+}
+
+/// A finite float as `(m, e)` with `x = m 2^e` and `m` odd, or `(0, 0)`:
+/// num-traits' `integer_decode` with the mantissa's trailing zeros moved
+/// into the exponent.
+fn odd_parts(x: f64) -> (i64, i64) {
+    use num_traits::float::FloatCore;
+    let (m, e, sign) = x.integer_decode();
+    if m == 0 {
+        return (0, 0);
+    }
+    let zeros = m.trailing_zeros();
+    // `m < 2^53`: it fits.
+    let m = (m >> zeros) as i64;
+    (i64::from(sign) * m, i64::from(e) + i64::from(zeros))
+}
+
+fn isub(a: &I3, b: &I3) -> I3 {
+    [&a[0] - &b[0], &a[1] - &b[1], &a[2] - &b[2]]
+}
+
+fn idot(a: &I3, b: &I3) -> BigInt {
+    &a[0] * &b[0] + &a[1] * &b[1] + &a[2] * &b[2]
+}
+
+fn icross(a: &I3, b: &I3) -> I3 {
+    [
+        &a[1] * &b[2] - &a[2] * &b[1],
+        &a[2] * &b[0] - &a[0] * &b[2],
+        &a[0] * &b[1] - &a[1] * &b[0],
+    ]
+}
+
+/// Where the ray passes the segment of a zero-area triangle, exactly: in
+/// the ray's sheared frame (main axis the direction's largest component,
+/// the kernel's tie rule; `x`, `y` the next two cyclically), the depth of
+/// the point of the segment between the two corners farthest apart nearest
+/// the ray, clamped to the segment. `None` when the ray does not move, a
+/// coordinate is not finite, or the segment is seen end-on (its two
+/// corners at one point of the frame).
+#[must_use]
+pub fn segment_crossing<V: Vector>(ray: &Ray<V>, tri: &Triangle<V>) -> Option<R> {
+    let k = main_axis(ray.dir);
+    let (kx, ky) = ((k + 1) % 3, (k + 2) % 3);
+    let (o, dir) = moving(ray)?;
+    let corners = [rv(tri.a)?, rv(tri.b)?, rv(tri.c)?];
+    let dist2 = |i: usize, j: usize| {
+        let e = sub(&corners[j], &corners[i]);
+        dot(&e, &e)
+    };
+    let (mut i, mut j) = (0, 1);
+    for (a, b) in [(1, 2), (2, 0)] {
+        if dist2(a, b) > dist2(i, j) {
+            (i, j) = (a, b);
+        }
+    }
+    // `dir[k]` is the largest component of a nonzero direction: not zero.
+    let frame = |w: &[R; 3]| -> [R; 3] {
+        let w = sub(w, &o);
+        let z = &w[k] / &dir[k];
+        [&w[kx] - &dir[kx] * &z, &w[ky] - &dir[ky] * &z, z]
+    };
+    let (p, q) = (frame(&corners[i]), frame(&corners[j]));
+    let (ex, ey) = (&q[0] - &p[0], &q[1] - &p[1]);
+    let den = &ex * &ex + &ey * &ey;
+    if den.is_zero() {
+        return None;
+    }
+    let s = -(&p[0] * &ex + &p[1] * &ey) / den;
+    let (zero, one) = (R::zero(), int(1));
+    let s = if s < zero {
+        zero
+    } else if s > one {
+        one
+    } else {
+        s
+    };
+    Some(&p[2] + s * (&q[2] - &p[2]))
+}
+
+/// The watertight test's main axis for a direction, the axis of the
+/// largest `|d_k|`, with the test's rule for ties: `x` if `|d_x| > |d_y|`
+/// and `|d_x| > |d_z|`, else `y` if `|d_y| > |d_z|`, else `z`. Always an
+/// axis, `0..3`: a NaN component loses every comparison.
+#[must_use]
+pub fn main_axis<V: Vector>(dir: V) -> usize {
+    let d = dir.abs();
+    if d.x() > d.y() && d.x() > d.z() {
+        0
+    } else if d.y() > d.z() {
+        1
+    } else {
+        2
+    }
+}
+
+/// Error bounds of Moller-Trumbore's `u`, `v` and `t`, for the agreement band.
+///
+/// MT computes `u = (s . p)/det`, `v = (d . q)/det`, `t = (e2 . q)/det` with
+/// `s = o - a`, `p = d x e2`, `q = s x e1`, `e1 = b - a`, `e2 = c - a`. Each
+/// numerator and `det` is a sum of triple products whose monomials carry at
+/// most 7 roundings (two subtractions, a product, a difference, a product,
+/// two sums), so each is within `gamma(7)` times the sum of the monomials'
+/// magnitudes `M`. A quotient `N/D` computed as `fl(N) fl(1/det)` is then
+/// within `(dN + |q| dD)/(|D| - dD) + gamma(2)|q|`, which is what this
+/// returns (with `q` the exact quotient), or `2^2000` when `dD >= |D|`.
+/// `None` when a coordinate is not finite.
+#[must_use]
+pub fn mt_bounds<V: Vector>(ray: &Ray<V>, tri: &Triangle<V>, u: &R, v: &R) -> Option<(R, R, R)> {
+    let (o, d) = (rv(ray.origin)?, rv(ray.dir)?);
+    let (a, b, c) = (rv(tri.a)?, rv(tri.b)?, rv(tri.c)?);
+    let (e1, e2, s) = (sub(&b, &a), sub(&c, &a), sub(&o, &a));
+    let mag = |x: &[R; 3], y: &[R; 3], z: &[R; 3]| -> R {
+        // sum_i |x_i| (|y_j z_k| + |y_k z_j|): the monomials of x . (y x z).
+        (0..3)
+            .map(|i| {
+                let (j, k) = ((i + 1) % 3, (i + 2) % 3);
+                abs(&x[i]) * (abs(&(&y[j] * &z[k])) + abs(&(&y[k] * &z[j])))
+            })
+            .sum()
+    };
+    let g7 = gamma::<V::Scalar>(7);
+    let det = dot(&e1, &cross(&d, &e2));
+    let d_det = &g7 * mag(&e1, &d, &e2);
+    // Above any bound in either precision (f64's largest is below 2^1024).
+    let big = dyadic(1, 2000);
+    if abs(&det) <= d_det {
+        return Some((big.clone(), big.clone(), big));
+    }
+    let q = cross(&s, &e1);
+    let t = dot(&e2, &q) / &det;
+    let g2 = gamma::<V::Scalar>(2);
+    let quotient = |dn: R, q: &R| (dn + abs(q) * &d_det) / (abs(&det) - &d_det) + &g2 * abs(q);
+    Some((
+        quotient(&g7 * mag(&s, &d, &e2), u),
+        quotient(&g7 * mag(&d, &s, &e1), v),
+        quotient(&g7 * mag(&e2, &s, &e1), &t),
+    ))
+}
+
+/// What the watertight test must answer on `ray` and `tri` with limit
+/// `t_max`, when exact arithmetic decides it outside the test's rounding
+/// band: `Some(hit)`, or `None` inside the band (and for a line parallel to
+/// the triangle's plane). `extra` widens the band by another kernel's
+/// `(u, v, t)` bounds (Moller-Trumbore's, from [`mt_bounds`]), or zeros.
+/// `None` also where a bound is not finite, and for an invalid ray or a
+/// corner that is not finite.
+///
+/// The band is the watertight test's documented error bound
+/// ([`Triangle`'s `hit_error`](crate::Triangle#method.hit_error), held
+/// to exact arithmetic by the crate's tests) evaluated at the exact crossing:
+/// the edge weight `w = 1 - u - v` gets `err_u + err_v`, and for `t` the
+/// conservative `t > 0` test's band. That test accepts a hit only if its
+/// computed `t` exceeds `T(t)`, the `t` bound evaluated at that `t` (or a
+/// cheaper sufficient test passes). If it rejects, `t <= T(t)` and
+/// `|t - t*| <= T(t)`, so `t* <= 2 T(t)`. `T` depends on `t` only through
+/// the spread `sum |z_i - t|`, with sensitivity at most `err_u` (the edge
+/// error over the determinant's lower bound), so
+/// `T(t) <= T(t*) + 3 |t - t*| err_u`, and `T(t) <= T(t*) / (1 - 3 err_u)`.
+/// A rejection thus needs `t* <= 2 T(t*) / (1 - 3 max(err_u, err_v))`.
+#[must_use]
+pub fn triangle_decided<V: Vector>(
+    ray: &Ray<V>,
+    tri: &Triangle<V>,
+    exact: &ExactTriangle,
+    t_max: V::Scalar,
+    extra: &(R, R, R),
+) -> Option<bool> {
+    let corners_finite = [tri.a, tri.b, tri.c].iter().all(|c| c.is_finite());
+    if !(ray.is_valid() && corners_finite) {
+        return None;
+    }
+    let (te, (ue, ve)) = (exact.t.as_ref()?, exact.uv.as_ref()?);
+    let as_s = |x: &R| V::Scalar::from_f64(to_f64(x));
+    let probe = TriangleHit {
+        t: as_s(te),
+        u: as_s(ue),
+        v: as_s(ve),
+        side: crate::Side::Front,
+    };
+    let err = crate::Surface::hit_error(tri, ray, &probe);
+    if !(err.u.is_finite() && err.v.is_finite() && err.t.is_finite()) {
+        return None;
+    }
+    let (err_u, err_v, err_t) = (r(err.u)?, r(err.v)?, r(err.t)?);
+    let e_max = if err_u > err_v { &err_u } else { &err_v };
+    if int(3) * e_max >= int(1) {
+        return None;
+    }
+    let t_band = int(2) * err_t / (int(1) - int(3) * e_max);
+    let (eu, ev, et) = (err_u + &extra.0, err_v + &extra.1, t_band + &extra.2);
+    let we = &eu + &ev;
+    let w = int(1) - ue - ve;
+    let inside = ue > &eu && ve > &ev && w > we;
+    let outside = ue < &-eu.clone() || ve < &-ev.clone() || w < -we;
+    let limit = limit(t_max);
+    let t_clear = (te > &et && limit.as_ref().is_none_or(|m| (m - te) > et)) || te < &-et;
+    ((inside || outside) && t_clear)
+        .then(|| inside && te > &int(0) && limit.as_ref().is_none_or(|m| te <= m))
+}
+
+/// No widening: the zeros for [`triangle_decided`]'s `extra`.
+#[must_use]
+pub fn no_extra() -> (R, R, R) {
+    (int(0), int(0), int(0))
+}
+
+/// Where a triangle hit's barycentric point and `ray.at(t)` disagree by
+/// more than their bounds allow, the first such axis; `None` when they
+/// agree.
+///
+/// Both are within their errors of the exact crossing `p*`: from the
+/// reported `u`, `v`, `|p_bary_j - p*_j| <= err_u |b_j - a_j| + err_v |c_j -
+/// a_j|` (exactly, from the reported barycentrics); `ray.at(t)` adds
+/// `|t - t*| |d_j|` and its own two roundings, `gamma(2) (|o_j| + |t d_j|)`.
+///
+/// A hit must be safe to use, so anything not finite (the inputs, the hit,
+/// its bounds, `ray.at(t)`) counts as a disagreement, on axis 0.
+#[must_use]
+pub fn hit_point_disagreement<V: Vector>(
+    ray: &Ray<V>,
+    tri: &Triangle<V>,
+    h: &TriangleHit<V::Scalar>,
+    err: &TriangleHitError<V::Scalar>,
+) -> Option<usize> {
+    let exact = || {
+        Some((
+            [rv(tri.a)?, rv(tri.b)?, rv(tri.c)?],
+            [rv(ray.origin)?, rv(ray.dir)?, rv(ray.at(h.t))?],
+            [r(h.u)?, r(h.v)?, r(h.t)?],
+            [r(err.u)?, r(err.v)?, r(err.t)?],
+        ))
+    };
+    let Some(([a, b, c], [o, d, p], [u, v, t], [eu, ev, et])) = exact() else {
+        return Some(0);
+    };
+    let g2 = gamma::<V::Scalar>(2);
+    (0..3).find(|&j| {
+        let bary = &a[j] + &u * (&b[j] - &a[j]) + &v * (&c[j] - &a[j]);
+        let bound = &eu * abs(&(&b[j] - &a[j]))
+            + &ev * abs(&(&c[j] - &a[j]))
+            + &et * abs(&d[j])
+            + &g2 * (abs(&o[j]) + &t * abs(&d[j]));
+        abs(&(&bary - &p[j])) > bound
+    })
+}
