@@ -30,7 +30,7 @@ use rayhit::{
 };
 
 use crate::mesh::{Bvh, Kernel, Mesh, torus};
-use crate::scene::{
+use crate::renderer::{
     MAX_DEPTH, Material, OCCLUSION_RANGE, Rng, SKY_LIGHT, SUN, facing, render_pixels, sky,
     toward_disc,
 };

@@ -55,9 +55,11 @@ use indicatif::{ProgressBar, ProgressStyle};
 use rayhit::Camera;
 use rayhit::camera::{EquirectangularCamera, OrthographicCamera, ThinLensCamera};
 use rayhit::glam::Vec3;
+use rayhit_demo::demo::{Filter, Scene, Shape, View, demo_scene, render};
 use rayhit_demo::instances::{Content, On, instance_scene, render_instances};
+use rayhit_demo::leak::leak_scene;
 use rayhit_demo::mesh::Kernel;
-use rayhit_demo::scene::{Filter, Scene, Shape, View, demo_scene, leak_scene, render, to_srgb8};
+use rayhit_demo::renderer::to_srgb8;
 use rayhit_demo::shadows::{render_shadows, shadow_scene};
 
 const USAGE: &str = "\

@@ -31,7 +31,7 @@ use rayhit::{
 };
 
 use crate::mesh::{Bvh, icosphere, torus};
-use crate::scene::{Material, Rng, facing, random_point_on, render_pixels, sky};
+use crate::renderer::{Material, Rng, facing, random_point_on, render_pixels, sky};
 
 /// The geometry of an opaque object.
 #[derive(Debug)]
