@@ -86,28 +86,33 @@ fn mul_up(a: f64, b: f64) -> f64 {
     (a * b).next_up()
 }
 
-impl Bounded {
-    /// A float, exactly.
-    pub fn exact(x: f64) -> Self {
-        Self { v: x, e: 0.0 }
-    }
+impl core::ops::Add for Bounded {
+    type Output = Self;
 
     /// The sum.
-    pub fn add(self, o: Self) -> Self {
+    fn add(self, o: Self) -> Self {
         let v = self.v + o.v;
         Self {
             v,
             e: add_up(add_up(self.e, o.e), mul_up(U, v.abs())),
         }
     }
+}
+
+impl core::ops::Sub for Bounded {
+    type Output = Self;
 
     /// The difference.
-    pub fn sub(self, o: Self) -> Self {
-        self.add(Self { v: -o.v, e: o.e })
+    fn sub(self, o: Self) -> Self {
+        self + Self { v: -o.v, e: o.e }
     }
+}
+
+impl core::ops::Mul for Bounded {
+    type Output = Self;
 
     /// The product.
-    pub fn mul(self, o: Self) -> Self {
+    fn mul(self, o: Self) -> Self {
         let v = self.v * o.v;
         let carried = add_up(
             add_up(mul_up(self.v.abs(), o.e), mul_up(o.v.abs(), self.e)),
@@ -117,6 +122,13 @@ impl Bounded {
             v,
             e: add_up(add_up(carried, mul_up(U, v.abs())), f64::from_bits(1)),
         }
+    }
+}
+
+impl Bounded {
+    /// A float, exactly.
+    pub fn exact(x: f64) -> Self {
+        Self { v: x, e: 0.0 }
     }
 
     /// The exact value's sign where the bound decides it: `Some` when the
@@ -146,20 +158,20 @@ pub fn bv<V: Vector>(p: V) -> [Bounded; 3] {
 
 /// `a - b`, componentwise, on [`Bounded`] values.
 pub fn bsub(a: &[Bounded; 3], b: &[Bounded; 3]) -> [Bounded; 3] {
-    [0, 1, 2].map(|k| a[k].sub(b[k]))
+    [0, 1, 2].map(|k| a[k] - b[k])
 }
 
 /// `a . b` on [`Bounded`] values.
 pub fn bdot(a: &[Bounded; 3], b: &[Bounded; 3]) -> Bounded {
-    a[0].mul(b[0]).add(a[1].mul(b[1])).add(a[2].mul(b[2]))
+    a[0] * b[0] + a[1] * b[1] + a[2] * b[2]
 }
 
 /// `a x b` on [`Bounded`] values.
 pub fn bcross(a: &[Bounded; 3], b: &[Bounded; 3]) -> [Bounded; 3] {
     [
-        a[1].mul(b[2]).sub(a[2].mul(b[1])),
-        a[2].mul(b[0]).sub(a[0].mul(b[2])),
-        a[0].mul(b[1]).sub(a[1].mul(b[0])),
+        a[1] * b[2] - a[2] * b[1],
+        a[2] * b[0] - a[0] * b[2],
+        a[0] * b[1] - a[1] * b[0],
     ]
 }
 
@@ -176,23 +188,23 @@ mod tests {
     fn bounded_intervals_hold_the_exact_value() {
         let e = f64::EPSILON;
         let (a, c) = (Bounded::exact(1.0 + e), Bounded::exact(1.0 + 2.0 * e));
-        let x = a.mul(a).sub(c);
+        let x = a * a - c;
         let exact = (r(1.0 + e) * r(1.0 + e)) - r(1.0 + 2.0 * e);
         assert!(close(x.v, &exact, x.e), "{x:?}");
         assert_eq!(x.sign(), None, "rounding hid e^2: no sign");
         let tiny = Bounded::exact(f64::from_bits(1));
-        let t2 = tiny.mul(tiny);
+        let t2 = tiny * tiny;
         assert_eq!(t2.v, 0.0);
         assert_eq!(t2.sign(), None, "an underflowed product: no sign");
         let big = Bounded::exact(f64::MAX);
-        assert_eq!(big.mul(big).sign(), None, "an overflow: no sign");
+        assert_eq!((big * big).sign(), None, "an overflow: no sign");
         let (two, three) = (Bounded::exact(2.0), Bounded::exact(3.0));
-        assert_eq!(two.mul(three).sub(Bounded::exact(6.0)).sign(), None);
+        assert_eq!((two * three - Bounded::exact(6.0)).sign(), None);
         // A computed zero carries a bound of one subnormal (each bound is
         // stepped up), so exact arithmetic decides it.
-        assert_eq!(two.sub(two).sign(), None);
+        assert_eq!((two - two).sign(), None);
         assert_eq!(Bounded::exact(0.0).sign(), Some(Ordering::Equal));
-        assert_eq!(two.mul(three).sub(two).sign(), Some(Ordering::Greater));
+        assert_eq!((two * three - two).sign(), Some(Ordering::Greater));
         // Random dot and cross products against big rationals.
         let mut rng = crate::rng::Pcg32::new(7);
         for _ in 0..10_000 {
