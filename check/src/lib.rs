@@ -36,6 +36,9 @@
 //!   band itself (`rayhit::exact::band`), so corpus lines can be used as
 //!   they are.
 //!
+//! The lines are read with the crate's own corpus reader
+//! (`rayhit::exact::corpus_lines`, `CorpusLine` and `parse_case`).
+//!
 //! # Options
 //!
 //! - `--front-only`: the kernel culls back faces; an exact triangle hit from
@@ -48,7 +51,7 @@
 use std::collections::BTreeMap;
 use std::fmt::Write as _;
 
-use rayhit::exact::{self, Case, Field, Judgement, Tally, Verdict};
+use rayhit::exact::{self, Case, CorpusLine, Field, Judgement, Tally, Verdict};
 use rayhit::glam::{DVec3, Vec3};
 use rayhit::{Scalar, Side, Surface, TriangleHit, Vector};
 
@@ -74,14 +77,15 @@ fn ulp<F: Scalar>(x: f64) -> f64 {
     (a.next_up().to_f64() - a.to_f64()).max(F::TINY.to_f64())
 }
 
-/// Judges one line of precision `V`; `None` for a line not of this kind.
+/// Judges one case of precision `V`: its kind, inputs and answer as
+/// [`exact::parse_case`] reads them.
 fn judge_line<V: Vector>(
     kind: &str,
-    inputs: &[&str],
-    answer: &[&str],
+    inputs: &str,
+    answer: &str,
     opts: &Options,
 ) -> Result<Judgement, String> {
-    let (case, claim) = exact::parse_case::<V>(kind, &inputs.join(" "), &answer.join(" "))?;
+    let (case, claim) = exact::parse_case::<V>(kind, inputs, answer)?;
     // The t bound for this case, in ulps of the exact t.
     let bound = match (&case, opts.t_ulps) {
         (_, Some(b)) => b,
@@ -123,35 +127,34 @@ fn judge_line<V: Vector>(
     Ok(j)
 }
 
+/// The three words before a line's first `|`: kind, precision and family.
+fn head<'a>(line: &CorpusLine<'a>) -> Option<[&'a str; 3]> {
+    let mut words = line.fields(0).ok()?;
+    let head = [words.word().ok()?, words.word().ok()?, words.word().ok()?];
+    words.word().is_err().then_some(head)
+}
+
 /// Judges every line of `text`: the table and worst cases as text, and
 /// whether anything counts against the kernel.
 pub fn run(opts: &Options, text: &str) -> Result<(String, bool), String> {
     let mut out = String::new();
     let mut rows: BTreeMap<(String, String, String), Tally> = BTreeMap::new();
     let (mut wrong, mut over): (Worst, Worst) = (Vec::new(), Vec::new());
-    for (number, line) in text.lines().enumerate() {
-        let line = line.trim();
-        if line.is_empty() || line.starts_with('#') {
-            continue;
-        }
-        let parts: Vec<&str> = line.split('|').map(str::trim).collect();
-        let head: Vec<&str> = parts[0].split_whitespace().collect();
-        if parts.len() < 3 || head.len() != 3 {
+    for (number, line) in exact::corpus_lines(text) {
+        let parts = CorpusLine::new(line);
+        let (Some(head), &[_, inputs, answer, ..]) = (head(&parts), parts.sections()) else {
             return Err(format!(
-                "line {}: expected `KIND PRECISION FAMILY | INPUTS | ANSWER [| BAND]`",
-                number + 1
+                "line {number}: expected `KIND PRECISION FAMILY | INPUTS | ANSWER [| BAND]`"
             ));
-        }
-        let inputs: Vec<&str> = parts[1].split_whitespace().collect();
-        let answer: Vec<&str> = parts[2].split_whitespace().collect();
+        };
         let j = match head[1] {
-            "f32" => judge_line::<Vec3>(head[0], &inputs, &answer, opts),
-            "f64" => judge_line::<DVec3>(head[0], &inputs, &answer, opts),
+            "f32" => judge_line::<Vec3>(head[0], inputs, answer, opts),
+            "f64" => judge_line::<DVec3>(head[0], inputs, answer, opts),
             p => Err(format!("unknown precision {p}")),
         };
         let j = match j {
             Ok(j) => j,
-            Err(e) => return Err(format!("line {}: {e}", number + 1)),
+            Err(e) => return Err(format!("line {number}: {e}")),
         };
         if j.verdict != Verdict::Right && j.band == exact::Band::Clear {
             wrong.push((j.distance_ulps, line.to_string()));

@@ -23,6 +23,7 @@
 
 use proptest::strategy::{Strategy, ValueTree};
 use proptest::test_runner::{Config, TestRng, TestRunner};
+use rayhit::exact::{self, Band, CorpusLine};
 use rayhit::glam::Vec3;
 use rayhit::{Ray, Surface, Triangle, ray_triangle, strategies};
 
@@ -107,8 +108,45 @@ impl Row {
     }
 }
 
-fn bits(s: &str) -> f32 {
-    f32::from_bits(u32::from_str_radix(s, 16).expect("an f32 bit pattern in hex"))
+/// A case of the corpus's triangle file, read with `rayhit::exact`'s
+/// corpus reader.
+struct CorpusTriangle {
+    ray: Ray,
+    tri: Triangle,
+    t_max: f32,
+    /// The exact hit's `t` and whether it is from the front; `None` for a
+    /// miss.
+    exact: Option<(f32, bool)>,
+    /// Outside the rounding band.
+    clear: bool,
+}
+
+/// Reads a line of `corpus/data/triangle_f32.txt` (see its header):
+/// `origin dir a b c t_max | miss, or hit T U V front|back | band`.
+fn corpus_case(line: &str) -> Result<CorpusTriangle, String> {
+    let line = CorpusLine::new(line);
+    let mut f = line.fields(0)?;
+    let ray = Ray::new(f.vector()?, f.vector()?);
+    let tri = Triangle::new(f.vector()?, f.vector()?, f.vector()?);
+    let t_max = f.scalar()?;
+    let mut answer = line.fields(1)?;
+    let exact = match answer.word()? {
+        "hit" => {
+            let t = answer.scalar()?;
+            // `u` and `v`: not compared here.
+            answer.scalar::<f32>()?;
+            answer.scalar::<f32>()?;
+            Some((t, answer.word()? == "front"))
+        }
+        _ => None,
+    };
+    Ok(CorpusTriangle {
+        ray,
+        tri,
+        t_max,
+        exact,
+        clear: line.band(2)? == Band::Clear,
+    })
 }
 
 fn main() {
@@ -135,31 +173,19 @@ fn main() {
     let path = concat!(env!("CARGO_MANIFEST_DIR"), "/data/triangle_f32.txt");
     let text = std::fs::read_to_string(path).expect("the corpus (corpus/data)");
     let (mut clear, mut edge) = (Row::default(), Row::default());
-    for line in text.lines().filter(|l| !l.starts_with('#')) {
-        let parts: Vec<&str> = line.split(" | ").collect();
-        let f: Vec<f32> = parts[0].split_whitespace().map(bits).collect();
-        let v = |i: usize| Vec3::new(f[i], f[i + 1], f[i + 2]);
-        let (o, d, a, b, c, t_max) = (v(0), v(3), v(6), v(9), v(12), f[15]);
-        let answer: Vec<&str> = parts[1].split_whitespace().collect();
-        let exact = (answer[0] == "hit" && answer[4] == "front").then(|| bits(answer[1]));
-        let full = their_ray_triangle(o, d, a, b, c).filter(|h| h.0 <= t_max);
+    for (number, line) in exact::corpus_lines(&text) {
+        let case = corpus_case(line).unwrap_or_else(|e| panic!("{path}:{number}: {e}"));
+        let (ray, tri) = (case.ray, case.tri);
+        let full = their_ray_triangle(ray.origin, ray.dir, tri.a, tri.b, tri.c)
+            .filter(|h| h.0 <= case.t_max);
         let theirs = full.map(|h| h.0);
-        dump.push(dump_line(
-            "corpus",
-            &Ray::new(o, d),
-            &Triangle::new(a, b, c),
-            t_max,
-            full,
-        ));
-        if answer[0] == "hit" && answer[4] == "back" {
-            continue;
-        }
-        if parts[2].trim() == "clear" {
-            &mut clear
-        } else {
-            &mut edge
-        }
-        .add(theirs, exact);
+        dump.push(dump_line("corpus", &ray, &tri, case.t_max, full));
+        let exact = match case.exact {
+            // A back face: the kernel under test drops it, so it is not counted.
+            Some((_, false)) => continue,
+            hit => hit.map(|(t, _)| t),
+        };
+        if case.clear { &mut clear } else { &mut edge }.add(theirs, exact);
     }
     clear.print("corpus, clear cases (exact)");
     edge.print("corpus, edge cases (exact)");

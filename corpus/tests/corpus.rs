@@ -38,12 +38,13 @@ use std::fmt::Write as _;
 use std::path::PathBuf;
 
 use num_traits::Signed;
+use rayhit::exact::{self, CorpusLine};
 use rayhit::glam::{DVec3, Vec3};
 use rayhit::{
     Aabb, BoxFace, Instance, IntersectLanes, Plane, Ray, Scalar, Side, SurfacePoint, Triangle,
     Vector, camera::RayDifferential, ray_aabb, ray_plane, ray_triangle,
 };
-use rayhit::{EdgeRule, Intersect, Surface, exact};
+use rayhit::{EdgeRule, Intersect, Surface};
 use rayhit_testkit::cases::Generator;
 use rayhit_testkit::cases::boxes;
 use rayhit_testkit::cases::boxes::BoxCase;
@@ -88,8 +89,9 @@ fn precision<V: Vector>() -> &'static str {
 
 // ----------------------------------------------------------- bit patterns
 
-/// A float as its IEEE bit pattern in hex (8 digits for f32, 16 for f64),
-/// and back: exact both ways, NaN payloads and `-0.0` included.
+/// A float as its IEEE bit pattern in hex (8 digits for f32, 16 for f64):
+/// exact, `-0.0` included. (The library's corpus reader,
+/// `exact::parse_bits`, reads it back.)
 fn hex<F: Scalar>(x: F) -> String {
     if F::UNIT_ROUNDOFF.to_f64() > 1e-10 {
         format!("{:08x}", (x.to_f64() as f32).to_bits())
@@ -98,33 +100,8 @@ fn hex<F: Scalar>(x: F) -> String {
     }
 }
 
-fn unhex<F: Scalar>(s: &str) -> F {
-    if s.len() == 8 {
-        F::from_f64(f64::from(f32::from_bits(
-            u32::from_str_radix(s, 16).expect("hex"),
-        )))
-    } else {
-        F::from_f64(f64::from_bits(u64::from_str_radix(s, 16).expect("hex")))
-    }
-}
-
 fn hex_v<V: Vector>(v: V) -> String {
     format!("{} {} {}", hex(v.x()), hex(v.y()), hex(v.z()))
-}
-
-/// Reads floats from whitespace-separated hex fields.
-struct Fields<'a>(std::str::SplitWhitespace<'a>);
-
-impl Fields<'_> {
-    fn f<F: Scalar>(&mut self) -> F {
-        unhex(self.0.next().expect("a field"))
-    }
-    fn v<V: Vector>(&mut self) -> V {
-        V::new(self.f(), self.f(), self.f())
-    }
-    fn word(&mut self) -> &str {
-        self.0.next().expect("a word")
-    }
 }
 
 /// The float of precision `F` nearest to an exact value.
@@ -177,9 +154,8 @@ fn read(kernel: &str, precision: &str) -> Vec<String> {
     let text = std::fs::read_to_string(&p).unwrap_or_else(|e| {
         panic!("{}: {e}; generate it with RAYHIT_REGENERATE_CORPUS=1 cargo test --release -p rayhit-corpus --test corpus", p.display())
     });
-    text.lines()
-        .filter(|l| !l.starts_with('#') && !l.trim().is_empty())
-        .map(String::from)
+    exact::corpus_lines(&text)
+        .map(|(_, line)| String::from(line))
         .collect()
 }
 
@@ -205,6 +181,14 @@ impl Failures {
     fn check(&mut self, ok: bool, line: usize, what: impl FnOnce() -> String) {
         if !ok {
             self.0.push(format!("case {line}: {}", what()));
+        }
+    }
+    /// Checks line `i` with `check`, which reads it with the library's
+    /// corpus reader (`exact::CorpusLine`); a line it cannot read is a
+    /// failure too.
+    fn line(&mut self, i: usize, check: impl FnOnce(&mut Self) -> Result<(), String>) {
+        if let Err(e) = check(self) {
+            self.0.push(format!("case {i}: unreadable: {e}"));
         }
     }
     fn assert_none(self, file: &str) {
@@ -278,60 +262,64 @@ fn check_boxes<V: Vector>(lines: &[String]) -> Failures {
     let mut fail = Failures::default();
     let u = r(S::<V>::UNIT_ROUNDOFF);
     for (i, line) in lines.iter().enumerate() {
-        let parts: Vec<&str> = line.split(" | ").collect();
-        let mut f = Fields(parts[0].split_whitespace());
-        let ray = Ray::new(f.v::<V>(), f.v::<V>());
-        let b = Aabb::new(f.v::<V>(), f.v::<V>());
-        let t_max: S<V> = f.f();
-        let mut ans = Fields(parts[1].split_whitespace());
-        let exact = match ans.word() {
-            "hit" => Some((ans.f::<S<V>>(), ans.f::<S<V>>())),
-            _ => None,
-        };
-        // The entry face of every reported hit, exact hits or not (the
-        // face is defined by the entry planes alone).
-        if exact.is_some() {
-            let want = ans.word().to_string();
-            let got = b.hit(&ray, t_max).map(|h| face_name(h.face));
-            fail.check(got.is_none_or(|g| g == want), i, || {
-                format!("entry face {got:?}, exact {want}")
+        fail.line(i, |fail| {
+            let parts = CorpusLine::new(line);
+            let mut f = parts.fields(0)?;
+            let ray = Ray::new(f.vector::<V>()?, f.vector::<V>()?);
+            let b = Aabb::new(f.vector::<V>()?, f.vector::<V>()?);
+            let t_max: S<V> = f.scalar()?;
+            let mut ans = parts.fields(1)?;
+            let exact = match ans.word()? {
+                "hit" => Some((ans.scalar::<S<V>>()?, ans.scalar::<S<V>>()?)),
+                "miss" => None,
+                w => return Err(format!("neither `hit` nor `miss`: {w}")),
+            };
+            // The entry face of every reported hit, exact hits or not (the
+            // face is defined by the entry planes alone).
+            if exact.is_some() {
+                let want = ans.word()?;
+                let got = b.hit(&ray, t_max).map(|h| face_name(h.face));
+                fail.check(got.is_none_or(|g| g == want), i, || {
+                    format!("entry face {got:?}, exact {want}")
+                });
+            }
+            let clear = parts.band(2)? == exact::Band::Clear;
+            let slab = ray_aabb(&ray, &b, t_max);
+            let naive = b.clip_by_faces(&ray, t_max);
+            fail.check(exact.is_none() || slab.is_some(), i, || {
+                format!("slab false miss: {line}")
             });
-        }
-        let clear = parts[2].trim() == "clear";
-        let slab = ray_aabb(&ray, &b, t_max);
-        let naive = b.clip_by_faces(&ray, t_max);
-        fail.check(exact.is_none() || slab.is_some(), i, || {
-            format!("slab false miss: {line}")
+            if clear {
+                fail.check(slab.is_some() == exact.is_some(), i, || {
+                    format!("slab hit/miss: {slab:?} vs {exact:?}")
+                });
+                fail.check(naive.is_some() == exact.is_some(), i, || {
+                    format!("naive hit/miss: {naive:?} vs {exact:?}")
+                });
+            }
+            if let (Some((e, x)), Some((ee, xx))) = (slab, exact) {
+                // Entry within gamma(3) of the exact entry, which is within half
+                // an ulp of the stored one; exit at least the exact exit and at
+                // most (1 + 16u) times it plus two subnormals.
+                let half = |y: S<V>| ulp(y) / R::from_integer(2.into());
+                let entry_ok =
+                    (r(e) - r(ee)).abs() <= gamma::<S<V>>(3) * (r(ee).abs() + half(ee)) + half(ee);
+                let banded = !oracle::reciprocal_overflows(ray.dir);
+                fail.check(!banded || entry_ok, i, || {
+                    format!("slab entry {e:?} vs exact {ee:?}")
+                });
+                fail.check(r(x) >= r(xx) - half(xx), i, || {
+                    format!("slab exit {x:?} below exact {xx:?}")
+                });
+                let cap = (r(xx) + half(xx))
+                    * (R::from_integer(1.into()) + R::from_integer(16.into()) * &u)
+                    + r(S::<V>::TINY) * R::from_integer(2.into());
+                fail.check(!banded || r(x) <= cap, i, || {
+                    format!("slab exit {x:?} widened beyond the band, exact {xx:?}")
+                });
+            }
+            Ok(())
         });
-        if clear {
-            fail.check(slab.is_some() == exact.is_some(), i, || {
-                format!("slab hit/miss: {slab:?} vs {exact:?}")
-            });
-            fail.check(naive.is_some() == exact.is_some(), i, || {
-                format!("naive hit/miss: {naive:?} vs {exact:?}")
-            });
-        }
-        if let (Some((e, x)), Some((ee, xx))) = (slab, exact) {
-            // Entry within gamma(3) of the exact entry, which is within half
-            // an ulp of the stored one; exit at least the exact exit and at
-            // most (1 + 16u) times it plus two subnormals.
-            let half = |y: S<V>| ulp(y) / R::from_integer(2.into());
-            let entry_ok =
-                (r(e) - r(ee)).abs() <= gamma::<S<V>>(3) * (r(ee).abs() + half(ee)) + half(ee);
-            let banded = !oracle::reciprocal_overflows(ray.dir);
-            fail.check(!banded || entry_ok, i, || {
-                format!("slab entry {e:?} vs exact {ee:?}")
-            });
-            fail.check(r(x) >= r(xx) - half(xx), i, || {
-                format!("slab exit {x:?} below exact {xx:?}")
-            });
-            let cap = (r(xx) + half(xx))
-                * (R::from_integer(1.into()) + R::from_integer(16.into()) * &u)
-                + r(S::<V>::TINY) * R::from_integer(2.into());
-            fail.check(!banded || r(x) <= cap, i, || {
-                format!("slab exit {x:?} widened beyond the band, exact {xx:?}")
-            });
-        }
     }
     fail
 }
@@ -383,58 +371,67 @@ fn tri_line<V: Vector>((tri, ray, t_max): &TriCase<V>) -> Option<String> {
 fn check_triangles<V: Vector>(lines: &[String]) -> Failures {
     let mut fail = Failures::default();
     for (i, line) in lines.iter().enumerate() {
-        let parts: Vec<&str> = line.split(" | ").collect();
-        let mut f = Fields(parts[0].split_whitespace());
-        let ray = Ray::new(f.v::<V>(), f.v::<V>());
-        let tri = Triangle::new(f.v::<V>(), f.v::<V>(), f.v::<V>());
-        let t_max: S<V> = f.f();
-        let mut ans = Fields(parts[1].split_whitespace());
-        let exact = match ans.word() {
-            "hit" => {
-                let (t, u, v) = (ans.f::<S<V>>(), ans.f::<S<V>>(), ans.f::<S<V>>());
-                let side = if ans.word() == "front" {
-                    Side::Front
-                } else {
-                    Side::Back
-                };
-                Some((t, u, v, side))
+        fail.line(i, |fail| {
+            let parts = CorpusLine::new(line);
+            let mut f = parts.fields(0)?;
+            let ray = Ray::new(f.vector::<V>()?, f.vector::<V>()?);
+            let tri = Triangle::new(f.vector::<V>()?, f.vector::<V>()?, f.vector::<V>()?);
+            let t_max: S<V> = f.scalar()?;
+            let mut ans = parts.fields(1)?;
+            let exact = match ans.word()? {
+                "hit" => {
+                    let (t, u, v) = (
+                        ans.scalar::<S<V>>()?,
+                        ans.scalar::<S<V>>()?,
+                        ans.scalar::<S<V>>()?,
+                    );
+                    let side = if ans.word()? == "front" {
+                        Side::Front
+                    } else {
+                        Side::Back
+                    };
+                    Some((t, u, v, side))
+                }
+                "miss" => None,
+                w => return Err(format!("neither `hit` nor `miss`: {w}")),
+            };
+            let clear = parts.band(2)? == exact::Band::Clear;
+            let wt = ray_triangle(&ray, &tri, t_max);
+            if clear {
+                let mt = tri.moller_trumbore(&ray, t_max);
+                let one = tri.hit(&ray, (t_max, EdgeRule::OneHit));
+                for (name, got) in [
+                    ("watertight", wt.is_some()),
+                    ("Moller-Trumbore", mt.is_some()),
+                    ("one-hit", one.is_some()),
+                ] {
+                    fail.check(got == exact.is_some(), i, || {
+                        format!("{name} hit/miss {got} vs exact {exact:?}")
+                    });
+                }
             }
-            _ => None,
-        };
-        let clear = parts[2].trim() == "clear";
-        let wt = ray_triangle(&ray, &tri, t_max);
-        if clear {
-            let mt = tri.moller_trumbore(&ray, t_max);
-            let one = tri.hit(&ray, (t_max, EdgeRule::OneHit));
-            for (name, got) in [
-                ("watertight", wt.is_some()),
-                ("Moller-Trumbore", mt.is_some()),
-                ("one-hit", one.is_some()),
-            ] {
-                fail.check(got == exact.is_some(), i, || {
-                    format!("{name} hit/miss {got} vs exact {exact:?}")
+            if let (Some(h), Some((t, u, v, side))) = (wt, exact) {
+                let err = tri.hit_error(&ray, &h);
+                let within = |got: S<V>, want: S<V>, bound: S<V>| {
+                    !bound.is_finite()
+                        || (r(got) - r(want)).abs()
+                            <= r(bound) + ulp(want) / R::from_integer(2.into())
+                };
+                fail.check(within(h.t, t, err.t), i, || {
+                    format!("t {:?} vs exact {t:?}, bound {:?}", h.t, err.t)
+                });
+                fail.check(within(h.u, u, err.u), i, || {
+                    format!("u {:?} vs exact {u:?}, bound {:?}", h.u, err.u)
+                });
+                fail.check(within(h.v, v, err.v), i, || {
+                    format!("v {:?} vs exact {v:?}, bound {:?}", h.v, err.v)
+                });
+                fail.check(h.side == side, i, || {
+                    format!("side {:?} vs exact {side:?}", h.side)
                 });
             }
-        }
-        if let (Some(h), Some((t, u, v, side))) = (wt, exact) {
-            let err = tri.hit_error(&ray, &h);
-            let within = |got: S<V>, want: S<V>, bound: S<V>| {
-                !bound.is_finite()
-                    || (r(got) - r(want)).abs() <= r(bound) + ulp(want) / R::from_integer(2.into())
-            };
-            fail.check(within(h.t, t, err.t), i, || {
-                format!("t {:?} vs exact {t:?}, bound {:?}", h.t, err.t)
-            });
-            fail.check(within(h.u, u, err.u), i, || {
-                format!("u {:?} vs exact {u:?}, bound {:?}", h.u, err.u)
-            });
-            fail.check(within(h.v, v, err.v), i, || {
-                format!("v {:?} vs exact {v:?}, bound {:?}", h.v, err.v)
-            });
-            fail.check(h.side == side, i, || {
-                format!("side {:?} vs exact {side:?}", h.side)
-            });
-        }
+            Ok(())
+        });
     }
     fail
 }
@@ -469,27 +466,31 @@ fn plane_line<V: Vector>((plane, ray, t_max): &(Plane<V>, Ray<V>, S<V>)) -> Opti
 fn check_planes<V: Vector>(lines: &[String]) -> Failures {
     let mut fail = Failures::default();
     for (i, line) in lines.iter().enumerate() {
-        let parts: Vec<&str> = line.split(" | ").collect();
-        let mut f = Fields(parts[0].split_whitespace());
-        let ray = Ray::new(f.v::<V>(), f.v::<V>());
-        let plane = Plane::new(f.v::<V>(), f.v::<V>());
-        let t_max: S<V> = f.f();
-        let mut ans = Fields(parts[1].split_whitespace());
-        let exact: Option<S<V>> = match ans.word() {
-            "hit" => Some(ans.f()),
-            _ => None,
-        };
-        let got = ray_plane(&ray, &plane, t_max);
-        if parts[2].trim() == "clear" {
-            fail.check(got.is_some() == exact.is_some(), i, || {
-                format!("hit/miss {got:?} vs exact {exact:?}")
-            });
-        }
-        if let (Some(t), Some(te)) = (got, exact) {
-            let err = plane.hit_error(&ray, &t);
-            let ok = (r(t) - r(te)).abs() <= r(err) + ulp(te) / R::from_integer(2.into());
-            fail.check(ok, i, || format!("t {t:?} vs exact {te:?}, bound {err:?}"));
-        }
+        fail.line(i, |fail| {
+            let parts = CorpusLine::new(line);
+            let mut f = parts.fields(0)?;
+            let ray = Ray::new(f.vector::<V>()?, f.vector::<V>()?);
+            let plane = Plane::new(f.vector::<V>()?, f.vector::<V>()?);
+            let t_max: S<V> = f.scalar()?;
+            let mut ans = parts.fields(1)?;
+            let exact: Option<S<V>> = match ans.word()? {
+                "hit" => Some(ans.scalar()?),
+                "miss" => None,
+                w => return Err(format!("neither `hit` nor `miss`: {w}")),
+            };
+            let got = ray_plane(&ray, &plane, t_max);
+            if parts.band(2)? == exact::Band::Clear {
+                fail.check(got.is_some() == exact.is_some(), i, || {
+                    format!("hit/miss {got:?} vs exact {exact:?}")
+                });
+            }
+            if let (Some(t), Some(te)) = (got, exact) {
+                let err = plane.hit_error(&ray, &t);
+                let ok = (r(t) - r(te)).abs() <= r(err) + ulp(te) / R::from_integer(2.into());
+                fail.check(ok, i, || format!("t {t:?} vs exact {te:?}, bound {err:?}"));
+            }
+            Ok(())
+        });
     }
     fail
 }
@@ -593,56 +594,63 @@ fn check_triangle_intervals<V: Vector>(lines: &[String]) -> Failures {
     use rayhit::{Interval, PreparedRay, batch::TriangleBatch};
     let mut fail = Failures::default();
     for (i, line) in lines.iter().enumerate() {
-        let parts: Vec<&str> = line.split(" | ").collect();
-        let mut f = Fields(parts[0].split_whitespace());
-        let ray = Ray::new(f.v::<V>(), f.v::<V>());
-        let tri = Triangle::new(f.v::<V>(), f.v::<V>(), f.v::<V>());
-        let (lo, hi): (S<V>, S<V>) = (f.f(), f.f());
-        let mut ans = Fields(parts[1].split_whitespace());
-        let exact: Option<S<V>> = match ans.word() {
-            "hit" => Some(ans.f()),
-            _ => None,
-        };
-        let (place, clear) = (parts[2].trim(), parts[3].trim() == "clear");
-        let Some(window) = Interval::new(lo, hi) else {
-            fail.check(false, i, || "not an interval".into());
-            continue;
-        };
-        let got = tri.hit(&ray, window);
-        let prepared = PreparedRay::new(&ray);
-        let batch = TriangleBatch::<V, 8>::from_slice(&[tri]).expect("one triangle");
-        let bits = |h: Option<rayhit::TriangleHit<S<V>>>| {
-            h.map(|h| (hex(h.t), hex(h.u), hex(h.v), h.side))
-        };
-        fail.check(
-            bits(tri.hit(&prepared, window)) == bits(got)
-                && bits(batch.hit(&prepared, window).get(0)) == bits(got),
-            i,
-            || "the prepared or batch form differs".into(),
-        );
-        fail.check(
-            tri.occluded(&ray, window) == got.is_some()
-                && batch.occluded(&prepared, window) == got.is_some(),
-            i,
-            || "an any-hit form differs".into(),
-        );
-        if clear {
-            fail.check(got.is_some() == exact.is_some(), i, || {
-                format!("hit/miss {got:?} vs exact {exact:?}")
-            });
-        }
-        if let Some(h) = got {
-            fail.check(place == "inside" && window.contains(h.t), i, || {
-                format!("hit {h:?} with t* {place} the interval")
-            });
-            if let Some(te) = exact {
-                let err = tri.hit_error(&ray, &h).t;
-                let ok = !err.is_finite() || within_or_above_lo(h.t, te, err, lo);
-                fail.check(ok, i, || {
-                    format!("t {:?} vs exact {te:?}, bound {err:?}", h.t)
+        fail.line(i, |fail| {
+            let parts = CorpusLine::new(line);
+            let mut f = parts.fields(0)?;
+            let ray = Ray::new(f.vector::<V>()?, f.vector::<V>()?);
+            let tri = Triangle::new(f.vector::<V>()?, f.vector::<V>()?, f.vector::<V>()?);
+            let (lo, hi): (S<V>, S<V>) = (f.scalar()?, f.scalar()?);
+            let mut ans = parts.fields(1)?;
+            let exact: Option<S<V>> = match ans.word()? {
+                "hit" => Some(ans.scalar()?),
+                "miss" => None,
+                w => return Err(format!("neither `hit` nor `miss`: {w}")),
+            };
+            let (place, clear) = (
+                parts.fields(2)?.word()?,
+                parts.band(3)? == exact::Band::Clear,
+            );
+            let Some(window) = Interval::new(lo, hi) else {
+                fail.check(false, i, || "not an interval".into());
+                return Ok(());
+            };
+            let got = tri.hit(&ray, window);
+            let prepared = PreparedRay::new(&ray);
+            let batch = TriangleBatch::<V, 8>::from_slice(&[tri]).expect("one triangle");
+            let bits = |h: Option<rayhit::TriangleHit<S<V>>>| {
+                h.map(|h| (hex(h.t), hex(h.u), hex(h.v), h.side))
+            };
+            fail.check(
+                bits(tri.hit(&prepared, window)) == bits(got)
+                    && bits(batch.hit(&prepared, window).get(0)) == bits(got),
+                i,
+                || "the prepared or batch form differs".into(),
+            );
+            fail.check(
+                tri.occluded(&ray, window) == got.is_some()
+                    && batch.occluded(&prepared, window) == got.is_some(),
+                i,
+                || "an any-hit form differs".into(),
+            );
+            if clear {
+                fail.check(got.is_some() == exact.is_some(), i, || {
+                    format!("hit/miss {got:?} vs exact {exact:?}")
                 });
             }
-        }
+            if let Some(h) = got {
+                fail.check(place == "inside" && window.contains(h.t), i, || {
+                    format!("hit {h:?} with t* {place} the interval")
+                });
+                if let Some(te) = exact {
+                    let err = tri.hit_error(&ray, &h).t;
+                    let ok = !err.is_finite() || within_or_above_lo(h.t, te, err, lo);
+                    fail.check(ok, i, || {
+                        format!("t {:?} vs exact {te:?}, bound {err:?}", h.t)
+                    });
+                }
+            }
+            Ok(())
+        });
     }
     fail
 }
@@ -678,29 +686,34 @@ fn check_plane_intervals<V: Vector>(lines: &[String]) -> Failures {
     use rayhit::Interval;
     let mut fail = Failures::default();
     for (i, line) in lines.iter().enumerate() {
-        let parts: Vec<&str> = line.split(" | ").collect();
-        let mut f = Fields(parts[0].split_whitespace());
-        let ray = Ray::new(f.v::<V>(), f.v::<V>());
-        let plane = Plane::new(f.v::<V>(), f.v::<V>());
-        let (lo, hi): (S<V>, S<V>) = (f.f(), f.f());
-        let mut ans = Fields(parts[1].split_whitespace());
-        let exact: Option<S<V>> = match ans.word() {
-            "hit" => Some(ans.f()),
-            _ => None,
-        };
-        let Some(window) = Interval::new(lo, hi) else {
-            fail.check(false, i, || "not an interval".into());
-            continue;
-        };
-        let got = plane.hit(&ray, window);
-        fail.check(got.is_some() == exact.is_some(), i, || {
-            format!("hit/miss {got:?} vs exact {exact:?}")
+        fail.line(i, |fail| {
+            let parts = CorpusLine::new(line);
+            let mut f = parts.fields(0)?;
+            let ray = Ray::new(f.vector::<V>()?, f.vector::<V>()?);
+            let plane = Plane::new(f.vector::<V>()?, f.vector::<V>()?);
+            let (lo, hi): (S<V>, S<V>) = (f.scalar()?, f.scalar()?);
+            let mut ans = parts.fields(1)?;
+            let exact: Option<S<V>> = match ans.word()? {
+                "hit" => Some(ans.scalar()?),
+                "miss" => None,
+                w => return Err(format!("neither `hit` nor `miss`: {w}")),
+            };
+            let Some(window) = Interval::new(lo, hi) else {
+                fail.check(false, i, || "not an interval".into());
+                return Ok(());
+            };
+            let got = plane.hit(&ray, window);
+            fail.check(got.is_some() == exact.is_some(), i, || {
+                format!("hit/miss {got:?} vs exact {exact:?}")
+            });
+            if let (Some(t), Some(te)) = (got, exact) {
+                let err = plane.hit_error(&ray, &t);
+                let ok =
+                    window.contains(t) && (!err.is_finite() || within_or_above_lo(t, te, err, lo));
+                fail.check(ok, i, || format!("t {t:?} vs exact {te:?}, bound {err:?}"));
+            }
+            Ok(())
         });
-        if let (Some(t), Some(te)) = (got, exact) {
-            let err = plane.hit_error(&ray, &t);
-            let ok = window.contains(t) && (!err.is_finite() || within_or_above_lo(t, te, err, lo));
-            fail.check(ok, i, || format!("t {t:?} vs exact {te:?}, bound {err:?}"));
-        }
     }
     fail
 }
@@ -740,43 +753,47 @@ fn diff_line<V: Vector>(src: &mut Source) -> Option<String> {
 fn check_differentials<V: Vector>(lines: &[String]) -> Failures {
     let mut fail = Failures::default();
     for (i, line) in lines.iter().enumerate() {
-        let parts: Vec<&str> = line.split(" | ").collect();
-        let mut f = Fields(parts[0].split_whitespace());
-        let dir = f.v::<V>();
-        let diff = RayDifferential {
-            ray: Ray::new(V::ZERO, dir),
-            dx_origin: f.v(),
-            dx_dir: f.v(),
-            dy_origin: f.v(),
-            dy_dir: f.v(),
-        };
-        let tri = Triangle::new(f.v::<V>(), f.v::<V>(), f.v::<V>());
-        let t: S<V> = f.f();
-        let mut ans = Fields(parts[1].split_whitespace());
-        let exact: Vec<S<V>> = (0..10).map(|_| ans.f()).collect();
-        let Some(got) = tri.hit_differentials(&diff, t) else {
-            fail.check(false, i, || "no transfer".into());
-            continue;
-        };
-        let err = tri.hit_differentials_error(&diff, t);
-        let values = [
-            (got.dp_dx.x(), err.dp_dx.x()),
-            (got.dp_dx.y(), err.dp_dx.y()),
-            (got.dp_dx.z(), err.dp_dx.z()),
-            (got.du_dx, err.du_dx),
-            (got.dv_dx, err.dv_dx),
-            (got.dp_dy.x(), err.dp_dy.x()),
-            (got.dp_dy.y(), err.dp_dy.y()),
-            (got.dp_dy.z(), err.dp_dy.z()),
-            (got.du_dy, err.du_dy),
-            (got.dv_dy, err.dv_dy),
-        ];
-        for (k, ((value, bound), e)) in values.iter().zip(&exact).enumerate() {
-            let ok = (r(*value) - r(*e)).abs() <= r(*bound) + ulp(*e) / R::from_integer(2.into());
-            fail.check(ok, i, || {
-                format!("value {k}: {value:?} vs exact {e:?}, bound {bound:?}")
-            });
-        }
+        fail.line(i, |fail| {
+            let parts = CorpusLine::new(line);
+            let mut f = parts.fields(0)?;
+            let dir = f.vector::<V>()?;
+            let diff = RayDifferential {
+                ray: Ray::new(V::ZERO, dir),
+                dx_origin: f.vector()?,
+                dx_dir: f.vector()?,
+                dy_origin: f.vector()?,
+                dy_dir: f.vector()?,
+            };
+            let tri = Triangle::new(f.vector::<V>()?, f.vector::<V>()?, f.vector::<V>()?);
+            let t: S<V> = f.scalar()?;
+            let mut ans = parts.fields(1)?;
+            let exact: Vec<S<V>> = (0..10).map(|_| ans.scalar()).collect::<Result<_, _>>()?;
+            let Some(got) = tri.hit_differentials(&diff, t) else {
+                fail.check(false, i, || "no transfer".into());
+                return Ok(());
+            };
+            let err = tri.hit_differentials_error(&diff, t);
+            let values = [
+                (got.dp_dx.x(), err.dp_dx.x()),
+                (got.dp_dx.y(), err.dp_dx.y()),
+                (got.dp_dx.z(), err.dp_dx.z()),
+                (got.du_dx, err.du_dx),
+                (got.dv_dx, err.dv_dx),
+                (got.dp_dy.x(), err.dp_dy.x()),
+                (got.dp_dy.y(), err.dp_dy.y()),
+                (got.dp_dy.z(), err.dp_dy.z()),
+                (got.du_dy, err.du_dy),
+                (got.dv_dy, err.dv_dy),
+            ];
+            for (k, ((value, bound), e)) in values.iter().zip(&exact).enumerate() {
+                let ok =
+                    (r(*value) - r(*e)).abs() <= r(*bound) + ulp(*e) / R::from_integer(2.into());
+                fail.check(ok, i, || {
+                    format!("value {k}: {value:?} vs exact {e:?}, bound {bound:?}")
+                });
+            }
+            Ok(())
+        });
     }
     fail
 }
@@ -786,8 +803,11 @@ fn check_differentials<V: Vector>(lines: &[String]) -> Failures {
 const INSTANCE_BOX_HEADER: &str = "columns of M (x_axis y_axis z_axis) T object_min object_max | the exact image of the object box under x -> M x + T, rounded outward (the smallest float box containing it): MIN MAX";
 
 /// Reads a transform: the matrix's three columns and the translation.
-fn transform<V: Vector>(f: &mut Fields) -> ([V; 3], V) {
-    ([f.v::<V>(), f.v::<V>(), f.v::<V>()], f.v::<V>())
+fn transform<V: Vector>(f: &mut exact::CorpusFields) -> Result<([V; 3], V), String> {
+    Ok((
+        [f.vector::<V>()?, f.vector::<V>()?, f.vector::<V>()?],
+        f.vector::<V>()?,
+    ))
 }
 
 fn hex_transform<V: Vector>((cols, t): &([V; 3], V)) -> String {
@@ -835,38 +855,41 @@ fn check_instance_boxes<V: Vector>(lines: &[String]) -> Failures {
     let (u, tiny) = (r(S::<V>::UNIT_ROUNDOFF), r(S::<V>::TINY));
     let sixteen = R::from_integer(16.into());
     for (i, line) in lines.iter().enumerate() {
-        let parts: Vec<&str> = line.split(" | ").collect();
-        let mut f = Fields(parts[0].split_whitespace());
-        let (cols, t) = transform::<V>(&mut f);
-        let object = Aabb::new(f.v::<V>(), f.v::<V>());
-        let mut ans = Fields(parts[1].split_whitespace());
-        let (lo, hi) = (ans.v::<V>(), ans.v::<V>());
-        let Ok(inst) = Instance::new(cols, t) else {
-            fail.check(false, i, || format!("no instance: {line}"));
-            continue;
-        };
-        let Some(world) = inst.object_to_world_box(&object) else {
-            fail.check(false, i, || format!("no world box: {line}"));
-            continue;
-        };
-        for k in 0..3 {
-            fail.check(world.min[k] <= lo[k] && hi[k] <= world.max[k], i, || {
-                format!("axis {k}: {world:?} does not contain the exact image [{lo:?}, {hi:?}]")
-            });
-            let s: R = (0..3)
-                .map(|j| {
-                    let m = r(cols[j][k]);
-                    let (a, b) = ((&m * r(object.min[j])).abs(), (m * r(object.max[j])).abs());
-                    if a > b { a } else { b }
-                })
-                .fold(r(t[k]).abs(), |acc, x| acc + x);
-            let allowed = &sixteen * &u * s + &sixteen * &tiny;
-            fail.check(
-                r(lo[k]) - r(world.min[k]) <= allowed && r(world.max[k]) - r(hi[k]) <= allowed,
-                i,
-                || format!("axis {k}: {world:?} wider than its bound around [{lo:?}, {hi:?}]"),
-            );
-        }
+        fail.line(i, |fail| {
+            let parts = CorpusLine::new(line);
+            let mut f = parts.fields(0)?;
+            let (cols, t) = transform::<V>(&mut f)?;
+            let object = Aabb::new(f.vector::<V>()?, f.vector::<V>()?);
+            let mut ans = parts.fields(1)?;
+            let (lo, hi) = (ans.vector::<V>()?, ans.vector::<V>()?);
+            let Ok(inst) = Instance::new(cols, t) else {
+                fail.check(false, i, || format!("no instance: {line}"));
+                return Ok(());
+            };
+            let Some(world) = inst.object_to_world_box(&object) else {
+                fail.check(false, i, || format!("no world box: {line}"));
+                return Ok(());
+            };
+            for k in 0..3 {
+                fail.check(world.min[k] <= lo[k] && hi[k] <= world.max[k], i, || {
+                    format!("axis {k}: {world:?} does not contain the exact image [{lo:?}, {hi:?}]")
+                });
+                let s: R = (0..3)
+                    .map(|j| {
+                        let m = r(cols[j][k]);
+                        let (a, b) = ((&m * r(object.min[j])).abs(), (m * r(object.max[j])).abs());
+                        if a > b { a } else { b }
+                    })
+                    .fold(r(t[k]).abs(), |acc, x| acc + x);
+                let allowed = &sixteen * &u * s + &sixteen * &tiny;
+                fail.check(
+                    r(lo[k]) - r(world.min[k]) <= allowed && r(world.max[k]) - r(hi[k]) <= allowed,
+                    i,
+                    || format!("axis {k}: {world:?} wider than its bound around [{lo:?}, {hi:?}]"),
+                );
+            }
+            Ok(())
+        });
     }
     fail
 }
@@ -896,31 +919,34 @@ fn instance_point_line<V: Vector>(src: &mut Source) -> Option<String> {
 fn check_instance_points<V: Vector>(lines: &[String]) -> Failures {
     let mut fail = Failures::default();
     for (i, line) in lines.iter().enumerate() {
-        let parts: Vec<&str> = line.split(" | ").collect();
-        let mut f = Fields(parts[0].split_whitespace());
-        let (cols, t) = transform::<V>(&mut f);
-        let p = f.v::<V>();
-        let image = Fields(parts[1].split_whitespace()).v::<V>();
-        let Ok(inst) = Instance::new(cols, t) else {
-            fail.check(false, i, || format!("no instance: {line}"));
-            continue;
-        };
-        let one = S::<V>::ONE;
-        let zero = S::<V>::ZERO;
-        let world = inst.surface_to_world(&SurfacePoint {
-            point: p,
-            point_error: V::ZERO,
-            normal: V::new(zero, zero, one),
-            normal_error: V::ZERO,
-        });
-        for k in 0..3 {
-            let (got, want, bound) = (world.point[k], image[k], world.point_error[k]);
-            let ok = bound.is_finite()
-                && (r(got) - r(want)).abs() <= r(bound) + ulp(want) / R::from_integer(2.into());
-            fail.check(ok, i, || {
-                format!("axis {k}: {got:?} vs exact {want:?}, bound {bound:?}")
+        fail.line(i, |fail| {
+            let parts = CorpusLine::new(line);
+            let mut f = parts.fields(0)?;
+            let (cols, t) = transform::<V>(&mut f)?;
+            let p = f.vector::<V>()?;
+            let image = parts.fields(1)?.vector::<V>()?;
+            let Ok(inst) = Instance::new(cols, t) else {
+                fail.check(false, i, || format!("no instance: {line}"));
+                return Ok(());
+            };
+            let one = S::<V>::ONE;
+            let zero = S::<V>::ZERO;
+            let world = inst.surface_to_world(&SurfacePoint {
+                point: p,
+                point_error: V::ZERO,
+                normal: V::new(zero, zero, one),
+                normal_error: V::ZERO,
             });
-        }
+            for k in 0..3 {
+                let (got, want, bound) = (world.point[k], image[k], world.point_error[k]);
+                let ok = bound.is_finite()
+                    && (r(got) - r(want)).abs() <= r(bound) + ulp(want) / R::from_integer(2.into());
+                fail.check(ok, i, || {
+                    format!("axis {k}: {got:?} vs exact {want:?}, bound {bound:?}")
+                });
+            }
+            Ok(())
+        });
     }
     fail
 }
@@ -1035,7 +1061,10 @@ fn hex_round_trips() {
         f32::MAX,
         -3.5e-20,
     ] {
-        assert_eq!(unhex::<f32>(&hex(x)).to_bits(), x.to_bits());
+        assert_eq!(
+            exact::parse_bits::<f32>(&hex(x)).map(f32::to_bits),
+            Ok(x.to_bits())
+        );
     }
     for x in [
         0.0f64,
@@ -1046,7 +1075,10 @@ fn hex_round_trips() {
         f64::MAX,
         1e300,
     ] {
-        assert_eq!(unhex::<f64>(&hex(x)).to_bits(), x.to_bits());
+        assert_eq!(
+            exact::parse_bits::<f64>(&hex(x)).map(f64::to_bits),
+            Ok(x.to_bits())
+        );
     }
     assert_eq!(hex(-0.0f32), "80000000");
     assert_eq!(hex(1.0f64), "3ff0000000000000");

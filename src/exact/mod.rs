@@ -164,8 +164,8 @@ pub mod oracle;
 mod verdict;
 
 pub use corpus::{
-    CorpusCase, CorpusEntry, InstanceCorpusCase, InstanceCorpusEntry, InstanceQuestion, corpus,
-    instance_corpus, parse_case,
+    CorpusCase, CorpusEntry, CorpusFields, CorpusLine, InstanceCorpusCase, InstanceCorpusEntry,
+    InstanceQuestion, corpus, corpus_lines, instance_corpus, parse_bits, parse_case,
 };
 
 pub use instance::{

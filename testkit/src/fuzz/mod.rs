@@ -1,7 +1,9 @@
 //! The checks behind rayhit's fuzz targets: `cargo fuzz` runs them on the
-//! inputs libFuzzer makes (`fuzz/fuzz_targets/`, each a one-line wrapper),
-//! and `cargo test` on every checked-in seed and saved crash
-//! (`tests/fuzz_replay.rs`).
+//! inputs libFuzzer makes (`fuzz/fuzz_targets/`, each the same one line:
+//! [`run`] with its binary's name), and `cargo test` on every checked-in
+//! seed and saved crash (`tests/fuzz_replay.rs`). [`TARGETS`] maps each
+//! target's name (its `[[bin]]` in `fuzz/Cargo.toml`, the list of targets)
+//! to its check.
 //!
 //! Every target reads its first byte as the mode (`byte % 4`), and the rest
 //! as raw bits (`arbitrary::Unstructured`) or as the choices of a
@@ -92,78 +94,121 @@ pub fn dispatch<C: Check>(data: &[u8]) {
     }
 }
 
-/// The entry points of the fuzz targets, one per target.
-pub mod targets {
-    use super::*;
+/// A fuzz target: its name and its check, which runs on one input's bytes.
+pub type Target = (&'static str, fn(&[u8]));
 
-    /// `camera`: [`camera::Camera`].
-    pub fn camera(data: &[u8]) {
-        dispatch::<camera::Camera>(data);
+/// Every fuzz target's check, by the target's name: the name of its
+/// `[[bin]]` in `fuzz/Cargo.toml`, which lists the targets `cargo fuzz`
+/// builds and CI runs. Each target's file in `fuzz/fuzz_targets/` runs the
+/// check listed here under its name ([`run`]); `tests/fuzz_replay.rs` runs
+/// it on the target's seeds and saved crashes, and fails when a `[[bin]]`
+/// has no entry here or an entry has no `[[bin]]`. Each check's module
+/// documents its input layout and what it checks.
+pub const TARGETS: &[Target] = &[
+    // `ray_aabb`, the prepared clip and the entry face.
+    ("aabb", dispatch::<aabb::Slab>),
+    // The slab test against the naive per-face one.
+    ("aabb_slab_vs_naive", dispatch::<aabb::SlabVsNaive>),
+    // The batch kernels against the scalar ones, lane by lane.
+    ("batch", dispatch::<batch::Batch>),
+    // The pinhole camera.
+    ("camera", dispatch::<camera::Camera>),
+    // The panoramic cameras.
+    ("equal_area", dispatch::<panoramic::EqualArea>),
+    ("equirectangular", dispatch::<panoramic::Equirectangular>),
+    // The README's example target: a user's kernel held to `rayhit::exact`
+    // (its own file, compiled here as `cargo fuzz` builds it).
+    ("exact_judge", exact_judge::run),
+    // A camera ray's differentials transferred to a triangle hit.
+    (
+        "hit_differentials",
+        dispatch::<hit_differentials::HitDifferentialsCheck>,
+    ),
+    // Instance transforms: world boxes and the ray map's bound.
+    ("instance", dispatch::<instance::InstanceCheck>),
+    // The interval forms over a window cut in two: every crossing reported
+    // by exactly one half.
+    ("interval", dispatch::<interval::IntervalCheck>),
+    // The camera from a view and a projection matrix.
+    (
+        "matrix_camera",
+        dispatch::<matrix_camera::MatrixCameraCheck>,
+    ),
+    // The orthographic camera.
+    ("orthographic", dispatch::<orthographic::Orthographic>),
+    // `ray_plane` and the plane's error bound.
+    ("plane", dispatch::<plane::PlaneCheck>),
+    // Rays spawned off a triangle or a plane.
+    ("spawn", dispatch::<spawn::Spawn>),
+    // Shadow-ray segments between two surface points, or to a point light:
+    // neither end's surface reported over `(0, 1]`.
+    ("spawn_to", dispatch::<spawn_to::SpawnTo>),
+    // The thin-lens camera.
+    ("thin_lens", dispatch::<thin_lens::ThinLens>),
+    // The watertight ray/triangle test.
+    ("triangle", dispatch::<triangle::Watertight>),
+    // The watertight test against Moller-Trumbore.
+    (
+        "triangle_watertight_vs_mt",
+        dispatch::<triangle::WatertightVsMt>,
+    ),
+];
+
+/// The check of the fuzz target `name`, if [`TARGETS`] lists it.
+///
+/// ```
+/// use rayhit_testkit::fuzz;
+/// let check = fuzz::check("aabb").expect("a target");
+/// check(&[0, 1, 2, 3]);
+/// assert!(fuzz::check("no_such_target").is_none());
+/// ```
+pub fn check(name: &str) -> Option<fn(&[u8])> {
+    TARGETS
+        .iter()
+        .find(|(target, _)| *target == name)
+        .map(|&(_, check)| check)
+}
+
+/// Runs the check of the fuzz target `name` ([`TARGETS`]) on `data`: the
+/// body of every file in `fuzz/fuzz_targets/` (but the README's example,
+/// `exact_judge`), with its binary's name.
+///
+/// # Panics
+///
+/// When the check fails (what a fuzz target reports), and when [`TARGETS`]
+/// has no target `name`.
+///
+/// ```
+/// rayhit_testkit::fuzz::run("plane", &[2, 0x5a, 0x5a, 0x5a]);
+/// ```
+pub fn run(name: &str, data: &[u8]) {
+    let check = check(name)
+        .unwrap_or_else(|| panic!("fuzz target {name}: no entry in rayhit_testkit::fuzz::TARGETS"));
+    check(data);
+}
+
+/// The README's example target (`fuzz/fuzz_targets/exact_judge.rs`) as
+/// `cargo fuzz` builds it, without the two lines only `cargo fuzz` can
+/// compile (see the kit's `build.rs`).
+mod exact_judge {
+    /// `fuzz_target!` as libfuzzer-sys expands it for a typed input: too
+    /// short an input, or one `arbitrary` rejects, is skipped.
+    macro_rules! fuzz_target {
+        (|$input:ident: $ty:ty| $body:block) => {
+            pub fn run(bytes: &[u8]) {
+                use arbitrary::{Arbitrary, Unstructured};
+                if bytes.len() < <$ty as Arbitrary>::size_hint(0).0 {
+                    return;
+                }
+                if let Ok($input) =
+                    <$ty as Arbitrary>::arbitrary_take_rest(Unstructured::new(bytes))
+                {
+                    $body
+                }
+            }
+        };
     }
-    /// `plane`: [`plane::PlaneCheck`].
-    pub fn plane(data: &[u8]) {
-        dispatch::<plane::PlaneCheck>(data);
-    }
-    /// `aabb`: [`aabb::Slab`].
-    pub fn aabb(data: &[u8]) {
-        dispatch::<aabb::Slab>(data);
-    }
-    /// `aabb_slab_vs_naive`: [`aabb::SlabVsNaive`].
-    pub fn aabb_slab_vs_naive(data: &[u8]) {
-        dispatch::<aabb::SlabVsNaive>(data);
-    }
-    /// `triangle`: [`triangle::Watertight`].
-    pub fn triangle(data: &[u8]) {
-        dispatch::<triangle::Watertight>(data);
-    }
-    /// `triangle_watertight_vs_mt`: [`triangle::WatertightVsMt`].
-    pub fn triangle_watertight_vs_mt(data: &[u8]) {
-        dispatch::<triangle::WatertightVsMt>(data);
-    }
-    /// `spawn`: [`spawn::Spawn`].
-    pub fn spawn(data: &[u8]) {
-        dispatch::<spawn::Spawn>(data);
-    }
-    /// `spawn_to`: [`spawn_to::SpawnTo`].
-    pub fn spawn_to(data: &[u8]) {
-        dispatch::<spawn_to::SpawnTo>(data);
-    }
-    /// `batch`: [`batch::Batch`].
-    pub fn batch(data: &[u8]) {
-        dispatch::<batch::Batch>(data);
-    }
-    /// `equirectangular`: [`panoramic::Equirectangular`].
-    pub fn equirectangular(data: &[u8]) {
-        dispatch::<panoramic::Equirectangular>(data);
-    }
-    /// `equal_area`: [`panoramic::EqualArea`].
-    pub fn equal_area(data: &[u8]) {
-        dispatch::<panoramic::EqualArea>(data);
-    }
-    /// `hit_differentials`: [`hit_differentials::HitDifferentialsCheck`].
-    pub fn hit_differentials(data: &[u8]) {
-        dispatch::<hit_differentials::HitDifferentialsCheck>(data);
-    }
-    /// `interval`: [`interval::IntervalCheck`].
-    pub fn interval(data: &[u8]) {
-        dispatch::<interval::IntervalCheck>(data);
-    }
-    /// `matrix_camera`: [`matrix_camera::MatrixCameraCheck`].
-    pub fn matrix_camera(data: &[u8]) {
-        dispatch::<matrix_camera::MatrixCameraCheck>(data);
-    }
-    /// `instance`: [`instance::InstanceCheck`].
-    pub fn instance(data: &[u8]) {
-        dispatch::<instance::InstanceCheck>(data);
-    }
-    /// `orthographic`: [`orthographic::Orthographic`].
-    pub fn orthographic(data: &[u8]) {
-        dispatch::<orthographic::Orthographic>(data);
-    }
-    /// `thin_lens`: [`thin_lens::ThinLens`].
-    pub fn thin_lens(data: &[u8]) {
-        dispatch::<thin_lens::ThinLens>(data);
-    }
+    include!(concat!(env!("OUT_DIR"), "/exact_judge.rs"));
 }
 
 /// Reads one raw-bit value of `T`, or its default when the data has run out
