@@ -1,7 +1,8 @@
 //! The README's example fuzz target (`fuzz/fuzz_targets/exact_judge.rs`:
 //! a user's kernel held to `rayhit::exact`), without the two lines only
 //! `cargo fuzz` can compile (`#![no_main]` and the `libfuzzer_sys` import),
-//! for `tests/fuzz_replay.rs` to run on its seeds as `cargo fuzz` would.
+//! for the kit's fuzz module to run (`TARGETS`), on its seeds in the
+//! replay test as `cargo fuzz` would.
 
 use std::path::Path;
 
