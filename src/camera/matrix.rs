@@ -140,7 +140,7 @@ where
     clip: ClipSpace,
     // (The matrices are not kept: the bounds take them again. Holding
     // them, 128 more bytes, kept the benchmarks' loop of rays from
-    // vectorising, 2.7 times the time per ray; see BENCHMARKS.md.)
+    // vectorising, a large loss in `benches/peers`' camera rows.)
 }
 
 /// `M = projection * view` by rows, in `f64` (exact products for `f32`

@@ -386,7 +386,7 @@ impl<V: Vector> ThinLensCamera<V> {
     pub fn ray_through(&self, focus: &FocusPoint<V>, s: S<V>, t: S<V>) -> Ray<V> {
         // A branch, taken only at the centre: a select computes the
         // pinhole ray for every sample, which a scalar loop pays for
-        // (BENCHMARKS.md, Cameras).
+        // (`benches/peers`' camera rows show it).
         let (offset, centre) = self.lens_offset(s, t);
         if centre {
             return self
@@ -444,8 +444,8 @@ impl<V: Vector> Camera<V> for ThinLensCamera<V> {
         // A branch, as in `ray_through`: a loop storing rays with
         // differentials (72 bytes each) mostly stays scalar, and there the
         // branch (taken only at the centre) is cheaper than computing the
-        // pinhole camera's differentials for every ray (BENCHMARKS.md,
-        // Cameras).
+        // pinhole camera's differentials for every ray (`benches/peers`'
+        // camera rows show it).
         let (offset, centre) = self.lens_offset(s, t);
         if centre {
             return self.pinhole.ray_differential(sample);

@@ -348,7 +348,7 @@ pub fn ray_triangle<V: Vector>(
 // (Always inlined: it is the body of a traversal's inner loop, and its rare
 // paths are out of line. Left to the inliner, a program that calls it from
 // several places got one shared copy, which paid a call and returned its
-// answer through memory; BENCHMARKS.md has the measurement.)
+// answer through memory, measurably slower in `benches/peers`.)
 #[inline(always)]
 #[must_use]
 pub(crate) fn ray_triangle_prepared<V: Vector>(
