@@ -28,13 +28,14 @@ use rayhit::{
     ray_triangle,
 };
 use rayhit_testkit::bits::{bits, hit_bits};
+use rayhit_testkit::case_count;
 use rayhit_testkit::source::Source;
 
 type S<V> = <V as Vector>::Scalar;
 
 fn config() -> ProptestConfig {
     ProptestConfig {
-        cases: 1024,
+        cases: case_count(1024).try_into().unwrap_or(u32::MAX),
         ..ProptestConfig::default()
     }
 }
@@ -337,7 +338,7 @@ fn rays_starting_among_the_corners_depths() {
     fn run<V: Vector>(rng: &mut Source) -> (usize, usize) {
         let mut coord = || S::<V>::from_f64(f64::from(rng.below(1 << 16)) / 8192.0 - 4.0);
         let (mut hits, mut misses) = (0, 0);
-        for _ in 0..3000 {
+        for _ in 0..case_count(3000) {
             let mut v = || V::new(coord(), coord(), coord());
             let tri = Triangle::new(v(), v(), v());
             let dir = v();

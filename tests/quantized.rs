@@ -15,6 +15,7 @@ use rayhit::{
     Bounds, Interval, PreparedRay, Ray,
     batch::{AabbBatchHits, QuantizedChildren, Simd, SimdWork, TargetSimd, with_simd},
 };
+use rayhit_testkit::case_count;
 use rayhit_testkit::oracle;
 use rayhit_testkit::oracle::{R, r};
 use rayhit_testkit::source::Source;
@@ -98,7 +99,7 @@ impl Node {
 fn decoded_boxes_contain_the_exact_quantized_boxes() {
     let mut rng = Source::seeded(11);
     let mut children = 0;
-    for _ in 0..4_000 {
+    for _ in 0..case_count(4_000) {
         let node = Node::random(&mut rng);
         let view = node.view();
         assert!(view.is_valid());
@@ -158,7 +159,7 @@ impl SimdWork for ViaWithSimd<'_> {
 fn node_test_is_the_box_batch_on_the_decoded_boxes() {
     let mut rng = Source::seeded(12);
     let (mut hits, mut interval_hits) = (0, 0);
-    for i in 0..20_000 {
+    for i in 0..case_count(20_000) {
         let node = Node::random(&mut rng);
         let view = node.view();
         let boxes = view.boxes();
@@ -245,7 +246,7 @@ fn exact_hit(ray: &Ray, lo: &[R; 3], hi: &[R; 3]) -> bool {
 fn no_false_miss_against_the_exact_quantized_boxes() {
     let mut rng = Source::seeded(13);
     let (mut exact_hits, mut checked) = (0, 0);
-    for _ in 0..10_000 {
+    for _ in 0..case_count(10_000) {
         let node = Node::random(&mut rng);
         let view = node.view();
         let child = rng.below(8) as usize;
@@ -300,7 +301,7 @@ fn no_false_miss_against_the_exact_quantized_boxes() {
 fn quantize_bounds_is_tight_and_conservative() {
     let mut rng = Source::seeded(14);
     let mut some = 0;
-    for _ in 0..50_000 {
+    for _ in 0..case_count(50_000) {
         let node = Node::random(&mut rng);
         let (p, e) = (node.origin.x, node.exponents[0]);
         let s = f32::from_bits(u32::from(e) << 23);

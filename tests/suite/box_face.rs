@@ -14,6 +14,7 @@ use rayhit::strategies as strat;
 use rayhit::{
     Aabb, Bounds, BoxFace, Intersect, PreparedRay, Ray, Scalar, Vector, batch::AabbBatch, ray_aabb,
 };
+use rayhit_testkit::case_count;
 use rayhit_testkit::cases;
 use rayhit_testkit::cases::boxes;
 use rayhit_testkit::oracle;
@@ -63,7 +64,7 @@ fn check_generators<V: Vector>(cases: usize) -> (usize, usize, usize) {
 
 #[test]
 fn faces_are_exact_on_every_generator_f32() {
-    let (hits, faces, ties) = check_generators::<Vec3>(5_000);
+    let (hits, faces, ties) = check_generators::<Vec3>(case_count(5_000));
     assert!(
         hits > 15_000 && faces > 10_000 && ties > 100,
         "{hits} {faces} {ties}"
@@ -72,7 +73,7 @@ fn faces_are_exact_on_every_generator_f32() {
 
 #[test]
 fn faces_are_exact_on_every_generator_f64() {
-    let (hits, faces, ties) = check_generators::<DVec3>(5_000);
+    let (hits, faces, ties) = check_generators::<DVec3>(case_count(5_000));
     assert!(
         hits > 15_000 && faces > 10_000 && ties > 100,
         "{hits} {faces} {ties}"
@@ -85,7 +86,7 @@ fn faces_are_exact_on_every_generator_f64() {
 fn every_face_is_reported<V: Vector>() {
     let mut rng = Source::seeded(77);
     let mut seen = [0usize; 6];
-    for _ in 0..3_000 {
+    for _ in 0..case_count(3_000) {
         let (lo, hi) = boxes::grid_box(&mut rng);
         let aabb = boxes::to_box::<V>(lo, hi);
         let face = BoxFace::new(rng.below(3) as usize, rng.below(2) == 1).expect("axis < 3");
@@ -160,7 +161,7 @@ fn faces_name_their_axis_side_normal_and_plane() {
 
 fn config() -> ProptestConfig {
     ProptestConfig {
-        cases: 2048,
+        cases: case_count(2048).try_into().unwrap_or(u32::MAX),
         ..ProptestConfig::default()
     }
 }

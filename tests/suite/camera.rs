@@ -7,6 +7,7 @@ use proptest::prelude::*;
 use rayhit::glam::{DMat4, DVec3, DVec4, Vec3};
 use rayhit::strategies as strat;
 use rayhit::{Camera, CameraSample, PinholeCamera, Scalar, Vector, camera::CameraError};
+use rayhit_testkit::case_count;
 use rayhit_testkit::oracle;
 use rayhit_testkit::oracle::{R, gamma, rv};
 
@@ -14,7 +15,7 @@ type S<V> = <V as Vector>::Scalar;
 
 fn config() -> ProptestConfig {
     ProptestConfig {
-        cases: 1024,
+        cases: case_count(1024).try_into().unwrap_or(u32::MAX),
         ..ProptestConfig::default()
     }
 }

@@ -2,7 +2,7 @@
 //! target runs, in `rayhit_testkit::fuzz`) on seeded structured cases in
 //! both precisions, and worked examples with numbers a reader can check.
 //!
-//! More cases: `CAMERA_CASES=100000 cargo test --release --test suite cameras::`.
+//! More cases: `RAYHIT_CASES=250 cargo test --release --test suite cameras::`.
 
 use rayhit::glam::{DVec3, Vec3};
 use rayhit::{
@@ -12,12 +12,9 @@ use rayhit::{
 use rayhit_testkit::fuzz::{Check, Input};
 use rayhit_testkit::source::Source;
 
-/// Cases per check and precision: `CAMERA_CASES`, or 400.
+/// Cases per check and precision: 400 times `RAYHIT_CASES`.
 fn cases() -> u64 {
-    std::env::var("CAMERA_CASES")
-        .ok()
-        .and_then(|s| s.parse().ok())
-        .unwrap_or(400)
+    rayhit_testkit::case_count(400) as u64
 }
 
 /// Runs `C`'s structured checks on seeded sources, in `f32` and `f64`.
@@ -282,7 +279,7 @@ fn every_basis_is_orthonormal_within_gamma_13() {
     use rayhit_testkit::rng::Pcg32;
     let mut rng = Pcg32::new(0xba5e);
     let mut near = [0u32; 2];
-    for i in 0..4000 {
+    for i in 0..rayhit_testkit::case_count(4000) {
         let view = rng.sphere().as_dvec3() * f64::from(rng.range(0.01, 100.0));
         let up = if i % 2 == 0 {
             rng.sphere().as_dvec3()

@@ -9,6 +9,7 @@ use rayhit::{
     EdgeRule, Intersect, IntersectLanes, PreparedRay, Ray, Scalar, Side, Surface, Triangle, Vector,
     batch::TriangleBatch, ray_triangle,
 };
+use rayhit_testkit::case_count;
 use rayhit_testkit::cases;
 use rayhit_testkit::oracle;
 use rayhit_testkit::oracle::{cross, rv, sub};
@@ -77,7 +78,7 @@ fn triangle<V: Vector>(rng: &mut Source) -> Triangle<V> {
 fn is_degenerate_is_exact<V: Vector>() {
     let mut rng = Source::seeded(41);
     let (mut yes, mut no) = (0, 0);
-    for _ in 0..50_000 {
+    for _ in 0..case_count(50_000) {
         let t = triangle::<V>(&mut rng);
         let exact = exactly_degenerate(&t);
         assert_eq!(t.is_degenerate(), exact, "{t:?}");
@@ -106,7 +107,7 @@ fn is_degenerate_is_exact_f64() {
 fn hits_are_safe<V: Vector>() {
     let mut rng = Source::seeded(43);
     let mut hits = 0;
-    for _ in 0..100_000 {
+    for _ in 0..case_count(100_000) {
         let t = triangle::<V>(&mut rng);
         if !t.is_degenerate() {
             continue;
@@ -169,6 +170,11 @@ fn hits_on_zero_area_triangles_are_safe_f64() {
 }
 
 proptest! {
+    #![proptest_config(ProptestConfig {
+        cases: case_count(256).try_into().unwrap_or(u32::MAX),
+        ..ProptestConfig::default()
+    })]
+
     #[test]
     fn is_degenerate_matches_exact_on_strategy_triangles(t in rayhit::strategies::triangle::<Vec3>()) {
         prop_assert_eq!(t.is_degenerate(), exactly_degenerate(&t));
@@ -191,7 +197,7 @@ fn t_junctions<V: Vector>() {
     let mut rng = Source::seeded(47);
     let f = |p: [f64; 3]| cases::v::<V>(p);
     let (mut rays, mut only_filler) = (0u32, 0u32);
-    for _ in 0..4_000 {
+    for _ in 0..case_count(4_000) {
         // Integer corners (exact in both precisions), `B - A` even and on
         // no axis, so that `M` is exact; a random power-of-two scale.
         let scale = 2f64.powi(rng.below(40) as i32 - 20);

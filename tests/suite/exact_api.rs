@@ -5,6 +5,7 @@
 use rayhit::exact::{self, Case, Claim, Verdict};
 use rayhit::glam::{DVec3, Vec3};
 use rayhit::{Aabb, Plane, Ray, Scalar, Triangle, Vector};
+use rayhit_testkit::case_count;
 use rayhit_testkit::source::Source;
 
 /// A float from raw bits, biased towards the interesting ones.
@@ -88,10 +89,10 @@ fn run<V: Vector>(n: usize) {
 
 #[test]
 fn raw_bits_f32() {
-    run::<Vec3>(1500);
+    run::<Vec3>(case_count(1500));
 }
 
 #[test]
 fn raw_bits_f64() {
-    run::<DVec3>(1500);
+    run::<DVec3>(case_count(1500));
 }

@@ -38,10 +38,9 @@
 //! the world origin moves it by more than the mesh's size) are skipped and
 //! counted.
 //!
-//! `INSTANCE_MESH_CASES=n` sets the number of transforms per precision
-//! (default 60, a few seconds; each transform places both meshes alone and
-//! inside a second instance, with 16 rays each). Counts print with
-//! `--nocapture`. The long run, 20,000 transforms (about 2.5 million rays
+//! 60 transforms per precision (a few seconds; each transform places both
+//! meshes alone and inside a second instance, with 16 rays each), times
+//! `RAYHIT_CASES`. Counts print with `--nocapture`. The long run, 20,000 transforms (about 2.5 million rays
 //! per precision):
 //!
 //! ```sh
@@ -54,19 +53,13 @@ use rayhit::{
     EdgeRule, Instance, Intersect, PreparedRay, Ray, Scalar, Triangle, Vector,
     instance::InstanceRayError,
 };
+use rayhit_testkit::case_count;
 use rayhit_testkit::cases::{c, v};
 use rayhit_testkit::mesh;
 use rayhit_testkit::oracle::{R3, r, rv, to_f64};
 use rayhit_testkit::source::Source;
 
 type S<V> = <V as Vector>::Scalar;
-
-fn cases(default: usize) -> usize {
-    std::env::var("INSTANCE_MESH_CASES")
-        .ok()
-        .and_then(|s| s.parse().ok())
-        .unwrap_or(default)
-}
 
 fn norm(x: [f64; 3]) -> f64 {
     (x[0] * x[0] + x[1] * x[1] + x[2] * x[2]).sqrt()
@@ -556,22 +549,22 @@ fn run<V: Vector>(name: &str, seed: u64, n: usize) {
 
 #[test]
 fn instanced_meshes_are_closed_f32() {
-    run::<Vec3>("f32", 0x3e54_0001, cases(60));
+    run::<Vec3>("f32", 0x3e54_0001, case_count(60));
 }
 
 #[test]
 fn instanced_meshes_are_closed_f64() {
-    run::<DVec3>("f64", 0x3e54_0002, cases(60));
+    run::<DVec3>("f64", 0x3e54_0002, case_count(60));
 }
 
 #[test]
 #[ignore = "long: about 2.5 million rays per precision"]
 fn instanced_meshes_are_closed_long_f32() {
-    run::<Vec3>("f32", 0x3e54_1001, cases(20_000));
+    run::<Vec3>("f32", 0x3e54_1001, case_count(20_000));
 }
 
 #[test]
 #[ignore = "long: about 2.5 million rays per precision"]
 fn instanced_meshes_are_closed_long_f64() {
-    run::<DVec3>("f64", 0x3e54_1002, cases(20_000));
+    run::<DVec3>("f64", 0x3e54_1002, case_count(20_000));
 }

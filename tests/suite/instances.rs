@@ -20,8 +20,7 @@
 //!
 //! Transforms: rotations, per-axis scales from 1e-3 to 1e3, shears,
 //! translations up to 1e5, and nested pairs; both precisions.
-//! `INSTANCE_CASES=n` sets the number of cases per precision (default 300,
-//! a few seconds). The long run, 250,000 cases (four spawned rays each, so
+//! 300 cases per precision (a few seconds), times `RAYHIT_CASES`. The long run, 250,000 cases (four spawned rays each, so
 //! 1e6 rays per precision):
 //!
 //! ```sh
@@ -36,17 +35,11 @@ use rayhit::{
     instance::{InstanceError, InstanceRayError},
     ray_triangle,
 };
+use rayhit_testkit::case_count;
 use rayhit_testkit::oracle::{R, dot, r, rv};
 use rayhit_testkit::source::Source;
 
 type S<V> = <V as Vector>::Scalar;
-
-fn cases(default: usize) -> usize {
-    std::env::var("INSTANCE_CASES")
-        .ok()
-        .and_then(|s| s.parse().ok())
-        .unwrap_or(default)
-}
 
 fn v<V: Vector>(x: [f64; 3]) -> V {
     V::new(
@@ -634,12 +627,12 @@ fn run_all<V: Vector>(name: &str, seed: u64, n: usize) {
 
 #[test]
 fn instances_f32() {
-    run_all::<Vec3>("f32", 0x1157_0001, cases(300));
+    run_all::<Vec3>("f32", 0x1157_0001, case_count(300));
 }
 
 #[test]
 fn instances_f64() {
-    run_all::<DVec3>("f64", 0x1157_0002, cases(300));
+    run_all::<DVec3>("f64", 0x1157_0002, case_count(300));
 }
 
 /// The long run, about a million spawned rays per precision: one test per
@@ -647,13 +640,13 @@ fn instances_f64() {
 #[test]
 #[ignore = "long: a million spawned rays per precision"]
 fn instances_long_f32() {
-    run_all::<Vec3>("f32", 0x1157_1001, cases(250_000));
+    run_all::<Vec3>("f32", 0x1157_1001, case_count(250_000));
 }
 
 #[test]
 #[ignore = "long: a million spawned rays per precision"]
 fn instances_long_f64() {
-    run_all::<DVec3>("f64", 0x1157_1002, cases(250_000));
+    run_all::<DVec3>("f64", 0x1157_1002, case_count(250_000));
 }
 
 /// (d) Singular, NaN and infinite matrices are errors; random bit
@@ -701,7 +694,7 @@ fn bad_matrices_are_errors() {
     // Random bit patterns: no panic; Ok instances give NaN-free bounds.
     let mut src = Source::seeded(0x1157_0d0d);
     let (mut ok, mut err) = (0, 0);
-    for _ in 0..20_000 {
+    for _ in 0..case_count(20_000) {
         let pick = |src: &mut Source| match src.below(4) {
             0 => f32::from_bits(src.bits() as u32),
             1 => src.range(-4.0, 4.0) as f32,

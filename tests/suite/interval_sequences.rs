@@ -42,14 +42,15 @@
 //! passes the triangle by more than the test's rounding, it is a clear
 //! miss (and the exact line must miss it), with no verdict to compute.
 //!
-//! `SEQUENCE_RAYS=n` sets the rays per mesh and precision (default 80, well
-//! under a second); the counts and the time print with `--nocapture`. The
-//! long run, about a million rays per precision, each on
-//! `SEQUENCE_THREADS` threads (default 2; the two precisions run at once),
-//! took 6.6 minutes on 2 shared cores (f32 256 s and f64 394 s, at once):
+//! 80 rays per mesh and precision (well under a second), times
+//! `RAYHIT_CASES`; the counts and the time print with `--nocapture`. The
+//! long run, about a million rays per precision (340,000 per mesh), each on
+//! as many threads as `std::thread::available_parallelism` gives (the two
+//! precisions run at once), took 6.6 minutes on 2 shared cores (f32 256 s
+//! and f64 394 s, at once):
 //!
 //! ```sh
-//! SEQUENCE_RAYS=340000 cargo test --release --test suite interval_sequences:: -- --ignored --nocapture
+//! cargo test --release --test suite interval_sequences:: -- --ignored --nocapture
 //! ```
 
 use rayhit::exact::{self, oracle};
@@ -63,11 +64,9 @@ use rayhit_testkit::rng::Pcg32;
 
 type S<V> = <V as Vector>::Scalar;
 
+/// Rays per mesh and precision: 80 times `RAYHIT_CASES`.
 fn rays() -> usize {
-    std::env::var("SEQUENCE_RAYS")
-        .ok()
-        .and_then(|s| s.parse().ok())
-        .unwrap_or(80)
+    rayhit_testkit::case_count(80)
 }
 
 /// An octahedron of radius 2 with a T-junction: the face `px, py, pz` is
@@ -458,13 +457,11 @@ fn run_share<V: Vector>(seed: u64, rays_per_mesh: usize, (k, n): (usize, usize))
     tally
 }
 
-/// `SEQUENCE_THREADS`, else `default`.
-fn threads(default: usize) -> usize {
-    std::env::var("SEQUENCE_THREADS")
-        .ok()
-        .and_then(|s| s.parse().ok())
-        .filter(|&n| n > 0)
-        .unwrap_or(default)
+/// The threads for a long run: as many as the machine runs at once
+/// (`std::thread::available_parallelism`), else 2. The rays and the tally
+/// are the same for any number.
+fn threads() -> usize {
+    std::thread::available_parallelism().map_or(2, |n| n.get())
 }
 
 /// [`run`], timed and printed.
@@ -481,7 +478,7 @@ fn timed<V: Vector>(label: &str, seed: u64, rays_per_mesh: usize, threads: usize
 
 #[test]
 fn sequences_on_closed_meshes_f32() {
-    let t = timed::<Vec3>("f32", 11, rays(), threads(1));
+    let t = timed::<Vec3>("f32", 11, rays(), 1);
     assert!(
         t.closed_hits >= t.rays && t.clear_rays > t.rays / 4,
         "{t:?}"
@@ -490,7 +487,7 @@ fn sequences_on_closed_meshes_f32() {
 
 #[test]
 fn sequences_on_closed_meshes_f64() {
-    let t = timed::<DVec3>("f64", 12, rays(), threads(1));
+    let t = timed::<DVec3>("f64", 12, rays(), 1);
     assert!(
         t.closed_hits >= t.rays && t.clear_rays > t.rays / 4,
         "{t:?}"
@@ -500,13 +497,23 @@ fn sequences_on_closed_meshes_f64() {
 #[test]
 #[ignore = "long: about a million rays per precision"]
 fn sequences_on_closed_meshes_long_f32() {
-    timed::<Vec3>("f32 long", 21, rays().max(340_000), threads(2));
+    timed::<Vec3>(
+        "f32 long",
+        21,
+        rayhit_testkit::case_count(340_000),
+        threads(),
+    );
 }
 
 #[test]
 #[ignore = "long: about a million rays per precision"]
 fn sequences_on_closed_meshes_long_f64() {
-    timed::<DVec3>("f64 long", 22, rays().max(340_000), threads(2));
+    timed::<DVec3>(
+        "f64 long",
+        22,
+        rayhit_testkit::case_count(340_000),
+        threads(),
+    );
 }
 
 /// The same invariants as properties, for proptest to shrink a failure to
@@ -552,7 +559,10 @@ mod properties {
     }
 
     proptest! {
-        #![proptest_config(ProptestConfig { cases: 48, ..ProptestConfig::default() })]
+        #![proptest_config(ProptestConfig {
+            cases: rayhit_testkit::case_count(48).try_into().unwrap_or(u32::MAX),
+            ..ProptestConfig::default()
+        })]
 
         #[test]
         fn sequence_invariants(

@@ -44,8 +44,8 @@
 //! Bad input: NaN or inverted intervals cannot be built; NaN rays, planes
 //! and boxes miss, without a panic.
 //!
-//! `INTERVAL_SHAPE_CASES=n` sets the cases per kind and precision (default
-//! 150, about 5 s on 2 cores in the test profile). The long run, ignored
+//! 150 cases per kind and precision (about 5 s on 2 cores in the test
+//! profile), times `RAYHIT_CASES`. The long run, ignored
 //! by default: 100 times as many cases, in one test (so on one core);
 //! about half an hour, estimated from the default run's times, not timed:
 //!
@@ -61,16 +61,10 @@ use rayhit::{
     Aabb, Bounds, BoxFace, Intersect, Interval, Plane, PreparedRay, Ray, Scalar, Vector, ray_aabb,
     ray_plane,
 };
+use rayhit_testkit::case_count;
 use rayhit_testkit::rng::Pcg32;
 
 type S<V> = <V as Vector>::Scalar;
-
-fn cases(default: usize) -> usize {
-    std::env::var("INTERVAL_SHAPE_CASES")
-        .ok()
-        .and_then(|s| s.parse().ok())
-        .unwrap_or(default)
-}
 
 /// A value on a grid of `2^-k`, from `bits` random bits (few, so that
 /// sums and products of them stay exact).
@@ -721,7 +715,7 @@ const CASES: usize = 150;
 
 #[test]
 fn planes_are_decided_exactly_f32() {
-    let t = plane_cases::<Vec3>(1, cases(CASES));
+    let t = plane_cases::<Vec3>(1, case_count(CASES));
     println!("f32 planes: {t:?}");
     assert!(
         t.hits > t.windows / 8 && t.float_wrong > 0 && t.dropped_by_plain > 0,
@@ -732,7 +726,7 @@ fn planes_are_decided_exactly_f32() {
 
 #[test]
 fn planes_are_decided_exactly_f64() {
-    let t = plane_cases::<DVec3>(2, cases(CASES));
+    let t = plane_cases::<DVec3>(2, case_count(CASES));
     println!("f64 planes: {t:?}");
     assert!(
         t.hits > t.windows / 8 && t.float_wrong > 0 && t.dropped_by_plain > 0,
@@ -743,7 +737,7 @@ fn planes_are_decided_exactly_f64() {
 
 #[test]
 fn boxes_are_culled_conservatively_f32() {
-    let t = box_cases::<Vec3>(3, cases(CASES));
+    let t = box_cases::<Vec3>(3, case_count(CASES));
     println!("f32 boxes: {t:?}");
     assert!(t.exact_hits > t.windows / 8 && t.faces > 0, "{t:?}");
     assert!(
@@ -754,7 +748,7 @@ fn boxes_are_culled_conservatively_f32() {
 
 #[test]
 fn boxes_are_culled_conservatively_f64() {
-    let t = box_cases::<DVec3>(4, cases(CASES));
+    let t = box_cases::<DVec3>(4, case_count(CASES));
     println!("f64 boxes: {t:?}");
     assert!(t.exact_hits > t.windows / 8 && t.faces > 0, "{t:?}");
     assert!(
@@ -768,7 +762,7 @@ fn boxes_are_culled_conservatively_f64() {
 #[test]
 #[ignore]
 fn long_run() {
-    let n = cases(100 * CASES);
+    let n = case_count(100 * CASES);
     for (i, t) in [
         plane_cases::<Vec3>(11, n),
         plane_cases::<DVec3>(12, n),

@@ -31,8 +31,8 @@
 //!   `t*` is farther than the error bound from the ends; a hit only the
 //!   interval form reports lies within the error bound of `t = 0`.
 //!
-//! `INTERVAL_CASES=n` sets the case count per generator and precision
-//! (default 400, a few seconds).
+//! 400 cases per generator and precision (a few seconds), times
+//! `RAYHIT_CASES`.
 
 use super::draw::{f, point, signed, v};
 use rayhit::exact::{self, oracle};
@@ -46,10 +46,7 @@ use rayhit_testkit::rng::Pcg32;
 type S<V> = <V as Vector>::Scalar;
 
 fn cases() -> usize {
-    std::env::var("INTERVAL_CASES")
-        .ok()
-        .and_then(|s| s.parse().ok())
-        .unwrap_or(400)
+    rayhit_testkit::case_count(400)
 }
 
 /// `x` moved by `k` ulps (up for `k > 0`).

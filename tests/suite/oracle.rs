@@ -16,7 +16,7 @@
 //! `cargo test --test suite oracle::` runs 10,000 cases per generator and precision.
 //! The long run, 1,000,000 per generator:
 //! `cargo test --release --test suite oracle:: -- --ignored --nocapture`.
-//! `ORACLE_CASES=n` overrides both.
+//! `RAYHIT_CASES=k` multiplies both (`rayhit_testkit::case_count`).
 
 use std::fmt;
 
@@ -26,6 +26,7 @@ use rayhit::{
     Aabb, EdgeRule, Intersect, Ray, Scalar, Surface, Triangle, Vector, ray_aabb, ray_plane,
     ray_triangle,
 };
+use rayhit_testkit::case_count;
 use rayhit_testkit::cases::boxes::{self, BoxCase};
 use rayhit_testkit::cases::planes;
 use rayhit_testkit::cases::triangles::{self, TriCase};
@@ -38,13 +39,6 @@ type S<V> = <V as Vector>::Scalar;
 
 const DEFAULT_CASES: usize = 10_000;
 const LONG_CASES: usize = 1_000_000;
-
-fn cases(default: usize) -> usize {
-    std::env::var("ORACLE_CASES")
-        .ok()
-        .and_then(|s| s.parse().ok())
-        .unwrap_or(default)
-}
 
 fn f(x: &R) -> f64 {
     oracle::to_f64(x)
@@ -762,44 +756,44 @@ fn all_meshes<V: Vector>(n: usize) {
 
 #[test]
 fn boxes_f32() {
-    all_boxes::<Vec3>(cases(DEFAULT_CASES));
+    all_boxes::<Vec3>(case_count(DEFAULT_CASES));
 }
 
 #[test]
 fn boxes_f64() {
-    all_boxes::<DVec3>(cases(DEFAULT_CASES));
+    all_boxes::<DVec3>(case_count(DEFAULT_CASES));
 }
 
 #[test]
 fn triangles_f32() {
-    all_triangles::<Vec3>(cases(DEFAULT_CASES));
+    all_triangles::<Vec3>(case_count(DEFAULT_CASES));
 }
 
 #[test]
 fn triangles_f64() {
-    all_triangles::<DVec3>(cases(DEFAULT_CASES));
+    all_triangles::<DVec3>(case_count(DEFAULT_CASES));
 }
 
 #[test]
 fn planes() {
-    run_planes::<Vec3>(cases(DEFAULT_CASES));
-    run_planes::<DVec3>(cases(DEFAULT_CASES));
+    run_planes::<Vec3>(case_count(DEFAULT_CASES));
+    run_planes::<DVec3>(case_count(DEFAULT_CASES));
 }
 
 #[test]
 fn meshes_f32() {
-    all_meshes::<Vec3>(cases(DEFAULT_CASES));
+    all_meshes::<Vec3>(case_count(DEFAULT_CASES));
 }
 
 #[test]
 fn meshes_f64() {
-    all_meshes::<DVec3>(cases(DEFAULT_CASES));
+    all_meshes::<DVec3>(case_count(DEFAULT_CASES));
 }
 
 /// The long run, a million cases per generator and precision, one test per
 /// kind of shape so that each can be rerun alone (`-- --ignored long_meshes`).
 fn long<F: Fn(usize) + Sync>(f32_part: F, f64_part: impl Fn(usize) + Sync) {
-    let n = cases(LONG_CASES);
+    let n = case_count(LONG_CASES);
     std::thread::scope(|s| {
         s.spawn(|| f32_part(n));
         s.spawn(|| f64_part(n));

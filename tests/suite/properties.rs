@@ -12,16 +12,17 @@ use rayhit::{
     Aabb, Bounds, EdgeRule, Intersect, Plane, PreparedRay, Ray, Scalar, Side, Surface,
     SurfacePoint, Triangle, ValidAabb, Vector, ray_aabb, ray_plane, ray_triangle,
 };
+use rayhit_testkit::case_count;
 use rayhit_testkit::oracle;
 use rayhit_testkit::oracle::{R, gamma, r, rv};
 
 type S<V> = <V as Vector>::Scalar;
 
-/// Cases per property and precision. The README says how to run more
-/// (`PROPTEST_CASES=100000 cargo test --release --test suite properties::`).
+/// Cases per property and precision: 2048 times `RAYHIT_CASES`
+/// (`RAYHIT_CASES=50 cargo test --release --test suite properties::`).
 fn config() -> ProptestConfig {
     ProptestConfig {
-        cases: 2048,
+        cases: case_count(2048).try_into().unwrap_or(u32::MAX),
         ..ProptestConfig::default()
     }
 }

@@ -42,8 +42,8 @@
 //!   overflowing differences, random bit patterns: `None` or a valid ray
 //!   with `(0, 1]`, never a panic.
 //!
-//! `SPAWN_TO_CASES=n` sets the segments per precision (default 8000, about
-//! four seconds in the test profile; counts print with `--nocapture`).
+//! 8000 segments per precision (about four seconds in the test profile;
+//! counts print with `--nocapture`), times `RAYHIT_CASES`.
 //! The long run, a million segments per precision (occluders on every
 //! tenth), the two precisions on two threads: about five minutes on this
 //! 2-core machine (50,000 per precision took 15 s in the test profile,
@@ -59,19 +59,13 @@ use rayhit::{
     Aabb, BoxFace, Intersect, Interval, Plane, Ray, Scalar, Surface as _, SurfacePoint, Triangle,
     Vector, ray_plane, ray_triangle,
 };
+use rayhit_testkit::case_count;
 use rayhit_testkit::cases::{c, v};
 use rayhit_testkit::mesh;
 use rayhit_testkit::oracle::{R, R3, cross, dot, rv, sub, to_f64};
 use rayhit_testkit::rng::Pcg32;
 
 type S<V> = <V as Vector>::Scalar;
-
-fn cases(default: usize) -> usize {
-    std::env::var("SPAWN_TO_CASES")
-        .ok()
-        .and_then(|s| s.parse().ok())
-        .unwrap_or(default)
-}
 
 // ------------------------------------------------------------ f64 helpers
 
@@ -902,20 +896,20 @@ fn report_and_assert(name: &str, t: &Tally) {
 
 #[test]
 fn segments_f32() {
-    let t = run::<Vec3>(0x5ba3_0001, cases(8000), 3);
+    let t = run::<Vec3>(0x5ba3_0001, case_count(8000), 3);
     report_and_assert("f32", &t);
 }
 
 #[test]
 fn segments_f64() {
-    let t = run::<DVec3>(0x5ba3_0002, cases(8000), 3);
+    let t = run::<DVec3>(0x5ba3_0002, case_count(8000), 3);
     report_and_assert("f64", &t);
 }
 
 #[test]
 #[ignore = "long run: a million segments per precision"]
 fn segments_long() {
-    let n = cases(1_000_000);
+    let n = case_count(1_000_000);
     std::thread::scope(|s| {
         let a = s.spawn(|| run::<Vec3>(0x5ba3_1001, n, 10));
         let b = s.spawn(|| run::<DVec3>(0x5ba3_1002, n, 10));
@@ -934,7 +928,7 @@ fn close_lights<V: Vector>(seed: u64) {
     let mut rng = Pcg32::new(seed);
     let solid = Solid::new(false);
     let (mut tried, mut returned, mut far_clear, mut far_returned) = (0, 0, 0, 0);
-    for k in 0..cases(1500) {
+    for k in 0..case_count(1500) {
         let sc = scene::<V>(&mut rng, &solid);
         let Some(a) = end_on(&mut rng, &sc) else {
             continue;
@@ -1061,7 +1055,7 @@ fn bad_input<V: Vector>() {
         S::<V>::from_f64(x)
     };
     let vec = |rng: &mut Pcg32| V::new(any(rng), any(rng), any(rng));
-    for _ in 0..20_000 {
+    for _ in 0..case_count(20_000) {
         let x = SurfacePoint {
             point: vec(&mut rng),
             point_error: vec(&mut rng),
