@@ -34,7 +34,7 @@
 //! 400 cases per generator and precision (a few seconds), times
 //! `RAYHIT_CASES`.
 
-use super::draw::{f, point, signed, v};
+use crate::common::draw::{f, point, signed, v};
 use rayhit::exact::{self, oracle};
 use rayhit::glam::{DVec3, Vec3};
 use rayhit::{

@@ -44,7 +44,7 @@
 //! per precision):
 //!
 //! ```sh
-//! cargo test --release -p rayhit --test suite instance_meshes:: -- --ignored --nocapture
+//! cargo test --release -p rayhit --test suite instance::meshes:: -- --ignored --nocapture
 //! ```
 
 use rayhit::exact::{self, AffineMap};

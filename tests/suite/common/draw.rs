@@ -1,6 +1,8 @@
-//! What the interval and segment tests draw their inputs with: floats in a
-//! precision, and uniform values and points from the test kit's `Pcg32`.
+//! What the tests draw their inputs with: floats in a precision, uniform
+//! values and points from the test kit's `Pcg32`, and vectors from raw
+//! bits.
 
+use rayhit::glam::Vec3;
 use rayhit::{Scalar, Vector};
 use rayhit_testkit::rng::Pcg32;
 
@@ -30,4 +32,9 @@ pub fn point<V: Vector>(rng: &mut Pcg32, scale: f64, centre: [f64; 3]) -> V {
         centre[1] + scale * signed(rng),
         centre[2] + scale * signed(rng),
     )
+}
+
+/// A `Vec3` from raw `f32` bits, as the fuzz regressions give inputs.
+pub fn bits(x: [u32; 3]) -> Vec3 {
+    Vec3::from_array(x.map(f32::from_bits))
 }

@@ -2,7 +2,7 @@
 //! target runs, in `rayhit_testkit::fuzz`) on seeded structured cases in
 //! both precisions, and worked examples with numbers a reader can check.
 //!
-//! More cases: `RAYHIT_CASES=250 cargo test --release --test suite cameras::`.
+//! More cases: `RAYHIT_CASES=250 cargo test --release --test suite camera::checks::`.
 
 use rayhit::glam::{DVec3, Vec3};
 use rayhit::{
@@ -129,7 +129,7 @@ fn pinhole_checks() {
 /// focal length (`P[1][1] height / 2`, from the matrix itself, rounded
 /// once), within the sum of their distances from the exact camera.
 ///
-/// Bound (first order in `u`, as `tests/suite/camera.rs`'s `check_glam`): with
+/// Bound (first order in `u`, as `camera::properties`'s `check_glam`): with
 /// `s` the sine between view and up, each camera's basis vectors are
 /// within `e = max(e_F, e_R, e_U)` of the exact ones (`e_F = sqrt(3)
 /// gamma(6)`, `e_R = (2 e_F + sqrt(2) gamma(2)) / s + sqrt(3) gamma(6)`,

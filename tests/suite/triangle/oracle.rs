@@ -1,168 +1,30 @@
-//! The exact oracle against every kernel, on the cases that break textbook
-//! code: rays through box edges and corners, axis-parallel rays on slab
-//! planes, rays in face planes, grazing rays, tiny and `-0.0` direction
-//! components, scenes far from the origin, tiny and huge shapes, slivers,
-//! and rays through the shared edges and vertices of meshes (a grid, an
-//! octahedron, a jittered icosphere, vertex fans), also from inside closed
-//! meshes.
+//! The triangle kernels against the exact oracle (see `common::oracle`):
+//! the watertight test (`ray_triangle`), its one-hit variant and
+//! Moller-Trumbore on every triangle generator of the test kit
+//! (`rayhit_testkit::cases::triangles`: rays in face planes, grazing rays,
+//! tiny and `-0.0` direction components, far and tiny triangles,
+//! slivers), every watertight hit's `t` held to its error bound; and on
+//! meshes, rays through the shared edges and vertices of a grid, an
+//! octahedron, a jittered icosphere and vertex fans, also from inside
+//! closed meshes: no crack, exactly one hit per crossing for the one-hit
+//! variant, an odd crossing count from inside. The rest is tallied.
 //!
-//! Each case is classified against exact rational arithmetic on the same
-//! floating-point inputs as right, false hit or false miss, and every false
-//! hit is measured: how far (in ulps of the largest coordinate involved) the
-//! ray passes from the shape. The guarantees are asserted (no false miss for
-//! the slab test, no crack and exactly one hit per crossing for the mesh
-//! tests); the rest is reported (run with `--nocapture` to see the tables).
-//!
-//! `cargo test --test suite oracle::` runs 10,000 cases per generator and precision.
-//! The long run, 1,000,000 per generator:
-//! `cargo test --release --test suite oracle:: -- --ignored --nocapture`.
-//! `RAYHIT_CASES=k` multiplies both (`rayhit_testkit::case_count`).
+//! `cargo test --test suite triangle::oracle::` runs 10,000 cases per
+//! generator and precision; the long runs, 1,000,000 per generator:
+//! `cargo test --release --test suite triangle::oracle:: -- --ignored --nocapture`.
 
-use std::fmt;
-
-use num_traits::{Signed, Zero};
+use crate::common::oracle::{DEFAULT_CASES, Tally, f, long, precision, report};
+use num_traits::Signed;
 use rayhit::glam::{DVec3, Vec3};
-use rayhit::{
-    Aabb, EdgeRule, Intersect, Ray, Scalar, Surface, Triangle, Vector, ray_aabb, ray_plane,
-    ray_triangle,
-};
+use rayhit::{EdgeRule, Intersect, Ray, Scalar, Surface, Triangle, Vector, ray_triangle};
 use rayhit_testkit::case_count;
-use rayhit_testkit::cases::boxes::{self, BoxCase};
-use rayhit_testkit::cases::planes;
 use rayhit_testkit::cases::triangles::{self, TriCase};
 use rayhit_testkit::cases::{aimed, v};
 use rayhit_testkit::mesh as demo_mesh;
-use rayhit_testkit::oracle::{self, R, r, rv};
+use rayhit_testkit::oracle::{self, rv};
 use rayhit_testkit::source::Source;
 
 type S<V> = <V as Vector>::Scalar;
-
-const DEFAULT_CASES: usize = 10_000;
-const LONG_CASES: usize = 1_000_000;
-
-fn f(x: &R) -> f64 {
-    oracle::to_f64(x)
-}
-
-// ---------------------------------------------------------------- tallies
-
-/// Right / false hit / false miss counts for one kernel on one generator,
-/// with the largest distance of a false hit (and of a false miss) from the
-/// shape's boundary, in ulps of the largest coordinate involved.
-#[derive(Default, Clone)]
-struct Tally {
-    cases: usize,
-    exact_hits: usize,
-    false_hits: usize,
-    false_misses: usize,
-    worst_false_hit_ulps: f64,
-    worst_false_miss_ulps: f64,
-}
-
-impl Tally {
-    /// Records one answer; `ulps` is the distance of the ray from the
-    /// boundary (used only when the answer is wrong).
-    fn record(&mut self, kernel: bool, exact: bool, ulps: impl FnOnce() -> f64) {
-        self.cases += 1;
-        self.exact_hits += usize::from(exact);
-        if kernel && !exact {
-            self.false_hits += 1;
-            self.worst_false_hit_ulps = self.worst_false_hit_ulps.max(ulps());
-        } else if !kernel && exact {
-            self.false_misses += 1;
-            self.worst_false_miss_ulps = self.worst_false_miss_ulps.max(ulps());
-        }
-    }
-}
-
-impl fmt::Display for Tally {
-    fn fmt(&self, out: &mut fmt::Formatter<'_>) -> fmt::Result {
-        let pct = |n: usize| 100.0 * n as f64 / self.cases.max(1) as f64;
-        write!(
-            out,
-            "{:>8} cases {:>5.1}% hit | false hits {:>6} ({:.4}%, worst {:.3e} ulps) | false misses {:>6} ({:.4}%, worst {:.3e} ulps)",
-            self.cases,
-            pct(self.exact_hits),
-            self.false_hits,
-            pct(self.false_hits),
-            self.worst_false_hit_ulps,
-            self.false_misses,
-            pct(self.false_misses),
-            self.worst_false_miss_ulps,
-        )
-    }
-}
-
-fn report(precision: &str, generator: &str, rows: &[(&str, &Tally)]) {
-    for (kernel, t) in rows {
-        println!("{precision:>3} {generator:<22} {kernel:<11} {t}");
-    }
-}
-
-fn precision<V: Vector>() -> &'static str {
-    if S::<V>::UNIT_ROUNDOFF.to_f64() > 1e-10 {
-        "f32"
-    } else {
-        "f64"
-    }
-}
-
-// ------------------------------------------------------------------ boxes
-
-/// How far a ray passes from a box it misses (or how deep it goes into one
-/// it hits), in ulps of the largest coordinate (see `oracle::box_gap`).
-fn box_gap_ulps<V: Vector>(ray: &Ray<V>, b: &Aabb<V>, t_max: S<V>) -> f64 {
-    rayhit::exact::distance_ulps(&rayhit::exact::Case::Box(*ray, *b, t_max))
-}
-
-fn run_boxes<V: Vector>(name: &str, seed: u64, n: usize, generator: fn(&mut Source) -> BoxCase<V>) {
-    let mut rng = Source::seeded(seed);
-    let (mut slab, mut naive) = (Tally::default(), Tally::default());
-    let mut beyond_range = 0usize;
-    for i in 0..n {
-        let (b, ray, t_max) = generator(&mut rng);
-        if !(ray.is_valid() && b.is_valid()) {
-            continue;
-        }
-        let interval = oracle::box_interval(&ray, &b, t_max);
-        // The documented precondition: exact distances below MAX / 2. Beyond
-        // it a hit cannot be reported in this precision, and a direction
-        // component below 1/MAX (whose reciprocal overflows) can make the
-        // slab test report a "hit" that exact arithmetic places beyond MAX.
-        let half_max = r(S::<V>::MAX) / R::from_integer(2.into());
-        if oracle::box_raw(&ray, &b, t_max).is_some_and(|(e, x)| e > half_max || x > half_max) {
-            beyond_range += 1;
-            continue;
-        }
-        let exact = interval.is_some();
-        let got = ray_aabb(&ray, &b, t_max);
-        slab.record(got.is_some(), exact, || box_gap_ulps(&ray, &b, t_max));
-        naive.record(b.clip_by_faces(&ray, t_max).is_some(), exact, || {
-            box_gap_ulps(&ray, &b, t_max)
-        });
-        assert!(
-            got.is_some() || !exact,
-            "{name} case {i}: slab false miss for {ray:?} {b:?} t_max {t_max:?}"
-        );
-    }
-    report(
-        precision::<V>(),
-        name,
-        &[("slab", &slab), ("naive", &naive)],
-    );
-    if beyond_range > 0 {
-        println!(
-            "{:>3} {name:<22} {beyond_range} cases with an exact entry or exit beyond MAX / 2 left out (precondition)",
-            precision::<V>()
-        );
-    }
-}
-
-fn all_boxes<V: Vector>(n: usize) {
-    for (name, seed, generator) in boxes::generators::<V>() {
-        run_boxes::<V>(name, seed, n, generator);
-    }
-}
 
 // -------------------------------------------------------------- triangles
 
@@ -263,56 +125,6 @@ fn all_triangles<V: Vector>(n: usize) {
     for (name, seed, generator) in triangles::generators::<V>() {
         run_triangles::<V>(name, seed, n, generator);
     }
-}
-
-// ----------------------------------------------------------------- planes
-
-fn run_planes<V: Vector>(n: usize) {
-    let mut rng = Source::seeded(21);
-    let mut tally = Tally::default();
-    let mut worst_t_err_ulps = 0.0f64;
-    let mut parallel = 0usize;
-    let mut worst_ratio = 0.0f64;
-    for i in 0..n {
-        let (plane, ray, t_max) = planes::plane::<V>(&mut rng);
-        if !ray.is_valid() {
-            continue;
-        }
-        let exact = oracle::plane_hit(&ray, &plane, t_max);
-        let got = ray_plane(&ray, &plane, t_max);
-        // The documented miss: within rounding of parallel, |d . n| <=
-        // 2 gamma(3) sum |d_i n_i| as computed; exactly, that is at most
-        // 3 gamma(3) sum |d_i n_i| (the computed values are within gamma(3)
-        // of the exact ones). Such misses are counted apart.
-        if got.is_none() && exact.is_some() {
-            let (d, n) = (rv(ray.dir), rv(plane.normal));
-            let dn = oracle::dot(&d, &n).abs();
-            let mag: R = (0..3).map(|k| (&d[k] * &n[k]).abs()).sum();
-            let g3 = R::from_float(3.0 * S::<V>::gamma_n(3).to_f64()).unwrap();
-            if dn <= g3 * mag {
-                parallel += 1;
-                continue;
-            }
-        }
-        let ulps = || rayhit::exact::distance_ulps(&rayhit::exact::Case::Plane(ray, plane, t_max));
-        tally.record(got.is_some(), exact.is_some(), ulps);
-        if let (Some(t), Some(te)) = (got, oracle::plane_t(&ray, &plane)) {
-            let err = plane.hit_error(&ray, &t);
-            assert!(
-                oracle::close(t, &te, err),
-                "plane case {i}: t {t:?} exact {} bound {err:?}",
-                f(&te)
-            );
-            let actual = (t.to_f64() - f(&te)).abs();
-            worst_t_err_ulps = worst_t_err_ulps.max(actual / oracle::ulp::<S<V>>(t.to_f64()));
-            worst_ratio = worst_ratio.max(actual / err.to_f64());
-        }
-    }
-    report(precision::<V>(), "plane mixed", &[("ray_plane", &tally)]);
-    println!(
-        "{:>3} plane mixed            t: worst error {worst_t_err_ulps:.2} ulps, worst error / bound {worst_ratio:.3}; {parallel} misses within rounding of parallel",
-        precision::<V>()
-    );
 }
 
 // ------------------------------------------------------------------ meshes
@@ -755,16 +567,6 @@ fn all_meshes<V: Vector>(n: usize) {
 // ------------------------------------------------------------------ tests
 
 #[test]
-fn boxes_f32() {
-    all_boxes::<Vec3>(case_count(DEFAULT_CASES));
-}
-
-#[test]
-fn boxes_f64() {
-    all_boxes::<DVec3>(case_count(DEFAULT_CASES));
-}
-
-#[test]
 fn triangles_f32() {
     all_triangles::<Vec3>(case_count(DEFAULT_CASES));
 }
@@ -772,12 +574,6 @@ fn triangles_f32() {
 #[test]
 fn triangles_f64() {
     all_triangles::<DVec3>(case_count(DEFAULT_CASES));
-}
-
-#[test]
-fn planes() {
-    run_planes::<Vec3>(case_count(DEFAULT_CASES));
-    run_planes::<DVec3>(case_count(DEFAULT_CASES));
 }
 
 #[test]
@@ -790,54 +586,14 @@ fn meshes_f64() {
     all_meshes::<DVec3>(case_count(DEFAULT_CASES));
 }
 
-/// The long run, a million cases per generator and precision, one test per
-/// kind of shape so that each can be rerun alone (`-- --ignored long_meshes`).
-fn long<F: Fn(usize) + Sync>(f32_part: F, f64_part: impl Fn(usize) + Sync) {
-    let n = case_count(LONG_CASES);
-    std::thread::scope(|s| {
-        s.spawn(|| f32_part(n));
-        s.spawn(|| f64_part(n));
-    });
-}
-
 #[test]
-#[ignore = "long: cargo test --release --test suite oracle:: -- --ignored --nocapture"]
-fn long_boxes() {
-    long(all_boxes::<Vec3>, all_boxes::<DVec3>);
-}
-
-#[test]
-#[ignore = "long: cargo test --release --test suite oracle:: -- --ignored --nocapture"]
+#[ignore = "long: cargo test --release --test suite triangle::oracle:: -- --ignored --nocapture"]
 fn long_triangles() {
     long(all_triangles::<Vec3>, all_triangles::<DVec3>);
 }
 
 #[test]
-#[ignore = "long: cargo test --release --test suite oracle:: -- --ignored --nocapture"]
+#[ignore = "long: cargo test --release --test suite triangle::oracle:: -- --ignored --nocapture"]
 fn long_meshes() {
     long(all_meshes::<Vec3>, all_meshes::<DVec3>);
-}
-
-#[test]
-#[ignore = "long: cargo test --release --test suite oracle:: -- --ignored --nocapture"]
-fn long_planes() {
-    long(run_planes::<Vec3>, run_planes::<DVec3>);
-}
-
-#[test]
-fn tally_counts_what_it_is_told() {
-    let mut t = Tally::default();
-    t.record(true, true, || unreachable!());
-    t.record(true, false, || 3.0);
-    t.record(false, true, || 5.0);
-    t.record(false, false, || unreachable!());
-    assert_eq!(
-        (t.cases, t.exact_hits, t.false_hits, t.false_misses),
-        (4, 2, 1, 1)
-    );
-    assert_eq!(
-        (t.worst_false_hit_ulps, t.worst_false_miss_ulps),
-        (3.0, 5.0)
-    );
-    let _ = R::zero();
 }

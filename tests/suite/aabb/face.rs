@@ -5,15 +5,15 @@
 //! distances, over the axes the ray moves along, when it is positive),
 //! the lowest such axis where several tie (edges and corners), and none
 //! when the exact entry is at `t <= 0`. Every box generator of the oracle
-//! suite, both precisions; rays aimed at every face; properties; and the
-//! spawned ray from the face point.
+//! suite, both precisions; rays aimed at every face; and properties. (The
+//! ray spawned from the face point is `surface::properties`'s, the faces
+//! of a batch's lanes `batch::face`'s.)
 
+use crate::common::props::config;
 use proptest::prelude::*;
 use rayhit::glam::{DVec3, Vec3};
 use rayhit::strategies as strat;
-use rayhit::{
-    Aabb, Bounds, BoxFace, Intersect, PreparedRay, Ray, Scalar, Vector, batch::AabbBatch, ray_aabb,
-};
+use rayhit::{Aabb, BoxFace, Intersect, PreparedRay, Ray, Scalar, Vector, ray_aabb};
 use rayhit_testkit::case_count;
 use rayhit_testkit::cases;
 use rayhit_testkit::cases::boxes;
@@ -159,51 +159,6 @@ fn faces_name_their_axis_side_normal_and_plane() {
     assert_eq!(BoxFace::new(3, false), None);
 }
 
-fn config() -> ProptestConfig {
-    ProptestConfig {
-        cases: case_count(2048).try_into().unwrap_or(u32::MAX),
-        ..ProptestConfig::default()
-    }
-}
-
-/// The point on a box face is on the face's plane exactly, and a ray
-/// spawned from it away from the box (not within rounding of tangent)
-/// does not touch the box again.
-fn spawn_leaves_the_box<V: Vector>(
-    aabb: Aabb<V>,
-    ray: Ray<V>,
-    bounce: V,
-) -> Result<(), TestCaseError> {
-    let Some(hit) = aabb.hit(&ray, S::<V>::INFINITY) else {
-        return Ok(());
-    };
-    let Some(surface) = aabb.surface_point(&ray, &hit) else {
-        prop_assert!(hit.face.is_none());
-        return Ok(());
-    };
-    let face = hit.face.expect("a surface point has a face");
-    prop_assert_eq!(surface.point[face.axis()], face.plane(&aabb));
-    prop_assert!(surface.point.is_finite() && surface.point_error.is_finite());
-    // Outward, clearly away from tangent.
-    let n: V = face.normal();
-    let along = bounce.dot(n);
-    let dir = if along < S::<V>::ZERO {
-        bounce - n * (along * S::<V>::TWO)
-    } else {
-        bounce
-    };
-    prop_assume!(dir.dot(n) > S::<V>::from_f64(1e-3) * dir.length());
-    let spawned = surface.spawn(dir);
-    prop_assert!(spawned.origin.is_finite());
-    prop_assert_eq!(
-        ray_aabb(&spawned, &aabb, S::<V>::INFINITY),
-        None,
-        "{:?}",
-        spawned
-    );
-    Ok(())
-}
-
 proptest! {
     #![proptest_config(config())]
 
@@ -219,32 +174,6 @@ proptest! {
         if let Some(hit) = aabb.hit(&ray, f64::INFINITY) {
             prop_assert_eq!(hit.face, oracle::box_face(&ray, &aabb).0);
         }
-    }
-
-    #[test]
-    fn spawn_leaves_the_box_f32((aabb, ray) in strat::aabb_and_ray::<Vec3>(), bounce in strat::direction::<Vec3>()) {
-        spawn_leaves_the_box(aabb, ray, bounce)?;
-    }
-
-    #[test]
-    fn spawn_leaves_the_box_f64((aabb, ray) in strat::aabb_and_ray::<DVec3>(), bounce in strat::direction::<DVec3>()) {
-        spawn_leaves_the_box(aabb, ray, bounce)?;
-    }
-
-    /// A batch's hit lanes get the face of their box.
-    #[test]
-    fn batch_lanes_get_their_faces((aabb, ray) in strat::aabb_and_ray::<Vec3>()) {
-        let batch = AabbBatch::<Vec3, 8>::from_slice(&[aabb; 3]).expect("3 <= 8");
-        let prepared = PreparedRay::new(&ray);
-        let hits = batch.clip(&prepared, f32::INFINITY);
-        for lane in 0..3 {
-            let expected = aabb.hit(&prepared, f32::INFINITY);
-            prop_assert_eq!(hits.get(lane).is_some(), expected.is_some());
-            if let (Some(_), Some(b)) = (hits.get(lane), batch.get(lane)) {
-                prop_assert_eq!(b.hit(&prepared, f32::INFINITY).and_then(|h| h.face), expected.and_then(|h| h.face));
-            }
-        }
-        prop_assert_eq!(aabb.clip(&prepared, f32::INFINITY).is_some(), hits.mask & 1 == 1);
     }
 }
 

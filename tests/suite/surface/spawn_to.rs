@@ -50,10 +50,10 @@
 //! opt-level 2; not measured at a million):
 //!
 //! ```sh
-//! cargo test --release -p rayhit --test suite spawn_to:: -- --ignored --nocapture
+//! cargo test --release -p rayhit --test suite surface::spawn_to:: -- --ignored --nocapture
 //! ```
 
-use super::draw::signed;
+use crate::common::draw::signed;
 use rayhit::glam::{DVec3, Vec3};
 use rayhit::{
     Aabb, BoxFace, Intersect, Interval, Plane, Ray, Scalar, Surface as _, SurfacePoint, Triangle,

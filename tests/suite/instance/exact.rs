@@ -24,7 +24,7 @@
 //! 1e6 rays per precision):
 //!
 //! ```sh
-//! cargo test --release -p rayhit --test suite instances:: -- --ignored --nocapture
+//! cargo test --release -p rayhit --test suite instance::exact:: -- --ignored --nocapture
 //! ```
 
 use num_traits::{Signed, Zero};

@@ -50,7 +50,7 @@
 //! and f64 394 s, at once):
 //!
 //! ```sh
-//! cargo test --release --test suite interval_sequences:: -- --ignored --nocapture
+//! cargo test --release --test suite triangle::walk:: -- --ignored --nocapture
 //! ```
 
 use rayhit::exact::{self, oracle};
