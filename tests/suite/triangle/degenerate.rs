@@ -1,0 +1,351 @@
+//! Zero-area triangles: `is_degenerate` against exact arithmetic, and
+//! hits on them safe to use (no NaN in the hit point, the normal, its
+//! error bound or a spawned ray).
+
+use num_traits::Zero;
+use proptest::prelude::*;
+use rayhit::glam::{DVec3, Vec3};
+use rayhit::{
+    EdgeRule, Intersect, IntersectLanes, PreparedRay, Ray, Scalar, Side, Surface, Triangle, Vector,
+    batch::TriangleBatch, ray_triangle,
+};
+use rayhit_testkit::case_count;
+use rayhit_testkit::cases;
+use rayhit_testkit::oracle;
+use rayhit_testkit::oracle::{cross, rv, sub};
+use rayhit_testkit::source::Source;
+
+type S<V> = <V as Vector>::Scalar;
+
+/// The exact answer: `(b - a) x (c - a)` is the zero vector.
+fn exactly_degenerate<V: Vector>(t: &Triangle<V>) -> bool {
+    let (a, b, c) = (rv(t.a), rv(t.b), rv(t.c));
+    cross(&sub(&b, &a), &sub(&c, &a)).iter().all(Zero::is_zero)
+}
+
+/// Triangles that are exactly collinear (on a dyadic grid, `c = a + k (b -
+/// a)` with a small `k`, so the coordinates stay exact), coincident, one
+/// ulp off collinear, tiny, huge, and ordinary.
+///
+/// Within the documented preconditions: coordinates below `2^60` (so that
+/// `f32` cross products do not overflow; the kernels assume `2^63`), and a
+/// coordinate one ulp off is bumped only where it is not zero (one ulp
+/// above zero is the smallest subnormal, whose products with the other
+/// differences underflow: `is_degenerate` documents that it is exact only
+/// where they do not, as the `f64` exact-sign fallback does).
+fn triangle<V: Vector>(rng: &mut Source) -> Triangle<V> {
+    let scale = 2f64.powi(rng.below(114) as i32 - 60);
+    let grid = |rng: &mut Source| (f64::from(rng.below(2048) as i32 - 1024) / 16.0) * scale;
+    let (a, b) = (
+        [grid(rng), grid(rng), grid(rng)],
+        [grid(rng), grid(rng), grid(rng)],
+    );
+    let f = |p: [f64; 3]| cases::v::<V>(p);
+    let k = f64::from(rng.below(9) as i32 - 4) / 2.0;
+    let c = [0, 1, 2].map(|i| a[i] + k * (b[i] - a[i]));
+    match rng.below(6) {
+        0 | 1 => Triangle::new(f(a), f(b), f(c)),
+        2 => Triangle::new(f(a), f(a), f(b)),
+        3 => {
+            let mut c = f(c);
+            let bumped = [c.x(), c.y(), c.z()];
+            let Some(i) = (0..3).find(|&i| bumped[i] != S::<V>::ZERO) else {
+                return Triangle::new(f(a), f(b), c);
+            };
+            c = V::new(
+                if i == 0 {
+                    bumped[0].next_up()
+                } else {
+                    bumped[0]
+                },
+                if i == 1 {
+                    bumped[1].next_up()
+                } else {
+                    bumped[1]
+                },
+                if i == 2 {
+                    bumped[2].next_up()
+                } else {
+                    bumped[2]
+                },
+            );
+            Triangle::new(f(a), f(b), c)
+        }
+        _ => Triangle::new(f(a), f(b), f([grid(rng), grid(rng), grid(rng)])),
+    }
+}
+
+fn is_degenerate_is_exact<V: Vector>() {
+    let mut rng = Source::seeded(41);
+    let (mut yes, mut no) = (0, 0);
+    for _ in 0..case_count(50_000) {
+        let t = triangle::<V>(&mut rng);
+        let exact = exactly_degenerate(&t);
+        assert_eq!(t.is_degenerate(), exact, "{t:?}");
+        if exact {
+            yes += 1;
+        } else {
+            no += 1;
+        }
+    }
+    assert!(yes > 10_000 && no > 10_000, "{yes} {no}");
+}
+
+#[test]
+fn is_degenerate_is_exact_f32() {
+    is_degenerate_is_exact::<Vec3>();
+}
+
+#[test]
+fn is_degenerate_is_exact_f64() {
+    is_degenerate_is_exact::<DVec3>();
+}
+
+/// A hit on a zero-area triangle is safe to use: every number derived from
+/// it is finite (the normal is zero or meaningless, and says so by its
+/// error bound), and a ray spawned from it in any direction is finite.
+fn hits_are_safe<V: Vector>() {
+    let mut rng = Source::seeded(43);
+    let mut hits = 0;
+    for _ in 0..case_count(100_000) {
+        let t = triangle::<V>(&mut rng);
+        if !t.is_degenerate() {
+            continue;
+        }
+        // Aim at a point of the segment, from a random side.
+        let w = cases::v::<V>([rng.unit(), rng.unit(), rng.unit()]);
+        let target = t.a + (t.b - t.a) * w.x();
+        let origin = target + cases::v::<V>(rng.direction()) * (t.b - t.a).length();
+        let ray = Ray::new(origin, target - origin);
+        let Some(hit) = ray_triangle(&ray, &t, S::<V>::INFINITY) else {
+            continue;
+        };
+        hits += 1;
+        assert!(hit.t.is_finite() && hit.u.is_finite() && hit.v.is_finite());
+        // `t` is a convex combination of the corners' depths along the ray
+        // (the edge functions share a sign), up to rounding: between the
+        // nearest and the farthest corner. (Measured on the ray's main
+        // axis, as the kernel does; the slack is far above its `gamma(8)`
+        // rounding term and far below the corners' spread in these cases.)
+        let d = ray.dir.abs();
+        let k = if d.x() >= d.y() && d.x() >= d.z() {
+            0
+        } else if d.y() >= d.z() {
+            1
+        } else {
+            2
+        };
+        let depth = |p: V| ((p - ray.origin)[k] / ray.dir[k]).to_f64();
+        let z = [depth(t.a), depth(t.b), depth(t.c)];
+        let (lo, hi) = (
+            z.iter().copied().fold(f64::INFINITY, f64::min),
+            z.iter().copied().fold(f64::NEG_INFINITY, f64::max),
+        );
+        let slack = 1e-5 * hi.abs().max(lo.abs());
+        let th = hit.t.to_f64();
+        assert!(
+            lo - slack <= th && th <= hi + slack,
+            "{t:?} {ray:?} {hit:?} {z:?}"
+        );
+        let (n, err) = (t.normal(), t.normal_error());
+        assert!(n.is_finite() && err.is_finite(), "{t:?}");
+        let surface = t.surface_point_at(hit.u, hit.v);
+        assert!(surface.point.is_finite() && surface.point_error.is_finite());
+        for dir in [ray.dir, -ray.dir, n, cases::v::<V>(rng.direction())] {
+            let spawned = surface.spawn(dir);
+            assert!(spawned.origin.is_finite(), "{t:?} {hit:?} {dir:?}");
+        }
+    }
+    assert!(hits > 1_000, "{hits}");
+}
+
+#[test]
+fn hits_on_zero_area_triangles_are_safe_f32() {
+    hits_are_safe::<Vec3>();
+}
+
+#[test]
+fn hits_on_zero_area_triangles_are_safe_f64() {
+    hits_are_safe::<DVec3>();
+}
+
+proptest! {
+    #![proptest_config(ProptestConfig {
+        cases: case_count(256).try_into().unwrap_or(u32::MAX),
+        ..ProptestConfig::default()
+    })]
+
+    #[test]
+    fn is_degenerate_matches_exact_on_strategy_triangles(t in rayhit::strategies::triangle::<Vec3>()) {
+        prop_assert_eq!(t.is_degenerate(), exactly_degenerate(&t));
+    }
+}
+
+/// A T-junction closed with a zero-area filler: the edge `A B` of `T1 =
+/// (A, B, C)` meets, on the other side, the two triangles `T2 = (A, D, M)`
+/// and `T3 = (M, D, B)` through the midpoint `M` of `A B`, and the filler
+/// `F = (A, M, B)` (corners exactly collinear: `M` is exact) joins them,
+/// every shared edge traversed in opposite directions. Around any interior
+/// point of `A B` the four triangles close the surface (for a ray that sees
+/// the real ones from one side), so the watertight test must hit one of
+/// them for every ray aimed there, from near (some corners behind the
+/// origin) or far; rounding opens a
+/// sliver between `A B` and `A M`, `M B` in the ray's frame, which only the
+/// filler covers, and some rays go through it. The one-hit test counts the
+/// crossing exactly once, with its side, the filler included.
+fn t_junctions<V: Vector>() {
+    let mut rng = Source::seeded(47);
+    let f = |p: [f64; 3]| cases::v::<V>(p);
+    let (mut rays, mut only_filler) = (0u32, 0u32);
+    for _ in 0..case_count(4_000) {
+        // Integer corners (exact in both precisions), `B - A` even and on
+        // no axis, so that `M` is exact; a random power-of-two scale.
+        let scale = 2f64.powi(rng.below(40) as i32 - 20);
+        let int = |rng: &mut Source, n: u32| f64::from(rng.below(2 * n + 1) as i32 - n as i32);
+        let a = [int(&mut rng, 512), int(&mut rng, 512), int(&mut rng, 512)];
+        let mut k = [0.0; 3];
+        for kk in &mut k {
+            while *kk == 0.0 {
+                *kk = int(&mut rng, 256);
+            }
+        }
+        let b = [0, 1, 2].map(|i| a[i] + 2.0 * k[i]);
+        let m = [0, 1, 2].map(|i| a[i] + k[i]);
+        // C and D on either side of A B, about |A B| away.
+        let ab = [0, 1, 2].map(|i| b[i] - a[i]);
+        let len = (ab[0] * ab[0] + ab[1] * ab[1] + ab[2] * ab[2]).sqrt();
+        let q = rng.direction();
+        let side = [
+            q[1] * ab[2] - q[2] * ab[1],
+            q[2] * ab[0] - q[0] * ab[2],
+            q[0] * ab[1] - q[1] * ab[0],
+        ];
+        let sl = (side[0] * side[0] + side[1] * side[1] + side[2] * side[2]).sqrt();
+        if sl < 0.1 * len {
+            continue;
+        }
+        let side = side.map(|x| x / sl * len);
+        let normal = [
+            ab[1] * side[2] - ab[2] * side[1],
+            ab[2] * side[0] - ab[0] * side[2],
+            ab[0] * side[1] - ab[1] * side[0],
+        ];
+        let nl = (normal[0] * normal[0] + normal[1] * normal[1] + normal[2] * normal[2]).sqrt();
+        let c = [0, 1, 2].map(|i| m[i] + side[i] + 0.3 * rng.range(-1.0, 1.0) * len);
+        let d = [0, 1, 2].map(|i| m[i] - side[i] + 0.3 * rng.range(-1.0, 1.0) * len);
+        let s = |p: [f64; 3]| f(p.map(|x| x * scale));
+        let (pa, pb, pc, pd, pm) = (s(a), s(b), s(c), s(d), s(m));
+        let tris = [
+            Triangle::new(pa, pb, pc),
+            Triangle::new(pa, pd, pm),
+            Triangle::new(pm, pd, pb),
+            Triangle::new(pa, pm, pb),
+        ];
+        assert!(tris[3].is_degenerate() && !tris[0].is_degenerate());
+        let batch = TriangleBatch::<V, 8>::from_slice(&tris);
+        for _ in 0..100 {
+            // Aim at an interior point of A B from either side, not grazing,
+            // from near (some corners behind the origin) and far.
+            let w = rng.range(0.1, 0.9);
+            let target = [0, 1, 2].map(|i| a[i] + w * ab[i]);
+            let sign = if rng.one_in(2) { 1.0 } else { -1.0 };
+            let r = rng.direction();
+            let from = [0, 1, 2].map(|i| {
+                target[i] + (sign * normal[i] / nl + 0.5 * r[i]) * rng.range(0.2, 2.0) * len
+            });
+            let (o, t) = (s(from), s(target));
+            let ray = Ray::new(o, t - o);
+            // Only where the ray sees the three real triangles from the same
+            // side, well away from edge-on: otherwise the patch folds at
+            // `A B` as seen from the ray, `A B` is a silhouette, and a ray
+            // passing it on the open side rightly hits nothing.
+            let facing = |tri: &Triangle<V>| {
+                let (n, dir) = (tri.normal(), ray.dir);
+                let cos = n.dot(dir).to_f64() / (n.length() * dir.length()).to_f64();
+                if cos > 0.1 {
+                    1
+                } else if cos < -0.1 {
+                    -1
+                } else {
+                    0
+                }
+            };
+            let sides = [facing(&tris[0]), facing(&tris[1]), facing(&tris[2])];
+            if sides[0] == 0 || sides[1] != sides[0] || sides[2] != sides[0] {
+                continue;
+            }
+            let found = tris.map(|tri| ray_triangle(&ray, &tri, S::<V>::INFINITY));
+            let hits = found.map(|h| h.is_some());
+            // The batch (the filler's lane marked zero-area when stored)
+            // gives the scalar answers, bit for bit.
+            let lanes = batch.map(|b| b.hit(&PreparedRay::new(&ray), S::<V>::INFINITY));
+            for (k, h) in found.iter().enumerate() {
+                assert_eq!(
+                    lanes
+                        .as_ref()
+                        .and_then(|l| l.get(k))
+                        .map(|x| (x.t, x.u, x.v, x.side)),
+                    h.map(|x| (x.t, x.u, x.v, x.side)),
+                    "lane {k}: {ray:?} {tris:?}"
+                );
+            }
+            assert!(
+                hits.iter().any(|&h| h),
+                "a ray slipped through: {ray:?} {tris:?}"
+            );
+            // Every hit within its documented bound of the exact answer:
+            // the plane's crossing for the real triangles, where the ray
+            // passes the segment for the filler.
+            // (The real triangles on one ray in 16: exact arithmetic on
+            // `f64` is slow.)
+            for (k, (tri, hit)) in tris.iter().zip(found).enumerate() {
+                let Some(hit) = hit else { continue };
+                if k < 3 && rays % 16 != 0 {
+                    continue;
+                }
+                let err = tri.hit_error(&ray, &hit);
+                let exact = if k == 3 {
+                    oracle::segment_crossing(&ray, tri)
+                } else {
+                    oracle::triangle(&ray, tri).t.expect("not parallel")
+                };
+                assert!(
+                    oracle::close(hit.t, &exact, err.t),
+                    "triangle {k}: t = {:?}, exact {}, bound {:?}: {ray:?} {tris:?}",
+                    hit.t,
+                    oracle::to_f64(&exact),
+                    err.t
+                );
+            }
+            if hits == [false, false, false, true] {
+                only_filler += 1;
+            }
+            // The one-hit test: the crossings counted with their side (+1
+            // front, -1 back) add up to one crossing of the surface. (Not
+            // always one hit: where rounding puts `M` on `T1`'s side of
+            // `A B`, `T2` or `T3` overlap `T1` in the ray's frame and the
+            // filler, wound the other way there, is hit from the back.)
+            let signed: i32 = tris
+                .iter()
+                .filter_map(|tri| tri.hit(&ray, (S::<V>::INFINITY, EdgeRule::OneHit)))
+                .map(|h| if h.side == Side::Front { 1 } else { -1 })
+                .sum();
+            assert_eq!(signed.abs(), 1, "{ray:?} {tris:?}");
+            rays += 1;
+        }
+    }
+    assert!(rays > 300_000, "{rays}");
+    // The filler is what closes the mesh for some rays (so the test fails
+    // if zero-area triangles are dropped).
+    assert!(only_filler > 100, "{only_filler} of {rays}");
+}
+
+#[test]
+fn t_junctions_closed_by_a_zero_area_filler_leak_nothing_f32() {
+    t_junctions::<Vec3>();
+}
+
+#[test]
+fn t_junctions_closed_by_a_zero_area_filler_leak_nothing_f64() {
+    t_junctions::<DVec3>();
+}

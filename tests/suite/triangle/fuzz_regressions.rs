@@ -1,0 +1,198 @@
+//! Inputs the fuzzers (`fuzz/`) found in the triangle kernels, kept as
+//! literal floats. Each test says which target found its input and what
+//! went wrong: a fault of the fuzzer's check, of the kernel, or of the docs
+//! (see the suite's documentation, `tests/suite/main.rs`).
+
+use rayhit::glam::{DVec3, Vec3};
+use rayhit::{Ray, Side, Surface, Triangle, TriangleHit, ray_triangle};
+use rayhit_testkit::oracle;
+use rayhit_testkit::oracle::{R, r};
+
+/// `triangle_watertight_vs_mt` (raw): a valid hit with `t_max = NaN`. The
+/// fuzzer's agreement check read the NaN limit as "no limit"; the kernels
+/// are right to return `None` (NaN `t_max` is invalid input).
+#[test]
+fn triangle_nan_t_max_is_a_miss() {
+    let tri = Triangle::new(
+        Vec3::ZERO,
+        Vec3::new(2.0, 0.0, 0.0),
+        Vec3::new(0.0, 2.0, 0.0),
+    );
+    let ray = Ray::new(Vec3::new(0.5, 0.25, 4.0), Vec3::new(0.0, 0.0, -2.0));
+    assert!(ray_triangle(&ray, &tri, f32::NAN).is_none());
+    assert!(tri.moller_trumbore(&ray, f32::NAN).is_none());
+    assert!(ray_triangle(&ray, &tri, f32::INFINITY).is_some());
+}
+
+/// `triangle` (raw, `f64`): a ray along x in the plane `z = 7.7e-317`, a
+/// triangle whose corner `a` is lifted by `5.3e-315` (both subnormal), so
+/// the ray crosses the triangle's plane at `t = 2.47`, well inside (exact
+/// `u = 0.735`, `v = 0.25`). The watertight test misses, and
+/// `Triangle::hit_error` at the exact crossing is finite and small,
+/// so the miss lies outside the band the bounds promise. The edge functions'
+/// products underflow: the bounds assume no underflow, which the docs did
+/// not say and now do. The answer is still safe.
+#[test]
+fn triangle_subnormal_lift_outside_the_error_band() {
+    let ray = Ray::new(DVec3::new(-1.0, 0.5, 7.7386016e-317), DVec3::X);
+    let tri = Triangle::new(
+        DVec3::new(0.0, 0.0, 5.304989477e-315),
+        DVec3::new(2.0, 0.0, 0.0),
+        DVec3::new(0.0, 2.0, 0.0),
+    );
+    let exact = oracle::triangle(&ray, &tri);
+    assert!(exact.interior() && exact.hits(&None));
+    let probe = TriangleHit {
+        t: 2.470_825_195_312_5,
+        u: 0.735_412_597_656_25,
+        v: 0.25,
+        side: Side::Front,
+    };
+    let err = tri.hit_error(&ray, &probe);
+    assert!(!err.t.is_nan() && !err.u.is_nan() && !err.v.is_nan());
+    // Outside the precondition: the lift times a unit coordinate is a
+    // subnormal product in the edge functions.
+    let lift = tri.a.z * ray.origin.y;
+    assert!(lift != 0.0 && lift.abs() < f64::MIN_POSITIVE);
+    if let Some(hit) = ray_triangle(&ray, &tri, f64::INFINITY) {
+        assert!(hit.t > 0.0 && hit.t.is_finite());
+    }
+}
+
+/// `triangle` (raw, `f64`; found by the 10-minute run): huge y coordinates
+/// (`8.7e127`) next to subnormal z coordinates. The ray's shear factor
+/// `-d_z / d_y = -2.2e-440` underflows to zero, so the test's frame is not
+/// the one its error bounds describe: it reports `t = 0.82` with a bound of
+/// `0.06`, where the exact crossing is at `t = -3.2e11` (behind the ray).
+/// The bounds assume no underflow, which the docs did not say and now do.
+#[test]
+fn triangle_underflowing_shear_factor() {
+    let ray = Ray::new(
+        DVec3::new(
+            7.684_632_922_875_586e49,
+            7.684_632_922_875_586e49,
+            1.576_434_833_883e-312,
+        ),
+        DVec3::new(0.0, 8.656_131_277_727_177e127, 1.917_285_608_776e-312),
+    );
+    let tri = Triangle::new(
+        DVec3::new(0.0, 2.421_078_100_475_535_5e-305, 5e-324),
+        DVec3::new(0.0, 8.656_131_277_727_177e127, 1.917_285_608_776e-312),
+        DVec3::new(
+            1.783_886_899_799_318_6e127,
+            1.783_886_751_621_816_2e127,
+            4.778_646_941_129_981e-299,
+        ),
+    );
+    let t_max = 1.783_886_899_799_318_6e127;
+    // Outside the precondition: y is the dominant axis, and the shear
+    // factor of z, `d_z / d_y`, underflows to zero.
+    assert!(ray.dir.z != 0.0 && ray.dir.z / ray.dir.y == 0.0);
+    if let Some(hit) = ray_triangle(&ray, &tri, t_max) {
+        assert!(hit.t > 0.0 && hit.t <= t_max);
+        let err = tri.hit_error(&ray, &hit);
+        assert!(!err.t.is_nan());
+    }
+}
+
+/// `triangle` (structured; found by the 10-minute run): a sliver seen from
+/// close by, crossed at exact `t = 0.0624` with a `t` bound of `0.0624` at
+/// that crossing. The watertight test decides `t > 0` conservatively and
+/// rejects the hit, which its docs allow; the fuzzer's band for a required
+/// hit was `t > bound` and is now `t > 2 bound / (1 - 3 err_u)` (derived in
+/// `testkit/src/fuzz/triangle.rs`). Moller-Trumbore hits.
+#[test]
+fn triangle_conservative_t_rejection_near_the_origin() {
+    let ray = Ray::new(
+        Vec3::new(65.953_15, 65.937_52, -64.481_43),
+        Vec3::new(-0.031_249_048, -0.031_25, -0.031_25),
+    );
+    let tri = Triangle::new(
+        Vec3::new(66.727_97, 66.707_405, -64.608_246),
+        Vec3::new(63.422_65, 63.422_65, -64.077_354),
+        Vec3::new(63.430_725, 63.431_56, -64.077_774),
+    );
+    let exact = oracle::triangle(&ray, &tri);
+    let t_exact = exact.t.clone().expect("not parallel");
+    assert!(exact.interior() && exact.hits(&None));
+    if ray_triangle(&ray, &tri, f32::INFINITY).is_none() {
+        let (u, v) = exact.uv.clone().unwrap();
+        let probe = TriangleHit {
+            t: oracle::to_f64(&t_exact) as f32,
+            u: oracle::to_f64(&u) as f32,
+            v: oracle::to_f64(&v) as f32,
+            side: Side::Back,
+        };
+        let err = tri.hit_error(&ray, &probe);
+        let int = |n: i64| R::from_integer(n.into());
+        let band = int(2) * r(err.t) / (int(1) - int(3) * r(err.u.max(err.v)));
+        assert!(t_exact <= band, "a miss outside the conservative band");
+    }
+}
+
+/// `triangle` (structured, `f64`; found by the 10-minute run): a ray exactly
+/// parallel to a sliver's plane (exact determinant zero) along the diagonal
+/// `(-1, -1, -1)`. The watertight test reports a hit at `t = 6.08` on the
+/// edge `u = 0`, `v = 1`; its error bounds are infinite, which is how the
+/// docs mark a hit whose determinant sign is not certain (the fuzzer asked
+/// for the exact `t` before looking at the bound). Moller-Trumbore and the
+/// one-hit test reject it.
+#[test]
+fn triangle_hit_parallel_to_the_plane_has_infinite_bounds() {
+    let ray = Ray::new(
+        DVec3::new(
+            220.980_540_043_868_64,
+            93.888_375_492_007_97,
+            221.636_422_426_553_93,
+        ),
+        DVec3::splat(-25.976_470_588_235_294),
+    );
+    let tri = Triangle::new(
+        DVec3::new(63.0, -63.998_046_904_801_87, 63.750_000_029_744_115),
+        DVec3::new(
+            63.422_649_730_810_38,
+            -64.575_397_173_991_49,
+            63.172_649_760_554_49,
+        ),
+        DVec3::new(
+            63.044_465_523_908_514,
+            -64.047_699_027_952_18,
+            63.700_347_906_593_805,
+        ),
+    );
+    let exact = oracle::triangle(&ray, &tri);
+    assert!(exact.t.is_none(), "exactly parallel");
+    if let Some(hit) = ray_triangle(&ray, &tri, f64::INFINITY) {
+        assert!(hit.t > 0.0 && hit.t.is_finite());
+        let err = tri.hit_error(&ray, &hit);
+        assert!(err.t.is_infinite() && err.u.is_infinite() && err.v.is_infinite());
+    }
+}
+
+/// `triangle` (raw; found by the 10-minute run): a ray from `z = 4` down
+/// through a triangle at `z = 0`, but with a `z` speed of `-2.1e-38`, so the
+/// exact crossing is at `t = 1.87e38`. The watertight test scales the
+/// corners' `z` by `1 / d_z` (`|z_i|` near `1.87e38`) and sums `e_i z_i`,
+/// which overflows (`e_0 = 2.5` here): outside the docs' shared
+/// precondition of no intermediate overflow. It reports a miss, which is
+/// safe; the fuzzer's raw-input guard now checks for overflow too.
+#[test]
+fn triangle_scaled_distance_overflows() {
+    let ray = Ray::new(
+        Vec3::new(0.5, 0.25, 4.0),
+        Vec3::new(1e-45, -0.0, -2.140_861_8e-38),
+    );
+    let tri = Triangle::new(
+        Vec3::ZERO,
+        Vec3::new(2.0, 0.0, 4.5918e-41),
+        Vec3::new(0.0, 2.0, 5.9e-44),
+    );
+    let exact = oracle::triangle(&ray, &tri);
+    assert!(exact.interior() && exact.hits(&None));
+    // Outside the precondition: e_0 z_0 overflows.
+    let z0 = (tri.a.z - ray.origin.z) * (1.0 / ray.dir.z);
+    assert!(z0.is_finite() && (2.5 * z0).is_infinite());
+    if let Some(hit) = ray_triangle(&ray, &tri, f32::INFINITY) {
+        assert!(hit.t > 0.0 && hit.t.is_finite());
+    }
+}
