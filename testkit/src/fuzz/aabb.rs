@@ -128,7 +128,7 @@ pub fn slab_precondition<V: Vector>(ray: &Ray<V>, b: &Aabb<V>) -> bool {
 /// reciprocal is subnormal (`wide`) (derived at `exit_slack` in
 /// src/aabb.rs; an earlier doc said two subnormals, and the fuzzer found a
 /// false hit 2.5 subnormals out, and later one 26u out with subnormal
-/// reciprocals: tests/suite/fuzz_regressions.rs).
+/// reciprocals: tests/suite/<subject>/fuzz_regressions.rs).
 fn band<F: Scalar>(x: &R, wide: bool) -> R {
     let k = if wide { 40 } else { 16 };
     x * (int(1) + int(k) * r(F::UNIT_ROUNDOFF)) + r(F::TINY) * int(4)
@@ -184,7 +184,7 @@ pub fn check_slab<V: Vector>(ray: &Ray<V>, b: &Aabb<V>, t_max: S<V>, detailed: b
         ctx()
     );
     let Some((e, x)) = slab else { return };
-    // The bands' documented conditions (tests/suite/fuzz_regressions.rs): a
+    // The bands' documented conditions (tests/suite/<subject>/fuzz_regressions.rs): a
     // direction component so large that its reciprocal is subnormal widens
     // them (`wide`: 40u and 15u instead of 16u and three roundings). One so
     // small that its reciprocal overflows (`0 < |d| < 1 / MAX`) leaves them:
@@ -342,7 +342,7 @@ pub fn check_slab_vs_naive<V: Vector>(ray: &Ray<V>, b: &Aabb<V>, t_max: S<V>) {
     // test hits wherever the naive one does, as long as the naive test's
     // own false hits stay within rounding of an edge: where its face test
     // underflows (`t d_m` rounding to zero), it can hit a box that misses by
-    // far (tests/suite/fuzz_regressions.rs), so raw inputs are held to this only
+    // far (tests/suite/<subject>/fuzz_regressions.rs), so raw inputs are held to this only
     // in the normal range.
     if naive_in_normal_range(ray, b) {
         assert!(

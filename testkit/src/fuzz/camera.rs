@@ -14,9 +14,9 @@
 //! the unnormalised direction is finite and nonzero (the camera normalises
 //! in a frame scaled by a power of two, so its squares neither overflow nor
 //! underflow) the direction has unit length within `2 gamma(6) + gamma(6)^2`
-//! (squared length), the tests/suite/camera.rs bound. Structured inputs also: the centre
+//! (squared length), the tests/suite/camera/properties.rs bound. Structured inputs also: the centre
 //! pixel of an odd-sized image looks along the view direction, within the
-//! tests/suite/camera.rs bound.
+//! tests/suite/camera/properties.rs bound.
 
 use arbitrary::Arbitrary;
 use rayhit::{Camera as _, CameraSample, PinholeCamera, Scalar, Vector, camera::CameraError};
@@ -189,7 +189,7 @@ fn unit<V: Vector>(d: V, ctx: &dyn Fn() -> String) {
 }
 
 /// The centre pixel of an odd-sized image looks along the view direction
-/// (tests/suite/camera.rs): `dir . view > 0` and
+/// (tests/suite/camera/properties.rs): `dir . view > 0` and
 /// `|dir x view| <= k |view|`, `k = gamma(3) (1 + gamma(6)) / (1 - gamma(3))`.
 fn check_centre<V: Vector>(cam: &PinholeCamera<V>, view: V) {
     let dir = rv(cam.pixel_ray(cam.width() / 2, cam.height() / 2).dir);

@@ -25,7 +25,7 @@
 //! spawned rays that never re-hit, shadow-ray segments that hit neither end.
 //!
 //! A failed check panics with the input printed as `Debug` floats (which
-//! round-trip exactly), ready to paste into `tests/suite/fuzz_regressions.rs`.
+//! round-trip exactly), ready to paste into `tests/suite/<subject>/fuzz_regressions.rs`.
 
 use arbitrary::{Arbitrary, Unstructured};
 use rayhit::glam::{DVec3, Vec3};
@@ -235,7 +235,7 @@ where
 ///
 /// The crate's error bounds are relative-error arguments; they say "no
 /// intermediate overflow" but also need no intermediate underflow (see
-/// tests/suite/fuzz_regressions.rs). Raw-bit inputs hold a kernel to its bounds
+/// tests/suite/<subject>/fuzz_regressions.rs). Raw-bit inputs hold a kernel to its bounds
 /// only where every product it forms passes this.
 pub fn far_from_underflow<F: Scalar>(x: F) -> bool {
     let margin = F::ONE / (F::UNIT_ROUNDOFF * F::UNIT_ROUNDOFF);

@@ -102,7 +102,7 @@ pub fn check<V: Vector>(ray: &Ray<V>, plane: &Plane<V>, t_max: S<V>, bounded: bo
         for j in 0..3 {
             let e = perr[j];
             // Never NaN, even for an infinite `t` bound and a zero direction
-            // component (tests/suite/fuzz_regressions.rs).
+            // component (tests/suite/<subject>/fuzz_regressions.rs).
             assert!(e >= zero, "hit point bound {perr:?}: {}", ctx());
             if e.is_finite() && p[j].is_finite() {
                 let star = &o[j] + &exact * &d[j];

@@ -195,7 +195,7 @@ pub(super) fn triangle_no_underflow<V: Vector>(tri: &Triangle<V>, u: S<V>, v: S<
 /// The documented precondition includes that term: with an exact normal
 /// (`normal_error = 0`, a plane) the rounded dot product can otherwise have
 /// the wrong sign, and the origin moves to the wrong side (the fuzzer found
-/// one: tests/suite/fuzz_regressions.rs). The plane checks add the term; the
+/// one: tests/suite/<subject>/fuzz_regressions.rs). The plane checks add the term; the
 /// triangle checks leave it out, a stricter check than the docs need (there
 /// `normal_error` is at least `gamma(6)` of each normal component's
 /// magnitude, which covers it).

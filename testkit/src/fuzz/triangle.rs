@@ -186,7 +186,7 @@ fn check_hit<V: Vector>(
 ) {
     let err = tri.hit_error(ray, h);
     // An infinite bound says the determinant's sign is not certain: the ray
-    // can even be exactly parallel (tests/suite/fuzz_regressions.rs).
+    // can even be exactly parallel (tests/suite/<subject>/fuzz_regressions.rs).
     if !err.t.is_finite() {
         return;
     }
