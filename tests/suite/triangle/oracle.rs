@@ -23,6 +23,7 @@ use rayhit_testkit::cases::{aimed, v};
 use rayhit_testkit::mesh as demo_mesh;
 use rayhit_testkit::oracle::{self, rv};
 use rayhit_testkit::source::Source;
+use std::cmp::Ordering;
 
 type S<V> = <V as Vector>::Scalar;
 
@@ -376,27 +377,49 @@ struct MeshTally {
 /// the angle between ray and plane above 2^-10), so that the star projects
 /// one-to-one and exactly one of its triangles must claim the crossing.
 fn one_sided<V: Vector>(ray: &Ray<V>, tris: &[Triangle<V>]) -> bool {
-    let d = rv(ray.dir);
-    let dd = oracle::dot(&d, &d);
-    let mut sign = 0i32;
+    let mut sign = None;
     for t in tris {
-        let n = oracle::cross(
-            &oracle::sub(&rv(t.b), &rv(t.a)),
-            &oracle::sub(&rv(t.c), &rv(t.a)),
-        );
-        let dn = oracle::dot(&d, &n);
-        let nn = oracle::dot(&n, &n);
-        // sin^2 > 2^-20  <=>  (d.n)^2 > 2^-20 |d|^2 |n|^2
-        if dn.clone() * &dn <= oracle::dyadic(1, -20) * &dd * &nn {
+        let Some(s) = facing(ray, t) else {
+            return false;
+        };
+        if sign.is_some_and(|old| old != s) {
             return false;
         }
-        let s = if dn.is_positive() { 1 } else { -1 };
-        if sign != 0 && s != sign {
-            return false;
-        }
-        sign = s;
+        sign = Some(s);
     }
     true
+}
+
+/// The side `t` faces the ray from (`Greater` where `d . n > 0`), when it
+/// does by a clear margin (`sin^2 > 2^-20`, that is `(d.n)^2 > 2^-20 |d|^2
+/// |n|^2`), else `None`. Decided on `Bounded` floats where their error
+/// bounds allow (nearly always), else in big rationals: the exact answer
+/// either way.
+fn facing<V: Vector>(ray: &Ray<V>, t: &Triangle<V>) -> Option<Ordering> {
+    use oracle::{Bounded, bcross, bdot, bsub, bv};
+    let d = bv(ray.dir);
+    let n = bcross(&bsub(&bv(t.b), &bv(t.a)), &bsub(&bv(t.c), &bv(t.a)));
+    let dn = bdot(&d, &n);
+    let margin = dn * dn - Bounded::exact(2f64.powi(-20)) * bdot(&d, &d) * bdot(&n, &n);
+    match (margin.sign(), dn.sign()) {
+        (Some(Ordering::Less | Ordering::Equal), _) => return None,
+        (Some(Ordering::Greater), Some(side)) => return Some(side),
+        _ => {}
+    }
+    let d = rv(ray.dir);
+    let n = oracle::cross(
+        &oracle::sub(&rv(t.b), &rv(t.a)),
+        &oracle::sub(&rv(t.c), &rv(t.a)),
+    );
+    let dn = oracle::dot(&d, &n);
+    let (dd, nn) = (oracle::dot(&d, &d), oracle::dot(&n, &n));
+    (dn.clone() * &dn > oracle::dyadic(1, -20) * &dd * &nn).then(|| {
+        if dn.is_positive() {
+            Ordering::Greater
+        } else {
+            Ordering::Less
+        }
+    })
 }
 
 fn run_mesh<V: Vector>(name: &str, seed: u64, n: usize, build: fn(&mut Source) -> Mesh) {
