@@ -3,6 +3,7 @@
 //! bounds and answers against exact arithmetic.
 
 use super::filter::{EdgeFrame, filter, plucker_f64, surely_outside_watertight_exact};
+use super::values::moving;
 use super::*;
 use crate::testing::Draws;
 use crate::{Aabb, Plane, Ray, Scalar, Triangle, Vector};
@@ -207,6 +208,70 @@ fn triangle_in_integers_is_the_rational_formulas() {
         }
     }
     assert!(invalid > 50 && parallel > 3, "{invalid} {parallel}");
+}
+
+/// `segment_crossing` as it read before it was computed in integers, in
+/// big rationals throughout: the reference it is held to.
+fn segment_crossing_reference<V: Vector>(ray: &Ray<V>, tri: &Triangle<V>) -> Option<R> {
+    let k = main_axis(ray.dir);
+    let (kx, ky) = ((k + 1) % 3, (k + 2) % 3);
+    let (o, dir) = moving(ray)?;
+    let corners = [rv(tri.a)?, rv(tri.b)?, rv(tri.c)?];
+    let dist2 = |i: usize, j: usize| {
+        let e = sub(&corners[j], &corners[i]);
+        dot(&e, &e)
+    };
+    let (mut i, mut j) = (0, 1);
+    for (a, b) in [(1, 2), (2, 0)] {
+        if dist2(a, b) > dist2(i, j) {
+            (i, j) = (a, b);
+        }
+    }
+    let frame = |w: &[R; 3]| -> [R; 3] {
+        let w = sub(w, &o);
+        let z = &w[k] / &dir[k];
+        [&w[kx] - &dir[kx] * &z, &w[ky] - &dir[ky] * &z, z]
+    };
+    let (p, q) = (frame(&corners[i]), frame(&corners[j]));
+    let (ex, ey) = (&q[0] - &p[0], &q[1] - &p[1]);
+    let den = &ex * &ex + &ey * &ey;
+    if den.is_zero() {
+        return None;
+    }
+    let s = -(&p[0] * &ex + &p[1] * &ey) / den;
+    let s = s.clamp(R::zero(), int(1));
+    Some(&p[2] + s * (&q[2] - &p[2]))
+}
+
+/// `segment_crossing` in integers against the rational formulas, on the
+/// filter's cases and on zero-area triangles made from them (a corner
+/// moved to the midpoint of the other two, or onto one of them).
+#[test]
+fn segment_crossing_in_integers_is_the_rational_formulas() {
+    fn check<V: Vector>(g: &mut Draws, kind: u64) -> (bool, bool) {
+        let (ray, tri) = case::<V>(g, kind);
+        let half = V::Scalar::from_f64(0.5);
+        let flat = match g.next() % 3 {
+            0 => Triangle::new(tri.a, tri.b, (tri.a + tri.b) * half),
+            1 => Triangle::new(tri.a, tri.b, tri.a),
+            _ => tri,
+        };
+        let (fast, slow) = (
+            segment_crossing(&ray, &flat),
+            segment_crossing_reference(&ray, &flat),
+        );
+        assert_eq!(fast, slow, "{ray:?} {flat:?}");
+        (fast.is_none(), fast.is_some())
+    }
+    let mut g = Draws(0x6a09_e667_f3bc_c908);
+    let (mut none, mut some) = (0, 0);
+    for i in 0..3000 {
+        for (x, y) in [check::<Vec3>(&mut g, i % 4), check::<DVec3>(&mut g, i % 4)] {
+            none += usize::from(x);
+            some += usize::from(y);
+        }
+    }
+    assert!(none > 50 && some > 3000, "{none} {some}");
 }
 
 /// The filter's parts against exact arithmetic: every `f64` Plucker

@@ -161,15 +161,31 @@ fn icross(a: &I3, b: &I3) -> I3 {
 /// the ray, clamped to the segment. `None` when the ray does not move, a
 /// coordinate is not finite, or the segment is seen end-on (its two
 /// corners at one point of the frame).
+///
+/// Computed in integers, as [`triangle`] is: with the corners taken from
+/// the origin and the coordinates scaled to integers `W` (and the
+/// direction to `D`), a point's sheared coordinates are `(W_x D_k - D_x
+/// W_k, W_y D_k - D_y W_k) / D_k` and its depth `W_k / D_k`, up to powers
+/// of two, so the segment's parameter nearest the ray is a quotient of
+/// integers and the depth one more; the values are those of the rational
+/// formulas, exactly.
 #[must_use]
 pub fn segment_crossing<V: Vector>(ray: &Ray<V>, tri: &Triangle<V>) -> Option<R> {
     let k = main_axis(ray.dir);
     let (kx, ky) = ((k + 1) % 3, (k + 2) % 3);
-    let (o, dir) = moving(ray)?;
-    let corners = [rv(tri.a)?, rv(tri.b)?, rv(tri.c)?];
+    let w = |p: V| [p.x().to_f64(), p.y().to_f64(), p.z().to_f64()];
+    let points = [w(ray.origin), w(tri.a), w(tri.b), w(tri.c)];
+    let dir = w(ray.dir);
+    let finite = points.iter().chain([&dir]).flatten().all(|x| x.is_finite());
+    if !finite || dir.iter().all(|&x| x == 0.0) {
+        return None;
+    }
+    let ([o, a, b, c], e) = integers(points);
+    let ([d], f) = integers([dir]);
+    let corners = [isub(&a, &o), isub(&b, &o), isub(&c, &o)];
     let dist2 = |i: usize, j: usize| {
-        let e = sub(&corners[j], &corners[i]);
-        dot(&e, &e)
+        let x = isub(&corners[j], &corners[i]);
+        idot(&x, &x)
     };
     let (mut i, mut j) = (0, 1);
     for (a, b) in [(1, 2), (2, 0)] {
@@ -177,19 +193,20 @@ pub fn segment_crossing<V: Vector>(ray: &Ray<V>, tri: &Triangle<V>) -> Option<R>
             (i, j) = (a, b);
         }
     }
-    // `dir[k]` is the largest component of a nonzero direction: not zero.
-    let frame = |w: &[R; 3]| -> [R; 3] {
-        let w = sub(w, &o);
-        let z = &w[k] / &dir[k];
-        [&w[kx] - &dir[kx] * &z, &w[ky] - &dir[ky] * &z, z]
+    // `d[k]` is the largest component of a nonzero direction: not zero.
+    let sheared = |w: &I3| {
+        (
+            &w[kx] * &d[k] - &d[kx] * &w[k],
+            &w[ky] * &d[k] - &d[ky] * &w[k],
+        )
     };
-    let (p, q) = (frame(&corners[i]), frame(&corners[j]));
-    let (ex, ey) = (&q[0] - &p[0], &q[1] - &p[1]);
+    let ((xp, yp), (xq, yq)) = (sheared(&corners[i]), sheared(&corners[j]));
+    let (ex, ey) = (&xq - &xp, &yq - &yp);
     let den = &ex * &ex + &ey * &ey;
     if den.is_zero() {
         return None;
     }
-    let s = -(&p[0] * &ex + &p[1] * &ey) / den;
+    let s = R::new(-(&xp * &ex + &yp * &ey), den);
     let (zero, one) = (R::zero(), int(1));
     let s = if s < zero {
         zero
@@ -198,7 +215,19 @@ pub fn segment_crossing<V: Vector>(ray: &Ray<V>, tri: &Triangle<V>) -> Option<R>
     } else {
         s
     };
-    Some(&p[2] + s * (&q[2] - &p[2]))
+    let (zp, zq) = (
+        R::from_integer(corners[i][k].clone()),
+        R::from_integer(corners[j][k].clone()),
+    );
+    // The depth in units of `2^(E - F) / D_k`.
+    let depth = &zp + s * (zq - &zp);
+    let shift = e - f;
+    let unit = if shift >= 0 {
+        R::new(BigInt::from(1) << shift.unsigned_abs(), d[k].clone())
+    } else {
+        R::new(BigInt::from(1), &d[k] << shift.unsigned_abs())
+    };
+    Some(depth * unit)
 }
 
 /// The watertight test's main axis for a direction, the axis of the
