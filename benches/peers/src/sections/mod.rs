@@ -1,0 +1,26 @@
+//! The table's sections, a file each: the rows a section holds, in the
+//! order the table prints them, and the data they run on beyond the
+//! shared workloads (`crate::data`). `--only NAME` keeps the sections
+//! whose name contains NAME.
+//!
+//! - `boxes`: `box`, ray `i` against box `i`;
+//! - `triangles`: `triangle`, ray `i` against triangle `i`;
+//! - `groups`: `box x8` and `triangle x8`, a ray against a group of eight,
+//!   scalar and batched, with the batch floors;
+//! - `sweep`: `box sweep` and `triangle sweep`, one ray against the first
+//!   N shapes;
+//! - `cwbvh`: `cwbvh (per ray)`, closest hit through obvhs's BVH, and the
+//!   `--leaks` table;
+//! - `camera`: `camera` and `camera differentials`, with the camera
+//!   owned or reached by reference;
+//! - `camera_refs`: the textbook and floor rows of the section `camera`;
+//! - `instance`: `instance`, the mappings in and out of an instance.
+
+pub mod boxes;
+pub mod camera;
+pub mod camera_refs;
+pub mod cwbvh;
+pub mod groups;
+pub mod instance;
+pub mod sweep;
+pub mod triangles;
