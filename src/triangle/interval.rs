@@ -464,15 +464,54 @@ mod tests {
             }
             (near, far)
         }
+        // Each check draws a fixed number of values (twelve coordinates and
+        // the target's choice, three more for `shape` 2), so the cases are
+        // laid out first, each with the generator's state it starts from
+        // and the one it must end at, and run on two threads: the same
+        // cases, in the same precisions, as one sequential run.
+        let per_case = |shape: u8| if shape == 2 { 16 } else { 13 };
         let mut draws = Draws(0x0bad_cafe_1234_5678);
-        let (mut near, mut far) = (0, 0);
-        for _ in 0..1_000 {
-            for (n, f) in [
-                check::<Vec3>(&mut draws, 0),
-                check::<DVec3>(&mut draws, 0),
-                check::<Vec3>(&mut draws, 2),
-                check::<DVec3>(&mut draws, 2),
-            ] {
+        let mut cases = std::vec::Vec::new();
+        for (shapes, count) in [(&[0u8, 2][..], 1_000), (&[1u8][..], 1_000)] {
+            for _ in 0..count {
+                for &shape in shapes {
+                    for wide in [false, true] {
+                        let start = draws.0;
+                        for _ in 0..per_case(shape) {
+                            draws.next();
+                        }
+                        cases.push((start, draws.0, wide, shape));
+                    }
+                }
+            }
+        }
+        let run = |cases: &[(u64, u64, bool, u8)]| {
+            cases
+                .iter()
+                .map(|&(start, end, wide, shape)| {
+                    let mut d = Draws(start);
+                    let got = if wide {
+                        check::<DVec3>(&mut d, shape)
+                    } else {
+                        check::<Vec3>(&mut d, shape)
+                    };
+                    assert_eq!(d.0, end, "a check drew an unexpected number of values");
+                    (got, shape)
+                })
+                .collect::<std::vec::Vec<_>>()
+        };
+        let (first, second) = cases.split_at(cases.len() / 2);
+        let results = std::thread::scope(|s| {
+            let other = s.spawn(|| run(second));
+            let mut all = run(first);
+            all.extend(other.join().expect("the second half ran"));
+            all
+        });
+        let (mut near, mut far, mut hits) = (0, 0, 0);
+        for ((n, f), shape) in results {
+            if shape == 1 {
+                hits += n;
+            } else {
                 near += n;
                 far += f;
             }
@@ -480,10 +519,6 @@ mod tests {
         // Enough hits, with ends both near and far, that the comparison
         // means something.
         assert!(near > 10_000 && far > 10_000, "{near} {far}");
-        let mut hits = 0;
-        for _ in 0..1_000 {
-            hits += check::<Vec3>(&mut draws, 1).0 + check::<DVec3>(&mut draws, 1).0;
-        }
         assert!(hits > 100, "{hits}");
     }
 }

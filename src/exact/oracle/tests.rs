@@ -274,6 +274,72 @@ fn segment_crossing_in_integers_is_the_rational_formulas() {
     assert!(none > 50 && some > 3000, "{none} {some}");
 }
 
+/// `mt_bounds` as it read before it was computed in integers, in big
+/// rationals throughout: the reference it is held to.
+fn mt_bounds_reference<V: Vector>(
+    ray: &Ray<V>,
+    tri: &Triangle<V>,
+    u: &R,
+    v: &R,
+) -> Option<(R, R, R)> {
+    let (o, d) = (rv(ray.origin)?, rv(ray.dir)?);
+    let (a, b, c) = (rv(tri.a)?, rv(tri.b)?, rv(tri.c)?);
+    let (e1, e2, s) = (sub(&b, &a), sub(&c, &a), sub(&o, &a));
+    let mag = |x: &[R; 3], y: &[R; 3], z: &[R; 3]| -> R {
+        (0..3)
+            .map(|i| {
+                let (j, k) = ((i + 1) % 3, (i + 2) % 3);
+                abs(&x[i]) * (abs(&(&y[j] * &z[k])) + abs(&(&y[k] * &z[j])))
+            })
+            .sum()
+    };
+    let g7 = gamma::<V::Scalar>(7);
+    let det = dot(&e1, &cross(&d, &e2));
+    let d_det = &g7 * mag(&e1, &d, &e2);
+    let big = dyadic(1, 2000);
+    if abs(&det) <= d_det {
+        return Some((big.clone(), big.clone(), big));
+    }
+    let q = cross(&s, &e1);
+    let t = dot(&e2, &q) / &det;
+    let g2 = gamma::<V::Scalar>(2);
+    let quotient = |dn: R, q: &R| (dn + abs(q) * &d_det) / (abs(&det) - &d_det) + &g2 * abs(q);
+    Some((
+        quotient(&g7 * mag(&s, &d, &e2), u),
+        quotient(&g7 * mag(&d, &s, &e1), v),
+        quotient(&g7 * mag(&e2, &s, &e1), &t),
+    ))
+}
+
+/// `mt_bounds` in integers against the rational formulas, on the filter's
+/// cases (with the exact barycentrics where the line crosses the plane,
+/// and arbitrary ones where it does not).
+#[test]
+fn mt_bounds_in_integers_is_the_rational_formulas() {
+    fn check<V: Vector>(g: &mut Draws, kind: u64) -> (bool, bool) {
+        let (ray, tri) = case::<V>(g, kind);
+        let (u, v) = triangle(&ray, &tri)
+            .and_then(|x| x.uv)
+            .unwrap_or_else(|| (dyadic(3, -2), dyadic(-5, -3)));
+        let (fast, slow) = (
+            mt_bounds(&ray, &tri, &u, &v),
+            mt_bounds_reference(&ray, &tri, &u, &v),
+        );
+        assert_eq!(fast, slow, "{ray:?} {tri:?}");
+        let big = dyadic(1, 2000);
+        (fast.is_none(), fast.is_some_and(|b| b.0 != big))
+    }
+    let mut g = Draws(0xbb67_ae85_84ca_a73b);
+    let (mut none, mut bounded) = (0, 0);
+    for i in 0..3000 {
+        for (x, y) in [check::<Vec3>(&mut g, i % 4), check::<DVec3>(&mut g, i % 4)] {
+            none += usize::from(x);
+            bounded += usize::from(y);
+        }
+    }
+    assert!(none > 50 && bounded > 3000, "{none} {bounded}");
+}
+
 /// The filter's parts against exact arithmetic: every `f64` Plucker
 /// product within its error bound of the exact one, and the margin
 /// between its two float bounds (which are close: within `2^-40` of

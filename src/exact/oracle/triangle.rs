@@ -257,36 +257,59 @@ pub fn main_axis<V: Vector>(dir: V) -> usize {
 /// within `(dN + |q| dD)/(|D| - dD) + gamma(2)|q|`, which is what this
 /// returns (with `q` the exact quotient), or `2^2000` when `dD >= |D|`.
 /// `None` when a coordinate is not finite.
+///
+/// Computed in integers, as [`triangle`] is: with the origin's and
+/// corners' coordinates scaled to integers in units of `2^E` and the
+/// direction's in units of `2^F`, `det` and the magnitudes of `u`'s and
+/// `v`'s numerators share the units `2^(2E + F)`, which cancel, and `t`'s
+/// numerator and its magnitude are in units of `2^3E`, a factor `2^(E -
+/// F)` against `det`; only the final quotients are rationals. The values
+/// are those of the rational formulas, exactly.
 #[must_use]
 pub fn mt_bounds<V: Vector>(ray: &Ray<V>, tri: &Triangle<V>, u: &R, v: &R) -> Option<(R, R, R)> {
-    let (o, d) = (rv(ray.origin)?, rv(ray.dir)?);
-    let (a, b, c) = (rv(tri.a)?, rv(tri.b)?, rv(tri.c)?);
-    let (e1, e2, s) = (sub(&b, &a), sub(&c, &a), sub(&o, &a));
-    let mag = |x: &[R; 3], y: &[R; 3], z: &[R; 3]| -> R {
+    let w = |p: V| [p.x().to_f64(), p.y().to_f64(), p.z().to_f64()];
+    let points = [w(ray.origin), w(tri.a), w(tri.b), w(tri.c)];
+    let dir = w(ray.dir);
+    if !points.iter().chain([&dir]).flatten().all(|x| x.is_finite()) {
+        return None;
+    }
+    let ([o, a, b, c], e) = integers(points);
+    let ([d], f) = integers([dir]);
+    let (e1, e2, s) = (isub(&b, &a), isub(&c, &a), isub(&o, &a));
+    let mag = |x: &I3, y: &I3, z: &I3| -> R {
         // sum_i |x_i| (|y_j z_k| + |y_k z_j|): the monomials of x . (y x z).
-        (0..3)
+        let m: BigInt = (0..3)
             .map(|i| {
                 let (j, k) = ((i + 1) % 3, (i + 2) % 3);
-                abs(&x[i]) * (abs(&(&y[j] * &z[k])) + abs(&(&y[k] * &z[j])))
+                x[i].abs() * ((&y[j] * &z[k]).abs() + (&y[k] * &z[j]).abs())
             })
-            .sum()
+            .sum();
+        R::from_integer(m)
     };
     let g7 = gamma::<V::Scalar>(7);
-    let det = dot(&e1, &cross(&d, &e2));
+    // `det` and `d_det` in units of `2^(2E + F)`.
+    let det = R::from_integer(idot(&e1, &icross(&d, &e2)));
     let d_det = &g7 * mag(&e1, &d, &e2);
     // Above any bound in either precision (f64's largest is below 2^1024).
     let big = dyadic(1, 2000);
     if abs(&det) <= d_det {
         return Some((big.clone(), big.clone(), big));
     }
-    let q = cross(&s, &e1);
-    let t = dot(&e2, &q) / &det;
+    let q = icross(&s, &e1);
+    // `t`'s numerator in units of `2^3E`: `2^(E - F)` times `det`'s.
+    let shift = e - f;
+    let pow = if shift >= 0 {
+        R::from_integer(BigInt::from(1) << shift.unsigned_abs())
+    } else {
+        R::new(BigInt::from(1), BigInt::from(1) << shift.unsigned_abs())
+    };
+    let t = R::from_integer(idot(&e2, &q)) * &pow / &det;
     let g2 = gamma::<V::Scalar>(2);
     let quotient = |dn: R, q: &R| (dn + abs(q) * &d_det) / (abs(&det) - &d_det) + &g2 * abs(q);
     Some((
         quotient(&g7 * mag(&s, &d, &e2), u),
         quotient(&g7 * mag(&d, &s, &e1), v),
-        quotient(&g7 * mag(&e2, &s, &e1), &t),
+        quotient(&g7 * mag(&e2, &s, &e1) * &pow, &t),
     ))
 }
 
