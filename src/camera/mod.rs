@@ -495,8 +495,10 @@ pub(crate) fn dvec<V: Vector>(v: V) -> DVec3 {
 /// is infinite or NaN.
 pub(crate) fn bound_from_f64<F: Scalar>(bound: f64) -> F {
     // Four of the smallest subnormals more: below the normal range the
-    // relative margin is no margin, and a formula's last roundings there
-    // (each at most half of one) are absolute.
+    // relative margin is no margin, and a rounding there is off by up to
+    // half of one, absolutely; four cover eight such roundings, and
+    // `MatrixCamera::raster_error`'s subnormal slack, the term that lands
+    // there, takes two (its product with the pixel scale and the sum).
     let b = bound * (1.0 + 1e-9) + 4.0 * f64::from_bits(1);
     if b.is_nan() {
         return F::INFINITY;

@@ -105,13 +105,10 @@ fn code(text: &str) -> (String, Vec<String>) {
                 // indentation it opened at.
                 let indent = line.len() - trimmed.len();
                 for l in lines.by_ref() {
-                    if l.len() > indent
-                        && l[..indent].trim().is_empty()
-                        && l[indent..].starts_with('}')
-                    {
-                        break;
-                    }
-                    if indent == 0 && l.starts_with('}') {
+                    // (`get` checks that the indentation ends on a
+                    // character boundary, so the slice after it is safe.)
+                    let opened = l.get(..indent).is_some_and(|p| p.trim().is_empty());
+                    if opened && l[indent..].starts_with('}') {
                         break;
                     }
                 }
@@ -151,13 +148,13 @@ fn code(text: &str) -> (String, Vec<String>) {
 /// with `use` groups (`use crate::{a::B, c::{D, E}}`) expanded.
 fn paths(code: &str) -> Vec<Vec<String>> {
     let mut out = Vec::new();
-    let bytes: Vec<char> = code.chars().collect();
+    let chars: Vec<char> = code.chars().collect();
     let mut i = 0;
     let ident = |c: char| c.is_alphanumeric() || c == '_';
-    while i < bytes.len() {
-        let starts = |w: &str| code_at(&bytes, i, w) && (i == 0 || !ident(bytes[i - 1]));
+    while i < chars.len() {
+        let starts = |w: &str| code_at(&chars, i, w) && (i == 0 || !ident(chars[i - 1]));
         if starts("crate::") || starts("super::") {
-            let (list, end) = path_tree(&bytes, i);
+            let (list, end) = path_tree(&chars, i);
             out.extend(list);
             i = end;
         } else {

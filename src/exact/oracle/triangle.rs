@@ -222,11 +222,8 @@ pub fn segment_crossing<V: Vector>(ray: &Ray<V>, tri: &Triangle<V>) -> Option<R>
     // The depth in units of `2^(E - F) / D_k`.
     let depth = &zp + s * (zq - &zp);
     let shift = e - f;
-    let unit = if shift >= 0 {
-        R::new(BigInt::from(1) << shift.unsigned_abs(), d[k].clone())
-    } else {
-        R::new(BigInt::from(1), &d[k] << shift.unsigned_abs())
-    };
+    // (Exponents of finite floats differ by less than 2,200: an `i32`.)
+    let unit = dyadic(1, i32::try_from(shift).ok()?) / R::from_integer(d[k].clone());
     Some(depth * unit)
 }
 
@@ -298,11 +295,8 @@ pub fn mt_bounds<V: Vector>(ray: &Ray<V>, tri: &Triangle<V>, u: &R, v: &R) -> Op
     let q = icross(&s, &e1);
     // `t`'s numerator in units of `2^3E`: `2^(E - F)` times `det`'s.
     let shift = e - f;
-    let pow = if shift >= 0 {
-        R::from_integer(BigInt::from(1) << shift.unsigned_abs())
-    } else {
-        R::new(BigInt::from(1), BigInt::from(1) << shift.unsigned_abs())
-    };
+    // (Exponents of finite floats differ by less than 2,200: an `i32`.)
+    let pow = dyadic(1, i32::try_from(shift).ok()?);
     let t = R::from_integer(idot(&e2, &q)) * &pow / &det;
     let g2 = gamma::<V::Scalar>(2);
     let quotient = |dn: R, q: &R| (dn + abs(q) * &d_det) / (abs(&det) - &d_det) + &g2 * abs(q);
