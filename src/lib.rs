@@ -84,8 +84,8 @@
 //! | leaf with several triangles | [`IntersectLanes::hit`] of a [`batch::TriangleBatch`] | 8 or 16 triangles at once, each lane the scalar test's answer |
 //! | shadow ray between two surfaces, or to a point light | [`SurfacePoint::spawn_to`], [`SurfacePoint::spawn_to_point`], then [`Intersect::occluded`] over the [`Interval`] they return | no epsilon: the segment cannot hit the surface at either end, and an occluder farther from both ends' planes than their error bounds is found |
 //! | shadow / any-hit ray from a plain origin | [`Intersect::occluded`] with the light's distance as `t_max` | `t_max` is honoured conservatively |
-//! | inside/outside, CSG, crossing counts | [`Intersect::hit`] with [`EdgeRule::OneHit`] | exactly one hit per crossing of a consistently wound mesh |
-//! | every hit along a ray, in order (transparency, alpha-tested foliage, volumes) | [`Intersect::hit`] over consecutive [`Interval`]s `(t0, t1]`, `(t1, t2]`, ... (with [`EdgeRule::OneHit`], one report per crossing of a mesh's shared edges); nodes culled with [`Bounds::clip`] over the same intervals | both ends decided exactly against the exact crossing: every crossing lands in exactly one interval, so no hit is skipped or repeated; the node tests never cull a box the ray crosses within the interval |
+//! | inside/outside, CSG, crossing counts | [`Intersect::hit`] with [`EdgeRule::OneHit`] | decided exactly: one hit per point where the ray crosses the surface the triangles form, at edges and corners too; zero-area fillers never hit |
+//! | every hit along a ray, in order (transparency, alpha-tested foliage, volumes) | a [`Walk`]: [`Intersect::hit`] with [`EdgeRule::OneHit`] over the windows it gives, from your own traversal; nodes culled with [`Bounds::clip`] over the same windows | one report per surface crossing: both ends of every window decided exactly, so no crossing is skipped or repeated, and the windows are in exact order; the node tests never cull a box the ray crosses within a window |
 //! | boxes as geometry | [`Intersect::hit`] of an [`Aabb`], then [`Aabb::surface_point`] | the face the ray enters through, decided exactly, and its normal |
 //! | planes | [`ray_plane`] (or [`Intersect::hit`] of a [`Plane`]) | `t` with its error bound ([`Surface::hit_error`]) |
 //! | the next ray from a hit | [`Surface::surface_point`], then [`SurfacePoint::spawn`] | the new ray cannot hit the surface it left |
@@ -493,7 +493,7 @@ mod root {
     pub use crate::num::{Scalar, Vector};
     pub use crate::plane::{Plane, ray_plane};
     pub use crate::query::{Bounds, EdgeRule, Intersect, IntersectLanes, RayForm, Search, Surface};
-    pub use crate::ray::{Interval, PreparedRay, Ray};
+    pub use crate::ray::{Interval, PreparedRay, Ray, Walk};
     pub use crate::surface::SurfacePoint;
     pub use crate::triangle::{Side, Triangle, TriangleHit, TriangleHitError, ray_triangle};
 

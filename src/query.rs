@@ -29,13 +29,15 @@ pub enum EdgeRule {
     /// of the triangles around it. For a closest hit.
     #[default]
     Closed,
-    /// One hit per crossing: each point of a shared edge or corner
-    /// belongs to exactly one of the triangles around it (simulation of
-    /// simplicity: see [`Triangle`'s `hit`](crate::Triangle#method.hit)),
-    /// so a ray crossing a consistently wound mesh there hits exactly one
-    /// of them. For counting crossings (inside/outside, CSG) and for every
-    /// hit along a ray in order. A point on an open boundary or a lone
-    /// triangle's edge belongs to a triangle only about half the time.
+    /// One hit per crossing: decided exactly for the ray moved off every
+    /// edge line (simulation of simplicity: see [`Triangle`'s
+    /// `hit`](crate::Triangle#method.hit)), so where a ray crosses the
+    /// surface the triangles form, at an edge or a corner included,
+    /// exactly one triangle reports it, and a triangle of exactly zero
+    /// area never does. For counting crossings (inside/outside, CSG) and
+    /// for every hit along a ray in order ([`Walk`](crate::Walk)). A
+    /// point on an open boundary or a lone triangle's edge belongs to a
+    /// triangle only about half the time.
     OneHit,
 }
 

@@ -320,12 +320,16 @@ impl<V: Vector> SurfacePoint<V> {
     ///   [`spawn`](Self::spawn) would start unmoved. A zero-area triangle
     ///   has no plane to leave; use [`spawn`](Self::spawn) towards the
     ///   target and a `t_max` of your own if you must.
-    /// - The segment within rounding of tangent to either surface: its
-    ///   angle with the surface below a few ulps plus the normal's
-    ///   relative error, or the far end within about the near end's error
-    ///   bound of the near end's plane. This includes coincident ends,
-    ///   ends on one plane, and ends closer than their error bounds (the
-    ///   offsets would cross).
+    /// - The segment within rounding of tangent to either surface, in the
+    ///   values the points carry: with `d` the returned ray's direction
+    ///   (the far end minus the moved origin) and `n`, `eta` an end's
+    ///   normal and `normal_error`, `|fl(d . n)|` at most `gamma(3) sum
+    ///   |d_i n_i| + sum |d_i| eta_i` (plus four subnormals): the side the
+    ///   segment leaves or reaches that surface from is not known. This
+    ///   includes coincident ends, ends on one plane, and ends closer than
+    ///   their error bounds (the offsets would cross). For an exact unit
+    ///   normal, the angle between the segment and the surface below about
+    ///   `3u` radians plus `|eta|`.
     /// - The target's move longer than the segment's largest component
     ///   (the check above; the ends are then within about their error
     ///   bounds of each other).

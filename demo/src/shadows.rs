@@ -14,20 +14,20 @@
 //! ends on them and the shading point's surface never blocks one that
 //! starts on it: there is no epsilon anywhere.
 //!
-//! The glass torus is walked hit by hit: take the nearest crossing of
-//! `(t_lo, t_max]`, widen it to `t_hi = t + bound` (its error bound from
-//! `Triangle::hit_error`, rounded up), take every crossing of `(t_lo,
-//! t_hi]` sorted by `t`, and go on from `t_lo = t_hi`. Consecutive
-//! intervals `(t0, t1]`, `(t1, t2]`, ... hold each exact crossing exactly
-//! once, and `Triangle::hit` with `EdgeRule::OneHit` gives a crossing
-//! through a shared edge or corner to exactly one triangle, so no surface
-//! is skipped or counted twice. Each surface crossed tints the light behind
-//! it, on camera rays and on shadow rays alike.
+//! The glass torus is walked hit by hit with a `Walk`: the nearest
+//! crossing of what is left of the interval gives a window (its `t` plus
+//! its error bound from `Triangle::hit_error`, rounded up), every crossing
+//! of the window is collected and sorted by `t`, and the walk goes on past
+//! the window. Consecutive windows hold each exact crossing exactly once,
+//! and `Triangle::hit` with `EdgeRule::OneHit` gives a crossing through a
+//! shared edge or corner to exactly one triangle, so no surface is skipped
+//! or counted twice. Each surface crossed tints the light behind it, on
+//! camera rays and on shadow rays alike.
 
 use rayhit::glam::{Mat3, Vec3};
 use rayhit::{
     Aabb, Camera, CameraSample, Intersect, Interval, PinholeCamera, Plane, PreparedRay, Ray,
-    Surface, SurfacePoint, Triangle, TriangleHit,
+    Surface, SurfacePoint, Triangle, TriangleHit, Walk,
 };
 
 use crate::mesh::{Bvh, icosphere, torus};
@@ -314,34 +314,23 @@ impl ShadowScene {
         let prepared = PreparedRay::new(ray);
         let mut out = Vec::new();
         let mut found = Vec::new();
-        let mut t_lo = interval.min();
-        let t_max = interval.max();
-        while let Some(window) = Interval::new(t_lo, t_max).filter(|w| w.min() < w.max()) {
-            let Some((nearest, id)) = self.glass.nearest_one_hit_in(ray, &prepared, window) else {
+        let mut walk = Walk::new(interval);
+        while let Some(rest) = walk.rest() {
+            let Some((nearest, id)) = self.glass.nearest_one_hit_in(ray, &prepared, rest) else {
                 break;
             };
-            // The nearest crossing's exact `t` is at most its `t` plus its
-            // error bound; rounding that sum up (one step past the rounded
-            // sum) keeps the bound. An infinite bound takes the rest of the
-            // interval at once.
             let tri = self.glass.mesh.triangle(id as usize);
-            let bound = tri.hit_error(ray, &nearest).t;
-            let t_hi = (nearest.t + bound).next_up().min(t_max);
-            // `nearest.t > t_lo`, so the window is not empty, holds the
-            // nearest crossing, and the walk moves on by at least one
-            // crossing each time.
-            let Some(step) = Interval::new(t_lo, t_hi) else {
+            let Some(window) = walk.window(nearest.t, tri.hit_error(ray, &nearest).t) else {
                 break;
             };
             found.clear();
-            self.glass.one_hits_in(ray, &prepared, step, &mut found);
-            found.sort_by(|a, b| a.0.t.total_cmp(&b.0.t).then(a.1.cmp(&b.1)));
+            self.glass.one_hits_in(ray, &prepared, window, &mut found);
+            let sorted = walk.advance(&mut found, |found| found.0.t);
             out.extend(
-                found
+                sorted
                     .iter()
                     .map(|&(hit, triangle)| Crossing { hit, triangle }),
             );
-            t_lo = t_hi;
         }
         out
     }

@@ -216,12 +216,17 @@ impl<V: Vector> Instance<V> {
     /// error widened by the round trip's error through the stored inverses,
     /// evaluated at the origin actually returned and checked.
     ///
-    /// Preconditions, as for [`SurfacePoint::spawn`]: `dir` is not within
-    /// rounding of tangent to the surface, where rounding now includes the
-    /// map of the direction (`|dir . w|` above the world ray bound
-    /// [`Instance::world_to_object_error`]'s `per_t` for `dir`, dotted with
-    /// `|w|`: a few ulps of the angle times the matrix's condition number),
-    /// and the normal is known well enough to pick a side (not a sliver).
+    /// Preconditions, as for [`SurfacePoint::spawn`], in the values `world`
+    /// and the instances give: `dir` not within rounding of tangent to the
+    /// surface, where rounding now includes the map of the direction. With
+    /// `n` and `eta` the world point's `normal` and `normal_error`, and
+    /// `p` the `per_t` of [`Instance::world_to_object_error`] for the ray
+    /// (`Instance::world_to_object_error(&Ray::new(world.point, dir))`),
+    /// it is enough that `|fl(dir . n)| > gamma(3) sum |dir_i n_i| + sum
+    /// |dir_i| eta_i + sum p_i (|n_i| + eta_i)`: a few ulps of the angle
+    /// times the matrix's condition number. And the normal must be known
+    /// well enough to pick a side (not a sliver: `|n|^2` well above `sum
+    /// |n_i| eta_i`).
     /// And the round trip's error must grow more slowly than the offset:
     /// the product of the condition numbers of the matrices along `path`
     /// well below `1 / u`. Where it is not, no offset can help (moving the

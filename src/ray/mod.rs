@@ -15,6 +15,8 @@
 //!   permutation and shear.
 //! - `prepared.rs`: [`PreparedRay`], both parts once per ray, and the one
 //!   encoding of an invalid ray.
+//! - `walk.rs`: [`Walk`], the windows of a walk along a ray (every hit in
+//!   order, from a sequence of interval calls).
 
 mod crossing;
 mod exact_crossing;
@@ -22,6 +24,7 @@ mod interval;
 mod prepared;
 mod shear;
 mod slab;
+mod walk;
 
 use glam::Vec3;
 
@@ -34,6 +37,7 @@ pub(crate) use interval::{bring_into, decide};
 pub use prepared::PreparedRay;
 pub(crate) use shear::{Shear, largest_axis};
 pub(crate) use slab::SlabRay;
+pub use walk::Walk;
 
 /// A ray `origin + t * dir` for `t >= 0`.
 ///

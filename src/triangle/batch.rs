@@ -406,7 +406,7 @@ fn slow_lanes<V: Vector, const N: usize>(
 ) -> TriangleBatchHits<S<V>, N> {
     let (origin, shear) = (ray.origin(), ray.shear());
     scalar_lanes(batch, slow, false, out, |tri| {
-        watertight_definition(origin, &shear, tri, t_max, EdgeRule::Closed)
+        watertight_definition((origin, ray.dir), &shear, tri, t_max, EdgeRule::Closed)
     })
 }
 

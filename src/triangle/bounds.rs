@@ -405,9 +405,25 @@ pub(crate) fn ray_triangle_error_bounds<V: Vector>(
     let f = Frame::new(ray.origin, tri, &shear);
     let z = f.scaled_z(&shear);
     let b = ErrorBounds::new(&f, &z, &shear);
-    let det = f.e[0] + f.e[1] + f.e[2];
     let zero = S::<V>::ZERO;
-    let same_sign = f.e.iter().all(|&e| e >= zero) || f.e.iter().all(|&e| e <= zero);
+    // The edge functions the hit was computed from: the frame's, or, for a
+    // one-hit hit near an edge, the frame's with those whose computed sign
+    // is not the exact determinant's set to zero. Where the bound below is
+    // finite, the computed determinant has the exact one's sign, so this
+    // zeroes the same ones. (A computed edge function of the other sign is
+    // within its error bound of zero, so zeroing the wrong ones, where the
+    // computed determinant's sign is wrong, leaves a sum below the
+    // determinant's error bound: the bounds are then infinite.)
+    let positive = f.e[0] + f.e[1] + f.e[2] > zero;
+    let e = f.e.map(|e| {
+        if (e > zero) == positive || e == zero {
+            e
+        } else {
+            zero
+        }
+    });
+    let det = e[0] + e[1] + e[2];
+    let same_sign = e.iter().all(|&e| e >= zero) || e.iter().all(|&e| e <= zero);
     match HitCondition::new(&b, det) {
         Some(c) if same_sign => TriangleHitError {
             t: c.t_error(&b, &z, hit.t),

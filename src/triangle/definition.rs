@@ -12,6 +12,7 @@
 use super::bounds::{ErrorBounds, HitCondition, longest_edge_t, max3};
 use super::conditioning::det_sign_known;
 use super::frame::Frame;
+use super::one_hit::one_hit_edges;
 use super::{Side, Triangle, TriangleHit};
 use crate::num::round::{max2, min2};
 use crate::num::{S, Scalar, Vector};
@@ -24,7 +25,7 @@ use crate::ray::Shear;
 /// triangle batches' undecided lanes all come here.
 #[inline(always)]
 pub(crate) fn watertight_definition<V: Vector>(
-    origin: V,
+    (origin, dir): (V, V),
     shear: &Shear<S<V>>,
     tri: &Triangle<V>,
     t_max: S<V>,
@@ -33,12 +34,9 @@ pub(crate) fn watertight_definition<V: Vector>(
     let zero = S::<V>::ZERO;
     let shear = *shear;
     let f = Frame::new(origin, tri, &shear);
-    let [e0, e1, e2] = f.e;
 
     // Inside test in the sheared plane.
-    if !inside(&f, rule) {
-        return None;
-    }
+    let [e0, e1, e2] = inside(&f, rule, (origin, dir), &shear, tri)?;
     let det = e0 + e1 + e2;
 
     // Distance: interpolate the scaled z with the edge functions, and compare
@@ -149,38 +147,32 @@ pub(crate) fn hit_at<F: Scalar>(
 }
 
 /// The watertight test's inside test in the sheared plane, with the edge
-/// rule `rule`: the edge functions' signs (exact) agree, a zero counting as
-/// inside (closed) or decided by the tie-break (one hit). NaN edge
-/// functions (overflow) pass the closed test; the determinant's range test
-/// rejects them instead.
+/// rule `rule`, for the ray `(origin, dir)` whose shear made `f`: the edge
+/// functions the hit is computed from, or `None` outside.
+///
+/// The closed rule takes the computed signs (exact: see [`Frame`]), a zero
+/// counting as inside, and answers with the frame's edge functions; NaN
+/// edge functions (overflow) pass it, and the determinant's range test
+/// rejects them instead. The one-hit rule decides exactly for the ray
+/// moved off every edge line, and answers with the edge functions
+/// [`one_hit_edges`] gives.
 #[inline(always)]
-pub(crate) fn inside<F: Scalar>(f: &Frame<F>, rule: EdgeRule) -> bool {
-    let zero = F::ZERO;
+pub(crate) fn inside<V: Vector>(
+    f: &Frame<S<V>>,
+    rule: EdgeRule,
+    ray: (V, V),
+    shear: &Shear<S<V>>,
+    tri: &Triangle<V>,
+) -> Option<[S<V>; 3]> {
+    let zero = S::<V>::ZERO;
     let [e0, e1, e2] = f.e;
     match rule {
         EdgeRule::Closed => {
             let any_neg = (e0 < zero) | (e1 < zero) | (e2 < zero);
             let any_pos = (e0 > zero) | (e1 > zero) | (e2 > zero);
-            // NaN edge functions (overflow) fail both tests below instead.
-            !(any_neg & any_pos)
+            (!(any_neg & any_pos)).then_some(f.e)
         }
-        EdgeRule::OneHit => {
-            let sign = |i: usize, e: F| {
-                if e > zero {
-                    Some(true)
-                } else if e < zero {
-                    Some(false)
-                } else if e == zero {
-                    f.tie_break(i)
-                } else {
-                    None
-                }
-            };
-            match (sign(0, e0), sign(1, e1), sign(2, e2)) {
-                (Some(a), Some(b), Some(c)) => a == b && b == c,
-                _ => false,
-            }
-        }
+        EdgeRule::OneHit => one_hit_edges(f, ray, shear, tri),
     }
 }
 

@@ -67,28 +67,4 @@ impl<F: Scalar> Frame<F> {
         }
         f
     }
-
-    /// The one-hit tie-break for edge `i` (from corner `i+1` to `i+2`) when
-    /// its edge function is exactly zero: the sign the edge function takes
-    /// once the ray is moved by an infinitesimal `(eps1, eps2)` with
-    /// `0 < eps2 << eps1`. Some(true) positive, Some(false) negative, None
-    /// for an edge of zero length in the sheared plane.
-    ///
-    /// For the edge `P -> Q` and a point `X`, the edge function is
-    /// `(P - X) x (Q - X) = P x Q - X_x D_y + X_y D_x` with `D = Q - P`. With
-    /// `P x Q = 0` and `X = (eps1, eps2)` its sign is that of `-D_y`, or of
-    /// `D_x` when `D_y = 0`. Only comparisons are needed, so it is exact.
-    #[inline(always)]
-    pub(crate) fn tie_break(&self, i: usize) -> Option<bool> {
-        let (j, k) = ((i + 1) % 3, (i + 2) % 3);
-        let (py, qy) = (self.y[j], self.y[k]);
-        let (px, qx) = (self.x[j], self.x[k]);
-        if py != qy {
-            Some(py > qy)
-        } else if px != qx {
-            Some(qx > px)
-        } else {
-            None
-        }
-    }
 }

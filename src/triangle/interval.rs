@@ -148,8 +148,14 @@ fn watertight_in_lanes<V: Vector, R: DefinitionRay<V>>(
     let (x, y, pz, e) = frame_lanes(origin_lanes, shear_lanes, axes, tri);
     let lanes_zero = L::<V>::splat(zero);
     if e.lt(lanes_zero) != 0 && lanes_zero.lt(e) != 0 {
-        // Outside for both edge rules, whatever the exact sign of a zero.
-        return None;
+        // Outside by the closed rule; by the one-hit rule where a positive
+        // and a negative sign are surely exact (else the exact signs, out
+        // of line).
+        let known = |v: S<V>| edge_signs_known_at_corners(x, y, pz, v);
+        if rule == EdgeRule::Closed || known(e.max_all().x()) && known(e.neg().max_all().x()) {
+            return None;
+        }
+        return unpack(in_out_of_line(ray, tri, interval, rule));
     }
     let sz = shear_lanes[2];
     let window = DepthWindow::new(interval, sz.x());
@@ -211,10 +217,7 @@ pub(super) fn watertight_in<V: Vector>(
 ) -> Option<TriangleHit<S<V>>> {
     let zero = S::<V>::ZERO;
     let f = Frame::new(origin, tri, shear);
-    if !inside(&f, rule) {
-        return None;
-    }
-    let [e0, e1, e2] = f.e;
+    let [e0, e1, e2] = inside(&f, rule, (origin, dir), shear, tri)?;
     let det = e0 + e1 + e2;
     // Zero (or NaN) in the sheared plane: no crossing, as in the plain test.
     if !(det != zero && det.is_finite()) {

@@ -7,6 +7,8 @@
 //!   crossing); the fast paths hand it their rare cases.
 //! - `conditioning.rs`: whether the determinant's sign is known, the
 //!   predicate that lets a fast path return the plain answer.
+//! - `one_hit.rs`: the one-hit rule's inside test, decided exactly for
+//!   the ray moved off every edge line.
 //! - `bounds.rs`: the rounding error bounds of a hit, and the hit point's.
 //! - `watertight.rs`: [`ray_triangle`] (a plain ray: every main axis at
 //!   once), `ray_triangle_prepared` and `ray_triangle_one_hit`, held to
@@ -35,6 +37,7 @@ mod frame;
 mod interval;
 mod lanes;
 mod mt;
+mod one_hit;
 mod query;
 mod watertight;
 

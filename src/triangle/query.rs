@@ -55,24 +55,35 @@ impl<V: Vector> Intersect<V> for Triangle<V> {
     ///
     /// # One hit per crossing
     ///
-    /// **With [`EdgeRule::OneHit`]**, an edge function of exactly zero (the
-    /// ray crosses the edge's line in its sheared plane) does not count as
-    /// inside: it is decided as if the ray were moved by an infinitesimal
-    /// `(eps1, eps2)`, `0 < eps2 << eps1`, in its sheared plane (simulation
-    /// of simplicity, Edelsbrunner and Mucke, 1990; the rasteriser's
-    /// top-left rule is the same idea in screen space). The moved ray lies
-    /// on no edge line, so each triangle's answer is the exact answer for
-    /// the same moved ray. Where a consistently wound mesh is, around the
-    /// crossing point, a surface seen from one side (every interior edge
-    /// shared by two triangles with bit-identical corners and opposite
-    /// directions), the ray hits exactly one triangle there, so counting
-    /// hits gives the right parity for inside/outside tests and CSG, and
-    /// with intervals each crossing is reported once over consecutive
-    /// intervals. What it gives up: a point on an open boundary or a lone
-    /// triangle's edge belongs to a triangle only if the moved ray is
-    /// inside it (about half the time). It runs the reference definition
-    /// (one component at a time), so it costs several times the closed
-    /// test.
+    /// **With [`EdgeRule::OneHit`]**, the inside test is decided in exact
+    /// arithmetic for the ray moved by an infinitesimal `(eps1, eps2)`,
+    /// `0 < eps2 << eps1`, across itself (along the two axes after the
+    /// direction's largest component; simulation of simplicity,
+    /// Edelsbrunner and Mucke, 1990). The moved ray lies on no edge line,
+    /// and every triangle answers for the same moved ray exactly, so each
+    /// point where it crosses the surface the triangles form is reported
+    /// by exactly one triangle: a ray through an edge or a vertex of a
+    /// mesh is reported once per crossing (twice, front and back at one
+    /// `t*`, where it only touches the mesh there). This holds for any
+    /// triangles: shared edges need not be stored identically, a
+    /// T-junction whose vertex lies exactly on the long edge closes
+    /// without a filler, and a triangle of exactly zero area (a filler) is
+    /// never hit. Where a T-junction's vertex is off the edge (rounded),
+    /// the surface folds there, and a ray through the fold crosses three
+    /// sheets (front, back, front): each is reported, and the signed
+    /// count (front minus back) is the crossing count. Over an
+    /// [`Interval`](crate::Interval) this is exact at the ends too, so the
+    /// crossings of consecutive intervals are the surface's crossings, each
+    /// once: the walk for transparency and volumes
+    /// ([`Walk`](crate::Walk)). With a `t_max` the ends are as for the
+    /// closed rule. What it gives up: a point on an open boundary or a
+    /// lone triangle's edge belongs to a triangle only if the moved ray is
+    /// inside it (about half the time). Cost: the closed test's
+    /// arithmetic (one component at a time) and, where a computed edge
+    /// function is within its rounding error of zero, a few hundred
+    /// operations for the exact signs; the decision is exact for every
+    /// `f32` input, and for `f64` under the same conditions as the
+    /// interval's ends.
     ///
     /// # Invalid input
     ///

@@ -27,9 +27,13 @@ fn watertight<V: Vector>(
     }
     match rule {
         EdgeRule::Closed => watertight_every_axis(ray, tri, t_max),
-        EdgeRule::OneHit => {
-            watertight_definition(ray.origin, &Shear::new(&ray.dir), tri, t_max, rule)
-        }
+        EdgeRule::OneHit => watertight_definition(
+            (ray.origin, ray.dir),
+            &Shear::new(&ray.dir),
+            tri,
+            t_max,
+            rule,
+        ),
     }
 }
 
@@ -250,7 +254,7 @@ fn definition_out_of_line<V: Vector, R: DefinitionRay<V>>(
 ) -> Packed<S<V>> {
     let (origin, shear) = ray.origin_and_shear();
     pack(watertight_definition(
-        origin,
+        (origin, ray.direction()),
         &shear,
         tri,
         t_max,
@@ -438,7 +442,13 @@ mod tests {
             for t_max in [t_max, S::<V>::INFINITY] {
                 let expected = (ray.is_valid() && t_max_ok(t_max)).then(|| {
                     let shear = Shear::new(&ray.dir);
-                    watertight_definition(ray.origin, &shear, &tri, t_max, EdgeRule::Closed)
+                    watertight_definition(
+                        (ray.origin, ray.dir),
+                        &shear,
+                        &tri,
+                        t_max,
+                        EdgeRule::Closed,
+                    )
                 });
                 let bits = crate::testing::hit_bits::<S<V>>;
                 let expected = bits(expected.flatten());

@@ -46,6 +46,54 @@ impl ExactTriangle {
     }
 }
 
+/// The one-hit rule ([`EdgeRule::OneHit`](crate::EdgeRule::OneHit)) in
+/// exact arithmetic: whether the ray's line, moved by an infinitesimal
+/// `eps1 x + eps2 y` (`0 < eps2 << eps1`; `x`, `y` the axes after the
+/// direction's largest-magnitude axis `z`, cyclically), passes through
+/// the triangle's interior; `None` when a coordinate is not finite.
+///
+/// Moving the origin by `delta` changes an edge's Plucker product
+/// `((p - o) x (q - o)) . d` by `-(delta x (q - p)) . d`, so where the
+/// product is zero its sign is that of `-(x x D) . d`, or else of
+/// `-(y x D) . d`, with `D = q - p` (zero for both: the edge is parallel
+/// to the ray, and the moved line passes no triangle on it). Computed in
+/// integers, as [`triangle`].
+#[must_use]
+pub fn one_hit_line_hits<V: Vector>(ray: &Ray<V>, tri: &Triangle<V>) -> Option<bool> {
+    let ex = triangle(ray, tri)?;
+    if ex.t.is_none() {
+        return Some(false);
+    }
+    let w = |p: V| [p.x().to_f64(), p.y().to_f64(), p.z().to_f64()];
+    let (pts, _) = integers([w(tri.a), w(tri.b), w(tri.c)]);
+    let ([d], _) = integers([w(ray.dir)]);
+    let shear = crate::ray::Shear::new(&ray.dir);
+    let (kx, ky) = (shear.kx as usize, shear.ky as usize);
+    let unit = |k: usize| {
+        let mut u = [BigInt::zero(), BigInt::zero(), BigInt::zero()];
+        u[k] = BigInt::from(1);
+        u
+    };
+    let mut signs = ex.signs;
+    for (i, s) in signs.iter_mut().enumerate() {
+        if *s != Ordering::Equal {
+            continue;
+        }
+        let (p, q) = (&pts[i], &pts[(i + 1) % 3]);
+        let edge = isub(q, p);
+        let moved = |k: usize| {
+            (-idot(&icross(&unit(k), &edge), &d))
+                .sign()
+                .cmp(&Sign::NoSign)
+        };
+        *s = match moved(kx) {
+            Ordering::Equal => moved(ky),
+            o => o,
+        };
+    }
+    Some(signs[0] != Ordering::Equal && signs[0] == signs[1] && signs[1] == signs[2])
+}
+
 /// Exact ray/triangle: signs of the three edge Plucker products, the plane
 /// crossing `t` and the barycentrics `(u, v)` there; `None` when a
 /// coordinate is not finite.

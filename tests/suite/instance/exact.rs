@@ -4,7 +4,8 @@
 //!
 //! - world boxes contain the exact image of the object box (its exact
 //!   extremes on every axis, `rayhit::exact::judge_world_box`);
-//! - the world/object ray bound holds at several `t`, nested pairs too;
+//! - the world/object ray bound holds at several `t`, nested pairs too,
+//!   and in object units (`Instance::object_error_at`);
 //! - spawned rays from world surface points, mapped back through the
 //!   instance (or a nested pair) as a renderer does, never re-hit the
 //!   triangle they left, by the watertight kernel and by the exact plane
@@ -133,6 +134,23 @@ fn ray_bound_holds<V: Vector>(
         .within
 }
 
+/// `|object.at(t) - F^-1(world.at(t))| <= bound` per component, exactly.
+fn object_bound_holds<V: Vector>(
+    to_world: &AffineMap,
+    world: &Ray<V>,
+    object: &Ray<V>,
+    bound: V,
+    t: S<V>,
+) -> bool {
+    let at = |ray: &Ray<V>| {
+        let (o, d, t) = (rv(ray.origin), rv(ray.dir), r(t));
+        [0, 1, 2].map(|i| &o[i] + &d[i] * &t)
+    };
+    let preimage = to_world.inverse().expect("invertible").apply(&at(world));
+    let q = at(object);
+    bound.is_finite() && (0..3).all(|i| (&q[i] - &preimage[i]).abs() <= r(bound[i]))
+}
+
 /// (c) The world/object ray bound, one level and nested pairs.
 fn ray_bounds<V: Vector>(seed: u64, n: usize) -> (usize, usize) {
     let mut src = Source::seeded(seed);
@@ -152,6 +170,19 @@ fn ray_bounds<V: Vector>(seed: u64, n: usize) -> (usize, usize) {
         for t in ts {
             checked += 1;
             if !ray_bound_holds(&c.map, &world, &object, &err, t) {
+                fails += 1;
+            }
+            // The same in object units: the object ray's point at `t`
+            // within `object_error_at` of the exact preimage of the world
+            // ray's point at `t`, per axis.
+            checked += 1;
+            if !object_bound_holds(
+                &c.map,
+                &world,
+                &object,
+                c.inst.object_error_at(&world, t),
+                t,
+            ) {
                 fails += 1;
             }
         }

@@ -86,12 +86,20 @@ fn closed_in<V: Vector>(
         bits(hit),
         "{ray:?} {tri:?} {i:?}"
     );
+    // The one-hit rule: exactly where the moved line crosses the triangle
+    // (exact arithmetic, `one_hit_line_hits`) at a `t*` in the interval.
     let one = tri.hit(ray, (i, EdgeRule::OneHit));
+    let crossed = oracle::one_hit_line_hits(ray, tri) == Some(true) && {
+        let t = oracle::triangle(ray, tri).and_then(|e| e.t).unwrap();
+        let (lo, hi) = (i.min(), i.max());
+        oracle::r(lo).unwrap() < t && (!hi.is_finite() || t <= oracle::r(hi).unwrap())
+    };
+    assert_eq!(
+        one.is_some(),
+        crossed,
+        "one-hit against exact: {ray:?} {tri:?} {i:?}"
+    );
     if let Some(h) = one {
-        assert!(
-            hit.is_some(),
-            "one-hit without closed hit: {ray:?} {tri:?} {i:?}"
-        );
         assert!(i.contains(h.t));
     }
     if let Some(h) = hit {

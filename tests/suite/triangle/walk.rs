@@ -1,23 +1,24 @@
 //! Every hit along a ray, in order, from a sequence of interval calls, on
-//! closed meshes: no skip, no repeat, against exact arithmetic.
+//! closed meshes: no skip, no repeat, and with the one-hit rule each
+//! crossing of the surface once, against exact arithmetic.
 //!
 //! The meshes: the test kit's icosphere (convex) and torus (not convex),
-//! and an octahedron with a T-junction (one face split at the midpoint of
-//! an edge, the crack closed by the zero-area triangle between the edge and
-//! its halves), each scaled by 1e-3 to 1e3 and translated by up to 1e5 in
-//! the precision under test (shared corners stay bit-identical). Rays
-//! start outside and are aimed at a corner, an edge midpoint, a face point
-//! or the middle of the mesh.
+//! an octahedron with a T-junction (one face split at the midpoint of an
+//! edge, the crack closed by the zero-area triangle between the edge and
+//! its halves), and a stack of three thin boxes (which rounding lays on
+//! top of each other far away and small), each scaled by 1e-3 to 1e3 and
+//! translated by up to 1e5 in the precision under test (shared corners
+//! stay bit-identical). Rays start outside and are aimed at a corner, an
+//! edge midpoint, a face point or the middle of the mesh.
 //!
-//! The sequence is collected in windows: from `t_lo` (first 0), the
-//! nearest hit of `(t_lo, inf]` gives `t_hi` (its `t` plus its error bound
-//! from `Triangle::hit_error`, rounded up); every hit of `(t_lo, t_hi]` is
-//! reported, sorted by `(t, triangle)`; then `t_lo = t_hi`. This runs with
+//! The sequence is collected in windows: [`Walk`]'s (from the nearest hit
+//! of the rest, its `t` and error bound from `Triangle::hit_error`; every
+//! hit of the window reported, sorted by `t`). This runs with
 //! `Triangle::hit` over the interval on a `PreparedRay` (closed) and with
-//! `EdgeRule::OneHit`; and again with tight windows, `t_hi` the
+//! `EdgeRule::OneHit`; and again with tight windows, ending at the
 //! nearest hit's `t` itself, so that window ends fall right at crossings
 //! (the nearest triangle's `t*` is on either side of its rounded `t`;
-//! where that window is empty, the wide one is taken). Checked:
+//! where that window is empty, the walk's is taken). Checked:
 //!
 //! - no repeat: no triangle is reported twice;
 //! - no skip: the triangles reported are those the same test reports over
@@ -29,11 +30,17 @@
 //!   exact module says is clear of the watertight tests' rounding
 //!   (`triangle_clear_watertight`: the tests compared here are all
 //!   watertight, so Moller-Trumbore's band is not added) is reported by
-//!   the closed sequence exactly when the exact ray crosses it; and on
-//!   rays where every triangle is clear, the one-hit sequence's count is
-//!   the exact number of crossings; and on a convex mesh, a line that the
-//!   exact module finds meeting it at two points, in at one and out at the
-//!   other (through edges and corners included), has a one-hit count of
+//!   the closed sequence exactly when the exact ray crosses it; the
+//!   one-hit sequence reports exactly the triangles that the ray, moved
+//!   off the edge lines as the rule says, crosses at `t* > 0`
+//!   (`oracle::one_hit_line_hits`), so no crossing of a mesh but the
+//!   stack is reported twice (one exact `t*` and side: the tally's
+//!   `one_hit_doubles`, against the closed rule's `closed_doubles`, its
+//!   reports of one crossing through shared edges and corners); on rays
+//!   where every triangle is clear, the one-hit count is the exact number
+//!   of crossings; and on a convex mesh, a line that the exact module
+//!   finds meeting it at two points, in at one and out at the other
+//!   (through edges and corners included), has a one-hit count of
 //!   exactly 2.
 //!
 //! The exact crossing of each triangle whose box the ray hits is computed
@@ -57,7 +64,7 @@ use rayhit::exact::{self, oracle};
 use rayhit::glam::{DVec3, Vec3};
 use rayhit::{
     Aabb, EdgeRule, Intersect, Interval, PreparedRay, Ray, Scalar, Surface, Triangle, TriangleHit,
-    Vector, ray_aabb,
+    Vector, Walk, ray_aabb,
 };
 use rayhit_testkit::mesh::{self, Mesh};
 use rayhit_testkit::rng::Pcg32;
@@ -102,11 +109,50 @@ fn t_junction_octahedron() -> Mesh {
     }
 }
 
+/// Three thin boxes stacked along `z` (2 by 2 by 0.02, 0.2 apart), each
+/// closed and wound outwards: far away and small, rounding collapses
+/// their faces onto one plane.
+fn thin_stack() -> Mesh {
+    let mut positions = Vec::new();
+    let mut indices = Vec::new();
+    for z in [-0.5, -0.1, 0.3] {
+        let base = positions.len() as u32;
+        for k in 0..2 {
+            for j in 0..2 {
+                for i in 0..2 {
+                    let c = |n: u32| if n == 0 { -1.0 } else { 1.0 };
+                    positions.push(Vec3::new(c(i), c(j), z + 0.02 * k as f32));
+                }
+            }
+        }
+        // Corner `v(i, j, k)` is `base + i + 2j + 4k`.
+        let v = |i: u32, j: u32, k: u32| base + i + 2 * j + 4 * k;
+        let faces = [
+            [v(0, 0, 0), v(0, 1, 0), v(1, 1, 0), v(1, 0, 0)],
+            [v(0, 0, 1), v(1, 0, 1), v(1, 1, 1), v(0, 1, 1)],
+            [v(0, 0, 0), v(1, 0, 0), v(1, 0, 1), v(0, 0, 1)],
+            [v(0, 1, 0), v(0, 1, 1), v(1, 1, 1), v(1, 1, 0)],
+            [v(0, 0, 0), v(0, 0, 1), v(0, 1, 1), v(0, 1, 0)],
+            [v(1, 0, 0), v(1, 1, 0), v(1, 1, 1), v(1, 0, 1)],
+        ];
+        for [a, b, c, d] in faces {
+            indices.push([a, b, c]);
+            indices.push([a, c, d]);
+        }
+    }
+    Mesh {
+        positions,
+        normals: Vec::new(),
+        indices,
+    }
+}
+
 fn meshes() -> Vec<(&'static str, Mesh)> {
     vec![
         ("icosphere", mesh::icosphere(Vec3::ZERO, 1.0, 1)),
         ("torus", mesh::torus(1.0, 0.4, 10, 6)),
         ("t-junction octahedron", t_junction_octahedron()),
+        ("thin stack", thin_stack()),
     ]
 }
 
@@ -139,7 +185,10 @@ type Reported<V> = (Interval<S<V>>, usize, S<V>);
 
 type Kernel<V> = fn(&Ray<V>, &Triangle<V>, Interval<S<V>>) -> Option<TriangleHit<S<V>>>;
 
-/// The hits of the window loop: (window, triangle, t).
+/// The hits of the window loop: (window, triangle, t). With `margin`, the
+/// windows are [`Walk`]'s; without, each ends right at the nearest hit's
+/// `t` (where that window holds it: its `t*` may be above), set by hand,
+/// and the walk restarts after it.
 fn windows<V: Vector>(
     ray: &Ray<V>,
     tris: &[Triangle<V>],
@@ -147,53 +196,46 @@ fn windows<V: Vector>(
     margin: bool,
 ) -> (Vec<Reported<V>>, usize) {
     let inf = S::<V>::INFINITY;
-    let mut lo = S::<V>::ZERO;
+    let mut walk = Walk::new(Interval::up_to(inf).unwrap());
     let mut out = Vec::new();
     let mut count = 0;
-    loop {
+    let in_window = |window: Interval<S<V>>| -> Vec<(S<V>, usize)> {
+        tris.iter()
+            .enumerate()
+            .filter_map(|(i, tri)| kernel(ray, tri, window).map(|h| (h.t, i)))
+            .collect()
+    };
+    while let Some(rest) = walk.rest() {
         count += 1;
         assert!(
             count <= 2 * tris.len() + 2,
             "the windows do not advance: {ray:?}"
         );
-        let rest = Interval::new(lo, inf).unwrap();
         let nearest = tris
             .iter()
             .filter_map(|tri| kernel(ray, tri, rest).map(|h| (h, tri)))
             .min_by(|a, b| a.0.t.partial_cmp(&b.0.t).unwrap());
         let Some((hit, tri)) = nearest else { break };
-        let in_window = |window: Interval<S<V>>| -> Vec<(S<V>, usize)> {
-            tris.iter()
-                .enumerate()
-                .filter_map(|(i, tri)| kernel(ray, tri, window).map(|h| (h.t, i)))
-                .collect()
-        };
-        // The window with the margin: the nearest hit's `t*` is within the
-        // bound of its `t`, so the nearest hit is in it.
-        let err = tri.hit_error(ray, &hit).t;
-        let wide = (hit.t + err).next_up();
-        let wide = if wide.is_finite() { wide } else { inf };
-        // Tight: up to the nearest hit's `t`; empty when its `t*` is above
-        // that, and then the wide window is taken.
-        let tight = Interval::new(lo, hit.t).unwrap();
-        let (window, mut found) = match (margin, in_window(tight)) {
-            (false, found) if !found.is_empty() => (tight, found),
-            _ => {
-                let window = Interval::new(lo, wide).unwrap();
-                (window, in_window(window))
-            }
+        let tight = Interval::new(rest.min(), hit.t).unwrap();
+        let found = if margin { Vec::new() } else { in_window(tight) };
+        let (window, found) = if found.is_empty() {
+            let window = walk.window(hit.t, tri.hit_error(ray, &hit).t).unwrap();
+            let mut found = in_window(window);
+            walk.advance(&mut found, |h| h.0);
+            (window, found)
+        } else {
+            walk = Walk::new(Interval::new(hit.t, inf).unwrap());
+            (tight, found)
         };
         assert!(
             !found.is_empty(),
             "the nearest hit is not in its own window: {ray:?}"
         );
-        let hi = window.max();
-        found.sort_by(|a, b| a.0.partial_cmp(&b.0).unwrap().then(a.1.cmp(&b.1)));
+        assert!(
+            found.windows(2).all(|p| p[0].0 <= p[1].0) || !margin,
+            "not in order"
+        );
         out.extend(found.into_iter().map(|(t, i)| (window, i, t)));
-        if hi == inf {
-            break;
-        }
-        lo = hi;
     }
     (out, count)
 }
@@ -222,6 +264,10 @@ struct Tally {
     clear_rays: usize,
     /// Rays through a convex mesh, in at one point and out at another.
     two_crossing_rays: usize,
+    /// Reports beyond the first of one crossing (one exact `t*` and side),
+    /// by the closed rule and by the one-hit rule.
+    closed_doubles: usize,
+    one_hit_doubles: usize,
 }
 
 impl Tally {
@@ -236,6 +282,8 @@ impl Tally {
         self.exact_checked += o.exact_checked;
         self.clear_rays += o.clear_rays;
         self.two_crossing_rays += o.two_crossing_rays;
+        self.closed_doubles += o.closed_doubles;
+        self.one_hit_doubles += o.one_hit_doubles;
         self
     }
 }
@@ -244,9 +292,10 @@ fn check_ray<V: Vector>(
     ray: &Ray<V>,
     tris: &[Triangle<V>],
     boxes: &[Aabb<V>],
-    convex: bool,
+    (name, embedded): (&str, bool),
     tally: &mut Tally,
 ) {
+    let convex = name == "icosphere" || name == "t-junction octahedron";
     let inf = S::<V>::INFINITY;
     let all = Interval::up_to(inf).unwrap();
     // The exact crossings, each computed once, and whether each is clear
@@ -257,6 +306,7 @@ fn check_ray<V: Vector>(
     let mut crossings: Vec<Option<oracle::ExactTriangle>> = vec![None; tris.len()];
     let mut answers = vec![None; tris.len()];
     let mut clear = vec![true; tris.len()];
+    let mut moved_crosses = vec![false; tris.len()];
     for (i, tri) in tris.iter().enumerate() {
         if ray_aabb(ray, &boxes[i], inf).is_none() {
             continue;
@@ -272,6 +322,14 @@ fn check_ray<V: Vector>(
         } else {
             answers[i] = exact::ray_triangle_from_exact(ray, tri, &ex, inf);
             clear[i] = oracle::triangle_clear_watertight(ray, tri, &ex, inf);
+            // The one-hit rule's exact verdict: the moved line crosses the
+            // triangle (off the edge lines, the line itself), at `t* > 0`.
+            let moved = if ex.signs.contains(&std::cmp::Ordering::Equal) {
+                oracle::one_hit_line_hits(ray, tri) == Some(true)
+            } else {
+                ex.interior()
+            };
+            moved_crosses[i] = moved && ex.t.as_ref().is_some_and(|t| *t > oracle::int(0));
         }
         crossings[i] = Some(ex);
     }
@@ -332,8 +390,35 @@ fn check_ray<V: Vector>(
             }
         }
         tally.shared_windows += seq.windows(2).filter(|p| p[0].0 == p[1].0).count();
+        // Reports of one crossing: triangles reported at the same exact
+        // `t*` with the same side.
+        let doubles = {
+            let mut at: Vec<_> = ids
+                .iter()
+                .filter_map(|&i| {
+                    let side = answers[i].as_ref()?.side;
+                    Some((
+                        crossings[i].as_ref()?.t.clone()?,
+                        side == rayhit::Side::Front,
+                    ))
+                })
+                .collect();
+            at.sort();
+            at.windows(2).filter(|p| p[0] == p[1]).count()
+        };
         if one_hit {
             tally.one_hits += n;
+            tally.one_hit_doubles += doubles;
+            // Exactly the triangles the moved line crosses: each crossing
+            // of the surface once (where rounding leaves the mesh a surface
+            // without overlaps, no two reports share a crossing; the stack
+            // and a mesh near the precision's grid can have faces on top
+            // of each other, crossed together).
+            let exact: Vec<usize> = (0..tris.len()).filter(|&i| moved_crosses[i]).collect();
+            assert_eq!(ids, exact, "one-hit against exact: {ray:?} {seq:?}");
+            if embedded {
+                assert_eq!(doubles, 0, "a crossing reported twice: {ray:?} {seq:?}");
+            }
             if all_clear {
                 let exact_count = crossed.iter().filter(|&&c| c).count();
                 assert_eq!(
@@ -343,6 +428,7 @@ fn check_ray<V: Vector>(
             }
         } else {
             tally.closed_hits += n;
+            tally.closed_doubles += doubles;
             // Against the exact crossings, where rounding cannot decide
             // otherwise.
             for i in 0..tris.len() {
@@ -357,6 +443,16 @@ fn check_ray<V: Vector>(
             }
         }
     }
+}
+
+/// Whether the mesh, placed, surely stays a surface without overlaps:
+/// not the stack, and the scale at least `2^12` ulps of the largest
+/// coordinate (the meshes' closest vertices are about `0.05` of the
+/// scale apart, so each vertex moves by under `1/80` of that).
+fn embedded<V: Vector>(name: &str, scale: f64, offset: [f64; 3]) -> bool {
+    let largest = offset.iter().fold(0.0f64, |m, x| m.max(x.abs())) + 4.0 * scale;
+    let ulp = S::<V>::UNIT_ROUNDOFF.to_f64() * 2.0 * largest;
+    name != "thin stack" && scale > 4096.0 * ulp
 }
 
 /// The triangle's bounding box (its corners' extremes: exact).
@@ -422,7 +518,6 @@ fn run_share<V: Vector>(seed: u64, rays_per_mesh: usize, (k, n): (usize, usize))
     let mut tally = Tally::default();
     let mut placement = 0;
     for (name, m) in meshes() {
-        let convex = name != "torus";
         for _ in 0..rays_per_mesh.div_ceil(8) {
             let mine = placement % n == k;
             placement += 1;
@@ -450,7 +545,13 @@ fn run_share<V: Vector>(seed: u64, rays_per_mesh: usize, (k, n): (usize, usize))
                     continue;
                 }
                 tally.rays += 1;
-                check_ray(&ray, &tris, &boxes, convex, &mut tally);
+                check_ray(
+                    &ray,
+                    &tris,
+                    &boxes,
+                    (name, embedded::<V>(name, scale, offset)),
+                    &mut tally,
+                );
             }
         }
     }
@@ -547,8 +648,13 @@ mod properties {
             aim,
         );
         if ray.is_valid() {
-            let convex = *name != "torus";
-            check_ray(&ray, &tris, &boxes, convex, &mut Tally::default());
+            check_ray(
+                &ray,
+                &tris,
+                &boxes,
+                (name, embedded::<V>(name, scale, offset)),
+                &mut Tally::default(),
+            );
         }
     }
 
@@ -566,7 +672,7 @@ mod properties {
 
         #[test]
         fn sequence_invariants(
-            mesh in 0..3usize,
+            mesh in 0..4usize,
             exponent in -3.0..3.0f64,
             far in prop_oneof![Just(0.0), Just(1e5)],
             offset in [-1.0..1.0f64, -1.0..1.0f64, -1.0..1.0f64],
