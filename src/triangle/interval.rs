@@ -335,6 +335,19 @@ pub(crate) fn ray_triangle_prepared_in<V: Vector>(
     watertight_in_lanes(ray, lanes, tri, interval, EdgeRule::Closed)
 }
 
+/// [`ray_triangle_one_hit_in`] on a prepared ray: the same answer, bit for
+/// bit.
+#[inline(always)]
+#[must_use]
+pub(crate) fn ray_triangle_prepared_one_hit_in<V: Vector>(
+    ray: &PreparedRay<V>,
+    tri: &Triangle<V>,
+    interval: Interval<S<V>>,
+) -> Option<TriangleHit<S<V>>> {
+    let lanes = (&ray.origin_lanes, &ray.shear_lanes, &ray.axes);
+    watertight_in_lanes(ray, lanes, tri, interval, EdgeRule::OneHit)
+}
+
 /// [`ray_triangle_in`] with the one-hit edge rule.
 #[inline]
 #[must_use]

@@ -99,6 +99,11 @@ fn closed_in<V: Vector>(
         crossed,
         "one-hit against exact: {ray:?} {tri:?} {i:?}"
     );
+    assert_eq!(
+        bits(tri.hit(&PreparedRay::new(ray), (i, EdgeRule::OneHit))),
+        bits(one),
+        "one-hit, prepared: {ray:?} {tri:?} {i:?}"
+    );
     if let Some(h) = one {
         assert!(i.contains(h.t));
     }

@@ -3,7 +3,7 @@
 //! `bvh`'s and `parry3d`'s.
 
 use parry3d::query::RayCast;
-use rayhit::{Intersect, Side, ray_triangle};
+use rayhit::{EdgeRule, Intersect, Interval, Side, ray_triangle};
 
 use crate::data::TriData;
 use crate::floors::{
@@ -52,6 +52,7 @@ pub fn triangle_kernels<'a>(d: &'a TriData, out: &mut Vec<Kernel<'a>>) {
         }),
     );
     let (w, sec) = (d.name, "triangle");
+    let all = Interval::up_to(INF).expect("a valid interval");
     out.extend([
         kernel(
             sec,
@@ -81,6 +82,46 @@ pub fn triangle_kernels<'a>(d: &'a TriData, out: &mut Vec<Kernel<'a>>) {
             None,
             pairwise(&d.order, &d.prepared_a, &d.tris_a, |r, t| {
                 t_sum(t.hit(r, INF).map(|h| h.t))
+            }),
+        ),
+        kernel(
+            sec,
+            "rayhit Triangle::hit, PreparedRay, (0, inf]",
+            w,
+            n,
+            None,
+            pairwise(&d.order, &d.prepared, &d.tris, move |r, t| {
+                t_sum(t.hit(r, all).map(|h| h.t))
+            }),
+        ),
+        kernel(
+            sec,
+            "rayhit Triangle::hit, (0, inf]",
+            w,
+            n,
+            None,
+            pairwise(&d.order, &d.rays, &d.tris, move |r, t| {
+                t_sum(t.hit(r, all).map(|h| h.t))
+            }),
+        ),
+        kernel(
+            sec,
+            "rayhit Triangle::hit, EdgeRule::OneHit, (0, inf]",
+            w,
+            n,
+            None,
+            pairwise(&d.order, &d.rays, &d.tris, move |r, t| {
+                t_sum(t.hit(r, (all, EdgeRule::OneHit)).map(|h| h.t))
+            }),
+        ),
+        kernel(
+            sec,
+            "rayhit Triangle::hit, PreparedRay, EdgeRule::OneHit, (0, inf]",
+            w,
+            n,
+            None,
+            pairwise(&d.order, &d.prepared, &d.tris, move |r, t| {
+                t_sum(t.hit(r, (all, EdgeRule::OneHit)).map(|h| h.t))
             }),
         ),
         kernel(
