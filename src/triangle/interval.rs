@@ -321,7 +321,9 @@ pub(crate) fn ray_triangle_in<V: Vector>(
     on_ray(ray, tri, interval, EdgeRule::Closed)
 }
 
-/// [`ray_triangle_in`] on a prepared ray: the same answer, bit for bit.
+/// [`ray_triangle_in`] (the closed rule) or [`ray_triangle_one_hit_in`]
+/// (the one-hit rule), by `rule`, on a prepared ray: the same answer, bit
+/// for bit.
 // (Always inlined, as `ray_triangle_prepared` is: the body of a
 // traversal's inner loop, its rare paths out of line.)
 #[inline(always)]
@@ -330,22 +332,10 @@ pub(crate) fn ray_triangle_prepared_in<V: Vector>(
     ray: &PreparedRay<V>,
     tri: &Triangle<V>,
     interval: Interval<S<V>>,
+    rule: EdgeRule,
 ) -> Option<TriangleHit<S<V>>> {
     let lanes = (&ray.origin_lanes, &ray.shear_lanes, &ray.axes);
-    watertight_in_lanes(ray, lanes, tri, interval, EdgeRule::Closed)
-}
-
-/// [`ray_triangle_one_hit_in`] on a prepared ray: the same answer, bit for
-/// bit.
-#[inline(always)]
-#[must_use]
-pub(crate) fn ray_triangle_prepared_one_hit_in<V: Vector>(
-    ray: &PreparedRay<V>,
-    tri: &Triangle<V>,
-    interval: Interval<S<V>>,
-) -> Option<TriangleHit<S<V>>> {
-    let lanes = (&ray.origin_lanes, &ray.shear_lanes, &ray.axes);
-    watertight_in_lanes(ray, lanes, tri, interval, EdgeRule::OneHit)
+    watertight_in_lanes(ray, lanes, tri, interval, rule)
 }
 
 /// [`ray_triangle_in`] with the one-hit edge rule.
@@ -445,7 +435,7 @@ mod tests {
                         let got = match rule {
                             EdgeRule::Closed => {
                                 assert_eq!(
-                                    bits(ray_triangle_prepared_in(&prepared, &tri, window)),
+                                    bits(ray_triangle_prepared_in(&prepared, &tri, window, rule)),
                                     expected,
                                     "{ray:?} {tri:?} {window:?}"
                                 );
@@ -466,7 +456,14 @@ mod tests {
                                 assert_eq!(batch.occluded(&prepared, window), expected.is_some());
                                 ray_triangle_in(&ray, &tri, window)
                             }
-                            EdgeRule::OneHit => ray_triangle_one_hit_in(&ray, &tri, window),
+                            EdgeRule::OneHit => {
+                                assert_eq!(
+                                    bits(ray_triangle_prepared_in(&prepared, &tri, window, rule)),
+                                    expected,
+                                    "{ray:?} {tri:?} {window:?}"
+                                );
+                                ray_triangle_one_hit_in(&ray, &tri, window)
+                            }
                         };
                         assert_eq!(bits(got), expected, "{ray:?} {tri:?} {window:?} {rule:?}");
                     }

@@ -5,10 +5,7 @@
 use super::batch::{TriangleBatchKernel, one_hit_lanes};
 use super::batch_interval::TriangleBatchInKernel;
 use super::bounds::{ray_triangle_error_bounds, triangle_hit_point};
-use super::interval::{
-    ray_triangle_in, ray_triangle_one_hit_in, ray_triangle_prepared_in,
-    ray_triangle_prepared_one_hit_in,
-};
+use super::interval::{ray_triangle_in, ray_triangle_one_hit_in, ray_triangle_prepared_in};
 use super::watertight::{ray_triangle, ray_triangle_one_hit, ray_triangle_prepared};
 use super::{Triangle, TriangleBatch, TriangleBatchHits, TriangleHit, TriangleHitError};
 use crate::num::{S, Vector};
@@ -132,7 +129,7 @@ impl<V: Vector> Intersect<V> for Triangle<V> {
             }
             (EdgeRule::Closed, Range::Within(i), Form::Plain(r)) => ray_triangle_in(r, self, i),
             (EdgeRule::Closed, Range::Within(i), Form::Prepared(p)) => {
-                ray_triangle_prepared_in(p, self, i)
+                ray_triangle_prepared_in(p, self, i, EdgeRule::Closed)
             }
             (EdgeRule::OneHit, Range::UpTo(t_max), _) => {
                 ray_triangle_one_hit(&ray.to_ray(), self, t_max)
@@ -141,7 +138,7 @@ impl<V: Vector> Intersect<V> for Triangle<V> {
                 ray_triangle_one_hit_in(r, self, i)
             }
             (EdgeRule::OneHit, Range::Within(i), Form::Prepared(p)) => {
-                ray_triangle_prepared_one_hit_in(p, self, i)
+                ray_triangle_prepared_in(p, self, i, EdgeRule::OneHit)
             }
         }
     }
