@@ -12,12 +12,12 @@
 use super::bounds::{ErrorBounds, HitCondition, longest_edge_t, max3};
 use super::conditioning::det_sign_known;
 use super::frame::Frame;
-use super::one_hit::one_hit_edges;
+use super::one_hit::{one_hit_edges, unresolved_hit};
 use super::{Side, Triangle, TriangleHit};
 use crate::num::round::{max2, min2};
 use crate::num::{S, Scalar, Vector};
 pub(crate) use crate::query::EdgeRule;
-use crate::ray::Shear;
+use crate::ray::{Interval, Shear};
 
 /// The watertight test for a valid ray, given its origin and shear, and a
 /// `t_max >= 0`. [`ray_triangle`](crate::ray_triangle),
@@ -38,6 +38,11 @@ pub(crate) fn watertight_definition<V: Vector>(
     // Inside test in the sheared plane.
     let [e0, e1, e2] = inside(&f, rule, (origin, dir), &shear, tri)?;
     let det = e0 + e1 + e2;
+    if rule == EdgeRule::OneHit && !(det != zero && det.is_finite()) {
+        // An exact one-hit hit that rounding leaves no determinant.
+        let range = Interval::up_to(t_max)?;
+        return unresolved_hit((origin, dir), &shear, tri, &f, range);
+    }
 
     // Distance: interpolate the scaled z with the edge functions, and compare
     // against t_max * det before paying for the division.

@@ -40,9 +40,10 @@ use super::conditioning::edge_signs_known_at_corners;
 use super::definition::{EdgeRule, hit_at, inside};
 use super::frame::Frame;
 use super::lanes::{DefinitionRay, Packed, frame_lanes, lanes_hit, pack, unpack};
+use super::one_hit::{crossing, unresolved_hit};
 use super::{Triangle, TriangleHit};
 use crate::num::{Axis, L, Lanes, S, Scalar, Vector};
-use crate::ray::{Interval, PlaneCrossing, PreparedRay, Ray, Shear, bring_into, decide};
+use crate::ray::{Interval, PreparedRay, Ray, Shear, bring_into, decide};
 use core::cmp::Ordering;
 
 /// An interval's ends as the corners' depths are compared with them
@@ -219,9 +220,13 @@ pub(super) fn watertight_in<V: Vector>(
     let f = Frame::new(origin, tri, shear);
     let [e0, e1, e2] = inside(&f, rule, (origin, dir), shear, tri)?;
     let det = e0 + e1 + e2;
-    // Zero (or NaN) in the sheared plane: no crossing, as in the plain test.
+    // Zero (or NaN) in the sheared plane: no crossing, as in the plain
+    // test; but a one-hit hit is exact, and answers without the frame.
     if !(det != zero && det.is_finite()) {
-        return None;
+        return match rule {
+            EdgeRule::Closed => None,
+            EdgeRule::OneHit => unresolved_hit((origin, dir), shear, tri, &f, interval),
+        };
     }
     let z = f.scaled_z(shear);
     let t_scaled = e0 * z[0] + e1 * z[1] + e2 * z[2];
@@ -295,16 +300,6 @@ fn on_ray<V: Vector>(
         &[shear.kx, shear.ky, shear.kz],
     );
     watertight_in_lanes(ray, lanes, tri, interval, rule)
-}
-
-/// The exact crossing's signs for the ray and the triangle.
-#[cold]
-#[inline(never)]
-fn crossing<V: Vector>(origin: V, dir: V, tri: &Triangle<V>) -> PlaneCrossing {
-    let w = |p: V| [p.x().to_f64(), p.y().to_f64(), p.z().to_f64()];
-    // `f64` inputs are scaled; `f32` ones are in range as they are.
-    let wide = S::<V>::UNIT_ROUNDOFF.to_f64() < 1e-10;
-    PlaneCrossing::new(w(origin), w(dir), w(tri.a), w(tri.b), w(tri.c), wide)
 }
 
 /// The watertight test over an interval, both ends decided exactly: the

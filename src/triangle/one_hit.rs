@@ -33,12 +33,12 @@
 //! (three [`PlaneCrossing`] determinants and, on an edge line, a
 //! two-by-two determinant).
 
-use super::Triangle;
 use super::conditioning::edge_signs_known_at_corners;
 use super::frame::Frame;
+use super::{Side, Triangle, TriangleHit};
 use crate::num::exact_sign::{exponent, scale2, sum_of_products_sign, two_diff};
 use crate::num::{S, Scalar, Vector, lanes};
-use crate::ray::{PlaneCrossing, Shear};
+use crate::ray::{Interval, PlaneCrossing, Shear, bring_into, decide};
 use core::cmp::Ordering;
 
 /// The edge functions a one-hit hit is computed from, or `None` where the
@@ -112,11 +112,8 @@ fn exact_edge_positive<V: Vector>(
     p: V,
     q: V,
 ) -> Option<bool> {
-    let w = |v: V| [v.x().to_f64(), v.y().to_f64(), v.z().to_f64()];
-    let wide = S::<V>::UNIT_ROUNDOFF.to_f64() < 1e-10;
-    let (o, d) = (w(origin), w(dir));
     // The triangle `(o, p, q)`: its normal is `(p - o) x (q - o)`.
-    let triple = PlaneCrossing::new(o, d, o, w(p), w(q), wide).den_sign()?;
+    let triple = crossing(origin, dir, &Triangle::new(origin, p, q)).den_sign()?;
     let dz_positive = shear.dz > S::<V>::ZERO;
     match triple {
         Ordering::Greater => return Some(dz_positive),
@@ -125,10 +122,11 @@ fn exact_edge_positive<V: Vector>(
     }
     // On the edge's line: `-D_y`, else `D_x`, in the sheared plane; each
     // is `(d_z (q - p)_k - d_k (q - p)_z) / d_z`.
-    let (p, q) = (w(p), w(q));
+    let w = |v: V| [v.x().to_f64(), v.y().to_f64(), v.z().to_f64()];
+    let wide = S::<V>::UNIT_ROUNDOFF.to_f64() < 1e-10;
+    let (p, q, mut d) = (w(p), w(q), w(dir));
     let [kx, ky, kz] = [shear.kx, shear.ky, shear.kz].map(|k| k as usize);
     let mut diff = [0, 1, 2].map(|k| two_diff(q[k], p[k]));
-    let mut d = d;
     if wide {
         let m = diff.iter().fold(0.0f64, |m, x| m.max(x.0.abs()));
         let n = d.iter().fold(0.0f64, |m, x| m.max(x.abs()));
@@ -152,6 +150,55 @@ fn exact_edge_positive<V: Vector>(
         },
         s => Some(!positive(s)),
     }
+}
+
+/// The exact crossing's signs for the ray and the triangle.
+#[cold]
+#[inline(never)]
+pub(crate) fn crossing<V: Vector>(origin: V, dir: V, tri: &Triangle<V>) -> PlaneCrossing {
+    let w = |p: V| [p.x().to_f64(), p.y().to_f64(), p.z().to_f64()];
+    // `f64` inputs are scaled; `f32` ones are in range as they are.
+    let wide = S::<V>::UNIT_ROUNDOFF.to_f64() < 1e-10;
+    PlaneCrossing::new(w(origin), w(dir), w(tri.a), w(tri.b), w(tri.c), wide)
+}
+
+/// The hit of a triangle the moved ray crosses (exactly) where rounding
+/// leaves the edge functions no usable sum (every one within its rounding
+/// of zero: a sliver seen from the ray), over `interval`: the range
+/// decided exactly against the exact crossing; `t` the corners' mean
+/// depth (the exact crossing is a convex combination of the exact
+/// depths, so `t` is within their spread of it), brought into the
+/// interval; `u = v = 1/3`; the side the exact `d . n`'s. Its error
+/// bounds are infinite ([`Surface::hit_error`](crate::Surface)). `None`
+/// where the crossing is not in the interval, or the exact signs overflow.
+#[cold]
+#[inline(never)]
+pub(crate) fn unresolved_hit<V: Vector>(
+    (origin, dir): (V, V),
+    shear: &Shear<S<V>>,
+    tri: &Triangle<V>,
+    f: &Frame<S<V>>,
+    interval: Interval<S<V>>,
+) -> Option<TriangleHit<S<V>>> {
+    let z = f.scaled_z(shear);
+    let t = (z[0] + z[1] + z[2]) / S::<V>::from_u32(3);
+    let (lo, hi) = interval.ends();
+    let exact = crossing(origin, dir, tri);
+    let side = match exact.den_sign()? {
+        Ordering::Less => Side::Front,
+        Ordering::Greater => Side::Back,
+        Ordering::Equal => return None,
+    };
+    if !decide(t, S::<V>::INFINITY, lo, hi, || exact)? {
+        return None;
+    }
+    let third = S::<V>::ONE / S::<V>::from_u32(3);
+    Some(TriangleHit {
+        t: bring_into(t, lo, hi),
+        u: third,
+        v: third,
+        side,
+    })
 }
 
 fn min3<F: Scalar>(v: [F; 3]) -> F {

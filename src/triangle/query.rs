@@ -156,11 +156,17 @@ impl<V: Vector> Surface<V> for Triangle<V> {
     /// sensitivity of `t = sum e_i z_i / sum e_i` and of `e_i / sum e_i` to
     /// them. The `t` bound grows with the spread of the corners' distances
     /// along the ray, not with the distance itself, so it stays within a
-    /// few ulps of `t` for a triangle facing the ray, however far away. For
-    /// a hit over an [`Interval`](crate::Interval) whose `t` was brought
-    /// into the interval, it bounds the quotient before that move (the
-    /// move is only towards the exact crossing, or within one ulp of the
-    /// interval's lower end).
+    /// few ulps of `t` for a triangle facing the ray, however far away.
+    ///
+    /// For a hit over an [`Interval`](crate::Interval) `(lo, hi]`, whose
+    /// computed `t` is moved into the interval where it fell outside (the
+    /// exact crossing being inside), the reported `t` is within `max(t
+    /// bound, succ(lo) - lo)` of the exact crossing: the move is towards
+    /// it, except that a crossing within one ulp above `lo` is reported at
+    /// `lo`'s successor. With the one-hit rule, a computed edge function
+    /// whose sign is not the exact one counts as zero, here as in the hit
+    /// itself. A [`Walk`](crate::Walk) takes this bound for its windows;
+    /// an infinite bound there gives the rest of the range as one window.
     ///
     /// Where the exact determinant's sign is not known, the bounds are
     /// infinite (the ray is within rounding of parallel to the triangle,

@@ -392,3 +392,95 @@ fn a_ray_through_a_split_vertex_is_reported_once() {
     let closed = tris.iter().filter(|t| t.hit(&ray, all).is_some()).count();
     assert!(closed >= 2, "{closed}");
 }
+
+/// Slivers: the filler `(A, M, B)` of a T-junction whose split vertex `M`
+/// is the rounded midpoint of `A B` moved by an ulp (so the filler has a
+/// tiny area, exactly), 1e3 to 1e5 from the origin and of sizes from
+/// `2^-12` to `2^4`, crossed by rays aimed at `M`, at a point of `A B` or
+/// at the sliver's middle, from a few to a few hundred sizes away. The
+/// one-hit rule hits the sliver exactly when the ray, moved off the edge
+/// lines, crosses it at `t* > 0` (exact arithmetic), on a plain and on a
+/// prepared ray, also where rounding leaves the sliver no area in the
+/// ray's frame (every edge function within its rounding of zero): there
+/// the hit's `t` is the corners' mean depth, within their spread of `t*`.
+fn slivers<V: Vector>() -> (usize, usize) {
+    let mut rng = Source::seeded(53);
+    let all = rayhit::Interval::up_to(S::<V>::INFINITY).unwrap();
+    let (mut rays, mut hits) = (0, 0);
+    let f = |x: f64| S::<V>::from_f64(x);
+    for _ in 0..case_count(3_000) {
+        let size = rng.log2_range(-12.0, 4.0);
+        let far = rng.log2_range(10.0, 16.6);
+        let at = rng.direction().map(|x| x * far);
+        let a = V::new(f(at[0]), f(at[1]), f(at[2]));
+        let e = rng.direction().map(|x| x * size);
+        let b = a + V::new(f(e[0]), f(e[1]), f(e[2]));
+        let half = f(0.5);
+        let mid = a + (b - a) * half;
+        let k = rng.below(3) as usize;
+        let up = rng.one_in(2);
+        let nudged = |x: S<V>| if up { x.next_up() } else { x.next_down() };
+        let m = match k {
+            0 => V::new(nudged(mid.x()), mid.y(), mid.z()),
+            1 => V::new(mid.x(), nudged(mid.y()), mid.z()),
+            _ => V::new(mid.x(), mid.y(), nudged(mid.z())),
+        };
+        let tri = if rng.one_in(2) {
+            Triangle::new(a, m, b)
+        } else {
+            Triangle::new(a, b, m)
+        };
+        for _ in 0..8 {
+            let target = match rng.below(3) {
+                0 => m,
+                1 => a + (b - a) * f(rng.range(0.05, 0.95)),
+                _ => (a + b + m) * f(1.0 / 3.0),
+            };
+            let away = rng.direction().map(|x| x * size * rng.log2_range(1.0, 8.0));
+            let origin = target + V::new(f(away[0]), f(away[1]), f(away[2]));
+            let ray = Ray::new(origin, target - origin);
+            if !ray.is_valid() {
+                continue;
+            }
+            let exact = oracle::triangle(&ray, &tri);
+            let crossed = oracle::one_hit_line_hits(&ray, &tri) == Some(true)
+                && exact.t.as_ref().is_some_and(|t| *t > oracle::int(0));
+            let got = tri.hit(&ray, (all, EdgeRule::OneHit));
+            assert_eq!(got.is_some(), crossed, "{ray:?} {tri:?}");
+            let prepared = tri.hit(&PreparedRay::new(&ray), (all, EdgeRule::OneHit));
+            assert_eq!(
+                prepared.map(|h| (h.t, h.u, h.v, h.side)),
+                got.map(|h| (h.t, h.u, h.v, h.side)),
+                "{ray:?} {tri:?}"
+            );
+            if let Some(h) = got {
+                assert!(h.t > S::<V>::ZERO && h.t.is_finite() && h.u >= S::<V>::ZERO);
+                assert!(h.v >= S::<V>::ZERO && h.u + h.v <= S::<V>::ONE + S::<V>::ONE);
+                let err = tri.hit_error(&ray, &h);
+                let t_exact = exact.t.as_ref().expect("crossed");
+                assert!(
+                    !err.t.is_finite() || oracle::close(h.t, t_exact, err.t),
+                    "t {:?}, exact {}, bound {:?}: {ray:?} {tri:?}",
+                    h.t,
+                    oracle::to_f64(t_exact),
+                    err.t
+                );
+                hits += 1;
+            }
+            rays += 1;
+        }
+    }
+    (rays, hits)
+}
+
+#[test]
+fn slivers_are_hit_exactly_where_the_moved_ray_crosses_them_f32() {
+    let (rays, hits) = slivers::<Vec3>();
+    assert!(rays > 20_000 && hits > rays / 20, "{hits} of {rays}");
+}
+
+#[test]
+fn slivers_are_hit_exactly_where_the_moved_ray_crosses_them_f64() {
+    let (rays, hits) = slivers::<DVec3>();
+    assert!(rays > 20_000 && hits > rays / 20, "{hits} of {rays}");
+}
