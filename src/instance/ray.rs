@@ -198,6 +198,10 @@ impl<V: Vector> Instance<V> {
     /// corresponds to the world point `ray.at(t)` within
     /// `at(t) + |M| e` plus the rounding of `at` itself.
     ///
+    /// Whether the instance resolves its object from this ray is the same
+    /// bound in object units, against the object's scale:
+    /// [`Instance::object_error_at`].
+    ///
     /// ```
     /// use rayhit::{Instance, Ray, glam::{DAffine3, DVec3}};
     /// let inst = Instance::from_daffine3(DAffine3::from_translation(DVec3::splat(1e5))).unwrap();
