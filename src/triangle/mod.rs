@@ -61,8 +61,11 @@ pub use watertight::ray_triangle;
 ///
 /// **Zero-area triangles** (corners collinear or coincident, exactly:
 /// [`Triangle::is_degenerate`]) can be hit, on purpose. The watertight tests
-/// hit one where, in the ray's sheared frame, its rounded corners enclose the
-/// ray: rounding gives the segment a sliver of area there. Meshes close
+/// with the closed rule hit one where, in the ray's sheared frame, its
+/// rounded corners enclose the ray: rounding gives the segment a sliver of
+/// area there. (With [`EdgeRule::OneHit`](crate::EdgeRule), decided in
+/// exact arithmetic, a zero-area triangle is never hit: the neighbours
+/// close the surface exactly.) Meshes close
 /// T-junctions (a vertex on another triangle's edge, filled with the
 /// zero-area triangle between that edge and the two halves) and collapsed
 /// edges with such triangles, and in the rounded frame the filler is exactly
