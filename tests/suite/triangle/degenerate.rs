@@ -455,7 +455,9 @@ fn slivers<V: Vector>() -> (usize, usize) {
             );
             if let Some(h) = got {
                 assert!(h.t > S::<V>::ZERO && h.t.is_finite() && h.u >= S::<V>::ZERO);
-                assert!(h.v >= S::<V>::ZERO && h.u + h.v <= S::<V>::ONE + S::<V>::ONE);
+                // Each barycentric in [0, 1]: the kernels clamp the rounded
+                // quotient at 1, and the no-area path reports 1/3 each.
+                assert!(h.v >= S::<V>::ZERO && h.u <= S::<V>::ONE && h.v <= S::<V>::ONE);
                 let err = tri.hit_error(&ray, &h);
                 let t_exact = exact.t.as_ref().expect("crossed");
                 assert!(

@@ -460,7 +460,8 @@ fn check_ray<V: Vector>(
 /// Whether the mesh, placed, surely stays a surface without overlaps:
 /// not the stack, and the scale at least `2^12` ulps of the largest
 /// coordinate (the meshes' closest vertices are about `0.05` of the
-/// scale apart, so each vertex moves by under `1/80` of that).
+/// scale apart, and rounding moves a vertex by at most half an ulp, under
+/// `scale / 8192`: below `1/400` of that spacing).
 fn embedded<V: Vector>(name: &str, scale: f64, offset: [f64; 3]) -> bool {
     let largest = offset.iter().fold(0.0f64, |m, x| m.max(x.abs())) + 4.0 * scale;
     let ulp = S::<V>::UNIT_ROUNDOFF.to_f64() * 2.0 * largest;
