@@ -39,6 +39,7 @@ mod aabb;
 mod differentials;
 mod filter;
 mod plane;
+mod sphere;
 mod triangle;
 mod values;
 
@@ -49,5 +50,6 @@ pub use aabb::*;
 pub use differentials::*;
 pub use filter::*;
 pub use plane::*;
+pub use sphere::*;
 pub use triangle::*;
 pub use values::*;
