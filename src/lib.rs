@@ -406,6 +406,7 @@ mod query;
 
 mod aabb;
 mod plane;
+mod sphere;
 mod triangle;
 
 mod node;
