@@ -495,6 +495,7 @@ mod root {
     pub use crate::plane::{Plane, ray_plane};
     pub use crate::query::{Bounds, EdgeRule, Intersect, IntersectLanes, RayForm, Search, Surface};
     pub use crate::ray::{Interval, PreparedRay, Ray, Walk};
+    pub use crate::sphere::{Sphere, SphereHit};
     pub use crate::surface::SurfacePoint;
     pub use crate::triangle::{Side, Triangle, TriangleHit, TriangleHitError, ray_triangle};
 
@@ -512,6 +513,10 @@ mod root {
     pub type DBoxHit = BoxHit<f64>;
     /// [`Plane`] in `f64`.
     pub type DPlane = Plane<DVec3>;
+    /// [`Sphere`] in `f64`.
+    pub type DSphere = Sphere<DVec3>;
+    /// [`SphereHit`] in `f64`.
+    pub type DSphereHit = SphereHit<f64>;
     /// [`Triangle`] in `f64`.
     pub type DTriangle = Triangle<DVec3>;
     /// [`TriangleHit`] in `f64`.

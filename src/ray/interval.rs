@@ -114,26 +114,58 @@ pub(crate) enum Place {
     Unknown,
 }
 
+/// The exact place of one crossing against a float, for [`decide`]'s
+/// fallback: a plane's ([`PlaneCrossing`]), or one of a sphere's two.
+pub(crate) trait ExactPlace {
+    /// Whether the crossing exists (the line is not parallel to the plane;
+    /// it meets the ball); `None` where the exact signs overflow.
+    fn exists(&self) -> Option<bool>;
+    /// The crossing `t*` of a line where [`exists`](Self::exists) holds,
+    /// against `x`: `Greater` where `t* > x`. `None` where the exact signs
+    /// overflow.
+    fn place(&self, x: f64) -> Option<Ordering>;
+}
+
+/// A plane's crossing `t* = A . n / D`: it exists where `D` is not zero,
+/// and `t* > x` exactly when `A . n - x D` has the sign of `D`.
+impl ExactPlace for PlaneCrossing {
+    fn exists(&self) -> Option<bool> {
+        Some(self.den_sign()? != Ordering::Equal)
+    }
+
+    fn place(&self, x: f64) -> Option<Ordering> {
+        let den = self.den_sign()?;
+        let num = self.num_minus_t_den_sign(x)?;
+        Some(if num == Ordering::Equal {
+            Ordering::Equal
+        } else if num == den {
+            Ordering::Greater
+        } else {
+            Ordering::Less
+        })
+    }
+}
+
 /// Whether the exact crossing `t*` is in `(lo, hi]`, given a float `t`
 /// within `err` of it (where `t*` exists), and the exact signs where the
 /// band `[t - err, t + err]` leaves an end open; `None` where the exact
 /// signs overflow (outside their documented range).
 ///
 /// The filter: where the band lies on one side of an end (its bounds
-/// rounded outward), that end is decided. Otherwise `t* > lo` holds
-/// exactly when `A . n - lo D` has the sign of `D` (and `D` is not zero),
-/// and `t* <= hi` when `A . n - hi D` is zero or of the opposite sign
+/// rounded outward), that end is decided. Otherwise the exact place
+/// ([`ExactPlace`]) decides: for a plane, `t* > lo` holds exactly when
+/// `A . n - lo D` has the sign of `D` (and `D` is not zero), and `t* <=
+/// hi` when `A . n - hi D` is zero or of the opposite sign
 /// ([`PlaneCrossing`]). A NaN `t` or `err`, or an infinite `err`, leaves
 /// both ends to the exact signs, which also answer "no crossing" where
-/// `D` is exactly zero. Shared by the triangle, plane and box-face
-/// interval forms.
+/// there is none (`D` exactly zero). Shared by every interval form.
 #[inline(always)]
-pub(crate) fn decide<F: Scalar>(
+pub(crate) fn decide<F: Scalar, E: ExactPlace>(
     t: F,
     err: F,
     lo: F,
     hi: F,
-    exact: impl FnOnce() -> PlaneCrossing,
+    exact: impl FnOnce() -> E,
 ) -> Option<bool> {
     use crate::num::round::outward::{add_up, sub_down};
     let low = if sub_down(t, err) > lo {
@@ -165,22 +197,19 @@ pub(crate) fn decide<F: Scalar>(
 /// The exact half of [`decide`], out of line.
 #[cold]
 #[inline(never)]
-fn exact_decide<F: Scalar>(
+fn exact_decide<F: Scalar, E: ExactPlace>(
     low: Place,
     high: Place,
     lo: F,
     hi: F,
-    exact: PlaneCrossing,
+    exact: E,
 ) -> Option<bool> {
-    let den = exact.den_sign()?;
-    if den == Ordering::Equal {
+    if !exact.exists()? {
         return Some(false);
     }
-    // t* > lo  <=>  (A . n - lo D) has the sign of D.
-    let above_lo = low == Place::Above || exact.num_minus_t_den_sign(lo.to_f64())? == den;
+    let above_lo = low == Place::Above || exact.place(lo.to_f64())? == Ordering::Greater;
     if !above_lo {
         return Some(false);
     }
-    // t* <= hi  <=>  (A . n - hi D) is zero or has the sign opposite to D's.
-    Some(high == Place::Below || exact.num_minus_t_den_sign(hi.to_f64())? != den)
+    Some(high == Place::Below || exact.place(hi.to_f64())? != Ordering::Greater)
 }

@@ -6,6 +6,7 @@
 //! | --- | --- |
 //! | `aabb` | the box: slab and naive tests, entry face, intervals |
 //! | `plane` | the plane: the test, its hit point, intervals |
+//! | `sphere` | the sphere: the test over a `t_max` and over an interval, its error bound, the textbook test beside it |
 //! | `triangle` | the triangle: watertight, one-hit and Moller-Trumbore tests, meshes, zero-area triangles, intervals, the walk along a ray |
 //! | `shapes` | several shapes' kernels at once: metamorphic identities, the plane and box intervals' long run and bad input |
 //! | `batch` | the batches and the compressed BVH node, bit for bit against the scalar kernels |
@@ -72,5 +73,6 @@ mod instance;
 mod layering;
 mod plane;
 mod shapes;
+mod sphere;
 mod surface;
 mod triangle;
