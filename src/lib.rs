@@ -1,6 +1,6 @@
 //! Camera rays (pinhole, thin lens, orthographic, panoramic, from a
 //! rasterizer's matrices, with ray differentials and ray cones) and
-//! ray/plane, ray/box and ray/triangle intersection over [`glam`] vectors,
+//! ray/plane, ray/box, ray/triangle and ray/sphere intersection over [`glam`] vectors,
 //! with error bounds that are derived, documented and tested against exact
 //! arithmetic.
 //!
@@ -48,6 +48,7 @@
 //! | --- | --- | --- | --- |
 //! | [`Triangle`] | [`TriangleHit`]: `t`, `u`, `v`, [`Side`] | [`TriangleHitError`]; the point from the barycentrics | |
 //! | [`Plane`] | `t` | the bound on `t`; the point with the plane's exact normal | |
+//! | [`Sphere`] | [`SphereHit`]: `t`, [`Side`] (entering or leaving the ball) | the bound on `t`; the point moved onto the sphere, its outward normal | [`Sphere::bounds`], a box for your BVH |
 //! | [`Aabb`], [`ValidAabb`] | [`BoxHit`]: the interval and the entry [`BoxFace`], decided exactly | [`Aabb::surface_point`] (none from inside) | `Option<(enter, exit)>` |
 //! | [`batch::TriangleBatch`] | [`batch::TriangleBatchHits`]: every lane's hit | | |
 //! | [`batch::AabbBatch`], [`batch::QuantizedChildren`] | | | [`batch::AabbBatchHits`]: the lanes hit, and their entries |
@@ -88,6 +89,7 @@
 //! | every hit along a ray, in order (transparency, alpha-tested foliage, volumes) | a [`Walk`]: [`Intersect::hit`] with [`EdgeRule::OneHit`] over the windows it gives, from your own traversal; nodes culled with [`Bounds::clip`] over the same windows | one report per surface crossing: both ends of every window decided exactly, so no crossing is skipped or repeated, and the windows are in exact order; the node tests never cull a box the ray crosses within a window |
 //! | boxes as geometry | [`Intersect::hit`] of an [`Aabb`], then [`Aabb::surface_point`] | the face the ray enters through, decided exactly, and its normal |
 //! | planes | [`ray_plane`] (or [`Intersect::hit`] of a [`Plane`]) | `t` with its error bound ([`Surface::hit_error`]) |
+//! | spheres (particles, molecules, "One Weekend" scenes) | [`Intersect::hit`] of a [`Sphere`], then [`Surface::surface_point`] and [`SurfacePoint::spawn`] | no false miss at any distance (no rings on far spheres), `t` with its error bound, and no epsilon: a spawned ray never meets the sphere it left, one spawned into it finds the far side |
 //! | the next ray from a hit | [`Surface::surface_point`], then [`SurfacePoint::spawn`] | the new ray cannot hit the surface it left |
 //! | instances (one mesh placed many times, two-level BVH) | [`Instance`]: `object_to_world_box` for the top level, `world_to_object` once per visit, `surface_to_world` and `spawn` for the next ray, `spawn_to_through` for a shadow segment | world boxes contain the exact transformed object box; the spawned ray, mapped back, cannot hit the surface it left |
 //! | when speed matters more than cracks | [`Triangle::moller_trumbore`] | the textbook fast test, not watertight |
@@ -97,7 +99,7 @@
 //! - A [`Ray`] is `origin + t * dir` for `t >= 0`. `dir` need not be unit
 //!   length; every `t` is measured in multiples of `dir`. A zero or
 //!   non-finite `dir` (or origin) hits nothing.
-//! - A surface ([`Plane`], [`Triangle`]) is hit at `0 < t <= t_max`: a hit at
+//! - A surface ([`Plane`], [`Triangle`], [`Sphere`]) is hit at `0 < t <= t_max`: a hit at
 //!   exactly `t = 0` is the ray's own starting surface and is not reported.
 //! - A box ([`Aabb`]) is a closed solid: the result is the interval
 //!   `[max(t_enter, 0), min(t_exit, t_max)]` when it is not empty, so a ray

@@ -232,3 +232,83 @@ impl ExactPlace for SphereCrossing {
         self.signs.place(self.root, x)
     }
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::exact::oracle::{self, R};
+    use crate::testing::Draws;
+    use crate::{Ray, Scalar, Vector};
+    use glam::{DVec3, Vec3};
+    use std::vec;
+
+    /// The signs against the exact module's big rationals (an independent
+    /// computation: the quadratic's coefficients as rationals), on lines
+    /// that miss, touch and cross, for `x` at random, at the crossings'
+    /// float neighbours and at the nearest point, in both precisions and
+    /// over scales `2^-60` to `2^60`.
+    fn against_oracle<V: Vector>() -> usize {
+        let mut draws = Draws(5);
+        let mut checked = 0;
+        let f = |x: f64| V::Scalar::from_f64(x);
+        let w = |p: V| [p.x().to_f64(), p.y().to_f64(), p.z().to_f64()];
+        for i in 0..3000 {
+            let scale = 2f64.powi((i % 121) - 60);
+            let mut v = || {
+                V::new(
+                    f(draws.coordinate(4) * scale),
+                    f(draws.coordinate(4) * scale),
+                    f(draws.coordinate(4) * scale),
+                )
+            };
+            let (o, d, c) = (v(), v(), v());
+            let radius = f(draws.coordinate(4).abs() * scale * 2.0);
+            let ray = Ray::new(o, d);
+            let Some(exact) = oracle::sphere(&ray, c, radius) else {
+                continue;
+            };
+            let wide = V::Scalar::UNIT_ROUNDOFF.to_f64() < 1e-10;
+            let signs = SphereSigns::new(w(o), w(d), w(c), radius.to_f64(), wide);
+            let zero_cmp = |x: &R| x.cmp(&R::from_integer(0.into()));
+            assert_eq!(signs.disc_sign(), Some(zero_cmp(&exact.discriminant())));
+            if !exact.line_hits() {
+                continue;
+            }
+            let near = crate::exact::round::<V::Scalar>(&exact.nearest());
+            let mut xs = vec![near, near.next_up(), near.next_down(), V::Scalar::ZERO];
+            xs.push(f(draws.coordinate(4) * scale));
+            for x in xs {
+                let xr = oracle::r(x).unwrap();
+                assert_eq!(
+                    signs.place(Root::Entry, x.to_f64()),
+                    exact.entry_cmp(&xr),
+                    "{x:?}"
+                );
+                assert_eq!(
+                    signs.place(Root::Exit, x.to_f64()),
+                    exact.exit_cmp(&xr),
+                    "{x:?}"
+                );
+            }
+            checked += 1;
+        }
+        checked
+    }
+
+    #[test]
+    fn signs_agree_with_the_exact_module() {
+        assert!(against_oracle::<Vec3>() > 500);
+        assert!(against_oracle::<DVec3>() > 500);
+    }
+
+    /// A line touching the sphere exactly: the discriminant is zero and
+    /// both crossings are at the nearest point.
+    #[test]
+    fn touching_line() {
+        let signs = SphereSigns::new([-2.0, 1.0, 0.0], [1.0, 0.0, 0.0], [0.0; 3], 1.0, true);
+        assert_eq!(signs.disc_sign(), Some(Ordering::Equal));
+        assert_eq!(signs.place(Root::Entry, 2.0), Some(Ordering::Equal));
+        assert_eq!(signs.place(Root::Exit, 2.0), Some(Ordering::Equal));
+        assert_eq!(signs.place(Root::Exit, 1e300), Some(Ordering::Less));
+    }
+}

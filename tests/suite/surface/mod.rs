@@ -5,3 +5,4 @@
 mod fuzz_regressions;
 mod properties;
 mod spawn_to;
+mod sphere;
