@@ -12,12 +12,12 @@
 //!
 //! The impls are generic over the vector type, for both precisions
 //! (`Vec3` and `DVec3`); the components are read in the order the fields are
-//! declared, `x, y, z` each.
+//! declared, `x, y, z` each (a sphere's `center`, then its `radius`).
 
 use ::arbitrary::{Arbitrary, Result, Unstructured, size_hint};
 
 use crate::num::Vector;
-use crate::{Aabb, Plane, Ray, Triangle};
+use crate::{Aabb, Plane, Ray, Sphere, Triangle};
 
 /// A vector from three raw-bit scalars, `x`, `y`, `z`.
 fn vector<'a, V>(u: &mut Unstructured<'a>) -> Result<V>
@@ -87,6 +87,26 @@ impl_arbitrary!(
     3
 );
 
+/// Raw bit patterns for `center`'s `x, y, z` then `radius`: negative, zero,
+/// subnormal and non-finite radii included.
+impl<'a, V> Arbitrary<'a> for Sphere<V>
+where
+    V: Vector,
+    <V as Vector>::Scalar: Arbitrary<'a>,
+{
+    fn arbitrary(u: &mut Unstructured<'a>) -> Result<Self> {
+        Ok(Self {
+            center: vector(u)?,
+            radius: <V as Vector>::Scalar::arbitrary(u)?,
+        })
+    }
+
+    fn size_hint(depth: usize) -> (usize, Option<usize>) {
+        let one = <<V as Vector>::Scalar as Arbitrary<'a>>::size_hint(depth);
+        size_hint::and(vectors_hint::<V>(depth, 1), one)
+    }
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -113,5 +133,22 @@ mod tests {
         let bytes = [0xffu8; 72];
         let tri = Triangle::<DVec3>::arbitrary(&mut Unstructured::new(&bytes)).unwrap();
         assert!(tri.c.z.is_nan());
+    }
+
+    #[test]
+    fn a_sphere_is_its_centre_then_its_radius() {
+        assert_eq!(Sphere::<Vec3>::size_hint(0), (16, Some(16)));
+        assert_eq!(Sphere::<DVec3>::size_hint(0), (32, Some(32)));
+        // Centre (1, -0.0, inf), radius -2; in f64 the radius runs out: +0.0.
+        let mut bytes = [0u8; 16];
+        for (i, x) in [1.0f32, -0.0, f32::INFINITY, -2.0].into_iter().enumerate() {
+            bytes[4 * i..4 * i + 4].copy_from_slice(&x.to_le_bytes());
+        }
+        let s = Sphere::<Vec3>::arbitrary(&mut Unstructured::new(&bytes)).unwrap();
+        assert_eq!(s.center.to_array().map(f32::to_bits), [1.0f32, -0.0, f32::INFINITY].map(f32::to_bits));
+        assert_eq!(s.radius, -2.0);
+        let s = Sphere::<DVec3>::arbitrary(&mut Unstructured::new(&[0xff; 24])).unwrap();
+        assert!(s.center.z.is_nan());
+        assert_eq!(s.radius.to_bits(), 0);
     }
 }

@@ -10,12 +10,14 @@
 //! boundary, or just outside) and then an origin behind it, so hits and
 //! misses are both common and many rays pass through edges, corners and
 //! faces, where kernels go wrong. A target on a boundary is rounded like any
-//! other point, so "on an edge" means within an ulp or so of it.
+//! other point, so "on an edge" means within an ulp or so of it. Rays at
+//! spheres also run along tangents (grazing) and start inside the ball.
 //!
 //! Ranges, and why:
-//! - coordinates: shape centres in `[-64, 64]^3`, sizes from `2^-4` to
-//!   `2^4`: a few orders of magnitude of scale and of distance from the
-//!   origin, all well inside the range where no kernel overflows;
+//! - coordinates: shape centres in `[-64, 64]^3`, sizes (a sphere's
+//!   radius among them) from `2^-4` to `2^4`: a few orders of magnitude of
+//!   scale and of distance from the origin, all well inside the range
+//!   where no kernel overflows;
 //! - directions: random orientation, length `2^k` for `k` in `[-6, 6]`
 //!   (powers of two, so scaling tests stay exact), with one case in eight
 //!   axis-parallel and one in eight with a zero (`+0.0` or `-0.0`)
@@ -43,7 +45,7 @@
 use proptest::prelude::*;
 
 use crate::num::{S, Scalar, Vector};
-use crate::{Aabb, Plane, Ray, Triangle};
+use crate::{Aabb, Plane, Ray, Sphere, Triangle};
 
 /// A value uniform in `[-scale, scale]`, rounded to the precision of `V`.
 pub fn coordinate<V: Vector>(scale: f64) -> impl Strategy<Value = S<V>> + Clone {
@@ -307,6 +309,86 @@ pub fn plane_and_ray<V: Vector>() -> impl Strategy<Value = (Plane<V>, Ray<V>)> +
         let c = |i: usize| cv::<V>(pl.point[i].to_f64() + s * t1[i] + t * t2[i]);
         (Just(pl), ray_through(V::new(c(0), c(1), c(2))))
     })
+}
+
+/// A sphere: centre in `[-64, 64]^3`, radius `2^x` with `x` uniform in
+/// `[-4, 4]` (positive, and a power of two only by chance).
+pub fn sphere<V: Vector>() -> impl Strategy<Value = Sphere<V>> + Clone {
+    (point::<V>(64.0), -4.0..=4.0f64).prop_map(|(c, x)| Sphere::new(c, cv::<V>(x.exp2())))
+}
+
+/// A sphere from [`sphere`] and a ray at it, one of three kinds:
+///
+/// - aimed (half the time) at a target on the sphere, inside the ball (a
+///   uniform fraction of the radius from the centre) or just outside (a
+///   relative `2^-24` to `2^-10` beyond the surface), one time in three
+///   each, along a [`direction`] from `2^-4` to `2^6` direction lengths
+///   back (as [`ray_through`] aims); the origin may fall inside the ball
+///   too;
+/// - grazing (one time in four): along a tangent at a point of the sphere,
+///   that point on the sphere one time in three, else moved off it, inward
+///   or outward, by a relative `2^-24` to `2^-10`; the direction of length
+///   `2^k` (`k` in `[-6, 6]`; axis-parallel where the tangent is), the
+///   origin `2^-4` to `2^6` direction lengths back;
+/// - from inside (one time in four): the origin up to `0.99` radii from
+///   the centre, the direction from [`direction`].
+///
+/// Every point is computed in `f64` from the rounded sphere (an origin
+/// behind a target, from the rounded direction) and rounded once, so "on
+/// the sphere" means within an ulp or so of it, and an origin drawn
+/// inside is inside exactly.
+pub fn sphere_and_ray<V: Vector>() -> impl Strategy<Value = (Sphere<V>, Ray<V>)> + Clone {
+    let draws = (0.0..1.0f64, -24.0..=-10.0f64, any::<bool>(), 0.0625..=64.0f64);
+    (
+        sphere::<V>(),
+        case([2, 1, 1]),
+        index(3),
+        (direction::<V>(), direction::<V>()),
+        draws,
+        power_of_two(-6, 6),
+    )
+        .prop_map(|(sph, kind, reach, (a, b), (f, x, outward, back), len)| {
+            let c = [0, 1, 2].map(|i| sph.center[i].to_f64());
+            let r = sph.radius.to_f64();
+            let n = unit([0, 1, 2].map(|i| a[i].to_f64()));
+            let round = |p: [f64; 3]| V::new(cv::<V>(p[0]), cv::<V>(p[1]), cv::<V>(p[2]));
+            // The point `scale` radii from the centre along `n`.
+            let at = |scale: f64| round([0, 1, 2].map(|i| c[i] + r * scale * n[i]));
+            // `s` lengths of `dir` back from `target`.
+            let behind = |target: V, dir: V, s: f64| {
+                round([0, 1, 2].map(|i| target[i].to_f64() - s * dir[i].to_f64()))
+            };
+            let off = if outward { x.exp2() } else { -x.exp2() };
+            let ray = match kind {
+                0 => {
+                    let target = match reach {
+                        0 => at(1.0),
+                        1 => at(f),
+                        _ => at(1.0 + x.exp2()),
+                    };
+                    Ray::new(behind(target, b, back), b)
+                }
+                1 => {
+                    // A tangent at the point: n x b, or n x (the axis of n's
+                    // smallest component) where b is parallel to n.
+                    let m = [0, 1, 2].map(|i| b[i].to_f64());
+                    let mut t = cross(n, m);
+                    if t.iter().map(|v| v * v).sum::<f64>() < 1e-6 {
+                        let k = (0..3)
+                            .min_by(|&i, &j| n[i].abs().total_cmp(&n[j].abs()))
+                            .unwrap_or(0);
+                        let mut axis = [0.0; 3];
+                        axis[k] = 1.0;
+                        t = cross(n, axis);
+                    }
+                    let dir = round(unit(t).map(|v| v * len));
+                    let touch = at(if reach == 0 { 1.0 } else { 1.0 + off });
+                    Ray::new(behind(touch, dir, back), dir)
+                }
+                _ => Ray::new(at(0.99 * f), b),
+            };
+            (sph, ray)
+        })
 }
 
 fn cross(a: [f64; 3], b: [f64; 3]) -> [f64; 3] {

@@ -17,7 +17,7 @@ use crate::ray::{Interval, Ray, bring_into, decide, t_max_ok};
 use crate::surface::SurfacePoint;
 use crate::triangle::Side;
 use exact::{Root, SphereCrossing, SphereSigns};
-use roots::{Crossings, crossings};
+use roots::{Crossings, Fast, crossings, fast};
 
 /// The sphere of points at distance `radius` from `center`: a closed ball's
 /// boundary.
@@ -109,27 +109,23 @@ pub(crate) fn ray_sphere<V: Vector>(
     if !(ray.is_valid() && t_max_ok(t_max)) {
         return None;
     }
-    let c = crossings(ray.origin, ray.dir, sphere.center, sphere.radius)?;
-    if !(c.entry_err.is_finite() && c.exit_err.is_finite()) {
-        return unbounded(ray, sphere, t_max);
+    let r = sphere.radius.abs();
+    if !(sphere.center.is_finite() && r.is_finite()) {
+        return None;
     }
-    // `t > 0` decided conservatively: a crossing not surely ahead of the
-    // origin is dropped (the surface a spawned ray leaves).
-    if c.entry > c.entry_err {
-        return (c.entry <= t_max).then_some(SphereHit {
-            t: c.entry,
-            side: Side::Front,
-        });
+    match fast(ray.origin, ray.dir, sphere.center, r, t_max) {
+        Fast::Answer(hit) => hit.map(|(t, entering)| SphereHit {
+            t,
+            side: if entering { Side::Front } else { Side::Back },
+        }),
+        Fast::Unsure => unbounded(ray, sphere, t_max),
     }
-    (c.exit > c.exit_err && c.exit <= t_max).then_some(SphereHit {
-        t: c.exit,
-        side: Side::Back,
-    })
 }
 
-/// The `t_max` form where a bound is unusable (a line within rounding of
-/// tangent at its origin, an overflow, a very short `dir`): decided
-/// exactly over `(0, t_max]`, as the interval form does.
+/// The `t_max` form where the signs are not known from their bounds (the
+/// origin within rounding of the plane through the centre across the
+/// ray, an overflow, a very short `dir`): decided exactly over `(0,
+/// t_max]`, as the interval form does.
 #[cold]
 #[inline(never)]
 fn unbounded<V: Vector>(ray: &Ray<V>, sphere: &Sphere<V>, t_max: S<V>) -> Option<SphereHit<S<V>>> {

@@ -1,20 +1,191 @@
 //! The ray/sphere kernel: the line's two crossings with a sphere,
-//! computed stably, each with an error bound, and the miss test that
-//! never drops a line meeting the ball.
+//! computed stably, the `t_max` form's fast decisions, and the error
+//! bounds of both crossings, all derived here.
 //!
-//! Haines, Guenther and Akenine-Moller, "Precision Improvements for
-//! Ray/Sphere Intersection" (Ray Tracing Gems, ch. 7, 2019): the
-//! discriminant from the centre's distance to the ray's line, `r^2 -
-//! |l|^2`, rather than `b^2 - a c` (which cancels when the line passes far
-//! from the centre relative to the distance), and the roots from `q = b +
-//! sign(b) sqrt(a disc)` as `q / a` and `k / q`. The error bounds are
-//! derived below, term by term, in the style of pbrt-v4's interval
-//! arithmetic (Pharr, Jakob, Humphreys, 4th ed., sec. 6.8), but as
-//! explicit bounds on the computed values.
+//! The discriminant comes from the centre's distance to the line rather
+//! than from `b^2 - a c`, which cancels when the line passes far from the
+//! centre relative to its distance (Haines, Guenther and Akenine-Moller,
+//! "Precision Improvements for Ray/Sphere Intersection", Ray Tracing Gems
+//! ch. 7, 2019): here as `a r^2 - |f x d|^2` (`|f x d|^2 = a |l|^2`, `l`
+//! the centre's offset from the line), which needs no division. The
+//! roots come in the stable pair `q / a`, `k / q` with `q = beta +
+//! sign(beta) sqrt(a Delta)`, as there and in pbrt-v4 (Pharr, Jakob,
+//! Humphreys, 4th ed., sec. 6.8, with interval arithmetic; here the
+//! bounds are explicit).
 
 use crate::num::round::bound_up;
 use crate::num::round::outward::{add_up, div_up, mul_down, mul_up, sub_down};
 use crate::num::{S, Scalar, Vector};
+
+/// The computed quantities both forms share, in the notation of
+/// [`crossings`]' derivation.
+#[derive(Clone, Copy, Debug)]
+pub(crate) struct Line<V: Vector> {
+    /// `F = fl(o - c)`.
+    f: V,
+    /// `fl(d . d)`.
+    a: S<V>,
+    /// `-fl(F . d)`.
+    nd: S<V>,
+    /// `fl(F . F)`.
+    ff: S<V>,
+    /// `fl(r r)`.
+    rr: S<V>,
+    /// `fl(ff - rr)`.
+    k: S<V>,
+    /// `C = fl(F x d)`.
+    cross: V,
+    /// `fl(C . C)`.
+    cc: S<V>,
+    /// `fl(a rr)`.
+    ar: S<V>,
+    /// `fl(ar - cc)`, the discriminant times `a`.
+    x: S<V>,
+}
+
+impl<V: Vector> Line<V> {
+    #[inline(always)]
+    pub(crate) fn new(o: V, d: V, c: V, r: S<V>) -> Self {
+        let f = o - c;
+        let a = d.dot(d);
+        let ff = f.dot(f);
+        let rr = r * r;
+        let cross = f.cross(d);
+        let cc = cross.dot(cross);
+        let ar = a * rr;
+        Self {
+            f,
+            a,
+            nd: -(f.dot(d)),
+            ff,
+            rr,
+            k: ff - rr,
+            cross,
+            cc,
+            ar,
+            x: ar - cc,
+        }
+    }
+
+    /// Whether the bounds below hold: every value finite, and `a` at
+    /// least `8 T / u` (see [`crossings`]).
+    #[inline(always)]
+    fn usable(&self) -> bool {
+        let floor = S::<V>::from_u32(8) * S::<V>::MIN_POSITIVE / S::<V>::UNIT_ROUNDOFF;
+        self.a >= floor
+            && self.a.is_finite()
+            && self.ff.is_finite()
+            && self.cc.is_finite()
+            && self.ar.is_finite()
+            && self.x.is_finite()
+    }
+
+    /// `E_x`: `|x - a* Delta*|` at most this.
+    #[inline(always)]
+    fn err_x(&self, d: V) -> S<V> {
+        let g = S::<V>::gamma_n;
+        let (f, c) = (self.f.abs(), self.cross.abs());
+        let d = d.abs();
+        // P_i = |F_j d_k| + |F_k d_j|, and E_C,i = gamma(3) P_i + 2 T.
+        let p = V::new(
+            f.y() * d.z() + f.z() * d.y(),
+            f.z() * d.x() + f.x() * d.z(),
+            f.x() * d.y() + f.y() * d.x(),
+        );
+        let two = S::<V>::TWO;
+        let tiny = S::<V>::MIN_POSITIVE;
+        let e = |i: usize| g(3) * p[i] + two * tiny;
+        let spread = e(0) * (two * c.x() + e(0)) + e(1) * (two * c.y() + e(1)) + e(2) * (two * c.z() + e(2));
+        bound_up(
+            g(5) * self.ar + g(4) * self.cc + spread + S::<V>::UNIT_ROUNDOFF * self.x.abs()
+                + S::<V>::from_u32(8) * tiny,
+            6,
+        )
+    }
+
+    /// `E_nd`: `|nd - beta*|` at most this.
+    #[inline(always)]
+    fn err_nd(&self, d: V) -> S<V> {
+        let s = self.f.abs().dot(d.abs());
+        bound_up(S::<V>::gamma_n(4) * s + S::<V>::MIN_POSITIVE, 4)
+    }
+
+    /// `E_k`: `|k - k*|` at most this.
+    #[inline(always)]
+    fn err_k(&self) -> S<V> {
+        let u = S::<V>::UNIT_ROUNDOFF;
+        bound_up(
+            S::<V>::gamma_n(7) * self.ff + u * self.rr + u * self.k.abs()
+                + S::<V>::TWO * S::<V>::MIN_POSITIVE,
+            3,
+        )
+    }
+
+    /// `sqrt(max(x, 0))` and `q = nd + sign(nd) root`.
+    #[inline(always)]
+    fn q(&self) -> (S<V>, S<V>) {
+        let zero = S::<V>::ZERO;
+        let root = (if self.x > zero { self.x } else { zero }).sqrt();
+        (root, if self.nd >= zero { self.nd + root } else { self.nd - root })
+    }
+}
+
+/// What the `t_max` form's fast path found.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub(crate) enum Fast<F> {
+    /// The line surely misses the ball, or no crossing is surely ahead of
+    /// the origin within `t_max` (`None`).
+    Answer(Option<(F, bool)>),
+    /// Undecided here (`beta` within rounding of zero, or a bound
+    /// unusable): the exact decision.
+    Unsure,
+}
+
+/// The `t_max` form's decision, where it can be made from signs alone;
+/// `(t, entering)` for a hit.
+///
+/// The entry `t- = k* / Q*` (for `Q* > 0`) is ahead exactly when `k* > 0`
+/// (the origin outside the ball), and the exit `Q* / a*` when `Q* > 0`;
+/// for `Q* < 0` the entry `Q* / a*` is behind and the exit `k* / Q*` ahead
+/// exactly when `k* < 0`. `nd` surely positive (beyond `E_nd`) makes
+/// `beta* > 0` and so `Q* = beta* + sqrt(a* Delta*) > 0`, whatever the
+/// root's error; likewise for negative. So with the signs of `beta*` and
+/// `k*` known from their bounds, a crossing is reported only where it is
+/// exactly ahead of the origin (where the line meets the ball), and the
+/// reported value is the formula's, as [`crossings`] bounds it. An origin
+/// within rounding of the sphere (`|k| <= E_k`) counts as on it: its
+/// crossing there is dropped, and a ray into the ball finds the exit.
+#[inline(always)]
+pub(crate) fn fast<V: Vector>(o: V, d: V, c: V, r: S<V>, t_max: S<V>) -> Fast<S<V>> {
+    let zero = S::<V>::ZERO;
+    let line = Line::new(o, d, c, r);
+    if !line.usable() {
+        return Fast::Unsure;
+    }
+    if line.x < zero && line.x < -line.err_x(d) {
+        return Fast::Answer(None);
+    }
+    let (err_nd, err_k) = (line.err_nd(d), line.err_k());
+    let (_, q) = line.q();
+    let ahead = |t: S<V>, entering: bool| {
+        Fast::Answer((t > zero && t <= t_max).then_some((t, entering)))
+    };
+    if line.nd > err_nd {
+        if line.k > err_k {
+            ahead(line.k / q, true)
+        } else {
+            ahead(q / line.a, false)
+        }
+    } else if line.nd < -err_nd {
+        if line.k < -err_k {
+            ahead(line.k / q, false)
+        } else {
+            Fast::Answer(None)
+        }
+    } else {
+        Fast::Unsure
+    }
+}
 
 /// A line's two crossings with a sphere and their error bounds.
 ///
@@ -52,38 +223,36 @@ pub(crate) struct Crossings<F> {
 /// smallest positive normal (`MIN_POSITIVE`), standing in for the
 /// absolute error of every product or quotient that underflows (at most
 /// `u T` each: sums and differences of floats are exact when they
-/// underflow). Exact values are starred, computed ones plain; `f = o - c`.
+/// underflow). Exact values are starred, computed ones plain; `f = o - c`,
+/// `beta* = -f . d`, `a* = d . d`, `k* = |f|^2 - r^2`.
 ///
 /// - `F = fl(o - c)`: `|F_i - f_i| <= u |F_i|`.
 /// - `a = fl(d . d)`: `|a - a*| <= gamma(3) a* <= gamma(4) a`.
-/// - `nd = -fl(F . d)` against `beta* = -f . d`: `|nd - beta*| <= gamma(4)
-///   S + T` with `S = sum |F_i d_i|`.
-/// - `kappa = fl(nd / a)` against `kappa* = beta* / a*` (where the line
-///   passes nearest the centre): `|kappa - kappa*| <= K = gamma(9) S / a +
-///   T / a + T` (the numerator's error, `1/a` against `1/a*` (`gamma(3)/a`
-///   times `|beta*| <= (1 + u) S`), and the division).
-/// - `L = fl(F + fl(kappa d))` against `l* = f + kappa* d` (the centre's
-///   offset from the line): per component `u |F_i| + K |d_i| + gamma(2)
-///   (|kappa d_i| + |L_i|) + T`, so `|L - l*| <= e = gamma(1) |F|_1 + K
-///   |d|_1 + gamma(2) (|kappa| |d|_1 + |L|_1) + 3 T`.
-/// - The miss test: `h2 = fl(L . L) <= (1 + gamma(3)) |L|^2 + 3 u T`, so
-///   `|l*| >= |L| - e > r` (a sure miss) where `h2 (1 - gamma(4)) - T >
-///   (r + e)^2`, each side rounded the safe way.
-/// - The discriminant `Delta* = r^2 - |l*|^2` (`a* Delta* = beta*^2 - a*
-///   k*`, `k* = |f|^2 - r^2`): `disc = fl(fl(r r) - h2)` is within `E_D =
-///   u rr + gamma(4) h2 + e (2 |L|_1 + e) + u |disc| + 2 T` of it. Where
-///   `disc > E_D` the line surely meets the ball. Clamping a negative
-///   `disc` to zero keeps `|disc - Delta*| <= E_D` wherever `Delta* >= 0`.
-/// - `x = fl(a disc)` against `y = a* Delta*`: `|x - y| <= E_x = a E_D +
-///   gamma(4) a (disc + E_D) + u x + T`; `root = fl(sqrt(x))` against
-///   `sqrt(y)`: `|sqrt x - sqrt y| <= min(sqrt(E_x), E_x / sqrt(x))`, so
-///   `|root - sqrt y| <= E_r = min(sqrt(E_x), (1 + u) E_x / root) + u
-///   root`. (Near tangency the first term is the square root of the
-///   discriminant's error: the crossings of a nearly tangent line are
-///   that ill-conditioned, whatever the formula.)
+/// - `nd = -fl(F . d)`: `|nd - beta*| <= E_nd = gamma(4) S + T`, `S = sum
+///   |F_i d_i|`.
+/// - `C = fl(F x d)` against `c* = f x d`: `|C_i - c*_i| <= E_C,i =
+///   gamma(3) P_i + 2 T`, `P_x = |F_y d_z| + |F_z d_y|` and so on (two
+///   products and a difference, and `F`'s own rounding).
+/// - The discriminant: `|c*|^2 = a* |l*|^2` (`l*` the centre's offset from
+///   the line), so `y = a* r^2 - |c*|^2 = a* Delta*` with `Delta* = r^2 -
+///   |l*|^2`, and `a* Delta* = beta*^2 - a* k*`: the line meets the closed
+///   ball exactly where `y >= 0`. `x = fl(fl(a fl(r r)) - fl(C . C))`:
+///   `|x - y| <= E_x = gamma(5) ar + gamma(4) cc + sum E_C,i (2 |C_i| +
+///   E_C,i) + u |x| + 8 T` (`ar` within `gamma(5)` of `a* r^2`; `cc`
+///   within `gamma(4) cc` of `|C|^2`, which is within `sum E_C,i (|C_i| +
+///   |c*_i|)` of `|c*|^2`). Where `x < -E_x` the line surely misses;
+///   where `x > E_x` it surely meets the ball. Near the sphere's rim the
+///   terms in `|C_i|` make the band a few ulps of `|l| |f|`, not of
+///   `|f|^2`, which is what keeps far spheres whole.
+/// - `root = fl(sqrt(max(x, 0)))` against `sqrt(y)` (where `y >= 0`):
+///   `|sqrt x - sqrt y| <= min(sqrt(E_x), E_x / sqrt(x))`, so `|root -
+///   sqrt y| <= E_r = min(sqrt(E_x), (1 + u) E_x / root) + u root`. (Near
+///   tangency the first term is the square root of the discriminant's
+///   error: the crossings of a nearly tangent line are that
+///   ill-conditioned, whatever the formula.)
 /// - `q = fl(nd + s root)`, `s` the sign of `nd` (no cancellation),
-///   against `Q* = beta* + s sqrt(y)`: `|q - Q*| <= E_q = gamma(4) S + T +
-///   E_r + u |q|`.
+///   against `Q* = beta* + s sqrt(y)`: `|q - Q*| <= E_q = E_nd + E_r + u
+///   |q|`.
 /// - `q / a` against `Q* / a*`: `(E_q + gamma(5) (|q| + E_q)) / a + u |t|
 ///   + T`.
 /// - `k = fl(fl(F . F) - fl(r r))` against `k*`: `|k - k*| <= E_k =
@@ -94,120 +263,68 @@ pub(crate) struct Crossings<F> {
 ///
 /// Every bound is a sum of products of non-negative values, evaluated in
 /// floating point and made an upper bound with `bound_up` (the
-/// difference `|q| - E_q` and the quotients rounded outward). The bounds
-/// hold while no product underflows unless its error is covered by `T`:
-/// `a` must be at least `8 T / u` (the quotients by `a` then turn each
-/// `T` into at most `u / 8`); a shorter `dir`, and any overflow, give
-/// infinite bounds and `sure = false`, leaving every decision to the
-/// exact signs.
+/// difference `|q| - E_q` and the quotients rounded outward); the `T`
+/// terms cover underflow wherever `a` is at least `8 T / u`. A shorter
+/// `dir`, and any overflow, give infinite bounds and `sure = false`,
+/// leaving every decision to the exact signs.
 #[inline(always)]
 pub(crate) fn crossings<V: Vector>(o: V, d: V, c: V, r: S<V>) -> Option<Crossings<S<V>>> {
     let zero = S::<V>::ZERO;
     let inf = S::<V>::INFINITY;
     let r = r.abs();
-    let f = o - c;
-    let a = d.dot(d);
-    let nd = -(f.dot(d));
-    let kappa = nd / a;
-    let l = f + d * kappa;
-    let h2 = l.dot(l);
-    let rr = r * r;
-    let ff = f.dot(f);
-    let k = ff - rr;
-    if !(o.is_finite() && c.is_finite() && r.is_finite() && a > zero) {
+    if !(o.is_finite() && c.is_finite() && r.is_finite() && d.is_finite()) {
         return None;
     }
-    let usable = a >= S::<V>::from_u32(8) * S::<V>::MIN_POSITIVE / S::<V>::UNIT_ROUNDOFF
-        && h2.is_finite()
-        && ff.is_finite()
-        && a.is_finite()
-        && rr.is_finite()
-        && kappa.is_finite();
-    if !usable {
-        // The computed roots, for the reported `t` (brought into the
-        // interval); the exact signs decide.
-        let disc = rr - h2;
-        let root = (a * if disc > zero { disc } else { zero }).sqrt();
-        let q = if nd >= zero { nd + root } else { nd - root };
-        let (t1, t2) = (q / a, k / q);
-        let (entry, exit) = if nd >= zero { (t2, t1) } else { (t1, t2) };
-        return Some(Crossings {
+    let line = Line::new(o, d, c, r);
+    if !(line.a > zero) {
+        return None;
+    }
+    let (root, q) = line.q();
+    let label = |t1: S<V>, t2: S<V>, e1: S<V>, e2: S<V>, sure: bool| {
+        let (entry, exit, entry_err, exit_err) = if line.nd >= zero {
+            (t2, t1, e2, e1)
+        } else {
+            (t1, t2, e1, e2)
+        };
+        Crossings {
             entry,
             exit,
-            entry_err: inf,
-            exit_err: inf,
-            sure: false,
-        });
+            entry_err,
+            exit_err,
+            sure,
+        }
+    };
+    let t1 = q / line.a;
+    let t2 = if q != zero { line.k / q } else { t1 };
+    if !line.usable() {
+        return Some(label(t1, t2, inf, inf, false));
     }
-    let g = S::<V>::gamma_n;
     let u = S::<V>::UNIT_ROUNDOFF;
+    let g = S::<V>::gamma_n;
     let tiny = S::<V>::MIN_POSITIVE;
-    let norm1 = |v: V| v.x().abs() + v.y().abs() + v.z().abs();
-    let s_fd = f.x().abs() * d.x().abs() + f.y().abs() * d.y().abs() + f.z().abs() * d.z().abs();
-    let (d1, l1) = (norm1(d), norm1(l));
-    let big_k = g(9) * s_fd / a + tiny / a + tiny;
-    let e = bound_up(
-        g(1) * norm1(f) + big_k * d1 + g(2) * (kappa.abs() * d1 + l1) + S::<V>::from_u32(3) * tiny,
-        8,
-    );
-    // The miss test: |l*| >= |L| - e > r.
-    let reach = add_up(r, e);
-    if h2 * (S::<V>::ONE - g(4)) - tiny > mul_up(reach, reach) {
+    let err_x = line.err_x(d);
+    if line.x < -err_x {
         return None;
     }
-    let disc_raw = rr - h2;
-    let err_disc = bound_up(
-        u * rr + g(4) * h2 + e * (S::<V>::TWO * l1 + e) + u * disc_raw.abs() + S::<V>::TWO * tiny,
-        6,
-    );
-    let sure = disc_raw > err_disc;
-    let disc = if disc_raw > zero { disc_raw } else { zero };
-    let x = a * disc;
-    let root = x.sqrt();
-    let err_x = bound_up(
-        a * err_disc + g(4) * a * (disc + err_disc) + u * x + tiny,
-        4,
-    );
+    let sure = line.x > err_x;
     let near_tangent = bound_up(err_x.sqrt(), 1);
     let err_root = if root > zero {
         let far = div_up(mul_up(S::<V>::ONE + u, err_x), root);
-        add_up(
-            if far < near_tangent {
-                far
-            } else {
-                near_tangent
-            },
-            mul_up(u, root),
-        )
+        add_up(if far < near_tangent { far } else { near_tangent }, mul_up(u, root))
     } else {
         near_tangent
     };
-    let q = if nd >= zero { nd + root } else { nd - root };
     let qa = q.abs();
-    let err_q = bound_up(g(4) * s_fd + tiny + err_root + u * qa, 3);
-    let t1 = q / a;
-    let err1 = bound_up((err_q + g(5) * (qa + err_q)) / a + u * t1.abs() + tiny, 5);
-    let room = sub_down(qa, err_q);
-    let (t2, err2) = if room > zero {
-        let t2 = k / q;
-        let err_k = bound_up(g(7) * ff + u * rr + u * k.abs() + S::<V>::TWO * tiny, 3);
-        let spread = div_up(mul_up(add_up(k.abs(), err_k), err_q), mul_down(qa, room));
-        let err2 = add_up(bound_up(err_k / qa + u * t2.abs() + tiny, 3), spread);
-        (t2, if t2.is_finite() { err2 } else { inf })
-    } else {
-        (kappa, inf)
-    };
+    let err_q = add_up(add_up(line.err_nd(d), err_root), mul_up(u, qa));
+    let err1 = bound_up((err_q + g(5) * (qa + err_q)) / line.a + u * t1.abs() + tiny, 5);
     let err1 = if t1.is_finite() { err1 } else { inf };
-    let (entry, exit, entry_err, exit_err) = if nd >= zero {
-        (t2, t1, err2, err1)
+    let room = sub_down(qa, err_q);
+    let err2 = if room > zero && t2.is_finite() {
+        let err_k = line.err_k();
+        let spread = div_up(mul_up(add_up(line.k.abs(), err_k), err_q), mul_down(qa, room));
+        add_up(bound_up(err_k / qa + u * t2.abs() + tiny, 3), spread)
     } else {
-        (t1, t2, err1, err2)
+        inf
     };
-    Some(Crossings {
-        entry,
-        exit,
-        entry_err,
-        exit_err,
-        sure,
-    })
+    Some(label(t1, t2, err1, err2, sure))
 }

@@ -20,7 +20,7 @@
 //! All of it is `f32`.
 
 use rayhit::glam::Vec3;
-use rayhit::{Aabb, Camera, PinholeCamera, Plane, Ray, Triangle};
+use rayhit::{Aabb, Camera, PinholeCamera, Plane, Ray, Sphere, Triangle};
 
 /// Pairs per workload.
 pub const PAIRS: usize = 4096;
@@ -49,6 +49,17 @@ pub struct TriangleWorkload {
     pub rays: Vec<Ray>,
     /// The triangles, one per pair.
     pub triangles: Vec<Triangle>,
+}
+
+/// A named list of ray/sphere pairs.
+#[derive(Clone, Debug)]
+pub struct SphereWorkload {
+    /// How the rays relate to the spheres (see the module docs).
+    pub name: &'static str,
+    /// The rays, one per pair.
+    pub rays: Vec<Ray>,
+    /// The spheres, one per pair.
+    pub spheres: Vec<Sphere>,
 }
 
 /// `groups` workloads: ray `i` against shapes `GROUP * i .. GROUP * (i + 1)`.
@@ -289,6 +300,59 @@ pub fn triangle_workloads() -> Vec<TriangleWorkload> {
         name: "camera",
         rays,
         triangles,
+    });
+    out
+}
+
+/// The three sphere workloads: `random`, `aimed` (at a point of the ball
+/// grown by a fifth: most hit, some graze or miss) and `camera` (one
+/// sphere per grid cell, radius 0.35 to 0.6 of the cell).
+pub fn sphere_workloads() -> Vec<SphereWorkload> {
+    let mut out = Vec::new();
+    let mut rng = Pcg32::with_stream(15, 2);
+    let (mut rays, mut spheres) = (Vec::new(), Vec::new());
+    for _ in 0..PAIRS {
+        spheres.push(Sphere::new(rng.cube(3.0), rng.range(0.1, 1.0)));
+        rays.push(Ray::new(rng.cube(3.0), rng.sphere()));
+    }
+    out.push(SphereWorkload {
+        name: "random",
+        rays,
+        spheres,
+    });
+
+    let mut rng = Pcg32::with_stream(16, 2);
+    let (mut rays, mut spheres) = (Vec::new(), Vec::new());
+    for _ in 0..PAIRS {
+        let s = Sphere::new(rng.cube(8.0), rng.range(0.1, 2.0));
+        let target = s.center + rng.sphere() * (s.radius * 1.2 * rng.unit());
+        let dir = rng.sphere();
+        rays.push(through(&mut rng, target, dir));
+        spheres.push(s);
+    }
+    out.push(SphereWorkload {
+        name: "aimed",
+        rays,
+        spheres,
+    });
+
+    let (mut rays, mut spheres) = (Vec::new(), Vec::new());
+    let mut rng = Pcg32::with_stream(17, 2);
+    let cells: Vec<Sphere> = (0..256u32)
+        .map(|k| {
+            let (c, cell) = grid_cell(k % 16, k / 16);
+            Sphere::new(c, cell * rng.range(0.35, 0.6))
+        })
+        .collect();
+    for (k, (ray, _, _)) in camera_pairs().enumerate() {
+        let (i, j) = (k as u32 % 64, k as u32 / 64);
+        rays.push(ray);
+        spheres.push(cells[((j / 4) * 16 + i / 4) as usize]);
+    }
+    out.push(SphereWorkload {
+        name: "camera",
+        rays,
+        spheres,
     });
     out
 }

@@ -54,6 +54,7 @@ use sections::{
     cwbvh::{CwbvhData, cwbvh_kernels, print_leaks},
     groups::group_kernels,
     instance::{InstanceData, instance_kernels},
+    spheres::{SphereData, sphere_kernels},
     sweep::{Sweep, sweep_kernels},
     triangles::triangle_kernels,
 };
@@ -81,6 +82,13 @@ fn main() {
         .into_iter()
         .map(|w| TriData::new(w.name, w.rays, w.triangles, shuffle(w.name, false)))
         .collect();
+    let sphere_data: Vec<SphereData> = rayhit_testkit::workloads::sphere_workloads()
+        .into_iter()
+        .map(|w| {
+            let s = shuffle(w.name, false);
+            SphereData::new(w, s)
+        })
+        .collect();
     let groups = Groups::new();
     let (gb, gt) = (&groups.gb, &groups.gt);
     let sweep = Sweep::new();
@@ -94,6 +102,9 @@ fn main() {
     }
     for d in &tri_data {
         triangle_kernels(d, &mut kernels);
+    }
+    for d in &sphere_data {
+        sphere_kernels(d, &mut kernels);
     }
     group_kernels(
         gb,
