@@ -13,7 +13,7 @@ use crate::num::exact_sign::two_diff;
 use crate::num::round::bound_up;
 use crate::num::{S, Scalar, Vector};
 use crate::query::{Intersect, Range, RayForm, Search, Surface};
-use crate::ray::{Interval, Ray, bring_into, decide, t_max_ok};
+use crate::ray::{Interval, Ray, bring_into, decide};
 use crate::surface::SurfacePoint;
 use crate::triangle::Side;
 use exact::{Root, SphereCrossing, SphereSigns};
@@ -106,14 +106,16 @@ pub(crate) fn ray_sphere<V: Vector>(
     sphere: &Sphere<V>,
     t_max: S<V>,
 ) -> Option<SphereHit<S<V>>> {
-    if !(ray.is_valid() && t_max_ok(t_max)) {
-        return None;
-    }
-    let r = sphere.radius.abs();
-    if !(sphere.center.is_finite() && r.is_finite()) {
-        return None;
-    }
-    match fast(ray.origin, ray.dir, sphere.center, r, t_max) {
+    // (Bad input needs no check here: a NaN or infinite value, or a zero
+    // `dir`, sends the fast path to `unbounded`, which checks it; a NaN or
+    // negative `t_max` fails every `t <= t_max`.)
+    match fast(
+        ray.origin,
+        ray.dir,
+        sphere.center,
+        sphere.radius.abs(),
+        t_max,
+    ) {
         Fast::Answer(hit) => hit.map(|(t, entering)| SphereHit {
             t,
             side: if entering { Side::Front } else { Side::Back },

@@ -68,55 +68,69 @@ impl<V: Vector> Line<V> {
     }
 
     /// Whether the bounds below hold: every value finite, and `a` at
-    /// least `8 T / u` (see [`crossings`]).
+    /// least `8 T / u` (see [`crossings`]). A NaN or infinite input makes
+    /// one of the sums NaN or infinite; a finite sum that overflows only
+    /// sends the decision to the exact signs.
     #[inline(always)]
     fn usable(&self) -> bool {
         let floor = S::<V>::from_u32(8) * S::<V>::MIN_POSITIVE / S::<V>::UNIT_ROUNDOFF;
-        self.a >= floor
-            && self.a.is_finite()
-            && self.ff.is_finite()
-            && self.cc.is_finite()
-            && self.ar.is_finite()
-            && self.x.is_finite()
+        self.a >= floor && (self.x + self.ff + self.a).is_finite()
+    }
+
+    /// `M = max_i |F_i| sum_i |d_i|`, at least every `P_i` and `S` of the
+    /// derivation.
+    #[inline(always)]
+    fn m(&self, d: V) -> S<V> {
+        Self::m_of(self.f, d)
+    }
+
+    #[inline(always)]
+    fn m_of(f: V, d: V) -> S<V> {
+        let f = f.abs();
+        let big = |p: S<V>, q: S<V>| if p > q { p } else { q };
+        big(big(f.x(), f.y()), f.z()) * (d.x().abs() + d.y().abs() + d.z().abs())
     }
 
     /// `E_x`: `|x - a* Delta*|` at most this.
     #[inline(always)]
-    fn err_x(&self, d: V) -> S<V> {
+    fn err_x(&self, m: S<V>) -> S<V> {
+        Self::err_x_of(m, self.cross, self.cc, self.ar, self.x)
+    }
+
+    #[inline(always)]
+    fn err_x_of(m: S<V>, cross: V, cc: S<V>, ar: S<V>, x: S<V>) -> S<V> {
         let g = S::<V>::gamma_n;
-        let (f, c) = (self.f.abs(), self.cross.abs());
-        let d = d.abs();
-        // P_i = |F_j d_k| + |F_k d_j|, and E_C,i = gamma(3) P_i + 2 T.
-        let p = V::new(
-            f.y() * d.z() + f.z() * d.y(),
-            f.z() * d.x() + f.x() * d.z(),
-            f.x() * d.y() + f.y() * d.x(),
-        );
-        let two = S::<V>::TWO;
+        let c = cross.abs();
         let tiny = S::<V>::MIN_POSITIVE;
-        let e = |i: usize| g(3) * p[i] + two * tiny;
-        let spread = e(0) * (two * c.x() + e(0)) + e(1) * (two * c.y() + e(1)) + e(2) * (two * c.z() + e(2));
+        // Every E_C,i is at most e = gamma(3) M + 2 T.
+        let e = g(3) * m + S::<V>::TWO * tiny;
+        let c1 = c.x() + c.y() + c.z();
         bound_up(
-            g(5) * self.ar + g(4) * self.cc + spread + S::<V>::UNIT_ROUNDOFF * self.x.abs()
+            g(5) * ar
+                + g(4) * cc
+                + e * (S::<V>::TWO * c1 + S::<V>::from_u32(3) * e)
+                + S::<V>::UNIT_ROUNDOFF * x.abs()
                 + S::<V>::from_u32(8) * tiny,
-            6,
+            7,
         )
     }
 
     /// `E_nd`: `|nd - beta*|` at most this.
     #[inline(always)]
-    fn err_nd(&self, d: V) -> S<V> {
-        let s = self.f.abs().dot(d.abs());
-        bound_up(S::<V>::gamma_n(4) * s + S::<V>::MIN_POSITIVE, 4)
+    fn err_nd(m: S<V>) -> S<V> {
+        bound_up(S::<V>::gamma_n(4) * m + S::<V>::MIN_POSITIVE, 2)
     }
 
     /// `E_k`: `|k - k*|` at most this.
     #[inline(always)]
     fn err_k(&self) -> S<V> {
-        let u = S::<V>::UNIT_ROUNDOFF;
+        Self::err_k_of(self.ff, self.rr)
+    }
+
+    #[inline(always)]
+    fn err_k_of(ff: S<V>, rr: S<V>) -> S<V> {
         bound_up(
-            S::<V>::gamma_n(7) * self.ff + u * self.rr + u * self.k.abs()
-                + S::<V>::TWO * S::<V>::MIN_POSITIVE,
+            S::<V>::gamma_n(8) * (ff + rr) + S::<V>::TWO * S::<V>::MIN_POSITIVE,
             3,
         )
     }
@@ -126,7 +140,14 @@ impl<V: Vector> Line<V> {
     fn q(&self) -> (S<V>, S<V>) {
         let zero = S::<V>::ZERO;
         let root = (if self.x > zero { self.x } else { zero }).sqrt();
-        (root, if self.nd >= zero { self.nd + root } else { self.nd - root })
+        (
+            root,
+            if self.nd >= zero {
+                self.nd + root
+            } else {
+                self.nd - root
+            },
+        )
     }
 }
 
@@ -162,14 +183,14 @@ pub(crate) fn fast<V: Vector>(o: V, d: V, c: V, r: S<V>, t_max: S<V>) -> Fast<S<
     if !line.usable() {
         return Fast::Unsure;
     }
-    if line.x < zero && line.x < -line.err_x(d) {
+    let m = line.m(d);
+    if line.x < zero && line.x < -line.err_x(m) {
         return Fast::Answer(None);
     }
-    let (err_nd, err_k) = (line.err_nd(d), line.err_k());
+    let (err_nd, err_k) = (Line::<V>::err_nd(m), line.err_k());
     let (_, q) = line.q();
-    let ahead = |t: S<V>, entering: bool| {
-        Fast::Answer((t > zero && t <= t_max).then_some((t, entering)))
-    };
+    let ahead =
+        |t: S<V>, entering: bool| Fast::Answer((t > zero && t <= t_max).then_some((t, entering)));
     if line.nd > err_nd {
         if line.k > err_k {
             ahead(line.k / q, true)
@@ -228,19 +249,21 @@ pub(crate) struct Crossings<F> {
 ///
 /// - `F = fl(o - c)`: `|F_i - f_i| <= u |F_i|`.
 /// - `a = fl(d . d)`: `|a - a*| <= gamma(3) a* <= gamma(4) a`.
-/// - `nd = -fl(F . d)`: `|nd - beta*| <= E_nd = gamma(4) S + T`, `S = sum
-///   |F_i d_i|`.
+/// - `nd = -fl(F . d)`: `|nd - beta*| <= gamma(4) S + T`, `S = sum |F_i
+///   d_i|`, and `S <= M = max_i |F_i| sum_i |d_i|`: `E_nd = gamma(4) M +
+///   T`.
 /// - `C = fl(F x d)` against `c* = f x d`: `|C_i - c*_i| <= E_C,i =
-///   gamma(3) P_i + 2 T`, `P_x = |F_y d_z| + |F_z d_y|` and so on (two
-///   products and a difference, and `F`'s own rounding).
+///   gamma(3) P_i + 2 T <= e = gamma(3) M + 2 T`, `P_x = |F_y d_z| + |F_z
+///   d_y|` and so on (two products and a difference, and `F`'s own
+///   rounding), each at most `M`.
 /// - The discriminant: `|c*|^2 = a* |l*|^2` (`l*` the centre's offset from
 ///   the line), so `y = a* r^2 - |c*|^2 = a* Delta*` with `Delta* = r^2 -
 ///   |l*|^2`, and `a* Delta* = beta*^2 - a* k*`: the line meets the closed
 ///   ball exactly where `y >= 0`. `x = fl(fl(a fl(r r)) - fl(C . C))`:
-///   `|x - y| <= E_x = gamma(5) ar + gamma(4) cc + sum E_C,i (2 |C_i| +
-///   E_C,i) + u |x| + 8 T` (`ar` within `gamma(5)` of `a* r^2`; `cc`
-///   within `gamma(4) cc` of `|C|^2`, which is within `sum E_C,i (|C_i| +
-///   |c*_i|)` of `|c*|^2`). Where `x < -E_x` the line surely misses;
+///   `|x - y| <= E_x = gamma(5) ar + gamma(4) cc + e (2 |C|_1 + 3 e) + u
+///   |x| + 8 T` (`ar` within `gamma(5)` of `a* r^2`; `cc` within
+///   `gamma(4) cc` of `|C|^2`, which is within `sum E_C,i (|C_i| + |c*_i|)
+///   <= e (2 |C|_1 + 3 e)` of `|c*|^2`). Where `x < -E_x` the line surely misses;
 ///   where `x > E_x` it surely meets the ball. Near the sphere's rim the
 ///   terms in `|C_i|` make the band a few ulps of `|l| |f|`, not of
 ///   `|f|^2`, which is what keeps far spheres whole.
@@ -255,9 +278,9 @@ pub(crate) struct Crossings<F> {
 ///   |q|`.
 /// - `q / a` against `Q* / a*`: `(E_q + gamma(5) (|q| + E_q)) / a + u |t|
 ///   + T`.
-/// - `k = fl(fl(F . F) - fl(r r))` against `k*`: `|k - k*| <= E_k =
-///   gamma(7) ff + u rr + u |k| + 2 T` (`|F|^2` against `|f|^2` adds
-///   `(2u + u^2) |F|^2`); `k / q` against `k* / Q*`: `E_k / |q| + (|k| +
+/// - `k = fl(fl(F . F) - fl(r r))` against `k*`: `|k - k*| <= gamma(7) ff
+///   + u rr + u |k| + 2 T <= E_k = gamma(8) (ff + rr) + 2 T` (`|F|^2`
+///   against `|f|^2` adds `(2u + u^2) |F|^2`; `|k| <= ff + rr`); `k / q` against `k* / Q*`: `E_k / |q| + (|k| +
 ///   E_k) E_q / (|q| (|q| - E_q)) + u |t| + T`, infinite unless `|q| >
 ///   E_q`.
 ///
@@ -302,7 +325,8 @@ pub(crate) fn crossings<V: Vector>(o: V, d: V, c: V, r: S<V>) -> Option<Crossing
     let u = S::<V>::UNIT_ROUNDOFF;
     let g = S::<V>::gamma_n;
     let tiny = S::<V>::MIN_POSITIVE;
-    let err_x = line.err_x(d);
+    let m = line.m(d);
+    let err_x = line.err_x(m);
     if line.x < -err_x {
         return None;
     }
@@ -310,18 +334,31 @@ pub(crate) fn crossings<V: Vector>(o: V, d: V, c: V, r: S<V>) -> Option<Crossing
     let near_tangent = bound_up(err_x.sqrt(), 1);
     let err_root = if root > zero {
         let far = div_up(mul_up(S::<V>::ONE + u, err_x), root);
-        add_up(if far < near_tangent { far } else { near_tangent }, mul_up(u, root))
+        add_up(
+            if far < near_tangent {
+                far
+            } else {
+                near_tangent
+            },
+            mul_up(u, root),
+        )
     } else {
         near_tangent
     };
     let qa = q.abs();
-    let err_q = add_up(add_up(line.err_nd(d), err_root), mul_up(u, qa));
-    let err1 = bound_up((err_q + g(5) * (qa + err_q)) / line.a + u * t1.abs() + tiny, 5);
+    let err_q = add_up(add_up(Line::<V>::err_nd(m), err_root), mul_up(u, qa));
+    let err1 = bound_up(
+        (err_q + g(5) * (qa + err_q)) / line.a + u * t1.abs() + tiny,
+        5,
+    );
     let err1 = if t1.is_finite() { err1 } else { inf };
     let room = sub_down(qa, err_q);
     let err2 = if room > zero && t2.is_finite() {
         let err_k = line.err_k();
-        let spread = div_up(mul_up(add_up(line.k.abs(), err_k), err_q), mul_down(qa, room));
+        let spread = div_up(
+            mul_up(add_up(line.k.abs(), err_k), err_q),
+            mul_down(qa, room),
+        );
         add_up(bound_up(err_k / qa + u * t2.abs() + tiny, 3), spread)
     } else {
         inf
