@@ -373,11 +373,13 @@
 //!   public types and triangle hits (see the `approx` module for what each
 //!   comparison means).
 //! - `proptest`: the public `strategies` module, the generators the
-//!   crate's property tests use (aimed rays, boxes, triangles, planes), for
+//!   crate's property tests use (aimed rays, boxes, triangles, planes,
+//!   spheres), for
 //!   testing your own kernels against this crate's.
-//! - `arbitrary`: `arbitrary::Arbitrary` for [`Ray`], [`Aabb`], [`Plane`] and
-//!   [`Triangle`] in both precisions, every coordinate a raw bit pattern (NaN,
-//!   infinities, subnormals and `-0.0` included), for fuzzers.
+//! - `arbitrary`: `arbitrary::Arbitrary` for [`Ray`], [`Aabb`], [`Plane`],
+//!   [`Triangle`] and [`Sphere`] in both precisions, every coordinate (and
+//!   radius) a raw bit pattern (NaN, infinities, subnormals and `-0.0`
+//!   included), for fuzzers.
 //! - `bytemuck`: `Pod` and `Zeroable` for [`Ray`], [`Aabb`], [`Triangle`],
 //!   [`Plane`] and [`TriangleHitError`] over `Vec3` and `DVec3`, and checked
 //!   casts to [`ValidAabb`], for GPU buffers (see the `bytemuck` module).
@@ -476,6 +478,7 @@ pub mod batch {
     pub use crate::simd::TargetSimd;
     #[cfg(rayhit_runtime_avx)]
     pub use crate::simd::{Avx2, Avx512};
+    pub use crate::sphere::{SphereBatch, SphereBatchHits};
     pub use crate::triangle::{TriangleBatch, TriangleBatchHits};
 
     #[cfg(doc)]
@@ -483,6 +486,8 @@ pub mod batch {
 
     /// [`AabbBatch`] in `f64`.
     pub type DAabbBatch<const N: usize = 8> = AabbBatch<glam::DVec3, N>;
+    /// [`SphereBatch`] in `f64`.
+    pub type DSphereBatch<const N: usize = 8> = SphereBatch<glam::DVec3, N>;
     /// [`TriangleBatch`] in `f64`.
     pub type DTriangleBatch<const N: usize = 8> = TriangleBatch<glam::DVec3, N>;
 }

@@ -150,6 +150,9 @@ pub trait Lanes8: Copy {
     fn mul(self, o: Self) -> Self;
     /// Lane-wise `self / o`.
     fn div(self, o: Self) -> Self;
+    /// Lane-wise square root, correctly rounded (as IEEE 754 requires, so
+    /// every instruction set gives the scalar `sqrt`'s bits).
+    fn sqrt(self) -> Self;
     /// Lane-wise `if self > o { self } else { o }`.
     fn max(self, o: Self) -> Self;
     /// Lane-wise `if self < o { self } else { o }`.

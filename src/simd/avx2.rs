@@ -71,6 +71,11 @@ impl Lanes8 for F32x8 {
     op2!(sub, _mm256_sub_ps);
     op2!(mul, _mm256_mul_ps);
     op2!(div, _mm256_div_ps);
+    #[inline(always)]
+    fn sqrt(self) -> Self {
+        // SAFETY: see the module docs (AVX, no memory access).
+        Self(unsafe { _mm256_sqrt_ps(self.0) })
+    }
     // VMAXPS/VMINPS return the second operand unless the first compares
     // greater (less), NaN included, as MAXPS does.
     op2!(max, _mm256_max_ps);

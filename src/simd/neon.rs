@@ -299,6 +299,11 @@ impl Lanes8 for F32x4x2 {
     op2x2!(mul, vmulq_f32);
     op2x2!(div, vdivq_f32);
     #[inline(always)]
+    fn sqrt(self) -> Self {
+        // SAFETY: see the module docs (NEON, no memory access).
+        Self(unsafe { [vsqrtq_f32(self.0[0]), vsqrtq_f32(self.0[1])] })
+    }
+    #[inline(always)]
     fn max(self, o: Self) -> Self {
         self.map2(o, max)
     }

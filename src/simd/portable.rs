@@ -188,6 +188,10 @@ impl<F: Scalar> Lanes8 for Portable8<F> {
     }
     arithmetic!();
     #[inline(always)]
+    fn sqrt(self) -> Self {
+        Self(self.0.map(F::sqrt))
+    }
+    #[inline(always)]
     fn lt(self, o: Self) -> [bool; 8] {
         self.test(o, |a, b| a < b)
     }

@@ -252,6 +252,11 @@ pub mod pair {
         op2x2!(sub, _mm_sub_ps);
         op2x2!(mul, _mm_mul_ps);
         op2x2!(div, _mm_div_ps);
+        #[inline(always)]
+        fn sqrt(self) -> Self {
+            // SAFETY: see the module docs (SSE, no memory access).
+            Self(unsafe { [_mm_sqrt_ps(self.0[0]), _mm_sqrt_ps(self.0[1])] })
+        }
         op2x2!(max, _mm_max_ps);
         op2x2!(min, _mm_min_ps);
         cmpx2!(lt, _mm_cmplt_ps);

@@ -189,6 +189,7 @@ fn check_lanes8<W: Lanes8<F = f32>>(a: [f32; 8], b: [f32; 8]) {
     for (p, w) in arithmetic {
         assert_eq!(value(pout(p(pa, pb))), value(out(w(wa, wb))), "{a:?} {b:?}");
     }
+    assert_eq!(value(pout(pa.sqrt())), value(out(wa.sqrt())), "{a:?}");
     let selects: [(Op<Portable8<f32>>, Op<W>); 2] =
         [(Lanes8::max, Lanes8::max), (Lanes8::min, Lanes8::min)];
     for (p, w) in selects {

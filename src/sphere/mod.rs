@@ -1,8 +1,12 @@
 //! Spheres: the ray/sphere test, exact over an interval, with error
 //! bounds, and the surface point a ray leaves from.
 
+mod batch;
 mod exact;
 mod roots;
+
+pub(crate) use batch::SphereBatchKernel;
+pub use batch::{SphereBatch, SphereBatchHits};
 
 use core::cmp::Ordering;
 
@@ -12,7 +16,7 @@ use crate::aabb::Aabb;
 use crate::num::exact_sign::two_diff;
 use crate::num::round::bound_up;
 use crate::num::{S, Scalar, Vector};
-use crate::query::{Intersect, Range, RayForm, Search, Surface};
+use crate::query::{Intersect, IntersectLanes, Range, RayForm, Search, Surface};
 use crate::ray::{Interval, Ray, bring_into, decide};
 use crate::surface::SurfacePoint;
 use crate::triangle::Side;
@@ -270,18 +274,21 @@ impl<V: Vector> Intersect<V> for Sphere<V> {
     /// tangent may be reported as touching).
     ///
     /// **With a `t_max`**: the entry `t-` where it is surely ahead of the
-    /// origin (its computed value above its error bound) and its computed
-    /// value at most `t_max`; else the exit `t+` on the same terms; else
-    /// `None`. `t > 0` is decided conservatively: a crossing that cannot be
-    /// shown to lie ahead of the origin is dropped. That is right for a ray
-    /// spawned off a sphere ([`SurfacePoint::spawn`]): the crossing of the
-    /// surface it leaves lies within its bound of `t = 0`, and is behind the
-    /// spawned origin exactly, so it is never reported, with no epsilon; a
-    /// ray spawned into the ball finds the far side. Where a bound is
-    /// unusable (within rounding of tangent at the origin, an overflow, a
-    /// `dir` shorter than about `1e-15` in `f32`, `1e-146` in `f64`), the
-    /// crossings are placed against `0` and `t_max` exactly instead, as
-    /// with an interval.
+    /// origin and its computed value is at most `t_max`; else the exit
+    /// `t+` on the same terms; else `None`. "Surely ahead" is decided from
+    /// signs, not from `t`'s size: the entry lies ahead exactly when the
+    /// origin is outside the ball and moves towards the centre's nearest
+    /// point, and the exit when it lies inside, or moves towards that point
+    /// (`|o - c|^2 - r^2` and `(c - o) . d` computed with their error
+    /// bounds, so each sign used is the exact one). An origin within
+    /// rounding of the sphere counts as on it: the crossing there is not
+    /// reported, so a ray spawned off a sphere
+    /// ([`SurfacePoint::spawn`]) never meets the surface it left, with no
+    /// epsilon, and one spawned into the ball finds the far side. Where
+    /// those signs are not known (the origin within rounding of the plane
+    /// through the centre across the ray, an overflow, a `dir` shorter
+    /// than about `1e-15` in `f32`, `1e-146` in `f64`), the crossings are
+    /// placed against `0` and `t_max` exactly instead, as with an interval.
     ///
     /// **With an [`Interval`]** `(t_min, t_max]`: the entry where the exact
     /// `t-` is in the interval, else the exit where the exact `t+` is,
@@ -392,5 +399,60 @@ impl<V: Vector> Surface<V> for Sphere<V> {
     #[inline]
     fn surface_point(&self, ray: &impl RayForm<V>, hit: &Self::Hit) -> SurfacePoint<V> {
         sphere_point(self, ray.to_ray().at(hit.t))
+    }
+}
+
+impl<V: Vector, const N: usize> IntersectLanes<V> for SphereBatch<V, N> {
+    /// Every lane's hit (see [`SphereBatchHits`]; its
+    /// [`nearest`](SphereBatchHits::nearest) is the closest).
+    type Hits = SphereBatchHits<S<V>, N>;
+
+    /// The hits of every lane within `search` (`mask` is zero when no lane
+    /// is hit; the edge rule is ignored).
+    ///
+    /// With a `t_max`, eight lanes at a time in SIMD registers (SSE2 by
+    /// default; AVX2 where the build or the CPU has it, chosen per call on
+    /// x86-64 with `std`; NEON on aarch64): every lane runs
+    /// [`Sphere`]'s arithmetic, in the same order, on its own sphere, and
+    /// the rare lanes it cannot decide from signs run the scalar code
+    /// itself, so each lane is [`Sphere`]'s `hit` bit for bit. A prepared
+    /// ray on an instruction set ([`SimdRay`](crate::batch::SimdRay))
+    /// skips the per-call choice. With an [`Interval`], each lane runs the
+    /// scalar test. Empty lanes give no hit.
+    ///
+    /// ```
+    /// use rayhit::{Intersect, IntersectLanes, Interval, Ray, Sphere, glam::Vec3};
+    /// use rayhit::batch::SphereBatch;
+    /// // Three particles along z; the ray starts inside the first.
+    /// let balls = [0.0, 4.0, 8.0].map(|z| Sphere::new(Vec3::new(0.0, 0.0, z), 1.0));
+    /// let batch = SphereBatch::<Vec3, 8>::from_slice(&balls).unwrap();
+    /// let ray = Ray::new(Vec3::ZERO, Vec3::Z);
+    /// let hits = batch.hit(&ray, f32::INFINITY);
+    /// assert_eq!((hits.mask, hits.front), (0b111, 0b110)); // the first one left, the others entered
+    /// assert_eq!(hits.t, [1.0, 3.0, 7.0, f32::INFINITY, f32::INFINITY, f32::INFINITY, f32::INFINITY, f32::INFINITY]);
+    /// let beyond = batch.hit(&ray, Interval::new(3.0, 10.0).unwrap());
+    /// assert_eq!(beyond.get(1), balls[1].hit(&ray, Interval::new(3.0, 10.0).unwrap()));
+    /// ```
+    #[inline(always)]
+    fn hit(&self, ray: &impl RayForm<V>, search: impl Into<Search<S<V>>>) -> Self::Hits {
+        match search.into().range {
+            Range::UpTo(t_max) => ray.batch::<SphereBatchKernel<V, N>>(self, t_max),
+            Range::Within(interval) => {
+                let ray = ray.to_ray();
+                let mut out = SphereBatchHits::none();
+                for lane in 0..N {
+                    if self.used & (1 << lane) != 0 {
+                        out.set(lane, ray_sphere_in(&ray, &self.lane(lane), interval));
+                    }
+                }
+                out
+            }
+        }
+    }
+
+    /// Whether any lane is hit within `search`.
+    #[inline(always)]
+    fn occluded(&self, ray: &impl RayForm<V>, search: impl Into<Search<S<V>>>) -> bool {
+        self.hit(ray, search).mask != 0
     }
 }

@@ -276,11 +276,12 @@ pub(crate) struct Crossings<F> {
 /// - `q = fl(nd + s root)`, `s` the sign of `nd` (no cancellation),
 ///   against `Q* = beta* + s sqrt(y)`: `|q - Q*| <= E_q = E_nd + E_r + u
 ///   |q|`.
-/// - `q / a` against `Q* / a*`: `(E_q + gamma(5) (|q| + E_q)) / a + u |t|
-///   + T`.
-/// - `k = fl(fl(F . F) - fl(r r))` against `k*`: `|k - k*| <= gamma(7) ff
-///   + u rr + u |k| + 2 T <= E_k = gamma(8) (ff + rr) + 2 T` (`|F|^2`
-///   against `|f|^2` adds `(2u + u^2) |F|^2`; `|k| <= ff + rr`); `k / q` against `k* / Q*`: `E_k / |q| + (|k| +
+/// - `q / a` against `Q* / a*`: at most `(E_q + gamma(5) (|q| + E_q)) /
+///   a + u |t| + T`.
+/// - `k = fl(fl(F . F) - fl(r r))` against `k*`: `|k - k*|` is at most
+///   `gamma(7) ff + u rr + u |k| + 2 T`, so at most `E_k = gamma(8) (ff +
+///   rr) + 2 T` (`|F|^2` against `|f|^2` adds `(2u + u^2) |F|^2`; `|k| <=
+///   ff + rr`); `k / q` against `k* / Q*`: at most `E_k / |q| + (|k| +
 ///   E_k) E_q / (|q| (|q| - E_q)) + u |t| + T`, infinite unless `|q| >
 ///   E_q`.
 ///

@@ -393,6 +393,27 @@ pub fn triangle_groups() -> TriangleGroups {
     TriangleGroups { rays, triangles }
 }
 
+/// 512 rays, each aimed into a group of 8 spheres around one centre (a
+/// leaf of particles): `GROUP` spheres per ray, in `spheres`.
+pub fn sphere_groups() -> SphereWorkload {
+    let mut rng = Pcg32::with_stream(23, 3);
+    let (mut rays, mut spheres) = (Vec::new(), Vec::new());
+    for _ in 0..PAIRS / GROUP {
+        let c = rng.cube(8.0);
+        for _ in 0..GROUP {
+            spheres.push(Sphere::new(c + rng.cube(1.0), rng.range(0.1, 0.5)));
+        }
+        let dir = rng.sphere();
+        let target = c + rng.cube(1.0);
+        rays.push(through(&mut rng, target, dir));
+    }
+    SphereWorkload {
+        name: "groups",
+        rays,
+        spheres,
+    }
+}
+
 /// 1024 boxes scattered over a cube of side 16 (a BVH's nodes) and 64 rays
 /// aimed at random ones among them: the `one ray against N boxes` sweep
 /// takes the first `N`.

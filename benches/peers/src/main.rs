@@ -54,7 +54,7 @@ use sections::{
     cwbvh::{CwbvhData, cwbvh_kernels, print_leaks},
     groups::group_kernels,
     instance::{InstanceData, instance_kernels},
-    spheres::{SphereData, sphere_kernels},
+    spheres::{SphereData, sphere_group_kernels, sphere_kernels},
     sweep::{Sweep, sweep_kernels},
     triangles::triangle_kernels,
 };
@@ -89,6 +89,17 @@ fn main() {
             SphereData::new(w, s)
         })
         .collect();
+    let sphere_groups = rayhit_testkit::workloads::sphere_groups();
+    let sphere_batches: Vec<rayhit::batch::SphereBatch> = sphere_groups
+        .spheres
+        .chunks(8)
+        .map(|c| rayhit::batch::SphereBatch::from_slice(c).expect("8"))
+        .collect();
+    let sphere_prepared: Vec<rayhit::PreparedRay> = sphere_groups
+        .rays
+        .iter()
+        .map(rayhit::PreparedRay::new)
+        .collect();
     let groups = Groups::new();
     let (gb, gt) = (&groups.gb, &groups.gt);
     let sweep = Sweep::new();
@@ -106,6 +117,13 @@ fn main() {
     for d in &sphere_data {
         sphere_kernels(d, &mut kernels);
     }
+    sphere_group_kernels(
+        &sphere_groups.rays,
+        &sphere_prepared,
+        &sphere_groups.spheres,
+        &sphere_batches,
+        &mut kernels,
+    );
     group_kernels(
         gb,
         &groups.bb4,

@@ -5,11 +5,12 @@
 //! ray/sphere test: its `Ball` answers containment and box overlap only.)
 
 use parry3d::query::RayCast;
+use rayhit::batch::SphereBatch;
 use rayhit::glam::Vec3;
-use rayhit::{Intersect, Interval, PreparedRay, Ray, Sphere};
+use rayhit::{Intersect, IntersectLanes, Interval, PreparedRay, Ray, Sphere};
 use rayhit_testkit::workloads::SphereWorkload;
 
-use crate::harness::loops::{Orders, agree, pairwise, t_sum};
+use crate::harness::loops::{Orders, agree, chunked, lanes_t_sum, pairwise, t_sum};
 use crate::harness::{INF, Kernel, kernel};
 use crate::peers::parry_ray;
 
@@ -33,7 +34,12 @@ impl SphereData {
             name: w.name,
             order: Orders::new(w.rays.len(), shuffle),
             prepared: w.rays.iter().map(PreparedRay::new).collect(),
-            parry_rays: w.rays.iter().zip(&w.spheres).map(|(r, s)| local(r, s)).collect(),
+            parry_rays: w
+                .rays
+                .iter()
+                .zip(&w.spheres)
+                .map(|(r, s)| local(r, s))
+                .collect(),
             parry_balls: w
                 .spheres
                 .iter()
@@ -65,12 +71,12 @@ pub fn textbook_sphere(ray: &Ray, s: &Sphere) -> Option<f32> {
     (far > 0.001).then_some(far)
 }
 
-/// The least arithmetic with the guarantee's shape: Haines et al.'s
-/// discriminant from the line's distance to the centre and the stable
-/// pair of roots, nearest root above zero, no error bound (so neither the
-/// miss band nor the conservative `t > 0`).
+/// Haines et al.'s discriminant from the line's distance to the centre and
+/// the stable pair of roots, nearest root above zero, with no error bound
+/// (so neither the miss band nor a `t > 0` that holds exactly): the
+/// published accurate form, not the guarantee.
 #[inline(always)]
-pub fn floor_sphere(ray: &Ray, s: &Sphere) -> Option<f32> {
+pub fn haines_sphere(ray: &Ray, s: &Sphere) -> Option<f32> {
     let f: Vec3 = ray.origin - s.center;
     let a = ray.dir.length_squared();
     let nd = -f.dot(ray.dir);
@@ -90,6 +96,48 @@ pub fn floor_sphere(ray: &Ray, s: &Sphere) -> Option<f32> {
     }
 }
 
+/// The floor: the least arithmetic that gives `Sphere::hit`'s guarantee
+/// in `f32`, written out by hand: the same decisions (the discriminant as
+/// `a r^2 - |f x d|^2` with its rounding band, `t > 0` from the signs of
+/// `beta` and `k`), its bounds with their constants folded and without the
+/// underflow terms, and no exact fallback (the rare undecided cases
+/// answer `None`).
+#[inline(always)]
+pub fn floor_sphere(ray: &Ray, s: &Sphere) -> Option<f32> {
+    const U: f32 = f32::EPSILON * 0.5;
+    let g = |n: f32| n * U / (1.0 - n * U) * (1.0 + 8.0 * U);
+    let d = ray.dir;
+    let f = ray.origin - s.center;
+    let a = d.dot(d);
+    let nd = -f.dot(d);
+    let ff = f.dot(f);
+    let rr = s.radius * s.radius;
+    let k = ff - rr;
+    let c = f.cross(d);
+    let cc = c.dot(c);
+    let ar = a * rr;
+    let x = ar - cc;
+    let m = f.abs().max_element() * d.abs().element_sum();
+    if x < 0.0 {
+        let e = g(3.0) * m;
+        let band = g(5.0) * ar + g(4.0) * cc + e * (2.0 * c.abs().element_sum() + 3.0 * e) + U * -x;
+        if x < -band {
+            return None;
+        }
+    }
+    let root = x.max(0.0).sqrt();
+    let (err_nd, err_k) = (g(4.0) * m, g(8.0) * (ff + rr));
+    let t = if nd > err_nd {
+        let q = nd + root;
+        if k > err_k { k / q } else { q / a }
+    } else if nd < -err_nd && k < -err_k {
+        k / (nd - root)
+    } else {
+        return None;
+    };
+    (t > 0.0).then_some(t)
+}
+
 /// Pairwise sphere kernels: ray `i` against sphere `i`.
 pub fn sphere_kernels<'a>(d: &'a SphereData, out: &mut Vec<Kernel<'a>>) {
     let n = d.rays.len();
@@ -103,6 +151,10 @@ pub fn sphere_kernels<'a>(d: &'a SphereData, out: &mut Vec<Kernel<'a>>) {
     let floor_agree = agree(
         ours.iter().copied(),
         (0..n).map(|i| floor_sphere(&d.rays[i], &d.spheres[i]).is_some()),
+    );
+    let haines_agree = agree(
+        ours.iter().copied(),
+        (0..n).map(|i| haines_sphere(&d.rays[i], &d.spheres[i]).is_some()),
     );
     let parry_agree = agree(
         ours.iter().copied(),
@@ -157,11 +209,23 @@ pub fn sphere_kernels<'a>(d: &'a SphereData, out: &mut Vec<Kernel<'a>>) {
         ),
         kernel(
             sec,
-            "floor: distance discriminant + stable roots, no bounds",
+            "Haines et al. (distance discriminant, stable roots), no bounds",
+            w,
+            n,
+            Some(haines_agree),
+            pairwise(&d.order, &d.rays, &d.spheres, |r, s| {
+                t_sum(haines_sphere(r, s))
+            }),
+        ),
+        kernel(
+            sec,
+            "floor: the guarantee's arithmetic, by hand",
             w,
             n,
             Some(floor_agree),
-            pairwise(&d.order, &d.rays, &d.spheres, |r, s| t_sum(floor_sphere(r, s))),
+            pairwise(&d.order, &d.rays, &d.spheres, |r, s| {
+                t_sum(floor_sphere(r, s))
+            }),
         ),
         kernel(
             sec,
@@ -172,6 +236,58 @@ pub fn sphere_kernels<'a>(d: &'a SphereData, out: &mut Vec<Kernel<'a>>) {
             pairwise(&d.order, &d.parry_rays, &d.parry_balls, |r, b| {
                 t_sum(b.cast_local_ray(r, f32::MAX, false))
             }),
+        ),
+    ]);
+}
+
+/// The section `sphere x8`: a ray against a group of eight spheres (a
+/// particle leaf), one sphere at a time and as one batch of eight.
+pub fn sphere_group_kernels<'a>(
+    rays: &'a [Ray],
+    prepared: &'a [PreparedRay],
+    spheres: &'a [Sphere],
+    batches: &'a [SphereBatch<Vec3, 8>],
+    out: &mut Vec<Kernel<'a>>,
+) {
+    let (w, sec, n) = ("groups", "sphere x8", spheres.len());
+    out.extend([
+        kernel(
+            sec,
+            "rayhit Sphere::hit, 8 calls",
+            w,
+            n,
+            None,
+            chunked(rays, spheres, 8, |r, s| t_sum(s.hit(r, INF).map(|h| h.t))),
+        ),
+        kernel(
+            sec,
+            "rayhit SphereBatch::hit, 8 lanes",
+            w,
+            n,
+            None,
+            chunked(rays, batches, 1, |r, b| {
+                let h = b.hit(r, INF);
+                lanes_t_sum(h.mask, &h.t)
+            }),
+        ),
+        kernel(
+            sec,
+            "rayhit SphereBatch::hit, 8 lanes, PreparedRay",
+            w,
+            n,
+            None,
+            chunked(prepared, batches, 1, |r, b| {
+                let h = b.hit(r, INF);
+                lanes_t_sum(h.mask, &h.t)
+            }),
+        ),
+        kernel(
+            sec,
+            "textbook quadratic (One Weekend, t > 0.001), 8 calls",
+            w,
+            n,
+            None,
+            chunked(rays, spheres, 8, |r, s| t_sum(textbook_sphere(r, s))),
         ),
     ]);
 }
