@@ -1,6 +1,6 @@
 //! Camera rays (pinhole, thin lens, orthographic, panoramic, from a
 //! rasterizer's matrices, with ray differentials and ray cones) and
-//! ray/plane, ray/box, ray/triangle and ray/sphere intersection over [`glam`] vectors,
+//! ray/plane, ray/box, ray/triangle, ray/sphere and ray/disc intersection over [`glam`] vectors,
 //! with error bounds that are derived, documented and tested against exact
 //! arithmetic.
 //!
@@ -48,9 +48,11 @@
 //! | --- | --- | --- | --- |
 //! | [`Triangle`] | [`TriangleHit`]: `t`, `u`, `v`, [`Side`] | [`TriangleHitError`]; the point from the barycentrics | |
 //! | [`Plane`] | `t` | the bound on `t`; the point with the plane's exact normal | |
+//! | [`Disc`] (and annuli) | [`DiscHit`]: `t`, [`Side`] | the bound on `t`; the point with the disc's exact normal | [`Disc::bounds`], a box for your BVH |
 //! | [`Sphere`] | [`SphereHit`]: `t`, [`Side`] (entering or leaving the ball) | the bound on `t`; the point moved onto the sphere, its outward normal | [`Sphere::bounds`], a box for your BVH |
 //! | [`Aabb`], [`ValidAabb`] | [`BoxHit`]: the interval and the entry [`BoxFace`], decided exactly | [`Aabb::surface_point`] (none from inside) | `Option<(enter, exit)>` |
 //! | [`batch::TriangleBatch`] | [`batch::TriangleBatchHits`]: every lane's hit | | |
+//! | [`batch::SphereBatch`] | [`batch::SphereBatchHits`]: every lane's hit | | |
 //! | [`batch::AabbBatch`], [`batch::QuantizedChildren`] | | | [`batch::AabbBatchHits`]: the lanes hit, and their entries |
 //!
 //! The simplest calls keep a free function each: [`ray_triangle`],
@@ -83,12 +85,14 @@
 //! | BVH node, 4 to 16 children | [`Bounds::clip`] of a [`batch::AabbBatch`], on a [`batch::SimdRay`] inside [`batch::with_simd`] | one ray against a node's children at once, the same answers bit for bit |
 //! | compressed wide BVH node (8-bit child boxes) | [`Bounds::clip`] of [`batch::QuantizedChildren`] | reads the node as stored, still conservative |
 //! | leaf with several triangles | [`IntersectLanes::hit`] of a [`batch::TriangleBatch`] | 8 or 16 triangles at once, each lane the scalar test's answer |
+//! | leaf of particles (spheres) | [`IntersectLanes::hit`] of a [`batch::SphereBatch`] on a [`PreparedRay`] | 8 or 16 spheres at once, each lane [`Sphere`]'s answer bit for bit, several times the speed of one call per sphere |
 //! | shadow ray between two surfaces, or to a point light | [`SurfacePoint::spawn_to`], [`SurfacePoint::spawn_to_point`], then [`Intersect::occluded`] over the [`Interval`] they return | no epsilon: the segment cannot hit the surface at either end, and an occluder farther from both ends' planes than their error bounds is found |
 //! | shadow / any-hit ray from a plain origin | [`Intersect::occluded`] with the light's distance as `t_max` | `t_max` is honoured conservatively |
 //! | inside/outside, CSG, crossing counts | [`Intersect::hit`] with [`EdgeRule::OneHit`] | decided exactly: one hit per point where the ray crosses the surface the triangles form, at edges and corners too; zero-area fillers never hit |
 //! | every hit along a ray, in order (transparency, alpha-tested foliage, volumes) | a [`Walk`]: [`Intersect::hit`] with [`EdgeRule::OneHit`] over the windows it gives, from your own traversal; nodes culled with [`Bounds::clip`] over the same windows | one report per surface crossing: both ends of every window decided exactly, so no crossing is skipped or repeated, and the windows are in exact order; the node tests never cull a box the ray crosses within a window |
 //! | boxes as geometry | [`Intersect::hit`] of an [`Aabb`], then [`Aabb::surface_point`] | the face the ray enters through, decided exactly, and its normal |
 //! | planes | [`ray_plane`] (or [`Intersect::hit`] of a [`Plane`]) | `t` with its error bound ([`Surface::hit_error`]) |
+//! | discs and rings (area lights, lens and camera models, clipped planes) | [`Intersect::hit`] of a [`Disc`] | the rims decided exactly: a ray through a disc's edge is never misjudged, and a disc and the ring around it leave no gap |
 //! | spheres (particles, molecules, "One Weekend" scenes) | [`Intersect::hit`] of a [`Sphere`], then [`Surface::surface_point`] and [`SurfacePoint::spawn`] | no false miss at any distance (no rings on far spheres), `t` with its error bound, and no epsilon: a spawned ray never meets the sphere it left, one spawned into it finds the far side |
 //! | the next ray from a hit | [`Surface::surface_point`], then [`SurfacePoint::spawn`] | the new ray cannot hit the surface it left |
 //! | instances (one mesh placed many times, two-level BVH) | [`Instance`]: `object_to_world_box` for the top level, `world_to_object` once per visit, `surface_to_world` and `spawn` for the next ray, `spawn_to_through` for a shadow segment | world boxes contain the exact transformed object box; the spawned ray, mapped back, cannot hit the surface it left |
@@ -99,7 +103,7 @@
 //! - A [`Ray`] is `origin + t * dir` for `t >= 0`. `dir` need not be unit
 //!   length; every `t` is measured in multiples of `dir`. A zero or
 //!   non-finite `dir` (or origin) hits nothing.
-//! - A surface ([`Plane`], [`Triangle`], [`Sphere`]) is hit at `0 < t <= t_max`: a hit at
+//! - A surface ([`Plane`], [`Triangle`], [`Sphere`], [`Disc`]) is hit at `0 < t <= t_max`: a hit at
 //!   exactly `t = 0` is the ray's own starting surface and is not reported.
 //! - A box ([`Aabb`]) is a closed solid: the result is the interval
 //!   `[max(t_enter, 0), min(t_exit, t_max)]` when it is not empty, so a ray
@@ -409,6 +413,7 @@ mod surface;
 mod query;
 
 mod aabb;
+mod disc;
 mod plane;
 mod sphere;
 mod triangle;
@@ -454,7 +459,7 @@ mod testing;
 /// SIMD instruction set.
 ///
 /// A batch answers the same queries as its shapes ([`Bounds`] for boxes and
-/// nodes, [`IntersectLanes`] for triangles), every lane bit for bit the
+/// nodes, [`IntersectLanes`] for triangles and spheres), every lane bit for bit the
 /// scalar answer, eight lanes at a time in SIMD registers. On x86-64 with `std`
 /// each call picks an AVX2 copy where the CPU has it; [`with_simd`](crate::batch::with_simd) makes
 /// that choice once for a whole traversal, and a ray put on the chosen
@@ -497,6 +502,7 @@ pub mod batch {
 mod root {
     pub use crate::aabb::{Aabb, BoxFace, BoxHit, ValidAabb, ray_aabb};
     pub use crate::camera::{Camera, CameraSample, DPinholeCamera, PinholeCamera};
+    pub use crate::disc::{Disc, DiscHit};
     pub use crate::instance::{DInstance, Instance};
     pub use crate::num::{Scalar, Vector};
     pub use crate::plane::{Plane, ray_plane};
@@ -520,6 +526,10 @@ mod root {
     pub type DBoxHit = BoxHit<f64>;
     /// [`Plane`] in `f64`.
     pub type DPlane = Plane<DVec3>;
+    /// [`Disc`] in `f64`.
+    pub type DDisc = Disc<DVec3>;
+    /// [`DiscHit`] in `f64`.
+    pub type DDiscHit = DiscHit<f64>;
     /// [`Sphere`] in `f64`.
     pub type DSphere = Sphere<DVec3>;
     /// [`SphereHit`] in `f64`.

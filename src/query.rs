@@ -266,7 +266,7 @@ impl<V: Vector, R: RayForm<V>> RayForm<V> for &R {
 /// `ray` is any [`RayForm`]; `search` a `t_max`, an [`Interval`], or either
 /// with an [`EdgeRule`] (see [`Search`]). The form of the ray changes
 /// what a call costs, never its answer. Implemented by [`Triangle`],
-/// [`Plane`], [`Aabb`] and [`ValidAabb`] (a box as a closed solid, with
+/// [`Sphere`], [`Plane`], [`Aabb`] and [`ValidAabb`] (a box as a closed solid, with
 /// the face the ray enters through); the guarantees of each are on its
 /// implementation. A batch of shapes answers the same questions lane by
 /// lane ([`IntersectLanes`]); a BVH node's test is [`Bounds`].
@@ -276,6 +276,7 @@ impl<V: Vector, R: RayForm<V>> RayForm<V> for &R {
 /// than the hit), and every form of ray and search follows.
 ///
 /// [`Triangle`]: crate::Triangle
+/// [`Sphere`]: crate::Sphere
 /// [`Plane`]: crate::Plane
 /// [`Aabb`]: crate::Aabb
 /// [`ValidAabb`]: crate::ValidAabb
@@ -328,7 +329,8 @@ pub trait Intersect<V: Vector = Vec3> {
 /// hit (not an `Option`): returned as one value it is written once, into
 /// the caller's memory, where a value moved out of an `Option` is copied
 /// again. `ray` and `search` are as for [`Intersect`]. Implemented by
-/// [`TriangleBatch`](crate::batch::TriangleBatch).
+/// [`TriangleBatch`](crate::batch::TriangleBatch) and
+/// [`SphereBatch`](crate::batch::SphereBatch).
 ///
 /// ```
 /// use rayhit::{IntersectLanes, PreparedRay, Ray, Triangle, glam::Vec3};
@@ -359,8 +361,8 @@ pub trait IntersectLanes<V: Vector = Vec3> {
 /// need to leave it without an epsilon).
 ///
 /// `hit` is a hit this shape returned for the same ray (any form of it).
-/// Implemented by [`Triangle`](crate::Triangle) and
-/// [`Plane`](crate::Plane); a box's point is
+/// Implemented by [`Triangle`](crate::Triangle), [`Sphere`](crate::Sphere)
+/// and [`Plane`](crate::Plane); a box's point is
 /// [`Aabb::surface_point`](crate::Aabb::surface_point), `None` for a ray
 /// that starts inside.
 ///

@@ -37,6 +37,7 @@
 
 mod aabb;
 mod differentials;
+mod disc;
 mod filter;
 mod plane;
 mod sphere;
@@ -48,6 +49,7 @@ mod tests;
 
 pub use aabb::*;
 pub use differentials::*;
+pub use disc::*;
 pub use filter::*;
 pub use plane::*;
 pub use sphere::*;

@@ -1,0 +1,208 @@
+//! The disc test against exact arithmetic, in `f32` and `f64`.
+//!
+//! Cases: discs and annuli with centres up to `1e5` from the origin,
+//! radii `1e-3` to `1e4`, holes of a fifth to nine tenths of the radius,
+//! normals of any direction and length; rays aimed at a point of the
+//! disc's plane on either circle (the circle's point rounded, and moved
+//! off it by a relative `1e-7` either way), inside the annulus, in the
+//! hole and outside, from any direction or nearly along the plane. For
+//! each, over `(0, inf]` as an interval the answer is the exact verdict
+//! (the crossing ahead, within both closed circles, in big rationals),
+//! with the exact side; every reported `t` is within its bound; the
+//! `t_max` form reports only exact hits, and misses one only where the
+//! ray is within rounding of parallel or the crossing within its bound of
+//! the origin. A disc and the annulus around it that share the circle
+//! leave no gap: every exact crossing within the annulus's outer circle
+//! is reported by one of them (by both exactly on the shared circle).
+//! The exact crossing of every hit lies in `Disc::bounds`.
+//! The textbook test (the plane's `t`, then `|p - c|^2 <= r^2` on the
+//! rounded point) on the same rays: its false misses and false hits
+//! print. 3,000 cases per precision, times `RAYHIT_CASES`.
+
+use crate::common::draw::f;
+use crate::sphere::{q, unit};
+use rayhit::exact::num_traits::Signed;
+use rayhit::exact::oracle::{ExactDisc, disc};
+use rayhit::glam::{DVec3, Vec3};
+use rayhit::{Disc, Intersect, Interval, Ray, Scalar, Surface, Vector};
+use rayhit_testkit::case_count;
+use rayhit_testkit::rng::Pcg32;
+
+type S<V> = <V as Vector>::Scalar;
+
+fn vec<V: Vector>(p: [f64; 3]) -> V {
+    V::new(f::<V>(p[0]), f::<V>(p[1]), f::<V>(p[2]))
+}
+
+fn cross(a: [f64; 3], b: [f64; 3]) -> [f64; 3] {
+    [
+        a[1] * b[2] - a[2] * b[1],
+        a[2] * b[0] - a[0] * b[2],
+        a[0] * b[1] - a[1] * b[0],
+    ]
+}
+
+fn pow10(rng: &mut Pcg32, lo: f64, hi: f64) -> f64 {
+    10f64.powf(lo + (hi - lo) * f64::from(rng.unit()))
+}
+
+/// One case: a disc (or annulus) and a ray at it.
+fn case<V: Vector>(rng: &mut Pcg32) -> (Ray<V>, Disc<V>) {
+    loop {
+        let n = unit(rng);
+        let centre = unit(rng).map(|x| x * pow10(rng, 0.0, 5.0));
+        let radius = pow10(rng, -3.0, 4.0);
+        let inner = if rng.below(2) == 0 {
+            0.0
+        } else {
+            radius * (0.2 + 0.7 * f64::from(rng.unit()))
+        };
+        let mut along = cross(n, unit(rng));
+        let len = along.iter().map(|x| x * x).sum::<f64>().sqrt();
+        along = along.map(|x| x / len);
+        let off = [1.0, 1.0 + 1e-7, 1.0 - 1e-7][rng.below(3) as usize];
+        let rho = match rng.below(5) {
+            0 => radius * off,
+            1 => inner * off,
+            2 => (radius + inner) * 0.5,
+            3 => inner * 0.5,
+            _ => radius * 1.5,
+        };
+        let target = [0, 1, 2].map(|i| centre[i] + along[i] * rho);
+        let mut away = unit(rng);
+        if rng.below(4) == 0 {
+            // Nearly along the plane.
+            let tilt = [1e-3, 1e-6, 1e-9][rng.below(3) as usize];
+            away = [0, 1, 2].map(|i| along[i] + n[i] * tilt);
+        }
+        let dist = radius * pow10(rng, -1.0, 3.0);
+        let origin = [0, 1, 2].map(|i| target[i] + away[i] * dist);
+        let scale = pow10(rng, -2.0, 2.0);
+        let (o, t) = (vec::<V>(origin), vec::<V>(target));
+        let ray = Ray::new(o, t - o);
+        let d = Disc::annulus(
+            vec::<V>(centre),
+            vec::<V>(n.map(|x| x * scale)),
+            f::<V>(radius),
+            f::<V>(inner),
+        );
+        if ray.is_valid() {
+            return (ray, d);
+        }
+    }
+}
+
+fn within<F: Scalar>(e: &ExactDisc, t: F, err: F) -> bool {
+    !err.is_finite() || (q(t) - &e.t).abs() <= q(err)
+}
+
+#[derive(Default, Debug)]
+struct Counts {
+    hits: usize,
+    dropped_near_origin_or_parallel: usize,
+    shared_rim_crossings: usize,
+    textbook_false_misses: usize,
+    textbook_false_hits: usize,
+}
+
+fn run<V: Vector>(seed: u64) -> Counts {
+    let mut rng = Pcg32::new(seed);
+    let mut n = Counts::default();
+    let inf = S::<V>::INFINITY;
+    let zero = S::<V>::ZERO;
+    let max = q(S::<V>::MAX);
+    let all = Interval::up_to(inf).unwrap();
+    for _ in 0..case_count(3_000) {
+        let (ray, d) = case::<V>(&mut rng);
+        let exact = disc(&ray, &d);
+        let expected = exact
+            .as_ref()
+            .filter(|e| e.hit_in(&q(zero), Some(&max)))
+            .map(|e| e.side);
+        let got = d.hit(&ray, all);
+        assert_eq!(got.map(|h| h.side), expected, "{ray:?} {d:?} {exact:?}");
+        if let (Some(h), Some(e)) = (got, exact.as_ref()) {
+            n.hits += 1;
+            let err = d.hit_error(&ray, &h);
+            let err = if err > zero.next_up() {
+                err
+            } else {
+                zero.next_up()
+            };
+            assert!(within(e, h.t, err), "{h:?} {err:?} {ray:?} {d:?}");
+            // The exact crossing is inside the disc's box.
+            let b = d.bounds();
+            for i in 0..3 {
+                let p = q(ray.origin[i]) + &e.t * q(ray.dir[i]);
+                assert!(
+                    q(b.min[i]) <= p && p <= q(b.max[i]),
+                    "box axis {i}: {d:?} {b:?}"
+                );
+            }
+        }
+        let plain = d.hit(&ray, inf);
+        if let Some(h) = plain {
+            let e = exact.as_ref().expect("a crossing");
+            assert!(
+                e.hit_in(&q(zero), None) && h.side == e.side,
+                "{h:?} {ray:?} {d:?}"
+            );
+            assert!(within(e, h.t, d.hit_error(&ray, &h)));
+        } else if let Some(h) = got {
+            // Dropped: within rounding of parallel, or within the bound of 0.
+            let dn = ray.dir.dot(d.normal).abs();
+            let mag = ray.dir.abs().dot(d.normal.abs());
+            let parallel = dn <= S::<V>::TWO * S::<V>::gamma_n(3) * mag;
+            assert!(
+                parallel || h.t <= d.hit_error(&ray, &h),
+                "{h:?} {ray:?} {d:?}"
+            );
+            n.dropped_near_origin_or_parallel += 1;
+        }
+        // The disc inside the annulus, sharing its circle.
+        let r = d.radius;
+        let inner_disc = Disc::new(d.center, d.normal, r);
+        let ring = Disc::annulus(d.center, d.normal, r * S::<V>::TWO, r);
+        if let Some(e) = disc(&ray, &inner_disc) {
+            let four = &e.outer2 * q(S::<V>::from_f64(4.0));
+            if e.t > q(zero) && e.t <= max && e.dist2 <= four {
+                let (a, b) = (inner_disc.hit(&ray, all), ring.hit(&ray, all));
+                assert!(
+                    a.is_some() || b.is_some(),
+                    "a gap on the shared circle: {ray:?} {d:?}"
+                );
+                if e.dist2 == e.outer2 {
+                    assert!(a.is_some() && b.is_some());
+                    n.shared_rim_crossings += 1;
+                }
+            }
+        }
+        // The textbook test.
+        let textbook = rayhit::ray_plane(&ray, &rayhit::Plane::new(d.center, d.normal), inf)
+            .filter(|t| {
+                let v = ray.at(*t) - d.center;
+                let s = v.dot(v);
+                s <= d.radius * d.radius && s >= d.inner_radius * d.inner_radius
+            });
+        match (textbook.is_some(), expected.is_some()) {
+            (false, true) => n.textbook_false_misses += 1,
+            (true, false) => n.textbook_false_hits += 1,
+            _ => {}
+        }
+    }
+    n
+}
+
+#[test]
+fn discs_against_exact_f32() {
+    let n = run::<Vec3>(61);
+    eprintln!("f32: {n:?}");
+    assert!(n.hits > 1_000, "{n:?}");
+}
+
+#[test]
+fn discs_against_exact_f64() {
+    let n = run::<DVec3>(62);
+    eprintln!("f64: {n:?}");
+    assert!(n.hits > 1_000, "{n:?}");
+}
