@@ -14,7 +14,9 @@
 //! the origin. A disc and the annulus around it that share the circle
 //! leave no gap: every exact crossing within the annulus's outer circle
 //! is reported by one of them (by both exactly on the shared circle).
-//! The exact crossing of every hit lies in `Disc::bounds`.
+//! The exact crossing of every hit lies in `Disc::bounds`, and rays
+//! spawned from its surface point (reflected, or passing through) never
+//! meet the disc again.
 //! The textbook test (the plane's `t`, then `|p - c|^2 <= r^2` on the
 //! rounded point) on the same rays: its false misses and false hits
 //! print. 3,000 cases per precision, times `RAYHIT_CASES`.
@@ -99,6 +101,7 @@ fn within<F: Scalar>(e: &ExactDisc, t: F, err: F) -> bool {
 #[derive(Default, Debug)]
 struct Counts {
     hits: usize,
+    spawned: usize,
     dropped_near_origin_or_parallel: usize,
     shared_rim_crossings: usize,
     textbook_false_misses: usize,
@@ -148,6 +151,22 @@ fn run<V: Vector>(seed: u64) -> Counts {
                 "{h:?} {ray:?} {d:?}"
             );
             assert!(within(e, h.t, d.hit_error(&ray, &h)));
+            // Spawned rays, reflected and passing through (clear of
+            // tangent), never meet the disc they left.
+            let p = d.surface_point(&ray, &h);
+            let nrm = d.normal;
+            let reflected = ray.dir - nrm * (S::<V>::TWO * ray.dir.dot(nrm) / nrm.dot(nrm));
+            for w in [reflected, ray.dir] {
+                let dn = w.dot(nrm).abs();
+                if dn > S::<V>::from_f64(4.0) * S::<V>::gamma_n(3) * w.abs().dot(nrm.abs()) {
+                    let spawned = p.spawn(w);
+                    assert!(
+                        d.hit(&spawned, inf).is_none() && d.hit(&spawned, all).is_none(),
+                        "{spawned:?} {d:?}"
+                    );
+                    n.spawned += 1;
+                }
+            }
         } else if let Some(h) = got {
             // Dropped: within rounding of parallel, or within the bound of 0.
             let dn = ray.dir.dot(d.normal).abs();
