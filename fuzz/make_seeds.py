@@ -300,3 +300,28 @@ for name, m in insts.items():
     write("instance", f"raw-f32-{name}", raw(0, *vecs(*m, *BOX, *RAY)))
     write("instance", f"raw-f64-{name}", raw(1, *vecs(*m, *BOX, *RAY)))
 structured("instance")
+
+
+# Spheres: ray origin, dir, sphere centre, radius, t_max, then the
+# interval's ends lo, hi.
+spheres = {
+    "through-centre": vecs((0, 0, -5), (0, 0, 2), (0, 0, 0)) + [1, INF, 0, INF],
+    "tangent": vecs((-2, 1, 0), (1, 0, 0), (0, 0, 0)) + [1, INF, 0, INF],
+    "just-outside": vecs((-2, 1.0000001, 0), (1, 0, 0), (0, 0, 0)) + [1, INF, 0, INF],
+    "from-inside": vecs((0.25, -0.5, 0.125), (0.3, 0.2, -0.7), (0, 0, 0)) + [1, INF, 0, INF],
+    "on-surface-leaving": vecs((1, 0, 0), (1, 0, 0), (0, 0, 0)) + [1, INF, 0, INF],
+    "on-surface-entering": vecs((1, 0, 0), (-1, 0, 0), (0, 0, 0)) + [1, INF, 0, INF],
+    "window-at-exit": vecs((-4, 0, 0), (1, 0, 0), (0, 0, 0)) + [2, 6, 2, 6],
+    "t-max-at-entry": vecs((-4, 0, 0), (1, 0, 0), (0, 0, 0)) + [2, 2, 1.5, 2],
+    "far": vecs((0, 0, 0), (0.6, 0.8, 0), (6e4, 8e4, 0)) + [0.01, INF, 0, INF],
+    "negative-radius": vecs((0, 0, 5), (0, 0, -1), (0, 0, 0)) + [-2, INF, 0, 3],
+    "zero-radius": vecs((-1, 0, 0), (1, 0, 0), (0, 0, 0)) + [0, INF, 0, INF],
+    "subnormal-dir": vecs((0, 0, 5), (0, 0, -SUB32), (0, 0, 0)) + [1, INF, 0, INF],
+    "huge": vecs((-MAX32, 0, 0), (1, 0, 0), (MAX32, 0, 0)) + [MAX32, INF, 0, INF],
+    "nan-radius": vecs((0, 0, 5), (0, 0, -1), (0, 0, 0)) + [NAN, INF, 0, INF],
+    "t-max-nan": vecs((0, 0, 5), (0, 0, -1), (0, 0, 0)) + [1, NAN, NAN, 1],
+}
+for name, xs in spheres.items():
+    write("sphere", f"raw-f32-{name}", raw(0, *xs))
+    write("sphere", f"raw-f64-{name}", raw(1, *xs))
+structured("sphere")

@@ -145,7 +145,10 @@ mod tests {
             bytes[4 * i..4 * i + 4].copy_from_slice(&x.to_le_bytes());
         }
         let s = Sphere::<Vec3>::arbitrary(&mut Unstructured::new(&bytes)).unwrap();
-        assert_eq!(s.center.to_array().map(f32::to_bits), [1.0f32, -0.0, f32::INFINITY].map(f32::to_bits));
+        assert_eq!(
+            s.center.to_array().map(f32::to_bits),
+            [1.0f32, -0.0, f32::INFINITY].map(f32::to_bits)
+        );
         assert_eq!(s.radius, -2.0);
         let s = Sphere::<DVec3>::arbitrary(&mut Unstructured::new(&[0xff; 24])).unwrap();
         assert!(s.center.z.is_nan());

@@ -320,13 +320,14 @@ pub fn sphere<V: Vector>() -> impl Strategy<Value = Sphere<V>> + Clone {
 /// A sphere from [`sphere`] and a ray at it, one of three kinds:
 ///
 /// - aimed (half the time) at a target on the sphere, inside the ball (a
-///   uniform fraction of the radius from the centre) or just outside (a
-///   relative `2^-24` to `2^-10` beyond the surface), one time in three
-///   each, along a [`direction`] from `2^-4` to `2^6` direction lengths
-///   back (as [`ray_through`] aims); the origin may fall inside the ball
-///   too;
+///   uniform fraction of the radius from the centre), just outside (a
+///   relative `2^-24` to `2^-10` beyond the surface) or outside (one to
+///   three radii from the centre), one time in four each, along a
+///   [`direction`] from `2^-4` to `2^6` direction lengths back (as
+///   [`ray_through`] aims): the line misses only where it passes a point
+///   outside at enough of an angle; the origin may fall inside the ball;
 /// - grazing (one time in four): along a tangent at a point of the sphere,
-///   that point on the sphere one time in three, else moved off it, inward
+///   that point on the sphere one time in four, else moved off it, inward
 ///   or outward, by a relative `2^-24` to `2^-10`; the direction of length
 ///   `2^k` (`k` in `[-6, 6]`; axis-parallel where the tangent is), the
 ///   origin `2^-4` to `2^6` direction lengths back;
@@ -338,11 +339,16 @@ pub fn sphere<V: Vector>() -> impl Strategy<Value = Sphere<V>> + Clone {
 /// the sphere" means within an ulp or so of it, and an origin drawn
 /// inside is inside exactly.
 pub fn sphere_and_ray<V: Vector>() -> impl Strategy<Value = (Sphere<V>, Ray<V>)> + Clone {
-    let draws = (0.0..1.0f64, -24.0..=-10.0f64, any::<bool>(), 0.0625..=64.0f64);
+    let draws = (
+        0.0..1.0f64,
+        -24.0..=-10.0f64,
+        any::<bool>(),
+        0.0625..=64.0f64,
+    );
     (
         sphere::<V>(),
         case([2, 1, 1]),
-        index(3),
+        index(4),
         (direction::<V>(), direction::<V>()),
         draws,
         power_of_two(-6, 6),
@@ -364,7 +370,8 @@ pub fn sphere_and_ray<V: Vector>() -> impl Strategy<Value = (Sphere<V>, Ray<V>)>
                     let target = match reach {
                         0 => at(1.0),
                         1 => at(f),
-                        _ => at(1.0 + x.exp2()),
+                        2 => at(1.0 + x.exp2()),
+                        _ => at(1.0 + 2.0 * f),
                     };
                     Ray::new(behind(target, b, back), b)
                 }

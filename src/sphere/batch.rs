@@ -314,7 +314,7 @@ fn sphere_batch_body<W: Lanes8<F = S<V>>, V: Vector, const N: usize>(
             .add(splat(g(4)).mul(cc))
             .add(e.mul(two.mul(c1).add(splat(S::<V>::from_u32(3)).mul(e))))
             .add(splat(S::<V>::UNIT_ROUNDOFF).mul(abs(x, zero)))
-            .add(splat(S::<V>::from_u32(8) * tiny))
+            .add(av.add(splat(S::<V>::from_u32(8))).mul(splat(tiny)))
             .mul(up7);
         let miss = W::and(x.lt(zero), x.lt(zero.sub(err_x)));
         let err_nd = splat(g(4)).mul(m).add(splat(tiny)).mul(up2);

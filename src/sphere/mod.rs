@@ -221,23 +221,28 @@ pub(crate) fn ray_sphere_t_error<V: Vector>(
 /// [`Sphere`]'s `surface_point`.
 #[must_use]
 pub(crate) fn sphere_point<V: Vector>(sphere: &Sphere<V>, p: V) -> SurfacePoint<V> {
-    let zero = S::<V>::ZERO;
     let c = sphere.center;
     let r = sphere.radius.abs();
-    let v = p - c;
+    // `p - c` scaled by a power of two to put its largest component in
+    // `[1, 2)`, so that `|v|` neither overflows nor underflows: the
+    // direction is all that counts, and the point `q` below is defined
+    // from the scaled vector itself.
+    let v = scaled_to_one(p - c);
     let len = v.dot(v).sqrt();
     let scale = r / len;
     let w = v * scale;
     let point = c + w;
     let g = S::<V>::gamma_n(7);
     let u = S::<V>::UNIT_ROUNDOFF;
+    // An underflowing product or quotient errs by at most `u T` absolutely.
+    let tiny = S::<V>::from_u32(4) * S::<V>::MIN_POSITIVE;
     let each = |f: &dyn Fn(usize) -> S<V>| V::new(f(0), f(1), f(2));
-    if len > zero && w.is_finite() && point.is_finite() {
+    if len >= S::<V>::ONE && w.is_finite() && point.is_finite() {
         SurfacePoint {
             point,
-            point_error: each(&|i| bound_up(g * w[i].abs() + u * point[i].abs(), 3)),
+            point_error: each(&|i| bound_up(g * w[i].abs() + u * point[i].abs() + tiny, 3)),
             normal: w,
-            normal_error: each(&|i| bound_up(g * w[i].abs(), 1)),
+            normal_error: each(&|i| bound_up(g * w[i].abs() + tiny, 2)),
         }
     } else {
         // No direction from the centre (a point at the centre, a sphere of
@@ -250,6 +255,22 @@ pub(crate) fn sphere_point<V: Vector>(sphere: &Sphere<V>, p: V) -> SurfacePoint<
             normal_error: V::ZERO,
         }
     }
+}
+
+/// `v` times the power of two that puts its largest magnitude in `[1,
+/// 2)`; `v` itself where that is zero or not finite. (Exact but for
+/// components that fall below the smallest subnormal.)
+fn scaled_to_one<V: Vector>(v: V) -> V {
+    use crate::num::exact_sign::{exponent, scale2};
+    let a = v.abs();
+    let big = |p: S<V>, q: S<V>| if p > q { p } else { q };
+    let m = big(big(a.x(), a.y()), a.z()).to_f64();
+    if !(m > 0.0 && m.is_finite()) {
+        return v;
+    }
+    let k = exponent(m);
+    let s = |x: S<V>| S::<V>::from_f64(scale2(x.to_f64(), -k));
+    V::new(s(v.x()), s(v.y()), s(v.z()))
 }
 
 /// The ray/sphere test: the nearest crossing of the ray with the sphere,
@@ -364,12 +385,15 @@ impl<V: Vector> Surface<V> for Sphere<V> {
     /// The hit point moved onto the sphere (pbrt-v4's reprojection), with
     /// its bound, and the outward normal (length about `r`).
     ///
-    /// With `v = fl(ray.at(t) - center)` and `q = center + r v / |v|` (a
-    /// point of the exact sphere), the point is `center + w`, `w = fl(fl(r
-    /// / fl(|v|)) v)`, and the normal is `w`: `|w_i - (q - center)_i| <=
-    /// gamma(6) |w_i|` (six roundings along `|v|`, the quotient and the
-    /// product), so `normal_error_i = gamma(7) |w_i|` and `point_error_i =
-    /// gamma(7) |w_i| + u |point_i|`, rounded up. Both are against the
+    /// With `v = fl(ray.at(t) - center)`, scaled by a power of two to put
+    /// its largest component in `[1, 2)` (so that `|v|` neither overflows
+    /// nor underflows), and `q = center + r v / |v|` (a point of the exact
+    /// sphere), the point is `center + w`, `w = fl(fl(r / fl(|v|)) v)`, and
+    /// the normal is `w`: `|w_i - (q - center)_i| <= gamma(6) |w_i|` (six
+    /// roundings along `|v|`, the quotient and the product), so
+    /// `normal_error_i = gamma(7) |w_i|` and `point_error_i = gamma(7)
+    /// |w_i| + u |point_i|`, rounded up, each plus four `MIN_POSITIVE` for
+    /// underflow. Both are against the
     /// same `q`: the tangent plane [`SurfacePoint::spawn`] leaves is the
     /// exact sphere's at `q`, and the ball lies on one side of it, so a
     /// ray spawned away from the surface never meets the ball again, and

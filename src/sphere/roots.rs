@@ -94,11 +94,7 @@ impl<V: Vector> Line<V> {
     /// `E_x`: `|x - a* Delta*|` at most this.
     #[inline(always)]
     fn err_x(&self, m: S<V>) -> S<V> {
-        Self::err_x_of(m, self.cross, self.cc, self.ar, self.x)
-    }
-
-    #[inline(always)]
-    fn err_x_of(m: S<V>, cross: V, cc: S<V>, ar: S<V>, x: S<V>) -> S<V> {
+        let (cross, cc, ar, x) = (self.cross, self.cc, self.ar, self.x);
         let g = S::<V>::gamma_n;
         let c = cross.abs();
         let tiny = S::<V>::MIN_POSITIVE;
@@ -110,7 +106,9 @@ impl<V: Vector> Line<V> {
                 + g(4) * cc
                 + e * (S::<V>::TWO * c1 + S::<V>::from_u32(3) * e)
                 + S::<V>::UNIT_ROUNDOFF * x.abs()
-                + S::<V>::from_u32(8) * tiny,
+                // `8 T + a T` as one product: `a T` alone would be
+                // subnormal for `a < 1`, and subnormal arithmetic is slow.
+                + (self.a + S::<V>::from_u32(8)) * tiny,
             7,
         )
     }
@@ -261,7 +259,8 @@ pub(crate) struct Crossings<F> {
 ///   |l*|^2`, and `a* Delta* = beta*^2 - a* k*`: the line meets the closed
 ///   ball exactly where `y >= 0`. `x = fl(fl(a fl(r r)) - fl(C . C))`:
 ///   `|x - y| <= E_x = gamma(5) ar + gamma(4) cc + e (2 |C|_1 + 3 e) + u
-///   |x| + 8 T` (`ar` within `gamma(5)` of `a* r^2`; `cc` within
+///   |x| + 8 T + a T` (`ar` within `gamma(5)` of `a* r^2`, plus `a T` for
+///   an `r r` that underflows; `cc` within
 ///   `gamma(4) cc` of `|C|^2`, which is within `sum E_C,i (|C_i| + |c*_i|)
 ///   <= e (2 |C|_1 + 3 e)` of `|c*|^2`). Where `x < -E_x` the line surely misses;
 ///   where `x > E_x` it surely meets the ball. Near the sphere's rim the
@@ -300,9 +299,8 @@ pub(crate) fn crossings<V: Vector>(o: V, d: V, c: V, r: S<V>) -> Option<Crossing
         return None;
     }
     let line = Line::new(o, d, c, r);
-    if !(line.a > zero) {
-        return None;
-    }
+    // (A `dir` whose `d . d` underflows to zero is still a ray: its
+    // crossings are left to the exact signs, as `usable` fails.)
     let (root, q) = line.q();
     let label = |t1: S<V>, t2: S<V>, e1: S<V>, e2: S<V>, sure: bool| {
         let (entry, exit, entry_err, exit_err) = if line.nd >= zero {

@@ -46,6 +46,7 @@ pub mod panoramic;
 pub mod plane;
 pub mod spawn;
 pub mod spawn_to;
+pub mod sphere;
 pub mod thin_lens;
 pub mod triangle;
 
@@ -143,6 +144,9 @@ pub const TARGETS: &[Target] = &[
     // Shadow-ray segments between two surface points, or to a point light:
     // neither end's surface reported over `(0, 1]`.
     ("spawn_to", dispatch::<spawn_to::SpawnTo>),
+    // The sphere over a `t_max` and over an interval, its error bound and
+    // its surface point.
+    ("sphere", dispatch::<sphere::SphereCheck>),
     // The thin-lens camera.
     ("thin_lens", dispatch::<thin_lens::ThinLens>),
     // The watertight ray/triangle test.
@@ -235,8 +239,8 @@ where
 ///
 /// The crate's error bounds are relative-error arguments; they say "no
 /// intermediate overflow" but also need no intermediate underflow (see
-/// tests/suite/<subject>/fuzz_regressions.rs). Raw-bit inputs hold a kernel to its bounds
-/// only where every product it forms passes this.
+/// `tests/suite/<subject>/fuzz_regressions.rs`). Raw-bit inputs hold a
+/// kernel to its bounds only where every product it forms passes this.
 pub fn far_from_underflow<F: Scalar>(x: F) -> bool {
     let margin = F::ONE / (F::UNIT_ROUNDOFF * F::UNIT_ROUNDOFF);
     x == F::ZERO || x.abs() >= F::MIN_POSITIVE * margin

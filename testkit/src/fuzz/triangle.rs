@@ -573,7 +573,10 @@ pub fn tetrahedron<V: Vector>(src: &mut Source) {
             "odd one-hit count {one} from outside: {}",
             ctx()
         );
-        assert!(closed >= one, "closed {closed} < one-hit {one}: {}", ctx());
+        // (No `closed >= one`: a line through a corner on the silhouette
+        // is two one-hit crossings, decided exactly for the line moved off
+        // the corner, and may be none for the closed rule, in the ray's
+        // rounded frame: `triangle::fuzz_regressions`.)
     }
 }
 

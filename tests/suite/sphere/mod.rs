@@ -13,6 +13,8 @@
 
 mod interval;
 mod oracle;
+mod properties;
+mod regressions;
 
 use crate::common::draw::{f, signed};
 use rayhit::exact::oracle::{ExactSphere, R, sphere};

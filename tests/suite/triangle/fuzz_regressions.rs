@@ -196,3 +196,38 @@ fn triangle_scaled_distance_overflows() {
         assert!(hit.t > 0.0 && hit.t.is_finite());
     }
 }
+
+/// Found by the `triangle` target's tetrahedron check (after the sphere
+/// target joined the replay's shared stream): a ray from outside crosses
+/// the tetrahedron twice by the one-hit rule and hits no face by the
+/// closed rule. The exact line passes through the corner `v[0]` where
+/// three faces meet, and touches the solid there only. The check's
+/// `closed >= one-hit` was wrong: the one-hit rule decides in exact
+/// arithmetic for the line moved off the corner (which goes in and out),
+/// the closed rule in the ray's rounded frame (where the corner lands off
+/// the ray, outside all three faces). Pinned down: the one-hit answers are
+/// exactly the exact module's, two of them.
+#[test]
+fn tetrahedron_grazed_at_its_silhouette_one_hit_is_exact() {
+    use rayhit::exact::oracle::one_hit_line_hits;
+    use rayhit::{EdgeRule, Intersect, Ray, Triangle, glam::Vec3};
+    let ray = Ray::new(
+        Vec3::new(-39.718506, 2.5432792, 53.41002),
+        Vec3::new(0.09973323, 0.07336711, -0.00045961142),
+    );
+    let v = [
+        Vec3::new(-33.33558, 7.2387743, 53.380604),
+        Vec3::new(-33.3315, 5.4353094, 51.26661),
+        Vec3::new(-35.63824, 5.8881674, 53.694984),
+        Vec3::new(-35.284546, 7.431898, 50.83234),
+    ];
+    let faces = [[0, 1, 2], [0, 3, 1], [0, 2, 3], [1, 3, 2]]
+        .map(|[a, b, c]| Triangle::new(v[a], v[b], v[c]));
+    let mut one = 0;
+    for face in &faces {
+        let got = face.hit(&ray, (f32::INFINITY, EdgeRule::OneHit)).is_some();
+        assert_eq!(Some(got), one_hit_line_hits(&ray, face), "{face:?}");
+        one += usize::from(got);
+    }
+    assert_eq!(one, 2);
+}
