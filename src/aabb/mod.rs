@@ -76,6 +76,32 @@ impl<V: Vector> Aabb<V> {
     pub fn is_valid(&self) -> bool {
         valid_box(self.min, self.max)
     }
+
+    /// The box `center - reach ..= center + reach` (`reach` not negative),
+    /// each face moved outward by an ulp where its sum rounded inward (the
+    /// rounding error's sign from Knuth's two-sum), so that it holds the
+    /// exact box: the shapes' bounds.
+    #[inline]
+    #[must_use]
+    pub(crate) fn around(center: V, reach: V) -> Self {
+        use crate::num::exact_sign::two_diff;
+        let zero = S::<V>::ZERO;
+        let face = |i: usize, side: S<V>| match two_diff(center[i], -(side * reach[i])) {
+            (s, e) if e * side > zero => {
+                if side > zero {
+                    s.next_up()
+                } else {
+                    s.next_down()
+                }
+            }
+            (s, _) => s,
+        };
+        let one = S::<V>::ONE;
+        Self::new(
+            V::new(face(0, -one), face(1, -one), face(2, -one)),
+            V::new(face(0, one), face(1, one), face(2, one)),
+        )
+    }
 }
 
 /// A box known to be valid ([`Aabb::is_valid`]): checked once, when it is

@@ -8,7 +8,6 @@ use core::cmp::Ordering;
 use glam::Vec3;
 
 use crate::aabb::Aabb;
-use crate::num::exact_sign::two_diff;
 use crate::num::round::bound_up;
 use crate::num::round::outward::{add_up, div_up, mul_down, mul_up};
 use crate::num::{S, Scalar, Vector};
@@ -119,20 +118,16 @@ impl<V: Vector> Disc<V> {
             let e = mul_up(r, bound_up(div_up(other, nn).sqrt(), 1));
             if e < r { e } else { r }
         };
-        let c = self.center;
-        let lo = |x: S<V>, e: S<V>| match two_diff(x, e) {
-            (s, err) if err < S::<V>::ZERO => s.next_down(),
-            (s, _) => s,
-        };
-        let hi = |x: S<V>, e: S<V>| match two_diff(x, -e) {
-            (s, err) if err > S::<V>::ZERO => s.next_up(),
-            (s, _) => s,
-        };
-        let e = [reach(0), reach(1), reach(2)];
-        Aabb::new(
-            V::new(lo(c.x(), e[0]), lo(c.y(), e[1]), lo(c.z(), e[2])),
-            V::new(hi(c.x(), e[0]), hi(c.y(), e[1]), hi(c.z(), e[2])),
-        )
+        Aabb::around(self.center, V::new(reach(0), reach(1), reach(2)))
+    }
+
+    /// Every value finite.
+    #[inline(always)]
+    fn is_finite(&self) -> bool {
+        self.center.is_finite()
+            && self.normal.is_finite()
+            && self.radius.is_finite()
+            && self.inner_radius.is_finite()
     }
 
     #[inline(always)]
@@ -221,11 +216,7 @@ pub(crate) fn ray_disc<V: Vector>(
     t_max: S<V>,
 ) -> Option<DiscHit<S<V>>> {
     let plane = disc.plane();
-    if !(ray.is_valid() && plane.point.is_finite() && plane.normal.is_finite()) {
-        return None;
-    }
-    let (r_out, r_in) = (disc.radius.abs(), disc.inner_radius.abs());
-    if !(r_out.is_finite() && r_in.is_finite()) {
+    if !(ray.is_valid() && disc.is_finite()) {
         return None;
     }
     let denom = ray.dir.dot(plane.normal);
@@ -259,11 +250,7 @@ pub(crate) fn ray_disc_in<V: Vector>(
     interval: Interval<S<V>>,
 ) -> Option<DiscHit<S<V>>> {
     let plane = disc.plane();
-    if !(ray.is_valid() && plane.point.is_finite() && plane.normal.is_finite()) {
-        return None;
-    }
-    let (r_out, r_in) = (disc.radius.abs(), disc.inner_radius.abs());
-    if !(r_out.is_finite() && r_in.is_finite()) {
+    if !(ray.is_valid() && disc.is_finite()) {
         return None;
     }
     let t = crossing_in(ray.origin, ray.dir, plane.point, plane.normal, interval)?;

@@ -13,7 +13,6 @@ use core::cmp::Ordering;
 use glam::Vec3;
 
 use crate::aabb::Aabb;
-use crate::num::exact_sign::two_diff;
 use crate::num::round::bound_up;
 use crate::num::{S, Scalar, Vector};
 use crate::query::{Intersect, IntersectLanes, Range, RayForm, Search, Surface};
@@ -83,21 +82,7 @@ impl<V: Vector> Sphere<V> {
     #[must_use]
     pub fn bounds(&self) -> Aabb<V> {
         let r = self.radius.abs();
-        let c = self.center;
-        // Each sum moved outward by an ulp where its rounding went inward
-        // (Knuth's two-sum gives the rounding error's sign exactly).
-        let lo = |x: S<V>| match two_diff(x, r) {
-            (s, e) if e < S::<V>::ZERO => s.next_down(),
-            (s, _) => s,
-        };
-        let hi = |x: S<V>| match two_diff(x, -r) {
-            (s, e) if e > S::<V>::ZERO => s.next_up(),
-            (s, _) => s,
-        };
-        Aabb::new(
-            V::new(lo(c.x()), lo(c.y()), lo(c.z())),
-            V::new(hi(c.x()), hi(c.y()), hi(c.z())),
-        )
+        Aabb::around(self.center, V::new(r, r, r))
     }
 }
 
