@@ -11,7 +11,7 @@ use crate::aabb::Aabb;
 use crate::num::round::bound_up;
 use crate::num::round::outward::{add_up, div_up, mul_down, mul_up};
 use crate::num::{S, Scalar, Vector};
-use crate::plane::{Plane, ray_plane_hit_point};
+use crate::plane::Plane;
 use crate::query::{Intersect, Range, RayForm, Search, Surface};
 use crate::ray::{Interval, Ray, crossing_in, t_error};
 use crate::surface::SurfacePoint;
@@ -359,8 +359,7 @@ impl<V: Vector> Surface<V> for Disc<V> {
     /// t_min)`.
     #[inline]
     fn hit_error(&self, ray: &impl RayForm<V>, hit: &Self::Hit) -> S<V> {
-        let ray = ray.to_ray();
-        t_error(ray.origin, ray.dir, self.center, self.normal, hit.t)
+        self.plane().hit_error(ray, &hit.t)
     }
 
     /// The hit point `ray.at(t)` with the plane's bound on its distance
@@ -377,12 +376,6 @@ impl<V: Vector> Surface<V> for Disc<V> {
     /// ```
     #[inline]
     fn surface_point(&self, ray: &impl RayForm<V>, hit: &Self::Hit) -> SurfacePoint<V> {
-        let (point, point_error) = ray_plane_hit_point(&ray.to_ray(), &self.plane(), hit.t);
-        SurfacePoint {
-            point,
-            point_error,
-            normal: self.normal,
-            normal_error: V::ZERO,
-        }
+        self.plane().surface_point(ray, &hit.t)
     }
 }

@@ -275,9 +275,8 @@ fn sphere_batch_body<W: Lanes8<F = S<V>>, V: Vector, const N: usize>(
     let (av, d1v) = (splat(a), splat(d1));
     let (mut hit, mut front, mut slow) = (0u32, 0u32, 0u32);
     let two = splat(S::<V>::TWO);
-    let bound = |x: S<V>, n: u32| bound_up(x, n);
     // `bound_up(v, n)` is `v` times a constant.
-    let up = |n: u32| splat(bound(S::<V>::ONE, n));
+    let up = |n: u32| splat(bound_up(S::<V>::ONE, n));
     let (up7, up2, up3) = (up(7), up(2), up(3));
     let top = splat(t_max);
     for c in 0..N.div_ceil(8) {
