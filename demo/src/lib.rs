@@ -3,7 +3,7 @@
 //!
 //! [`renderer`] holds what the scenes share; each other module is one
 //! scene, named as `render --scene` names it: [`demo`], [`leak`],
-//! [`shadows`] and [`instances`].
+//! [`shadows`], [`instances`] and [`spheres`].
 
 /// Triangle meshes and the bounding volume hierarchy: the test kit's (the
 /// oracle tests and the benches build the same meshes).
@@ -14,3 +14,4 @@ pub mod instances;
 pub mod leak;
 pub mod renderer;
 pub mod shadows;
+pub mod spheres;

@@ -5,6 +5,8 @@
 //! cargo run --release -p rayhit-demo -- --scene leak # watertight vs Moller-Trumbore
 //! cargo run --release -p rayhit-demo -- --scene shadows # segments to lights, glass
 //! cargo run --release -p rayhit-demo -- --scene instances # one mesh placed far away
+//! cargo run --release -p rayhit-demo -- --scene spheres  # spheres of every size, no epsilon
+//! cargo run --release -p rayhit-demo -- --scene spheres --kernel textbook # the textbook's
 //! cargo run --release -p rayhit-demo -- --lens 0.15,7.4 # depth of field
 //! cargo run --release -p rayhit-demo -- --camera equirect --width 720 --height 360
 //! cargo run --release -p rayhit-demo -- --help
@@ -43,6 +45,15 @@
 //! hits carried out by `surface_to_world`, and every shadow, sky and
 //! mirror ray from an instance started with `Instance::spawn_through` (see
 //! `rayhit_demo::instances`).
+//!
+//! The `spheres` scene: a ground sphere of radius ten thousand, a moon
+//! thirteen thousand units away, matte, glass and mirror spheres, and glass
+//! droplets a thousandth of a unit across just in front of the lens, every
+//! sphere tested with `Sphere::hit` (eight at a time) and every ray that
+//! leaves one spawned from its surface point; `--kernel textbook` traces it
+//! with the "One Weekend" quadratic and `t > 0.001` instead, which shows
+//! acne on the ground and holes in the droplets (see
+//! `rayhit_demo::spheres`).
 
 use std::error::Error;
 use std::fs::File;
@@ -61,10 +72,12 @@ use rayhit_demo::leak::leak_scene;
 use rayhit_demo::mesh::Kernel;
 use rayhit_demo::renderer::to_srgb8;
 use rayhit_demo::shadows::{render_shadows, shadow_scene};
+use rayhit_demo::spheres::{self, render_spheres, sphere_scene};
 
 const USAGE: &str = "\
-usage: render [--scene demo|leak|shadows|instances] [--camera pinhole|ortho|equirect]
-              [--lens RADIUS,FOCUS] [--filter differentials|cones|off]
+usage: render [--scene demo|leak|shadows|instances|spheres]
+              [--camera pinhole|ortho|equirect] [--lens RADIUS,FOCUS]
+              [--filter differentials|cones|off] [--kernel rayhit|textbook]
               [--width N] [--height N] [--samples N] [--out FILE]
 
   --scene    demo (default): ground, boxes and meshes in soft sunlight
@@ -76,6 +89,8 @@ usage: render [--scene demo|leak|shadows|instances] [--camera pinhole|ortho|equi
              instances: one torus placed many times, turned, squashed and
              nested, far from the origin, with a mirror and sunlight, every
              ray leaving an instance spawned through the instance's map
+             spheres: spheres from 1e-3 to 2e4 across, some ten thousand
+             units away, glass, mirror and matte, with no epsilon
   --camera   the demo scene's camera (default pinhole): ortho, parallel
              rays from the pinhole's eye plane; equirect, the whole sphere
              around the eye
@@ -86,6 +101,9 @@ usage: render [--scene demo|leak|shadows|instances] [--camera pinhole|ortho|equi
              box-filtered over the pixel's footprint from ray
              differentials, or from ray cones, or point-sampled (off), which
              shows moire towards the horizon at one sample per pixel
+  --kernel   the spheres scene's ray/sphere test (default rayhit):
+             textbook, the One Weekend quadratic with t > 0.001 and new
+             rays from the unmoved hit point, for comparison
   --width    image width in pixels (default 640; 4 to 16384)
   --height   image height in pixels (default 360; 4 to 16384)
   --samples  rays per pixel in the demo, shadows and instances scenes
@@ -111,6 +129,7 @@ enum SceneKind {
     Leak,
     Shadows,
     Instances,
+    Spheres,
 }
 
 /// The command line.
@@ -120,6 +139,7 @@ struct Options {
     camera: CameraKind,
     lens: Option<(f32, f32)>,
     filter: Filter,
+    kernel: spheres::Kernel,
     width: u32,
     height: u32,
     samples: u32,
@@ -132,6 +152,7 @@ fn parse(mut args: impl Iterator<Item = String>) -> Result<Option<Options>, Stri
         camera: CameraKind::Pinhole,
         lens: None,
         filter: Filter::Differentials,
+        kernel: spheres::Kernel::Rayhit,
         width: 640,
         height: 360,
         samples: 16,
@@ -155,9 +176,10 @@ fn parse(mut args: impl Iterator<Item = String>) -> Result<Option<Options>, Stri
                     "leak" => SceneKind::Leak,
                     "shadows" => SceneKind::Shadows,
                     "instances" => SceneKind::Instances,
+                    "spheres" => SceneKind::Spheres,
                     _ => {
                         return Err(format!(
-                            "unknown scene {value:?}: demo, leak, shadows or instances"
+                            "unknown scene {value:?}: demo, leak, shadows, instances or spheres"
                         ));
                     }
                 }
@@ -191,6 +213,13 @@ fn parse(mut args: impl Iterator<Item = String>) -> Result<Option<Options>, Stri
                             "unknown filter {value:?}: differentials, cones or off"
                         ));
                     }
+                }
+            }
+            "--kernel" => {
+                options.kernel = match value.as_str() {
+                    "rayhit" => spheres::Kernel::Rayhit,
+                    "textbook" => spheres::Kernel::Textbook,
+                    _ => return Err(format!("unknown kernel {value:?}: rayhit or textbook")),
                 }
             }
             "--width" => options.width = number(4, MAX_SIZE)?,
@@ -301,6 +330,45 @@ fn run_demo(options: &Options) -> Result<(), Box<dyn Error>> {
     println!(
         "rendered {}x{} at {} samples per pixel into {}",
         image.width, image.height, options.samples, options.out
+    );
+    report_speed(rays, seconds);
+    Ok(())
+}
+
+fn run_spheres(options: &Options) -> Result<(), Box<dyn Error>> {
+    let file = create(&options.out)?;
+    let scene = sphere_scene(options.width, options.height, options.kernel);
+    println!(
+        "scene: {} spheres, radii {:e} to {:e}, the farthest centre {:.0} from the origin, \
+         traced with the {:?} kernel",
+        scene.balls.len(),
+        scene
+            .balls
+            .iter()
+            .map(|b| b.sphere.radius)
+            .fold(f32::INFINITY, f32::min),
+        scene
+            .balls
+            .iter()
+            .map(|b| b.sphere.radius)
+            .fold(0.0, f32::max),
+        scene
+            .balls
+            .iter()
+            .map(|b| b.sphere.center.length())
+            .fold(0.0, f32::max),
+        options.kernel
+    );
+    let bar = progress_bar(options.height);
+    let start = Instant::now();
+    let (pixels, rays) = render_spheres(&scene, options.samples, &|| bar.inc(1));
+    let seconds = start.elapsed().as_secs_f64();
+    bar.finish_and_clear();
+    let rgb: Vec<u8> = pixels.iter().flat_map(|&c| to_srgb8(c)).collect();
+    write_png(file, options.width, options.height, &rgb)?;
+    println!(
+        "rendered {}x{} at {} samples per pixel into {}",
+        options.width, options.height, options.samples, options.out
     );
     report_speed(rays, seconds);
     Ok(())
@@ -440,6 +508,7 @@ fn main() -> ExitCode {
         SceneKind::Leak => run_leak(&options),
         SceneKind::Shadows => run_shadows(&options),
         SceneKind::Instances => run_instances(&options),
+        SceneKind::Spheres => run_spheres(&options),
     };
     match result {
         Ok(()) => ExitCode::SUCCESS,

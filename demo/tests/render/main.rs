@@ -11,3 +11,4 @@ mod demo;
 mod instances;
 mod leak;
 mod shadows;
+mod spheres;
