@@ -31,8 +31,8 @@ use rayhit::{
 
 use crate::mesh::{Bvh, Kernel, Mesh, torus};
 use crate::renderer::{
-    MAX_DEPTH, Material, OCCLUSION_RANGE, Rng, SKY_LIGHT, SUN, facing, render_pixels, sky,
-    toward_disc,
+    MAX_DEPTH, Material, OCCLUSION_RANGE, Rng, SKY_LIGHT, SUN, camera_at, facing, render_pixels,
+    sky, toward_disc,
 };
 
 /// Where the scene stands: the ground, every instance and the camera are
@@ -385,15 +385,7 @@ fn framed_mirror(meshes: &[Bvh]) -> Content {
 pub fn instance_scene(width: u32, height: u32) -> InstanceScene {
     let eye = CENTRE + Vec3::new(0.0, 2.7, 8.0);
     let target = CENTRE + Vec3::new(0.0, 0.55, -0.6);
-    let camera = PinholeCamera::from_fov(
-        eye,
-        target - eye,
-        Vec3::Y,
-        40f32.to_radians(),
-        width,
-        height,
-    )
-    .expect("a valid camera");
+    let camera = camera_at(eye, target, width, height);
     let meshes = vec![Bvh::new(torus(1.0, 0.35, 32, 12)), Bvh::new(slab())];
     let (x0, y0, z0) = (CENTRE.x, CENTRE.y, CENTRE.z);
     let mut nodes = vec![

@@ -306,6 +306,29 @@ fn report_speed(rays: u64, seconds: f64) {
     );
 }
 
+/// Renders a picture of the options' size with a progress bar over its
+/// rows (`draw` gets the per-row callback and returns the linear pixels
+/// and what else the scene reports), writes it to `file` as sRGB and says
+/// so. Returns what `draw` reported and the seconds the render took.
+fn render_png<T>(
+    options: &Options,
+    file: File,
+    draw: impl FnOnce(&(dyn Fn() + Sync)) -> (Vec<Vec3>, T),
+) -> Result<(T, f64), Box<dyn Error>> {
+    let bar = progress_bar(options.height);
+    let start = Instant::now();
+    let (pixels, report) = draw(&|| bar.inc(1));
+    let seconds = start.elapsed().as_secs_f64();
+    bar.finish_and_clear();
+    let rgb: Vec<u8> = pixels.iter().flat_map(|&c| to_srgb8(c)).collect();
+    write_png(file, options.width, options.height, &rgb)?;
+    println!(
+        "rendered {}x{} at {} samples per pixel into {}",
+        options.width, options.height, options.samples, options.out
+    );
+    Ok((report, seconds))
+}
+
 fn run_demo(options: &Options) -> Result<(), Box<dyn Error>> {
     let file = create(&options.out)?;
     let mut scene = demo_scene(options.width, options.height);
@@ -320,17 +343,10 @@ fn run_demo(options: &Options) -> Result<(), Box<dyn Error>> {
         })
         .collect();
     println!("scene: {}", objects.join(", "));
-    let bar = progress_bar(options.height);
-    let start = Instant::now();
-    let (image, rays) = render(&scene, options.samples, &|| bar.inc(1));
-    let seconds = start.elapsed().as_secs_f64();
-    bar.finish_and_clear();
-    let rgb: Vec<u8> = image.pixels.iter().flat_map(|&c| to_srgb8(c)).collect();
-    write_png(file, image.width, image.height, &rgb)?;
-    println!(
-        "rendered {}x{} at {} samples per pixel into {}",
-        image.width, image.height, options.samples, options.out
-    );
+    let (rays, seconds) = render_png(options, file, |row_done| {
+        let (image, rays) = render(&scene, options.samples, row_done);
+        (image.pixels, rays)
+    })?;
     report_speed(rays, seconds);
     Ok(())
 }
@@ -359,17 +375,9 @@ fn run_spheres(options: &Options) -> Result<(), Box<dyn Error>> {
             .fold(0.0, f32::max),
         options.kernel
     );
-    let bar = progress_bar(options.height);
-    let start = Instant::now();
-    let (pixels, rays) = render_spheres(&scene, options.samples, &|| bar.inc(1));
-    let seconds = start.elapsed().as_secs_f64();
-    bar.finish_and_clear();
-    let rgb: Vec<u8> = pixels.iter().flat_map(|&c| to_srgb8(c)).collect();
-    write_png(file, options.width, options.height, &rgb)?;
-    println!(
-        "rendered {}x{} at {} samples per pixel into {}",
-        options.width, options.height, options.samples, options.out
-    );
+    let (rays, seconds) = render_png(options, file, |row_done| {
+        render_spheres(&scene, options.samples, row_done)
+    })?;
     report_speed(rays, seconds);
     Ok(())
 }
@@ -431,21 +439,14 @@ fn run_shadows(options: &Options) -> Result<(), Box<dyn Error>> {
         scene.glass.mesh.indices.len(),
         scene.points.len()
     );
-    let bar = progress_bar(options.height);
-    let start = Instant::now();
-    let (image, rays, segments) = render_shadows(&scene, options.samples, &|| bar.inc(1));
-    let seconds = start.elapsed().as_secs_f64();
-    bar.finish_and_clear();
-    let rgb: Vec<u8> = image.pixels.iter().flat_map(|&c| to_srgb8(c)).collect();
-    write_png(file, image.width, image.height, &rgb)?;
+    let ((rays, segments, crossings), seconds) = render_png(options, file, |row_done| {
+        let (image, rays, segments) = render_shadows(&scene, options.samples, row_done);
+        (image.pixels, (rays, segments, image.crossings))
+    })?;
     let mut counts = [0u32; 5];
-    for &c in &image.crossings {
+    for &c in &crossings {
         counts[c.min(4)] += 1;
     }
-    println!(
-        "rendered {}x{} at {} samples per pixel into {}",
-        image.width, image.height, options.samples, options.out
-    );
     println!(
         "pixel-centre rays crossing the glass 0, 1, 2, 3, 4+ times: {counts:?}; {segments} shadow segments"
     );
@@ -471,22 +472,16 @@ fn run_instances(options: &Options) -> Result<(), Box<dyn Error>> {
         scene.nodes.len(),
         scene.camera.eye()
     );
-    let bar = progress_bar(options.height);
-    let start = Instant::now();
-    let (image, rays) = render_instances(&scene, options.samples, &|| bar.inc(1));
-    let seconds = start.elapsed().as_secs_f64();
-    bar.finish_and_clear();
-    let rgb: Vec<u8> = image.pixels.iter().flat_map(|&c| to_srgb8(c)).collect();
-    write_png(file, image.width, image.height, &rgb)?;
-    let instanced = image
-        .seen
-        .iter()
-        .filter(|s| matches!(s, Some(On::Instance { .. })))
-        .count();
-    println!(
-        "rendered {}x{} at {} samples per pixel into {} ({instanced} pixel centres see an instance)",
-        image.width, image.height, options.samples, options.out
-    );
+    let ((rays, instanced), seconds) = render_png(options, file, |row_done| {
+        let (image, rays) = render_instances(&scene, options.samples, row_done);
+        let instanced = image
+            .seen
+            .iter()
+            .filter(|s| matches!(s, Some(On::Instance { .. })))
+            .count();
+        (image.pixels, (rays, instanced))
+    })?;
+    println!("{instanced} pixel centres see an instance");
     report_speed(rays, seconds);
     Ok(())
 }

@@ -5,7 +5,7 @@
 //! `tests/render/` run this very code.
 
 use rayhit::glam::Vec3;
-use rayhit::{Ray, SurfacePoint, Triangle};
+use rayhit::{PinholeCamera, Ray, SurfacePoint, Triangle};
 use rayon::prelude::*;
 
 /// How an object reflects light.
@@ -142,6 +142,20 @@ pub fn toward_disc(centre: Vec3, radius: f32, rng: &mut Rng) -> Vec3 {
     let (a, b) = rng.disc();
     let (s1, s2) = centre.any_orthonormal_pair();
     (centre + (s1 * a + s2 * b) * radius).normalize()
+}
+
+/// A pinhole camera at `eye` looking at `target`, `y` up, with a vertical
+/// field of view of 40 degrees, for a `width` by `height` picture.
+pub fn camera_at(eye: Vec3, target: Vec3, width: u32, height: u32) -> PinholeCamera {
+    PinholeCamera::from_fov(
+        eye,
+        target - eye,
+        Vec3::Y,
+        40f32.to_radians(),
+        width,
+        height,
+    )
+    .expect("a valid camera")
 }
 
 /// The demo scenes' pixel loop, rows in parallel (`row_done` after each):

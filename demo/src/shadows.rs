@@ -31,7 +31,7 @@ use rayhit::{
 };
 
 use crate::mesh::{Bvh, icosphere, torus};
-use crate::renderer::{Material, Rng, facing, random_point_on, render_pixels, sky};
+use crate::renderer::{Material, Rng, camera_at, facing, random_point_on, render_pixels, sky};
 
 /// The geometry of an opaque object.
 #[derive(Debug)]
@@ -160,15 +160,7 @@ pub struct ShadowScene {
 pub fn shadow_scene(width: u32, height: u32) -> ShadowScene {
     let eye = Vec3::new(0.0, 2.6, 7.0);
     let target = Vec3::new(0.0, 0.8, 0.0);
-    let camera = PinholeCamera::from_fov(
-        eye,
-        target - eye,
-        Vec3::Y,
-        40f32.to_radians(),
-        width,
-        height,
-    )
-    .expect("a valid camera");
+    let camera = camera_at(eye, target, width, height);
     let glass = torus(0.7, 0.3, 64, 20).transformed(
         Mat3::from_rotation_y(0.3) * Mat3::from_rotation_x(-1.62),
         Vec3::new(0.2, 1.0, 0.7),

@@ -25,7 +25,7 @@ use rayhit::{
     Surface, SurfacePoint,
 };
 
-use crate::renderer::{Material, Rng, SKY_LIGHT, SUN, render_pixels, sky, toward_disc};
+use crate::renderer::{Material, Rng, SKY_LIGHT, SUN, camera_at, render_pixels, sky, toward_disc};
 
 /// How a sphere's surface treats light.
 #[derive(Clone, Copy, Debug)]
@@ -274,15 +274,7 @@ impl SphereScene {
 pub fn sphere_scene(width: u32, height: u32, kernel: Kernel) -> SphereScene {
     let eye = Vec3::new(0.0, 1.6, 6.5);
     let target = Vec3::new(0.0, 0.8, 0.0);
-    let camera = PinholeCamera::from_fov(
-        eye,
-        target - eye,
-        Vec3::Y,
-        40f32.to_radians(),
-        width,
-        height,
-    )
-    .expect("a valid camera");
+    let camera = camera_at(eye, target, width, height);
     let matte = |r: f32, g: f32, b: f32| Look::Matte(Material::diffuse(r, g, b));
     let ball = |name, center, radius, look| Ball {
         name,
