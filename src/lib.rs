@@ -1,6 +1,6 @@
 //! Camera rays (pinhole, thin lens, orthographic, panoramic, from a
 //! rasterizer's matrices, with ray differentials and ray cones) and
-//! ray/plane, ray/box, ray/triangle, ray/sphere and ray/disc intersection over [`glam`] vectors,
+//! ray/plane, ray/box, ray/triangle, ray/quad, ray/sphere and ray/disc intersection over [`glam`] vectors,
 //! with error bounds that are derived, documented and tested against exact
 //! arithmetic.
 //!
@@ -47,6 +47,7 @@
 //! | shape | [`Intersect::Hit`] (or [`IntersectLanes::Hits`]) | [`Surface`] | [`Bounds`] |
 //! | --- | --- | --- | --- |
 //! | [`Triangle`] | [`TriangleHit`]: `t`, `u`, `v`, [`Side`] | [`TriangleHitError`]; the point from the barycentrics | |
+//! | [`Quad`] (planar quads, parallelograms) | [`QuadHit`]: `t`, `u`, `v`, [`Side`] | [`TriangleHitError`]; the point on the triangle of the quad hit | [`Quad::bounds`], a box for your BVH |
 //! | [`Plane`] | `t` | the bound on `t`; the point with the plane's exact normal | |
 //! | [`Disc`] (and annuli) | [`DiscHit`]: `t`, [`Side`] | the bound on `t`; the point with the disc's exact normal | [`Disc::bounds`], a box for your BVH |
 //! | [`Sphere`] | [`SphereHit`]: `t`, [`Side`] (entering or leaving the ball) | the bound on `t`; the point moved onto the sphere, its outward normal | [`Sphere::bounds`], a box for your BVH |
@@ -92,6 +93,7 @@
 //! | every hit along a ray, in order (transparency, alpha-tested foliage, volumes) | a [`Walk`]: [`Intersect::hit`] with [`EdgeRule::OneHit`] over the windows it gives, from your own traversal; nodes culled with [`Bounds::clip`] over the same windows | one report per surface crossing: both ends of every window decided exactly, so no crossing is skipped or repeated, and the windows are in exact order; the node tests never cull a box the ray crosses within a window |
 //! | boxes as geometry | [`Intersect::hit`] of an [`Aabb`], then [`Aabb::surface_point`] | the face the ray enters through, decided exactly, and its normal |
 //! | planes | [`ray_plane`] (or [`Intersect::hit`] of a [`Plane`]) | `t` with its error bound ([`Surface::hit_error`]) |
+//! | quads (Cornell-box walls and lights, quad meshes, "The Next Week"'s `quad`) | [`Intersect::hit`] of a [`Quad`] (built with [`Quad::parallelogram`] or from four mesh corners) | watertight with the quads and triangles it shares edges with, `(u, v)` on the quad, the triangle's bounds and spawning |
 //! | discs and rings (area lights, lens and camera models, clipped planes) | [`Intersect::hit`] of a [`Disc`] | the rims decided exactly: a ray through a disc's edge is never misjudged, and a disc and the ring around it leave no gap |
 //! | spheres (particles, molecules, "One Weekend" scenes) | [`Intersect::hit`] of a [`Sphere`], then [`Surface::surface_point`] and [`SurfacePoint::spawn`] | no false miss at any distance (no rings on far spheres), `t` with its error bound, and no epsilon: a spawned ray never meets the sphere it left, one spawned into it finds the far side |
 //! | the next ray from a hit | [`Surface::surface_point`], then [`SurfacePoint::spawn`] | the new ray cannot hit the surface it left |
@@ -103,7 +105,7 @@
 //! - A [`Ray`] is `origin + t * dir` for `t >= 0`. `dir` need not be unit
 //!   length; every `t` is measured in multiples of `dir`. A zero or
 //!   non-finite `dir` (or origin) hits nothing.
-//! - A surface ([`Plane`], [`Triangle`], [`Sphere`], [`Disc`]) is hit at `0 < t <= t_max`: a hit at
+//! - A surface ([`Plane`], [`Triangle`], [`Quad`], [`Sphere`], [`Disc`]) is hit at `0 < t <= t_max`: a hit at
 //!   exactly `t = 0` is the ray's own starting surface and is not reported.
 //! - A box ([`Aabb`]) is a closed solid: the result is the interval
 //!   `[max(t_enter, 0), min(t_exit, t_max)]` when it is not empty, so a ray
@@ -415,6 +417,7 @@ mod query;
 mod aabb;
 mod disc;
 mod plane;
+mod quad;
 mod sphere;
 mod triangle;
 
@@ -506,6 +509,7 @@ mod root {
     pub use crate::instance::{DInstance, Instance};
     pub use crate::num::{Scalar, Vector};
     pub use crate::plane::{Plane, ray_plane};
+    pub use crate::quad::{Quad, QuadHit};
     pub use crate::query::{Bounds, EdgeRule, Intersect, IntersectLanes, RayForm, Search, Surface};
     pub use crate::ray::{Interval, PreparedRay, Ray, Walk};
     pub use crate::sphere::{Sphere, SphereHit};
@@ -530,6 +534,10 @@ mod root {
     pub type DDisc = Disc<DVec3>;
     /// [`DiscHit`] in `f64`.
     pub type DDiscHit = DiscHit<f64>;
+    /// [`Quad`] in `f64`.
+    pub type DQuad = Quad<DVec3>;
+    /// [`QuadHit`] in `f64`.
+    pub type DQuadHit = QuadHit<f64>;
     /// [`Sphere`] in `f64`.
     pub type DSphere = Sphere<DVec3>;
     /// [`SphereHit`] in `f64`.

@@ -361,8 +361,9 @@ pub trait IntersectLanes<V: Vector = Vec3> {
 /// need to leave it without an epsilon).
 ///
 /// `hit` is a hit this shape returned for the same ray (any form of it).
-/// Implemented by [`Triangle`](crate::Triangle), [`Sphere`](crate::Sphere)
-/// and [`Plane`](crate::Plane); a box's point is
+/// Implemented by [`Triangle`](crate::Triangle), [`Quad`](crate::Quad),
+/// [`Sphere`](crate::Sphere), [`Disc`](crate::Disc) and
+/// [`Plane`](crate::Plane); a box's point is
 /// [`Aabb::surface_point`](crate::Aabb::surface_point), `None` for a ray
 /// that starts inside.
 ///

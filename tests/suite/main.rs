@@ -7,6 +7,7 @@
 //! | `aabb` | the box: slab and naive tests, entry face, intervals |
 //! | `plane` | the plane: the test, its hit point, intervals |
 //! | `disc` | the disc and annulus: the test over a `t_max` and over an interval, the rims decided exactly, the textbook test beside it |
+//! | `quad` | the quad: its hit, `(u, v)` and bounds against exact arithmetic, closed quad meshes with no crack and no leak, the textbook test beside it |
 //! | `sphere` | the sphere: the test over a `t_max` and over an interval, its error bound, the textbook test beside it |
 //! | `triangle` | the triangle: watertight, one-hit and Moller-Trumbore tests, meshes, zero-area triangles, intervals, the walk along a ray |
 //! | `shapes` | several shapes' kernels at once: metamorphic identities, the plane and box intervals' long run and bad input |
@@ -74,6 +75,7 @@ mod exact;
 mod instance;
 mod layering;
 mod plane;
+mod quad;
 mod shapes;
 mod sphere;
 mod surface;
