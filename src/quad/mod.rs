@@ -9,9 +9,14 @@ use crate::aabb::Aabb;
 use crate::num::round::min2;
 use crate::num::round::outward::{add_up, mul_up};
 use crate::num::{S, Scalar, Vector};
-use crate::query::{Intersect, RayForm, Search, Surface};
+use crate::query::sealed::Form;
+use crate::query::{EdgeRule, Intersect, Range, RayForm, Search, Surface};
+use crate::ray::{PreparedRay, Ray, t_max_ok};
 use crate::surface::SurfacePoint;
-use crate::triangle::{Side, Triangle, TriangleHit, TriangleHitError};
+use crate::triangle::{
+    EveryAxis, Side, Triangle, TriangleHit, TriangleHitError, every_axis_at, finish_lanes,
+    frame_lanes_at, straddles,
+};
 
 /// The quadrilateral with corners `a`, `b`, `c`, `d` in order around it:
 /// the two closed triangles `a, b, c` and `a, c, d`, sharing the diagonal
@@ -185,6 +190,69 @@ impl<F: Scalar> QuadHit<F> {
     }
 }
 
+/// The nearer of the two triangles' hits as the quad's, the first where
+/// they tie.
+#[inline(always)]
+fn nearer<F: Scalar>(
+    first: Option<TriangleHit<F>>,
+    second: Option<TriangleHit<F>>,
+) -> Option<QuadHit<F>> {
+    let near = first.map(|h| QuadHit::from_triangle(h, false));
+    let far = second.map(|h| QuadHit::from_triangle(h, true));
+    match (near, far) {
+        (Some(n), Some(f)) if f.t < n.t => Some(f),
+        (None, f) => f,
+        (n, _) => n,
+    }
+}
+
+/// The closed test over a `t_max` on a prepared ray: each triangle's
+/// [`Triangle`] `hit`, bit for bit, with the corners read from the quad
+/// (no triangle built on the common path) and one test for the common
+/// miss, where both triangles' edge functions straddle zero.
+#[inline(always)]
+fn quad_lanes<V: Vector>(
+    ray: &PreparedRay<V>,
+    quad: &Quad<V>,
+    t_max: S<V>,
+) -> Option<QuadHit<S<V>>> {
+    if !t_max_ok(t_max) {
+        return None;
+    }
+    let frame = |c: [&V; 3]| frame_lanes_at(&ray.origin_lanes, &ray.shear_lanes, &ray.axes, c);
+    let (first, second) = (
+        frame([&quad.a, &quad.b, &quad.c]),
+        frame([&quad.a, &quad.c, &quad.d]),
+    );
+    // (The triangles are built on the rare paths only.)
+    let finish = |frame, half: usize| finish_lanes(ray, frame, t_max, || quad.triangles()[half]);
+    match (straddles(first.3), straddles(second.3)) {
+        (true, true) => None,
+        (false, true) => finish(first, 0).map(|h| QuadHit::from_triangle(h, false)),
+        (true, false) => finish(second, 1).map(|h| QuadHit::from_triangle(h, true)),
+        // Both may be hit: a ray through the diagonal, or a folded quad
+        // seen edge-on.
+        (false, false) => nearer(finish(first, 0), finish(second, 1)),
+    }
+}
+
+/// The closed test over a `t_max` on a plain ray: each triangle's
+/// [`Triangle`] `hit` (the test on every main axis at once), bit for bit,
+/// with the ray's shear computed once for both and the corners read from
+/// the quad.
+#[inline(always)]
+fn quad_every_axis<V: Vector>(ray: &Ray<V>, quad: &Quad<V>, t_max: S<V>) -> Option<QuadHit<S<V>>> {
+    if !(ray.is_valid() && t_max_ok(t_max)) {
+        return None;
+    }
+    let shear = EveryAxis::new(ray);
+    let half = |c: [&V; 3], k: usize| every_axis_at(ray, &shear, c, t_max, || quad.triangles()[k]);
+    nearer(
+        half([&quad.a, &quad.b, &quad.c], 0),
+        half([&quad.a, &quad.c, &quad.d], 1),
+    )
+}
+
 /// The ray/quad test: the nearer hit of the quad's two triangles.
 impl<V: Vector> Intersect<V> for Quad<V> {
     /// `t`, `u`, `v` and the side.
@@ -209,25 +277,23 @@ impl<V: Vector> Intersect<V> for Quad<V> {
     /// assert_eq!(floor.hit(&ray, (f32::INFINITY, EdgeRule::OneHit)).unwrap().t, 2.0);
     /// assert!(floor.hit(&ray, Interval::new(2.0, 9.0).unwrap()).is_none());
     /// ```
-    #[inline]
+    #[inline(always)]
     fn hit(&self, ray: &impl RayForm<V>, search: impl Into<Search<S<V>>>) -> Option<Self::Hit> {
         let search = search.into();
-        let [first, second] = self.triangles();
-        let near = first
-            .hit(ray, search)
-            .map(|h| QuadHit::from_triangle(h, false));
-        let far = second
-            .hit(ray, search)
-            .map(|h| QuadHit::from_triangle(h, true));
-        match (near, far) {
-            (Some(n), Some(f)) if f.t < n.t => Some(f),
-            (None, f) => f,
-            (n, _) => n,
+        match (search.edges, search.range, ray.form()) {
+            (EdgeRule::Closed, Range::UpTo(t_max), Form::Prepared(p)) => quad_lanes(p, self, t_max),
+            (EdgeRule::Closed, Range::UpTo(t_max), Form::Plain(r)) => {
+                quad_every_axis(r, self, t_max)
+            }
+            _ => {
+                let [first, second] = self.triangles();
+                nearer(first.hit(ray, search), second.hit(ray, search))
+            }
         }
     }
 
     /// Whether either triangle is hit within `search`.
-    #[inline]
+    #[inline(always)]
     fn occluded(&self, ray: &impl RayForm<V>, search: impl Into<Search<S<V>>>) -> bool {
         let search = search.into();
         let [first, second] = self.triangles();

@@ -114,7 +114,19 @@ pub(super) fn frame_lanes<V: Vector>(
     axes: &[Axis; 3],
     tri: &Triangle<V>,
 ) -> (L<V>, L<V>, L<V>, L<V>) {
-    let corners = |k: Axis| L::<V>::new(tri.a.get(k), tri.b.get(k), tri.c.get(k));
+    frame_lanes_at(origin_lanes, shear_lanes, axes, [&tri.a, &tri.b, &tri.c])
+}
+
+/// [`frame_lanes`] for the triangle with corners `a, b, c`, read where they
+/// are (a quad's corners, say, with no triangle built).
+#[inline(always)]
+pub(crate) fn frame_lanes_at<V: Vector>(
+    origin_lanes: &[L<V>; 3],
+    shear_lanes: &[L<V>; 3],
+    axes: &[Axis; 3],
+    [a, b, c]: [&V; 3],
+) -> (L<V>, L<V>, L<V>, L<V>) {
+    let corners = |k: Axis| L::<V>::new(a.get(k), b.get(k), c.get(k));
     let [sx, sy, _] = *shear_lanes;
     let [ox, oy, oz] = *origin_lanes;
     let [kx, ky, kz] = *axes;

@@ -20,7 +20,7 @@
 //! All of it is `f32`.
 
 use rayhit::glam::Vec3;
-use rayhit::{Aabb, Camera, PinholeCamera, Plane, Ray, Sphere, Triangle};
+use rayhit::{Aabb, Camera, PinholeCamera, Plane, Quad, Ray, Sphere, Triangle};
 
 /// Pairs per workload.
 pub const PAIRS: usize = 4096;
@@ -60,6 +60,17 @@ pub struct SphereWorkload {
     pub rays: Vec<Ray>,
     /// The spheres, one per pair.
     pub spheres: Vec<Sphere>,
+}
+
+/// A named list of ray/quad pairs.
+#[derive(Clone, Debug)]
+pub struct QuadWorkload {
+    /// How the rays relate to the quads (see the module docs).
+    pub name: &'static str,
+    /// The rays, one per pair.
+    pub rays: Vec<Ray>,
+    /// The quads (parallelograms), one per pair.
+    pub quads: Vec<Quad>,
 }
 
 /// `groups` workloads: ray `i` against shapes `GROUP * i .. GROUP * (i + 1)`.
@@ -353,6 +364,73 @@ pub fn sphere_workloads() -> Vec<SphereWorkload> {
         name: "camera",
         rays,
         spheres,
+    });
+    out
+}
+
+/// The three quad workloads, every quad a parallelogram
+/// ([`Quad::parallelogram`]): `random`, `aimed` (at a point of the
+/// parallelogram grown by a fifth on each side: most hit) and `camera`
+/// (one square per grid cell, turned and tilted, 0.5 to 0.9 of the cell).
+pub fn quad_workloads() -> Vec<QuadWorkload> {
+    let mut out = Vec::new();
+    let random_quad = |rng: &mut Pcg32, spread: f32, size: f32| {
+        Quad::parallelogram(
+            rng.cube(spread),
+            rng.sphere() * rng.range(0.2, size),
+            rng.sphere() * rng.range(0.2, size),
+        )
+    };
+    let mut rng = Pcg32::with_stream(18, 2);
+    let (mut rays, mut quads) = (Vec::new(), Vec::new());
+    for _ in 0..PAIRS {
+        quads.push(random_quad(&mut rng, 3.0, 2.0));
+        rays.push(Ray::new(rng.cube(3.0), rng.sphere()));
+    }
+    out.push(QuadWorkload {
+        name: "random",
+        rays,
+        quads,
+    });
+
+    let mut rng = Pcg32::with_stream(19, 2);
+    let (mut rays, mut quads) = (Vec::new(), Vec::new());
+    for _ in 0..PAIRS {
+        let q = random_quad(&mut rng, 8.0, 3.0);
+        let (u, v) = (rng.range(-0.2, 1.2), rng.range(-0.2, 1.2));
+        let target = q.a + (q.b - q.a) * u + (q.d - q.a) * v;
+        let dir = rng.sphere();
+        rays.push(through(&mut rng, target, dir));
+        quads.push(q);
+    }
+    out.push(QuadWorkload {
+        name: "aimed",
+        rays,
+        quads,
+    });
+
+    let mut rng = Pcg32::with_stream(20, 2);
+    let cells: Vec<Quad> = (0..256u32)
+        .map(|k| {
+            let (c, cell) = grid_cell(k % 16, k / 16);
+            let side = cell * rng.range(0.5, 0.9);
+            let turn = rng.range(0.0, 1.5);
+            let tilt = rng.range(-0.5, 0.5);
+            let eu = Vec3::new(turn.cos(), turn.sin(), tilt) * side;
+            let ev = Vec3::new(-turn.sin(), turn.cos(), -tilt) * side;
+            Quad::parallelogram(c - (eu + ev) * 0.5, eu, ev)
+        })
+        .collect();
+    let (mut rays, mut quads) = (Vec::new(), Vec::new());
+    for (k, (ray, _, _)) in camera_pairs().enumerate() {
+        let (i, j) = (k as u32 % 64, k as u32 / 64);
+        rays.push(ray);
+        quads.push(cells[((j / 4) * 16 + i / 4) as usize]);
+    }
+    out.push(QuadWorkload {
+        name: "camera",
+        rays,
+        quads,
     });
     out
 }

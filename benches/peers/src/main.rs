@@ -54,6 +54,7 @@ use sections::{
     cwbvh::{CwbvhData, cwbvh_kernels, print_leaks},
     groups::group_kernels,
     instance::{InstanceData, instance_kernels},
+    quads::{QuadData, quad_kernels},
     spheres::{SphereData, sphere_group_kernels, sphere_kernels},
     sweep::{Sweep, sweep_kernels},
     triangles::triangle_kernels,
@@ -89,6 +90,13 @@ fn main() {
             SphereData::new(w, s)
         })
         .collect();
+    let quad_data: Vec<QuadData> = rayhit_testkit::workloads::quad_workloads()
+        .into_iter()
+        .map(|w| {
+            let s = shuffle(w.name, false);
+            QuadData::new(w, s)
+        })
+        .collect();
     let sphere_groups = rayhit_testkit::workloads::sphere_groups();
     let sphere_batches: Vec<rayhit::batch::SphereBatch> = sphere_groups
         .spheres
@@ -116,6 +124,9 @@ fn main() {
     }
     for d in &sphere_data {
         sphere_kernels(d, &mut kernels);
+    }
+    for d in &quad_data {
+        quad_kernels(d, &mut kernels);
     }
     sphere_group_kernels(
         &sphere_groups.rays,

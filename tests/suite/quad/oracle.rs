@@ -14,7 +14,9 @@
 use rayhit::exact::oracle::{R, triangle as exact_triangle};
 use rayhit::exact::{Rational, rational};
 use rayhit::glam::{DVec3, Vec3};
-use rayhit::{Intersect, Quad, Ray, Scalar, Surface, Vector};
+use rayhit::{
+    EdgeRule, Intersect, Interval, PreparedRay, Quad, Ray, Scalar, Surface, TriangleHit, Vector,
+};
 use rayhit_testkit::case_count;
 use rayhit_testkit::rng::Pcg32;
 
@@ -98,6 +100,14 @@ fn case<V: Vector>(rng: &mut Pcg32, k: usize) -> Case<V> {
     }
 }
 
+/// The `t` of the nearer of two triangle hits, as the quad reports it.
+fn nearer_t<F: PartialOrd + Copy>(pair: [Option<TriangleHit<F>>; 2]) -> Option<F> {
+    match pair {
+        [Some(a), Some(b)] => Some(if b.t < a.t { b.t } else { a.t }),
+        [a, b] => a.or(b).map(|h| h.t),
+    }
+}
+
 /// `|x - y| <= bound`, exactly.
 fn within(x: &Rational, y: &R, bound: &Rational) -> bool {
     let d = x - y;
@@ -124,12 +134,21 @@ fn check<V: Vector>() -> [usize; 5] {
         let [first, second] = quad.triangles();
         let hit = quad.hit(&ray, inf);
         // The two triangles' nearer, ties to the first.
-        let pair = [first.hit(&ray, inf), second.hit(&ray, inf)];
-        let expected = match pair {
-            [Some(a), Some(b)] => Some(if b.t < a.t { b.t } else { a.t }),
-            [a, b] => a.or(b).map(|h| h.t),
-        };
+        let expected = nearer_t([first.hit(&ray, inf), second.hit(&ray, inf)]);
         assert_eq!(hit.map(|h| h.t), expected, "{quad:?} {ray:?}");
+        // Every form of the ray and both rules give the triangles' answer.
+        let prepared = PreparedRay::new(&ray);
+        assert_eq!(quad.hit(&prepared, inf), hit, "{quad:?} {ray:?}");
+        for rule in [EdgeRule::Closed, EdgeRule::OneHit] {
+            let expected = nearer_t([first.hit(&ray, (inf, rule)), second.hit(&ray, (inf, rule))]);
+            assert_eq!(quad.hit(&prepared, (inf, rule)).map(|h| h.t), expected);
+            let window = Interval::up_to(inf).expect("valid");
+            let expected = nearer_t([
+                first.hit(&ray, (window, rule)),
+                second.hit(&ray, (window, rule)),
+            ]);
+            assert_eq!(quad.hit(&ray, (window, rule)).map(|h| h.t), expected);
+        }
         let exact = [first, second].map(|tri| exact_triangle(&ray, &tri).expect("finite"));
         if let Some(h) = hit {
             hits += 1;

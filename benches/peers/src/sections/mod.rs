@@ -6,6 +6,7 @@
 //! - `boxes`: `box`, ray `i` against box `i`;
 //! - `triangles`: `triangle`, ray `i` against triangle `i`;
 //! - `spheres`: `sphere`, ray `i` against sphere `i`;
+//! - `quads`: `quad`, ray `i` against parallelogram `i`;
 //! - `groups`: `box x8` and `triangle x8`, a ray against a group of eight,
 //!   scalar and batched, with the batch floors;
 //! - `sweep`: `box sweep` and `triangle sweep`, one ray against the first
@@ -23,6 +24,7 @@ pub mod camera_refs;
 pub mod cwbvh;
 pub mod groups;
 pub mod instance;
+pub mod quads;
 pub mod spheres;
 pub mod sweep;
 pub mod triangles;
