@@ -5,7 +5,7 @@
 //! offset, then the hit point's coordinates from a stored `w = n / (n .
 //! n)`, `t > 0.001`).
 
-use rayhit::glam::Vec3;
+use rayhit::glam::{Vec3, Vec4, Vec4Swizzles};
 use rayhit::{Intersect, PreparedRay, Quad, Ray, Triangle};
 use rayhit_testkit::workloads::QuadWorkload;
 
@@ -56,6 +56,89 @@ impl NextWeekQuad {
     }
 }
 
+/// A ray's part of the floor: the axes in the order that puts the main
+/// one last, the shear and the origin in that order (what a prepared ray
+/// holds).
+pub struct FloorRay {
+    k: [usize; 3],
+    s: [f32; 3],
+    o: [f32; 3],
+}
+
+impl FloorRay {
+    fn new(ray: &Ray) -> Self {
+        let d = ray.dir.to_array();
+        let a = ray.dir.abs();
+        let kz = if a.x >= a.y && a.x >= a.z {
+            0
+        } else if a.y >= a.z {
+            1
+        } else {
+            2
+        };
+        let (kx, ky) = ((kz + 1) % 3, (kz + 2) % 3);
+        let o = ray.origin.to_array();
+        Self {
+            k: [kx, ky, kz],
+            s: [-d[kx] / d[kz], -d[ky] / d[kz], 1.0 / d[kz]],
+            o: [o[kx], o[ky], o[kz]],
+        }
+    }
+}
+
+/// The floor: the least arithmetic that gives `Quad::hit`'s guarantee,
+/// by hand: the four corners sheared once into the ray's frame (as the
+/// watertight triangle test shears them, so edges shared with neighbours
+/// are computed alike), the four outer edge functions and the diagonal's,
+/// out where both triangles' straddle zero, then the one triangle left:
+/// its determinant's sign known from the rough conditioning test, every
+/// corner ahead (`t > 0` for sure), `t` from the depths. No exact
+/// fallback (an undecided case answers `None`), no `u`, `v` or side.
+#[inline(always)]
+pub fn floor_quad(r: &FloorRay, q: &Quad) -> Option<f32> {
+    let [kx, ky, kz] = r.k;
+    let c = [
+        q.a.to_array(),
+        q.b.to_array(),
+        q.c.to_array(),
+        q.d.to_array(),
+    ];
+    let axis = |k: usize, o: f32| Vec4::new(c[0][k] - o, c[1][k] - o, c[2][k] - o, c[3][k] - o);
+    let pz = axis(kz, r.o[2]);
+    let x = axis(kx, r.o[0]) + r.s[0] * pz;
+    let y = axis(ky, r.o[1]) + r.s[1] * pz;
+    // a->b, b->c, c->d, d->a; and c->a.
+    let e = x * y.yzwx() - y * x.yzwx();
+    let ca = x.z * y.x - y.z * x.x;
+    let out = |p: f32, q: f32, s: f32| p.min(q).min(s) < 0.0 && p.max(q).max(s) > 0.0;
+    let (out0, out1) = (out(e.y, ca, e.x), out(e.z, e.w, -ca));
+    if out0 && out1 {
+        return None;
+    }
+    let z = pz * r.s[2];
+    let k = x.abs().max(y.abs()).max(pz.abs());
+    let (det, t_scaled, k, ahead) = if !out0 {
+        (
+            e.y + ca + e.x,
+            e.y * z.x + ca * z.y + e.x * z.z,
+            k.xyz().max_element(),
+            z.xyz().min_element() > 0.0,
+        )
+    } else {
+        (
+            e.z + e.w - ca,
+            e.z * z.x + e.w * z.z - ca * z.w,
+            k.x.max(k.z).max(k.w),
+            z.x.min(z.z).min(z.w) > 0.0,
+        )
+    };
+    if !(ahead && det.abs() > 200.0 * (f32::EPSILON * 0.5) * k * k) {
+        return None;
+    }
+    let t = t_scaled / det;
+    (t > 0.0 && t <= f32::MAX).then_some(t)
+}
+
 /// A quad workload in every form its rows take.
 pub struct QuadData {
     pub name: &'static str,
@@ -65,6 +148,7 @@ pub struct QuadData {
     pub quads: Vec<Quad>,
     pub halves: Vec<[Triangle; 2]>,
     pub textbook: Vec<NextWeekQuad>,
+    pub floor: Vec<FloorRay>,
 }
 
 impl QuadData {
@@ -75,6 +159,7 @@ impl QuadData {
             prepared: w.rays.iter().map(PreparedRay::new).collect(),
             halves: w.quads.iter().map(Quad::triangles).collect(),
             textbook: w.quads.iter().map(NextWeekQuad::new).collect(),
+            floor: w.rays.iter().map(FloorRay::new).collect(),
             rays: w.rays,
             quads: w.quads,
         }
@@ -99,6 +184,10 @@ pub fn quad_kernels<'a>(d: &'a QuadData, out: &mut Vec<Kernel<'a>>) {
     let textbook_agree = agree(
         ours.iter().copied(),
         (0..n).map(|i| d.textbook[i].hit(&d.rays[i]).is_some()),
+    );
+    let floor_agree = agree(
+        ours.iter().copied(),
+        (0..n).map(|i| floor_quad(&d.floor[i], &d.quads[i]).is_some()),
     );
     let (w, sec) = (d.name, "quad");
     out.extend([
@@ -141,6 +230,14 @@ pub fn quad_kernels<'a>(d: &'a QuadData, out: &mut Vec<Kernel<'a>>) {
             pairwise(&d.order, &d.prepared, &d.halves, |r, h| {
                 t_sum(two_triangles(r, h))
             }),
+        ),
+        kernel(
+            sec,
+            "floor: the guarantee's arithmetic, by hand",
+            w,
+            n,
+            Some(floor_agree),
+            pairwise(&d.order, &d.floor, &d.quads, |r, q| t_sum(floor_quad(r, q))),
         ),
         kernel(
             sec,
