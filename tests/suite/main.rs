@@ -12,7 +12,7 @@
 //! | `triangle` | the triangle: watertight, one-hit and Moller-Trumbore tests, meshes, zero-area triangles, intervals, the walk along a ray |
 //! | `shapes` | several shapes' kernels at once: metamorphic identities, the plane and box intervals' long run and bad input |
 //! | `batch` | the batches and the compressed BVH node, bit for bit against the scalar kernels |
-//! | `surface` | leaving a surface: rays spawned from surface points, shadow-ray segments |
+//! | `surface` | leaving a surface: rays spawned from surface points (triangles, quads, spheres, planes), shadow-ray segments |
 //! | `instance` | instances: world boxes, rays and surface points, meshes placed by instances |
 //! | `camera` | the cameras and ray differentials |
 //! | `exact` | the public `rayhit::exact` module itself |

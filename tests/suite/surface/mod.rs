@@ -4,5 +4,6 @@
 
 mod fuzz_regressions;
 mod properties;
+mod quad;
 mod spawn_to;
 mod sphere;
