@@ -3,12 +3,13 @@
 //!
 //! [`renderer`] holds what the scenes share; each other module is one
 //! scene, named as `render --scene` names it: [`demo`], [`leak`],
-//! [`shadows`], [`instances`] and [`spheres`].
+//! [`shadows`], [`instances`], [`spheres`] and [`cornell`].
 
 /// Triangle meshes and the bounding volume hierarchy: the test kit's (the
 /// oracle tests and the benches build the same meshes).
 pub use rayhit_testkit::mesh;
 
+pub mod cornell;
 pub mod demo;
 pub mod instances;
 pub mod leak;

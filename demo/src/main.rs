@@ -6,6 +6,7 @@
 //! cargo run --release -p rayhit-demo -- --scene shadows # segments to lights, glass
 //! cargo run --release -p rayhit-demo -- --scene instances # one mesh placed far away
 //! cargo run --release -p rayhit-demo -- --scene spheres  # spheres of every size, no epsilon
+//! cargo run --release -p rayhit-demo -- --scene cornell  # the Cornell box, all quads
 //! cargo run --release -p rayhit-demo -- --scene spheres --kernel textbook # the textbook's
 //! cargo run --release -p rayhit-demo -- --lens 0.15,7.4 # depth of field
 //! cargo run --release -p rayhit-demo -- --camera equirect --width 720 --height 360
@@ -54,6 +55,11 @@
 //! with the "One Weekend" quadratic and `t > 0.001` instead, which shows
 //! acne on the ground and holes in the droplets (see
 //! `rayhit_demo::spheres`).
+//!
+//! The `cornell` scene: the Cornell box of "The Next Week", every wall,
+//! block face and the light a `Quad`, lit through shadow segments from
+//! `spawn_to` to points sampled on the light, with two diffuse bounces
+//! (see `rayhit_demo::cornell`).
 
 use std::error::Error;
 use std::fs::File;
@@ -66,6 +72,7 @@ use indicatif::{ProgressBar, ProgressStyle};
 use rayhit::Camera;
 use rayhit::camera::{EquirectangularCamera, OrthographicCamera, ThinLensCamera};
 use rayhit::glam::Vec3;
+use rayhit_demo::cornell::{cornell_scene, render_cornell};
 use rayhit_demo::demo::{Filter, Scene, Shape, View, demo_scene, render};
 use rayhit_demo::instances::{Content, On, instance_scene, render_instances};
 use rayhit_demo::leak::leak_scene;
@@ -75,7 +82,7 @@ use rayhit_demo::shadows::{render_shadows, shadow_scene};
 use rayhit_demo::spheres::{self, render_spheres, sphere_scene};
 
 const USAGE: &str = "\
-usage: render [--scene demo|leak|shadows|instances|spheres]
+usage: render [--scene demo|leak|shadows|instances|spheres|cornell]
               [--camera pinhole|ortho|equirect] [--lens RADIUS,FOCUS]
               [--filter differentials|cones|off] [--kernel rayhit|textbook]
               [--width N] [--height N] [--samples N] [--out FILE]
@@ -91,6 +98,8 @@ usage: render [--scene demo|leak|shadows|instances|spheres]
              ray leaving an instance spawned through the instance's map
              spheres: spheres from 1e-3 to 2e4 across, some ten thousand
              units away, glass, mirror and matte, with no epsilon
+             cornell: the Cornell box, walls, blocks and light all quads,
+             shadow segments to the light, two diffuse bounces
   --camera   the demo scene's camera (default pinhole): ortho, parallel
              rays from the pinhole's eye plane; equirect, the whole sphere
              around the eye
@@ -130,6 +139,7 @@ enum SceneKind {
     Shadows,
     Instances,
     Spheres,
+    Cornell,
 }
 
 /// The command line.
@@ -177,9 +187,11 @@ fn parse(mut args: impl Iterator<Item = String>) -> Result<Option<Options>, Stri
                     "shadows" => SceneKind::Shadows,
                     "instances" => SceneKind::Instances,
                     "spheres" => SceneKind::Spheres,
+                    "cornell" => SceneKind::Cornell,
                     _ => {
                         return Err(format!(
-                            "unknown scene {value:?}: demo, leak, shadows, instances or spheres"
+                            "unknown scene {value:?}: demo, leak, shadows, instances, spheres \
+                             or cornell"
                         ));
                     }
                 }
@@ -382,6 +394,21 @@ fn run_spheres(options: &Options) -> Result<(), Box<dyn Error>> {
     Ok(())
 }
 
+fn run_cornell(options: &Options) -> Result<(), Box<dyn Error>> {
+    let file = create(&options.out)?;
+    let scene = cornell_scene(options.width, options.height);
+    println!(
+        "scene: the Cornell box, {} quads (walls, two blocks, the light)",
+        scene.faces.len()
+    );
+    let ([rays, segments], seconds) = render_png(options, file, |row_done| {
+        render_cornell(&scene, options.samples, row_done)
+    })?;
+    println!("{segments} shadow segments");
+    report_speed(rays + segments, seconds);
+    Ok(())
+}
+
 fn run_leak(options: &Options) -> Result<(), Box<dyn Error>> {
     let file = create(&options.out)?;
     let scene = leak_scene(options.width, options.height);
@@ -504,6 +531,7 @@ fn main() -> ExitCode {
         SceneKind::Shadows => run_shadows(&options),
         SceneKind::Instances => run_instances(&options),
         SceneKind::Spheres => run_spheres(&options),
+        SceneKind::Cornell => run_cornell(&options),
     };
     match result {
         Ok(()) => ExitCode::SUCCESS,

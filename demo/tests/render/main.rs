@@ -7,6 +7,7 @@
 //! `cargo test -p rayhit-demo --test render shadows::`.
 
 mod common;
+mod cornell;
 mod demo;
 mod instances;
 mod leak;
