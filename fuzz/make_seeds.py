@@ -325,3 +325,25 @@ for name, xs in spheres.items():
     write("sphere", f"raw-f32-{name}", raw(0, *xs))
     write("sphere", f"raw-f64-{name}", raw(1, *xs))
 structured("sphere")
+
+
+# Quads: ray origin, dir, corners a, b, c, d, t_max, then the interval's
+# ends lo, hi.
+SQUARE = [(0, 0, 0), (1, 0, 0), (1, 1, 0), (0, 1, 0)]
+quads = {
+    "inside": vecs((0.25, 0.75, 1), (0, 0, -1), *SQUARE) + [INF, 0, INF],
+    "through-diagonal": vecs((0.5, 0.5, 1), (0, 0, -1), *SQUARE) + [INF, 0, INF],
+    "on-edge": vecs((0.5, 0, 1), (0, 0, -1), *SQUARE) + [INF, 0, INF],
+    "at-corner": vecs((1, 1, 1), (0, 0, -1), *SQUARE) + [INF, 0, INF],
+    "folded": vecs((0.3, 0.6, 1), (0, 0, -1), (0, 0, 0), (1, 0, 0), (1, 1, 0), (0, 1, 0.3)) + [INF, 0, INF],
+    "collapsed-edge": vecs((0.5, 0.25, 1), (0, 0, -1), (0, 0, 0), (0, 0, 0), (1, 1, 0), (0, 1, 0)) + [INF, 0, INF],
+    "grazing": vecs((-1, 0.5, 0), (1, 0, 0), *SQUARE) + [INF, 0, INF],
+    "window-at-hit": vecs((0.25, 0.5, 1), (0, 0, -1), *SQUARE) + [1, 0.5, 1],
+    "far": vecs((1e5 + 0.5, 1e5 + 0.5, 1), (0, 0, -1), (1e5, 1e5, 0), (1e5 + 1, 1e5, 0), (1e5 + 1, 1e5 + 1, 0), (1e5, 1e5 + 1, 0)) + [INF, 0, INF],
+    "nan-corner": vecs((0.5, 0.5, 1), (0, 0, -1), (NAN, 0, 0), (1, 0, 0), (1, 1, 0), (0, 1, 0)) + [INF, 0, INF],
+    "t-max-nan": vecs((0.5, 0.5, 1), (0, 0, -1), *SQUARE) + [NAN, NAN, 1],
+}
+for name, xs in quads.items():
+    write("quad", f"raw-f32-{name}", raw(0, *xs))
+    write("quad", f"raw-f64-{name}", raw(1, *xs))
+structured("quad")

@@ -424,11 +424,17 @@ pub(crate) fn ray_triangle_error_bounds<V: Vector>(
     });
     let det = e[0] + e[1] + e[2];
     let same_sign = e.iter().all(|&e| e >= zero) || e.iter().all(|&e| e <= zero);
+    // A bound whose arithmetic overflowed (an infinite term times a zero
+    // one, or two infinite ones subtracted: a `t` at the top of an
+    // interval, corners beyond the documented range) is NaN; it bounds
+    // nothing, so it is infinite.
+    // (Bounds are at least zero: NaN fails the comparison.)
+    let known = |x: S<V>| if x >= zero { x } else { inf };
     match HitCondition::new(&b, det) {
         Some(c) if same_sign => TriangleHitError {
-            t: c.t_error(&b, &z, hit.t),
-            u: c.barycentric_error(&b, hit.u),
-            v: c.barycentric_error(&b, hit.v),
+            t: known(c.t_error(&b, &z, hit.t)),
+            u: known(c.barycentric_error(&b, hit.u)),
+            v: known(c.barycentric_error(&b, hit.v)),
         },
         // The test took `t` from the longest edge.
         None if same_sign && det != zero && tri.is_degenerate() => TriangleHitError {

@@ -44,6 +44,7 @@ pub mod matrix_camera;
 pub mod orthographic;
 pub mod panoramic;
 pub mod plane;
+pub mod quad;
 pub mod spawn;
 pub mod spawn_to;
 pub mod sphere;
@@ -139,6 +140,8 @@ pub const TARGETS: &[Target] = &[
     ("orthographic", dispatch::<orthographic::Orthographic>),
     // `ray_plane` and the plane's error bound.
     ("plane", dispatch::<plane::PlaneCheck>),
+    // The quad against its two triangles, every ray form, rule and range.
+    ("quad", dispatch::<quad::QuadCheck>),
     // Rays spawned off a triangle or a plane.
     ("spawn", dispatch::<spawn::Spawn>),
     // Shadow-ray segments between two surface points, or to a point light:

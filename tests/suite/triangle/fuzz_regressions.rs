@@ -231,3 +231,58 @@ fn tetrahedron_grazed_at_its_silhouette_one_hit_is_exact() {
     }
     assert_eq!(one, 2);
 }
+
+/// `quad` (raw, `f64`): the quad's first triangle, a sliver whose corner
+/// `a` is lifted off `b` by the subnormal `1.36e-312` (its plane is `x =
+/// y`), and a ray along x that crosses it on the edge from `b` to `c` at
+/// `t = 1.5`. Over `(0, inf]` the interval form decides the crossing exactly
+/// (there is one) but the determinant underflows, so the computed `t` is
+/// brought into the interval at `MAX`; the error bound's spread from the
+/// corners was then infinite and, times an edge bound of zero, NaN. The
+/// kernel was at fault (a NaN bound); now the bound is infinite, which the
+/// docs give where the determinant's sign is not known.
+#[test]
+fn triangle_bound_at_the_top_of_an_interval_is_not_nan() {
+    use rayhit::{Intersect, Interval};
+    let a = DVec3::new(0.0, 0.0, 1.35675105885e-312);
+    let tri = Triangle::new(a, DVec3::ZERO, DVec3::new(1.0, 1.0, 0.0));
+    let ray = Ray::new(DVec3::new(-1.0, 0.5, 0.0), DVec3::X);
+    let window = Interval::new(0.0, f64::INFINITY).unwrap();
+    let hit = tri
+        .hit(&ray, window)
+        .expect("the crossing at t = 1.5 is decided");
+    assert!(hit.t.is_finite() && (0.0..=1.0).contains(&hit.u) && (0.0..=1.0).contains(&hit.v));
+    let err = tri.hit_error(&ray, &hit);
+    assert!(
+        !err.t.is_nan() && !err.u.is_nan() && !err.v.is_nan(),
+        "{err:?}"
+    );
+    // The exact crossing, t = 1.5, is within the bound.
+    assert!((hit.t - 1.5).abs() <= err.t, "{hit:?} {err:?}");
+}
+
+/// `quad` (raw, `f32`): corners near `4e21`, beyond the documented range
+/// (`2^63` from the origin), and the one-hit rule: a hit at the subnormal
+/// `t = 1e-45` whose `t` bound was NaN (an infinite term times a zero
+/// one). The kernel was at fault: every bound is now at least zero or
+/// infinite, as documented, for any input.
+#[test]
+fn triangle_bound_beyond_the_range_is_not_nan() {
+    use rayhit::{EdgeRule, Intersect};
+    let tri = Triangle::new(
+        Vec3::new(4.1945725e21, 3.2066e-41, 0.0),
+        Vec3::new(4.1945725e21, 4.1945725e21, 0.0),
+        Vec3::ZERO,
+    );
+    let ray = Ray::new(
+        Vec3::new(0.3, 8.7311495e-12, -8.8e-44),
+        Vec3::new(2.361201e21, 4.1945725e21, 4.1945725e21),
+    );
+    let hit = tri
+        .hit(&ray, (1.0, EdgeRule::OneHit))
+        .expect("a hit, as found");
+    let err = tri.hit_error(&ray, &hit);
+    for b in [err.t, err.u, err.v] {
+        assert!(b >= 0.0, "{hit:?} {err:?}");
+    }
+}
