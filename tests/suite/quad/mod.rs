@@ -1,9 +1,10 @@
 //! The quad: its hit against the exact crossings of its two triangles
-//! (`oracle`), and closed meshes of quads, and of quads and triangles
+//! (`oracle`), its 2^k scalings (`properties`), and closed meshes of quads, and of quads and triangles
 //! with T-junctions, with no crack and no leak, the textbook quad test
 //! ("The Next Week") beside it (`watertight`).
 
 mod oracle;
+mod properties;
 mod watertight;
 
 use rayhit::{Quad, Ray, Scalar, Vector};
