@@ -43,6 +43,10 @@ use crate::triangle::{
 /// exactly. The winding `a -> b -> c -> d` gives the front side, as for a
 /// [`Triangle`] (counter-clockwise seen from the front).
 ///
+/// A plain [`Ray`] is sheared on each call; for one ray against many
+/// quads, pass a [`PreparedRay`] (made once): the answers are the same,
+/// bit for bit.
+///
 /// A quad whose two corners coincide is the triangle (or segment) it
 /// became, with the triangle's rules for zero-area triangles on the
 /// collapsed half. A NaN or infinite coordinate makes a quad nothing
