@@ -47,9 +47,9 @@ use crate::triangle::{
 /// quads, pass a [`PreparedRay`] (made once): the answers are the same,
 /// bit for bit.
 ///
-/// A quad whose two corners coincide is the triangle (or segment) it
-/// became, with the triangle's rules for zero-area triangles on the
-/// collapsed half. A NaN or infinite coordinate makes a quad nothing
+/// A quad with a collapsed edge (two neighbouring corners equal) is the
+/// triangle it became, with the triangle's rules for zero-area triangles
+/// on the collapsed half. A NaN or infinite coordinate makes a quad nothing
 /// hits.
 ///
 /// ```
@@ -315,7 +315,9 @@ impl<V: Vector> Surface<V> for Quad<V> {
     /// ([`Triangle`]'s [`hit_error`](Surface::hit_error)), with the sum
     /// that makes `u` (on `a, b, c`) or `v` (on `a, c, d`) bounded by the
     /// two barycentrics' bounds and its rounding. Infinite where the
-    /// triangle's are.
+    /// triangle's are. For a hit of an interval form whose `t` was brought
+    /// into the interval, `t` is within `max(bound, succ(t_min) - t_min)`
+    /// of the crossing, as for the triangle.
     ///
     /// ```
     /// use rayhit::{Intersect, Quad, Ray, Surface, glam::Vec3};
