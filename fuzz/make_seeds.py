@@ -347,3 +347,35 @@ for name, xs in quads.items():
     write("quad", f"raw-f32-{name}", raw(0, *xs))
     write("quad", f"raw-f64-{name}", raw(1, *xs))
 structured("quad")
+
+# Discs: ray origin, dir, disc centre, normal, radius, inner radius,
+# t_max, then the interval's ends lo, hi.
+discs = {
+    "through-centre": vecs((0, 0, 5), (0, 0, -1), (0, 0, 0), (0, 0, 1)) + [1, 0, INF, 0, INF],
+    "on-rim": vecs((1, 0, 1), (0, 0, -1), (0, 0, 0), (0, 0, 1)) + [1, 0, INF, 0, INF],
+    "on-hole-rim": vecs((0, 0.5, 1), (0, 0, -1), (0, 0, 0), (0, 0, 1)) + [1, 0.5, INF, 0, INF],
+    "in-hole": vecs((0.25, 0, 1), (0, 0, -1), (0, 0, 0), (0, 0, 1)) + [1, 0.5, INF, 0, INF],
+    "just-outside": vecs((1.0000001, 0, 1), (0, 0, -1), (0, 0, 0), (0, 0, 1)) + [1, 0, INF, 0, INF],
+    "ring-of-no-width": vecs((0.6, 0.8, 2), (0, 0, -1), (0, 0, 0), (0, 0, 1)) + [1, 1, INF, 0, INF],
+    "from-behind": vecs((0.3, 0.2, -2), (0.1, 0, 1), (0, 0, 0), (0, 0, 1)) + [1, 0, INF, 0, INF],
+    "tilted": vecs((3, 2, 1), (-1, -0.5, -0.25), (0, 0, 0), (1, 2, 3)) + [2, 0.5, INF, 0, INF],
+    "nearly-parallel": vecs((-2, 0, 1e-7), (1, 0, -1e-8), (0, 0, 0), (0, 0, 1)) + [1e3, 0, INF, 0, INF],
+    "in-plane": vecs((-2, 0, 0), (1, 0, 0), (0, 0, 0), (0, 0, 1)) + [1, 0, INF, 0, INF],
+    "from-the-plane": vecs((0.5, 0, 0), (0, 0.3, 1), (0, 0, 0), (0, 0, 1)) + [1, 0, INF, 0, INF],
+    "window-at-crossing": vecs((0, 0, 5), (0, 0, -1), (0, 0, 0), (0, 0, 1)) + [1, 0, 5, 5, 6],
+    "t-max-at-crossing": vecs((0, 0, 5), (0, 0, -1), (0, 0, 0), (0, 0, 1)) + [1, 0, 5, 4, 5],
+    "far": vecs((0, 0, 0), (0.6, 0.8, 0), (6e4, 8e4, 0), (0.6, 0.8, 0)) + [0.01, 0, INF, 0, INF],
+    "huge": vecs((-MAX32, 0, 0), (1, 0, 0), (0, 0, 0), (1, 0, 0)) + [MAX32, 0, INF, 0, INF],
+    "tiny-normal": vecs((0, 0, 5), (0, 0.1, -1), (0, 0, 0), (SUB32, 0, 1e-30)) + [1, 0, INF, 0, INF],
+    "zero-normal": vecs((0, 0, 5), (0, 0, -1), (0, 0, 0), (0, 0, 0)) + [1, 0, INF, 0, INF],
+    "negative-radii": vecs((0, 0.75, 5), (0, 0, -1), (0, 0, 0), (0, 0, -1)) + [-1, -0.5, INF, 0, INF],
+    "hole-too-large": vecs((0, 0, 5), (0, 0, -1), (0, 0, 0), (0, 0, 1)) + [1, 2, INF, 0, INF],
+    "subnormal-dir": vecs((0, 0, 5), (0, 0, -SUB32), (0, 0, 0), (0, 0, 1)) + [1, 0, INF, 0, INF],
+    "nan-radius": vecs((0, 0, 5), (0, 0, -1), (0, 0, 0), (0, 0, 1)) + [NAN, 0, INF, 0, INF],
+    "inf-centre": vecs((0, 0, 5), (0, 0, -1), (INF, 0, 0), (0, 0, 1)) + [1, 0, INF, 0, INF],
+    "t-max-nan": vecs((0, 0, 5), (0, 0, -1), (0, 0, 0), (0, 0, 1)) + [1, 0, NAN, NAN, 1],
+}
+for name, xs in discs.items():
+    write("disc", f"raw-f32-{name}", raw(0, *xs))
+    write("disc", f"raw-f64-{name}", raw(1, *xs))
+structured("disc")

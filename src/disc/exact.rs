@@ -82,6 +82,11 @@ impl DiscSigns {
         e
     }
 
+    /// The exact sign of `D = d . n` (`None` where a term overflows).
+    pub(crate) fn den_sign(&self) -> Option<Ordering> {
+        self.den().sign()
+    }
+
     /// The sign of `|p* - c|^2 - radius^2` for a radius already scaled as
     /// `w` is (`None` where a term overflows; `D` must not be zero).
     pub(crate) fn rim(&self, radius: f64) -> Option<Ordering> {

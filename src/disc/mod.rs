@@ -8,6 +8,7 @@ use core::cmp::Ordering;
 use glam::Vec3;
 
 use crate::aabb::Aabb;
+use crate::num::exact_sign::{exponent, scale2};
 use crate::num::round::bound_up;
 use crate::num::round::outward::{add_up, div_up, mul_down, mul_up};
 use crate::num::{S, Scalar, Vector};
@@ -90,7 +91,9 @@ impl<V: Vector> Disc<V> {
 
     /// A box around the disc, each face rounded outward: along axis `i` the
     /// disc reaches `radius sqrt(1 - n_i^2 / |n|^2)` from its centre (the
-    /// whole radius where that cannot be bounded).
+    /// whole radius where that cannot be bounded: where a nonzero normal
+    /// component is below `2^-63` (`f32`) or `2^-511` (`f64`) of the
+    /// largest, its square would underflow).
     ///
     /// ```
     /// use rayhit::{Disc, glam::Vec3};
@@ -102,8 +105,24 @@ impl<V: Vector> Disc<V> {
     #[must_use]
     pub fn bounds(&self) -> Aabb<V> {
         let r = self.radius.abs();
-        let n = self.normal;
+        // The normal scaled by the power of two that puts its largest
+        // component in `[1, 2)` (exact but where a component falls below
+        // the normal range): the ratios below are unchanged, and no square
+        // overflows, nor does the largest underflow.
+        let w = [0, 1, 2].map(|i| self.normal[i].to_f64());
+        let m = w.iter().fold(0.0f64, |m, x| m.max(x.abs()));
+        let n = if m > 0.0 && m.is_finite() {
+            let e = exponent(m);
+            let f = |x: f64| S::<V>::from_f64(scale2(x, -e));
+            V::new(f(w[0]), f(w[1]), f(w[2]))
+        } else {
+            self.normal
+        };
         let sq = |x: S<V>| x * x;
+        // A nonzero component whose scaled square underflows (or that
+        // scaled to zero): its relative error is not bounded.
+        let zero = S::<V>::ZERO;
+        let lost = |i: usize| self.normal[i] != zero && sq(n[i]) < S::<V>::MIN_POSITIVE;
         let nn = mul_down(
             sq(n.x()) + sq(n.y()) + sq(n.z()),
             S::<V>::ONE - S::<V>::gamma_n(3),
@@ -111,9 +130,12 @@ impl<V: Vector> Disc<V> {
         let reach = |i: usize| {
             let (j, k) = ((i + 1) % 3, (i + 2) % 3);
             let other = bound_up(sq(n[j]) + sq(n[k]), 2);
-            if n[j] == S::<V>::ZERO && n[k] == S::<V>::ZERO {
+            if self.normal[j] == zero && self.normal[k] == zero {
                 // The normal along axis `i` exactly: the disc is flat there.
-                return S::<V>::ZERO;
+                return zero;
+            }
+            if lost(j) || lost(k) {
+                return r;
             }
             let e = mul_up(r, bound_up(div_up(other, nn).sqrt(), 1));
             if e < r { e } else { r }
@@ -260,11 +282,42 @@ pub(crate) fn ray_disc_in<V: Vector>(
     let numer = (plane.point - ray.origin).dot(plane.normal);
     let err = crossing_error(ray, &plane, numer, denom, numer / denom);
     let ulp = interval.min().next_up() - interval.min();
-    let err = if err > ulp { err } else { ulp };
-    within_rims(ray, disc, t, err)?.then_some(DiscHit {
-        t,
-        side: side(denom),
-    })
+    let err_t = if err > ulp { err } else { ulp };
+    if !within_rims(ray, disc, t, err_t)? {
+        return None;
+    }
+    // Within rounding of parallel (or where the bound does not cover
+    // underflow), the computed `dir . normal` may have the wrong sign, or
+    // be zero: the exact one, which is not zero since the crossing exists.
+    let resolution = S::<V>::TWO * S::<V>::gamma_n(3) * ray.dir.abs().dot(plane.normal.abs());
+    let side = if err.is_finite() && denom.abs() > resolution {
+        side(denom)
+    } else {
+        exact_side(ray, disc)?
+    };
+    Some(DiscHit { t, side })
+}
+
+/// The side a ray arrives from, by the exact sign of `dir . normal`, out
+/// of line.
+#[cold]
+#[inline(never)]
+fn exact_side<V: Vector>(ray: &Ray<V>, disc: &Disc<V>) -> Option<Side> {
+    let w = |p: V| [p.x().to_f64(), p.y().to_f64(), p.z().to_f64()];
+    let wide = S::<V>::UNIT_ROUNDOFF.to_f64() < 1e-10;
+    let (signs, _) = DiscSigns::new(
+        w(ray.origin),
+        w(ray.dir),
+        w(disc.center),
+        w(disc.normal),
+        0.0,
+        wide,
+    );
+    match signs.den_sign()? {
+        Ordering::Less => Some(Side::Front),
+        Ordering::Greater => Some(Side::Back),
+        Ordering::Equal => None,
+    }
 }
 
 /// The plane test's bound on the quotient `t = numer / denom`, infinite
@@ -287,7 +340,8 @@ fn crossing_error<V: Vector>(
 }
 
 /// The side a ray arrives from, by the sign of the computed `dir . normal`
-/// (exact wherever the hit's bound is finite).
+/// (exact wherever the hit's bound is finite and the ray is not within
+/// rounding of parallel; elsewhere `exact_side` decides).
 #[inline(always)]
 fn side<F: Scalar>(denom: F) -> Side {
     if denom < F::ZERO {

@@ -12,12 +12,13 @@
 //!
 //! The impls are generic over the vector type, for both precisions
 //! (`Vec3` and `DVec3`); the components are read in the order the fields are
-//! declared, `x, y, z` each (a sphere's `center`, then its `radius`).
+//! declared, `x, y, z` each (a sphere's `center`, then its `radius`; a
+//! disc's `center`, `normal`, `radius`, then `inner_radius`).
 
 use ::arbitrary::{Arbitrary, Result, Unstructured, size_hint};
 
 use crate::num::Vector;
-use crate::{Aabb, Plane, Ray, Sphere, Triangle};
+use crate::{Aabb, Disc, Plane, Ray, Sphere, Triangle};
 
 /// A vector from three raw-bit scalars, `x`, `y`, `z`.
 fn vector<'a, V>(u: &mut Unstructured<'a>) -> Result<V>
@@ -107,6 +108,29 @@ where
     }
 }
 
+/// Raw bit patterns for `center`'s `x, y, z`, `normal`'s, then `radius`
+/// and `inner_radius`: zero and non-finite normals, negative, zero,
+/// subnormal and non-finite radii, and holes larger than the disc included.
+impl<'a, V> Arbitrary<'a> for Disc<V>
+where
+    V: Vector,
+    <V as Vector>::Scalar: Arbitrary<'a>,
+{
+    fn arbitrary(u: &mut Unstructured<'a>) -> Result<Self> {
+        Ok(Self {
+            center: vector(u)?,
+            normal: vector(u)?,
+            radius: <V as Vector>::Scalar::arbitrary(u)?,
+            inner_radius: <V as Vector>::Scalar::arbitrary(u)?,
+        })
+    }
+
+    fn size_hint(depth: usize) -> (usize, Option<usize>) {
+        let one = <<V as Vector>::Scalar as Arbitrary<'a>>::size_hint(depth);
+        size_hint::and_all(&[vectors_hint::<V>(depth, 2), one, one])
+    }
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -153,5 +177,26 @@ mod tests {
         let s = Sphere::<DVec3>::arbitrary(&mut Unstructured::new(&[0xff; 24])).unwrap();
         assert!(s.center.z.is_nan());
         assert_eq!(s.radius.to_bits(), 0);
+    }
+
+    #[test]
+    fn a_disc_is_its_centre_normal_then_radii() {
+        assert_eq!(Disc::<Vec3>::size_hint(0), (32, Some(32)));
+        assert_eq!(Disc::<DVec3>::size_hint(0), (64, Some(64)));
+        // Centre (1, 2, 3), normal (0, 0, -0.0), radius NaN, inner radius
+        // 0.5; in f64 the inner radius runs out: +0.0.
+        let xs = [1.0f32, 2.0, 3.0, 0.0, 0.0, -0.0, f32::NAN, 0.5];
+        let mut bytes = [0u8; 32];
+        for (i, x) in xs.into_iter().enumerate() {
+            bytes[4 * i..4 * i + 4].copy_from_slice(&x.to_le_bytes());
+        }
+        let d = Disc::<Vec3>::arbitrary(&mut Unstructured::new(&bytes)).unwrap();
+        assert_eq!(d.center, Vec3::new(1.0, 2.0, 3.0));
+        assert_eq!(d.normal.to_array().map(f32::to_bits), [0, 0, 0x8000_0000]);
+        assert!(d.radius.is_nan());
+        assert_eq!(d.inner_radius, 0.5);
+        let d = Disc::<DVec3>::arbitrary(&mut Unstructured::new(&[0xff; 56])).unwrap();
+        assert!(d.radius.is_nan());
+        assert_eq!(d.inner_radius.to_bits(), 0);
     }
 }

@@ -11,11 +11,13 @@
 //! misses are both common and many rays pass through edges, corners and
 //! faces, where kernels go wrong. A target on a boundary is rounded like any
 //! other point, so "on an edge" means within an ulp or so of it. Rays at
-//! spheres also run along tangents (grazing) and start inside the ball.
+//! spheres also run along tangents (grazing) and start inside the ball;
+//! rays at discs aim at their circles, run nearly along their plane and
+//! start on it.
 //!
 //! Ranges, and why:
 //! - coordinates: shape centres in `[-64, 64]^3`, sizes (a sphere's
-//!   radius among them) from `2^-4` to `2^4`: a few orders of magnitude of
+//!   and a disc's radius among them) from `2^-4` to `2^4`: a few orders of magnitude of
 //!   scale and of distance from the origin, all well inside the range
 //!   where no kernel overflows;
 //! - directions: random orientation, length `2^k` for `k` in `[-6, 6]`
@@ -45,7 +47,7 @@
 use proptest::prelude::*;
 
 use crate::num::{S, Scalar, Vector};
-use crate::{Aabb, Plane, Ray, Sphere, Triangle};
+use crate::{Aabb, Disc, Plane, Ray, Sphere, Triangle};
 
 /// A value uniform in `[-scale, scale]`, rounded to the precision of `V`.
 pub fn coordinate<V: Vector>(scale: f64) -> impl Strategy<Value = S<V>> + Clone {
@@ -396,6 +398,123 @@ pub fn sphere_and_ray<V: Vector>() -> impl Strategy<Value = (Sphere<V>, Ray<V>)>
             };
             (sph, ray)
         })
+}
+
+/// A disc or an annulus: centre in `[-64, 64]^3`, normal from
+/// [`direction`] (any orientation and length `2^-6` to `2^6`,
+/// axis-parallel or with a signed-zero component one time in eight each),
+/// outer radius `2^x` with `x` uniform in `[-4, 4]`; a full disc half the
+/// time, else an annulus whose hole's radius is a uniform `0.1` to `0.9`
+/// of the outer one (3 in 8), or a ring of no width, both radii equal (1
+/// in 8: only its circle is hit).
+pub fn disc<V: Vector>() -> impl Strategy<Value = Disc<V>> + Clone {
+    (
+        point::<V>(64.0),
+        direction::<V>(),
+        -4.0..=4.0f64,
+        case([4, 3, 1]),
+        // (A half-open unit range: proptest's sampler of an inclusive
+        // range with ends such as 0.1 trips its own debug assertion on
+        // some raw fuzzer bytes.)
+        0.0..1.0f64,
+    )
+        .prop_map(|(c, n, x, kind, f)| {
+            let r = x.exp2();
+            let inner = match kind {
+                0 => 0.0,
+                1 => r * (0.1 + 0.8 * f),
+                _ => r,
+            };
+            Disc::annulus(c, n, cv::<V>(r), cv::<V>(inner))
+        })
+}
+
+/// A disc from [`disc`] and a ray at a target in its plane, `rho` from the
+/// centre in a uniformly random direction within the plane, one time in
+/// six each: on the outer circle, on the hole's circle (the centre for a
+/// full disc), inside the annulus, in the hole, just off one of the
+/// circles (a relative `2^-24` to `2^-10` in or out), or outside (one to
+/// three radii). The ray, one of three kinds:
+///
+/// - from anywhere (5 in 8): a [`direction`], the origin `2^-4` to `2^6`
+///   direction lengths back from the target (as [`ray_through`] aims);
+/// - nearly along the plane (2 in 8): a direction within the plane tilted
+///   out of it by a relative `2^-30` to `2^-8` (either way), of length
+///   `2^k` (`k` in `[-6, 6]`), the origin `2^-4` to `2^6` lengths back;
+/// - from the plane (1 in 8): the origin at the target itself (so within
+///   rounding of the plane: the crossing is at `t` near zero, ahead or
+///   behind), a [`direction`].
+///
+/// Every point is computed in `f64` from the rounded disc (an origin behind
+/// a target, from the rounded direction) and rounded once, so "on a
+/// circle" means within an ulp or so of it.
+pub fn disc_and_ray<V: Vector>() -> impl Strategy<Value = (Disc<V>, Ray<V>)> + Clone {
+    let target = (
+        index(6),
+        0.0..1.0f64,
+        -24.0..=-10.0f64,
+        any::<bool>(),
+        any::<bool>(),
+    );
+    let aim = (
+        case([5, 2, 1]),
+        0.0..1.0f64,
+        0.0..1.0f64,
+        -30.0..=-8.0f64,
+        any::<bool>(),
+    );
+    (
+        disc::<V>(),
+        target,
+        aim,
+        direction::<V>(),
+        0.0625..=64.0f64,
+        power_of_two(-6, 6),
+    )
+        .prop_map(
+            |(d, (reach, f, x, outer, outward), (kind, theta, phi, y, up), dir, back, len)| {
+                let c = [0, 1, 2].map(|i| d.center[i].to_f64());
+                let (r, inner) = (d.radius.to_f64(), d.inner_radius.to_f64());
+                let n = unit([0, 1, 2].map(|i| d.normal[i].to_f64()));
+                // Two unit vectors within the plane: n x (the axis of n's
+                // smallest component), and n x that.
+                let k = (0..3)
+                    .min_by(|&i, &j| n[i].abs().total_cmp(&n[j].abs()))
+                    .unwrap_or(0);
+                let mut axis = [0.0; 3];
+                axis[k] = 1.0;
+                let t1 = unit(cross(n, axis));
+                let t2 = cross(n, t1);
+                let within = |a: f64| {
+                    let (s, co) = (a * core::f64::consts::TAU).sin_cos();
+                    [0, 1, 2].map(|i| co * t1[i] + s * t2[i])
+                };
+                let u = within(theta);
+                let off = if outward { x.exp2() } else { -x.exp2() };
+                let rho = match reach {
+                    0 => r,
+                    1 => inner,
+                    2 => inner + f * (r - inner),
+                    3 => f * inner,
+                    4 => (if outer { r } else { inner }) * (1.0 + off),
+                    _ => r * (1.0 + 2.0 * f),
+                };
+                let round = |p: [f64; 3]| V::new(cv::<V>(p[0]), cv::<V>(p[1]), cv::<V>(p[2]));
+                let target = [0, 1, 2].map(|i| c[i] + rho * u[i]);
+                let behind = |dir: V| round([0, 1, 2].map(|i| target[i] - back * dir[i].to_f64()));
+                let ray = match kind {
+                    0 => Ray::new(behind(dir), dir),
+                    1 => {
+                        let v = within(phi);
+                        let tilt = if up { y.exp2() } else { -y.exp2() };
+                        let along = round([0, 1, 2].map(|i| (v[i] + tilt * n[i]) * len));
+                        Ray::new(behind(along), along)
+                    }
+                    _ => Ray::new(round(target), dir),
+                };
+                (d, ray)
+            },
+        )
 }
 
 fn cross(a: [f64; 3], b: [f64; 3]) -> [f64; 3] {

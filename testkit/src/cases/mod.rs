@@ -3,8 +3,8 @@
 //! the property tests.
 //!
 //! They are built on the crate's public strategies
-//! ([`rayhit::strategies`]: aimed rays, boxes, triangles, planes and
-//! spheres in realistic ranges), drawn from a [`Source`], and add the families those
+//! ([`rayhit::strategies`]: aimed rays, boxes, triangles, planes,
+//! spheres and discs in realistic ranges), drawn from a [`Source`], and add the families those
 //! leave out: rays exactly through edges and corners on dyadic grids, on
 //! slab planes and in face planes, grazing rays, tiny and signed-zero
 //! direction components, thin triangles and zero-area fillers, far-away
@@ -13,6 +13,7 @@
 
 pub mod boxes;
 pub mod cameras;
+pub mod discs;
 pub mod instances;
 pub mod planes;
 pub mod spheres;

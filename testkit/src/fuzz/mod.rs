@@ -36,6 +36,7 @@ use crate::source::Source;
 pub mod aabb;
 pub mod batch;
 pub mod camera;
+pub mod disc;
 pub mod exact;
 pub mod hit_differentials;
 pub mod instance;
@@ -115,6 +116,9 @@ pub const TARGETS: &[Target] = &[
     ("batch", dispatch::<batch::Batch>),
     // The pinhole camera.
     ("camera", dispatch::<camera::Camera>),
+    // The disc and annulus over a `t_max` and over an interval, its error
+    // bound, its surface point and its box.
+    ("disc", dispatch::<disc::DiscCheck>),
     // The panoramic cameras.
     ("equal_area", dispatch::<panoramic::EqualArea>),
     ("equirectangular", dispatch::<panoramic::Equirectangular>),
