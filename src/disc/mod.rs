@@ -373,7 +373,10 @@ impl<V: Vector> Intersect<V> for Disc<V> {
     /// parallel to the plane dropped (as [`ray_plane`](crate::ray_plane)
     /// does), `t > 0` decided conservatively (a crossing within its error
     /// bound of the origin is dropped: the disc a spawned ray leaves),
-    /// `t <= t_max` on the computed `t`.
+    /// `t <= t_max` on the computed `t`. Where `(c - o) . n`, `dir . n` or
+    /// `t` is below `8 MIN_POSITIVE / u` the plane's bound does not cover
+    /// underflow, and the crossing is dropped too (the interval form
+    /// decides it exactly).
     ///
     /// **With an [`Interval`]**: the plane's crossing decided exactly
     /// against both ends (see [`Plane`'s `hit`](crate::Plane#method.hit)),
