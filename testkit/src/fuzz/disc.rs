@@ -57,9 +57,9 @@ use rayhit::exact::oracle::{ExactDisc, R, disc as exact_disc};
 use rayhit::{Aabb, Disc, DiscHit, Intersect, Interval, Plane, PreparedRay, Ray, Scalar};
 use rayhit::{Surface, SurfacePoint, Vector, ray_plane};
 
-use super::exact::{abs, r};
+use super::exact::{abs, difference_pairs, in_exact_range, r, scale_of};
 use super::plane::no_underflow;
-use super::{Check, Input, S, raw};
+use super::{Check, Input, S, ends_near, raw};
 use crate::cases;
 use crate::source::Source;
 
@@ -99,42 +99,16 @@ impl Check for DiscCheck {
 /// A disc case, and ends around its crossing.
 fn structured_case<V: Vector>(src: &mut Source) -> Case<V> {
     let (disc, ray, t_max) = cases::discs::disc::<V>(src);
-    let inf = S::<V>::INFINITY;
-    let mut near = vec![S::<V>::ZERO, inf];
-    if let Some(h) = Interval::up_to(inf).and_then(|w| disc.hit(&ray, w)) {
-        near.push(h.t);
-    }
-    let far = near[2..]
-        .iter()
-        .fold(S::<V>::ONE, |m, &t| if t > m { t } else { m });
-    let mut end = || {
-        let base = near[src.index(near.len())];
-        match src.index(4) {
-            0 => base,
-            1 => base.next_up(),
-            2 => base.next_down(),
-            _ => far * S::<V>::from_f64(src.range(0.0, 2.0)),
-        }
-    };
-    let (a, b) = (end(), end());
-    let (lo, hi) = if b < a { (b, a) } else { (a, b) };
+    let crossing = Interval::up_to(S::<V>::INFINITY)
+        .and_then(|w| disc.hit(&ray, w))
+        .map(|h| h.t);
+    let (lo, hi) = ends_near(src, crossing.as_slice());
     Case {
         ray,
         disc,
         t_max,
         lo,
         hi,
-    }
-}
-
-/// `floor(log2 |x|)` of a finite nonzero `x`, subnormals included.
-fn exponent(x: f64) -> i32 {
-    let bits = x.abs().to_bits();
-    let e = (bits >> 52) as i32;
-    if e == 0 {
-        (63 - bits.leading_zeros() as i32) - 1074
-    } else {
-        e - 1023
     }
 }
 
@@ -151,24 +125,16 @@ pub fn decided_exactly<V: Vector>(ray: &Ray<V>, disc: &Disc<V>) -> bool {
     }
     let w = |p: V| [p.x().to_f64(), p.y().to_f64(), p.z().to_f64()];
     let (o, d, c, n) = (w(ray.origin), w(ray.dir), w(disc.center), w(disc.normal));
-    // c - o as an exact pair (Knuth's two-sum).
-    let f = [0, 1, 2].map(|i| {
-        let s = c[i] - o[i];
-        let bb = s - c[i];
-        (s, (c[i] - (s - bb)) + (-o[i] - bb))
-    });
-    if f.iter().any(|p| !p.0.is_finite()) {
+    let Some(f) = difference_pairs(c, o) else {
         return false;
-    }
-    let largest = |xs: &[f64]| xs.iter().fold(0.0f64, |m, x| m.max(x.abs()));
-    let scale = |m: f64| if m > 0.0 { exponent(m) } else { 0 };
-    let ok = |x: f64, e: i32| x == 0.0 || exponent(x) - e >= -150;
+    };
+    let ok = in_exact_range;
     let (outer, inner) = (disc.radius.to_f64().abs(), disc.inner_radius.to_f64().abs());
     let radius_ok = |rad: f64| {
-        let ef = scale(largest(&[f[0].0, f[1].0, f[2].0, rad]));
+        let ef = scale_of(&[f[0].0, f[1].0, f[2].0, rad]);
         f.iter().all(|p| ok(p.0, ef) && ok(p.1, ef)) && ok(rad, ef)
     };
-    let (ed, en) = (scale(largest(&d)), scale(largest(&n)));
+    let (ed, en) = (scale_of(&d), scale_of(&n));
     radius_ok(outer)
         && (inner == 0.0 || radius_ok(inner))
         && d.iter().all(|&x| ok(x, ed))

@@ -228,6 +228,28 @@ pub fn raw<'a, T: Arbitrary<'a> + Default>(u: &mut Unstructured<'a>) -> T {
     T::arbitrary(u).unwrap_or_default()
 }
 
+/// Two interval ends drawn around a case's reported `crossings`: each
+/// `0`, infinity, a crossing, a float neighbour of one, or a value up to
+/// twice the farthest crossing (at least 1); in order.
+pub fn ends_near<F: Scalar>(src: &mut Source, crossings: &[F]) -> (F, F) {
+    let mut near = vec![F::ZERO, F::INFINITY];
+    near.extend_from_slice(crossings);
+    let far = crossings
+        .iter()
+        .fold(F::ONE, |m, &t| if t > m { t } else { m });
+    let mut end = || {
+        let base = near[src.index(near.len())];
+        match src.index(4) {
+            0 => base,
+            1 => base.next_up(),
+            2 => base.next_down(),
+            _ => far * F::from_f64(src.range(0.0, 2.0)),
+        }
+    };
+    let (a, b) = (end(), end());
+    if b < a { (b, a) } else { (a, b) }
+}
+
 /// Reads a vector of raw-bit components (`x`, `y`, `z`).
 pub fn raw_vec<'a, V>(u: &mut Unstructured<'a>) -> V
 where

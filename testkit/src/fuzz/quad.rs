@@ -7,7 +7,7 @@
 //! interior, edges or corners) made the first triangle `a, b, c` of a
 //! quad, whose fourth corner completes a parallelogram or, one input in
 //! two, folds it along the diagonal `a`-`c` (which rays aimed at the edge
-//! `c`-`a` cross), and ends drawn around the hit.
+//! `c`-`a` cross), and ends drawn around the hit ([`super::ends_near`]).
 //!
 //! Checks, any input: no panic; for a plain and a prepared ray, the closed
 //! and the one-hit rule, over `t_max` and over the interval `(lo, hi]`
@@ -28,7 +28,7 @@ use rayhit::{
 };
 
 use super::triangle::precondition;
-use super::{Check, Input, S, raw, raw_vec};
+use super::{Check, Input, S, ends_near, raw, raw_vec};
 use crate::cases;
 use crate::cases::triangles::corners;
 use crate::source::Source;
@@ -90,17 +90,8 @@ fn structured_case<V: Vector>(src: &mut Source) -> Case<V> {
             S::<V>::from_f64(d[2]),
         ),
     );
-    let t = quad
-        .hit(&ray, S::<V>::INFINITY)
-        .map_or(S::<V>::ONE, |h| h.t);
-    let mut end = || match src.index(4) {
-        0 => t,
-        1 => t.next_up(),
-        2 => t.next_down(),
-        _ => t * S::<V>::from_f64(src.range(0.0, 2.0)),
-    };
-    let (x, y) = (end(), end());
-    let (lo, hi) = if y < x { (y, x) } else { (x, y) };
+    let crossing = quad.hit(&ray, S::<V>::INFINITY).map(|h| h.t);
+    let (lo, hi) = ends_near(src, crossing.as_slice());
     Case {
         ray,
         quad,

@@ -52,8 +52,8 @@ use rayhit::exact::oracle::{ExactSphere, R, sphere as exact_sphere};
 use rayhit::{Intersect, Interval, PreparedRay, Ray, Scalar, Side, Sphere, SphereHit, Surface};
 use rayhit::{SurfacePoint, Vector};
 
-use super::exact::{int, r};
-use super::{Check, Input, S, raw};
+use super::exact::{difference_pairs, in_exact_range, int, r, scale_of};
+use super::{Check, Input, S, ends_near, raw};
 use crate::cases;
 use crate::source::Source;
 
@@ -96,46 +96,22 @@ fn structured_case<V: Vector>(src: &mut Source) -> Case<V> {
     // The crossings over (0, inf], one after the other: each search past
     // the one before by its error bound (a reported `t` may lie below its
     // exact crossing, which a search from `t` would report again).
-    let mut near = vec![S::<V>::ZERO, S::<V>::INFINITY];
+    let mut crossings = Vec::new();
     let mut from = S::<V>::ZERO;
     while let Some(h) = Interval::new(from, S::<V>::INFINITY).and_then(|w| sphere.hit(&ray, w)) {
-        near.push(h.t);
+        crossings.push(h.t);
         from = (h.t + sphere.hit_error(&ray, &h)).next_up();
-        if near.len() == 4 || !from.is_finite() {
+        if crossings.len() == 2 || !from.is_finite() {
             break;
         }
     }
-    let far = near[2..]
-        .iter()
-        .fold(S::<V>::ONE, |m, &t| if t > m { t } else { m });
-    let mut end = || {
-        let base = near[src.index(near.len())];
-        match src.index(4) {
-            0 => base,
-            1 => base.next_up(),
-            2 => base.next_down(),
-            _ => far * S::<V>::from_f64(src.range(0.0, 2.0)),
-        }
-    };
-    let (a, b) = (end(), end());
-    let (lo, hi) = if b < a { (b, a) } else { (a, b) };
+    let (lo, hi) = ends_near(src, &crossings);
     Case {
         ray,
         sphere,
         t_max,
         lo,
         hi,
-    }
-}
-
-/// `floor(log2 |x|)` of a finite nonzero `x`, subnormals included.
-fn exponent(x: f64) -> i32 {
-    let bits = x.abs().to_bits();
-    let e = (bits >> 52) as i32;
-    if e == 0 {
-        (63 - bits.leading_zeros() as i32) - 1074
-    } else {
-        e - 1023
     }
 }
 
@@ -155,20 +131,12 @@ pub fn decided_exactly<V: Vector>(ray: &Ray<V>, sphere: &Sphere<V>, ends: &[S<V>
     let w = |p: V| [p.x().to_f64(), p.y().to_f64(), p.z().to_f64()];
     let (o, d, c) = (w(ray.origin), w(ray.dir), w(sphere.center));
     let rad = sphere.radius.to_f64().abs();
-    // c - o as an exact pair (Knuth's two-sum).
-    let f = [0, 1, 2].map(|i| {
-        let s = c[i] - o[i];
-        let bb = s - c[i];
-        (s, (c[i] - (s - bb)) + (-o[i] - bb))
-    });
-    if f.iter().any(|p| !p.0.is_finite()) {
+    let Some(f) = difference_pairs(c, o) else {
         return false;
-    }
-    let largest = |xs: &[f64]| xs.iter().fold(0.0f64, |m, x| m.max(x.abs()));
-    let scale = |m: f64| if m > 0.0 { exponent(m) } else { 0 };
-    let ef = scale(largest(&[f[0].0, f[1].0, f[2].0, rad]));
-    let ed = scale(largest(&d));
-    let ok = |x: f64, e: i32| x == 0.0 || exponent(x) - e >= -150;
+    };
+    let ef = scale_of(&[f[0].0, f[1].0, f[2].0, rad]);
+    let ed = scale_of(&d);
+    let ok = in_exact_range;
     f.iter().all(|p| ok(p.0, ef) && ok(p.1, ef))
         && ok(rad, ef)
         && d.iter().all(|&x| ok(x, ed))

@@ -5,6 +5,7 @@
 //! so the tests add no rounding of their own; each is derived in a comment.
 
 use proptest::prelude::*;
+use rayhit::Scalar;
 use rayhit_testkit::case_count;
 use rayhit_testkit::oracle::R;
 
@@ -50,3 +51,26 @@ macro_rules! in_both_precisions {
 }
 
 pub(crate) use in_both_precisions;
+
+/// Ends of an interval from two picks in `[0, 1)`, around a case's
+/// reported `crossings`: each `0`, infinity, a crossing or one of its
+/// float neighbours, or a value up to twice the farthest crossing (at
+/// least 1); in order.
+pub fn ends_among<F: Scalar>(crossings: &[F], picks: [f64; 2]) -> (F, F) {
+    let mut candidates = vec![F::ZERO, F::INFINITY];
+    for &t in crossings {
+        candidates.extend([t, t.next_up(), t.next_down()]);
+    }
+    let far = crossings
+        .iter()
+        .fold(F::ONE, |m, &t| if t > m { t } else { m });
+    let n = candidates.len() + 1;
+    let [a, b] = picks.map(|p| {
+        let x = p * n as f64;
+        candidates
+            .get(x as usize)
+            .copied()
+            .unwrap_or_else(|| far * F::from_f64(2.0 * x.fract()))
+    });
+    if b < a { (b, a) } else { (a, b) }
+}

@@ -22,7 +22,7 @@
 //!
 //! Bounds are evaluated exactly (see `common::props`).
 
-use crate::common::props::{abs, config, in_both_precisions};
+use crate::common::props::{abs, config, ends_among, in_both_precisions};
 use crate::sphere::q;
 use proptest::prelude::*;
 use rayhit::exact::oracle::{ExactDisc, R, disc as exact_disc, dot, rv, sub};
@@ -41,27 +41,9 @@ fn crossing<V: Vector>(ray: &Ray<V>, d: &Disc<V>) -> Option<S<V>> {
         .map(|h| h.t)
 }
 
-/// Ends of an interval from two picks in `[0, 1)`: each one of `0`, `inf`,
-/// the crossing reported over `(0, inf]` or one of its float neighbours,
-/// or a value up to twice the crossing (or 2); in order.
+/// Ends of an interval around the reported crossing ([`ends_among`]).
 fn ends<V: Vector>(ray: &Ray<V>, d: &Disc<V>, picks: [f64; 2]) -> (S<V>, S<V>) {
-    let mut candidates = vec![S::<V>::ZERO, S::<V>::INFINITY];
-    let mut far = S::<V>::ONE;
-    if let Some(t) = crossing(ray, d) {
-        candidates.extend([t, t.next_up(), t.next_down()]);
-        if t > far {
-            far = t;
-        }
-    }
-    let n = candidates.len() + 1;
-    let [a, b] = picks.map(|p| {
-        let x = p * n as f64;
-        candidates
-            .get(x as usize)
-            .copied()
-            .unwrap_or_else(|| far * S::<V>::from_f64(2.0 * x.fract()))
-    });
-    if b < a { (b, a) } else { (a, b) }
+    ends_among(crossing(ray, d).as_slice(), picks)
 }
 
 /// The answers over a `t_max` and over `(lo, hi]`.

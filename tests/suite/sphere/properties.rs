@@ -16,7 +16,7 @@
 //! Bounds are evaluated exactly (see `common::props`).
 
 use super::{S, exact, q, within};
-use crate::common::props::{abs, config, in_both_precisions};
+use crate::common::props::{abs, config, ends_among, in_both_precisions};
 use proptest::prelude::*;
 use rayhit::exact::oracle::R;
 use rayhit::glam::{DVec3, Vec3};
@@ -48,24 +48,9 @@ fn farther<V: Vector>(ray: &Ray<V>, sph: &Sphere<V>) -> S<V> {
         .fold(S::<V>::ONE, |m, t| if t > m { t } else { m })
 }
 
-/// Ends of an interval from two picks in `[0, 1)`: each one of `0`, `inf`,
-/// a crossing the sphere reports over `(0, inf]` or one of its float
-/// neighbours, or a value up to twice the farther crossing; in order.
+/// Ends of an interval around the reported crossings ([`ends_among`]).
 fn ends<V: Vector>(ray: &Ray<V>, sph: &Sphere<V>, picks: [f64; 2]) -> (S<V>, S<V>) {
-    let mut candidates = vec![S::<V>::ZERO, S::<V>::INFINITY];
-    for t in crossings(ray, sph) {
-        candidates.extend([t, t.next_up(), t.next_down()]);
-    }
-    let far = farther(ray, sph);
-    let n = candidates.len() + 1;
-    let [a, b] = picks.map(|p| {
-        let x = p * n as f64;
-        candidates
-            .get(x as usize)
-            .copied()
-            .unwrap_or_else(|| far * S::<V>::from_f64(2.0 * x.fract()))
-    });
-    if b < a { (b, a) } else { (a, b) }
+    ends_among(&crossings(ray, sph), picks)
 }
 
 /// The answers over a `t_max` and over `(lo, hi]`.
