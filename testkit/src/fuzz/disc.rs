@@ -54,12 +54,12 @@
 
 use arbitrary::Arbitrary;
 use rayhit::exact::oracle::{ExactDisc, R, disc as exact_disc};
-use rayhit::{Aabb, Disc, DiscHit, Intersect, Interval, Plane, PreparedRay, Ray, Scalar};
+use rayhit::{Aabb, Disc, DiscHit, Intersect, Interval, Plane, Ray, Scalar};
 use rayhit::{Surface, SurfacePoint, Vector, ray_plane};
 
 use super::exact::{abs, difference_pairs, in_exact_range, r, scale_of};
 use super::plane::no_underflow;
-use super::{Check, Input, S, ends_near, raw};
+use super::{Check, Input, S, ends_near, forms_in_range, raw};
 use crate::cases;
 use crate::source::Source;
 
@@ -173,7 +173,6 @@ fn check<V: Vector>(case: &Case<V>) {
     } = *case;
     let zero = S::<V>::ZERO;
     let ctx = || format!("ray {ray:?}, disc {disc:?}, t_max {t_max:?}, ends {lo:?} {hi:?}");
-    let prepared = PreparedRay::new(&ray);
     let finite = ray.is_valid()
         && disc.center.is_finite()
         && disc.normal.is_finite()
@@ -184,33 +183,9 @@ fn check<V: Vector>(case: &Case<V>) {
     // below, against exact arithmetic, where `decided_exactly`.
     let hittable = finite && disc.normal != V::ZERO;
 
-    // The t_max form: range, the prepared ray, invalid input.
-    let got = disc.hit(&ray, t_max);
-    assert_eq!(got, disc.hit(&prepared, t_max), "prepared ray: {}", ctx());
-    if let Some(h) = got {
-        assert!(
-            h.t > zero && h.t <= t_max && h.t.is_finite(),
-            "t_max form: {h:?} out of range: {}",
-            ctx()
-        );
-        assert!(hittable && t_max >= zero, "hit on invalid input: {}", ctx());
-    }
-
-    // The interval form, where the ends make an interval.
+    // Both forms: range, the prepared ray, invalid input.
     let window = Interval::new(lo, hi);
-    let got_in = window.and_then(|w| {
-        let h = disc.hit(&ray, w);
-        assert_eq!(h, disc.hit(&prepared, w), "prepared ray: {}", ctx());
-        h
-    });
-    if let Some(h) = got_in {
-        assert!(
-            lo < h.t && h.t <= hi && h.t.is_finite(),
-            "interval form: {h:?} out of range: {}",
-            ctx()
-        );
-        assert!(hittable, "hit on invalid input: {}", ctx());
-    }
+    let (got, got_in) = forms_in_range(&disc, &ray, t_max, (lo, hi), hittable, |h| h.t, &ctx);
     let surface = |h: &DiscHit<S<V>>| {
         let sp = disc.surface_point(&ray, h);
         no_nan(&sp, disc.normal, h, &ctx);

@@ -228,6 +228,57 @@ pub fn raw<'a, T: Arbitrary<'a> + Default>(u: &mut Unstructured<'a>) -> T {
     T::arbitrary(u).unwrap_or_default()
 }
 
+/// The checks every shape's target makes on both forms of its `hit`:
+/// the `t_max` form and the interval form over `(lo, hi]` (where
+/// `Interval::new` takes the ends) give the same answers, bit for bit, on
+/// a prepared ray; a hit's `t` (from `t_of`) is finite and in range; and
+/// only a `hittable` input (and a `t_max` at least zero) is hit. Returns
+/// both answers.
+#[allow(clippy::too_many_arguments)]
+pub fn forms_in_range<V, X>(
+    shape: &X,
+    ray: &rayhit::Ray<V>,
+    t_max: S<V>,
+    (lo, hi): (S<V>, S<V>),
+    hittable: bool,
+    t_of: impl Fn(&X::Hit) -> S<V>,
+    ctx: &dyn Fn() -> String,
+) -> (Option<X::Hit>, Option<X::Hit>)
+where
+    V: Vector,
+    X: rayhit::Intersect<V>,
+    X::Hit: PartialEq + core::fmt::Debug,
+{
+    let zero = S::<V>::ZERO;
+    let prepared = rayhit::PreparedRay::new(ray);
+    let got = shape.hit(ray, t_max);
+    assert_eq!(got, shape.hit(&prepared, t_max), "prepared ray: {}", ctx());
+    if let Some(h) = &got {
+        let t = t_of(h);
+        assert!(
+            t > zero && t <= t_max && t.is_finite(),
+            "t_max form: {h:?} out of range: {}",
+            ctx()
+        );
+        assert!(hittable && t_max >= zero, "hit on invalid input: {}", ctx());
+    }
+    let got_in = rayhit::Interval::new(lo, hi).and_then(|w| {
+        let h = shape.hit(ray, w);
+        assert_eq!(h, shape.hit(&prepared, w), "prepared ray: {}", ctx());
+        h
+    });
+    if let Some(h) = &got_in {
+        let t = t_of(h);
+        assert!(
+            lo < t && t <= hi && t.is_finite(),
+            "interval form: {h:?} out of range: {}",
+            ctx()
+        );
+        assert!(hittable, "hit on invalid input: {}", ctx());
+    }
+    (got, got_in)
+}
+
 /// Two interval ends drawn around a case's reported `crossings`: each
 /// `0`, infinity, a crossing, a float neighbour of one, or a value up to
 /// twice the farthest crossing (at least 1); in order.

@@ -49,11 +49,11 @@ use core::cmp::Ordering;
 
 use arbitrary::Arbitrary;
 use rayhit::exact::oracle::{ExactSphere, R, sphere as exact_sphere};
-use rayhit::{Intersect, Interval, PreparedRay, Ray, Scalar, Side, Sphere, SphereHit, Surface};
+use rayhit::{Intersect, Interval, Ray, Scalar, Side, Sphere, SphereHit, Surface};
 use rayhit::{SurfacePoint, Vector};
 
 use super::exact::{difference_pairs, in_exact_range, int, r, scale_of};
-use super::{Check, Input, S, ends_near, raw};
+use super::{Check, Input, S, ends_near, forms_in_range, raw};
 use crate::cases;
 use crate::source::Source;
 
@@ -199,36 +199,11 @@ fn check<V: Vector>(case: &Case<V>) {
     } = *case;
     let zero = S::<V>::ZERO;
     let ctx = || format!("ray {ray:?}, sphere {sphere:?}, t_max {t_max:?}, ends {lo:?} {hi:?}");
-    let prepared = PreparedRay::new(&ray);
     let finite = ray.is_valid() && sphere.center.is_finite() && sphere.radius.is_finite();
 
-    // The t_max form: range, the prepared ray, invalid input.
-    let got = sphere.hit(&ray, t_max);
-    assert_eq!(got, sphere.hit(&prepared, t_max), "prepared ray: {}", ctx());
-    if let Some(h) = got {
-        assert!(
-            h.t > zero && h.t <= t_max && h.t.is_finite(),
-            "t_max form: {h:?} out of range: {}",
-            ctx()
-        );
-        assert!(finite && t_max >= zero, "hit on invalid input: {}", ctx());
-    }
-
-    // The interval form, where the ends make an interval.
+    // Both forms: range, the prepared ray, invalid input.
     let window = Interval::new(lo, hi);
-    let got_in = window.and_then(|w| {
-        let h = sphere.hit(&ray, w);
-        assert_eq!(h, sphere.hit(&prepared, w), "prepared ray: {}", ctx());
-        h
-    });
-    if let Some(h) = got_in {
-        assert!(
-            lo < h.t && h.t <= hi && h.t.is_finite(),
-            "interval form: {h:?} out of range: {}",
-            ctx()
-        );
-        assert!(finite, "hit on invalid input: {}", ctx());
-    }
+    let (got, got_in) = forms_in_range(&sphere, &ray, t_max, (lo, hi), finite, |h| h.t, &ctx);
     for h in got.iter().chain(got_in.iter()) {
         surface_point(&ray, &sphere, h, &ctx);
     }
