@@ -23,15 +23,22 @@
 //! KIND PRECISION FAMILY | INPUTS | ANSWER [| BAND]
 //! ```
 //!
-//! - `KIND`: `box`, `triangle` or `plane`; `PRECISION`: `f32` or `f64`;
+//! - `KIND`: `box`, `triangle`, `plane`, `sphere` or `disc`;
+//!   `PRECISION`: `f32` or `f64`;
 //!   `FAMILY`: any word, the row the case is counted in.
 //! - `INPUTS`: every float as its IEEE 754 bit pattern in hex (8 digits for
 //!   `f32`, 16 for `f64`), as in the crate's corpus: `box`: origin, dir,
 //!   min, max, t_max (13 numbers); `triangle`: origin, dir, a, b, c, t_max
-//!   (16); `plane`: origin, dir, point, normal, t_max (13).
+//!   (16); `plane`: origin, dir, point, normal, t_max (13); `sphere`:
+//!   origin, dir, centre, radius, t_max (11); `disc`: origin, dir, centre,
+//!   normal, radius, inner radius, t_max (15).
 //! - `ANSWER`, the kernel's: `miss`, or `hit ENTER EXIT` (box), `hit T U V`
 //!   (triangle; any further words, like `front`, are ignored), `hit T`
-//!   (plane), in hex bit patterns.
+//!   (plane), `hit T front` or `hit T back` (sphere: entering or leaving
+//!   the ball; disc: arriving against or along the normal), in hex bit
+//!   patterns. A sphere's or disc's side must be the exact one; a wrong
+//!   side counts as a value beyond the bound (on a sphere's `edge` case
+//!   values are not held, see `rayhit::exact::judge`).
 //! - `BAND`, optional (`clear` or `edge`): ignored; the checker decides the
 //!   band itself (`rayhit::exact::band`), so corpus lines can be used as
 //!   they are.
@@ -45,8 +52,8 @@
 //!   the back counts as a miss.
 //! - `--t-ulps N`: the bound on `t` (and box entry and exit) in ulps of the
 //!   exact value. By default it is rayhit's own documented bound for the
-//!   case: `Triangle::hit_error` and `Plane::hit_error` at the exact
-//!   answer, and for boxes 16 ulps.
+//!   case: `Triangle::hit_error`, `Plane::hit_error`, `Sphere::hit_error`
+//!   and `Disc::hit_error` at the exact answer, and for boxes 16 ulps.
 
 use std::collections::BTreeMap;
 use std::fmt::Write as _;
@@ -106,11 +113,22 @@ fn judge_line<V: Vector>(
             .map_or(f64::INFINITY, |t| {
                 plane.hit_error(ray, &t.rounded).to_f64() / ulp::<V::Scalar>(t.rounded.to_f64())
             }),
+        (Case::Sphere(ray, sphere, t_max), None) => exact::ray_sphere(ray, sphere, *t_max)
+            .map_or(f64::INFINITY, |h| {
+                sphere.hit_error(ray, &h).to_f64() / ulp::<V::Scalar>(h.t.to_f64())
+            }),
+        (Case::Disc(ray, disc, t_max), None) => exact::ray_disc(ray, disc, *t_max)
+            .map_or(f64::INFINITY, |h| {
+                disc.hit_error(ray, &h).to_f64() / ulp::<V::Scalar>(h.t.to_f64())
+            }),
+        // A shape this checker has no bound for yet: hit or miss alone.
+        (_, None) => f64::INFINITY,
     };
     let mut j = exact::judge(&case, &claim, bound);
-    // Only t, entry and exit count against the bound here.
+    // Only t, entry, exit and a sphere's or disc's side count against the
+    // bound here.
     j.outside
-        .retain(|f| matches!(f, Field::T | Field::Enter | Field::Exit));
+        .retain(|f| matches!(f, Field::T | Field::Enter | Field::Exit | Field::Side));
     if opts.front_only
         && let Case::Triangle(ray, tri, t_max) = &case
         && exact::ray_triangle(ray, tri, *t_max).is_some_and(|h| h.side == Side::Back)

@@ -12,6 +12,13 @@
 //!   where its faces are unambiguous; the watertight test's `t`, `u`, `v`
 //!   within `Triangle::hit_error`; the plane's `t` within
 //!   `Plane::hit_error`;
+//! - spheres and discs: each line is the one the oracle writes for its
+//!   inputs today (answer and band); `Sphere::hit` and `Disc::hit` with a
+//!   `t_max`, judged by `exact::judge`, right with the right side on every
+//!   `clear` case, and their `t` within `hit_error` of the exact crossing
+//!   on the side they report; over `(0, t_max]` as an interval, hit or
+//!   miss as the exact answer on every case (the side too where the bound
+//!   is finite);
 //! - every transferred ray differential at a triangle hit (each component of
 //!   `dp_dx`, `dp_dy` and `du_dx` ... `dv_dy`) within
 //!   `Triangle::hit_differentials_error` of the exact transfer;
@@ -41,8 +48,9 @@ use num_traits::Signed;
 use rayhit::exact::{self, CorpusLine};
 use rayhit::glam::{DVec3, Vec3};
 use rayhit::{
-    Aabb, BoxFace, Instance, IntersectLanes, Plane, Ray, Scalar, Side, SurfacePoint, Triangle,
-    Vector, camera::RayDifferential, ray_aabb, ray_plane, ray_triangle,
+    Aabb, BoxFace, Disc, DiscHit, Instance, IntersectLanes, Plane, Ray, Scalar, Side, Sphere,
+    SphereHit, SurfacePoint, Triangle, Vector, camera::RayDifferential, ray_aabb, ray_plane,
+    ray_triangle,
 };
 use rayhit::{EdgeRule, Intersect, Surface};
 use rayhit_testkit::cases::Generator;
@@ -51,9 +59,11 @@ use rayhit_testkit::cases::boxes::BoxCase;
 use rayhit_testkit::cases::instances;
 use rayhit_testkit::cases::planes;
 use rayhit_testkit::cases::triangles::{self, TriCase};
+use rayhit_testkit::cases::{discs, spheres};
 use rayhit_testkit::oracle;
 use rayhit_testkit::oracle::{R, gamma, r, rv};
 use rayhit_testkit::source::Source;
+use std::cmp::Ordering;
 
 type S<V> = <V as Vector>::Scalar;
 
@@ -488,6 +498,216 @@ fn check_planes<V: Vector>(lines: &[String]) -> Failures {
                 let err = plane.hit_error(&ray, &t);
                 let ok = (r(t) - r(te)).abs() <= r(err) + ulp(te) / R::from_integer(2.into());
                 fail.check(ok, i, || format!("t {t:?} vs exact {te:?}, bound {err:?}"));
+            }
+            Ok(())
+        });
+    }
+    fail
+}
+
+// ------------------------------------------------------ spheres and discs
+
+const SPHERE_HEADER: &str = "origin dir center radius t_max | exact answer: miss, or hit T front|back (the first crossing in (0, t_max], the entry, else the exit; T rounded to nearest; front: entering the ball) | band: clear or edge";
+
+const DISC_HEADER: &str = "origin dir center normal radius inner_radius t_max | exact answer: miss, or hit T front|back (T rounded to nearest; front: arriving against the normal) | band: clear or edge";
+
+/// A shape whose answer is `t` and a side, as the corpus needs it: the
+/// sphere and the disc, whose files are written and checked by one code
+/// path.
+trait Sided<V: Vector>: Intersect<V> + Copy + std::fmt::Debug + Sized {
+    /// The kind, as the files and `exact::parse_case` name it.
+    const KIND: &'static str;
+    /// The files' fields.
+    const HEADER: &'static str;
+    /// The shape's inputs, in hex.
+    fn hex(&self) -> String;
+    /// The case.
+    fn case(self, ray: Ray<V>, t_max: S<V>) -> exact::Case<V>;
+    /// The shape of a case of this kind.
+    fn of(case: &exact::Case<V>) -> Option<(Ray<V>, Self, S<V>)>;
+    /// The exact answer: `t` rounded to nearest, and the side.
+    fn exact(&self, ray: &Ray<V>, t_max: S<V>) -> Option<(S<V>, Side)>;
+    /// A hit's `t`, side and error bound (`hit_error`).
+    fn parts(&self, ray: &Ray<V>, hit: &Self::Hit) -> (S<V>, Side, S<V>);
+    /// The claim of a hit.
+    fn claim(t: S<V>, side: Side) -> exact::Claim<S<V>>;
+    /// Whether the exact crossing on `side` (the sphere's entry or exit,
+    /// the disc's one crossing with its plane) is within `err` of `t`;
+    /// true where there is none (a false hit, judged by the verdict).
+    fn within(&self, ray: &Ray<V>, side: Side, t: S<V>, err: S<V>) -> bool;
+}
+
+impl<V: Vector> Sided<V> for Sphere<V> {
+    const KIND: &'static str = "sphere";
+    const HEADER: &'static str = SPHERE_HEADER;
+    fn hex(&self) -> String {
+        format!("{} {}", hex_v(self.center), hex(self.radius))
+    }
+    fn case(self, ray: Ray<V>, t_max: S<V>) -> exact::Case<V> {
+        exact::Case::Sphere(ray, self, t_max)
+    }
+    fn of(case: &exact::Case<V>) -> Option<(Ray<V>, Self, S<V>)> {
+        match case {
+            exact::Case::Sphere(ray, s, t_max) => Some((*ray, *s, *t_max)),
+            _ => None,
+        }
+    }
+    fn exact(&self, ray: &Ray<V>, t_max: S<V>) -> Option<(S<V>, Side)> {
+        exact::ray_sphere(ray, self, t_max).map(|h| (h.t, h.side))
+    }
+    fn parts(&self, ray: &Ray<V>, hit: &SphereHit<S<V>>) -> (S<V>, Side, S<V>) {
+        (hit.t, hit.side, self.hit_error(ray, hit))
+    }
+    fn claim(t: S<V>, side: Side) -> exact::Claim<S<V>> {
+        exact::Claim::Sphere { t, side }
+    }
+    fn within(&self, ray: &Ray<V>, side: Side, t: S<V>, err: S<V>) -> bool {
+        let Some(e) = oracle::sphere(ray, self.center, self.radius).filter(|e| e.line_hits())
+        else {
+            return true;
+        };
+        !err.is_finite()
+            || (e.crossing_cmp(side, &(r(t) - r(err))) != Some(Ordering::Less)
+                && e.crossing_cmp(side, &(r(t) + r(err))) != Some(Ordering::Greater))
+    }
+}
+
+impl<V: Vector> Sided<V> for Disc<V> {
+    const KIND: &'static str = "disc";
+    const HEADER: &'static str = DISC_HEADER;
+    fn hex(&self) -> String {
+        format!(
+            "{} {} {} {}",
+            hex_v(self.center),
+            hex_v(self.normal),
+            hex(self.radius),
+            hex(self.inner_radius)
+        )
+    }
+    fn case(self, ray: Ray<V>, t_max: S<V>) -> exact::Case<V> {
+        exact::Case::Disc(ray, self, t_max)
+    }
+    fn of(case: &exact::Case<V>) -> Option<(Ray<V>, Self, S<V>)> {
+        match case {
+            exact::Case::Disc(ray, d, t_max) => Some((*ray, *d, *t_max)),
+            _ => None,
+        }
+    }
+    fn exact(&self, ray: &Ray<V>, t_max: S<V>) -> Option<(S<V>, Side)> {
+        exact::ray_disc(ray, self, t_max).map(|h| (h.t, h.side))
+    }
+    fn parts(&self, ray: &Ray<V>, hit: &DiscHit<S<V>>) -> (S<V>, Side, S<V>) {
+        (hit.t, hit.side, self.hit_error(ray, hit))
+    }
+    fn claim(t: S<V>, side: Side) -> exact::Claim<S<V>> {
+        exact::Claim::Disc { t, side }
+    }
+    fn within(&self, ray: &Ray<V>, _: Side, t: S<V>, err: S<V>) -> bool {
+        oracle::disc(ray, self).is_none_or(|e| !err.is_finite() || oracle::close(t, &e.t, err))
+    }
+}
+
+fn side_name(side: Side) -> &'static str {
+    match side {
+        Side::Front => "front",
+        Side::Back => "back",
+    }
+}
+
+/// A sphere or disc case's line: the inputs, the exact answer and the
+/// band, all from the library (`exact::ray_sphere`, `exact::ray_disc`,
+/// `exact::band`).
+fn sided_line<V: Vector, T: Sided<V>>((shape, ray, t_max): &SidedCase<V, T>) -> Option<String> {
+    if !ray.is_valid() {
+        return None;
+    }
+    let answer = match shape.exact(ray, *t_max) {
+        Some((t, side)) => format!("hit {} {}", hex(t), side_name(side)),
+        None => "miss".into(),
+    };
+    let clear = exact::band(&shape.case(*ray, *t_max)) == exact::Band::Clear;
+    Some(format!(
+        "{} {} {} {} | {answer} | {}",
+        hex_v(ray.origin),
+        hex_v(ray.dir),
+        shape.hex(),
+        hex(*t_max),
+        if clear { "clear" } else { "edge" }
+    ))
+}
+
+/// A sphere or disc case: the shape, the ray and `t_max`.
+type SidedCase<V, T> = (T, Ray<V>, S<V>);
+
+/// Writes a sphere or disc file from its generators.
+fn write_sided<V: Vector, T: Sided<V>>(generators: &[Generator<SidedCase<V, T>>]) {
+    let lines: Vec<String> = draw(generators).iter().filter_map(sided_line).collect();
+    write(T::KIND, precision::<V>(), T::HEADER, &lines);
+}
+
+/// A sphere or disc file against the oracle and the kernels. Each line,
+/// read with the library's reader (`exact::CorpusEntry`), is the line the
+/// oracle writes for its inputs today (answer and band unchanged). The
+/// `t_max` form, judged by `exact::judge`: right, with the right side,
+/// on every `clear` case; wherever it hits, its `t` within its
+/// `hit_error` of the exact crossing on the side it reports (decided
+/// exactly; for a sphere, where the line meets the ball). The interval
+/// form over `(0, t_max]`, decided exactly: the exact answer and its side
+/// on every case, `edge` ones too, its `t` within `max(hit_error, succ(0))`.
+fn check_sided<V: Vector, T: Sided<V>>(lines: &[String]) -> Failures {
+    use rayhit::Interval;
+    let mut fail = Failures::default();
+    for (i, line) in lines.iter().enumerate() {
+        fail.line(i, |fail| {
+            let entry = exact::CorpusEntry::<V>::parse(T::KIND, line)?;
+            let (ray, shape, t_max) = T::of(&entry.case).ok_or("another kind")?;
+            let again = sided_line(&(shape, ray, t_max));
+            fail.check(again.as_deref() == Some(line.as_str()), i, || {
+                format!("the oracle now writes {again:?} for {line}")
+            });
+            let got = shape.hit(&ray, t_max).map(|h| shape.parts(&ray, &h));
+            let claim = got.map_or(exact::Claim::Miss, |(t, side, _)| T::claim(t, side));
+            if entry.band == exact::Band::Clear {
+                let j = exact::judge(&entry.case, &claim, f64::INFINITY);
+                fail.check(j.verdict == exact::Verdict::Right, i, || {
+                    format!(
+                        "{:?} on a clear case: {got:?}, exact {:?}",
+                        j.verdict, entry.answer
+                    )
+                });
+                fail.check(j.outside.is_empty(), i, || {
+                    format!(
+                        "{:?} wrong on a clear case: {got:?}, exact {:?}",
+                        j.outside, entry.answer
+                    )
+                });
+            }
+            if let Some((t, side, err)) = got {
+                fail.check(shape.within(&ray, side, t, err), i, || {
+                    format!("t {t:?} ({side:?}) beyond its bound {err:?} of the exact crossing")
+                });
+            }
+            let exact_side = |c: &exact::Claim<S<V>>| match *c {
+                exact::Claim::Sphere { side, .. } | exact::Claim::Disc { side, .. } => Some(side),
+                _ => None,
+            };
+            let window = Interval::up_to(t_max).ok_or("no interval up to t_max")?;
+            let within = shape.hit(&ray, window).map(|h| shape.parts(&ray, &h));
+            fail.check(within.is_some() == entry.answer.is_hit(), i, || {
+                format!("over (0, t_max]: {within:?}, exact {:?}", entry.answer)
+            });
+            // The side as the exact one, decided exactly by both forms.
+            if let Some((_, side, _)) = within {
+                fail.check(Some(side) == exact_side(&entry.answer), i, || {
+                    format!("over (0, t_max]: {within:?}, exact {:?}", entry.answer)
+                });
+            }
+            if let Some((t, side, err)) = within {
+                let tiny = S::<V>::ZERO.next_up();
+                let err = if err > tiny { err } else { tiny };
+                fail.check(shape.within(&ray, side, t, err), i, || {
+                    format!("over (0, t_max]: t {t:?} beyond its bound {err:?}")
+                });
             }
             Ok(())
         });
@@ -977,6 +1197,12 @@ fn corpus<V: Vector>() {
                 .collect();
         write("plane", p, PLANE_HEADER, &planes);
     }
+    if regenerate("sphere") {
+        write_sided(&spheres::generators::<V>());
+    }
+    if regenerate("disc") {
+        write_sided(&discs::generators::<V>());
+    }
     if regenerate("hit_differentials") {
         let mut src = Source::seeded(0xd1ff_c0de);
         let diffs: Vec<String> = (0..4 * CASES)
@@ -1022,6 +1248,8 @@ fn corpus<V: Vector>() {
         ("box", check_boxes::<V> as fn(&[String]) -> Failures),
         ("triangle", check_triangles::<V>),
         ("plane", check_planes::<V>),
+        ("sphere", check_sided::<V, Sphere<V>>),
+        ("disc", check_sided::<V, Disc<V>>),
         ("hit_differentials", check_differentials::<V>),
         ("instance_box", check_instance_boxes::<V>),
         ("instance_point", check_instance_points::<V>),
@@ -1103,8 +1331,8 @@ fn embedded_lines_in_data(names: &[&str]) -> usize {
     lines
 }
 
-/// The corpus embedded in `rayhit::exact` (`exact::corpus()`): about a
-/// thousand cases, each a line of `corpus/data` as it is, judged right with
+/// The corpus embedded in `rayhit::exact` (`exact::corpus()`): about 1700
+/// cases, each a line of `corpus/data` as it is, judged right with
 /// every value within half an ulp of the exact one and the same band.
 #[test]
 fn embedded_corpus_agrees_with_tests_data() {
@@ -1115,6 +1343,10 @@ fn embedded_corpus_agrees_with_tests_data() {
         "triangle_f64",
         "plane_f32",
         "plane_f64",
+        "sphere_f32",
+        "sphere_f64",
+        "disc_f32",
+        "disc_f64",
     ]);
     let mut count = 0;
     fn check<V: Vector>(e: &exact::CorpusEntry<V>) {
@@ -1131,7 +1363,8 @@ fn embedded_corpus_agrees_with_tests_data() {
         count += 1;
     }
     assert_eq!(count, lines);
-    assert!((900..=1200).contains(&count), "{count}");
+    // Every 12th of the ten files' 2048 or so cases.
+    assert!((1600..=1800).contains(&count), "{count}");
 }
 
 /// The instance corpus embedded in `rayhit::exact`

@@ -7,20 +7,21 @@ use std::vec::Vec;
 
 use super::{Band, Case, Claim};
 use crate::glam::{DVec3, Vec3};
-use crate::{Aabb, Plane, Ray, Scalar, Triangle, Vector};
+use crate::{Aabb, Disc, Plane, Ray, Scalar, Side, Sphere, Triangle, Vector};
 
 /// One corpus case of precision `V`: the case, its exact answer (values
 /// rounded to nearest) and its band.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct CorpusEntry<V: Vector> {
-    /// The family: `box`, `triangle` or `plane`.
+    /// The family: `box`, `triangle`, `plane`, `sphere` or `disc`.
     pub kind: &'static str,
     /// The question.
     pub case: Case<V>,
     /// The exact answer, as a claim: [`Claim::Miss`], or the hit with its
     /// exact values rounded to nearest (box: entry and exit; triangle: `t`,
-    /// `u`, `v`; plane: `t`). [`judge`](super::judge) finds it right, each
-    /// value within half an ulp.
+    /// `u`, `v`; plane: `t`; sphere and disc: `t` and the side).
+    /// [`judge`](super::judge) finds it right, each value within half an
+    /// ulp.
     pub answer: Claim<V::Scalar>,
     /// Outside (`Clear`) or inside (`Edge`) the crate's rounding band: see
     /// [`band`](super::band).
@@ -37,13 +38,17 @@ pub enum CorpusCase {
 }
 
 /// The embedded files of [`corpus`]: kind, whether single precision, text.
-const FILES: [(&str, bool, &str); 6] = [
+const FILES: [(&str, bool, &str); 10] = [
     ("box", true, include_str!("data/box_f32.txt")),
     ("box", false, include_str!("data/box_f64.txt")),
     ("triangle", true, include_str!("data/triangle_f32.txt")),
     ("triangle", false, include_str!("data/triangle_f64.txt")),
     ("plane", true, include_str!("data/plane_f32.txt")),
     ("plane", false, include_str!("data/plane_f64.txt")),
+    ("sphere", true, include_str!("data/sphere_f32.txt")),
+    ("sphere", false, include_str!("data/sphere_f64.txt")),
+    ("disc", true, include_str!("data/disc_f32.txt")),
+    ("disc", false, include_str!("data/disc_f64.txt")),
 ];
 
 /// Reads a float written as its IEEE 754 bit pattern in hex, as the corpus
@@ -294,12 +299,14 @@ impl<'a> CorpusFields<'a> {
 }
 
 /// Reads a case and an answer in the corpus's text form: `kind` is `box`,
-/// `triangle` or `plane`; `inputs` the case's floats as IEEE bit patterns
-/// in hex (box: origin, dir, min, max, `t_max`; triangle: origin, dir, a,
-/// b, c, `t_max`; plane: origin, dir, point, normal, `t_max`); `answer`
+/// `triangle`, `plane`, `sphere` or `disc`; `inputs` the case's floats as
+/// IEEE bit patterns in hex (box: origin, dir, min, max, `t_max`;
+/// triangle: origin, dir, a, b, c, `t_max`; plane: origin, dir, point,
+/// normal, `t_max`; sphere: origin, dir, centre, radius, `t_max`; disc:
+/// origin, dir, centre, normal, radius, inner radius, `t_max`); `answer`
 /// `miss`, or `hit` and the values (box: entry, exit; triangle: `t`, `u`,
-/// `v`; plane: `t`) in hex, any further words ignored. An error says what
-/// is wrong.
+/// `v`; plane: `t`; sphere and disc: `t` and the side, `front` or `back`)
+/// in hex, any further words ignored. An error says what is wrong.
 ///
 /// ```
 /// use rayhit::{exact::{self, Case, Claim}, glam::Vec3};
@@ -312,6 +319,16 @@ impl<'a> CorpusFields<'a> {
 /// .unwrap();
 /// assert!(matches!(case, Case::Plane(..)));
 /// assert_eq!(claim, Claim::Plane { t: 1.0 });
+/// // The unit sphere from z = -3 along z: in at t = 2.
+/// let (case, claim) = exact::parse_case::<Vec3>(
+///     "sphere",
+///     "00000000 00000000 c0400000 00000000 00000000 3f800000 \
+///      00000000 00000000 00000000 3f800000 7f800000",
+///     "hit 40000000 front",
+/// )
+/// .unwrap();
+/// assert!(matches!(case, Case::Sphere(..)));
+/// assert_eq!(claim, Claim::Sphere { t: 2.0, side: rayhit::Side::Front });
 /// ```
 pub fn parse_case<V: Vector>(
     kind: &str,
@@ -320,7 +337,9 @@ pub fn parse_case<V: Vector>(
 ) -> Result<(Case<V>, Claim<V::Scalar>), String> {
     let n: Vec<V::Scalar> = CorpusFields::new(inputs).rest()?;
     let want = match kind {
+        "sphere" => 11,
         "box" | "plane" => 13,
+        "disc" => 15,
         "triangle" => 16,
         _ => return Err(format!("unknown kind {kind}")),
     };
@@ -333,18 +352,27 @@ pub fn parse_case<V: Vector>(
         Ok("miss") => false,
         _ => return Err("the answer is neither `hit` nor `miss`".into()),
     };
-    let mut x = || -> Result<V::Scalar, String> {
-        parse_bits(a.word().map_err(|_| "too few numbers in the answer")?)
+    let words: Vec<&str> = core::iter::from_fn(|| a.word().ok()).collect();
+    let x = |i: usize| -> Result<V::Scalar, String> {
+        parse_bits(words.get(i).ok_or("too few numbers in the answer")?)
     };
     let v = |i: usize| V::new(n[i], n[i + 1], n[i + 2]);
     let ray = Ray::new(v(0), v(3));
+    // `t` and the side (sphere, disc).
+    let sided = || -> Result<(V::Scalar, Side), String> {
+        match words.get(1) {
+            Some(&"front") => Ok((x(0)?, Side::Front)),
+            Some(&"back") => Ok((x(0)?, Side::Back)),
+            _ => Err("the side is neither `front` nor `back`".into()),
+        }
+    };
     Ok(match kind {
         "box" => (
             Case::Box(ray, Aabb::new(v(6), v(9)), n[12]),
             if hit {
                 Claim::Box {
-                    enter: x()?,
-                    exit: x()?,
+                    enter: x(0)?,
+                    exit: x(1)?,
                 }
             } else {
                 Claim::Miss
@@ -354,10 +382,28 @@ pub fn parse_case<V: Vector>(
             Case::Triangle(ray, Triangle::new(v(6), v(9), v(12)), n[15]),
             if hit {
                 Claim::Triangle {
-                    t: x()?,
-                    u: x()?,
-                    v: x()?,
+                    t: x(0)?,
+                    u: x(1)?,
+                    v: x(2)?,
                 }
+            } else {
+                Claim::Miss
+            },
+        ),
+        "sphere" => (
+            Case::Sphere(ray, Sphere::new(v(6), n[9]), n[10]),
+            if hit {
+                let (t, side) = sided()?;
+                Claim::Sphere { t, side }
+            } else {
+                Claim::Miss
+            },
+        ),
+        "disc" => (
+            Case::Disc(ray, Disc::annulus(v(6), v(9), n[12], n[13]), n[14]),
+            if hit {
+                let (t, side) = sided()?;
+                Claim::Disc { t, side }
             } else {
                 Claim::Miss
             },
@@ -365,7 +411,7 @@ pub fn parse_case<V: Vector>(
         _ => (
             Case::Plane(ray, Plane::new(v(6), v(9)), n[12]),
             if hit {
-                Claim::Plane { t: x()? }
+                Claim::Plane { t: x(0)? }
             } else {
                 Claim::Miss
             },
@@ -374,11 +420,12 @@ pub fn parse_case<V: Vector>(
 }
 
 impl<V: Vector> CorpusEntry<V> {
-    /// Reads a line of a box, triangle or plane corpus file (`kind` is
-    /// `box`, `triangle` or `plane`): `INPUTS | ANSWER | BAND`, the inputs
-    /// and the answer as [`parse_case`] reads them, the band `clear` or
-    /// `edge`. This reads the embedded [`corpus`], and the repository's
-    /// full corpus (`corpus/data/{box,triangle,plane}_{f32,f64}.txt`) just
+    /// Reads a line of a box, triangle, plane, sphere or disc corpus file
+    /// (`kind` is `box`, `triangle`, `plane`, `sphere` or `disc`): `INPUTS |
+    /// ANSWER | BAND`, the inputs and the answer as [`parse_case`] reads
+    /// them, the band `clear` or `edge`. This reads the embedded
+    /// [`corpus`], and the repository's full corpus
+    /// (`corpus/data/{box,triangle,plane,sphere,disc}_{f32,f64}.txt`) just
     /// as well. An error says what is wrong.
     ///
     /// ```
@@ -399,6 +446,8 @@ impl<V: Vector> CorpusEntry<V> {
             "box" => "box",
             "triangle" => "triangle",
             "plane" => "plane",
+            "sphere" => "sphere",
+            "disc" => "disc",
             _ => return Err(format!("unknown kind {kind}")),
         };
         let line = CorpusLine::new(line);
@@ -416,11 +465,13 @@ impl<V: Vector> CorpusEntry<V> {
     }
 }
 
-/// The embedded regression corpus: about 1000 box, triangle and plane cases
-/// in both precisions (a sample of the repository's corpus), each decided in
-/// exact arithmetic and placed in or out of the rounding band, built around
-/// faces, edges, corners, slivers, grazing rays and extreme scales. Parsed
-/// on each call (cheap next to judging).
+/// The embedded regression corpus: about 1700 box, triangle, plane, sphere
+/// and disc cases in both precisions (a sample of the repository's
+/// corpus), each decided in exact arithmetic and placed in or out of the
+/// rounding band, built around faces, edges, corners, slivers, grazing
+/// rays (tangents of spheres among them), rays from inside spheres, the
+/// circles of discs and their holes, and extreme scales. Parsed on each
+/// call (cheap next to judging).
 ///
 /// ```
 /// use rayhit::exact::{self, Band, CorpusCase, Verdict};

@@ -14,6 +14,11 @@
 //!   `t_min < t <= t_max`;
 //! - plane ([`ray_plane`]): `0 < t <= t_max`, no hit when parallel; over
 //!   an interval ([`Plane`'s `hit` over an interval](crate::Plane#method.hit)), `t_min < t <= t_max`;
+//! - sphere ([`ray_sphere`]): the first crossing (entry, else exit) in
+//!   `0 < t <= t_max`, its irrational `t` rounded to nearest by exact
+//!   comparisons;
+//! - disc ([`ray_disc`]): both circles closed, `0 < t <= t_max`, no hit
+//!   when parallel;
 //! - invalid input (a non-finite coordinate, a zero direction, an inverted
 //!   box, a zero plane normal, a NaN `t_max`) is a miss, never a panic.
 //!
@@ -152,7 +157,9 @@ use std::vec::Vec;
 
 use num_traits::{Signed, Zero};
 
-use crate::{Aabb, BoxFace, Plane, Ray, Scalar, Side, Triangle, Vector};
+use crate::{
+    Aabb, BoxFace, Disc, DiscHit, Plane, Ray, Scalar, Side, Sphere, SphereHit, Triangle, Vector,
+};
 
 pub use num_bigint;
 pub use num_rational;
@@ -645,6 +652,111 @@ pub fn ray_plane<V: Vector>(
         return None;
     }
     oracle::plane_hit(ray, plane, t_max).map(Exact::new)
+}
+
+/// Exact ray/sphere: the first crossing of the ray with the sphere in `0
+/// < t <= t_max` (the entry where it is in range, else the exit; a tangent
+/// line's double crossing is an entry), its `t` rounded to the nearest
+/// float (the crossing is a root of a quadratic, irrational in general:
+/// it is placed between floats exactly, see
+/// [`ExactSphere::rounded`](oracle::ExactSphere::rounded)) and its side
+/// ([`Side::Front`] entering the ball); `None` for a miss or invalid
+/// input (see [`Ray::is_valid`]; a NaN or infinite centre or radius, a
+/// NaN `t_max`). The question [`Sphere`'s `hit`](crate::Sphere#method.hit)
+/// answers with rounding; the exact comparisons themselves are
+/// [`oracle::sphere`]'s.
+///
+/// ```
+/// use rayhit::{Ray, Side, Sphere, exact, glam::Vec3};
+/// let ball = Sphere::new(Vec3::ZERO, 1.0);
+/// // From (0.5, 0, -2) along z: in at t = 2 - sqrt(3) / 2, out at 2 + sqrt(3) / 2.
+/// let ray = Ray::new(Vec3::new(0.5, 0.0, -2.0), Vec3::Z);
+/// let hit = exact::ray_sphere(&ray, &ball, f32::INFINITY).unwrap();
+/// assert_eq!((hit.t, hit.side), ((2.0 - 3f64.sqrt() / 2.0) as f32, Side::Front));
+/// // Up to t = 2 only the entry; from inside the exit.
+/// assert!(exact::ray_sphere(&ray, &ball, 1.0).is_none());
+/// let inside = Ray::new(Vec3::ZERO, Vec3::Z);
+/// assert_eq!(exact::ray_sphere(&inside, &ball, f32::INFINITY).map(|h| (h.t, h.side)), Some((1.0, Side::Back)));
+/// ```
+#[must_use]
+pub fn ray_sphere<V: Vector>(
+    ray: &Ray<V>,
+    sphere: &Sphere<V>,
+    t_max: V::Scalar,
+) -> Option<SphereHit<V::Scalar>> {
+    sphere_first(ray, sphere, t_max).map(|(_, hit)| hit)
+}
+
+/// [`ray_sphere`]'s answer with the exact line it came from.
+pub(crate) fn sphere_first<V: Vector>(
+    ray: &Ray<V>,
+    sphere: &Sphere<V>,
+    t_max: V::Scalar,
+) -> Option<(oracle::ExactSphere, SphereHit<V::Scalar>)> {
+    if !(ray.is_valid()
+        && sphere.center.is_finite()
+        && sphere.radius.is_finite()
+        && valid_limit(t_max))
+    {
+        return None;
+    }
+    let e = oracle::sphere(ray, sphere.center, sphere.radius)?;
+    let side = e.first_in(&Rational::zero(), oracle::limit(t_max).as_ref())?;
+    let t = e.rounded(side)?;
+    Some((e, SphereHit { t, side }))
+}
+
+/// Exact ray/disc: the crossing with the disc's plane in `0 < t <= t_max`
+/// where it lies within both closed circles (the annulus between the
+/// radii, by magnitude), its `t` rounded to nearest and its side
+/// ([`Side::Front`] arriving against the normal); `None` for a miss, a ray
+/// parallel to the plane, or invalid input (see [`Ray::is_valid`]; a NaN
+/// or infinite value of the disc, a zero normal, a NaN `t_max`). The
+/// question [`Disc`'s `hit`](crate::Disc#method.hit) answers with rounding;
+/// the exact crossing itself (`t` as a rational, the squared distance from
+/// the centre) is [`oracle::disc`]'s.
+///
+/// ```
+/// use rayhit::{Disc, Ray, Side, exact, glam::Vec3};
+/// let ring = Disc::annulus(Vec3::ZERO, Vec3::Z, 2.0, 1.0);
+/// // Down onto the inner circle at (1, 0, 0): on the rim, so hit.
+/// let ray = Ray::new(Vec3::new(1.0, 0.0, 3.0), Vec3::new(0.0, 0.0, -3.0));
+/// let hit = exact::ray_disc(&ray, &ring, f32::INFINITY).unwrap();
+/// assert_eq!((hit.t, hit.side), (1.0, Side::Front));
+/// // Through the hole.
+/// let hole = Ray::new(Vec3::new(0.5, 0.0, 3.0), -Vec3::Z);
+/// assert!(exact::ray_disc(&hole, &ring, f32::INFINITY).is_none());
+/// ```
+#[must_use]
+pub fn ray_disc<V: Vector>(
+    ray: &Ray<V>,
+    disc: &Disc<V>,
+    t_max: V::Scalar,
+) -> Option<DiscHit<V::Scalar>> {
+    disc_first(ray, disc, t_max).map(|(_, hit)| hit)
+}
+
+/// [`ray_disc`]'s answer with the exact crossing it came from.
+pub(crate) fn disc_first<V: Vector>(
+    ray: &Ray<V>,
+    disc: &Disc<V>,
+    t_max: V::Scalar,
+) -> Option<(oracle::ExactDisc, DiscHit<V::Scalar>)> {
+    if !(ray.is_valid() && valid_limit(t_max)) {
+        return None;
+    }
+    let e = oracle::disc(ray, disc)?;
+    if !(disc.radius.is_finite()
+        && disc.inner_radius.is_finite()
+        && e.hit_in(&Rational::zero(), oracle::limit(t_max).as_ref()))
+    {
+        return None;
+    }
+    let hit = DiscHit {
+        t: round(&e.t),
+        side: e.side,
+    };
+    Some((e, hit))
 }
 
 /// Exact ray/plane over an interval: the crossing `t` with `t_min < t <=

@@ -1,17 +1,20 @@
 //! Judging a claimed answer against the exact one.
 
+use core::cmp::Ordering;
 use core::fmt;
 use std::vec::Vec;
 
 use super::oracle::{self, R};
-use num_traits::Signed;
+use num_traits::{Signed, Zero};
 
 use super::{Rational, rational};
-use crate::{Aabb, Plane, Ray, Scalar, Triangle, Vector};
+use crate::{Aabb, Disc, Plane, Ray, Scalar, Side, Sphere, Triangle, Vector};
 
-/// One question a kernel answers: a ray against a box, a triangle or a
-/// plane, with the limit `t_max`.
+/// One question a kernel answers: a ray against a box, a triangle, a
+/// plane, a sphere or a disc, with the limit `t_max`. New shapes add
+/// variants (hence `non_exhaustive`).
 #[derive(Clone, Copy, Debug, PartialEq)]
+#[non_exhaustive]
 pub enum Case<V: Vector> {
     /// Ray/box, `t` in `[0, t_max]`.
     Box(Ray<V>, Aabb<V>, V::Scalar),
@@ -19,10 +22,17 @@ pub enum Case<V: Vector> {
     Triangle(Ray<V>, Triangle<V>, V::Scalar),
     /// Ray/plane, `0 < t <= t_max`.
     Plane(Ray<V>, Plane<V>, V::Scalar),
+    /// Ray/sphere, the first crossing (entry, else exit) in `0 < t <=
+    /// t_max`.
+    Sphere(Ray<V>, Sphere<V>, V::Scalar),
+    /// Ray/disc (both circles closed, two-sided), `0 < t <= t_max`.
+    Disc(Ray<V>, Disc<V>, V::Scalar),
 }
 
-/// What a kernel answered for a [`Case`].
+/// What a kernel answered for a [`Case`]; one variant per shape (new
+/// shapes add variants).
 #[derive(Clone, Copy, Debug, PartialEq)]
+#[non_exhaustive]
 pub enum Claim<F> {
     /// No hit.
     Miss,
@@ -46,6 +56,21 @@ pub enum Claim<F> {
     Plane {
         /// Claimed `t`.
         t: F,
+    },
+    /// A sphere hit: the crossing and whether it enters the ball.
+    Sphere {
+        /// Claimed `t`.
+        t: F,
+        /// Claimed side: [`Side::Front`] entering the ball,
+        /// [`Side::Back`] leaving it.
+        side: Side,
+    },
+    /// A disc hit.
+    Disc {
+        /// Claimed `t`.
+        t: F,
+        /// Claimed side: [`Side::Front`] arriving against the normal.
+        side: Side,
     },
 }
 
@@ -81,19 +106,23 @@ pub enum Band {
     Edge,
 }
 
-/// A claimed value: which one.
+/// A claimed value: which one (new shapes may add fields).
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+#[non_exhaustive]
 pub enum Field {
     /// Box entry.
     Enter,
     /// Box exit.
     Exit,
-    /// Triangle or plane `t`.
+    /// Triangle, plane, sphere or disc `t`.
     T,
     /// Triangle `u`.
     U,
     /// Triangle `v`.
     V,
+    /// Sphere or disc side (entering or leaving the ball, arriving
+    /// against or along the normal).
+    Side,
 }
 
 /// The judgement of one claim.
@@ -108,9 +137,12 @@ pub struct Judgement {
     pub distance_ulps: f64,
     /// For a right hit, each claimed value's error: `t`, entry and exit in
     /// ulps of the exact value (the spacing of floats at its magnitude),
-    /// `u` and `v` in ulps of 1 (they are fractions of the triangle).
+    /// `u` and `v` in ulps of 1 (they are fractions of the triangle), a
+    /// side 0 when right and infinite when wrong.
     pub errors: Vec<(Field, f64)>,
-    /// The fields whose error exceeds the bound given to [`judge`].
+    /// The fields whose error exceeds the bound given to [`judge`], and a
+    /// wrong side whatever the bound (none for a sphere case in the `Edge`
+    /// band: see [`judge`]).
     pub outside: Vec<Field>,
 }
 
@@ -156,7 +188,32 @@ fn valid<V: Vector>(case: &Case<V>) -> bool {
                 && p.normal.is_finite()
                 && t_max.partial_cmp(t_max).is_some()
         }
+        Case::Sphere(ray, s, t_max) => {
+            ray.is_valid()
+                && s.center.is_finite()
+                && s.radius.is_finite()
+                && t_max.partial_cmp(t_max).is_some()
+        }
+        Case::Disc(ray, d, t_max) => {
+            ray.is_valid()
+                && d.center.is_finite()
+                && d.normal.is_finite()
+                && d.radius.is_finite()
+                && d.inner_radius.is_finite()
+                && t_max.partial_cmp(t_max).is_some()
+        }
     }
+}
+
+/// `gap`, the distance of a ray from its decisive boundary, with the
+/// distance along the ray from the crossing at `t` (about) to 0 and
+/// `t_max` where that is smaller (`speed` the direction's length).
+fn along<F: Scalar>(gap: f64, t: f64, t_max: F, speed: f64) -> f64 {
+    let mut gap = gap.min(t.abs() * speed);
+    if t_max.is_finite() {
+        gap = gap.min((t - t_max.to_f64()).abs() * speed);
+    }
+    gap
 }
 
 /// How far the case's ray is from the boundary that decides hit or miss, in
@@ -173,7 +230,15 @@ fn valid<V: Vector>(case: &Case<V>) -> bool {
 ///   or, if smaller, the distance along the ray from the crossing to `t = 0`
 ///   or `t_max`;
 /// - plane: the distance in `t` from the crossing to 0 or `t_max`, times the
-///   largest direction component.
+///   largest direction component;
+/// - sphere: the distance of the ray's line from tangency (`||l| - r|`,
+///   `l` the centre's offset from the line), or, if smaller, the distance
+///   along the ray from the first crossing ahead (the exit where none is
+///   ahead) to `t = 0` or `t_max`; the radius counts among the
+///   coordinates;
+/// - disc: the distance of the crossing from the nearer circle, or, if
+///   smaller, the distance along the ray from it to `t = 0` or `t_max`;
+///   the outer radius counts among the coordinates.
 #[must_use]
 pub fn distance_ulps<V: Vector>(case: &Case<V>) -> f64 {
     if !valid(case) {
@@ -203,11 +268,7 @@ pub fn distance_ulps<V: Vector>(case: &Case<V>) -> f64 {
                     }
                 }
                 if let Some(t) = &ex.t {
-                    let dlen = f(&oracle::dot(&d, &d)).sqrt();
-                    gap = gap.min(f(t).abs() * dlen);
-                    if t_max.is_finite() {
-                        gap = gap.min((f(t) - t_max.to_f64()).abs() * dlen);
-                    }
+                    gap = along(gap, f(t), *t_max, f(&oracle::dot(&d, &d)).sqrt());
                 }
                 Some(gap)
             };
@@ -225,6 +286,48 @@ pub fn distance_ulps<V: Vector>(case: &Case<V>) -> f64 {
                 };
                 edge * dmax / oracle::ulp::<V::Scalar>(scale)
             })
+        }
+        Case::Sphere(ray, s, t_max) => {
+            let scale = max_abs(&[ray.origin, s.center]).max(s.radius.to_f64().abs());
+            let gap = || -> Option<f64> {
+                let e = oracle::sphere(ray, s.center, s.radius)?;
+                let (a, y, r) = (f(&e.a), f(&e.discriminant()), s.radius.to_f64().abs());
+                // y = a (r^2 - |l|^2), so ||l| - r| = |y| / (a (|l| + r)).
+                let l = (r * r - y / a).max(0.0).sqrt();
+                let tangent = if l + r > 0.0 {
+                    y.abs() / a / (l + r)
+                } else {
+                    0.0
+                };
+                if !e.line_hits() {
+                    return Some(tangent);
+                }
+                let side = e.first_in(&Rational::zero(), None).unwrap_or(Side::Back);
+                Some(along(tangent, e.estimate(side), *t_max, a.sqrt()))
+            };
+            let g = gap().map_or(f64::INFINITY, |g| g / oracle::ulp::<V::Scalar>(scale));
+            if g.is_nan() { f64::INFINITY } else { g }
+        }
+        Case::Disc(ray, d, t_max) => {
+            let (outer, inner) = (d.radius.to_f64().abs(), d.inner_radius.to_f64().abs());
+            let scale = max_abs(&[ray.origin, d.center]).max(outer);
+            let gap = || -> Option<f64> {
+                let e = oracle::disc(ray, d)?;
+                let dist = f(&e.dist2).sqrt();
+                let mut rim = (dist - outer).abs();
+                if inner > 0.0 {
+                    rim = rim.min((dist - inner).abs());
+                }
+                let dd = oracle::rv(ray.dir)?;
+                Some(along(
+                    rim,
+                    f(&e.t),
+                    *t_max,
+                    f(&oracle::dot(&dd, &dd)).sqrt(),
+                ))
+            };
+            let g = gap().map_or(f64::INFINITY, |g| g / oracle::ulp::<V::Scalar>(scale));
+            if g.is_nan() { f64::INFINITY } else { g }
         }
     }
 }
@@ -246,7 +349,18 @@ pub fn distance_ulps<V: Vector>(case: &Case<V>) -> f64 {
 ///   parallel to the plane and a triangle of zero area are never clear (the
 ///   exact determinant is zero, a rounded one need not be);
 /// - plane: not within rounding of parallel and the crossing farther than
-///   [`Plane`'s `hit_error`](crate::Plane#method.hit_error) from 0 and `t_max`.
+///   [`Plane`'s `hit_error`](crate::Plane#method.hit_error) from 0 and `t_max`;
+/// - sphere ([`oracle::sphere_clear`]): the line not within (twice) the
+///   miss test's rounding of tangent, the origin not within rounding of
+///   the sphere, and the first crossing ahead farther than
+///   [`Sphere`'s `hit_error`](crate::Sphere#method.hit_error) from 0 and
+///   `t_max`; in this band a correct kernel may report a line that misses
+///   by a rounding error, drop a crossing just ahead of the origin or
+///   report the other one, and its `t` may be as ill-conditioned as a
+///   square root;
+/// - disc ([`oracle::disc_clear`]): as the plane, the crossing more than
+///   three times its bound from 0 and no value near underflow; the rims
+///   need no band (the crate's kernel decides them exactly).
 #[must_use]
 pub fn band<V: Vector>(case: &Case<V>) -> Band {
     let clear = !valid(case)
@@ -254,6 +368,8 @@ pub fn band<V: Vector>(case: &Case<V>) -> Band {
             Case::Box(ray, b, t_max) => oracle::box_clear(ray, b, *t_max),
             Case::Triangle(ray, tri, t_max) => oracle::triangle_clear(ray, tri, *t_max),
             Case::Plane(ray, p, t_max) => oracle::plane_clear(ray, p, *t_max),
+            Case::Sphere(ray, s, t_max) => oracle::sphere_clear(ray, s, *t_max),
+            Case::Disc(ray, d, t_max) => oracle::disc_clear(ray, d, *t_max),
         };
     if clear { Band::Clear } else { Band::Edge }
 }
@@ -271,12 +387,88 @@ fn rel_err<F: Scalar>(claimed: F, exact: &Rational) -> f64 {
     err_in(claimed, exact, oracle::ulp::<F>(f(exact)))
 }
 
+/// `|claimed - x|` in ulps of `x`, for a value `x` known by comparisons
+/// (`place`, as [`oracle::nearest_float`] takes it) whose nearest float is
+/// `near`: `x` is bracketed between the midpoints around `near`, and the
+/// bracket halved 24 times, so the error is exact to `2^-24` ulps (the
+/// distance to the bracket, never more than the true error: so the
+/// nearest float is within half an ulp).
+fn root_err<F: Scalar>(claimed: F, near: F, place: impl Fn(&Rational) -> Ordering) -> f64 {
+    let (Some(c), Some(n), Some(below), Some(above)) = (
+        rational(claimed),
+        rational(near),
+        rational(near.next_down()),
+        rational(near.next_up()),
+    ) else {
+        return f64::INFINITY;
+    };
+    let two = Rational::from_integer(2.into());
+    let (mut lo, mut hi) = ((below + &n) / &two, (n + above) / &two);
+    for _ in 0..24 {
+        let mid = (&lo + &hi) / &two;
+        match place(&mid) {
+            Ordering::Greater => lo = mid,
+            Ordering::Less => hi = mid,
+            Ordering::Equal => {
+                (lo, hi) = (mid.clone(), mid);
+                break;
+            }
+        }
+    }
+    let gap = if c < lo {
+        &lo - c
+    } else if c > hi {
+        c - &hi
+    } else {
+        Rational::zero()
+    };
+    f(&gap) / oracle::ulp::<F>(f(&lo))
+}
+
+/// The claimed side against the exact one: 0 or infinitely wrong.
+fn side_err(claimed: Side, exact: Side) -> (Field, f64) {
+    (
+        Field::Side,
+        if claimed == exact { 0.0 } else { f64::INFINITY },
+    )
+}
+
 /// Judges `claim` for `case`: right, false hit or false miss, the case's
 /// band and distance from the boundary, and for a right hit the error of
 /// each claimed value, with those over `bound_ulps` listed (`t`, entry,
-/// exit in ulps of the exact value, `u`, `v` in ulps of 1; see
-/// [`Judgement::errors`]). A claim of the wrong kind (a triangle hit for a
-/// box case) counts as a hit with every value infinitely wrong.
+/// exit in ulps of the exact value, `u`, `v` in ulps of 1, a wrong side
+/// infinitely wrong; see [`Judgement::errors`]). A claim of the wrong kind
+/// (a triangle hit for a box case) counts as a hit with every value
+/// infinitely wrong.
+///
+/// Spheres and discs: the exact answer is the first crossing in `(0,
+/// t_max]` ([`ray_sphere`](super::ray_sphere), [`ray_disc`](super::ray_disc));
+/// a claimed hit is right where the exact answer hits, its `t` is
+/// measured in ulps of the exact crossing (a sphere's, irrational, to
+/// within `2^-24` ulps) and its side must be the exact one (a wrong side
+/// is listed in [`Judgement::outside`] whatever `bound_ulps`). On a sphere
+/// case in the `Edge` band ([`band`]: within rounding of tangent, an
+/// origin within rounding of the sphere, a crossing within its bound of 0
+/// or `t_max`) the values are measured but not held to `bound_ulps`
+/// ([`Judgement::outside`] stays empty): there a kernel with the crate's
+/// guarantees may report the other crossing, or a `t` whose error grows as
+/// the square root of the discriminant's rounding. On `Clear` cases they
+/// are held to it, and the crate's own bound there is
+/// [`Sphere`'s `hit_error`](crate::Sphere#method.hit_error) (in ulps of
+/// `t`: a few, more where the origin is close to the sphere, as `|o -
+/// c|^2 - r^2` cancels).
+///
+/// ```
+/// use rayhit::{Ray, Side, Sphere, exact, glam::Vec3};
+/// use rayhit::exact::{Band, Case, Claim, Field, Verdict};
+/// let case = Case::Sphere(Ray::new(Vec3::new(0.0, 0.0, -3.0), Vec3::Z), Sphere::new(Vec3::ZERO, 1.0), f32::INFINITY);
+/// let j = exact::judge(&case, &Claim::Sphere { t: 2.0, side: Side::Front }, 1.0);
+/// assert_eq!((j.verdict, j.band), (Verdict::Right, Band::Clear));
+/// assert!(j.outside.is_empty());
+/// // The exit, claimed as the first crossing: the side and t are wrong.
+/// let j = exact::judge(&case, &Claim::Sphere { t: 4.0, side: Side::Back }, 1.0);
+/// assert_eq!((j.verdict, j.outside), (Verdict::Right, vec![Field::T, Field::Side]));
+/// ```
 ///
 /// ```
 /// use rayhit::{Ray, Triangle, exact, glam::Vec3};
@@ -319,6 +511,25 @@ pub fn judge<V: Vector>(case: &Case<V>, claim: &Claim<V::Scalar>, bound_ulps: f6
             }
             ex.is_some()
         }
+        Case::Sphere(ray, s, t_max) => {
+            let ex = super::sphere_first(ray, s, *t_max);
+            if let (Some((e, h)), Claim::Sphere { t, side }) = (&ex, claim) {
+                let err = e
+                    .place(h.side)
+                    .map_or(f64::INFINITY, |p| root_err(*t, h.t, p));
+                errors.push((Field::T, err));
+                errors.push(side_err(*side, h.side));
+            }
+            ex.is_some()
+        }
+        Case::Disc(ray, d, t_max) => {
+            let ex = super::disc_first(ray, d, *t_max);
+            if let (Some((e, h)), Claim::Disc { t, side }) = (&ex, claim) {
+                errors.push((Field::T, rel_err(*t, &e.t)));
+                errors.push(side_err(*side, h.side));
+            }
+            ex.is_some()
+        }
     };
     if exact_hit && claim.is_hit() && errors.is_empty() {
         // A hit of the wrong kind.
@@ -329,14 +540,17 @@ pub fn judge<V: Vector>(case: &Case<V>, claim: &Claim<V::Scalar>, bound_ulps: f6
         (false, true) => Verdict::FalseMiss,
         _ => Verdict::Right,
     };
+    let band = band(case);
+    // A sphere's Edge case holds no value to the bound (see above).
+    let held = !(matches!(case, Case::Sphere(..)) && band == Band::Edge);
     let outside = errors
         .iter()
-        .filter(|e| !(e.1 <= bound_ulps))
+        .filter(|e| held && (!(e.1 <= bound_ulps) || (e.0 == Field::Side && e.1 > 0.0)))
         .map(|e| e.0)
         .collect();
     Judgement {
         verdict,
-        band: band(case),
+        band,
         distance_ulps: distance_ulps(case),
         errors,
         outside,

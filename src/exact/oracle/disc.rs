@@ -2,7 +2,7 @@
 //! plane, and whether that point lies within the disc's two circles.
 
 use super::values::*;
-use crate::{Disc, Ray, Side, Vector};
+use crate::{Disc, Plane, Ray, Scalar, Side, Vector};
 use core::cmp::Ordering;
 use num_traits::{Signed, Zero};
 
@@ -72,4 +72,34 @@ pub fn disc<V: Vector>(ray: &Ray<V>, disc: &Disc<V>) -> Option<ExactDisc> {
         },
         t,
     })
+}
+
+/// The disc case is outside the ray/disc test's rounding band (the `t_max`
+/// form's: see [`Disc`'s `hit`](crate::Disc#method.hit)): the plane's band
+/// ([`plane_clear`](super::plane_clear): not within rounding of parallel,
+/// the crossing farther than its bound from `t_max`), the crossing more
+/// than three times its bound from 0 (the test drops a crossing within its
+/// bound of 0, judged on the computed `t`), and `|t*|`, `|(c - o) . n|`
+/// and `|d . n|` each at least `16 MIN_POSITIVE / u` (twice the floor
+/// below which the test's bound is not used). The rims need no band: the
+/// test decides them exactly. False (an `Edge` case) elsewhere, and when
+/// a value is not finite or the direction is zero.
+#[must_use]
+pub fn disc_clear<V: Vector>(ray: &Ray<V>, dsc: &Disc<V>, t_max: V::Scalar) -> bool {
+    let finite = dsc.radius.is_finite() && dsc.inner_radius.is_finite();
+    let plane = Plane::new(dsc.center, dsc.normal);
+    let Some(e) = disc(ray, dsc).filter(|_| finite) else {
+        return false;
+    };
+    let (Some(o), Some(d), Some(c), Some(n)) =
+        (rv(ray.origin), rv(ray.dir), rv(dsc.center), rv(dsc.normal))
+    else {
+        return false;
+    };
+    let floor = int(16) * constant(V::Scalar::MIN_POSITIVE) / constant(V::Scalar::UNIT_ROUNDOFF);
+    let above = |x: R| x.abs() >= floor;
+    super::plane::crossing_clear(ray, &plane, t_max, 3)
+        && above(e.t)
+        && above(dot(&sub(&c, &o), &n))
+        && above(dot(&d, &n))
 }

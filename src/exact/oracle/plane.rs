@@ -33,6 +33,18 @@ pub fn plane_hit<V: Vector>(ray: &Ray<V>, plane: &Plane<V>, t_max: V::Scalar) ->
 /// `t_max`. False when a coordinate is not finite.
 #[must_use]
 pub fn plane_clear<V: Vector>(ray: &Ray<V>, plane: &Plane<V>, t_max: V::Scalar) -> bool {
+    crossing_clear(ray, plane, t_max, 1)
+}
+
+/// [`plane_clear`], with the crossing farther than `margin` times its
+/// bound from 0 (the disc, which drops a crossing within its bound of 0,
+/// asks for more).
+pub(super) fn crossing_clear<V: Vector>(
+    ray: &Ray<V>,
+    plane: &Plane<V>,
+    t_max: V::Scalar,
+    margin: i64,
+) -> bool {
     let (Some(d), Some(n)) = (rv(ray.dir), rv(plane.normal)) else {
         return false;
     };
@@ -50,6 +62,6 @@ pub fn plane_clear<V: Vector>(ray: &Ray<V>, plane: &Plane<V>, t_max: V::Scalar) 
                 return false;
             };
             let limit = limit(t_max);
-            t.abs() > err && limit.is_none_or(|m| (m - &t).abs() > err)
+            t.abs() > int(margin) * &err && limit.is_none_or(|m| (m - &t).abs() > err)
         })
 }

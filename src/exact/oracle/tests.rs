@@ -552,3 +552,50 @@ fn answer_from_exact_is_ray_triangle() {
     }
     assert!(hits > 500, "{hits}");
 }
+
+/// `nearest_float` on values known only by comparison agrees with the
+/// rounding of the exact value (`exact::round`): quotients of floats
+/// (ties between floats among them), near `MAX` and beyond it, subnormal,
+/// from estimates right, wild, infinite and NaN.
+#[test]
+fn nearest_float_rounds_as_round_does() {
+    fn check<F: Scalar>(v: &R, estimate: f64) {
+        let got: F = nearest_float(estimate, |x| v.cmp(x));
+        let want: F = crate::exact::round(v);
+        assert_eq!(
+            got.to_f64().to_bits(),
+            want.to_f64().to_bits(),
+            "{v} from {estimate}"
+        );
+    }
+    let mut draws = Draws(5);
+    let max32 = r(f32::MAX).unwrap();
+    let max64 = r(f64::MAX).unwrap();
+    let mut values = std::vec![
+        dyadic(1, -149),
+        dyadic(3, -150),
+        dyadic(1, -1074),
+        dyadic(1, 0) + dyadic(1, -24),
+        dyadic(1, 0) + dyadic(3, -53),
+        &max32 + dyadic(1, 102),
+        &max32 + dyadic(1, 103),
+        &max64 + dyadic(1, 970),
+        R::new(1.into(), 3.into()),
+    ];
+    for _ in 0..200 {
+        let (p, q) = (draws.coordinate(60).abs(), draws.coordinate(60).abs());
+        if let (Some(p), Some(q)) = (r(p), r(q))
+            && !q.is_zero()
+            && p.is_positive()
+        {
+            values.push(p / q);
+        }
+    }
+    for v in &values {
+        let e = to_f64(v);
+        for estimate in [e, e * 1e30, e * 1e-30, f64::INFINITY, f64::NAN, -1.0] {
+            check::<f32>(v, estimate);
+            check::<f64>(v, estimate);
+        }
+    }
+}

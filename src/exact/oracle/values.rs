@@ -2,6 +2,7 @@
 //! them, and the constants and comparisons every exact check needs.
 
 use crate::{Ray, Scalar, Vector};
+use core::cmp::Ordering;
 use num_bigint::BigInt;
 use num_rational::BigRational;
 use num_traits::{Signed, ToPrimitive, Zero};
@@ -144,4 +145,130 @@ pub fn int(n: i64) -> R {
 #[must_use]
 pub fn abs(x: &R) -> R {
     x.abs()
+}
+
+/// The float of precision `F` nearest to a positive value known only by
+/// comparisons (an irrational root, say), ties to even, as IEEE 754
+/// rounds: `place(x)` is the value against the exact `x` (`Less` where
+/// the value is below `x`), and `estimate` a guess of it (any `f64`: a
+/// NaN, an infinity or a wild guess only costs steps). A value at or
+/// above `MAX` plus half an ulp gives the infinity; a value that is not
+/// positive (`place` of zero not `Greater`) gives zero.
+///
+/// The search runs over the positive floats in the order of their bit
+/// patterns, which is their order as numbers: from the estimate it
+/// gallops (1, 2, 4, ... floats) until two floats bracket the value, then
+/// halves the bracket until the floats are neighbours, and compares the
+/// value with their exact midpoint. It ends: the patterns are fewer than
+/// `2^64`, so the gallop doubles its step at most 64 times and the
+/// halving takes at most 64 steps, each one call of `place`.
+///
+/// ```
+/// use core::cmp::Ordering;
+/// use rayhit::exact::oracle::{R, int, nearest_float};
+/// // sqrt(2), placed by the sign of 2 - x^2: no square root taken.
+/// let place = |x: &R| {
+///     if x < &int(0) { Ordering::Greater } else { int(2).cmp(&(x * x)) }
+/// };
+/// assert_eq!(nearest_float::<f32>(1.0, place), 2f32.sqrt());
+/// assert_eq!(nearest_float::<f64>(f64::NAN, place), 2f64.sqrt());
+/// assert_eq!(nearest_float::<f32>(1e30, |x: &R| int(3).cmp(x)), 3.0);
+/// ```
+#[must_use]
+pub fn nearest_float<F: Scalar>(estimate: f64, place: impl Fn(&R) -> Ordering) -> F {
+    let at = |i: u64| float_at::<F>(i);
+    let value = |i: u64| r(at(i)).expect("a finite float");
+    let cmp = |i: u64| place(&value(i));
+    let top = index_of(F::MAX);
+    if cmp(0) != Ordering::Greater {
+        return F::ZERO;
+    }
+    let guess = F::from_f64(estimate);
+    let start = if guess > F::ZERO && guess.is_finite() {
+        index_of(guess)
+    } else if guess > F::ZERO {
+        top
+    } else {
+        index_of(F::ONE)
+    };
+    // `lo` below the value, `hi` above it (`None`: above MAX).
+    let (mut lo, mut hi) = match cmp(start) {
+        Ordering::Equal => return at(start),
+        Ordering::Greater => {
+            let (mut lo, mut step) = (start, 1u64);
+            loop {
+                if lo == top {
+                    break (lo, None);
+                }
+                let next = lo.saturating_add(step).min(top);
+                match cmp(next) {
+                    Ordering::Equal => return at(next),
+                    Ordering::Less => break (lo, Some(next)),
+                    Ordering::Greater => lo = next,
+                }
+                step = step.saturating_mul(2);
+            }
+        }
+        Ordering::Less => {
+            let (mut hi, mut step) = (start, 1u64);
+            loop {
+                // Index 0 (zero) is below the value: checked above.
+                let next = hi.saturating_sub(step);
+                match cmp(next) {
+                    Ordering::Equal => return at(next),
+                    Ordering::Greater => break (next, Some(hi)),
+                    Ordering::Less => hi = next,
+                }
+                step = step.saturating_mul(2);
+            }
+        }
+    };
+    let Some(mut up) = hi.take() else {
+        // Above MAX: MAX below MAX + half an ulp, else the infinity
+        // (`MAX`'s significand is odd, so a tie goes up).
+        let half = (r(F::MAX).expect("finite") - value(top - 1)) / int(2);
+        return if place(&(value(top) + half)) == Ordering::Less {
+            F::MAX
+        } else {
+            F::INFINITY
+        };
+    };
+    while up - lo > 1 {
+        let mid = lo + (up - lo) / 2;
+        match cmp(mid) {
+            Ordering::Equal => return at(mid),
+            Ordering::Greater => lo = mid,
+            Ordering::Less => up = mid,
+        }
+    }
+    match place(&((value(lo) + value(up)) / int(2))) {
+        Ordering::Less => at(lo),
+        Ordering::Greater => at(up),
+        Ordering::Equal if lo % 2 == 0 => at(lo),
+        Ordering::Equal => at(up),
+    }
+}
+
+/// Whether `F` is `f32` (its unit roundoff is `2^-24`).
+fn single<F: Scalar>() -> bool {
+    F::UNIT_ROUNDOFF.to_f64() == f64::from(f32::EPSILON) * 0.5
+}
+
+/// The bit pattern of a float of precision `F` that is not negative:
+/// the floats' order as numbers.
+fn index_of<F: Scalar>(x: F) -> u64 {
+    if single::<F>() {
+        u64::from((x.to_f64() as f32).to_bits())
+    } else {
+        x.to_f64().to_bits()
+    }
+}
+
+/// The float of precision `F` with the bit pattern `i` (at most `MAX`'s).
+fn float_at<F: Scalar>(i: u64) -> F {
+    if single::<F>() {
+        F::from_f64(f64::from(f32::from_bits(i as u32)))
+    } else {
+        F::from_f64(f64::from_bits(i))
+    }
 }

@@ -8,7 +8,8 @@
 //! leave out: rays exactly through edges and corners on dyadic grids, on
 //! slab planes and in face planes, grazing rays, tiny and signed-zero
 //! direction components, thin triangles and zero-area fillers, far-away
-//! and tiny or huge scenes. Values are computed in `f64` and rounded once
+//! and tiny or huge scenes, far spheres of every size, discs and annuli
+//! at their circles. Values are computed in `f64` and rounded once
 //! to the precision of `V`.
 
 pub mod boxes;

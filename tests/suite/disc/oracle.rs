@@ -5,7 +5,8 @@
 //! normals of any direction and length; rays aimed at a point of the
 //! disc's plane on either circle (the circle's point rounded, and moved
 //! off it by a relative `1e-7` either way), inside the annulus, in the
-//! hole and outside, from any direction or nearly along the plane. For
+//! hole and outside, from any direction or nearly along the plane (the
+//! corpus's generator, `rayhit_testkit::cases::discs::far`). For
 //! each, over `(0, inf]` as an interval the answer is the exact verdict
 //! (the crossing ahead, within both closed circles, in big rationals),
 //! with the exact side; every reported `t` is within its bound; the
@@ -21,78 +22,16 @@
 //! rounded point) on the same rays: its false misses and false hits
 //! print. 3,000 cases per precision, times `RAYHIT_CASES`.
 
-use crate::common::draw::f;
-use crate::sphere::{q, unit};
+use crate::sphere::q;
 use rayhit::exact::num_traits::Signed;
 use rayhit::exact::oracle::{ExactDisc, disc};
 use rayhit::glam::{DVec3, Vec3};
-use rayhit::{Disc, Intersect, Interval, Ray, Scalar, Surface, Vector};
+use rayhit::{Disc, Intersect, Interval, Scalar, Surface, Vector};
 use rayhit_testkit::case_count;
-use rayhit_testkit::rng::Pcg32;
+use rayhit_testkit::cases::discs::far;
+use rayhit_testkit::source::Source;
 
 type S<V> = <V as Vector>::Scalar;
-
-fn vec<V: Vector>(p: [f64; 3]) -> V {
-    V::new(f::<V>(p[0]), f::<V>(p[1]), f::<V>(p[2]))
-}
-
-fn cross(a: [f64; 3], b: [f64; 3]) -> [f64; 3] {
-    [
-        a[1] * b[2] - a[2] * b[1],
-        a[2] * b[0] - a[0] * b[2],
-        a[0] * b[1] - a[1] * b[0],
-    ]
-}
-
-fn pow10(rng: &mut Pcg32, lo: f64, hi: f64) -> f64 {
-    10f64.powf(lo + (hi - lo) * f64::from(rng.unit()))
-}
-
-/// One case: a disc (or annulus) and a ray at it.
-fn case<V: Vector>(rng: &mut Pcg32) -> (Ray<V>, Disc<V>) {
-    loop {
-        let n = unit(rng);
-        let centre = unit(rng).map(|x| x * pow10(rng, 0.0, 5.0));
-        let radius = pow10(rng, -3.0, 4.0);
-        let inner = if rng.below(2) == 0 {
-            0.0
-        } else {
-            radius * (0.2 + 0.7 * f64::from(rng.unit()))
-        };
-        let mut along = cross(n, unit(rng));
-        let len = along.iter().map(|x| x * x).sum::<f64>().sqrt();
-        along = along.map(|x| x / len);
-        let off = [1.0, 1.0 + 1e-7, 1.0 - 1e-7][rng.below(3) as usize];
-        let rho = match rng.below(5) {
-            0 => radius * off,
-            1 => inner * off,
-            2 => (radius + inner) * 0.5,
-            3 => inner * 0.5,
-            _ => radius * 1.5,
-        };
-        let target = [0, 1, 2].map(|i| centre[i] + along[i] * rho);
-        let mut away = unit(rng);
-        if rng.below(4) == 0 {
-            // Nearly along the plane.
-            let tilt = [1e-3, 1e-6, 1e-9][rng.below(3) as usize];
-            away = [0, 1, 2].map(|i| along[i] + n[i] * tilt);
-        }
-        let dist = radius * pow10(rng, -1.0, 3.0);
-        let origin = [0, 1, 2].map(|i| target[i] + away[i] * dist);
-        let scale = pow10(rng, -2.0, 2.0);
-        let (o, t) = (vec::<V>(origin), vec::<V>(target));
-        let ray = Ray::new(o, t - o);
-        let d = Disc::annulus(
-            vec::<V>(centre),
-            vec::<V>(n.map(|x| x * scale)),
-            f::<V>(radius),
-            f::<V>(inner),
-        );
-        if ray.is_valid() {
-            return (ray, d);
-        }
-    }
-}
 
 fn within<F: Scalar>(e: &ExactDisc, t: F, err: F) -> bool {
     !err.is_finite() || (q(t) - &e.t).abs() <= q(err)
@@ -109,14 +48,17 @@ struct Counts {
 }
 
 fn run<V: Vector>(seed: u64) -> Counts {
-    let mut rng = Pcg32::new(seed);
+    let mut src = Source::seeded(seed);
     let mut n = Counts::default();
     let inf = S::<V>::INFINITY;
     let zero = S::<V>::ZERO;
     let max = q(S::<V>::MAX);
     let all = Interval::up_to(inf).unwrap();
     for _ in 0..case_count(3_000) {
-        let (ray, d) = case::<V>(&mut rng);
+        let (d, ray, _) = far::<V>(&mut src);
+        if !ray.is_valid() {
+            continue;
+        }
         let exact = disc(&ray, &d);
         let expected = exact
             .as_ref()

@@ -4,7 +4,7 @@
 
 use rayhit::exact::{self, Case, Claim, Verdict};
 use rayhit::glam::{DVec3, Vec3};
-use rayhit::{Aabb, Plane, Ray, Scalar, Triangle, Vector};
+use rayhit::{Aabb, Disc, Plane, Ray, Scalar, Sphere, Triangle, Vector};
 use rayhit_testkit::case_count;
 use rayhit_testkit::source::Source;
 
@@ -38,6 +38,12 @@ fn run<V: Vector>(n: usize) {
                 t_max,
             ),
             Case::Plane(ray, Plane::new(vec(&mut rng), vec(&mut rng)), t_max),
+            Case::Sphere(ray, Sphere::new(vec(&mut rng), raw(&mut rng)), t_max),
+            Case::Disc(
+                ray,
+                Disc::annulus(vec(&mut rng), vec(&mut rng), raw(&mut rng), raw(&mut rng)),
+                t_max,
+            ),
         ];
         for case in &cases {
             // The exact answer, as a claim: judged right, values within half an ulp.
@@ -56,6 +62,15 @@ fn run<V: Vector>(n: usize) {
                 Case::Plane(r, p, t) => {
                     exact::ray_plane(r, p, *t).map(|t| Claim::Plane { t: t.rounded })
                 }
+                Case::Sphere(r, s, t) => exact::ray_sphere(r, s, *t).map(|h| Claim::Sphere {
+                    t: h.t,
+                    side: h.side,
+                }),
+                Case::Disc(r, d, t) => exact::ray_disc(r, d, *t).map(|h| Claim::Disc {
+                    t: h.t,
+                    side: h.side,
+                }),
+                _ => unreachable!("every case built above is matched"),
             };
             let valid = ray.is_valid() && t_max.partial_cmp(&t_max).is_some();
             assert!(valid || answer.is_none(), "{case:?}");
