@@ -416,6 +416,7 @@ mod query;
 
 mod aabb;
 mod disc;
+mod patch;
 mod plane;
 mod quad;
 mod sphere;
@@ -508,6 +509,7 @@ mod root {
     pub use crate::disc::{Disc, DiscHit};
     pub use crate::instance::{DInstance, Instance};
     pub use crate::num::{Scalar, Vector};
+    pub use crate::patch::{Patch, PatchHit};
     pub use crate::plane::{Plane, ray_plane};
     pub use crate::quad::{Quad, QuadHit};
     pub use crate::query::{Bounds, EdgeRule, Intersect, IntersectLanes, RayForm, Search, Surface};
@@ -528,6 +530,10 @@ mod root {
     pub type DValidAabb = ValidAabb<DVec3>;
     /// [`BoxHit`] in `f64`.
     pub type DBoxHit = BoxHit<f64>;
+    /// [`Patch`] in `f64`.
+    pub type DPatch = Patch<DVec3>;
+    /// [`PatchHit`] in `f64`.
+    pub type DPatchHit = PatchHit<f64>;
     /// [`Plane`] in `f64`.
     pub type DPlane = Plane<DVec3>;
     /// [`Disc`] in `f64`.

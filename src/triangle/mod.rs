@@ -49,6 +49,8 @@ use crate::num::{S, Scalar, Vector};
 
 pub use batch::{TriangleBatch, TriangleBatchHits};
 pub use bounds::TriangleHitError;
+pub(crate) use definition::inside;
+pub(crate) use frame::Frame;
 pub(crate) use lanes::frame_lanes_at;
 pub use watertight::ray_triangle;
 pub(crate) use watertight::{EveryAxis, every_axis_at, finish_lanes, straddles};

@@ -74,6 +74,7 @@ mod disc;
 mod exact;
 mod instance;
 mod layering;
+mod patch;
 mod plane;
 mod quad;
 mod shapes;

@@ -5,7 +5,7 @@
 
 mod oracle;
 mod properties;
-mod watertight;
+pub(crate) mod watertight;
 
 use rayhit::{Quad, Ray, Scalar, Vector};
 

@@ -17,16 +17,27 @@
 //! leaves through.
 
 use rayhit::glam::{DVec3, Vec3};
-use rayhit::{EdgeRule, Intersect, Quad, Ray, Scalar, Triangle, Vector};
+use rayhit::{EdgeRule, Intersect, Patch, Quad, Ray, Scalar, Triangle, Vector};
 use rayhit_testkit::case_count;
 use rayhit_testkit::rng::Pcg32;
 
 use super::textbook;
 use crate::common::draw::{S, signed, v};
+use crate::patch::reshetov;
 
-/// A closed surface of quads and triangles.
-struct Mesh<V: Vector> {
+/// What a mesh's four-sided faces are.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub(crate) enum Kind {
+    /// [`Quad`]s: two triangles each.
+    Quads,
+    /// [`Patch`]es: bilinear patches through the same corners.
+    Patches,
+}
+
+/// A closed surface of quads or patches and triangles.
+pub(crate) struct Mesh<V: Vector> {
     quads: Vec<Quad<V>>,
+    patches: Vec<Patch<V>>,
     triangles: Vec<Triangle<V>>,
     /// Points of the surface to aim at: corners, edge midpoints, points of
     /// the diagonals and of the faces.
@@ -44,6 +55,7 @@ impl<V: Vector> Mesh<V> {
     fn hit(&self, ray: &Ray<V>, rule: EdgeRule) -> bool {
         let search = (S::<V>::INFINITY, rule);
         self.quads.iter().any(|q| q.hit(ray, search).is_some())
+            || self.patches.iter().any(|p| p.hit(ray, search).is_some())
             || self.triangles.iter().any(|t| t.hit(ray, search).is_some())
     }
 
@@ -55,6 +67,11 @@ impl<V: Vector> Mesh<V> {
             .iter()
             .filter(|q| q.hit(ray, search).is_some())
             .count()
+            + self
+                .patches
+                .iter()
+                .filter(|p| p.hit(ray, search).is_some())
+                .count()
             + self
                 .triangles
                 .iter()
@@ -68,6 +85,10 @@ impl<V: Vector> Mesh<V> {
         self.quads
             .iter()
             .any(|q| textbook(ray, q, zero, inf).is_some())
+            || self
+                .patches
+                .iter()
+                .any(|p| reshetov(ray, p, zero, inf).is_some())
             || self
                 .triangles
                 .iter()
@@ -107,14 +128,23 @@ fn on_face(face: (usize, bool, usize, usize), i: u32, j: u32, n: u32) -> [u32; 3
     g
 }
 
-/// A cube of `n x n` quads a face; with `mixed`, face 0 has `2n x 2n`
-/// quads against the others' `n x n`, face 1 is two triangles a cell, and
-/// the T-junctions along face 0's edges are closed by zero-area triangles.
-fn cube<V: Vector>(rng: &mut Pcg32, n: u32, mixed: bool, scale: f64, offset: [f64; 3]) -> Mesh<V> {
+/// A cube of `n x n` quads (or patches) a face; with `mixed`, face 0 has
+/// `2n x 2n` against the others' `n x n`, face 1 is two triangles a cell,
+/// and the T-junctions along face 0's edges are closed by zero-area
+/// triangles.
+fn cube<V: Vector>(
+    rng: &mut Pcg32,
+    n: u32,
+    mixed: bool,
+    kind: Kind,
+    scale: f64,
+    offset: [f64; 3],
+) -> Mesh<V> {
     // Work on a grid twice as fine, so that face 0 can use every point.
     let fine = 2 * n;
     let at = |g: [u32; 3]| grid::<V>(g, fine, scale, offset);
     let (mut quads, mut triangles, mut targets) = (Vec::new(), Vec::new(), Vec::new());
+    let mut patches = Vec::new();
     for (index, face) in faces().into_iter().enumerate() {
         let step = if mixed && index == 0 { 1 } else { 2 };
         for i in (0..fine).step_by(step as usize) {
@@ -124,6 +154,8 @@ fn cube<V: Vector>(rng: &mut Pcg32, n: u32, mixed: bool, scale: f64, offset: [f6
                 if mixed && index == 1 {
                     triangles.push(Triangle::new(a, b, c));
                     triangles.push(Triangle::new(a, c, d));
+                } else if kind == Kind::Patches {
+                    patches.push(Patch::new(a, b, d, c));
                 } else {
                     quads.push(Quad::new(a, b, c, d));
                 }
@@ -181,6 +213,7 @@ fn cube<V: Vector>(rng: &mut Pcg32, n: u32, mixed: bool, scale: f64, offset: [f6
         .collect();
     Mesh {
         quads,
+        patches,
         triangles,
         targets,
         inside,
@@ -188,8 +221,8 @@ fn cube<V: Vector>(rng: &mut Pcg32, n: u32, mixed: bool, scale: f64, offset: [f6
     }
 }
 
-/// A torus of `rings x sides` quads, none of them planar.
-fn torus<V: Vector>(rng: &mut Pcg32, scale: f64, offset: [f64; 3]) -> Mesh<V> {
+/// A torus of `rings x sides` quads (or patches), none of them planar.
+fn torus<V: Vector>(rng: &mut Pcg32, kind: Kind, scale: f64, offset: [f64; 3]) -> Mesh<V> {
     let (rings, sides) = (12u32, 8u32);
     let (major, minor) = (1.0, 0.4);
     let point = |i: u32, j: u32| {
@@ -209,18 +242,25 @@ fn torus<V: Vector>(rng: &mut Pcg32, scale: f64, offset: [f64; 3]) -> Mesh<V> {
             offset[2] + scale * p[2],
         )
     };
-    let (mut quads, mut targets) = (Vec::new(), Vec::new());
+    let (mut quads, mut patches, mut targets) = (Vec::new(), Vec::new(), Vec::new());
     for i in 0..rings {
         for j in 0..sides {
             let p = |di: u32, dj: u32| at(point(i + di, j + dj));
             // (Ring `rings` is ring 0, by the `% rings` above: the seam's
-            // quads share ring 0's points, twisted or not.)
+            // faces share ring 0's points, twisted or not.)
             let q = Quad::new(p(0, 0), p(0, 1), p(1, 1), p(1, 0));
-            quads.push(q);
             targets.extend([q.a, q.b, q.c]);
-            let w = S::<V>::from_f64((signed(rng) + 1.0) / 2.0);
-            targets.push(q.a + (q.c - q.a) * w);
             targets.push(q.a + (q.b - q.a) * S::<V>::from_f64(0.5));
+            let w = S::<V>::from_f64((signed(rng) + 1.0) / 2.0);
+            if kind == Kind::Patches {
+                let patch = Patch::new(q.a, q.b, q.d, q.c);
+                let w2 = S::<V>::from_f64((signed(rng) + 1.0) / 2.0);
+                targets.push(patch.point_at(w, w2));
+                patches.push(patch);
+            } else {
+                targets.push(q.a + (q.c - q.a) * w);
+                quads.push(q);
+            }
         }
     }
     // Points on the tube's core circle are inside the quads' tube.
@@ -232,6 +272,7 @@ fn torus<V: Vector>(rng: &mut Pcg32, scale: f64, offset: [f64; 3]) -> Mesh<V> {
         .collect();
     Mesh {
         quads,
+        patches,
         triangles: Vec::new(),
         targets,
         inside,
@@ -242,16 +283,16 @@ fn torus<V: Vector>(rng: &mut Pcg32, scale: f64, offset: [f64; 3]) -> Mesh<V> {
 /// Leak and crack counts of rayhit (closed rule, one-hit rule) and of the
 /// textbook tests.
 #[derive(Debug, Default, Clone, Copy)]
-struct Counts {
-    from_inside: usize,
-    leaks: usize,
-    one_hit_leaks: usize,
-    one_hit_repeats: usize,
-    textbook_leaks: usize,
-    from_outside: usize,
-    cracks: usize,
-    one_hit_cracks: usize,
-    textbook_cracks: usize,
+pub(crate) struct Counts {
+    pub(crate) from_inside: usize,
+    pub(crate) leaks: usize,
+    pub(crate) one_hit_leaks: usize,
+    pub(crate) one_hit_repeats: usize,
+    pub(crate) textbook_leaks: usize,
+    pub(crate) from_outside: usize,
+    pub(crate) cracks: usize,
+    pub(crate) one_hit_cracks: usize,
+    pub(crate) textbook_cracks: usize,
 }
 
 fn run<V: Vector>(mesh: &Mesh<V>, scale: f64, counts: &mut Counts) {
@@ -262,8 +303,9 @@ fn run<V: Vector>(mesh: &Mesh<V>, scale: f64, counts: &mut Counts) {
         counts.leaks += usize::from(!mesh.hit(&ray, EdgeRule::Closed));
         counts.one_hit_leaks += usize::from(!mesh.hit(&ray, EdgeRule::OneHit));
         // (The textbook quad is a parallelogram test: only the cubes'
-        // quads are parallelograms, so the torus is not counted for it.)
-        if mesh.convex {
+        // quads are parallelograms, so the torus is not counted for it;
+        // the textbook patch test is counted everywhere.)
+        if mesh.convex || !mesh.patches.is_empty() {
             counts.textbook_leaks += usize::from(!mesh.textbook_hit(&ray));
         }
         if !mesh.convex {
@@ -285,7 +327,9 @@ fn run<V: Vector>(mesh: &Mesh<V>, scale: f64, counts: &mut Counts) {
     }
 }
 
-fn check<V: Vector>(name: &str) -> Counts {
+/// The counts over every placement (scales `1e-3` to `1e3`, offsets to
+/// `1e5`) of the three meshes, their four-sided faces of `kind`.
+pub(crate) fn check<V: Vector>(name: &str, kind: Kind) -> Counts {
     let mut rng = Pcg32::new(0x0057_4154 + S::<V>::UNIT_ROUNDOFF.to_f64().to_bits() % 89);
     let mut counts = Counts::default();
     let placements = case_count(6);
@@ -294,9 +338,9 @@ fn check<V: Vector>(name: &str) -> Counts {
         let reach = [0.0, 1e2, 1e5][(k / 3) % 3];
         let offset = [0, 1, 2].map(|_| reach * signed(&mut rng));
         for mesh in [
-            cube::<V>(&mut rng, 2, false, scale, offset),
-            cube::<V>(&mut rng, 2, true, scale, offset),
-            torus::<V>(&mut rng, scale, offset),
+            cube::<V>(&mut rng, 2, false, kind, scale, offset),
+            cube::<V>(&mut rng, 2, true, kind, scale, offset),
+            torus::<V>(&mut rng, kind, scale, offset),
         ] {
             run(&mesh, scale, &mut counts);
         }
@@ -307,7 +351,10 @@ fn check<V: Vector>(name: &str) -> Counts {
 
 #[test]
 fn closed_quad_meshes_have_no_crack_and_no_leak() {
-    for counts in [check::<Vec3>("f32"), check::<DVec3>("f64")] {
+    for counts in [
+        check::<Vec3>("f32", Kind::Quads),
+        check::<DVec3>("f64", Kind::Quads),
+    ] {
         assert!(
             counts.from_inside > 1000 && counts.from_outside > 1000,
             "{counts:?}"

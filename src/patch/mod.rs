@@ -1,0 +1,506 @@
+//! Bilinear patches: the surface through four corners, not necessarily
+//! coplanar, `P(u, v) = (1 - u)(1 - v) p00 + u (1 - v) p10 + (1 - u) v
+//! p01 + u v p11`, decided on its boundary by the watertight triangle
+//! test's edge functions so that it leaves no crack against the patches
+//! and triangles it shares edges with.
+//!
+//! The method. In the ray's sheared frame (the triangle test's: origin at
+//! zero, the ray along `+z`) the patch projects to the bilinear patch of
+//! the projected corners `q_ij`, and the ray meets the patch where that
+//! projection covers the origin. For each `u` the points `A(u)` (on the
+//! edge `v = 0`) and `B(u)` (on `v = 1`) span a segment; the origin lies
+//! on its line where the 2-D cross product `c(u) = A(u) x B(u)` vanishes,
+//! a quadratic with the Bernstein coefficients `q00 x q01`, `(q00 x q11 +
+//! q10 x q01) / 2` and `q10 x q11` (the first and last are the edge
+//! functions of the edges `u = 0` and `u = 1`), discriminant `b1^2 - b0
+//! b2`. `v` places the origin on the segment, and the depth is the
+//! patch's bilinear depth at `(u, v)`. (Reshetov, "Cool Patches: A
+//! Geometric Approach to Ray/Bilinear Patch Intersections", Ray Tracing
+//! Gems, ch. 8, 2019, solves the same quadratic in world space; pbrt-v4's
+//! `BilinearPatch` carries it.)
+//!
+//! How many crossings there are is decided on the boundary, exactly: the
+//! number of crossings counted with their orientation is the winding
+//! number of the projected boundary around the origin, and that is the sum
+//! of the winding numbers of the two triangles `p00, p10, p11` and `p00,
+//! p11, p01` (the diagonal cancels). Each triangle's inside test is the
+//! watertight test's, with its edge rule, on edge functions that any
+//! triangle or patch sharing the edge computes bit for bit (negated). A
+//! nonzero winding number means exactly one crossing (a four-sided loop
+//! winds at most once), which the patch reports; zero means none or two,
+//! which the quadratic decides, in floating point.
+
+use glam::Vec3;
+
+use crate::aabb::Aabb;
+use crate::num::round::{max2, min2};
+use crate::num::{S, Scalar, Vector};
+use crate::query::{EdgeRule, Intersect, Range, RayForm, Search};
+use crate::ray::{Ray, Shear, t_max_ok};
+use crate::triangle::{Frame, Side, Triangle, inside};
+
+/// A bilinear patch: the surface `P(u, v) = (1 - u)(1 - v) p00 + u (1 -
+/// v) p10 + (1 - u) v p01 + u v p11` for `(u, v)` in the closed unit
+/// square, with corners that need not be coplanar (pbrt-v4's
+/// `BilinearPatch`; a quad mesh's faces taken as they are, not split).
+///
+/// Watertight: the side of each of the four edges is decided from that
+/// edge's two corners alone, by the edge functions of the watertight
+/// triangle test, so a ray never passes between two patches, or a patch
+/// and a triangle, that share an edge (the same two corners, bit for bit).
+/// With [`EdgeRule::OneHit`] a ray through a shared edge or corner
+/// crosses exactly one of them, decided exactly as for triangles.
+///
+/// What is exact and what is not: whether the ray crosses the patch an
+/// odd number of times (once) is decided exactly (from the rounded
+/// corners in the ray's frame with the closed rule, from the exact ones
+/// with the one-hit rule); where it crosses once, it is reported. Where
+/// it crosses an even number of times (none, or twice where the patch
+/// folds over itself as seen from the ray), the quadratic is solved in
+/// floating point: rays within rounding of the patch's silhouette, where
+/// the two crossings meet, may be reported as touching or missing. `t`,
+/// `u` and `v` are rounded values of the crossing; `t > 0` is decided
+/// exactly where every corner is in front of the origin (or every corner
+/// behind), and from the computed `t` elsewhere.
+///
+/// `(u, v)` is the hit's place: `p00` at `(0, 0)`, `p10` at `(1, 0)`,
+/// `p01` at `(0, 1)`, `p11` at `(1, 1)`. The front side is the one
+/// `dP/du x dP/dv` points to at the hit (for a planar patch the side the
+/// winding `p00 -> p10 -> p11 -> p01` is counter-clockwise from, as for a
+/// [`Quad`](crate::Quad) with those corners).
+///
+/// Degenerate patches, as their definition says: a patch with a collapsed
+/// edge (two neighbouring corners equal) is the triangle of the other
+/// three and is hit where that [`Triangle`] is (with the same rule); a
+/// planar parallelogram is hit where the [`Quad`](crate::Quad) of its
+/// corners is, at the same `(u, v)` up to rounding; a twisted patch is
+/// hit where its surface is. A NaN or infinite coordinate makes a patch
+/// nothing hits.
+///
+/// ```
+/// use rayhit::{Intersect, Patch, Ray, glam::Vec3};
+/// // A saddle over the unit square: corners at heights 0, 0, 0 and 1.
+/// let saddle = Patch::new(Vec3::ZERO, Vec3::X, Vec3::Y, Vec3::new(1.0, 1.0, 1.0));
+/// let ray = Ray::new(Vec3::new(0.5, 0.5, 3.0), -Vec3::Z);
+/// let hit = saddle.hit(&ray, f32::INFINITY).unwrap();
+/// // P(1/2, 1/2) has height 1/4.
+/// assert_eq!((hit.u, hit.v, hit.t), (0.5, 0.5, 2.75));
+/// ```
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct Patch<V = Vec3> {
+    /// The corner at `(u, v) = (0, 0)`.
+    pub p00: V,
+    /// The corner at `(1, 0)`.
+    pub p10: V,
+    /// The corner at `(0, 1)`.
+    pub p01: V,
+    /// The corner at `(1, 1)`.
+    pub p11: V,
+}
+
+/// A ray/patch hit: `t` in units of the ray's `dir`, the place `(u, v)`
+/// on the patch, and the side.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct PatchHit<F = f32> {
+    /// Distance along the ray, in units of `dir`.
+    pub t: F,
+    /// The coordinate along `p00 -> p10`, in `[0, 1]`.
+    pub u: F,
+    /// The coordinate along `p00 -> p01`, in `[0, 1]`.
+    pub v: F,
+    /// The side the ray arrived from: [`Side::Front`] where `dir . (dP/du
+    /// x dP/dv) < 0` at the hit.
+    pub side: Side,
+}
+
+impl<V: Vector> Patch<V> {
+    /// The patch with the given corners (in the order `p00, p10, p01,
+    /// p11`: the `u = 0` and `u = 1` ends of the edge `v = 0`, then of
+    /// `v = 1`). Nothing is checked.
+    #[inline]
+    #[must_use]
+    pub const fn new(p00: V, p10: V, p01: V, p11: V) -> Self {
+        Self { p00, p10, p01, p11 }
+    }
+
+    /// The point `P(u, v)`, rounded: `p00`, `p10`, `p01`, `p11` exactly at
+    /// the corners.
+    ///
+    /// ```
+    /// use rayhit::{Patch, glam::Vec3};
+    /// let p = Patch::new(Vec3::ZERO, Vec3::X, Vec3::Y, Vec3::new(1.0, 1.0, 1.0));
+    /// assert_eq!(p.point_at(1.0, 1.0), Vec3::new(1.0, 1.0, 1.0));
+    /// assert_eq!(p.point_at(0.5, 0.5), Vec3::new(0.5, 0.5, 0.25));
+    /// ```
+    #[inline]
+    #[must_use]
+    pub fn point_at(&self, u: S<V>, v: S<V>) -> V {
+        let near = lerp_v(self.p00, self.p10, u);
+        let far = lerp_v(self.p01, self.p11, u);
+        lerp_v(near, far, v)
+    }
+
+    /// The patch's normal `dP/du x dP/dv` at `(u, v)`, not normalised,
+    /// rounded; zero where the patch is degenerate there (at a collapsed
+    /// edge).
+    ///
+    /// ```
+    /// use rayhit::{Patch, glam::Vec3};
+    /// let p = Patch::new(Vec3::ZERO, Vec3::X, Vec3::Y, Vec3::new(1.0, 1.0, 0.0));
+    /// assert_eq!(p.normal_at(0.3, 0.7), Vec3::Z);
+    /// ```
+    #[inline]
+    #[must_use]
+    pub fn normal_at(&self, u: S<V>, v: S<V>) -> V {
+        let du = lerp_v(self.p10 - self.p00, self.p11 - self.p01, v);
+        let dv = lerp_v(self.p01 - self.p00, self.p11 - self.p10, u);
+        du.cross(dv)
+    }
+
+    /// The two triangles `p00, p10, p11` and `p00, p11, p01` whose inside
+    /// tests decide the patch's boundary (the planar quad of the corners,
+    /// when they are coplanar).
+    #[inline]
+    #[must_use]
+    pub fn triangles(&self) -> [Triangle<V>; 2] {
+        [
+            Triangle::new(self.p00, self.p10, self.p11),
+            Triangle::new(self.p00, self.p11, self.p01),
+        ]
+    }
+
+    /// The smallest box around the four corners (exact: no rounding); the
+    /// patch, a convex combination of its corners, lies in it.
+    #[inline]
+    #[must_use]
+    pub fn bounds(&self) -> Aabb<V> {
+        let c = [self.p00, self.p10, self.p01, self.p11];
+        let fold = |f: fn(S<V>, S<V>) -> S<V>| {
+            let k = |a: fn(V) -> S<V>| f(f(a(c[0]), a(c[1])), f(a(c[2]), a(c[3])));
+            V::new(k(V::x), k(V::y), k(V::z))
+        };
+        Aabb::new(fold(min_of), fold(max_of))
+    }
+}
+
+/// The smaller, NaN-free where one is.
+fn min_of<F: Scalar>(a: F, b: F) -> F {
+    if b < a { b } else { a }
+}
+
+/// The larger, NaN-free where one is.
+fn max_of<F: Scalar>(a: F, b: F) -> F {
+    if b > a { b } else { a }
+}
+
+/// `(1 - w) a + w b`: exactly `a` at `w = 0` and `b` at `w = 1`.
+#[inline(always)]
+fn lerp<F: Scalar>(a: F, b: F, w: F) -> F {
+    (F::ONE - w) * a + w * b
+}
+
+#[inline(always)]
+fn lerp_v<V: Vector>(a: V, b: V, w: S<V>) -> V {
+    V::new(
+        lerp(a.x(), b.x(), w),
+        lerp(a.y(), b.y(), w),
+        lerp(a.z(), b.z(), w),
+    )
+}
+
+/// The patch in the ray's frame: the corners' sheared `x`, `y` and depth
+/// `z` (in units of `t`), in the order `00, 10, 01, 11`.
+struct Projected<F> {
+    x: [F; 4],
+    y: [F; 4],
+    z: [F; 4],
+}
+
+impl<F: Scalar> Projected<F> {
+    /// `v` for the crossing at `u`: the place of the origin on the line
+    /// from `A(u)` (on the edge `v = 0`) to `B(u)` (on `v = 1`), by least
+    /// squares; `0` where the segment is a point (at a collapsed edge).
+    #[inline(always)]
+    fn v_at(&self, u: F) -> F {
+        let (x, y) = (&self.x, &self.y);
+        let (ax, ay) = (lerp(x[0], x[1], u), lerp(y[0], y[1], u));
+        let (bx, by) = (lerp(x[2], x[3], u), lerp(y[2], y[3], u));
+        let (dx, dy) = (bx - ax, by - ay);
+        let v = -(ax * dx + ay * dy) / (dx * dx + dy * dy);
+        if v.is_finite() { v } else { F::ZERO }
+    }
+
+    /// How far the origin is from the projected point at `(u, v)` (the
+    /// larger coordinate): zero at a crossing.
+    #[inline(always)]
+    fn miss_at(&self, u: F, v: F) -> F {
+        let (x, y) = (&self.x, &self.y);
+        let px = lerp(lerp(x[0], x[1], u), lerp(x[2], x[3], u), v);
+        let py = lerp(lerp(y[0], y[1], u), lerp(y[2], y[3], u), v);
+        max2(px.abs(), py.abs())
+    }
+
+    /// The depth at `(u, v)`.
+    #[inline(always)]
+    fn t_at(&self, u: F, v: F) -> F {
+        let z = &self.z;
+        lerp(lerp(z[0], z[1], u), lerp(z[2], z[3], u), v)
+    }
+
+    /// The sign of the projected Jacobian `dq/du x dq/dv` at `(u, v)`: the
+    /// orientation of the patch there, seen along the ray.
+    #[inline(always)]
+    fn orientation(&self, u: F, v: F) -> F {
+        let (x, y) = (&self.x, &self.y);
+        let dux = lerp(x[1] - x[0], x[3] - x[2], v);
+        let duy = lerp(y[1] - y[0], y[3] - y[2], v);
+        let dvx = lerp(x[2] - x[0], x[3] - x[1], u);
+        let dvy = lerp(y[2] - y[0], y[3] - y[1], u);
+        dux * dvy - duy * dvx
+    }
+}
+
+/// The sign of a triangle's determinant from its inside test's edge
+/// functions (all of one sign or zero, or NaN from overflow): `1`, `-1`
+/// or `0`.
+#[inline(always)]
+fn orientation_of<F: Scalar>(e: [F; 3]) -> i8 {
+    let det = e[0] + e[1] + e[2];
+    if det > F::ZERO {
+        1
+    } else if det < F::ZERO {
+        -1
+    } else {
+        0
+    }
+}
+
+/// The ray/patch test for a valid ray with `shear` its shear: the nearest
+/// crossing with `lo < t <= hi` (`0 <= lo <= hi`), with `rule` on the
+/// boundary.
+#[inline]
+fn patch_hit<V: Vector>(
+    (origin, dir): (V, V),
+    shear: &Shear<S<V>>,
+    patch: &Patch<V>,
+    (lo, hi): (S<V>, S<V>),
+    rule: EdgeRule,
+) -> Option<PatchHit<S<V>>> {
+    let (zero, one) = (S::<V>::ZERO, S::<V>::ONE);
+    let tris = patch.triangles();
+    let f1 = Frame::new(origin, &tris[0], shear);
+    let f2 = Frame::new(origin, &tris[1], shear);
+    // Each triangle's orientation where it covers the ray; a triangle of
+    // zero area (the collapsed half of a degenerate patch) covers nothing.
+    let covers = |f: &Frame<S<V>>, tri: &Triangle<V>| {
+        inside(f, rule, (origin, dir), shear, tri)
+            .map(orientation_of)
+            .filter(|&s| s != 0)
+    };
+    let (in1, in2) = (covers(&f1, &tris[0]), covers(&f2, &tris[1]));
+    // Exactly one crossing where the boundary winds around the ray: one
+    // triangle covers it, or both with one orientation (the ray on the
+    // diagonal).
+    let single = match (in1, in2) {
+        (Some(a), Some(b)) => a == b,
+        (Some(_), None) | (None, Some(_)) => true,
+        (None, None) => false,
+    };
+    let sz = shear.sz;
+    // Corners 00, 10, 01, 11: f1 holds 00, 10, 11; f2 holds 00, 11, 01.
+    let p = Projected {
+        x: [f1.x[0], f1.x[1], f2.x[2], f1.x[2]],
+        y: [f1.y[0], f1.y[1], f2.y[2], f1.y[2]],
+        z: [f1.pz[0] * sz, f1.pz[1] * sz, f2.pz[2] * sz, f1.pz[2] * sz],
+    };
+    // No corner in front: every crossing is at t <= 0.
+    if !p.z.iter().any(|&z| z > zero) {
+        return None;
+    }
+    // A winding number of zero: two crossings need a fold, where the
+    // projected Jacobian (affine in u and v) takes both signs, so both
+    // signs at the corners; with one sign the map is one to one and
+    // there is no crossing. (Most misses end here.)
+    if !single {
+        let j =
+            [(zero, zero), (one, zero), (zero, one), (one, one)].map(|(u, v)| p.orientation(u, v));
+        let neg = j.iter().any(|&j| j < zero);
+        let pos = j.iter().any(|&j| j > zero);
+        if !(neg && pos) {
+            return None;
+        }
+    }
+    // The quadratic c(u) in Bernstein form: b0 = q00 x q01 (the edge
+    // u = 0), b2 = q10 x q11 (the edge u = 1), b1 the mean of the
+    // diagonals' products.
+    let (x, y) = (&p.x, &p.y);
+    let b0 = -f2.e[1];
+    let b2 = f1.e[0];
+    let b1 = (f2.e[2] + (x[1] * y[2] - y[1] * x[2])) * S::<V>::HALF;
+    let disc = b1 * b1 - b0 * b2;
+    // (Where the crossing is single the exact discriminant is at least
+    // zero.)
+    let disc = if single {
+        max2(disc, zero)
+    } else if disc >= zero {
+        disc
+    } else {
+        return None;
+    };
+    // c(u) = a u^2 + 2 b u + b0, its roots by the stable pair.
+    let a = (b0 + b2) - (b1 + b1);
+    let b = b1 - b0;
+    let root = disc.sqrt();
+    let q = -(b + if b < zero { -root } else { root });
+    let roots = [q / a, b0 / q];
+    let in_range = |t: S<V>| lo < t && t <= hi && t <= S::<V>::MAX;
+    let side_of = |det: S<V>| {
+        if (det > zero) != (shear.dz > zero) {
+            Side::Front
+        } else {
+            Side::Back
+        }
+    };
+    let (u, v) = if single {
+        // The root whose point, brought into the square, lies nearest the
+        // ray (a collapsed edge makes a spurious root, its segment a
+        // point away from the ray).
+        let clamp = |w: S<V>| min2(max2(w, zero), one);
+        let mut best: Option<(S<V>, S<V>, S<V>)> = None;
+        for u in roots {
+            if !u.is_finite() {
+                continue;
+            }
+            let u = clamp(u);
+            let v = clamp(p.v_at(u));
+            let miss = p.miss_at(u, v);
+            if best.is_none_or(|(_, _, m)| miss < m) {
+                best = Some((u, v, miss));
+            }
+        }
+        match best {
+            Some((u, v, _)) => (u, v),
+            // No finite root (a quadratic that rounding left with no
+            // coefficient): the covering triangle's own place, as a
+            // planar quad's.
+            None => from_triangle(in1.map(|_| &f1), &f2),
+        }
+    } else {
+        // None or two: each root whose (u, v) is in the square.
+        let mut best: Option<(S<V>, S<V>, S<V>)> = None;
+        for u in roots {
+            if !(zero <= u && u <= one) {
+                continue;
+            }
+            let v = p.v_at(u);
+            if !(zero <= v && v <= one) {
+                continue;
+            }
+            let t = p.t_at(u, v);
+            if in_range(t) && best.is_none_or(|(_, _, bt)| t < bt) {
+                best = Some((u, v, t));
+            }
+        }
+        let (u, v, t) = best?;
+        let det = p.orientation(u, v);
+        return Some(PatchHit {
+            t,
+            u,
+            v,
+            side: side_of(det),
+        });
+    };
+    let t = p.t_at(u, v);
+    // (Every corner in front makes every crossing so: the weights are at
+    // least zero.)
+    if !in_range(t) {
+        return None;
+    }
+    // The covering triangle's orientation: the crossing's, exactly.
+    let det = match in1.or(in2) {
+        Some(s) if s > 0 => one,
+        _ => -one,
+    };
+    Some(PatchHit {
+        t,
+        u,
+        v,
+        side: side_of(det),
+    })
+}
+
+/// `(u, v)` of the origin on the inside triangle (`first` the frame of
+/// `p00, p10, p11` where it is inside, else `second`, of `p00, p11, p01`),
+/// as on a parallelogram: on the first `(u1 + v1, v1)`, on the second
+/// `(u2, u2 + v2)`, each weight its edge function over the determinant.
+#[cold]
+fn from_triangle<F: Scalar>(first: Option<&Frame<F>>, second: &Frame<F>) -> (F, F) {
+    let f = first.unwrap_or(second);
+    let det = f.e[0] + f.e[1] + f.e[2];
+    let (w1, w2) = (f.e[1] / det, f.e[2] / det);
+    let clamp = |w: F| {
+        if w.is_finite() {
+            min2(max2(w, F::ZERO), F::ONE)
+        } else {
+            F::ZERO
+        }
+    };
+    let sum = clamp(w1 + w2);
+    if first.is_some() {
+        (sum, clamp(w2))
+    } else {
+        (clamp(w1), sum)
+    }
+}
+
+/// The ray/patch test.
+impl<V: Vector> Intersect<V> for Patch<V> {
+    /// `t`, `u`, `v` and the side.
+    type Hit = PatchHit<S<V>>;
+
+    /// The nearest crossing of the ray with the patch within `search`
+    /// (a `t_max`: `0 < t <= t_max`; an [`Interval`](crate::Interval):
+    /// `t_min < t <= t_max`, decided on the computed `t`, so that of
+    /// consecutive intervals exactly one reports a crossing), with the
+    /// search's edge rule on the boundary. See [`Patch`] for what is
+    /// decided exactly.
+    ///
+    /// ```
+    /// use rayhit::{Intersect, Interval, Patch, Ray, glam::Vec3};
+    /// // The saddle z = x y over [-1, 1]^2: the line (s, s, 1/4) meets it
+    /// // at s = -1/2 and s = 1/2, once from each side.
+    /// let saddle = Patch::new(
+    ///     Vec3::new(-1.0, -1.0, 1.0),
+    ///     Vec3::new(1.0, -1.0, -1.0),
+    ///     Vec3::new(-1.0, 1.0, -1.0),
+    ///     Vec3::new(1.0, 1.0, 1.0),
+    /// );
+    /// let ray = Ray::new(Vec3::new(-1.0, -1.0, 0.25), Vec3::new(1.0, 1.0, 0.0));
+    /// let first = saddle.hit(&ray, f32::INFINITY).unwrap();
+    /// let after = Interval::new(first.t, f32::INFINITY).unwrap();
+    /// let second = saddle.hit(&ray, after).unwrap();
+    /// assert!((first.t - 0.5).abs() < 1e-6 && (second.t - 1.5).abs() < 1e-6);
+    /// assert!((first.u - 0.25).abs() < 1e-6 && (second.v - 0.75).abs() < 1e-6);
+    /// assert_ne!(first.side, second.side);
+    /// ```
+    #[inline]
+    fn hit(&self, ray: &impl RayForm<V>, search: impl Into<Search<S<V>>>) -> Option<Self::Hit> {
+        let search = search.into();
+        let r: Ray<V> = ray.to_ray();
+        let ends = match search.range {
+            Range::UpTo(t_max) => t_max_ok(t_max).then_some((S::<V>::ZERO, t_max))?,
+            Range::Within(interval) => interval.ends(),
+        };
+        if !r.is_valid() {
+            return None;
+        }
+        let shear = Shear::new(&r.dir);
+        patch_hit((r.origin, r.dir), &shear, self, ends, search.edges)
+    }
+
+    /// Whether the patch is crossed within `search`.
+    #[inline]
+    fn occluded(&self, ray: &impl RayForm<V>, search: impl Into<Search<S<V>>>) -> bool {
+        self.hit(ray, search).is_some()
+    }
+}
