@@ -30,14 +30,19 @@
 //! winds at most once), which the patch reports; zero means none or two,
 //! which the quadratic decides, in floating point.
 
+mod bounds;
+
 use glam::Vec3;
 
 use crate::aabb::Aabb;
 use crate::num::round::{max2, min2};
 use crate::num::{S, Scalar, Vector};
-use crate::query::{EdgeRule, Intersect, Range, RayForm, Search};
+use crate::query::{EdgeRule, Intersect, Range, RayForm, Search, Surface};
 use crate::ray::{Ray, Shear, t_max_ok};
-use crate::triangle::{Frame, Side, Triangle, inside};
+use crate::surface::SurfacePoint;
+use crate::triangle::{ErrorBounds, Frame, Side, Triangle, TriangleHitError, inside};
+
+use bounds::{Certified, normal_error, point_error};
 
 /// A bilinear patch: the surface `P(u, v) = (1 - u)(1 - v) p00 + u (1 -
 /// v) p10 + (1 - u) v p01 + u v p11` for `(u, v)` in the closed unit
@@ -59,9 +64,17 @@ use crate::triangle::{Frame, Side, Triangle, inside};
 /// folds over itself as seen from the ray), the quadratic is solved in
 /// floating point: rays within rounding of the patch's silhouette, where
 /// the two crossings meet, may be reported as touching or missing. `t`,
-/// `u` and `v` are rounded values of the crossing; `t > 0` is decided
-/// exactly where every corner is in front of the origin (or every corner
-/// behind), and from the computed `t` elsewhere.
+/// `u` and `v` come with bounds ([`hit_error`](Surface::hit_error)): a
+/// certificate that the exact patch meets the exact ray within them.
+/// `t > 0` is decided conservatively: a hit is reported where every
+/// corner is in front of the origin, or where `t` exceeds its certified
+/// bound, so a reported crossing is in front of the origin in exact
+/// arithmetic, and a ray spawned from the patch
+/// ([`SurfacePoint::spawn`]) never reports the crossing it left (a curved
+/// patch may still rise into its path further on, a crossing in front of
+/// it). Over an [`Interval`](crate::Interval) with `t_min > 0`, the ends
+/// are decided on the computed `t`, so that one of two consecutive
+/// intervals reports each crossing.
 ///
 /// `(u, v)` is the hit's place: `p00` at `(0, 0)`, `p10` at `(1, 0)`,
 /// `p01` at `(0, 1)`, `p11` at `(1, 1)`. The front side is the one
@@ -252,11 +265,63 @@ impl<F: Scalar> Projected<F> {
     #[inline(always)]
     fn orientation(&self, u: F, v: F) -> F {
         let (x, y) = (&self.x, &self.y);
-        let dux = lerp(x[1] - x[0], x[3] - x[2], v);
-        let duy = lerp(y[1] - y[0], y[3] - y[2], v);
-        let dvx = lerp(x[2] - x[0], x[3] - x[1], u);
-        let dvy = lerp(y[2] - y[0], y[3] - y[1], u);
-        dux * dvy - duy * dvx
+        self.d_du(x, v) * self.d_dv(y, u) - self.d_du(y, v) * self.d_dv(x, u)
+    }
+
+    /// `dc/du` at `v` of the bilinear values `c` (corners `00, 10, 01,
+    /// 11`).
+    #[inline(always)]
+    fn d_du(&self, c: &[F; 4], v: F) -> F {
+        lerp(c[1] - c[0], c[3] - c[2], v)
+    }
+
+    /// `dc/dv` at `u`.
+    #[inline(always)]
+    fn d_dv(&self, c: &[F; 4], u: F) -> F {
+        lerp(c[2] - c[0], c[3] - c[1], u)
+    }
+}
+
+/// The patch in the ray's frame: the two triangles' frames (`p00, p10,
+/// p11` and `p00, p11, p01`, as the watertight test makes them) and the
+/// corners read from them.
+struct Framed<F> {
+    f1: Frame<F>,
+    f2: Frame<F>,
+    p: Projected<F>,
+}
+
+impl<F: Scalar> Framed<F> {
+    #[inline(always)]
+    fn new<V: Vector<Scalar = F>>(origin: V, shear: &Shear<F>, patch: &Patch<V>) -> Self {
+        let [t1, t2] = patch.triangles();
+        let f1 = Frame::new(origin, &t1, shear);
+        let f2 = Frame::new(origin, &t2, shear);
+        let sz = shear.sz;
+        // Corners 00, 10, 01, 11: f1 holds 00, 10, 11; f2 holds 00, 11, 01.
+        let p = Projected {
+            x: [f1.x[0], f1.x[1], f2.x[2], f1.x[2]],
+            y: [f1.y[0], f1.y[1], f2.y[2], f1.y[2]],
+            z: [f1.pz[0] * sz, f1.pz[1] * sz, f2.pz[2] * sz, f1.pz[2] * sz],
+        };
+        Self { f1, f2, p }
+    }
+
+    /// The certificate at `(u, v)`, with the corners' projection bounds
+    /// (each triangle's, the larger).
+    #[inline(never)]
+    fn certify(&self, shear: &Shear<F>, u: F, v: F) -> Certified<F> {
+        let b1 = ErrorBounds::new(&self.f1, &self.f1.scaled_z(shear), shear);
+        let b2 = ErrorBounds::new(&self.f2, &self.f2.scaled_z(shear), shear);
+        let eq = if b1.xy > b2.xy { b1.xy } else { b2.xy };
+        let ez = if b1.z > b2.z { b1.z } else { b2.z };
+        if !(eq.is_finite() && ez.is_finite()) {
+            return Certified {
+                t: F::INFINITY,
+                uv: F::INFINITY,
+            };
+        }
+        bounds::certify(&self.p, eq, ez, u, v)
     }
 }
 
@@ -277,7 +342,9 @@ fn orientation_of<F: Scalar>(e: [F; 3]) -> i8 {
 
 /// The ray/patch test for a valid ray with `shear` its shear: the nearest
 /// crossing with `lo < t <= hi` (`0 <= lo <= hi`), with `rule` on the
-/// boundary.
+/// boundary. `t > lo` is decided on the computed `t` where `lo > 0`; for
+/// `lo = 0`, conservatively: every corner in front of the origin, or `t`
+/// above its certified bound.
 #[inline]
 fn patch_hit<V: Vector>(
     (origin, dir): (V, V),
@@ -288,8 +355,12 @@ fn patch_hit<V: Vector>(
 ) -> Option<PatchHit<S<V>>> {
     let (zero, one) = (S::<V>::ZERO, S::<V>::ONE);
     let tris = patch.triangles();
-    let f1 = Frame::new(origin, &tris[0], shear);
-    let f2 = Frame::new(origin, &tris[1], shear);
+    let fr = Framed::new(origin, shear, patch);
+    let (f1, f2, p) = (&fr.f1, &fr.f2, &fr.p);
+    // No corner in front: every crossing is at t <= 0.
+    if !p.z.iter().any(|&z| z > zero) {
+        return None;
+    }
     // Each triangle's orientation where it covers the ray; a triangle of
     // zero area (the collapsed half of a degenerate patch) covers nothing.
     let covers = |f: &Frame<S<V>>, tri: &Triangle<V>| {
@@ -297,7 +368,7 @@ fn patch_hit<V: Vector>(
             .map(orientation_of)
             .filter(|&s| s != 0)
     };
-    let (in1, in2) = (covers(&f1, &tris[0]), covers(&f2, &tris[1]));
+    let (in1, in2) = (covers(f1, &tris[0]), covers(f2, &tris[1]));
     // Exactly one crossing where the boundary winds around the ray: one
     // triangle covers it, or both with one orientation (the ray on the
     // diagonal).
@@ -306,17 +377,6 @@ fn patch_hit<V: Vector>(
         (Some(_), None) | (None, Some(_)) => true,
         (None, None) => false,
     };
-    let sz = shear.sz;
-    // Corners 00, 10, 01, 11: f1 holds 00, 10, 11; f2 holds 00, 11, 01.
-    let p = Projected {
-        x: [f1.x[0], f1.x[1], f2.x[2], f1.x[2]],
-        y: [f1.y[0], f1.y[1], f2.y[2], f1.y[2]],
-        z: [f1.pz[0] * sz, f1.pz[1] * sz, f2.pz[2] * sz, f1.pz[2] * sz],
-    };
-    // No corner in front: every crossing is at t <= 0.
-    if !p.z.iter().any(|&z| z > zero) {
-        return None;
-    }
     // A winding number of zero: two crossings need a fold, where the
     // projected Jacobian (affine in u and v) takes both signs, so both
     // signs at the corners; with one sign the map is one to one and
@@ -353,7 +413,18 @@ fn patch_hit<V: Vector>(
     let root = disc.sqrt();
     let q = -(b + if b < zero { -root } else { root });
     let roots = [q / a, b0 / q];
-    let in_range = |t: S<V>| lo < t && t <= hi && t <= S::<V>::MAX;
+    // Every corner in front makes every crossing so (the depth is a
+    // convex combination of theirs); else a crossing stands in front of
+    // the origin where its `t` exceeds its certified bound.
+    let ahead = p.z.iter().all(|&z| z > zero);
+    let in_range = |t: S<V>, u: S<V>, v: S<V>| {
+        let above_lo = if lo > zero || ahead {
+            lo < t
+        } else {
+            t > fr.certify(shear, u, v).t
+        };
+        above_lo && t <= hi && t <= S::<V>::MAX
+    };
     let side_of = |det: S<V>| {
         if (det > zero) != (shear.dz > zero) {
             Side::Front
@@ -361,31 +432,7 @@ fn patch_hit<V: Vector>(
             Side::Back
         }
     };
-    let (u, v) = if single {
-        // The root whose point, brought into the square, lies nearest the
-        // ray (a collapsed edge makes a spurious root, its segment a
-        // point away from the ray).
-        let clamp = |w: S<V>| min2(max2(w, zero), one);
-        let mut best: Option<(S<V>, S<V>, S<V>)> = None;
-        for u in roots {
-            if !u.is_finite() {
-                continue;
-            }
-            let u = clamp(u);
-            let v = clamp(p.v_at(u));
-            let miss = p.miss_at(u, v);
-            if best.is_none_or(|(_, _, m)| miss < m) {
-                best = Some((u, v, miss));
-            }
-        }
-        match best {
-            Some((u, v, _)) => (u, v),
-            // No finite root (a quadratic that rounding left with no
-            // coefficient): the covering triangle's own place, as a
-            // planar quad's.
-            None => from_triangle(in1.map(|_| &f1), &f2),
-        }
-    } else {
+    if !single {
         // None or two: each root whose (u, v) is in the square.
         let mut best: Option<(S<V>, S<V>, S<V>)> = None;
         for u in roots {
@@ -397,23 +444,43 @@ fn patch_hit<V: Vector>(
                 continue;
             }
             let t = p.t_at(u, v);
-            if in_range(t) && best.is_none_or(|(_, _, bt)| t < bt) {
+            if in_range(t, u, v) && best.is_none_or(|(_, _, bt)| t < bt) {
                 best = Some((u, v, t));
             }
         }
         let (u, v, t) = best?;
-        let det = p.orientation(u, v);
         return Some(PatchHit {
             t,
             u,
             v,
-            side: side_of(det),
+            side: side_of(p.orientation(u, v)),
         });
+    }
+    // The root whose point, brought into the square, lies nearest the ray
+    // (a collapsed edge makes a spurious root, its segment a point away
+    // from the ray).
+    let clamp = |w: S<V>| min2(max2(w, zero), one);
+    let mut best: Option<(S<V>, S<V>, S<V>)> = None;
+    for u in roots {
+        if !u.is_finite() {
+            continue;
+        }
+        let u = clamp(u);
+        let v = clamp(p.v_at(u));
+        let miss = p.miss_at(u, v);
+        if best.is_none_or(|(_, _, m)| miss < m) {
+            best = Some((u, v, miss));
+        }
+    }
+    let (u, v) = match best {
+        Some((u, v, _)) => (u, v),
+        // No finite root (a quadratic that rounding left with no
+        // coefficient): the covering triangle's own place, as a planar
+        // quad's.
+        None => from_triangle(in1.map(|_| f1), f2),
     };
     let t = p.t_at(u, v);
-    // (Every corner in front makes every crossing so: the weights are at
-    // least zero.)
-    if !in_range(t) {
+    if !in_range(t, u, v) {
         return None;
     }
     // The covering triangle's orientation: the crossing's, exactly.
@@ -459,11 +526,13 @@ impl<V: Vector> Intersect<V> for Patch<V> {
     type Hit = PatchHit<S<V>>;
 
     /// The nearest crossing of the ray with the patch within `search`
-    /// (a `t_max`: `0 < t <= t_max`; an [`Interval`](crate::Interval):
-    /// `t_min < t <= t_max`, decided on the computed `t`, so that of
-    /// consecutive intervals exactly one reports a crossing), with the
-    /// search's edge rule on the boundary. See [`Patch`] for what is
-    /// decided exactly.
+    /// (a `t_max`: `0 < t <= t_max`, `t > 0` decided conservatively; an
+    /// [`Interval`](crate::Interval): `t_min < t <= t_max`, decided on the
+    /// computed `t`, so that of consecutive intervals exactly one reports
+    /// a crossing), with the search's edge rule on the boundary. Where the
+    /// ray meets the patch twice, the nearer; the farther is the hit over
+    /// the interval that starts at the nearer's `t`. See [`Patch`] for
+    /// what is decided exactly.
     ///
     /// ```
     /// use rayhit::{Intersect, Interval, Patch, Ray, glam::Vec3};
@@ -502,5 +571,107 @@ impl<V: Vector> Intersect<V> for Patch<V> {
     #[inline]
     fn occluded(&self, ray: &impl RayForm<V>, search: impl Into<Search<S<V>>>) -> bool {
         self.hit(ray, search).is_some()
+    }
+}
+
+impl<V: Vector> Surface<V> for Patch<V> {
+    /// Bounds on the errors of `t`, `u` and `v`.
+    type HitError = TriangleHitError<S<V>>;
+
+    /// Bounds on the distance of a hit's `t`, `u` and `v` from a crossing
+    /// of the exact ray with the exact patch: a certificate, derived in
+    /// the source, that the exact patch (extended bilinearly past its
+    /// edges by at most the `u`, `v` bound) meets the exact ray within
+    /// that distance of the computed `(u, v)`, and the depth's variation
+    /// over it. Infinite where no crossing can be certified near the hit:
+    /// the ray within rounding of tangent to the patch (at its
+    /// silhouette, or grazing it), or a patch too thin, seen from the
+    /// ray, for its rounded corners to place the crossing. For a hit over
+    /// an [`Interval`](crate::Interval), the same bounds: the patch does
+    /// not move `t` into the interval.
+    ///
+    /// ```
+    /// use rayhit::{Intersect, Patch, Ray, Surface, glam::Vec3};
+    /// let saddle = Patch::new(Vec3::ZERO, Vec3::X, Vec3::Y, Vec3::new(1.0, 1.0, 1.0));
+    /// let ray = Ray::new(Vec3::new(0.3, 0.6, 2.0), -Vec3::Z);
+    /// let hit = saddle.hit(&ray, f32::INFINITY).unwrap();
+    /// let err = saddle.hit_error(&ray, &hit);
+    /// // The crossing is P(0.3, 0.6), at height 0.18.
+    /// assert!((hit.t - 1.82).abs() <= err.t + 1e-7 && err.t < 1e-5);
+    /// assert!((hit.u - 0.3).abs() <= err.u + 1e-7 && (hit.v - 0.6).abs() <= err.v + 1e-7);
+    /// ```
+    #[inline]
+    fn hit_error(&self, ray: &impl RayForm<V>, hit: &Self::Hit) -> Self::HitError {
+        let r = ray.to_ray();
+        let inf = S::<V>::INFINITY;
+        if !r.is_valid() {
+            return TriangleHitError {
+                t: inf,
+                u: inf,
+                v: inf,
+            };
+        }
+        let shear = Shear::new(&r.dir);
+        let c = Framed::new(r.origin, &shear, self).certify(&shear, hit.u, hit.v);
+        TriangleHitError {
+            t: c.t,
+            u: c.uv,
+            v: c.uv,
+        }
+    }
+
+    /// The point `P(u, v)` of the hit ([`Patch::surface_point_at`]): a
+    /// point of the patch within its bound, with the patch's normal there.
+    /// The ray is not read. A ray spawned from it does not meet the patch
+    /// again where it left it (the crossing there is behind its origin,
+    /// and the test decides `t > 0` conservatively); a curved patch may
+    /// still be met again elsewhere, as its shape says.
+    ///
+    /// ```
+    /// use rayhit::{Intersect, Patch, Ray, Surface, glam::Vec3};
+    /// let saddle = Patch::new(Vec3::ZERO, Vec3::X, Vec3::Y, Vec3::new(1.0, 1.0, 1.0));
+    /// let ray = Ray::new(Vec3::new(0.3, 0.6, 2.0), -Vec3::Z);
+    /// let hit = saddle.hit(&ray, f32::INFINITY).unwrap();
+    /// let here = saddle.surface_point(&ray, &hit);
+    /// // Back up and away: no second meeting.
+    /// let bounce = here.spawn(Vec3::new(0.1, 0.2, 1.0));
+    /// assert!(saddle.hit(&bounce, f32::INFINITY).is_none());
+    /// ```
+    #[inline]
+    fn surface_point(&self, _ray: &impl RayForm<V>, hit: &Self::Hit) -> SurfacePoint<V> {
+        self.surface_point_at(hit.u, hit.v)
+    }
+}
+
+impl<V: Vector> Patch<V> {
+    /// The surface point at `(u, v)` (in `[0, 1]`): `P(u, v)` with a bound
+    /// on each coordinate's distance from the exact `P(u, v)`, and the
+    /// normal `dP/du x dP/dv` there with its bound. For points that come
+    /// from no ray: samples on a patch light, the ends of a shadow
+    /// segment ([`SurfacePoint::spawn_to`]).
+    ///
+    /// ```
+    /// use rayhit::{Patch, glam::Vec3};
+    /// let p = Patch::new(Vec3::ZERO, Vec3::X, Vec3::Y, Vec3::new(1.0, 1.0, 1.0));
+    /// let s = p.surface_point_at(0.5, 0.5);
+    /// assert_eq!(s.point, Vec3::new(0.5, 0.5, 0.25));
+    /// assert_eq!(s.normal, p.normal_at(0.5, 0.5));
+    /// ```
+    #[inline]
+    #[must_use]
+    pub fn surface_point_at(&self, u: S<V>, v: S<V>) -> SurfacePoint<V> {
+        let c = [self.p00, self.p10, self.p01, self.p11];
+        let m = |k: fn(V) -> S<V>| c.iter().fold(S::<V>::ZERO, |m, &p| max2(m, k(p).abs()));
+        let m = [m(V::x), m(V::y), m(V::z)];
+        let du = lerp_v(self.p10 - self.p00, self.p11 - self.p01, v);
+        let dv = lerp_v(self.p01 - self.p00, self.p11 - self.p10, u);
+        let arr = |w: V| [w.x(), w.y(), w.z()];
+        let vec = |a: [S<V>; 3]| V::new(a[0], a[1], a[2]);
+        SurfacePoint {
+            point: self.point_at(u, v),
+            point_error: vec(point_error(m)),
+            normal: du.cross(dv),
+            normal_error: vec(normal_error(arr(du), arr(dv), m)),
+        }
     }
 }

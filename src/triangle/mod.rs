@@ -48,6 +48,7 @@ use crate::num::round::bound_up;
 use crate::num::{S, Scalar, Vector};
 
 pub use batch::{TriangleBatch, TriangleBatchHits};
+pub(crate) use bounds::ErrorBounds;
 pub use bounds::TriangleHitError;
 pub(crate) use definition::inside;
 pub(crate) use frame::Frame;

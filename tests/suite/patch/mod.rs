@@ -4,6 +4,7 @@
 //! the textbook patch test beside it (`watertight`).
 
 mod degenerate;
+mod oracle;
 mod watertight;
 
 use rayhit::{Patch, Ray, Scalar, Vector};

@@ -1,0 +1,161 @@
+//! The patch's error bounds, all derived here: a certificate that the
+//! exact patch meets the exact ray near the computed `(u, v)` (and so
+//! bounds on `u`, `v` and `t`), and the bounds of a surface point and its
+//! normal.
+//!
+//! Notation: `u` (as a bound) is the unit roundoff and `gamma(n) = n u /
+//! (1 - n u)`. `Q(u, v)` is the bilinear map of the computed projected
+//! corners `q_ij = (x_ij, y_ij)` and `Z(u, v)` that of their computed
+//! depths `z_ij` (in units of `t`); `Q*` and `Z*` are the same for the
+//! exact corners in the exact sheared frame, where the exact ray is the
+//! `z` axis. The triangle's bounds give `|q_ij - q*_ij| <= eq` (each
+//! coordinate) and `|z_ij - z*_ij| <= ez` ([`ErrorBounds`]); bilinear
+//! weights sum to one, so `|Q - Q*| <= S eq` and `|Z - Z*| <= S ez`
+//! wherever the absolute weights sum to at most `S` (`S = (1 + 2 r)^2`
+//! within `r` of the unit square).
+//!
+//! [`ErrorBounds`]: crate::triangle::ErrorBounds
+
+use super::Projected;
+use crate::num::Scalar;
+use crate::num::round::bound_up;
+use crate::num::round::outward::{add_up, div_up, mul_up, sub_down};
+
+/// Bounds on the distance of a computed hit from a crossing of the exact
+/// patch with the exact ray: `t` (the computed depth `fl(Z(u, v))`) and
+/// `u`, `v` (each). Infinite where no crossing could be certified near
+/// `(u, v)`.
+#[derive(Clone, Copy, Debug)]
+pub(super) struct Certified<F> {
+    pub(super) t: F,
+    pub(super) uv: F,
+}
+
+/// The largest magnitude among four values; infinite where one is not
+/// finite (and then every bound below is).
+#[inline(always)]
+fn max4<F: Scalar>(v: &[F; 4]) -> F {
+    if !v.iter().all(|x| x.abs() <= F::MAX) {
+        return F::INFINITY;
+    }
+    v.iter()
+        .fold(F::ZERO, |m, x| if x.abs() > m { x.abs() } else { m })
+}
+
+/// The certificate for the computed point `(u, v)` of the unit square.
+///
+/// Evaluation: `lerp(a, b, w) = fl(fl(fl(1 - w) a) + fl(w b))` with `w` in
+/// `[0, 1]` is within `gamma(3) max(|a|, |b|)` of `(1 - w) a + w b`; two
+/// levels (a bilinear value) within `gamma(7) m`, `m` the largest corner
+/// magnitude; a derivative `lerp(a1 - a0, b1 - b0, w)`, whose differences
+/// round once (each at most `2 m`), within `gamma(9) m`; the twist `k =
+/// (q11 - q10) - (q01 - q00)` within `gamma(9) m` likewise.
+///
+/// The crossing. With `M` the Jacobian of `Q` at `(u, v)` and `k` its
+/// twist, `Q(u + du, v + dv) = Q(u, v) + M (du, dv) + k du dv` exactly (a
+/// bilinear map). A crossing `Q*(w + d) = 0` is a fixed point of `T(d) =
+/// -M^-1 (Q(w) + k du dv + (Q* - Q)(w + d))`. With `a >= |M^-1|` (max
+/// norm), `c >= |k|`, `beta >= |Q(w)| + S eq` and `|d| <= r`: `|T(d)| <= a
+/// (beta + c r^2)`. For `r = 2 a beta`, `4 a^2 c beta <= 1` makes that at
+/// most `r`, so `T` maps the closed ball into itself and (Brouwer) has a
+/// fixed point: the exact patch, extended bilinearly, meets the exact ray
+/// at some `w + d` with `|d| <= r`. `r <= 1/4` keeps `S <= 9/4`. Then
+/// `t* = Z*(w + d)` and `|fl(Z(w)) - t*| <= (|Z_u| + |Z_v|) r + |k_z| r^2 +
+/// S ez + gamma(7) m_z`.
+///
+/// `|M^-1| = max(|m22| + |m12|, |m21| + |m11|) / |det M|`; the computed
+/// entries are within `eM = gamma(9) m` of `M`'s, and `|det M| >= |fl(det)|
+/// - gamma(2) (|m11 m22| + |m12 m21|) - eM sum |m_ij| - 2 eM^2`.
+#[inline(never)]
+pub(super) fn certify<F: Scalar>(p: &Projected<F>, eq: F, ez: F, u: F, v: F) -> Certified<F> {
+    let none = Certified {
+        t: F::INFINITY,
+        uv: F::INFINITY,
+    };
+    let g = F::gamma_n;
+    let (x, y, z) = (&p.x, &p.y, &p.z);
+    let mxy = {
+        let (a, b) = (max4(x), max4(y));
+        if a > b { a } else { b }
+    };
+    let mz = max4(z);
+    // Q(w): its computed residual, and a bound on the exact one.
+    let r = add_up(p.miss_at(u, v), mul_up(g(7), mxy));
+    // The Jacobian: columns Q_u = (m11, m21), Q_v = (m12, m22).
+    let (qu, qv) = (p.d_du(x, v), p.d_dv(x, u));
+    let (ru, rv) = (p.d_du(y, v), p.d_dv(y, u));
+    let (m11, m12, m21, m22) = (qu.abs(), qv.abs(), ru.abs(), rv.abs());
+    let em = mul_up(g(9), mxy);
+    let det = (qu * rv - qv * ru).abs();
+    let det_err = add_up(
+        add_up(
+            mul_up(g(2), add_up(mul_up(m11, m22), mul_up(m12, m21))),
+            mul_up(em, add_up(add_up(m11, m22), add_up(m12, m21))),
+        ),
+        mul_up(mul_up(em, em), F::TWO),
+    );
+    let det_lo = sub_down(det, det_err);
+    if !(det_lo > F::ZERO) {
+        return none;
+    }
+    let rows = {
+        let (a, b) = (add_up(m22, m12), add_up(m21, m11));
+        if a > b { a } else { b }
+    };
+    let a = div_up(add_up(rows, mul_up(em, F::TWO)), det_lo);
+    let twist = |c: &[F; 4], m: F| add_up(((c[3] - c[1]) - (c[2] - c[0])).abs(), mul_up(g(9), m));
+    let c = {
+        let (kx, ky) = (twist(x, mxy), twist(y, mxy));
+        if kx > ky { kx } else { ky }
+    };
+    let beta = add_up(r, mul_up(F::from_f64(2.25), eq));
+    let radius = mul_up(mul_up(a, beta), F::TWO);
+    let contracts = mul_up(mul_up(mul_up(a, a), mul_up(c, beta)), F::from_u32(4));
+    if !(contracts <= F::ONE && radius <= F::from_f64(0.25)) {
+        return none;
+    }
+    // The depth.
+    let (zu, zv) = (p.d_du(z, v).abs(), p.d_dv(z, u).abs());
+    let ez_d = mul_up(g(9), mz);
+    let slope = add_up(add_up(zu, zv), mul_up(ez_d, F::TWO));
+    let t = bound_up(
+        slope * radius + (twist(z, mz) * radius) * radius + F::from_f64(2.25) * ez + g(7) * mz,
+        4,
+    );
+    if !(t.is_finite() && radius.is_finite()) {
+        return none;
+    }
+    Certified { t, uv: radius }
+}
+
+/// A bound on each coordinate of `point_at(u, v)` (for `u`, `v` in `[0,
+/// 1]`) against the exact `P(u, v)`: `gamma(7)` times the corners' largest
+/// magnitude in that coordinate (see [`certify`]).
+#[inline]
+pub(super) fn point_error<F: Scalar>(m: [F; 3]) -> [F; 3] {
+    m.map(|m| bound_up(F::gamma_n(7) * m, 1))
+}
+
+/// A bound on each component of the computed normal `du x dv` at `(u,
+/// v)` against the exact `dP/du x dP/dv` there, given the computed
+/// derivatives and the corners' largest magnitude per coordinate `m`:
+/// each derivative component is within `e_j = gamma(9) m_j` (see
+/// [`certify`]), so component `i` (`j, k` the next two) is within
+/// `gamma(2) (|du_j dv_k| + |du_k dv_j|) + |du_j| e_k + e_j (|dv_k| + e_k)
+/// + |du_k| e_j + e_k (|dv_j| + e_j)`.
+#[inline]
+pub(super) fn normal_error<F: Scalar>(du: [F; 3], dv: [F; 3], m: [F; 3]) -> [F; 3] {
+    let e = m.map(|m| F::gamma_n(9) * m);
+    let (du, dv) = (du.map(F::abs), dv.map(F::abs));
+    [0, 1, 2].map(|i| {
+        let (j, k) = ((i + 1) % 3, (i + 2) % 3);
+        bound_up(
+            F::gamma_n(2) * (du[j] * dv[k] + du[k] * dv[j])
+                + du[j] * e[k]
+                + e[j] * (dv[k] + e[k])
+                + du[k] * e[j]
+                + e[k] * (dv[j] + e[j]),
+            4,
+        )
+    })
+}

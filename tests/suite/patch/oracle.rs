@@ -1,0 +1,315 @@
+//! The patch test against exact arithmetic, in `f32` and `f64`.
+//!
+//! Cases: non-planar patches (a square of side `s`, `1e-3` to `1e3`, in
+//! any orientation, its corners raised off its plane by up to `0.4 s`
+//! each, some of them folded as seen from the ray), centred up to `1e5`
+//! from the origin; rays aimed at a point `P(u0, v0)` with `(u0, v0)` in
+//! `[-0.1, 1.1]^2`, from `1` to `100` sizes away in any direction, or a
+//! quarter of the time nearly along the patch.
+//!
+//! The exact crossing near a hit is found by Newton's method in big
+//! rationals (`G(u, v, t) = P(u, v) - o - t d = 0`, three steps from the
+//! hit, its residual checked). For every hit whose bound is finite, `t`,
+//! `u` and `v` are within it of that crossing; the surface point is
+//! within its bound of the exact `P(u, v)` at the reported `(u, v)`, its
+//! normal within its bound of the exact `dP/du x dP/dv`. A ray aimed at a
+//! point well inside the patch (`(u0, v0)` in `[0.1, 0.9]^2`, its exact
+//! crossing there too) is hit. Rays spawned from every hit (reflected,
+//! and continuing through) meet the patch again within a thousandth of
+//! its size only where the exact crossing there is in front of their
+//! origin (a curved patch may rise above the tangent plane the origin was
+//! moved off; the crossing left behind is never reported). The textbook test
+//! (Reshetov's formulas, `t > 0`, rays continued from the unmoved point
+//! `o + t d`) on the same rays: its misses and self-hits print.
+
+use rayhit::exact::Rational;
+use rayhit::exact::num_traits::{Signed, Zero};
+use rayhit::glam::{DVec3, Vec3};
+use rayhit::{Intersect, Patch, Ray, Scalar, Surface, Vector};
+use rayhit_testkit::case_count;
+use rayhit_testkit::rng::Pcg32;
+
+use super::reshetov;
+use crate::common::draw::{S, signed, v};
+use crate::sphere::{q, unit};
+
+type R = Rational;
+
+fn rv<V: Vector>(p: V) -> [R; 3] {
+    [q(p.x()), q(p.y()), q(p.z())]
+}
+
+fn lerp(a: &R, b: &R, w: &R) -> R {
+    a + (b - a) * w
+}
+
+/// `P(u, v)` of the exact corners.
+fn at(c: &[[R; 3]; 4], u: &R, v: &R) -> [R; 3] {
+    [0, 1, 2].map(|k| {
+        lerp(
+            &lerp(&c[0][k], &c[1][k], u),
+            &lerp(&c[2][k], &c[3][k], u),
+            v,
+        )
+    })
+}
+
+fn d_du(c: &[[R; 3]; 4], v: &R) -> [R; 3] {
+    [0, 1, 2].map(|k| lerp(&(&c[1][k] - &c[0][k]), &(&c[3][k] - &c[2][k]), v))
+}
+
+fn d_dv(c: &[[R; 3]; 4], u: &R) -> [R; 3] {
+    [0, 1, 2].map(|k| lerp(&(&c[2][k] - &c[0][k]), &(&c[3][k] - &c[1][k]), u))
+}
+
+fn det3(a: &[R; 3], b: &[R; 3], c: &[R; 3]) -> R {
+    &a[0] * (&b[1] * &c[2] - &b[2] * &c[1]) - &a[1] * (&b[0] * &c[2] - &b[2] * &c[0])
+        + &a[2] * (&b[0] * &c[1] - &b[1] * &c[0])
+}
+
+/// `x` on the grid of `2^-160` (so that Newton's iterates stay small).
+fn snap(x: R) -> R {
+    let grid = R::from_integer(rayhit::exact::num_bigint::BigInt::from(1) << 160);
+    (x * &grid).round() / grid
+}
+
+/// Newton's method on `P(u, v) - o - t d` from `(u, v, t)`: up to eight
+/// steps (each iterate snapped to a fine grid), or `None` where the
+/// Jacobian is singular or the steps do not shrink below `1e-24` (no
+/// convergence).
+fn newton(c: &[[R; 3]; 4], o: &[R; 3], d: &[R; 3], start: [R; 3]) -> Option<[R; 3]> {
+    let [mut u, mut v, mut t] = start;
+    let mut last = R::zero();
+    let tiny = R::new(1.into(), 10u64.pow(12).into()).pow(2);
+    for _ in 0..8 {
+        let p = at(c, &u, &v);
+        let g: [R; 3] = [0, 1, 2].map(|k| &p[k] - &o[k] - &t * &d[k]);
+        let (pu, pv) = (d_du(c, &v), d_dv(c, &u));
+        let nd: [R; 3] = [0, 1, 2].map(|k| -&d[k]);
+        let det = det3(&pu, &pv, &nd);
+        if det.is_zero() {
+            return None;
+        }
+        let ng: [R; 3] = [0, 1, 2].map(|k| -&g[k]);
+        let du = det3(&ng, &pv, &nd) / &det;
+        let dv = det3(&pu, &ng, &nd) / &det;
+        let dt = det3(&pu, &pv, &ng) / &det;
+        last = du.abs() + dv.abs() + dt.abs() / (t.abs() + R::from_integer(1.into()));
+        u = snap(u + du);
+        v = snap(v + dv);
+        t = snap(t + dt);
+        if last < tiny {
+            break;
+        }
+    }
+    // Converged: the last step far below any bound checked against it.
+    (last < tiny).then_some([u, v, t])
+}
+
+/// A case: the patch and a ray, and the aimed-at `(u0, v0)`.
+fn case<V: Vector>(rng: &mut Pcg32) -> (Patch<V>, Ray<V>, [f64; 2]) {
+    let size = 10f64.powf(-3.0 + 6.0 * f64::from(rng.unit()));
+    let reach = [0.0, 1e2, 1e5][rng.below(3) as usize];
+    let centre = [0, 1, 2].map(|_| reach * signed(rng));
+    let (e1, n) = (unit(rng), unit(rng));
+    // An orthonormal-ish frame: e2 = n x e1 (not normalised; any
+    // non-degenerate square will do).
+    let e2 = [
+        n[1] * e1[2] - n[2] * e1[1],
+        n[2] * e1[0] - n[0] * e1[2],
+        n[0] * e1[1] - n[1] * e1[0],
+    ];
+    let mut corner = |a: f64, b: f64| {
+        let h = 0.4 * signed(rng);
+        let p = [0, 1, 2].map(|k| centre[k] + size * (a * e1[k] + b * e2[k] + h * n[k]));
+        v::<V>(p[0], p[1], p[2])
+    };
+    let patch = Patch::new(
+        corner(-0.5, -0.5),
+        corner(0.5, -0.5),
+        corner(-0.5, 0.5),
+        corner(0.5, 0.5),
+    );
+    let w = [0, 1].map(|_| 0.5 + 0.6 * signed(rng));
+    let target = target_of(&patch, w);
+    let away = if rng.below(4) == 0 {
+        // Nearly along the patch.
+        let t = 0.05 * signed(rng);
+        [0, 1, 2].map(|k| e1[k] + t * n[k])
+    } else {
+        unit(rng)
+    };
+    let dist = size * 10f64.powf(2.0 * f64::from(rng.unit()));
+    let origin = target + v::<V>(away[0], away[1], away[2]) * S::<V>::from_f64(dist);
+    (patch, Ray::new(origin, target - origin), w)
+}
+
+/// The rounded point `P(w)` a case aims at.
+fn target_of<V: Vector>(patch: &Patch<V>, w: [f64; 2]) -> V {
+    patch.point_at(S::<V>::from_f64(w[0]), S::<V>::from_f64(w[1]))
+}
+
+#[derive(Debug, Default)]
+struct Counts {
+    hits: usize,
+    certified: usize,
+    aimed_inside: usize,
+    spawned: usize,
+    near_again: usize,
+    from_surface_hits: usize,
+    textbook_misses_inside: usize,
+    textbook_self_hits: usize,
+}
+
+fn within(x: f64, exact: &R, err: f64) -> bool {
+    let x = rayhit::exact::oracle::r(x).expect("finite");
+    (x - exact).abs() <= rayhit::exact::oracle::r(err).expect("finite")
+}
+
+fn run<V: Vector>(seed: u64) -> Counts {
+    let mut rng = Pcg32::new(seed);
+    let mut n = Counts::default();
+    let inf = S::<V>::INFINITY;
+    for _ in 0..case_count(500) {
+        let (patch, ray, w) = case::<V>(&mut rng);
+        if !ray.is_valid() {
+            continue;
+        }
+        let c = [patch.p00, patch.p10, patch.p01, patch.p11].map(rv);
+        let (o, d) = (rv(ray.origin), rv(ray.dir));
+        let size = (patch.p11 - patch.p00).length().to_f64();
+        let hit = patch.hit(&ray, inf);
+        // Aimed well inside, with the exact crossing there too: a hit.
+        let inside = (0.1..=0.9).contains(&w[0]) && (0.1..=0.9).contains(&w[1]);
+        let guess = [
+            q(S::<V>::from_f64(w[0])),
+            q(S::<V>::from_f64(w[1])),
+            q(S::<V>::ONE),
+        ];
+        let exact_aim = newton(&c, &o, &d, guess);
+        let aim_inside = inside
+            && exact_aim.as_ref().is_some_and(|e| {
+                let (lo, hi) = (R::new(1.into(), 20.into()), R::new(19.into(), 20.into()));
+                e[0] >= lo && e[0] <= hi && e[1] >= lo && e[1] <= hi && e[2].is_positive()
+            });
+        if aim_inside {
+            n.aimed_inside += 1;
+            assert!(hit.is_some(), "aimed inside, missed: {patch:?} {ray:?}");
+            let zero = S::<V>::ZERO;
+            if reshetov(&ray, &patch, zero, inf).is_none() {
+                n.textbook_misses_inside += 1;
+            }
+        }
+        // From a point of the patch (rounded, so within rounding of the
+        // surface on either side): a hit must be a crossing ahead in exact
+        // arithmetic (`t > 0` decided conservatively).
+        let from = Ray::new(target_of(&patch, w), ray.dir);
+        if let Some(h) = patch.hit(&from, inf) {
+            n.from_surface_hits += 1;
+            let e = newton(&c, &rv(from.origin), &d, [q(h.u), q(h.v), q(h.t)]);
+            assert!(
+                e.as_ref().is_none_or(|e| e[2].is_positive()),
+                "from the surface, behind: {from:?} {patch:?} {h:?} {e:?}"
+            );
+        }
+        let Some(h) = hit else { continue };
+        n.hits += 1;
+        assert!(h.t > S::<V>::ZERO && h.t.is_finite(), "{h:?}");
+        let err = patch.hit_error(&ray, &h);
+        if err.t.is_finite() {
+            n.certified += 1;
+            let start = [q(h.u), q(h.v), q(h.t)];
+            let e = newton(&c, &o, &d, start)
+                .unwrap_or_else(|| panic!("no convergence: {h:?} {err:?} {patch:?} {ray:?}"));
+            let f = |x: S<V>| x.to_f64();
+            assert!(
+                within(f(h.t), &e[2], f(err.t)),
+                "t {h:?} {err:?} {patch:?} {ray:?}"
+            );
+            assert!(
+                within(f(h.u), &e[0], f(err.u)),
+                "u {h:?} {err:?} {patch:?} {ray:?}"
+            );
+            assert!(
+                within(f(h.v), &e[1], f(err.v)),
+                "v {h:?} {err:?} {patch:?} {ray:?}"
+            );
+        }
+        // The surface point and normal against the exact ones at (u, v).
+        let sp = patch.surface_point(&ray, &h);
+        let (uq, vq) = (q(h.u), q(h.v));
+        let exact_p = at(&c, &uq, &vq);
+        let (pu, pv) = (d_du(&c, &vq), d_dv(&c, &uq));
+        let exact_n = [0, 1, 2].map(|i| {
+            let (j, k) = ((i + 1) % 3, (i + 2) % 3);
+            &pu[j] * &pv[k] - &pu[k] * &pv[j]
+        });
+        let got = |x: V| [x.x(), x.y(), x.z()].map(|c| c.to_f64());
+        let (p, pe, nn, ne) = (
+            got(sp.point),
+            got(sp.point_error),
+            got(sp.normal),
+            got(sp.normal_error),
+        );
+        for k in 0..3 {
+            assert!(
+                within(p[k], &exact_p[k], pe[k]),
+                "point {k}: {sp:?} {patch:?} {h:?}"
+            );
+            assert!(
+                within(nn[k], &exact_n[k], ne[k]),
+                "normal {k}: {sp:?} {patch:?} {h:?}"
+            );
+        }
+        // Spawned rays: reflected, and continuing through.
+        let nrm = sp.normal;
+        let dn = ray.dir.dot(nrm);
+        let nn2 = nrm.dot(nrm);
+        if !(nn2 > S::<V>::ZERO) {
+            continue;
+        }
+        let reflected = ray.dir - nrm * (S::<V>::TWO * dn / nn2);
+        let near = S::<V>::from_f64(1e-3 * size);
+        for dir in [reflected, ray.dir] {
+            let spawned = sp.spawn(dir);
+            n.spawned += 1;
+            // A hit near the new origin must be a crossing in front of it
+            // in exact arithmetic (a curved patch can rise above the
+            // tangent plane the origin was moved off), never the crossing
+            // it left, which is behind it.
+            let exact_t = |r: &Ray<V>, (u, v, t): (S<V>, S<V>, S<V>)| {
+                newton(&c, &rv(r.origin), &rv(r.dir), [q(u), q(v), q(t)]).map(|e| e[2].clone())
+            };
+            if let Some(again) = patch.hit(&spawned, inf)
+                && again.t * spawned.dir.length() <= near
+            {
+                n.near_again += 1;
+                let t = exact_t(&spawned, (again.u, again.v, again.t));
+                assert!(
+                    t.as_ref().is_some_and(Signed::is_positive),
+                    "self-hit: {spawned:?} {patch:?} {h:?} {again:?}, exact t {t:?}"
+                );
+            }
+            // The textbook way: from the unmoved point, t > 0.
+            let from = Ray::new(ray.at(h.t), dir);
+            if let Some((t, u, v)) = reshetov(&from, &patch, S::<V>::ZERO, inf)
+                && t * dir.length() <= near
+                && !exact_t(&from, (u, v, t)).is_some_and(|t| t.is_positive())
+            {
+                n.textbook_self_hits += 1;
+            }
+        }
+    }
+    n
+}
+
+#[test]
+fn patch_hits_within_their_bounds_of_exact_crossings() {
+    for (name, n) in [("f32", run::<Vec3>(81)), ("f64", run::<DVec3>(82))] {
+        println!("{name}: {n:?}");
+        assert!(
+            n.hits > 250 && n.certified > n.hits / 2 && n.aimed_inside > 150,
+            "{n:?}"
+        );
+    }
+}
