@@ -72,9 +72,9 @@ use bounds::{Certified, normal_error, point_error};
 /// arithmetic, and a ray spawned from the patch
 /// ([`SurfacePoint::spawn`]) never reports the crossing it left (a curved
 /// patch may still rise into its path further on, a crossing in front of
-/// it). Over an [`Interval`](crate::Interval) with `t_min > 0`, the ends
-/// are decided on the computed `t`, so that one of two consecutive
-/// intervals reports each crossing.
+/// it). Over an [`Interval`](crate::Interval), the ends are decided on
+/// the computed `t` (and `t > 0` as above), so that exactly one of two
+/// consecutive intervals reports each crossing.
 ///
 /// `(u, v)` is the hit's place: `p00` at `(0, 0)`, `p10` at `(1, 0)`,
 /// `p01` at `(0, 1)`, `p11` at `(1, 1)`. The front side is the one
@@ -342,8 +342,8 @@ fn orientation_of<F: Scalar>(e: [F; 3]) -> i8 {
 
 /// The ray/patch test for a valid ray with `shear` its shear: the nearest
 /// crossing with `lo < t <= hi` (`0 <= lo <= hi`), with `rule` on the
-/// boundary. `t > lo` is decided on the computed `t` where `lo > 0`; for
-/// `lo = 0`, conservatively: every corner in front of the origin, or `t`
+/// boundary. The ends are decided on the computed `t`, and `t > 0`
+/// conservatively besides: every corner in front of the origin, or `t`
 /// above its certified bound.
 #[inline]
 fn patch_hit<V: Vector>(
@@ -417,13 +417,10 @@ fn patch_hit<V: Vector>(
     // convex combination of theirs); else a crossing stands in front of
     // the origin where its `t` exceeds its certified bound.
     let ahead = p.z.iter().all(|&z| z > zero);
+    // (The same test for every interval, whatever its ends, so that
+    // consecutive intervals split the crossings between them.)
     let in_range = |t: S<V>, u: S<V>, v: S<V>| {
-        let above_lo = if lo > zero || ahead {
-            lo < t
-        } else {
-            t > fr.certify(shear, u, v).t
-        };
-        above_lo && t <= hi && t <= S::<V>::MAX
+        lo < t && t <= hi && t <= S::<V>::MAX && (ahead || t > fr.certify(shear, u, v).t)
     };
     let side_of = |det: S<V>| {
         if (det > zero) != (shear.dz > zero) {

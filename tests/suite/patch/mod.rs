@@ -5,6 +5,7 @@
 
 mod degenerate;
 mod oracle;
+mod properties;
 mod watertight;
 
 use rayhit::{Patch, Ray, Scalar, Vector};

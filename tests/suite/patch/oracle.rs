@@ -107,7 +107,7 @@ fn newton(c: &[[R; 3]; 4], o: &[R; 3], d: &[R; 3], start: [R; 3]) -> Option<[R; 
 }
 
 /// A case: the patch and a ray, and the aimed-at `(u0, v0)`.
-fn case<V: Vector>(rng: &mut Pcg32) -> (Patch<V>, Ray<V>, [f64; 2]) {
+pub(super) fn case<V: Vector>(rng: &mut Pcg32) -> (Patch<V>, Ray<V>, [f64; 2]) {
     let size = 10f64.powf(-3.0 + 6.0 * f64::from(rng.unit()));
     let reach = [0.0, 1e2, 1e5][rng.below(3) as usize];
     let centre = [0, 1, 2].map(|_| reach * signed(rng));
