@@ -1,12 +1,16 @@
 //! The `leak` scene: the watertightness experiment, a closed mesh with a
 //! vertex on the centre ray of every pixel, traced with each triangle
-//! kernel, and the rays that get into it unreported counted and drawn.
+//! kernel, and the same tile made of bilinear patches traced with each
+//! patch kernel; the rays that get into it unreported counted and drawn.
+
+use std::collections::HashMap;
 
 use rayhit::glam::Vec3;
-use rayhit::{Camera, PinholeCamera, PreparedRay, Side};
+use rayhit::{Camera, Intersect, Patch, PinholeCamera, PreparedRay, Ray, Side};
+use rayhit_testkit::textbook::reshetov;
 use rayon::prelude::*;
 
-use crate::mesh::{Bvh, Kernel, shell};
+use crate::mesh::{Bvh, Kernel, Mesh, shell};
 
 /// The watertightness experiment: an axis-aligned camera at the origin and
 /// a closed mesh in front of it, a thick curved tile whose front and back
@@ -21,6 +25,8 @@ pub struct LeakScene {
     pub camera: PinholeCamera,
     /// The closed mesh.
     pub mesh: Bvh,
+    /// The same tile as bilinear patches.
+    pub patches: PatchTile,
     /// The pixel columns `(first, last)` whose centre rays pass through a
     /// vertex inside the front surface (not on its border).
     pub columns: (u32, u32),
@@ -55,6 +61,7 @@ pub fn leak_scene(width: u32, height: u32) -> LeakScene {
     let mesh = shell(&directions, columns, rows, NEAR, FAR);
     LeakScene {
         camera,
+        patches: PatchTile::new(&mesh, columns, rows, (first_column, first_row)),
         mesh: Bvh::new(mesh),
         columns: (first_column + 1, first_column + columns - 2),
         rows: (first_row + 1, first_row + rows - 2),
@@ -76,8 +83,8 @@ pub enum Outcome {
 /// The leak experiment's result for one kernel.
 #[derive(Clone, Debug)]
 pub struct LeakReport {
-    /// The kernel.
-    pub kernel: Kernel,
+    /// The kernel's name.
+    pub name: &'static str,
     /// What each pixel's centre ray hit first, row by row.
     pub outcomes: Vec<Outcome>,
     /// Rays whose exact path enters the mesh through the front face.
@@ -100,29 +107,66 @@ impl LeakScene {
     /// Traces every pixel-centre ray with `kernel` (on all cores, calling
     /// `row_done` after each row) and counts the leaks.
     pub fn run(&self, kernel: Kernel, row_done: &(dyn Fn() + Sync)) -> LeakReport {
+        self.report(kernel.name(), row_done, |_, _, ray| {
+            let prepared = PreparedRay::new(ray);
+            self.mesh
+                .intersect(ray, &prepared, f32::INFINITY, kernel, false)
+                .map(|(hit, _)| hit.side)
+        })
+    }
+
+    /// The same for the tile of bilinear patches, with `kernel`.
+    pub fn run_patches(&self, kernel: PatchKernel, row_done: &(dyn Fn() + Sync)) -> LeakReport {
+        self.report(kernel.name(), row_done, |i, j, ray| {
+            let mut nearest: Option<(f32, Side)> = None;
+            for &k in &self.patches.candidates(i, j) {
+                let patch = &self.patches.patches[k];
+                let t_max = nearest.map_or(f32::INFINITY, |n| n.0);
+                let hit = match kernel {
+                    PatchKernel::Rayhit => patch.hit(ray, t_max).map(|h| (h.t, h.side)),
+                    PatchKernel::Reshetov => reshetov(ray, patch, 0.0, t_max).map(|(t, u, v)| {
+                        let side = if ray.dir.dot(patch.normal_at(u, v)) < 0.0 {
+                            Side::Front
+                        } else {
+                            Side::Back
+                        };
+                        (t, side)
+                    }),
+                };
+                if hit.is_some() {
+                    nearest = hit;
+                }
+            }
+            nearest.map(|n| n.1)
+        })
+    }
+
+    /// Traces every pixel-centre ray (on all cores, calling `row_done`
+    /// after each row), `first` giving the side of its first hit, and
+    /// counts the leaks.
+    fn report(
+        &self,
+        name: &'static str,
+        row_done: &(dyn Fn() + Sync),
+        first: impl Fn(u32, u32, &Ray) -> Option<Side> + Sync,
+    ) -> LeakReport {
         let (width, height) = (self.camera.width(), self.camera.height());
         let outcomes: Vec<Outcome> = (0..height)
             .into_par_iter()
             .flat_map_iter(|j| {
-                let row = (0..width).map(move |i| {
-                    let ray = self.camera.pixel_ray(i, j);
-                    let prepared = PreparedRay::new(&ray);
-                    match self
-                        .mesh
-                        .intersect(&ray, &prepared, f32::INFINITY, kernel, false)
-                    {
+                let row: Vec<Outcome> = (0..width)
+                    .map(|i| match first(i, j, &self.camera.pixel_ray(i, j)) {
                         None => Outcome::Nothing,
-                        Some((hit, _)) if hit.side == Side::Front => Outcome::Outside,
+                        Some(Side::Front) => Outcome::Outside,
                         Some(_) => Outcome::Inside,
-                    }
-                });
-                let row: Vec<Outcome> = row.collect();
+                    })
+                    .collect();
                 row_done();
                 row
             })
             .collect();
         let mut report = LeakReport {
-            kernel,
+            name,
             outcomes,
             entering: 0,
             leaked: 0,
@@ -144,6 +188,114 @@ impl LeakScene {
             }
         }
         report
+    }
+}
+
+/// The patch experiment's kernels.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum PatchKernel {
+    /// `Patch::hit`: watertight.
+    Rayhit,
+    /// Reshetov's textbook formulas, `t > 0`.
+    Reshetov,
+}
+
+impl PatchKernel {
+    /// Both kernels, rayhit's first.
+    pub const ALL: [PatchKernel; 2] = [PatchKernel::Rayhit, PatchKernel::Reshetov];
+
+    /// The function this kernel calls.
+    pub fn name(self) -> &'static str {
+        match self {
+            PatchKernel::Rayhit => "Patch::hit (watertight)",
+            PatchKernel::Reshetov => "Reshetov's patch test (textbook)",
+        }
+    }
+}
+
+/// The leak scene's tile as bilinear patches: each cell of the front and
+/// back surfaces, and each wall, the patch through the four corners of
+/// the shell's two triangles there (so the cells of the curved surfaces
+/// are not planar), wound as they are. Every corner lies on a pixel-centre
+/// ray, and a patch lies in the cone of its corners' rays from the
+/// origin, so a pixel-centre ray can only meet the patches with a corner
+/// on its own ray or a neighbouring one: those are its candidates.
+#[derive(Clone, Debug)]
+pub struct PatchTile {
+    /// The patches: per cell, row by row, the front then the back; then
+    /// the walls.
+    pub patches: Vec<Patch>,
+    /// Grid points per row and per column.
+    columns: u32,
+    rows: u32,
+    /// The pixel of grid point `(0, 0)`.
+    first: (u32, u32),
+    /// The walls with a corner on each grid point's ray.
+    walls: HashMap<(u32, u32), Vec<usize>>,
+}
+
+impl PatchTile {
+    /// The tile of the shell `mesh` of a `columns x rows` grid (as
+    /// `shell` builds it: per cell a front and a back pair of triangles,
+    /// then a pair per wall along the border), its grid point `(0, 0)` on
+    /// pixel `first`.
+    fn new(mesh: &Mesh, columns: u32, rows: u32, first: (u32, u32)) -> Self {
+        let patches: Vec<Patch> = mesh
+            .indices
+            .chunks(2)
+            .map(|pair| {
+                let [t1, t2] = [pair[0], pair[1]];
+                // The two triangles of a quad around its diagonal, wound
+                // alike: [a, b, c] and [a, c, d], or after the shell's
+                // flip [a, c, b] and [a, d, c].
+                let cycle = if t1[2] == t2[1] {
+                    [t1[0], t1[1], t1[2], t2[2]]
+                } else {
+                    [t2[0], t2[1], t2[2], t1[2]]
+                };
+                let [a, b, c, d] = cycle.map(|k| mesh.positions[k as usize]);
+                Patch::new(a, b, d, c)
+            })
+            .collect();
+        let cells = 2 * ((columns - 1) * (rows - 1)) as usize;
+        let mut border: Vec<(u32, u32)> = Vec::new();
+        border.extend((0..columns - 1).map(|i| (i, 0)));
+        border.extend((0..rows - 1).map(|j| (columns - 1, j)));
+        border.extend((1..columns).rev().map(|i| (i, rows - 1)));
+        border.extend((1..rows).rev().map(|j| (0, j)));
+        let mut walls: HashMap<(u32, u32), Vec<usize>> = HashMap::new();
+        for (k, &point) in border.iter().enumerate() {
+            let next = border[(k + 1) % border.len()];
+            walls.entry(point).or_default().push(cells + k);
+            walls.entry(next).or_default().push(cells + k);
+        }
+        Self {
+            patches,
+            columns,
+            rows,
+            first,
+            walls,
+        }
+    }
+
+    /// The patches pixel `(i, j)`'s centre ray may meet: the cells around
+    /// its grid point (front and back) and the walls with a corner on it.
+    fn candidates(&self, i: u32, j: u32) -> Vec<usize> {
+        let (Some(gi), Some(gj)) = (i.checked_sub(self.first.0), j.checked_sub(self.first.1))
+        else {
+            return Vec::new();
+        };
+        let mut out = Vec::new();
+        for cj in gj.saturating_sub(1)..=gj {
+            for ci in gi.saturating_sub(1)..=gi {
+                if ci + 1 < self.columns && cj + 1 < self.rows {
+                    let cell = (cj * (self.columns - 1) + ci) as usize;
+                    out.extend([2 * cell, 2 * cell + 1]);
+                }
+            }
+        }
+        out.extend(self.walls.get(&(gi, gj)).into_iter().flatten());
+        out
     }
 }
 

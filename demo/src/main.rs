@@ -27,9 +27,11 @@
 //! The `leak` scene: a closed box mesh whose vertices sit on pixel centres,
 //! so that every camera ray runs through a shared edge or vertex; it is
 //! traced once with the watertight `ray_triangle` and once with
-//! `Triangle::moller_trumbore`, and the rays that get into the mesh without
-//! any triangle reporting it are counted and drawn in red (watertight on
-//! the left, Moller-Trumbore on the right).
+//! `Triangle::moller_trumbore`, then made of bilinear patches (one through
+//! the corners of each pair of triangles, curved with the tile) and traced
+//! with `Patch::hit` and with Reshetov's textbook formulas; the rays that
+//! get into the tile without any face reporting it are counted and drawn
+//! in red (four panels, in that order).
 //!
 //! The `shadows` scene: a square light and two point lights, every shadow
 //! ray a segment from `SurfacePoint::spawn_to` or `spawn_to_point` tested
@@ -75,7 +77,7 @@ use rayhit::glam::Vec3;
 use rayhit_demo::cornell::{cornell_scene, render_cornell};
 use rayhit_demo::demo::{Filter, Scene, Shape, View, demo_scene, render};
 use rayhit_demo::instances::{Content, On, instance_scene, render_instances};
-use rayhit_demo::leak::leak_scene;
+use rayhit_demo::leak::{PatchKernel, leak_scene};
 use rayhit_demo::mesh::Kernel;
 use rayhit_demo::renderer::to_srgb8;
 use rayhit_demo::shadows::{render_shadows, shadow_scene};
@@ -88,7 +90,8 @@ usage: render [--scene demo|leak|shadows|instances|spheres|cornell]
               [--width N] [--height N] [--samples N] [--out FILE]
 
   --scene    demo (default): ground, boxes and meshes in soft sunlight
-             leak: the watertightness experiment, both triangle kernels
+             leak: the watertightness experiment, both triangle kernels and
+                   both patch kernels
              shadows: soft shadows from a square light and hard ones from
              two point lights, every shadow ray a segment between two
              points with no epsilon, and a glass torus that tints what is
@@ -413,13 +416,17 @@ fn run_leak(options: &Options) -> Result<(), Box<dyn Error>> {
     let file = create(&options.out)?;
     let scene = leak_scene(options.width, options.height);
     let (width, height) = (options.width, options.height);
-    let bar = progress_bar(2 * height);
+    let bar = progress_bar(4 * height);
     let start = Instant::now();
-    let reports = Kernel::ALL.map(|kernel| scene.run(kernel, &|| bar.inc(1)));
+    let [watertight, moller_trumbore] = Kernel::ALL.map(|kernel| scene.run(kernel, &|| bar.inc(1)));
+    let [patches, reshetov] =
+        PatchKernel::ALL.map(|kernel| scene.run_patches(kernel, &|| bar.inc(1)));
+    let reports = [watertight, moller_trumbore, patches, reshetov];
     let seconds = start.elapsed().as_secs_f64();
     bar.finish_and_clear();
 
-    // The two pictures side by side, watertight on the left.
+    // The four pictures side by side: the triangles, watertight and
+    // Moller-Trumbore, then the patches, rayhit's and the textbook's.
     let gap = 8;
     let panels = reports.each_ref().map(|r| r.colours(&scene));
     let mut rgb = Vec::new();
@@ -432,29 +439,29 @@ fn run_leak(options: &Options) -> Result<(), Box<dyn Error>> {
             rgb.extend(row.iter().flatten());
         }
     }
-    let total_width = 2 * width + gap as u32;
+    let total_width = 4 * width + 3 * gap as u32;
     write_png(file, total_width, height, &rgb)?;
 
     println!(
-        "closed mesh of {} triangles; {} pixel-centre rays enter it exactly through a shared vertex",
+        "closed mesh of {} triangles, or {} bilinear patches; {} pixel-centre rays enter it \
+         exactly through a shared vertex",
         scene.mesh.mesh.indices.len(),
+        scene.patches.patches.len(),
         reports[0].entering
     );
     for r in &reports {
         println!(
             "{:<36} leaked {:>6} of {} rays ({} of them through the whole mesh)",
-            r.kernel.name(),
-            r.leaked,
-            r.entering,
-            r.escaped
+            r.name, r.leaked, r.entering, r.escaped
         );
     }
     println!(
-        "wrote {total_width}x{height} to {} (left: watertight, right: Moller-Trumbore; \
-         red: leaked into the mesh, yellow: leaked through it)",
+        "wrote {total_width}x{height} to {} (left to right: watertight and Moller-Trumbore \
+         triangles, rayhit's and Reshetov's patches; red: leaked into the mesh, yellow: leaked \
+         through it)",
         options.out
     );
-    report_speed(2 * u64::from(width * height), seconds);
+    report_speed(4 * u64::from(width * height), seconds);
     Ok(())
 }
 

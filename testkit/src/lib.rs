@@ -8,6 +8,7 @@
 //! | [`bits`] | bit-for-bit comparisons of answers | |
 //! | [`mesh`] | procedural meshes (icosahedron tables, icosphere, torus, shell) and a small BVH | |
 //! | [`rng`], [`workloads`] | the benches' fixed-seed generator and workloads | |
+//! | [`textbook`] | textbook kernels to compare against (Reshetov's bilinear patch test) | |
 //! | [`source`] | where test cases' randomness comes from: seeded, or a fuzz input's bytes | `cases` |
 //! | [`cases`] | the case generators, built on `rayhit::strategies` | `cases` |
 //! | [`oracle`] | `rayhit::exact::oracle` for inputs known to be finite | `exact` |
@@ -19,6 +20,7 @@
 pub mod bits;
 pub mod mesh;
 pub mod rng;
+pub mod textbook;
 pub mod workloads;
 
 #[cfg(feature = "cases")]

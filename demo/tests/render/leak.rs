@@ -9,7 +9,7 @@ use std::collections::{HashMap, HashSet};
 use rayhit::glam::Vec3;
 use rayhit::{Camera, PreparedRay, Side};
 use rayhit_demo::instances::slab;
-use rayhit_demo::leak::{FAR, NEAR, leak_scene};
+use rayhit_demo::leak::{FAR, NEAR, PatchKernel, leak_scene};
 use rayhit_demo::mesh::{Kernel, Mesh, icosphere, signed_volume, torus};
 
 /// True when every directed edge of the mesh has exactly one twin running
@@ -117,4 +117,35 @@ fn the_watertight_kernel_leaks_no_ray_and_moller_trumbore_does() {
         assert!((hit.t - NEAR).abs() < 1e-5 * NEAR, "t = {}", hit.t);
         assert!(hit.t < FAR);
     }
+}
+
+#[test]
+fn the_patch_tile_leaks_no_ray() {
+    let scene = leak_scene(64, 48);
+    let tile = &scene.patches;
+    // Every face of the shell is one patch: a pair of triangles each.
+    assert_eq!(2 * tile.patches.len(), scene.mesh.mesh.indices.len());
+    // The curved surfaces' cells are not planar.
+    let bent = tile
+        .patches
+        .iter()
+        .filter(|p| {
+            let n = (p.p10 - p.p00).cross(p.p01 - p.p00).as_dvec3();
+            (p.p11 - p.p00).as_dvec3().dot(n).abs() > 1e-9 * n.length()
+        })
+        .count();
+    assert!(bent > tile.patches.len() / 2, "{bent}");
+    let reports = PatchKernel::ALL.map(|kernel| scene.run_patches(kernel, &|| {}));
+    for r in &reports {
+        println!(
+            "{}: leaked {} of {} ({} through)",
+            r.name, r.leaked, r.entering, r.escaped
+        );
+        assert_eq!(r.entering, 31 * 23);
+    }
+    let [rayhit, _textbook] = &reports;
+    assert_eq!(rayhit.leaked, 0);
+    // Every ray the triangles stop, the patches stop too, from outside.
+    let triangles = scene.run(Kernel::Watertight, &|| {});
+    assert_eq!(rayhit.outcomes, triangles.outcomes);
 }
