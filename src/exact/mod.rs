@@ -19,6 +19,9 @@
 //!   comparisons;
 //! - disc ([`ray_disc`]): both circles closed, `0 < t <= t_max`, no hit
 //!   when parallel;
+//! - bilinear patch ([`ray_patch`]): the nearest crossing in `0 < t <=
+//!   t_max`, its irrational `t`, `u`, `v` rounded to nearest by exact
+//!   comparisons;
 //! - invalid input (a non-finite coordinate, a zero direction, an inverted
 //!   box, a zero plane normal, a NaN `t_max`) is a miss, never a panic.
 //!
@@ -158,7 +161,8 @@ use std::vec::Vec;
 use num_traits::{Signed, Zero};
 
 use crate::{
-    Aabb, BoxFace, Disc, DiscHit, Plane, Ray, Scalar, Side, Sphere, SphereHit, Triangle, Vector,
+    Aabb, BoxFace, Disc, DiscHit, Patch, PatchHit, Plane, Ray, Scalar, Side, Sphere, SphereHit,
+    Triangle, Vector,
 };
 
 pub use num_bigint;
@@ -757,6 +761,44 @@ pub(crate) fn disc_first<V: Vector>(
         side: e.side,
     };
     Some((e, hit))
+}
+
+/// Exact ray/patch: the nearest crossing of the ray with the bilinear
+/// patch in `0 < t <= t_max`, its `t`, `u` and `v` each rounded to the
+/// nearest float (they are irrational in general: placed between floats
+/// exactly, see [`oracle::patch`]) and its side ([`Side::Front`] where
+/// `dir . (dP/du x dP/dv) <= 0`); `None` for a miss or invalid input (see
+/// [`Ray::is_valid`]; a NaN or infinite corner, a NaN `t_max`). The
+/// question [`Patch`'s `hit`](crate::Patch#method.hit) answers with
+/// rounding.
+///
+/// ```
+/// use rayhit::{Patch, Ray, exact, glam::Vec3};
+/// let saddle = Patch::new(Vec3::ZERO, Vec3::X, Vec3::Y, Vec3::new(1.0, 1.0, 1.0));
+/// let ray = Ray::new(Vec3::new(0.3, 0.6, 2.0), -Vec3::Z);
+/// let hit = exact::ray_patch(&ray, &saddle, f32::INFINITY).unwrap();
+/// // P(0.3, 0.6) = (0.3, 0.6, 0.18), at t = 2 - 0.18 (the rounded inputs').
+/// assert_eq!((hit.u, hit.v), (0.3, 0.6));
+/// assert!((hit.t - 1.82).abs() < 1e-6);
+/// ```
+#[must_use]
+pub fn ray_patch<V: Vector>(
+    ray: &Ray<V>,
+    patch: &Patch<V>,
+    t_max: V::Scalar,
+) -> Option<PatchHit<V::Scalar>> {
+    if !(ray.is_valid() && valid_limit(t_max)) {
+        return None;
+    }
+    let e = oracle::patch(ray, patch)?;
+    let c = e.first_in(&Rational::zero(), oracle::limit(t_max).as_ref())?;
+    let round = oracle::PatchCrossing::rounded::<V::Scalar>;
+    Some(PatchHit {
+        t: round(&c.t),
+        u: round(&c.u),
+        v: round(&c.v),
+        side: c.side,
+    })
 }
 
 /// Exact ray/plane over an interval: the crossing `t` with `t_min < t <=

@@ -14,7 +14,8 @@
 //! within its bound of the exact `P(u, v)` at the reported `(u, v)`, its
 //! normal within its bound of the exact `dP/du x dP/dv`. A ray aimed at a
 //! point well inside the patch (`(u0, v0)` in `[0.1, 0.9]^2`, its exact
-//! crossing there too) is hit. Rays spawned from every hit (reflected,
+//! crossing there too) is hit, and `rayhit::exact::ray_patch` finds it,
+//! with the same side and within the bounds. Rays spawned from every hit (reflected,
 //! and continuing through) meet the patch again within a thousandth of
 //! its size only where the exact crossing there is in front of their
 //! origin (a curved patch may rise above the tangent plane the origin was
@@ -195,6 +196,20 @@ fn run<V: Vector>(seed: u64) -> Counts {
         if aim_inside {
             n.aimed_inside += 1;
             assert!(hit.is_some(), "aimed inside, missed: {patch:?} {ray:?}");
+            // The exact module agrees: a hit, its t, u, v (rounded to
+            // nearest) within the kernel's bounds plus half an ulp.
+            let e = rayhit::exact::ray_patch(&ray, &patch, inf).expect("an exact hit");
+            let h = hit.expect("a hit");
+            let err = patch.hit_error(&ray, &h);
+            let half_ulp = |x: S<V>| (x.next_up() - x).to_f64();
+            let near = |a: S<V>, b: S<V>, bound: S<V>| {
+                (a.to_f64() - b.to_f64()).abs() <= bound.to_f64() + half_ulp(b)
+            };
+            assert_eq!(e.side, h.side, "{patch:?} {ray:?}");
+            assert!(
+                near(h.t, e.t, err.t) && near(h.u, e.u, err.u) && near(h.v, e.v, err.v),
+                "{h:?} {err:?} exact {e:?}: {patch:?} {ray:?}"
+            );
             let zero = S::<V>::ZERO;
             if reshetov(&ray, &patch, zero, inf).is_none() {
                 n.textbook_misses_inside += 1;
