@@ -37,8 +37,8 @@ use glam::Vec3;
 use crate::aabb::Aabb;
 use crate::num::round::{max2, min2};
 use crate::num::{S, Scalar, Vector};
-use crate::query::{EdgeRule, Intersect, Range, RayForm, Search, Surface};
-use crate::ray::{Ray, Shear, t_max_ok};
+use crate::query::{EdgeRule, Form, Intersect, Range, RayForm, Search, Surface};
+use crate::ray::{Shear, t_max_ok};
 use crate::surface::SurfacePoint;
 use crate::triangle::{ErrorBounds, Frame, Side, Triangle, TriangleHitError, inside};
 
@@ -552,15 +552,19 @@ impl<V: Vector> Intersect<V> for Patch<V> {
     #[inline]
     fn hit(&self, ray: &impl RayForm<V>, search: impl Into<Search<S<V>>>) -> Option<Self::Hit> {
         let search = search.into();
-        let r: Ray<V> = ray.to_ray();
         let ends = match search.range {
             Range::UpTo(t_max) => t_max_ok(t_max).then_some((S::<V>::ZERO, t_max))?,
             Range::Within(interval) => interval.ends(),
         };
+        // (A prepared ray holds its shear, the very one `Shear::new`
+        // computes.)
+        let (r, shear) = match ray.form() {
+            Form::Plain(r) => (*r, Shear::new(&r.dir)),
+            Form::Prepared(p) => (p.to_ray(), p.shear()),
+        };
         if !r.is_valid() {
             return None;
         }
-        let shear = Shear::new(&r.dir);
         patch_hit((r.origin, r.dir), &shear, self, ends, search.edges)
     }
 
