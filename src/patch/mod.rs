@@ -40,7 +40,9 @@ use crate::num::{S, Scalar, Vector};
 use crate::query::{EdgeRule, Form, Intersect, Range, RayForm, Search, Surface};
 use crate::ray::{Shear, t_max_ok};
 use crate::surface::SurfacePoint;
-use crate::triangle::{ErrorBounds, Frame, Side, Triangle, TriangleHitError, inside};
+use crate::triangle::{
+    ErrorBounds, Frame, Side, Triangle, TriangleHitError, edge_function, inside, project,
+};
 
 use bounds::{Certified, normal_error, point_error};
 
@@ -294,15 +296,43 @@ struct Framed<F> {
 impl<F: Scalar> Framed<F> {
     #[inline(always)]
     fn new<V: Vector<Scalar = F>>(origin: V, shear: &Shear<F>, patch: &Patch<V>) -> Self {
-        let [t1, t2] = patch.triangles();
-        let f1 = Frame::new(origin, &t1, shear);
-        let f2 = Frame::new(origin, &t2, shear);
+        // Corners 00, 10, 01, 11, each projected once.
+        let c = [patch.p00, patch.p10, patch.p01, patch.p11].map(|p| project(origin, p, shear));
+        let q = |i: usize| (c[i][3], c[i][4]);
+        // The four edges, each as a triangle sharing it computes it, and
+        // the diagonal 00-11 once (the second triangle runs it the other
+        // way: the same value negated, exactly).
+        let diagonal = edge_function(q(3), q(0));
+        let frame = |[i, j, k]: [usize; 3], e: [F; 3]| Frame {
+            x: [c[i][3], c[j][3], c[k][3]],
+            y: [c[i][4], c[j][4], c[k][4]],
+            px: [c[i][0], c[j][0], c[k][0]],
+            py: [c[i][1], c[j][1], c[k][1]],
+            pz: [c[i][2], c[j][2], c[k][2]],
+            e,
+        };
+        // p00, p10, p11 and p00, p11, p01, as `triangles` makes them.
+        let f1 = frame(
+            [0, 1, 3],
+            [
+                edge_function(q(1), q(3)),
+                diagonal,
+                edge_function(q(0), q(1)),
+            ],
+        );
+        let f2 = frame(
+            [0, 3, 2],
+            [
+                edge_function(q(3), q(2)),
+                edge_function(q(2), q(0)),
+                -diagonal,
+            ],
+        );
         let sz = shear.sz;
-        // Corners 00, 10, 01, 11: f1 holds 00, 10, 11; f2 holds 00, 11, 01.
         let p = Projected {
-            x: [f1.x[0], f1.x[1], f2.x[2], f1.x[2]],
-            y: [f1.y[0], f1.y[1], f2.y[2], f1.y[2]],
-            z: [f1.pz[0] * sz, f1.pz[1] * sz, f2.pz[2] * sz, f1.pz[2] * sz],
+            x: c.map(|c| c[3]),
+            y: c.map(|c| c[4]),
+            z: c.map(|c| c[2] * sz),
         };
         Self { f1, f2, p }
     }

@@ -45,26 +45,38 @@ impl<F: Scalar> Frame<F> {
             e: [F::ZERO; 3],
         };
         for (i, p) in [tri.a, tri.b, tri.c].into_iter().enumerate() {
-            // Translate, permute, shear.
-            let (px, py, pz) = shear.permute(p - origin);
-            f.px[i] = px;
-            f.py[i] = py;
-            f.pz[i] = pz;
-            f.x[i] = px + shear.sx * pz;
-            f.y[i] = py + shear.sy * pz;
+            [f.px[i], f.py[i], f.pz[i], f.x[i], f.y[i]] = project(origin, p, shear);
         }
-        // Edge functions. Rounding is monotone, so fl(fl(ab) - fl(cd)) has
-        // the sign of ab - cd or is zero; only a zero needs the exact
-        // recomputation (Woop, Benthin and Wald, JCGT 2013, section 3).
         for i in 0..3 {
-            let (j, k) = ((i + 1) % 3, (i + 2) % 3);
-            let e = f.x[j] * f.y[k] - f.y[j] * f.x[k];
-            f.e[i] = if e == F::ZERO {
-                F::diff_of_products_exact_sign(f.x[j], f.y[k], f.y[j], f.x[k])
-            } else {
-                e
-            };
+            f.e[i] = edge_function(
+                (f.x[(i + 1) % 3], f.y[(i + 1) % 3]),
+                (f.x[(i + 2) % 3], f.y[(i + 2) % 3]),
+            );
         }
         f
+    }
+}
+
+/// A corner in the ray's frame: translated, permuted (`px, py, pz`) and
+/// sheared (`x, y`), as [`Frame::new`] computes each of its corners.
+#[inline(always)]
+pub(crate) fn project<V: Vector>(origin: V, p: V, shear: &Shear<V::Scalar>) -> [V::Scalar; 5] {
+    let (px, py, pz) = shear.permute(p - origin);
+    [px, py, pz, px + shear.sx * pz, py + shear.sy * pz]
+}
+
+/// The edge function of the edge from `(xj, yj)` to `(xk, yk)` in the
+/// sheared plane, `xj yk - yj xk`, with its sign exact: rounding is
+/// monotone, so `fl(fl(ab) - fl(cd))` has the sign of `ab - cd` or is
+/// zero, and only a zero needs the exact recomputation (Woop, Benthin and
+/// Wald, JCGT 2013, section 3). Two shapes sharing the edge compute it
+/// bit for bit (negated where they run it the other way).
+#[inline(always)]
+pub(crate) fn edge_function<F: Scalar>((xj, yj): (F, F), (xk, yk): (F, F)) -> F {
+    let e = xj * yk - yj * xk;
+    if e == F::ZERO {
+        F::diff_of_products_exact_sign(xj, yk, yj, xk)
+    } else {
+        e
     }
 }
