@@ -61,7 +61,9 @@ use bounds::{Certified, normal_error, point_error};
 /// What is exact and what is not: whether the ray crosses the patch an
 /// odd number of times (once) is decided exactly (from the rounded
 /// corners in the ray's frame with the closed rule, from the exact ones
-/// with the one-hit rule); where it crosses once, it is reported. Where
+/// with the one-hit rule); where it crosses once, the crossing is
+/// reported wherever it lies in the range (one within rounding of the
+/// origin excepted, see below). Where
 /// it crosses an even number of times (none, or twice where the patch
 /// folds over itself as seen from the ray), the quadratic is solved in
 /// floating point: rays within rounding of the patch's silhouette, where
