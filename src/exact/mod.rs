@@ -19,6 +19,7 @@
 //!   comparisons;
 //! - disc ([`ray_disc`]): both circles closed, `0 < t <= t_max`, no hit
 //!   when parallel;
+//! - quad ([`ray_quad`]): its two closed triangles, the nearer crossing;
 //! - bilinear patch ([`ray_patch`]): the nearest crossing in `0 < t <=
 //!   t_max`, its irrational `t`, `u`, `v` rounded to nearest by exact
 //!   comparisons;
@@ -161,8 +162,8 @@ use std::vec::Vec;
 use num_traits::{Signed, Zero};
 
 use crate::{
-    Aabb, BoxFace, Disc, DiscHit, Patch, PatchHit, Plane, Ray, Scalar, Side, Sphere, SphereHit,
-    Triangle, Vector,
+    Aabb, BoxFace, Disc, DiscHit, Patch, PatchHit, Plane, Quad, Ray, Scalar, Side, Sphere,
+    SphereHit, Triangle, Vector,
 };
 
 pub use num_bigint;
@@ -761,6 +762,42 @@ pub(crate) fn disc_first<V: Vector>(
         side: e.side,
     };
     Some((e, hit))
+}
+
+/// Exact ray/quad: the nearer of the exact crossings of the quad's two
+/// closed triangles `a, b, c` and `a, c, d` ([`ray_triangle`]; the first
+/// where they tie, as on the diagonal), with `u` and `v` placed on the
+/// quad as [`Quad`'s `hit`](crate::Quad#method.hit) places them (`u = u1 +
+/// v1`, `v = v1` on the first triangle, `u = u2`, `v = u2 + v2` on the
+/// second, from its weights), each exact and rounded to nearest. `None`
+/// for a miss (both triangles' lines parallel included) or invalid input.
+///
+/// ```
+/// use rayhit::{Quad, Ray, exact, glam::Vec3};
+/// let quad = Quad::parallelogram(Vec3::ZERO, Vec3::new(2.0, 0.0, 0.0), Vec3::Y);
+/// let ray = Ray::new(Vec3::new(0.5, 0.75, 3.0), -Vec3::Z);
+/// let hit = exact::ray_quad(&ray, &quad, f32::INFINITY).unwrap();
+/// assert_eq!((hit.t.rounded, hit.u.rounded, hit.v.rounded), (3.0, 0.25, 0.75));
+/// ```
+#[must_use]
+pub fn ray_quad<V: Vector>(
+    ray: &Ray<V>,
+    quad: &Quad<V>,
+    t_max: V::Scalar,
+) -> Option<TriangleAnswer<V::Scalar>> {
+    let [first, second] = quad.triangles();
+    let on_quad = |h: TriangleAnswer<V::Scalar>, second: bool| {
+        let sum = Exact::new(&h.u.value + &h.v.value);
+        let (u, v) = if second { (h.u, sum) } else { (sum, h.v) };
+        TriangleAnswer { u, v, ..h }
+    };
+    let near = ray_triangle(ray, &first, t_max).map(|h| on_quad(h, false));
+    let far = ray_triangle(ray, &second, t_max).map(|h| on_quad(h, true));
+    match (near, far) {
+        (Some(n), Some(f)) if f.t.value < n.t.value => Some(f),
+        (None, f) => f,
+        (n, _) => n,
+    }
 }
 
 /// Exact ray/patch: the nearest crossing of the ray with the bilinear

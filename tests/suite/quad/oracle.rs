@@ -7,7 +7,8 @@
 //! ([`Surface::hit_error`]) of the exact crossing with one triangle's
 //! plane and the exact `(u, v)` there (the triangle's exact barycentrics,
 //! summed as the quad sums them); the quad's answer is its two triangles'
-//! nearer, bit for bit; and on parallelograms the textbook test ("The
+//! nearer, bit for bit; `rayhit::exact::ray_quad` is the nearer exact
+//! crossing of the two, its `(u, v)` so summed; and on parallelograms the textbook test ("The
 //! Next Week") is tallied beside it: its false misses and its `t` beyond
 //! rayhit's bound.
 
@@ -150,6 +151,32 @@ fn check<V: Vector>() -> [usize; 5] {
             assert_eq!(quad.hit(&ray, (window, rule)).map(|h| h.t), expected);
         }
         let exact = [first, second].map(|tri| exact_triangle(&ray, &tri).expect("finite"));
+        // `exact::ray_quad` is the nearer of the two exact crossings, its
+        // (u, v) summed as the quad sums them.
+        let answer = rayhit::exact::ray_quad(&ray, &quad, inf);
+        let ahead: Vec<(usize, &R)> = (0..2)
+            .filter(|&i| exact[i].hits(&None))
+            .filter_map(|i| exact[i].t.as_ref().map(|t| (i, t)))
+            .collect();
+        let nearest = ahead
+            .iter()
+            .fold(None, |m: Option<(usize, &R)>, &(i, t)| match m {
+                Some((_, mt)) if mt <= t => m,
+                _ => Some((i, t)),
+            });
+        assert_eq!(answer.is_some(), nearest.is_some(), "{quad:?} {ray:?}");
+        if let (Some(a), Some((i, t))) = (&answer, nearest) {
+            let (b, c) = exact[i].uv.clone().expect("a crossing has weights");
+            let (u, v) = if i == 0 {
+                (&b + &c, c)
+            } else {
+                (b.clone(), &b + &c)
+            };
+            assert!(
+                a.t.value == *t && a.u.value == u && a.v.value == v,
+                "{quad:?} {ray:?}"
+            );
+        }
         if let Some(h) = hit {
             hits += 1;
             let err = quad.hit_error(&ray, &h);
