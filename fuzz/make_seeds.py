@@ -348,6 +348,42 @@ for name, xs in quads.items():
     write("quad", f"raw-f64-{name}", raw(1, *xs))
 structured("quad")
 
+# Patches: ray origin, dir, corners p00, p10, p01, p11, t_max, then the
+# interval's ends lo, hi.
+UNIT_PATCH = [(0, 0, 0), (1, 0, 0), (0, 1, 0), (1, 1, 0)]
+SADDLE = [(0, 0, 0), (1, 0, 0), (0, 1, 0), (1, 1, 1)]
+TWISTED = [(-1, -1, 1), (1, -1, -1), (-1, 1, -1), (1, 1, 1)]
+patches = {
+    "saddle-centre": vecs((0.5, 0.5, 3), (0, 0, -1), *SADDLE) + [INF, 0, INF],
+    "saddle-twice": vecs((-1, -1, 0.25), (1, 1, 0), *TWISTED) + [INF, 0, INF],
+    "saddle-second-crossing": vecs((-1, -1, 0.25), (1, 1, 0), *TWISTED) + [INF, 0.5, INF],
+    "inside": vecs((0.25, 0.75, 1), (0, 0, -1), *UNIT_PATCH) + [INF, 0, INF],
+    "through-diagonal": vecs((0.5, 0.5, 1), (0, 0, -1), *UNIT_PATCH) + [INF, 0, INF],
+    "on-edge": vecs((0.5, 0, 1), (0, 0, -1), *UNIT_PATCH) + [INF, 0, INF],
+    "at-corner": vecs((1, 1, 1), (0, 0, -1), *UNIT_PATCH) + [INF, 0, INF],
+    "twisted-corner": vecs((1, 1, 3), (0, 0, -1), *SADDLE) + [INF, 0, INF],
+    "collapsed-edge": vecs((0.25, 0.5, 1), (0, 0, -1), (0, 0, 0), (0, 0, 0), (0, 1, 0), (1, 1, 0.5)) + [INF, 0, INF],
+    "collapsed-corner-hit": vecs((0, 1, 1), (0, 0, -1), (0, 0, 0), (1, 0, 0), (0, 1, 0), (0, 1, 0)) + [INF, 0, INF],
+    "point": vecs((0, 0, 1), (0, 0, -1), (0, 0, 0), (0, 0, 0), (0, 0, 0), (0, 0, 0)) + [INF, 0, INF],
+    "bow-tie": vecs((0.5, 0.5, 1), (0, 0, -1), (0, 0, 0), (1, 1, 0), (0, 1, 0), (1, 0, 0)) + [INF, 0, INF],
+    "grazing": vecs((-1, 0.5, 0), (1, 0, 0), *UNIT_PATCH) + [INF, 0, INF],
+    "grazing-saddle": vecs((-1, 0.5, 0), (1, 0, 1e-7), *SADDLE) + [INF, 0, INF],
+    "origin-on-patch": vecs((0.5, 0.5, 0.25), (0.3, 0.1, 1), *SADDLE) + [INF, 0, INF],
+    "window-at-hit": vecs((0.25, 0.5, 1), (0, 0, -1), *UNIT_PATCH) + [1, 0.5, 1],
+    "t-max-at-hit": vecs((0.5, 0.5, 3), (0, 0, -1), *SADDLE) + [2.75, 2.75, 3],
+    "far": vecs((1e5 + 0.5, 1e5 + 0.5, 1), (0, 0, -1), (1e5, 1e5, 0), (1e5 + 1, 1e5, 0), (1e5, 1e5 + 1, 0), (1e5 + 1, 1e5 + 1, 0.5)) + [INF, 0, INF],
+    "tiny": vecs((SUB32, SUB32, 1e-30), (0, 0, -1), (0, 0, 0), (4 * SUB32, 0, 0), (0, 4 * SUB32, 0), (4 * SUB32, 4 * SUB32, SUB32)) + [INF, 0, INF],
+    "huge": vecs((0, 0, MAX32), (0, 0, -1), (-MAX32, -MAX32, 0), (MAX32, -MAX32, 0), (-MAX32, MAX32, 0), (MAX32, MAX32, MAX32)) + [INF, 0, INF],
+    "nan-corner": vecs((0.5, 0.5, 1), (0, 0, -1), (NAN, 0, 0), (1, 0, 0), (0, 1, 0), (1, 1, 0)) + [INF, 0, INF],
+    "inf-corner": vecs((0.5, 0.5, 1), (0, 0, -1), (0, 0, 0), (1, 0, 0), (0, 1, 0), (1, 1, INF)) + [INF, 0, INF],
+    "t-max-nan": vecs((0.5, 0.5, 1), (0, 0, -1), *UNIT_PATCH) + [NAN, NAN, 1],
+    "zero-dir": vecs((0.5, 0.5, 1), (0, 0, 0), *UNIT_PATCH) + [INF, 0, INF],
+}
+for name, xs in patches.items():
+    write("patch", f"raw-f32-{name}", raw(0, *xs))
+    write("patch", f"raw-f64-{name}", raw(1, *xs))
+structured("patch")
+
 # Discs: ray origin, dir, disc centre, normal, radius, inner radius,
 # t_max, then the interval's ends lo, hi.
 discs = {

@@ -19,7 +19,7 @@
 use super::Projected;
 use crate::num::Scalar;
 use crate::num::round::bound_up;
-use crate::num::round::outward::{add_up, div_up, mul_up, sub_down};
+use crate::num::round::outward::{add_down, add_up, div_up, mul_up, sub_down};
 
 /// Bounds on the distance of a computed hit from a crossing of the exact
 /// patch with the exact ray: `t` (the computed depth `fl(Z(u, v))`) and
@@ -55,11 +55,13 @@ fn max4<F: Scalar>(v: &[F; 4]) -> F {
 /// twist, `Q(u + du, v + dv) = Q(u, v) + M (du, dv) + k du dv` exactly (a
 /// bilinear map). A crossing `Q*(w + d) = 0` is a fixed point of `T(d) =
 /// -M^-1 (Q(w) + k du dv + (Q* - Q)(w + d))`. With `a >= |M^-1|` (max
-/// norm), `c >= |k|`, `beta >= |Q(w)| + S eq` and `|d| <= r`: `|T(d)| <= a
-/// (beta + c r^2)`. For `r = 2 a beta`, `4 a^2 c beta <= 1` makes that at
-/// most `r`, so `T` maps the closed ball into itself and (Brouwer) has a
-/// fixed point: the exact patch, extended bilinearly, meets the exact ray
-/// at some `w + d` with `|d| <= r`. `r <= 1/4` keeps `S <= 9/4`. Then
+/// norm), `c >= |M^-1 k|`, `beta >= |Q(w)| + S eq` and `|d| <= r`:
+/// `|T(d)| <= a beta + c r^2`, at most `r` for `r` the smaller root of `c
+/// r^2 - r + a beta` (real where `4 a c beta <= 1`; at most `2 a beta`),
+/// so `T` maps the closed ball into itself and (Brouwer) has a fixed
+/// point: the exact patch, extended bilinearly, meets the exact ray at
+/// some `w + d` with `|d| <= r`. A first radius with `S = 9/4` (valid up
+/// to `r = 1/4`) gives `S = (1 + 2 r)^2` for a second, smaller one. Then
 /// `t* = Z*(w + d)` and `|fl(Z(w)) - t*| <= (|Z_u| + |Z_v|) r + |k_z| r^2 +
 /// S ez + gamma(7) m_z`.
 ///
@@ -103,23 +105,63 @@ pub(super) fn certify<F: Scalar>(p: &Projected<F>, eq: F, ez: F, u: F, v: F) -> 
         if a > b { a } else { b }
     };
     let a = div_up(add_up(rows, mul_up(em, F::TWO)), det_lo);
-    let twist = |c: &[F; 4], m: F| add_up(((c[3] - c[1]) - (c[2] - c[0])).abs(), mul_up(g(9), m));
-    let c = {
-        let (kx, ky) = (twist(x, mxy), twist(y, mxy));
-        if kx > ky { kx } else { ky }
+    // The twist, and `c >= |M^-1 k| = |adj(M) k| / |det M|`: each
+    // component of `adj(M) k` (`m22 kx - m12 ky`, `m11 ky - m21 kx`) is
+    // within `gamma(2)` of its products' magnitudes of the computed one,
+    // and replacing the computed `M`, `k` by the exact ones (each entry
+    // within `eM`, `ek`) moves it by at most `eM (|kx| + |ky|) + (its
+    // row of |adj M|) ek + 2 eM ek`.
+    let twist_of = |c: &[F; 4]| (c[3] - c[1]) - (c[2] - c[0]);
+    let (kx, ky) = (twist_of(x), twist_of(y));
+    let ek = mul_up(g(9), mxy);
+    let (akx, aky) = (kx.abs(), ky.abs());
+    let component = |p: F, q: F, pk: F, qk: F, row: F| {
+        let n = (p * pk - q * qk).abs();
+        let products = add_up(mul_up(p.abs(), pk.abs()), mul_up(q.abs(), qk.abs()));
+        add_up(
+            add_up(
+                add_up(n, mul_up(g(2), products)),
+                mul_up(em, add_up(akx, aky)),
+            ),
+            add_up(mul_up(row, ek), mul_up(mul_up(em, ek), F::TWO)),
+        )
     };
-    let beta = add_up(r, mul_up(F::from_f64(2.25), eq));
-    let radius = mul_up(mul_up(a, beta), F::TWO);
-    let contracts = mul_up(mul_up(mul_up(a, a), mul_up(c, beta)), F::from_u32(4));
-    if !(contracts <= F::ONE && radius <= F::from_f64(0.25)) {
+    let cu = component(rv, qv, kx, ky, add_up(m22, m12));
+    let cv = component(qu, ru, ky, kx, add_up(m11, m21));
+    let c = div_up(if cu > cv { cu } else { cv }, det_lo);
+    // The radius for a weight bound `s` (`S`): the smaller root of `c r^2
+    // - r + a beta = 0`, `2 a beta / (1 + sqrt(1 - 4 a c beta))`, at most
+    // `2 a beta`, rounded up (the square root's argument and result
+    // rounded down); `None` where `4 a c beta > 1`.
+    let radius_for = |s: F| {
+        let beta = add_up(r, mul_up(s, eq));
+        let contracts = mul_up(mul_up(mul_up(a, c), beta), F::from_u32(4));
+        let root = sub_down(F::ONE, contracts);
+        (root >= F::ZERO).then(|| {
+            let denom = add_down(F::ONE, root.sqrt().next_down());
+            div_up(mul_up(mul_up(a, beta), F::TWO), denom)
+        })
+    };
+    // First with `S = 9/4` (for a radius up to 1/4), then with the `S`
+    // of that radius, `(1 + 2 r)^2`, which bounds the weights over the
+    // second, smaller radius too.
+    let quarter = F::from_f64(0.25);
+    let first = match radius_for(F::from_f64(2.25)) {
+        Some(r0) if r0 <= quarter => r0,
+        _ => return none,
+    };
+    let reach = add_up(F::ONE, mul_up(first, F::TWO));
+    let weights = mul_up(reach, reach);
+    let Some(radius) = radius_for(weights) else {
         return none;
-    }
+    };
     // The depth.
     let (zu, zv) = (p.d_du(z, v).abs(), p.d_dv(z, u).abs());
     let ez_d = mul_up(g(9), mz);
     let slope = add_up(add_up(zu, zv), mul_up(ez_d, F::TWO));
+    let kz = add_up(twist_of(z).abs(), mul_up(g(9), mz));
     let t = bound_up(
-        slope * radius + (twist(z, mz) * radius) * radius + F::from_f64(2.25) * ez + g(7) * mz,
+        slope * radius + (kz * radius) * radius + weights * ez + g(7) * mz,
         4,
     );
     if !(t.is_finite() && radius.is_finite()) {

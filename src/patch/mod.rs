@@ -31,17 +31,19 @@
 //! which the quadratic decides, in floating point.
 
 mod bounds;
+mod collapsed;
 
 use glam::Vec3;
 
 use crate::aabb::Aabb;
 use crate::num::round::{max2, min2};
-use crate::num::{S, Scalar, Vector};
+use crate::num::{Axis, L, Lanes, S, Scalar, Vector};
 use crate::query::{EdgeRule, Form, Intersect, Range, RayForm, Search, Surface};
-use crate::ray::{Shear, t_max_ok};
+use crate::ray::{PreparedRay, Ray, Shear, t_max_ok};
 use crate::surface::SurfacePoint;
 use crate::triangle::{
-    ErrorBounds, Frame, Side, Triangle, TriangleHitError, edge_function, inside, project,
+    ErrorBounds, Frame, Side, Triangle, TriangleHitError, edge_function, frame_lanes_at, inside,
+    straddles,
 };
 
 use bounds::{Certified, normal_error, point_error};
@@ -87,12 +89,26 @@ use bounds::{Certified, normal_error, point_error};
 /// [`Quad`](crate::Quad) with those corners).
 ///
 /// Degenerate patches, as their definition says: a patch with a collapsed
-/// edge (two neighbouring corners equal) is the triangle of the other
-/// three and is hit where that [`Triangle`] is (with the same rule); a
+/// edge (two neighbouring corners equal, bit for bit) is the triangle of
+/// the other three, and is tested as that [`Triangle`] (its answers, `t`
+/// and side bit for bit, zero-area slivers included, with `(u, v)` from
+/// its barycentrics; the surface point and bounds the triangle's); a
 /// planar parallelogram is hit where the [`Quad`](crate::Quad) of its
-/// corners is, at the same `(u, v)` up to rounding; a twisted patch is
-/// hit where its surface is. A NaN or infinite coordinate makes a patch
+/// corners is, at the same `(u, v)` up to rounding (each decides `t > 0`
+/// conservatively by its own bound, so they may differ on a crossing
+/// within those bounds of the origin); a twisted patch is hit where its
+/// surface is. A patch of
+/// zero area with no collapsed edge (four distinct corners on one line)
+/// may be hit where rounding leaves one of its triangles a sliver, as a
+/// zero-area triangle is, and a ray along it may be reported at no
+/// particular point of it: unlike a zero-area triangle it closes no mesh,
+/// so it is best left out. A NaN or infinite coordinate makes a patch
 /// nothing hits.
+///
+/// Precondition for the guarantees, as for the triangle: coordinates
+/// relative to the ray origin below `2^63` in `f32` (`2^511` in `f64`),
+/// so that the edge functions do not overflow, and not so small that they
+/// underflow (above about `2^-39` in `f32`, `2^-500` in `f64`).
 ///
 /// ```
 /// use rayhit::{Intersect, Patch, Ray, glam::Vec3};
@@ -236,15 +252,15 @@ struct Projected<F> {
 impl<F: Scalar> Projected<F> {
     /// `v` for the crossing at `u`: the place of the origin on the line
     /// from `A(u)` (on the edge `v = 0`) to `B(u)` (on `v = 1`), by least
-    /// squares; `0` where the segment is a point (at a collapsed edge).
+    /// squares; NaN or infinite where the segment is a point (at a
+    /// collapsed edge), which every caller's range test rejects.
     #[inline(always)]
     fn v_at(&self, u: F) -> F {
         let (x, y) = (&self.x, &self.y);
         let (ax, ay) = (lerp(x[0], x[1], u), lerp(y[0], y[1], u));
         let (bx, by) = (lerp(x[2], x[3], u), lerp(y[2], y[3], u));
         let (dx, dy) = (bx - ax, by - ay);
-        let v = -(ax * dx + ay * dy) / (dx * dx + dy * dy);
-        if v.is_finite() { v } else { F::ZERO }
+        -(ax * dx + ay * dy) / (dx * dx + dy * dy)
     }
 
     /// How far the origin is from the projected point at `(u, v)` (the
@@ -272,6 +288,26 @@ impl<F: Scalar> Projected<F> {
         self.d_du(x, v) * self.d_dv(y, u) - self.d_du(y, v) * self.d_dv(x, u)
     }
 
+    /// [`orientation`](Self::orientation) at the four corners, `(0, 0)`,
+    /// `(1, 0)`, `(0, 1)`, `(1, 1)`, with the derivatives read off the
+    /// edges: the same values but for the sign of a zero (a `lerp` at 0
+    /// or 1 is its end).
+    #[inline(always)]
+    fn corner_orientations(&self) -> [F; 4] {
+        let (x, y) = (&self.x, &self.y);
+        let d = |i: usize, j: usize| (x[j] - x[i], y[j] - y[i]);
+        let cross = |(ax, ay): (F, F), (bx, by): (F, F)| ax * by - ay * bx;
+        // dq/du along v = 0 and v = 1, dq/dv along u = 0 and u = 1.
+        let (du0, du1) = (d(0, 1), d(2, 3));
+        let (dv0, dv1) = (d(0, 2), d(1, 3));
+        [
+            cross(du0, dv0),
+            cross(du0, dv1),
+            cross(du1, dv0),
+            cross(du1, dv1),
+        ]
+    }
+
     /// `dc/du` at `v` of the bilinear values `c` (corners `00, 10, 01,
     /// 11`).
     #[inline(always)]
@@ -286,65 +322,116 @@ impl<F: Scalar> Projected<F> {
     }
 }
 
-/// The patch in the ray's frame: the two triangles' frames (`p00, p10,
-/// p11` and `p00, p11, p01`, as the watertight test makes them) and the
-/// corners read from them.
+/// The ray's part of the patch's frame: its origin and shear in lanes
+/// and its axis order (what a prepared ray holds), and the shear itself.
+struct RayFrame<V: Vector> {
+    origin: V,
+    dir: V,
+    shear: Shear<S<V>>,
+    origin_lanes: [L<V>; 3],
+    shear_lanes: [L<V>; 3],
+    axes: [Axis; 3],
+}
+
+impl<V: Vector> RayFrame<V> {
+    /// The frame of a plain ray: its shear computed (three divisions).
+    #[inline(always)]
+    fn plain(ray: &Ray<V>) -> Self {
+        let shear = Shear::new(&ray.dir);
+        Self {
+            origin: ray.origin,
+            dir: ray.dir,
+            origin_lanes: shear.origin_lanes(ray.origin),
+            shear_lanes: shear.lanes(),
+            axes: [shear.kx, shear.ky, shear.kz],
+            shear,
+        }
+    }
+
+    /// The frame of a prepared ray, which holds it.
+    #[inline(always)]
+    fn prepared(ray: &PreparedRay<V>) -> Self {
+        let r = ray.to_ray();
+        Self {
+            origin: r.origin,
+            dir: r.dir,
+            shear: ray.shear(),
+            origin_lanes: ray.origin_lanes,
+            shear_lanes: ray.shear_lanes,
+            axes: ray.axes,
+        }
+    }
+}
+
+/// The patch in the ray's frame: the two triangles `p00, p10, p11` and
+/// `p00, p11, p01` (`Patch::triangles`) framed as the watertight triangle
+/// test frames them (a corner a lane), their edge functions (signs exact),
+/// and the four corners' coordinates.
 struct Framed<F> {
-    f1: Frame<F>,
-    f2: Frame<F>,
+    /// The first triangle's edge functions, then the second's, in the
+    /// triangle test's order (each opposite a corner).
+    e1: [F; 3],
+    e2: [F; 3],
     p: Projected<F>,
 }
 
+/// A triangle in the ray's frame, a corner a lane (`frame_lanes_at`): the
+/// sheared `x`, `y`, the unscaled depth and the edge functions.
+type Lanes4<V> = (L<V>, L<V>, L<V>, L<V>);
+
+/// The patch's two triangles, `p00, p10, p11` and `p00, p11, p01`, in the
+/// ray's frame.
+#[inline(always)]
+fn frame_pair<V: Vector>(r: &RayFrame<V>, patch: &Patch<V>) -> [Lanes4<V>; 2] {
+    let frame = |c: [&V; 3]| frame_lanes_at(&r.origin_lanes, &r.shear_lanes, &r.axes, c);
+    [
+        frame([&patch.p00, &patch.p10, &patch.p11]),
+        frame([&patch.p00, &patch.p11, &patch.p01]),
+    ]
+}
+
 impl<F: Scalar> Framed<F> {
+    /// From the two triangles' lanes ([`frame_pair`]).
     #[inline(always)]
-    fn new<V: Vector<Scalar = F>>(origin: V, shear: &Shear<F>, patch: &Patch<V>) -> Self {
-        // Corners 00, 10, 01, 11, each projected once.
-        let c = [patch.p00, patch.p10, patch.p01, patch.p11].map(|p| project(origin, p, shear));
-        let q = |i: usize| (c[i][3], c[i][4]);
-        // The four edges, each as a triangle sharing it computes it, and
-        // the diagonal 00-11 once (the second triangle runs it the other
-        // way: the same value negated, exactly).
-        let diagonal = edge_function(q(3), q(0));
-        let frame = |[i, j, k]: [usize; 3], e: [F; 3]| Frame {
-            x: [c[i][3], c[j][3], c[k][3]],
-            y: [c[i][4], c[j][4], c[k][4]],
-            px: [c[i][0], c[j][0], c[k][0]],
-            py: [c[i][1], c[j][1], c[k][1]],
-            pz: [c[i][2], c[j][2], c[k][2]],
-            e,
+    fn new<V: Vector<Scalar = F>>(r: &RayFrame<V>, pair: [Lanes4<V>; 2]) -> Self {
+        let arrays = |(x, y, pz, e): Lanes4<V>| {
+            let (x, y, pz) = (x.to_array(), y.to_array(), pz.to_array());
+            let mut e = e.to_array();
+            // An edge function of zero gets its exact sign, as in
+            // `Frame::new`.
+            if e.contains(&F::ZERO) {
+                for (i, e) in e.iter_mut().enumerate() {
+                    let (j, k) = ((i + 1) % 3, (i + 2) % 3);
+                    *e = edge_function((x[j], y[j]), (x[k], y[k]));
+                }
+            }
+            (x, y, pz, e)
         };
-        // p00, p10, p11 and p00, p11, p01, as `triangles` makes them.
-        let f1 = frame(
-            [0, 1, 3],
-            [
-                edge_function(q(1), q(3)),
-                diagonal,
-                edge_function(q(0), q(1)),
-            ],
-        );
-        let f2 = frame(
-            [0, 3, 2],
-            [
-                edge_function(q(3), q(2)),
-                edge_function(q(2), q(0)),
-                -diagonal,
-            ],
-        );
-        let sz = shear.sz;
+        let [(x1, y1, z1, e1), (x2, y2, z2, e2)] = pair.map(arrays);
+        let sz = r.shear.sz;
+        // Corners 00, 10, 01, 11.
         let p = Projected {
-            x: c.map(|c| c[3]),
-            y: c.map(|c| c[4]),
-            z: c.map(|c| c[2] * sz),
+            x: [x1[0], x1[1], x2[2], x1[2]],
+            y: [y1[0], y1[1], y2[2], y1[2]],
+            z: [z1[0] * sz, z1[1] * sz, z2[2] * sz, z1[2] * sz],
         };
-        Self { f1, f2, p }
+        Self { e1, e2, p }
     }
 
     /// The certificate at `(u, v)`, with the corners' projection bounds
     /// (each triangle's, the larger).
     #[inline(never)]
-    fn certify(&self, shear: &Shear<F>, u: F, v: F) -> Certified<F> {
-        let b1 = ErrorBounds::new(&self.f1, &self.f1.scaled_z(shear), shear);
-        let b2 = ErrorBounds::new(&self.f2, &self.f2.scaled_z(shear), shear);
+    fn certify<V: Vector<Scalar = F>>(
+        &self,
+        r: &RayFrame<V>,
+        patch: &Patch<V>,
+        u: F,
+        v: F,
+    ) -> Certified<F> {
+        let shear = &r.shear;
+        let [f1, f2] = frames(r, patch);
+        let b1 = ErrorBounds::new(&f1, &f1.scaled_z(shear), shear);
+        let b2 = ErrorBounds::new(&f2, &f2.scaled_z(shear), shear);
         let eq = if b1.xy > b2.xy { b1.xy } else { b2.xy };
         let ez = if b1.z > b2.z { b1.z } else { b2.z };
         if !(eq.is_finite() && ez.is_finite()) {
@@ -355,6 +442,31 @@ impl<F: Scalar> Framed<F> {
         }
         bounds::certify(&self.p, eq, ez, u, v)
     }
+}
+
+/// The patch's two triangles' frames, as `Frame::new` makes them (the
+/// same values the lanes hold; for the one-hit rule and the bounds).
+#[inline(always)]
+fn frames<V: Vector>(r: &RayFrame<V>, patch: &Patch<V>) -> [Frame<S<V>>; 2] {
+    patch
+        .triangles()
+        .map(|tri| Frame::new(r.origin, &tri, &r.shear))
+}
+
+/// The closed rule's inside test on a triangle's edge functions (as the
+/// watertight test's: no two of opposite signs, a zero inside), and the
+/// triangle's orientation where it covers the ray; a triangle of zero
+/// area (the collapsed half of a degenerate patch) or with a NaN edge
+/// function covers nothing.
+#[inline(always)]
+fn closed_cover<F: Scalar>(e: [F; 3]) -> Option<i8> {
+    let zero = F::ZERO;
+    let neg = (e[0] < zero) | (e[1] < zero) | (e[2] < zero);
+    let pos = (e[0] > zero) | (e[1] > zero) | (e[2] > zero);
+    if neg & pos {
+        return None;
+    }
+    Some(orientation_of(e)).filter(|&s| s != 0)
 }
 
 /// The sign of a triangle's determinant from its inside test's edge
@@ -379,28 +491,59 @@ fn orientation_of<F: Scalar>(e: [F; 3]) -> i8 {
 /// above its certified bound.
 #[inline]
 fn patch_hit<V: Vector>(
-    (origin, dir): (V, V),
-    shear: &Shear<S<V>>,
+    r: &RayFrame<V>,
     patch: &Patch<V>,
     (lo, hi): (S<V>, S<V>),
     rule: EdgeRule,
 ) -> Option<PatchHit<S<V>>> {
     let (zero, one) = (S::<V>::ZERO, S::<V>::ONE);
-    let tris = patch.triangles();
-    let fr = Framed::new(origin, shear, patch);
-    let (f1, f2, p) = (&fr.f1, &fr.f2, &fr.p);
-    // No corner in front: every crossing is at t <= 0.
-    if !p.z.iter().any(|&z| z > zero) {
+    let (origin, dir, shear) = (r.origin, r.dir, &r.shear);
+    let pair = frame_pair(r, patch);
+    let [(x1, y1, z1, e1), (x2, y2, z2, e2)] = pair;
+    let lanes_zero = L::<V>::splat(zero);
+    // The fourth corner, p01, is lane 2 of the second triangle.
+    let all = |bits1: u32, bits2: u32| bits1 == 0b111 && bits2 & 0b100 != 0;
+    // No corner in front: every crossing is at t <= 0. (The depths' signs
+    // are the unscaled ones' times the sign of 1 / d_z.)
+    let sz = L::<V>::splat(shear.sz);
+    if lanes_zero.lt(z1.mul(sz)) == 0 && lanes_zero.lt(z2.mul(sz)) & 0b100 == 0 {
         return None;
     }
-    // Each triangle's orientation where it covers the ray; a triangle of
-    // zero area (the collapsed half of a degenerate patch) covers nothing.
-    let covers = |f: &Frame<S<V>>, tri: &Triangle<V>| {
-        inside(f, rule, (origin, dir), shear, tri)
-            .map(orientation_of)
-            .filter(|&s| s != 0)
+    // The closed rule's common miss: neither triangle covers the ray (its
+    // edge functions straddle zero, whatever the exact sign of one that
+    // rounds to zero) and every corner lies on one side of an axis
+    // through it, so the projected patch, in their hull, does not reach
+    // it: no fold can cross it either.
+    if rule == EdgeRule::Closed && straddles(e1) && straddles(e2) {
+        let side = |a: L<V>, b: L<V>| {
+            all(lanes_zero.lt(a), lanes_zero.lt(b)) || all(a.lt(lanes_zero), b.lt(lanes_zero))
+        };
+        if side(x1, x2) || side(y1, y2) {
+            return None;
+        }
+    }
+    let fr = Framed::new(r, pair);
+    let p = &fr.p;
+    // A corner that is not finite, or whose coordinates in the ray's
+    // frame overflow: nothing is hit.
+    let finite = |c: &[S<V>; 4]| c.iter().all(|w| w.abs() <= S::<V>::MAX);
+    if !(finite(&p.x) && finite(&p.y) && finite(&p.z)) {
+        return None;
+    }
+    // Each triangle's orientation where it covers the ray.
+    let (in1, in2) = match rule {
+        EdgeRule::Closed => (closed_cover(fr.e1), closed_cover(fr.e2)),
+        EdgeRule::OneHit => {
+            let tris = patch.triangles();
+            let covers = |f: &Frame<S<V>>, tri: &Triangle<V>| {
+                inside(f, rule, (origin, dir), shear, tri)
+                    .map(orientation_of)
+                    .filter(|&s| s != 0)
+            };
+            let [f1, f2] = frames(r, patch);
+            (covers(&f1, &tris[0]), covers(&f2, &tris[1]))
+        }
     };
-    let (in1, in2) = (covers(f1, &tris[0]), covers(f2, &tris[1]));
     // Exactly one crossing where the boundary winds around the ray: one
     // triangle covers it, or both with one orientation (the ray on the
     // diagonal).
@@ -414,8 +557,7 @@ fn patch_hit<V: Vector>(
     // signs at the corners; with one sign the map is one to one and
     // there is no crossing. (Most misses end here.)
     if !single {
-        let j =
-            [(zero, zero), (one, zero), (zero, one), (one, one)].map(|(u, v)| p.orientation(u, v));
+        let j = p.corner_orientations();
         let neg = j.iter().any(|&j| j < zero);
         let pos = j.iter().any(|&j| j > zero);
         if !(neg && pos) {
@@ -426,9 +568,16 @@ fn patch_hit<V: Vector>(
     // u = 0), b2 = q10 x q11 (the edge u = 1), b1 the mean of the
     // diagonals' products.
     let (x, y) = (&p.x, &p.y);
-    let b0 = -f2.e[1];
-    let b2 = f1.e[0];
-    let b1 = (f2.e[2] + (x[1] * y[2] - y[1] * x[2])) * S::<V>::HALF;
+    let b0 = -fr.e2[1];
+    let b2 = fr.e1[0];
+    let b1 = (fr.e2[2] + (x[1] * y[2] - y[1] * x[2])) * S::<V>::HALF;
+    // Divided by the largest, so that squaring them neither overflows nor
+    // underflows (they are squares of coordinates: the discriminant is a
+    // fourth power). The roots do not change; `2^k` scalings of the
+    // inputs leave these values unchanged, bit for bit. (All zero: NaN,
+    // no root.)
+    let scale = one / max2(max2(b0.abs(), b1.abs()), b2.abs());
+    let (b0, b1, b2) = (b0 * scale, b1 * scale, b2 * scale);
     let disc = b1 * b1 - b0 * b2;
     // (Where the crossing is single the exact discriminant is at least
     // zero.)
@@ -444,16 +593,18 @@ fn patch_hit<V: Vector>(
     let b = b1 - b0;
     let root = disc.sqrt();
     let q = -(b + if b < zero { -root } else { root });
-    let roots = [q / a, b0 / q];
+    // (The smaller root first: `b0 / q` is stable, and for a nearly
+    // planar patch `a` is nearly zero and `q / a` far off.)
+    let near_root = b0 / q;
     // Every corner in front makes every crossing so (the depth is a
     // convex combination of theirs); else a crossing stands in front of
     // the origin where its `t` exceeds its certified bound.
     let ahead = p.z.iter().all(|&z| z > zero);
     // (The same test for every interval, whatever its ends, so that
     // consecutive intervals split the crossings between them.)
-    let in_range = |t: S<V>, u: S<V>, v: S<V>| {
-        lo < t && t <= hi && t <= S::<V>::MAX && (ahead || t > fr.certify(shear, u, v).t)
-    };
+    let ends = |t: S<V>| lo < t && t <= hi && t <= S::<V>::MAX;
+    let in_range =
+        |t: S<V>, u: S<V>, v: S<V>| ends(t) && (ahead || t > fr.certify(r, patch, u, v).t);
     let side_of = |det: S<V>| {
         if (det > zero) != (shear.dz > zero) {
             Side::Front
@@ -462,9 +613,12 @@ fn patch_hit<V: Vector>(
         }
     };
     if !single {
-        // None or two: each root whose (u, v) is in the square.
+        // None or two: each root whose (u, v) is in the square and where
+        // the exact patch is certified to meet the ray (which no rounding
+        // noise of a patch of zero area, and no spurious root of a
+        // collapsed edge, can be).
         let mut best: Option<(S<V>, S<V>, S<V>)> = None;
-        for u in roots {
+        for u in [near_root, q / a] {
             if !(zero <= u && u <= one) {
                 continue;
             }
@@ -473,7 +627,11 @@ fn patch_hit<V: Vector>(
                 continue;
             }
             let t = p.t_at(u, v);
-            if in_range(t, u, v) && best.is_none_or(|(_, _, bt)| t < bt) {
+            if !(ends(t) && best.is_none_or(|(_, _, bt)| t < bt)) {
+                continue;
+            }
+            let bound = fr.certify(r, patch, u, v).t;
+            if bound.is_finite() && (ahead || t > bound) {
                 best = Some((u, v, t));
             }
         }
@@ -485,29 +643,12 @@ fn patch_hit<V: Vector>(
             side: side_of(p.orientation(u, v)),
         });
     }
-    // The root whose point, brought into the square, lies nearest the ray
-    // (a collapsed edge makes a spurious root, its segment a point away
-    // from the ray).
-    let clamp = |w: S<V>| min2(max2(w, zero), one);
-    let mut best: Option<(S<V>, S<V>, S<V>)> = None;
-    for u in roots {
-        if !u.is_finite() {
-            continue;
-        }
-        let u = clamp(u);
-        let v = clamp(p.v_at(u));
-        let miss = p.miss_at(u, v);
-        if best.is_none_or(|(_, _, m)| miss < m) {
-            best = Some((u, v, miss));
-        }
-    }
-    let (u, v) = match best {
-        Some((u, v, _)) => (u, v),
+    let (u, v) = single_place(p, near_root, || q / a).unwrap_or_else(|| {
         // No finite root (a quadratic that rounding left with no
         // coefficient): the covering triangle's own place, as a planar
         // quad's.
-        None => from_triangle(in1.map(|_| f1), f2),
-    };
+        from_triangle(in1.map(|_| fr.e1), fr.e2)
+    });
     let t = p.t_at(u, v);
     if !in_range(t, u, v) {
         return None;
@@ -525,15 +666,51 @@ fn patch_hit<V: Vector>(
     })
 }
 
-/// `(u, v)` of the origin on the inside triangle (`first` the frame of
-/// `p00, p10, p11` where it is inside, else `second`, of `p00, p11, p01`),
-/// as on a parallelogram: on the first `(u1 + v1, v1)`, on the second
-/// `(u2, u2 + v2)`, each weight its edge function over the determinant.
+/// The place of the single crossing among the quadratic's roots (`near`,
+/// then `far()`, computed only if needed): the first in `[0, 1]` whose `v`
+/// is in `[0, 1]` (the common case), else the root whose point, brought
+/// into the square, lies nearest the ray (a crossing within rounding of
+/// an edge; a collapsed edge's spurious root, its segment a point away
+/// from the ray). `None` where no root is finite.
+#[inline(always)]
+fn single_place<F: Scalar>(p: &Projected<F>, near: F, far: impl Fn() -> F) -> Option<(F, F)> {
+    let (zero, one) = (F::ZERO, F::ONE);
+    let unit = |w: F| zero <= w && w <= one;
+    let inside = |u: F| unit(u).then(|| (u, p.v_at(u))).filter(|&(_, v)| unit(v));
+    if let Some(place) = inside(near) {
+        return Some(place);
+    }
+    let far = far();
+    if let Some(place) = inside(far) {
+        return Some(place);
+    }
+    let clamp = |w: F| min2(max2(w, zero), one);
+    let mut best: Option<(F, F, F)> = None;
+    for u in [near, far] {
+        if !u.is_finite() {
+            continue;
+        }
+        let u = clamp(u);
+        // (A point segment's NaN `v` becomes 0: `max2` keeps the zero.)
+        let v = clamp(p.v_at(u));
+        let miss = p.miss_at(u, v);
+        if best.is_none_or(|(_, _, m)| miss < m) {
+            best = Some((u, v, miss));
+        }
+    }
+    best.map(|(u, v, _)| (u, v))
+}
+
+/// `(u, v)` of the origin on the covering triangle (`first`'s edge
+/// functions where `p00, p10, p11` covers it, else `second`'s, of `p00,
+/// p11, p01`), as on a parallelogram: on the first `(u1 + v1, v1)`, on the
+/// second `(u2, u2 + v2)`, each weight its edge function over the
+/// determinant.
 #[cold]
-fn from_triangle<F: Scalar>(first: Option<&Frame<F>>, second: &Frame<F>) -> (F, F) {
-    let f = first.unwrap_or(second);
-    let det = f.e[0] + f.e[1] + f.e[2];
-    let (w1, w2) = (f.e[1] / det, f.e[2] / det);
+fn from_triangle<F: Scalar>(first: Option<[F; 3]>, second: [F; 3]) -> (F, F) {
+    let e = first.unwrap_or(second);
+    let det = e[0] + e[1] + e[2];
+    let (w1, w2) = (e[1] / det, e[2] / det);
     let clamp = |w: F| {
         if w.is_finite() {
             min2(max2(w, F::ZERO), F::ONE)
@@ -584,20 +761,31 @@ impl<V: Vector> Intersect<V> for Patch<V> {
     #[inline]
     fn hit(&self, ray: &impl RayForm<V>, search: impl Into<Search<S<V>>>) -> Option<Self::Hit> {
         let search = search.into();
+        // A collapsed edge: the triangle it became.
+        if let Some((collapse, tri)) = self.collapsed() {
+            return tri.hit(ray, search).map(|h| collapse.hit(h));
+        }
         let ends = match search.range {
             Range::UpTo(t_max) => t_max_ok(t_max).then_some((S::<V>::ZERO, t_max))?,
             Range::Within(interval) => interval.ends(),
         };
-        // (A prepared ray holds its shear, the very one `Shear::new`
+        // (A prepared ray holds its frame, the very one `Shear::new`
         // computes.)
-        let (r, shear) = match ray.form() {
-            Form::Plain(r) => (*r, Shear::new(&r.dir)),
-            Form::Prepared(p) => (p.to_ray(), p.shear()),
+        let r = match ray.form() {
+            Form::Plain(r) => {
+                if !r.is_valid() {
+                    return None;
+                }
+                RayFrame::plain(r)
+            }
+            Form::Prepared(p) => {
+                if !p.is_valid() {
+                    return None;
+                }
+                RayFrame::prepared(p)
+            }
         };
-        if !r.is_valid() {
-            return None;
-        }
-        patch_hit((r.origin, r.dir), &shear, self, ends, search.edges)
+        patch_hit(&r, self, ends, search.edges)
     }
 
     /// Whether the patch is crossed within `search`.
@@ -635,6 +823,9 @@ impl<V: Vector> Surface<V> for Patch<V> {
     /// ```
     #[inline]
     fn hit_error(&self, ray: &impl RayForm<V>, hit: &Self::Hit) -> Self::HitError {
+        if let Some((collapse, tri)) = self.collapsed() {
+            return collapsed::hit_error(collapse, &tri, ray, hit);
+        }
         let r = ray.to_ray();
         let inf = S::<V>::INFINITY;
         if !r.is_valid() {
@@ -644,8 +835,8 @@ impl<V: Vector> Surface<V> for Patch<V> {
                 v: inf,
             };
         }
-        let shear = Shear::new(&r.dir);
-        let c = Framed::new(r.origin, &shear, self).certify(&shear, hit.u, hit.v);
+        let frame = RayFrame::plain(&r);
+        let c = Framed::new(&frame, frame_pair(&frame, self)).certify(&frame, self, hit.u, hit.v);
         TriangleHitError {
             t: c.t,
             u: c.uv,
@@ -693,6 +884,10 @@ impl<V: Vector> Patch<V> {
     #[inline]
     #[must_use]
     pub fn surface_point_at(&self, u: S<V>, v: S<V>) -> SurfacePoint<V> {
+        if let Some((collapse, tri)) = self.collapsed() {
+            let (b, c) = collapse.weights(u, v);
+            return tri.surface_point_at(b, c);
+        }
         let c = [self.p00, self.p10, self.p01, self.p11];
         let m = |k: fn(V) -> S<V>| c.iter().fold(S::<V>::ZERO, |m, &p| max2(m, k(p).abs()));
         let m = [m(V::x), m(V::y), m(V::z)];

@@ -60,7 +60,7 @@ impl<F: Scalar> Frame<F> {
 /// A corner in the ray's frame: translated, permuted (`px, py, pz`) and
 /// sheared (`x, y`), as [`Frame::new`] computes each of its corners.
 #[inline(always)]
-pub(crate) fn project<V: Vector>(origin: V, p: V, shear: &Shear<V::Scalar>) -> [V::Scalar; 5] {
+fn project<V: Vector>(origin: V, p: V, shear: &Shear<V::Scalar>) -> [V::Scalar; 5] {
     let (px, py, pz) = shear.permute(p - origin);
     [px, py, pz, px + shear.sx * pz, py + shear.sy * pz]
 }

@@ -51,7 +51,7 @@ pub use batch::{TriangleBatch, TriangleBatchHits};
 pub(crate) use bounds::ErrorBounds;
 pub use bounds::TriangleHitError;
 pub(crate) use definition::inside;
-pub(crate) use frame::{Frame, edge_function, project};
+pub(crate) use frame::{Frame, edge_function};
 pub(crate) use lanes::frame_lanes_at;
 pub use watertight::ray_triangle;
 pub(crate) use watertight::{EveryAxis, every_axis_at, finish_lanes, straddles};

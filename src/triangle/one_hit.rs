@@ -83,6 +83,9 @@ fn exact_edges<V: Vector>(
     shear: &Shear<S<V>>,
     tri: &Triangle<V>,
 ) -> Option<[S<V>; 3]> {
+    if !(tri.a.is_finite() && tri.b.is_finite() && tri.c.is_finite()) {
+        return None;
+    }
     let zero = S::<V>::ZERO;
     let corners = [tri.a, tri.b, tri.c];
     let mut positive = [false; 3];
@@ -180,6 +183,11 @@ pub(crate) fn unresolved_hit<V: Vector>(
     f: &Frame<S<V>>,
     interval: Interval<S<V>>,
 ) -> Option<TriangleHit<S<V>>> {
+    // (A corner that is not finite makes a triangle nothing hits; its
+    // exact signs below would not say so.)
+    if !(tri.a.is_finite() && tri.b.is_finite() && tri.c.is_finite()) {
+        return None;
+    }
     let z = f.scaled_z(shear);
     let t = (z[0] + z[1] + z[2]) / S::<V>::from_u32(3);
     let (lo, hi) = interval.ends();

@@ -20,7 +20,7 @@
 //! All of it is `f32`.
 
 use rayhit::glam::Vec3;
-use rayhit::{Aabb, Camera, PinholeCamera, Plane, Quad, Ray, Sphere, Triangle};
+use rayhit::{Aabb, Camera, Patch, PinholeCamera, Plane, Quad, Ray, Sphere, Triangle};
 
 /// Pairs per workload.
 pub const PAIRS: usize = 4096;
@@ -71,6 +71,17 @@ pub struct QuadWorkload {
     pub rays: Vec<Ray>,
     /// The quads (parallelograms), one per pair.
     pub quads: Vec<Quad>,
+}
+
+/// A `patch` workload: ray `i` against patch `i`.
+#[derive(Clone, Debug)]
+pub struct PatchWorkload {
+    /// How the rays relate to the patches (see the module docs).
+    pub name: &'static str,
+    /// The rays, one per pair.
+    pub rays: Vec<Ray>,
+    /// The patches, one per pair.
+    pub patches: Vec<Patch>,
 }
 
 /// `groups` workloads: ray `i` against shapes `GROUP * i .. GROUP * (i + 1)`.
@@ -547,4 +558,47 @@ pub fn rate(flags: impl IntoIterator<Item = bool>) -> f64 {
         k += usize::from(f);
     }
     k as f64 / n.max(1) as f64
+}
+
+/// The `patch` workloads: the `quad` workloads' parallelograms, each
+/// twisted into a bilinear patch by lifting its corner `c` off the plane
+/// by up to 0.3 of the longer edge either way (so no patch is planar);
+/// `random` and `camera` keep the quads' rays, `aimed` aims each ray at a
+/// point `P(u, v)` of its patch, `u`, `v` uniform in `[-0.2, 1.2)` (a hit
+/// a little over half of the time).
+pub fn patch_workloads() -> Vec<PatchWorkload> {
+    let mut rng = Pcg32::with_stream(21, 2);
+    quad_workloads()
+        .into_iter()
+        .map(|w| {
+            let patches: Vec<Patch> = w
+                .quads
+                .iter()
+                .map(|q| {
+                    let (eu, ev) = (q.b - q.a, q.d - q.a);
+                    let lift = eu.cross(ev).normalize_or_zero()
+                        * eu.length().max(ev.length())
+                        * rng.range(-0.3, 0.3);
+                    Patch::new(q.a, q.b, q.d, q.c + lift)
+                })
+                .collect();
+            let rays = if w.name == "aimed" {
+                patches
+                    .iter()
+                    .map(|p| {
+                        let (u, v) = (rng.range(-0.2, 1.2), rng.range(-0.2, 1.2));
+                        let dir = rng.sphere();
+                        through(&mut rng, p.point_at(u, v), dir)
+                    })
+                    .collect()
+            } else {
+                w.rays
+            };
+            PatchWorkload {
+                name: w.name,
+                rays,
+                patches,
+            }
+        })
+        .collect()
 }

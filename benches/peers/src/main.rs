@@ -54,6 +54,7 @@ use sections::{
     cwbvh::{CwbvhData, cwbvh_kernels, print_leaks},
     groups::group_kernels,
     instance::{InstanceData, instance_kernels},
+    patches::{PatchData, patch_kernels},
     quads::{QuadData, quad_kernels},
     spheres::{SphereData, sphere_group_kernels, sphere_kernels},
     sweep::{Sweep, sweep_kernels},
@@ -97,6 +98,13 @@ fn main() {
             QuadData::new(w, s)
         })
         .collect();
+    let patch_data: Vec<PatchData> = rayhit_testkit::workloads::patch_workloads()
+        .into_iter()
+        .map(|w| {
+            let s = shuffle(w.name, false);
+            PatchData::new(w, s)
+        })
+        .collect();
     let sphere_groups = rayhit_testkit::workloads::sphere_groups();
     let sphere_batches: Vec<rayhit::batch::SphereBatch> = sphere_groups
         .spheres
@@ -127,6 +135,9 @@ fn main() {
     }
     for d in &quad_data {
         quad_kernels(d, &mut kernels);
+    }
+    for d in &patch_data {
+        patch_kernels(d, &mut kernels);
     }
     sphere_group_kernels(
         &sphere_groups.rays,

@@ -44,6 +44,7 @@ pub mod interval;
 pub mod matrix_camera;
 pub mod orthographic;
 pub mod panoramic;
+pub mod patch;
 pub mod plane;
 pub mod quad;
 pub mod spawn;
@@ -142,6 +143,9 @@ pub const TARGETS: &[Target] = &[
     ),
     // The orthographic camera.
     ("orthographic", dispatch::<orthographic::Orthographic>),
+    // The bilinear patch, every ray form, rule and range, and its
+    // degenerate forms against the triangle and the quad they are.
+    ("patch", dispatch::<patch::PatchCheck>),
     // `ray_plane` and the plane's error bound.
     ("plane", dispatch::<plane::PlaneCheck>),
     // The quad against its two triangles, every ray form, rule and range.

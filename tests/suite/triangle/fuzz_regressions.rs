@@ -286,3 +286,29 @@ fn triangle_bound_beyond_the_range_is_not_nan() {
         assert!(b >= 0.0, "{hit:?} {err:?}");
     }
 }
+
+/// `patch` (structured, `f32`): a patch with a collapsed edge, tested as
+/// its triangle, one of whose corners is NaN, with the one-hit rule: a hit
+/// at `t = 1e-45`. The triangle kernel was at fault: where no edge
+/// function had a usable sign it went on to the exact signs and the
+/// unresolved hit, which took the NaN for a sign. Both now reject a corner
+/// that is not finite, as the closed rule always did.
+#[test]
+fn one_hit_rule_never_hits_a_nan_corner() {
+    use rayhit::{EdgeRule, Intersect, Interval, PreparedRay};
+    let tri = Triangle::new(
+        Vec3::new(0.0, 2.355576e-38, 0.0),
+        Vec3::new(0.0, 0.0, 2.3509887e-38),
+        Vec3::new(0.5, f32::NAN, 0.5),
+    );
+    let ray = Ray::new(Vec3::ZERO, Vec3::new(0.0, 8388608.0, 0.0));
+    let prepared = PreparedRay::new(&ray);
+    for t_max in [4.5918e-41, 1.0, f32::INFINITY] {
+        let window = Interval::up_to(t_max).expect("valid");
+        for rule in [EdgeRule::Closed, EdgeRule::OneHit] {
+            assert_eq!(tri.hit(&ray, (t_max, rule)), None, "{rule:?} {t_max}");
+            assert_eq!(tri.hit(&prepared, (t_max, rule)), None, "{rule:?} {t_max}");
+            assert_eq!(tri.hit(&ray, (window, rule)), None, "{rule:?} {t_max}");
+        }
+    }
+}

@@ -7,6 +7,7 @@
 //! - `triangles`: `triangle`, ray `i` against triangle `i`;
 //! - `spheres`: `sphere`, ray `i` against sphere `i`;
 //! - `quads`: `quad`, ray `i` against parallelogram `i`;
+//! - `patches`: `patch`, ray `i` against bilinear patch `i`;
 //! - `groups`: `box x8` and `triangle x8`, a ray against a group of eight,
 //!   scalar and batched, with the batch floors;
 //! - `sweep`: `box sweep` and `triangle sweep`, one ray against the first
@@ -24,6 +25,7 @@ pub mod camera_refs;
 pub mod cwbvh;
 pub mod groups;
 pub mod instance;
+pub mod patches;
 pub mod quads;
 pub mod spheres;
 pub mod sweep;
