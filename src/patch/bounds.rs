@@ -16,10 +16,13 @@
 //!
 //! [`ErrorBounds`]: crate::triangle::ErrorBounds
 
-use super::Projected;
+use super::Patch;
+use super::frame::{Framed, Projected, RayFrame, frames};
 use crate::num::Scalar;
+use crate::num::Vector;
 use crate::num::round::bound_up;
 use crate::num::round::outward::{add_down, add_up, div_up, mul_up, sub_down};
+use crate::triangle::ErrorBounds;
 
 /// Bounds on the distance of a computed hit from a crossing of the exact
 /// patch with the exact ray: `t` (the computed depth `fl(Z(u, v))`) and
@@ -200,4 +203,31 @@ pub(super) fn normal_error<F: Scalar>(du: [F; 3], dv: [F; 3], m: [F; 3]) -> [F; 
             4,
         )
     })
+}
+
+impl<F: Scalar> Framed<F> {
+    /// The certificate at `(u, v)`, with the corners' projection bounds
+    /// (each triangle's, the larger).
+    #[inline(never)]
+    pub(super) fn certify<V: Vector<Scalar = F>>(
+        &self,
+        r: &RayFrame<V>,
+        patch: &Patch<V>,
+        u: F,
+        v: F,
+    ) -> Certified<F> {
+        let shear = &r.shear;
+        let [f1, f2] = frames(r, patch);
+        let b1 = ErrorBounds::new(&f1, &f1.scaled_z(shear), shear);
+        let b2 = ErrorBounds::new(&f2, &f2.scaled_z(shear), shear);
+        let eq = if b1.xy > b2.xy { b1.xy } else { b2.xy };
+        let ez = if b1.z > b2.z { b1.z } else { b2.z };
+        if !(eq.is_finite() && ez.is_finite()) {
+            return Certified {
+                t: F::INFINITY,
+                uv: F::INFINITY,
+            };
+        }
+        certify(&self.p, eq, ez, u, v)
+    }
 }
