@@ -1,12 +1,13 @@
 //! Degenerate patches answer as their definition says: a planar
 //! parallelogram as the [`Quad`] of its corners, a patch with a collapsed
 //! edge as the [`Triangle`] of its other three corners; hit or miss the
-//! same on every ray, with either edge rule, and where both hit, `t`,
-//! `u` and `v` close (the patch solves a quadratic that the planar case
-//! makes linear, the quad divides edge functions).
+//! same on every ray, with either edge rule; where both hit, a
+//! parallelogram's `t`, `u` and `v` within the sum of the two shapes'
+//! bounds of each other (each is within its own of the same exact
+//! crossing), and a collapsed patch's `t` the triangle's, bit for bit.
 
 use rayhit::glam::{DVec3, Vec3};
-use rayhit::{EdgeRule, Intersect, Patch, Quad, Ray, Scalar, Triangle, Vector};
+use rayhit::{EdgeRule, Intersect, Patch, Quad, Ray, Scalar, Surface, Triangle, Vector};
 use rayhit_testkit::case_count;
 use rayhit_testkit::rng::Pcg32;
 
@@ -38,8 +39,11 @@ fn near<V: Vector>(rng: &mut Pcg32, corner: V, e1: V, e2: V) -> V {
     corner + e1 * S::<V>::from_f64(s) + e2 * S::<V>::from_f64(t)
 }
 
-fn close<V: Vector>(a: S<V>, b: S<V>, scale: S<V>) -> bool {
-    (a - b).abs() <= S::<V>::from_f64(1e4) * S::<V>::UNIT_ROUNDOFF * scale
+/// Two values within `ea` and `eb` of one exact value: at most `ea + eb`
+/// apart (in `f64`, where the difference of two floats of `V` and the
+/// sum of the bounds are exact or rounded up by far less than either).
+fn close<V: Vector>(a: S<V>, b: S<V>, ea: S<V>, eb: S<V>) -> bool {
+    (a.to_f64() - b.to_f64()).abs() <= (ea.to_f64() + eb.to_f64()) * (1.0 + 1e-12)
 }
 
 fn parallelograms<V: Vector>(seed: u64) -> (usize, usize) {
@@ -68,11 +72,15 @@ fn parallelograms<V: Vector>(seed: u64) -> (usize, usize) {
             if let (Some(p), Some(q)) = (p, q) {
                 hits += 1;
                 assert_eq!(p.side, q.side, "{patch:?} {ray:?}");
-                let one = S::<V>::ONE;
-                assert!(close::<V>(p.t, q.t, q.t), "{patch:?} {ray:?}: {p:?} {q:?}");
+                // The same exact crossing (the parallelogram is exactly
+                // planar, its corners on a dyadic grid): each within its
+                // own bounds of it, where those are finite.
+                let (ep, eq) = (patch.hit_error(&ray, &p), quad.hit_error(&ray, &q));
                 assert!(
-                    close::<V>(p.u, q.u, one) && close::<V>(p.v, q.v, one),
-                    "{patch:?} {ray:?}: {p:?} {q:?}"
+                    close::<V>(p.t, q.t, ep.t, eq.t)
+                        && close::<V>(p.u, q.u, ep.u, eq.u)
+                        && close::<V>(p.v, q.v, ep.v, eq.v),
+                    "{patch:?} {ray:?}: {p:?} {q:?} {ep:?} {eq:?}"
                 );
             }
         }
@@ -111,7 +119,12 @@ fn collapsed<V: Vector>(seed: u64) -> (usize, usize) {
             if let (Some(p), Some(t)) = (p, t) {
                 hits += 1;
                 assert_eq!(p.side, t.side, "{patch:?} {ray:?}");
-                assert!(close::<V>(p.t, t.t, t.t), "{patch:?} {ray:?}: {p:?} {t:?}");
+                // Tested as its triangle: the same `t`, bit for bit.
+                assert_eq!(
+                    p.t.to_f64().to_bits(),
+                    t.t.to_f64().to_bits(),
+                    "{patch:?} {ray:?}"
+                );
             }
         }
     }
