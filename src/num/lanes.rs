@@ -123,6 +123,12 @@ pub trait Lanes: Copy + Debug + Send + Sync + 'static {
     fn select(m: Self::Mask, a: Self, b: Self) -> Self;
     /// Lanes `(1, 0, 3, 2)`: each pair of neighbours swapped.
     fn swap_pairs(self) -> Self;
+    /// Lanes `(1, 2, 3, 0)`: lane `k` holds lane `k + 1` (mod 4).
+    fn roll4(self) -> Self;
+    /// Bit `k` set when `self[k] < o[k]` (false for NaN), for `k` in 0..4.
+    fn lt4(self, o: Self) -> u32;
+    /// Bit `k` set when `self[k] <= o[k]` (false for NaN), for `k` in 0..4.
+    fn le4(self, o: Self) -> u32;
 }
 
 /// Eight lanes of a scalar type: one lane per shape of a batch. The same

@@ -216,7 +216,7 @@ impl<F: Scalar> Framed<F> {
         u: F,
         v: F,
     ) -> Certified<F> {
-        let shear = &r.shear;
+        let shear = &r.shear();
         let [f1, f2] = frames(r, patch);
         let b1 = ErrorBounds::new(&f1, &f1.scaled_z(shear), shear);
         let b2 = ErrorBounds::new(&f2, &f2.scaled_z(shear), shear);

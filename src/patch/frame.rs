@@ -9,7 +9,7 @@ use crate::num::round::max2;
 use crate::num::{Axis, L, Lanes, S, Scalar, Vector};
 use crate::query::RayForm;
 use crate::ray::{PreparedRay, Ray, Shear};
-use crate::triangle::{Frame, edge_function, frame_lanes_at};
+use crate::triangle::{Frame, edge_function};
 
 /// The patch in the ray's frame: the corners' sheared `x`, `y` and depth
 /// `z` (in units of `t`), in the order `00, 10, 01, 11`.
@@ -58,26 +58,6 @@ impl<F: Scalar> Projected<F> {
         self.d_du(x, v) * self.d_dv(y, u) - self.d_du(y, v) * self.d_dv(x, u)
     }
 
-    /// [`orientation`](Self::orientation) at the four corners, `(0, 0)`,
-    /// `(1, 0)`, `(0, 1)`, `(1, 1)`, with the derivatives read off the
-    /// edges: the same values but for the sign of a zero (a `lerp` at 0
-    /// or 1 is its end).
-    #[inline(always)]
-    pub(super) fn corner_orientations(&self) -> [F; 4] {
-        let (x, y) = (&self.x, &self.y);
-        let d = |i: usize, j: usize| (x[j] - x[i], y[j] - y[i]);
-        let cross = |(ax, ay): (F, F), (bx, by): (F, F)| ax * by - ay * bx;
-        // dq/du along v = 0 and v = 1, dq/dv along u = 0 and u = 1.
-        let (du0, du1) = (d(0, 1), d(2, 3));
-        let (dv0, dv1) = (d(0, 2), d(1, 3));
-        [
-            cross(du0, dv0),
-            cross(du0, dv1),
-            cross(du1, dv0),
-            cross(du1, dv1),
-        ]
-    }
-
     /// `dc/du` at `v` of the bilinear values `c` (corners `00, 10, 01,
     /// 11`).
     #[inline(always)]
@@ -92,100 +72,200 @@ impl<F: Scalar> Projected<F> {
     }
 }
 
-/// The ray's part of the patch's frame: its origin and shear in lanes
-/// and its axis order (what a prepared ray holds), and the shear itself.
-pub(super) struct RayFrame<V: Vector> {
-    pub(super) origin: V,
-    pub(super) dir: V,
-    pub(super) shear: Shear<S<V>>,
-    pub(super) origin_lanes: [L<V>; 3],
-    pub(super) shear_lanes: [L<V>; 3],
-    pub(super) axes: [Axis; 3],
+/// What a plain ray's frame computes and a prepared ray holds: its
+/// shear, the origin and the shear factors in lanes, the axis order.
+pub(super) struct RayParts<V: Vector> {
+    shear: Shear<S<V>>,
+    origin_lanes: [L<V>; 3],
+    shear_lanes: [L<V>; 3],
+    axes: [Axis; 3],
 }
 
-impl<V: Vector> RayFrame<V> {
-    /// The frame of a plain ray: its shear computed (three divisions).
+impl<V: Vector> RayParts<V> {
+    /// A plain ray's (three divisions).
     #[inline(always)]
-    pub(super) fn plain(ray: &Ray<V>) -> Self {
+    pub(super) fn new(ray: &Ray<V>) -> Self {
         let shear = Shear::new(&ray.dir);
         Self {
-            origin: ray.origin,
-            dir: ray.dir,
             origin_lanes: shear.origin_lanes(ray.origin),
             shear_lanes: shear.lanes(),
             axes: [shear.kx, shear.ky, shear.kz],
             shear,
         }
     }
+}
+
+/// The ray's part of the patch's frame, borrowed from a plain ray's
+/// [`RayParts`] or from a prepared ray (nothing copied).
+pub(super) struct RayFrame<'a, V: Vector> {
+    pub(super) origin_lanes: &'a [L<V>; 3],
+    pub(super) shear_lanes: &'a [L<V>; 3],
+    pub(super) axes: &'a [Axis; 3],
+    /// The shear's `sz` (`1 / d_z`) and `d_z`.
+    pub(super) sz: S<V>,
+    pub(super) dz: S<V>,
+    source: Source<'a, V>,
+}
+
+/// Where a [`RayFrame`] comes from.
+enum Source<'a, V: Vector> {
+    Plain(&'a Ray<V>, &'a Shear<S<V>>),
+    Prepared(&'a PreparedRay<V>),
+}
+
+impl<'a, V: Vector> RayFrame<'a, V> {
+    /// The frame of a plain ray, from its parts.
+    #[inline(always)]
+    pub(super) fn plain(ray: &'a Ray<V>, parts: &'a RayParts<V>) -> Self {
+        Self {
+            origin_lanes: &parts.origin_lanes,
+            shear_lanes: &parts.shear_lanes,
+            axes: &parts.axes,
+            sz: parts.shear.sz,
+            dz: parts.shear.dz,
+            source: Source::Plain(ray, &parts.shear),
+        }
+    }
 
     /// The frame of a prepared ray, which holds it.
     #[inline(always)]
-    pub(super) fn prepared(ray: &PreparedRay<V>) -> Self {
-        let r = ray.to_ray();
+    pub(super) fn prepared(ray: &'a PreparedRay<V>) -> Self {
         Self {
-            origin: r.origin,
-            dir: r.dir,
-            shear: ray.shear(),
-            origin_lanes: ray.origin_lanes,
-            shear_lanes: ray.shear_lanes,
-            axes: ray.axes,
+            origin_lanes: &ray.origin_lanes,
+            shear_lanes: &ray.shear_lanes,
+            axes: &ray.axes,
+            sz: ray.shear_lanes[2].x(),
+            dz: ray.dir.get(ray.axes[2]),
+            source: Source::Prepared(ray),
+        }
+    }
+
+    /// The ray (for the rare paths).
+    #[inline(always)]
+    pub(super) fn ray(&self) -> Ray<V> {
+        match self.source {
+            Source::Plain(r, _) => *r,
+            Source::Prepared(p) => p.to_ray(),
+        }
+    }
+
+    /// The shear (for the rare paths), the very one `Shear::new` computes.
+    #[inline(always)]
+    pub(super) fn shear(&self) -> Shear<S<V>> {
+        match self.source {
+            Source::Plain(_, s) => *s,
+            Source::Prepared(p) => p.shear(),
         }
     }
 }
 
-/// The patch in the ray's frame: the two triangles `p00, p10, p11` and
-/// `p00, p11, p01` (`Patch::triangles`) framed as the watertight triangle
-/// test frames them (a corner a lane), their edge functions (signs exact),
-/// and the four corners' coordinates.
+/// The patch in the ray's frame: its four corners framed as the
+/// watertight triangle test frames a triangle's (so the values are bit for
+/// bit those of every triangle with the corner), the edge functions of the
+/// two triangles `p00, p10, p11` and `p00, p11, p01` (signs exact), and
+/// the corners' coordinates.
 pub(super) struct Framed<F> {
     /// The first triangle's edge functions, then the second's, in the
     /// triangle test's order (each opposite a corner).
     pub(super) e1: [F; 3],
     pub(super) e2: [F; 3],
     pub(super) p: Projected<F>,
+    /// Whether each triangle's edge functions take both strict signs
+    /// (the closed rule's miss).
+    pub(super) straddles: [bool; 2],
 }
 
-/// A triangle in the ray's frame, a corner a lane (`frame_lanes_at`): the
-/// sheared `x`, `y`, the unscaled depth and the edge functions.
-pub(super) type Lanes4<V> = (L<V>, L<V>, L<V>, L<V>);
+/// The four corners in the ray's frame, a corner a lane in the order of
+/// the boundary, `00, 10, 11, 01`: sheared `x`, `y` (as
+/// `frame_lanes_at` computes them) and the depth `z` in units of `t`.
+pub(super) struct CornerLanes<V: Vector> {
+    pub(super) x: L<V>,
+    pub(super) y: L<V>,
+    pub(super) z: L<V>,
+}
 
-/// The patch's two triangles, `p00, p10, p11` and `p00, p11, p01`, in the
-/// ray's frame.
-#[inline(always)]
-pub(super) fn frame_pair<V: Vector>(r: &RayFrame<V>, patch: &Patch<V>) -> [Lanes4<V>; 2] {
-    let frame = |c: [&V; 3]| frame_lanes_at(&r.origin_lanes, &r.shear_lanes, &r.axes, c);
-    [
-        frame([&patch.p00, &patch.p10, &patch.p11]),
-        frame([&patch.p00, &patch.p11, &patch.p01]),
-    ]
+impl<V: Vector> CornerLanes<V> {
+    /// Translated, the axes in the ray's order, sheared: each corner's
+    /// `x` and `y` bit for bit as the triangle test's `frame_lanes_at`
+    /// computes them.
+    #[inline(always)]
+    pub(super) fn new(r: &RayFrame<V>, patch: &Patch<V>) -> Self {
+        let Patch { p00, p10, p01, p11 } = patch;
+        let corners = |k: Axis| L::<V>::new4(p00.get(k), p10.get(k), p11.get(k), p01.get(k));
+        let [sx, sy, _] = *r.shear_lanes;
+        let [ox, oy, oz] = *r.origin_lanes;
+        let [kx, ky, kz] = *r.axes;
+        let pz = corners(kz).sub(oz);
+        let x = corners(kx).sub(ox).add(sx.mul(pz));
+        let y = corners(ky).sub(oy).add(sy.mul(pz));
+        Self {
+            x,
+            y,
+            z: pz.mul(L::<V>::splat(r.sz)),
+        }
+    }
+
+    /// Whether the projected patch may fold over itself: its Jacobian
+    /// `dq/du x dq/dv` (affine in `u` and in `v`) takes both strict signs
+    /// at the corners. Lane `i`, the cross product of the boundary's edge
+    /// into and its edge out of the corner after corner `i` (along `00,
+    /// 10, 11, 01`), is the Jacobian at that corner, bit for bit up to the
+    /// sign of a zero (at `10`: `dq/du = q10 - q00`, `dq/dv = q11 - q10`;
+    /// at `11`: `(q11 - q10) x (q01 - q11) = -(q01 - q11) x (q11 - q10)`;
+    /// likewise at `01` and `00`).
+    #[inline(always)]
+    pub(super) fn may_fold(&self) -> bool {
+        let (dx, dy) = (self.x.roll4().sub(self.x), self.y.roll4().sub(self.y));
+        let j = dx.mul(dy.roll4()).sub(dy.mul(dx.roll4()));
+        let zero = L::<V>::splat(S::<V>::ZERO);
+        j.lt4(zero) != 0 && zero.lt4(j) != 0
+    }
 }
 
 impl<F: Scalar> Framed<F> {
-    /// From the two triangles' lanes ([`frame_pair`]).
+    /// From the corners' lanes ([`CornerLanes`]). The boundary's four edge
+    /// functions come in one go, lane `i` the edge from corner `i` to
+    /// corner `i + 1` of the boundary, and the diagonal's apart; an edge
+    /// function of zero gets its exact sign, as in `Frame::new`. A shared
+    /// edge's function is its neighbour's, bit for bit (negated where the
+    /// neighbour runs the other way).
     #[inline(always)]
-    pub(super) fn new<V: Vector<Scalar = F>>(r: &RayFrame<V>, pair: [Lanes4<V>; 2]) -> Self {
-        let arrays = |(x, y, pz, e): Lanes4<V>| {
-            let (x, y, pz) = (x.to_array(), y.to_array(), pz.to_array());
-            let mut e = e.to_array();
-            // An edge function of zero gets its exact sign, as in
-            // `Frame::new`.
-            if e.contains(&F::ZERO) {
-                for (i, e) in e.iter_mut().enumerate() {
-                    let (j, k) = ((i + 1) % 3, (i + 2) % 3);
-                    *e = edge_function((x[j], y[j]), (x[k], y[k]));
-                }
+    pub(super) fn new<V: Vector<Scalar = F>>(c: &CornerLanes<V>) -> Self {
+        let edges = c.x.mul(c.y.roll4()).sub(c.y.mul(c.x.roll4()));
+        let (x, y, z) = (c.x.to_array4(), c.y.to_array4(), c.z.to_array4());
+        let mut e = edges.to_array4();
+        let mut diag = x[0] * y[2] - y[0] * x[2];
+        let zero = L::<V>::splat(F::ZERO);
+        let (mut neg, mut pos) = (edges.lt4(zero), zero.lt4(edges));
+        // (Not both signs: zero, or NaN from overflow.)
+        if neg | pos != 0b1111 || !(diag.abs() > F::ZERO) {
+            for (i, e) in e.iter_mut().enumerate() {
+                let j = (i + 1) % 4;
+                *e = edge_function((x[i], y[i]), (x[j], y[j]));
             }
-            (x, y, pz, e)
-        };
-        let [(x1, y1, z1, e1), (x2, y2, z2, e2)] = pair.map(arrays);
-        let sz = r.shear.sz;
-        // Corners 00, 10, 01, 11.
-        let p = Projected {
-            x: [x1[0], x1[1], x2[2], x1[2]],
-            y: [y1[0], y1[1], y2[2], y1[2]],
-            z: [z1[0] * sz, z1[1] * sz, z2[2] * sz, z1[2] * sz],
-        };
-        Self { e1, e2, p }
+            diag = edge_function((x[0], y[0]), (x[2], y[2]));
+            let bits = |f: fn(F) -> bool| (0..4).map(|i| u32::from(f(e[i])) << i).sum();
+            (neg, pos) = (bits(|e| e < F::ZERO), bits(|e| e > F::ZERO));
+        }
+        // The triangle test's lane `i` is the edge opposite corner `i`:
+        // on `00, 10, 11` the edges 10-11, 11-00 and 00-10; on `00, 11,
+        // 01` the edges 11-01, 01-00 and 00-11.
+        let (dneg, dpos) = (diag < F::ZERO, diag > F::ZERO);
+        let straddles = [
+            ((neg & 0b0011 != 0) | dpos) & ((pos & 0b0011 != 0) | dneg),
+            ((neg & 0b1100 != 0) | dneg) & ((pos & 0b1100 != 0) | dpos),
+        ];
+        Self {
+            e1: [e[1], -diag, e[0]],
+            e2: [e[2], e[3], diag],
+            // Corners 00, 10, 01, 11.
+            p: Projected {
+                x: [x[0], x[1], x[3], x[2]],
+                y: [y[0], y[1], y[3], y[2]],
+                z: [z[0], z[1], z[3], z[2]],
+            },
+            straddles,
+        }
     }
 }
 
@@ -193,9 +273,10 @@ impl<F: Scalar> Framed<F> {
 /// same values the lanes hold; for the one-hit rule and the bounds).
 #[inline(always)]
 pub(super) fn frames<V: Vector>(r: &RayFrame<V>, patch: &Patch<V>) -> [Frame<S<V>>; 2] {
+    let (origin, shear) = (r.ray().origin, r.shear());
     patch
         .triangles()
-        .map(|tri| Frame::new(r.origin, &tri, &r.shear))
+        .map(|tri| Frame::new(origin, &tri, &shear))
 }
 
 /// The closed rule's inside test on a triangle's edge functions (as the
@@ -204,11 +285,8 @@ pub(super) fn frames<V: Vector>(r: &RayFrame<V>, patch: &Patch<V>) -> [Frame<S<V
 /// area (the collapsed half of a degenerate patch) or with a NaN edge
 /// function covers nothing.
 #[inline(always)]
-pub(super) fn closed_cover<F: Scalar>(e: [F; 3]) -> Option<i8> {
-    let zero = F::ZERO;
-    let neg = (e[0] < zero) | (e[1] < zero) | (e[2] < zero);
-    let pos = (e[0] > zero) | (e[1] > zero) | (e[2] > zero);
-    if neg & pos {
+pub(super) fn closed_cover<F: Scalar>(e: [F; 3], straddles: bool) -> Option<i8> {
+    if straddles {
         return None;
     }
     Some(orientation_of(e)).filter(|&s| s != 0)

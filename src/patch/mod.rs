@@ -42,10 +42,12 @@ use crate::num::{L, Lanes, S, Scalar, Vector};
 use crate::query::{EdgeRule, Form, Intersect, Range, RayForm, Search, Surface};
 use crate::ray::t_max_ok;
 use crate::surface::SurfacePoint;
-use crate::triangle::{Frame, Side, Triangle, TriangleHitError, inside, straddles};
+use crate::triangle::{Frame, Side, Triangle, TriangleHitError, inside};
 
 use bounds::{normal_error, point_error};
-use frame::{Framed, Projected, RayFrame, closed_cover, frame_pair, frames, orientation_of};
+use frame::{
+    CornerLanes, Framed, Projected, RayFrame, RayParts, closed_cover, frames, orientation_of,
+};
 
 /// A bilinear patch: the surface `P(u, v) = (1 - u)(1 - v) p00 + u (1 -
 /// v) p10 + (1 - u) v p01 + u v p11` for `(u, v)` in the closed unit
@@ -253,46 +255,44 @@ fn patch_hit<V: Vector>(
     rule: EdgeRule,
 ) -> Option<PatchHit<S<V>>> {
     let (zero, one) = (S::<V>::ZERO, S::<V>::ONE);
-    let (origin, dir, shear) = (r.origin, r.dir, &r.shear);
-    let pair = frame_pair(r, patch);
-    let [(x1, y1, z1, e1), (x2, y2, z2, e2)] = pair;
+    let c = CornerLanes::new(r, patch);
     let lanes_zero = L::<V>::splat(zero);
-    // The fourth corner, p01, is lane 2 of the second triangle.
-    let all = |bits1: u32, bits2: u32| bits1 == 0b111 && bits2 & 0b100 != 0;
-    // No corner in front: every crossing is at t <= 0. (The depths' signs
-    // are the unscaled ones' times the sign of 1 / d_z.)
-    let sz = L::<V>::splat(shear.sz);
-    if lanes_zero.lt(z1.mul(sz)) == 0 && lanes_zero.lt(z2.mul(sz)) & 0b100 == 0 {
+    // No corner in front: every crossing is at t <= 0.
+    let front = lanes_zero.lt4(c.z);
+    if front == 0 {
         return None;
     }
+    // A corner that is not finite, or whose coordinates in the ray's
+    // frame overflow: nothing is hit.
+    let max = L::<V>::splat(S::<V>::MAX);
+    let finite = |l: L<V>| l.abs().le4(max) == 0b1111;
+    if !(finite(c.x) && finite(c.y) && finite(c.z)) {
+        return None;
+    }
+    let fr = Framed::new(&c);
+    let p = &fr.p;
     // The closed rule's common miss: neither triangle covers the ray (its
     // edge functions straddle zero, whatever the exact sign of one that
     // rounds to zero) and every corner lies on one side of an axis
     // through it, so the projected patch, in their hull, does not reach
     // it: no fold can cross it either.
-    if rule == EdgeRule::Closed && straddles(e1) && straddles(e2) {
-        let side = |a: L<V>, b: L<V>| {
-            all(lanes_zero.lt(a), lanes_zero.lt(b)) || all(a.lt(lanes_zero), b.lt(lanes_zero))
-        };
-        if side(x1, x2) || side(y1, y2) {
+    if rule == EdgeRule::Closed && fr.straddles == [true, true] {
+        let side = |a: L<V>| lanes_zero.lt4(a) == 0b1111 || a.lt4(lanes_zero) == 0b1111;
+        if side(c.x) || side(c.y) {
             return None;
         }
     }
-    let fr = Framed::new(r, pair);
-    let p = &fr.p;
-    // A corner that is not finite, or whose coordinates in the ray's
-    // frame overflow: nothing is hit.
-    let finite = |c: &[S<V>; 4]| c.iter().all(|w| w.abs() <= S::<V>::MAX);
-    if !(finite(&p.x) && finite(&p.y) && finite(&p.z)) {
-        return None;
-    }
     // Each triangle's orientation where it covers the ray.
     let (in1, in2) = match rule {
-        EdgeRule::Closed => (closed_cover(fr.e1), closed_cover(fr.e2)),
+        EdgeRule::Closed => (
+            closed_cover(fr.e1, fr.straddles[0]),
+            closed_cover(fr.e2, fr.straddles[1]),
+        ),
         EdgeRule::OneHit => {
             let tris = patch.triangles();
+            let (ray, shear) = (r.ray(), r.shear());
             let covers = |f: &Frame<S<V>>, tri: &Triangle<V>| {
-                inside(f, rule, (origin, dir), shear, tri)
+                inside(f, rule, (ray.origin, ray.dir), &shear, tri)
                     .map(orientation_of)
                     .filter(|&s| s != 0)
             };
@@ -312,13 +312,8 @@ fn patch_hit<V: Vector>(
     // projected Jacobian (affine in u and v) takes both signs, so both
     // signs at the corners; with one sign the map is one to one and
     // there is no crossing. (Most misses end here.)
-    if !single {
-        let j = p.corner_orientations();
-        let neg = j.iter().any(|&j| j < zero);
-        let pos = j.iter().any(|&j| j > zero);
-        if !(neg && pos) {
-            return None;
-        }
+    if !single && !c.may_fold() {
+        return None;
     }
     // The quadratic c(u) in Bernstein form: b0 = q00 x q01 (the edge
     // u = 0), b2 = q10 x q11 (the edge u = 1), b1 the mean of the
@@ -355,14 +350,14 @@ fn patch_hit<V: Vector>(
     // Every corner in front makes every crossing so (the depth is a
     // convex combination of theirs); else a crossing stands in front of
     // the origin where its `t` exceeds its certified bound.
-    let ahead = p.z.iter().all(|&z| z > zero);
+    let ahead = front == 0b1111;
     // (The same test for every interval, whatever its ends, so that
     // consecutive intervals split the crossings between them.)
     let ends = |t: S<V>| lo < t && t <= hi && t <= S::<V>::MAX;
     let in_range =
         |t: S<V>, u: S<V>, v: S<V>| ends(t) && (ahead || t > fr.certify(r, patch, u, v).t);
     let side_of = |det: S<V>| {
-        if (det > zero) != (shear.dz > zero) {
+        if (det > zero) != (r.dz > zero) {
             Side::Front
         } else {
             Side::Back
@@ -527,12 +522,14 @@ impl<V: Vector> Intersect<V> for Patch<V> {
         };
         // (A prepared ray holds its frame, the very one `Shear::new`
         // computes.)
+        let parts;
         let r = match ray.form() {
             Form::Plain(r) => {
                 if !r.is_valid() {
                     return None;
                 }
-                RayFrame::plain(r)
+                parts = RayParts::new(r);
+                RayFrame::plain(r, &parts)
             }
             Form::Prepared(p) => {
                 if !p.is_valid() {
@@ -591,8 +588,9 @@ impl<V: Vector> Surface<V> for Patch<V> {
                 v: inf,
             };
         }
-        let frame = RayFrame::plain(&r);
-        let c = Framed::new(&frame, frame_pair(&frame, self)).certify(&frame, self, hit.u, hit.v);
+        let parts = RayParts::new(&r);
+        let frame = RayFrame::plain(&r, &parts);
+        let c = Framed::new(&CornerLanes::new(&frame, self)).certify(&frame, self, hit.u, hit.v);
         TriangleHitError {
             t: c.t,
             u: c.uv,

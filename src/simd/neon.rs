@@ -209,6 +209,21 @@ impl Lanes for F32x4 {
         // SAFETY: see the module docs (NEON, no memory access).
         Self(unsafe { vrev64q_f32(self.0) })
     }
+    #[inline(always)]
+    fn roll4(self) -> Self {
+        // SAFETY: see the module docs (NEON, no memory access).
+        Self(unsafe { vextq_f32::<1>(self.0, self.0) })
+    }
+    #[inline(always)]
+    fn lt4(self, o: Self) -> u32 {
+        // SAFETY: see the module docs (NEON, no memory access).
+        unsafe { vaddvq_u32(vandq_u32(vcltq_f32(self.0, o.0), from_bits(&BITS_LO))) }
+    }
+    #[inline(always)]
+    fn le4(self, o: Self) -> u32 {
+        // SAFETY: see the module docs (NEON, no memory access).
+        unsafe { vaddvq_u32(vandq_u32(vcleq_f32(self.0, o.0), from_bits(&BITS_LO))) }
+    }
 }
 
 /// Eight `f32` lanes in two NEON registers.

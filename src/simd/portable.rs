@@ -55,6 +55,12 @@ impl<F: Scalar> Portable<F> {
         let (a, b) = (self.0, o.0);
         u32::from(f(a[0], b[0])) | u32::from(f(a[1], b[1])) << 1 | u32::from(f(a[2], b[2])) << 2
     }
+
+    /// The same on all four lanes.
+    #[inline(always)]
+    fn mask4(self, o: Self, f: impl Fn(F, F) -> bool) -> u32 {
+        self.mask(o, &f) | u32::from(f(self.0[3], o.0[3])) << 3
+    }
 }
 
 impl<F: Scalar> Lanes for Portable<F> {
@@ -148,6 +154,19 @@ impl<F: Scalar> Lanes for Portable<F> {
     fn swap_pairs(self) -> Self {
         let a = self.0;
         Self([a[1], a[0], a[3], a[2]])
+    }
+    #[inline(always)]
+    fn roll4(self) -> Self {
+        let a = self.0;
+        Self([a[1], a[2], a[3], a[0]])
+    }
+    #[inline(always)]
+    fn lt4(self, o: Self) -> u32 {
+        self.mask4(o, |a, b| a < b)
+    }
+    #[inline(always)]
+    fn le4(self, o: Self) -> u32 {
+        self.mask4(o, |a, b| a <= b)
     }
 }
 

@@ -164,6 +164,21 @@ impl Lanes for F32x4 {
         // SAFETY: see the module docs (SSE, no memory access).
         Self(unsafe { _mm_shuffle_ps::<0b10_11_00_01>(self.0, self.0) })
     }
+    #[inline(always)]
+    fn roll4(self) -> Self {
+        // SAFETY: see the module docs (SSE, no memory access).
+        Self(unsafe { _mm_shuffle_ps::<0b00_11_10_01>(self.0, self.0) })
+    }
+    #[inline(always)]
+    fn lt4(self, o: Self) -> u32 {
+        // SAFETY: see the module docs (SSE, no memory access).
+        unsafe { _mm_movemask_ps(_mm_cmplt_ps(self.0, o.0)) as u32 }
+    }
+    #[inline(always)]
+    fn le4(self, o: Self) -> u32 {
+        // SAFETY: see the module docs (SSE, no memory access).
+        unsafe { _mm_movemask_ps(_mm_cmple_ps(self.0, o.0)) as u32 }
+    }
 }
 
 /// Eight lanes in two registers: the eight-lane type of x86 targets without

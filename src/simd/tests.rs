@@ -98,7 +98,8 @@ fn registers_match_the_definition() {
 
 /// The four-lane operations (every lane counts) give the portable
 /// definition's bits: the masks of the comparisons (read through `select`,
-/// whose result is one operand's exact bits), the pair swap, and the
+/// whose result is one operand's exact bits, and as bits), the pair swap,
+/// the roll, and the
 /// arithmetic on all four lanes (any NaN where the portable code computes a
 /// NaN).
 #[test]
@@ -137,6 +138,13 @@ fn four_lane_operations_match_the_definition() {
             );
         }
         assert_eq!(four(pa.swap_pairs()), four(fa.swap_pairs()));
+        assert_eq!(four(pa.roll4()), four(fa.roll4()));
+        assert_eq!(four(pa.roll4()), [a[1], a[2], a[3], a[0]].map(f32::to_bits));
+        let bits = |f: fn(f32, f32) -> bool| (0..4).map(|k| u32::from(f(a[k], b[k])) << k).sum();
+        assert_eq!(fa.lt4(fb), bits(|x, y| x < y), "{a:?} {b:?}");
+        assert_eq!(fa.le4(fb), bits(|x, y| x <= y), "{a:?} {b:?}");
+        assert_eq!(pa.lt4(pb), fa.lt4(fb), "{a:?} {b:?}");
+        assert_eq!(pa.le4(pb), fa.le4(fb), "{a:?} {b:?}");
         assert_eq!(four(pa.neg()), four(fa.neg()));
         assert_eq!(four(pa.abs()), four(fa.abs()));
         type Op<L> = fn(L, L) -> L;
