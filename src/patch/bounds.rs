@@ -9,20 +9,17 @@
 //! depths `z_ij` (in units of `t`); `Q*` and `Z*` are the same for the
 //! exact corners in the exact sheared frame, where the exact ray is the
 //! `z` axis. The triangle's bounds give `|q_ij - q*_ij| <= eq` (each
-//! coordinate) and `|z_ij - z*_ij| <= ez` ([`ErrorBounds`]); bilinear
+//! coordinate) and `|z_ij - z*_ij| <= ez` ([`corner_errors`]); bilinear
 //! weights sum to one, so `|Q - Q*| <= S eq` and `|Z - Z*| <= S ez`
 //! wherever the absolute weights sum to at most `S` (`S = (1 + 2 r)^2`
 //! within `r` of the unit square).
-//!
-//! [`ErrorBounds`]: crate::triangle::ErrorBounds
 
 use super::Patch;
-use super::frame::{Framed, Projected, RayFrame, frames};
-use crate::num::Scalar;
-use crate::num::Vector;
-use crate::num::round::bound_up;
+use super::frame::{Framed, Projected, RayFrame};
 use crate::num::round::outward::{add_down, add_up, div_up, mul_up, sub_down};
-use crate::triangle::ErrorBounds;
+use crate::num::round::{bound_up, max2};
+use crate::num::{Axis, L, Lanes, S, Scalar, Vector};
+use crate::triangle::{axis_error, depth_error};
 
 /// Bounds on the distance of a computed hit from a crossing of the exact
 /// patch with the exact ray: `t` (the computed depth `fl(Z(u, v))`) and
@@ -207,7 +204,7 @@ pub(super) fn normal_error<F: Scalar>(du: [F; 3], dv: [F; 3], m: [F; 3]) -> [F; 
 
 impl<F: Scalar> Framed<F> {
     /// The certificate at `(u, v)`, with the corners' projection bounds
-    /// (each triangle's, the larger).
+    /// ([`corner_errors`]).
     #[inline(never)]
     pub(super) fn certify<V: Vector<Scalar = F>>(
         &self,
@@ -216,12 +213,7 @@ impl<F: Scalar> Framed<F> {
         u: F,
         v: F,
     ) -> Certified<F> {
-        let shear = &r.shear();
-        let [f1, f2] = frames(r, patch);
-        let b1 = ErrorBounds::new(&f1, &f1.scaled_z(shear), shear);
-        let b2 = ErrorBounds::new(&f2, &f2.scaled_z(shear), shear);
-        let eq = if b1.xy > b2.xy { b1.xy } else { b2.xy };
-        let ez = if b1.z > b2.z { b1.z } else { b2.z };
+        let (eq, ez) = corner_errors(r, patch, &self.p);
         if !(eq.is_finite() && ez.is_finite()) {
             return Certified {
                 t: F::INFINITY,
@@ -230,4 +222,29 @@ impl<F: Scalar> Framed<F> {
         }
         certify(&self.p, eq, ez, u, v)
     }
+}
+
+/// Bounds on the computed corners' distance from the exact ones in the
+/// exact sheared frame: `eq` on each of `x` and `y`, `ez` on the depth.
+/// They are the triangle test's (`ErrorBounds`: `axis_error`,
+/// `depth_error`), which hold for every corner of a frame computed as the
+/// triangle test computes it (the patch's corners are) with the largest
+/// magnitudes over its corners: here over all four.
+#[inline(always)]
+fn corner_errors<V: Vector>(
+    r: &RayFrame<V>,
+    patch: &Patch<V>,
+    p: &Projected<S<V>>,
+) -> (S<V>, S<V>) {
+    let Patch { p00, p10, p01, p11 } = patch;
+    let corners = |k: Axis| L::<V>::new4(p00.get(k), p10.get(k), p11.get(k), p01.get(k));
+    let [ox, oy, oz] = *r.origin_lanes;
+    let [kx, ky, kz] = *r.axes;
+    let largest = |c: [S<V>; 4]| c.iter().fold(S::<V>::ZERO, |m, &w| max2(m, w.abs()));
+    let translated = |k: Axis, o: L<V>| largest(corners(k).sub(o).to_array4());
+    let (mpx, mpy, mpz) = (translated(kx, ox), translated(ky, oy), translated(kz, oz));
+    let [sx, sy, _] = *r.shear_lanes;
+    let dx = axis_error(mpx, largest(p.x), sx.x(), mpz);
+    let dy = axis_error(mpy, largest(p.y), sy.x(), mpz);
+    (max2(dx, dy), depth_error(largest(p.z)))
 }

@@ -38,7 +38,7 @@ use glam::Vec3;
 
 use crate::aabb::Aabb;
 use crate::num::round::{max2, min2};
-use crate::num::{L, Lanes, S, Scalar, Vector};
+use crate::num::{Bits, L, Lanes, Repr, S, Scalar, Vector};
 use crate::query::{EdgeRule, Form, Intersect, Range, RayForm, Search, Surface};
 use crate::ray::t_max_ok;
 use crate::surface::SurfacePoint;
@@ -322,12 +322,13 @@ fn patch_hit<V: Vector>(
     let b0 = -fr.e2[1];
     let b2 = fr.e1[0];
     let b1 = (fr.e2[2] + (x[1] * y[2] - y[1] * x[2])) * S::<V>::HALF;
-    // Divided by the largest, so that squaring them neither overflows nor
-    // underflows (they are squares of coordinates: the discriminant is a
-    // fourth power). The roots do not change; `2^k` scalings of the
-    // inputs leave these values unchanged, bit for bit. (All zero: NaN,
-    // no root.)
-    let scale = one / max2(max2(b0.abs(), b1.abs()), b2.abs());
+    // Scaled by the power of two that brings the largest into [1, 2)
+    // (exactly), so that squaring them neither overflows nor underflows
+    // (they are squares of coordinates: the discriminant is a fourth
+    // power). The roots do not change; `2^k` scalings of the inputs leave
+    // these values unchanged, bit for bit. (All zero: no finite root.)
+    let largest = max2(max2(b0.abs(), b1.abs()), b2.abs());
+    let scale = <S<V> as Repr>::Bits::inverse_binade(largest);
     let (b0, b1, b2) = (b0 * scale, b1 * scale, b2 * scale);
     let disc = b1 * b1 - b0 * b2;
     // (Where the crossing is single the exact discriminant is at least
@@ -351,11 +352,6 @@ fn patch_hit<V: Vector>(
     // convex combination of theirs); else a crossing stands in front of
     // the origin where its `t` exceeds its certified bound.
     let ahead = front == 0b1111;
-    // (The same test for every interval, whatever its ends, so that
-    // consecutive intervals split the crossings between them.)
-    let ends = |t: S<V>| lo < t && t <= hi && t <= S::<V>::MAX;
-    let in_range =
-        |t: S<V>, u: S<V>, v: S<V>| ends(t) && (ahead || t > fr.certify(r, patch, u, v).t);
     let side_of = |det: S<V>| {
         if (det > zero) != (r.dz > zero) {
             Side::Front
@@ -364,29 +360,7 @@ fn patch_hit<V: Vector>(
         }
     };
     if !single {
-        // None or two: each root whose (u, v) is in the square and where
-        // the exact patch is certified to meet the ray (which no rounding
-        // noise of a patch of zero area, and no spurious root of a
-        // collapsed edge, can be).
-        let mut best: Option<(S<V>, S<V>, S<V>)> = None;
-        for u in [near_root, q / a] {
-            if !(zero <= u && u <= one) {
-                continue;
-            }
-            let v = p.v_at(u);
-            if !(zero <= v && v <= one) {
-                continue;
-            }
-            let t = p.t_at(u, v);
-            if !(ends(t) && best.is_none_or(|(_, _, bt)| t < bt)) {
-                continue;
-            }
-            let bound = fr.certify(r, patch, u, v).t;
-            if bound.is_finite() && (ahead || t > bound) {
-                best = Some((u, v, t));
-            }
-        }
-        let (u, v, t) = best?;
+        let (u, v, t) = two_crossings(r, patch, &fr, [near_root, q / a], ahead, (lo, hi))?;
         return Some(PatchHit {
             t,
             u,
@@ -394,14 +368,12 @@ fn patch_hit<V: Vector>(
             side: side_of(p.orientation(u, v)),
         });
     }
-    let (u, v) = single_place(p, near_root, || q / a).unwrap_or_else(|| {
-        // No finite root (a quadratic that rounding left with no
-        // coefficient): the covering triangle's own place, as a planar
-        // quad's.
-        from_triangle(in1.map(|_| fr.e1), fr.e2)
-    });
+    let (u, v) = match in_square(p, near_root) {
+        Some(place) => place,
+        None => off_square(p, near_root, q / a, in1.map(|_| fr.e1), fr.e2),
+    };
     let t = p.t_at(u, v);
-    if !in_range(t, u, v) {
+    if !(ends(t, (lo, hi)) && (ahead || t > fr.certify(r, patch, u, v).t)) {
         return None;
     }
     // The covering triangle's orientation: the crossing's, exactly.
@@ -417,24 +389,76 @@ fn patch_hit<V: Vector>(
     })
 }
 
-/// The place of the single crossing among the quadratic's roots (`near`,
-/// then `far()`, computed only if needed): the first in `[0, 1]` whose `v`
-/// is in `[0, 1]` (the common case), else the root whose point, brought
-/// into the square, lies nearest the ray (a crossing within rounding of
-/// an edge; a collapsed edge's spurious root, its segment a point away
-/// from the ray). `None` where no root is finite.
+/// Whether `t` is in `(lo, hi]` and finite. (The same test for every
+/// interval, whatever its ends, so that consecutive intervals split the
+/// crossings between them.)
 #[inline(always)]
-fn single_place<F: Scalar>(p: &Projected<F>, near: F, far: impl Fn() -> F) -> Option<(F, F)> {
+fn ends<F: Scalar>(t: F, (lo, hi): (F, F)) -> bool {
+    lo < t && t <= hi && t <= F::MAX
+}
+
+/// A winding number of zero and a fold: none or two crossings, `roots`
+/// the quadratic's. Each root whose `(u, v)` is in the square and where
+/// the exact patch is certified to meet the ray (which no rounding noise
+/// of a patch of zero area, and no spurious root of a collapsed edge, can
+/// be); the nearer in range, as `(u, v, t)`.
+#[inline(never)]
+fn two_crossings<V: Vector>(
+    r: &RayFrame<V>,
+    patch: &Patch<V>,
+    fr: &Framed<S<V>>,
+    roots: [S<V>; 2],
+    ahead: bool,
+    range: (S<V>, S<V>),
+) -> Option<(S<V>, S<V>, S<V>)> {
+    let mut best: Option<(S<V>, S<V>, S<V>)> = None;
+    for u in roots {
+        let Some((u, v)) = in_square(&fr.p, u) else {
+            continue;
+        };
+        let t = fr.p.t_at(u, v);
+        if !(ends(t, range) && best.is_none_or(|(_, _, bt)| t < bt)) {
+            continue;
+        }
+        let bound = fr.certify(r, patch, u, v).t;
+        if bound.is_finite() && (ahead || t > bound) {
+            best = Some((u, v, t));
+        }
+    }
+    best
+}
+
+/// `(u, v)` at the root `u` where both are in `[0, 1]`.
+#[inline(always)]
+fn in_square<F: Scalar>(p: &Projected<F>, u: F) -> Option<(F, F)> {
     let (zero, one) = (F::ZERO, F::ONE);
-    let unit = |w: F| zero <= w && w <= one;
-    let inside = |u: F| unit(u).then(|| (u, p.v_at(u))).filter(|&(_, v)| unit(v));
-    if let Some(place) = inside(near) {
-        return Some(place);
+    if !(zero <= u && u <= one) {
+        return None;
     }
-    let far = far();
-    if let Some(place) = inside(far) {
-        return Some(place);
+    let v = p.v_at(u);
+    (zero <= v && v <= one).then_some((u, v))
+}
+
+/// The place of the single crossing where the near root's is not in the
+/// square: the far root's if it is (`far`), else the root whose point,
+/// brought into the square, lies nearest the ray (a crossing within
+/// rounding of an edge; a collapsed edge's spurious root, its segment a
+/// point away from the ray); where no root is finite (a quadratic that
+/// rounding left with no coefficient), the covering triangle's own place,
+/// as a planar quad's ([`from_triangle`]).
+#[cold]
+#[inline(never)]
+fn off_square<F: Scalar>(
+    p: &Projected<F>,
+    near: F,
+    far: F,
+    first: Option<[F; 3]>,
+    second: [F; 3],
+) -> (F, F) {
+    if let Some(place) = in_square(p, far) {
+        return place;
     }
+    let (zero, one) = (F::ZERO, F::ONE);
     let clamp = |w: F| min2(max2(w, zero), one);
     let mut best: Option<(F, F, F)> = None;
     for u in [near, far] {
@@ -449,7 +473,7 @@ fn single_place<F: Scalar>(p: &Projected<F>, near: F, far: impl Fn() -> F) -> Op
             best = Some((u, v, miss));
         }
     }
-    best.map(|(u, v, _)| (u, v))
+    best.map_or_else(|| from_triangle(first, second), |(u, v, _)| (u, v))
 }
 
 /// `(u, v)` of the origin on the covering triangle (`first`'s edge

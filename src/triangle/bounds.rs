@@ -43,23 +43,8 @@ impl<F: Scalar> ErrorBounds<F> {
         let (mx, my) = (max3(&f.x), max3(&f.y));
         let (mpx, mpy, mpz) = (max3(&f.px), max3(&f.py), max3(&f.pz));
         let me = max3(&f.e);
-        // Shear: with p = P(1 + d1) (translation), s_x = S_x (1 + d3),
-        // m = fl(s_x p_z) = S_x P_z (1 + theta_3) and x = fl(p_x + m) =
-        // (p_x + m)(1 + d5):
-        //   x - X = P_x d1 + S_x P_z theta_3 + (p_x + m) d5,
-        // so |x - X| <= u|P_x| + gamma(3)|S_x P_z| + u|x|/(1 - u)
-        //            <= gamma(1)(|p_x| + |x|) + gamma(4)|s_x p_z|
-        // (|P_x| <= |p_x|/(1 - u), |S_x P_z| <= |m|/(1 - gamma(3))). The last
-        // rounding is relative to the result, which is small exactly when
-        // the shear cancels the translation. (3 roundings to evaluate.)
-        let dx = bound_up(
-            F::gamma_n(1) * (mpx + mx) + F::gamma_n(4) * shear.sx.abs() * mpz,
-            3,
-        );
-        let dy = bound_up(
-            F::gamma_n(1) * (mpy + my) + F::gamma_n(4) * shear.sy.abs() * mpz,
-            3,
-        );
+        let dx = axis_error(mpx, mx, shear.sx, mpz);
+        let dy = axis_error(mpy, my, shear.sy, mpz);
         let (mz, dz) = z_error(z);
         // Edge function e_0 = fl(fl(x1 y2) - fl(y1 x2)) (or the exact-sign
         // recomputation, which is closer): rounding adds gamma(2)(|x1 y2| +
@@ -89,6 +74,26 @@ impl<F: Scalar> ErrorBounds<F> {
     }
 }
 
+/// A bound on `|x_i - X_i|` (or `y`) of a corner in the ray's frame, from
+/// the largest magnitudes of its translated coordinate `mp` (`p_x`), of
+/// its sheared one `m` (`x`) and of the translated depth `mpz` (`p_z`),
+/// `s` the shear factor `s_x` (or `s_y`); any upper bounds on those
+/// magnitudes give a bound.
+///
+/// Shear: with p = P(1 + d1) (translation), s_x = S_x (1 + d3),
+/// m = fl(s_x p_z) = S_x P_z (1 + theta_3) and x = fl(p_x + m) =
+/// (p_x + m)(1 + d5):
+///   x - X = P_x d1 + S_x P_z theta_3 + (p_x + m) d5,
+/// so |x - X| <= u|P_x| + gamma(3)|S_x P_z| + u|x|/(1 - u)
+///            <= gamma(1)(|p_x| + |x|) + gamma(4)|s_x p_z|
+/// (|P_x| <= |p_x|/(1 - u), |S_x P_z| <= |m|/(1 - gamma(3))). The last
+/// rounding is relative to the result, which is small exactly when
+/// the shear cancels the translation. (3 roundings to evaluate.)
+#[inline(always)]
+pub(crate) fn axis_error<F: Scalar>(mp: F, m: F, s: F, mpz: F) -> F {
+    bound_up(F::gamma_n(1) * (mp + m) + F::gamma_n(4) * s.abs() * mpz, 3)
+}
+
 /// `max |v_i|`, in the order every caller uses (so NaN propagates alike).
 #[inline(always)]
 pub(crate) fn max3<F: Scalar>(v: &[F; 3]) -> F {
@@ -103,7 +108,13 @@ pub(crate) fn max3<F: Scalar>(v: &[F; 3]) -> F {
 #[inline(always)]
 pub(crate) fn z_error<F: Scalar>(z: &[F; 3]) -> (F, F) {
     let mz = max3(z);
-    (mz, bound_up(F::gamma_n(4) * mz, 1))
+    (mz, depth_error(mz))
+}
+
+/// [`z_error`]'s bound for depths of magnitude at most `mz`.
+#[inline(always)]
+pub(crate) fn depth_error<F: Scalar>(mz: F) -> F {
+    bound_up(F::gamma_n(4) * mz, 1)
 }
 
 /// The `t` of a hit whose determinant's sign rounding leaves unknown: the

@@ -48,8 +48,8 @@ use crate::num::round::bound_up;
 use crate::num::{S, Scalar, Vector};
 
 pub use batch::{TriangleBatch, TriangleBatchHits};
-pub(crate) use bounds::ErrorBounds;
 pub use bounds::TriangleHitError;
+pub(crate) use bounds::{axis_error, depth_error};
 pub(crate) use definition::inside;
 pub(crate) use frame::{Frame, edge_function};
 pub(crate) use lanes::frame_lanes_at;
