@@ -401,7 +401,8 @@ fn ends<F: Scalar>(t: F, (lo, hi): (F, F)) -> bool {
 /// the quadratic's. Each root whose `(u, v)` is in the square and where
 /// the exact patch is certified to meet the ray (which no rounding noise
 /// of a patch of zero area, and no spurious root of a collapsed edge, can
-/// be); the nearer in range, as `(u, v, t)`.
+/// be); the nearer in range, as `(u, v, t)`. (The nearer candidate is
+/// certified first: where it holds, the farther needs no certificate.)
 #[inline(never)]
 fn two_crossings<V: Vector>(
     r: &RayFrame<V>,
@@ -411,21 +412,20 @@ fn two_crossings<V: Vector>(
     ahead: bool,
     range: (S<V>, S<V>),
 ) -> Option<(S<V>, S<V>, S<V>)> {
-    let mut best: Option<(S<V>, S<V>, S<V>)> = None;
-    for u in roots {
-        let Some((u, v)) = in_square(&fr.p, u) else {
-            continue;
-        };
-        let t = fr.p.t_at(u, v);
-        if !(ends(t, range) && best.is_none_or(|(_, _, bt)| t < bt)) {
-            continue;
-        }
-        let bound = fr.certify(r, patch, u, v).t;
-        if bound.is_finite() && (ahead || t > bound) {
-            best = Some((u, v, t));
-        }
-    }
-    best
+    let candidate = |u: S<V>| {
+        in_square(&fr.p, u)
+            .map(|(u, v)| (u, v, fr.p.t_at(u, v)))
+            .filter(|&(_, _, t)| ends(t, range))
+    };
+    let (first, second) = match roots.map(candidate) {
+        [Some(a), Some(b)] if b.2 < a.2 => (Some(b), Some(a)),
+        [a, b] => (a, b),
+    };
+    let certified = |c: &(S<V>, S<V>, S<V>)| {
+        let bound = fr.certify(r, patch, c.0, c.1).t;
+        bound.is_finite() && (ahead || c.2 > bound)
+    };
+    first.filter(certified).or_else(|| second.filter(certified))
 }
 
 /// `(u, v)` at the root `u` where both are in `[0, 1]`.
@@ -440,12 +440,14 @@ fn in_square<F: Scalar>(p: &Projected<F>, u: F) -> Option<(F, F)> {
 }
 
 /// The place of the single crossing where the near root's is not in the
-/// square: the far root's if it is (`far`), else the root whose point,
-/// brought into the square, lies nearest the ray (a crossing within
-/// rounding of an edge; a collapsed edge's spurious root, its segment a
-/// point away from the ray); where no root is finite (a quadratic that
-/// rounding left with no coefficient), the covering triangle's own place,
-/// as a planar quad's ([`from_triangle`]).
+/// square: the far root's if it is (`far`), else, of the roots brought
+/// into the square and the covering triangle's own place (as a planar
+/// quad's, [`from_triangle`]), the one whose point lies nearest the ray: a
+/// crossing within rounding of an edge; a collapsed edge's spurious root,
+/// its segment a point away from the ray; a patch seen edge-on, whose
+/// quadratic's coefficients cancel (the ray nearly along one family of
+/// its segments, where the triangle's edge functions still place it);
+/// a quadratic that rounding left with no coefficient.
 #[cold]
 #[inline(never)]
 fn off_square<F: Scalar>(
@@ -460,7 +462,8 @@ fn off_square<F: Scalar>(
     }
     let (zero, one) = (F::ZERO, F::ONE);
     let clamp = |w: F| min2(max2(w, zero), one);
-    let mut best: Option<(F, F, F)> = None;
+    let (u, v) = from_triangle(first, second);
+    let mut best = (u, v, p.miss_at(u, v));
     for u in [near, far] {
         if !u.is_finite() {
             continue;
@@ -469,11 +472,11 @@ fn off_square<F: Scalar>(
         // (A point segment's NaN `v` becomes 0: `max2` keeps the zero.)
         let v = clamp(p.v_at(u));
         let miss = p.miss_at(u, v);
-        if best.is_none_or(|(_, _, m)| miss < m) {
-            best = Some((u, v, miss));
+        if miss < best.2 {
+            best = (u, v, miss);
         }
     }
-    best.map_or_else(|| from_triangle(first, second), |(u, v, _)| (u, v))
+    (best.0, best.1)
 }
 
 /// `(u, v)` of the origin on the covering triangle (`first`'s edge
