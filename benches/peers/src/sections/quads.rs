@@ -60,13 +60,13 @@ impl NextWeekQuad {
 /// one last, the shear and the origin in that order (what a prepared ray
 /// holds).
 pub struct FloorRay {
-    k: [usize; 3],
-    s: [f32; 3],
-    o: [f32; 3],
+    pub k: [usize; 3],
+    pub s: [f32; 3],
+    pub o: [f32; 3],
 }
 
 impl FloorRay {
-    fn new(ray: &Ray) -> Self {
+    pub fn new(ray: &Ray) -> Self {
         let d = ray.dir.to_array();
         let a = ray.dir.abs();
         let kz = if a.x >= a.y && a.x >= a.z {
