@@ -171,3 +171,67 @@ pub(super) fn hit_error<V: Vector>(
         v: ev,
     }
 }
+
+#[cfg(test)]
+mod tests {
+    use super::Collapse;
+    use crate::Patch;
+    use glam::DVec3;
+
+    /// For each collapse, on a grid of `(u, v)`: the patch's bilinear
+    /// point is the triangle's point at `weights(u, v)` (the table in the
+    /// module docs, checked against the geometry), and `place` inverts
+    /// `weights` wherever the quotient's denominator is not small (near
+    /// the apex `u` or `v` is not determined).
+    #[test]
+    fn weights_are_the_triangles_and_place_inverts_them() {
+        let corners = [
+            DVec3::new(0.1, -0.2, 0.3),
+            DVec3::new(1.3, 0.1, -0.4),
+            DVec3::new(-0.2, 1.1, 0.6),
+            DVec3::new(0.9, 1.4, 1.2),
+        ];
+        let [p00, p10, p01, p11] = corners;
+        let patches = [
+            (Collapse::V0, Patch::new(p00, p00, p01, p11)),
+            (Collapse::U1, Patch::new(p00, p10, p01, p10)),
+            (Collapse::V1, Patch::new(p00, p10, p01, p01)),
+            (Collapse::U0, Patch::new(p00, p10, p00, p11)),
+        ];
+        for (collapse, patch) in patches {
+            let (found, tri) = patch.collapsed().expect("an edge collapsed");
+            assert_eq!(found, collapse);
+            for i in 0..=16 {
+                for j in 0..=16 {
+                    let (u, v) = (f64::from(i) / 16.0, f64::from(j) / 16.0);
+                    let (b, c) = collapse.weights(u, v);
+                    let on_triangle = tri.a + (tri.b - tri.a) * b + (tri.c - tri.a) * c;
+                    let d = (patch.point_at(u, v) - on_triangle).abs().max_element();
+                    assert!(d < 1e-14, "{collapse:?} at ({u}, {v}): {d}");
+                    let (pu, pv) = collapse.place(b, c);
+                    // The denominators of the quotients in `place`.
+                    let denom = match collapse {
+                        Collapse::V0 | Collapse::U0 => b + c,
+                        Collapse::U1 => 1.0 - b,
+                        Collapse::V1 => 1.0 - c,
+                    };
+                    let (du, dv) = ((pu - u).abs(), (pv - v).abs());
+                    match collapse {
+                        Collapse::V0 | Collapse::V1 => {
+                            assert!(dv < 1e-15, "{collapse:?} v {v}: {pv}")
+                        }
+                        Collapse::U1 | Collapse::U0 => {
+                            assert!(du < 1e-15, "{collapse:?} u {u}: {pu}")
+                        }
+                    }
+                    if denom > 1e-3 {
+                        assert!(
+                            du < 1e-12 && dv < 1e-12,
+                            "{collapse:?} ({u}, {v}): ({pu}, {pv})"
+                        );
+                    }
+                }
+            }
+        }
+    }
+}
