@@ -1,8 +1,10 @@
 //! The patch in the ray's frame: the ray's part (its shear and origin in
-//! lanes, from a plain or a prepared ray), the two diagonal triangles
-//! framed as the watertight triangle test frames them, their closed-rule
-//! inside tests, and the four corners' coordinates with what the kernel
-//! reads off them (`v` at a root, the depth, the orientation).
+//! lanes, borrowed from a plain or a prepared ray), the four corners
+//! framed at once as the watertight triangle test frames a triangle's
+//! (a corner a lane), the edge functions of the two diagonal triangles
+//! and their closed-rule inside tests, the fold test, and the corners'
+//! coordinates with what the kernel reads off them (`v` at a root, the
+//! depth, the orientation).
 
 use super::{Patch, lerp};
 use crate::num::round::max2;

@@ -38,22 +38,12 @@ fn lerp(a: f32, b: f32, w: f32) -> f32 {
 /// finiteness checks, the one-hit rule, `u`, `v` and the side.
 #[inline(always)]
 pub fn floor_patch(r: &FloorRay, p: &Patch) -> Option<f32> {
-    let [kx, ky, kz] = r.k;
     // The boundary's order: 00, 10, 11, 01.
-    let c = [
-        p.p00.to_array(),
-        p.p10.to_array(),
-        p.p11.to_array(),
-        p.p01.to_array(),
-    ];
-    let axis = |k: usize, o: f32| Vec4::new(c[0][k] - o, c[1][k] - o, c[2][k] - o, c[3][k] - o);
-    let pz = axis(kz, r.o[2]);
+    let (x, y, pz) = r.frame([p.p00, p.p10, p.p11, p.p01]);
     let z = pz * r.s[2];
     if z.cmpgt(Vec4::ZERO).bitmask() == 0 {
         return None;
     }
-    let x = axis(kx, r.o[0]) + r.s[0] * pz;
-    let y = axis(ky, r.o[1]) + r.s[1] * pz;
     // 00->10, 10->11, 11->01, 01->00; and 00->11.
     let e = x * y.yzwx() - y * x.yzwx();
     let d = x.x * y.z - y.x * x.z;

@@ -84,6 +84,20 @@ impl FloorRay {
             o: [o[kx], o[ky], o[kz]],
         }
     }
+
+    /// Four corners in the ray's frame, a corner a lane, as the watertight
+    /// triangle test computes them: the sheared `x` and `y`, and the
+    /// translated depth (not yet scaled by `1 / d_z`).
+    #[inline(always)]
+    pub fn frame(&self, corners: [Vec3; 4]) -> (Vec4, Vec4, Vec4) {
+        let [kx, ky, kz] = self.k;
+        let c = corners.map(|p| p.to_array());
+        let axis = |k: usize, o: f32| Vec4::new(c[0][k] - o, c[1][k] - o, c[2][k] - o, c[3][k] - o);
+        let pz = axis(kz, self.o[2]);
+        let x = axis(kx, self.o[0]) + self.s[0] * pz;
+        let y = axis(ky, self.o[1]) + self.s[1] * pz;
+        (x, y, pz)
+    }
 }
 
 /// The floor: the least arithmetic that gives `Quad::hit`'s guarantee,
@@ -96,17 +110,7 @@ impl FloorRay {
 /// fallback (an undecided case answers `None`), no `u`, `v` or side.
 #[inline(always)]
 pub fn floor_quad(r: &FloorRay, q: &Quad) -> Option<f32> {
-    let [kx, ky, kz] = r.k;
-    let c = [
-        q.a.to_array(),
-        q.b.to_array(),
-        q.c.to_array(),
-        q.d.to_array(),
-    ];
-    let axis = |k: usize, o: f32| Vec4::new(c[0][k] - o, c[1][k] - o, c[2][k] - o, c[3][k] - o);
-    let pz = axis(kz, r.o[2]);
-    let x = axis(kx, r.o[0]) + r.s[0] * pz;
-    let y = axis(ky, r.o[1]) + r.s[1] * pz;
+    let (x, y, pz) = r.frame([q.a, q.b, q.c, q.d]);
     // a->b, b->c, c->d, d->a; and c->a.
     let e = x * y.yzwx() - y * x.yzwx();
     let ca = x.z * y.x - y.z * x.x;
