@@ -1,5 +1,6 @@
 //! Exact answers: the crate's exact-arithmetic oracle, for holding any
-//! ray/box, ray/triangle or ray/plane kernel to the truth.
+//! ray/box, ray/triangle, ray/plane, ray/sphere, ray/disc, ray/quad or
+//! ray/patch kernel to the truth.
 //!
 //! Every finite `f32` and `f64` is a dyadic rational, so each question a
 //! kernel answers (does the ray hit, at which `t`, where on the triangle)
