@@ -23,22 +23,26 @@
 //! KIND PRECISION FAMILY | INPUTS | ANSWER [| BAND]
 //! ```
 //!
-//! - `KIND`: `box`, `triangle`, `plane`, `sphere` or `disc`;
-//!   `PRECISION`: `f32` or `f64`;
+//! - `KIND`: `box`, `triangle`, `plane`, `sphere`, `disc`, `quad` or
+//!   `patch`; `PRECISION`: `f32` or `f64`;
 //!   `FAMILY`: any word, the row the case is counted in.
 //! - `INPUTS`: every float as its IEEE 754 bit pattern in hex (8 digits for
 //!   `f32`, 16 for `f64`), as in the crate's corpus: `box`: origin, dir,
 //!   min, max, t_max (13 numbers); `triangle`: origin, dir, a, b, c, t_max
 //!   (16); `plane`: origin, dir, point, normal, t_max (13); `sphere`:
 //!   origin, dir, centre, radius, t_max (11); `disc`: origin, dir, centre,
-//!   normal, radius, inner radius, t_max (15).
+//!   normal, radius, inner radius, t_max (15); `quad`: origin, dir, a, b,
+//!   c, d, t_max (19; the two triangles a b c and a c d); `patch`: origin,
+//!   dir, p00, p10, p01, p11, t_max (19; the bilinear patch).
 //! - `ANSWER`, the kernel's: `miss`, or `hit ENTER EXIT` (box), `hit T U V`
-//!   (triangle; any further words, like `front`, are ignored), `hit T`
-//!   (plane), `hit T front` or `hit T back` (sphere: entering or leaving
-//!   the ball; disc: arriving against or along the normal), in hex bit
-//!   patterns. A sphere's or disc's side must be the exact one; a wrong
-//!   side counts as a value beyond the bound (on a sphere's `edge` case
-//!   values are not held, see `rayhit::exact::judge`).
+//!   (triangle and quad; any further words, like `front`, are ignored),
+//!   `hit T` (plane), `hit T front` or `hit T back` (sphere: entering or
+//!   leaving the ball; disc: arriving against or along the normal), `hit T
+//!   U V front` or `hit T U V back` (patch: arriving against or along
+//!   `dP/du x dP/dv`), in hex bit patterns. A sphere's, disc's or patch's
+//!   side must be the exact one; a wrong side counts as a value beyond the
+//!   bound (on a sphere's or patch's `edge` case values are not held, see
+//!   `rayhit::exact::judge`).
 //! - `BAND`, optional (`clear` or `edge`): ignored; the checker decides the
 //!   band itself (`rayhit::exact::band`), so corpus lines can be used as
 //!   they are.
@@ -52,15 +56,18 @@
 //!   the back counts as a miss.
 //! - `--t-ulps N`: the bound on `t` (and box entry and exit) in ulps of the
 //!   exact value. By default it is rayhit's own documented bound for the
-//!   case: `Triangle::hit_error`, `Plane::hit_error`, `Sphere::hit_error`
-//!   and `Disc::hit_error` at the exact answer, and for boxes 16 ulps.
+//!   case: `Triangle::hit_error`, `Plane::hit_error`, `Sphere::hit_error`,
+//!   `Disc::hit_error`, `Quad::hit_error` (the bound of the triangle the
+//!   exact crossing is on) and `Patch::hit_error` at the exact answer, and
+//!   for boxes 16 ulps.
 
 use std::collections::BTreeMap;
 use std::fmt::Write as _;
 
+use rayhit::exact::TriangleAnswer;
 use rayhit::exact::{self, Case, CorpusLine, Field, Judgement, Tally, Verdict};
 use rayhit::glam::{DVec3, Vec3};
-use rayhit::{Scalar, Side, Surface, TriangleHit, Vector};
+use rayhit::{Ray, Scalar, Side, Surface, Triangle, TriangleHit, Vector};
 
 /// The documented box bound used by default, in ulps.
 const BOX_ULPS: f64 = 16.0;
@@ -97,18 +104,8 @@ fn judge_line<V: Vector>(
     let bound = match (&case, opts.t_ulps) {
         (_, Some(b)) => b,
         (Case::Box(..), None) => BOX_ULPS,
-        (Case::Triangle(ray, tri, t_max), None) => {
-            exact::ray_triangle(ray, tri, *t_max).map_or(f64::INFINITY, |h| {
-                let probe = TriangleHit {
-                    t: h.t.rounded,
-                    u: h.u.rounded,
-                    v: h.v.rounded,
-                    side: h.side,
-                };
-                let err = tri.hit_error(ray, &probe).t.to_f64();
-                err / ulp::<V::Scalar>(h.t.rounded.to_f64())
-            })
-        }
+        (Case::Triangle(ray, tri, t_max), None) => exact::ray_triangle(ray, tri, *t_max)
+            .map_or(f64::INFINITY, |h| triangle_ulps(ray, tri, &h)),
         (Case::Plane(ray, plane, t_max), None) => exact::ray_plane(ray, plane, *t_max)
             .map_or(f64::INFINITY, |t| {
                 plane.hit_error(ray, &t.rounded).to_f64() / ulp::<V::Scalar>(t.rounded.to_f64())
@@ -121,12 +118,27 @@ fn judge_line<V: Vector>(
             .map_or(f64::INFINITY, |h| {
                 disc.hit_error(ray, &h).to_f64() / ulp::<V::Scalar>(h.t.to_f64())
             }),
+        // A quad's `t` bound is the triangle's it is on: the first whose
+        // exact crossing is the quad's (as `exact::ray_quad` picks it).
+        (Case::Quad(ray, quad, t_max), None) => exact::ray_quad(ray, quad, *t_max)
+            .and_then(|h| {
+                quad.triangles().iter().find_map(|tri| {
+                    exact::ray_triangle(ray, tri, *t_max)
+                        .filter(|e| e.t.value == h.t.value)
+                        .map(|e| triangle_ulps(ray, tri, &e))
+                })
+            })
+            .unwrap_or(f64::INFINITY),
+        (Case::Patch(ray, patch, t_max), None) => exact::ray_patch(ray, patch, *t_max)
+            .map_or(f64::INFINITY, |h| {
+                patch.hit_error(ray, &h).t.to_f64() / ulp::<V::Scalar>(h.t.to_f64())
+            }),
         // A shape this checker has no bound for yet: hit or miss alone.
         (_, None) => f64::INFINITY,
     };
     let mut j = exact::judge(&case, &claim, bound);
-    // Only t, entry, exit and a sphere's or disc's side count against the
-    // bound here.
+    // Only t, entry, exit and a sphere's, disc's or patch's side count
+    // against the bound here.
     j.outside
         .retain(|f| matches!(f, Field::T | Field::Enter | Field::Exit | Field::Side));
     if opts.front_only
@@ -143,6 +155,19 @@ fn judge_line<V: Vector>(
         j.outside.clear();
     }
     Ok(j)
+}
+
+/// The watertight test's bound on `t` at a triangle's exact answer, in
+/// ulps of the exact `t` (`Triangle::hit_error` at the rounded answer).
+fn triangle_ulps<V: Vector>(ray: &Ray<V>, tri: &Triangle<V>, h: &TriangleAnswer<V::Scalar>) -> f64 {
+    let probe = TriangleHit {
+        t: h.t.rounded,
+        u: h.u.rounded,
+        v: h.v.rounded,
+        side: h.side,
+    };
+    let err = tri.hit_error(ray, &probe).t.to_f64();
+    err / ulp::<V::Scalar>(h.t.rounded.to_f64())
 }
 
 /// The three words before a line's first `|`: kind, precision and family.

@@ -19,6 +19,14 @@
 //!   on the side they report; over `(0, t_max]` as an interval, hit or
 //!   miss as the exact answer on every case (the side too where the bound
 //!   is finite);
+//! - quads and bilinear patches: each line is the one the oracle writes
+//!   for its inputs today; `Quad::hit` and `Patch::hit` with a `t_max`, on
+//!   a plain and a prepared ray (bit for bit the same) and over `(0,
+//!   t_max]` as an interval, hit or miss as the exact answer with the
+//!   exact side on every `clear` case, `t`, `u`, `v` within `hit_error` of
+//!   the exact answer's there, and of some exact crossing of the shape
+//!   extended on `edge` cases (where what the kernel did is tallied and
+//!   printed with `--nocapture`);
 //! - every transferred ray differential at a triangle hit (each component of
 //!   `dp_dx`, `dp_dy` and `du_dx` ... `dv_dy`) within
 //!   `Triangle::hit_differentials_error` of the exact transfer;
@@ -60,6 +68,7 @@ use rayhit_testkit::cases::instances;
 use rayhit_testkit::cases::planes;
 use rayhit_testkit::cases::triangles::{self, TriCase};
 use rayhit_testkit::cases::{discs, spheres};
+use rayhit_testkit::cases::{patches, quads};
 use rayhit_testkit::oracle;
 use rayhit_testkit::oracle::{R, gamma, r, rv};
 use rayhit_testkit::source::Source;
@@ -715,6 +724,300 @@ fn check_sided<V: Vector, T: Sided<V>>(lines: &[String]) -> Failures {
     fail
 }
 
+// ------------------------------------------------------ quads and patches
+
+const QUAD_HEADER: &str = "origin dir a b c d t_max | exact answer: miss, or hit T U V front|back (the nearer crossing of the closed triangles a b c and a c d, the first where they tie; T, U, V rounded to nearest; U along a->b, V along a->d) | band: clear or edge";
+
+const PATCH_HEADER: &str = "origin dir p00 p10 p01 p11 t_max | exact answer: miss, or hit T U V front|back (the nearest crossing in (0, t_max]; T, U, V rounded to nearest; front: dir . (dP/du x dP/dv) <= 0) | band: clear or edge";
+
+/// A shape whose answer is `t`, a place `(u, v)` and a side, as the
+/// corpus needs it: the quad and the patch, whose files are written and
+/// checked by one code path.
+trait Placed<V: Vector>: Intersect<V> + Copy + std::fmt::Debug + Sized {
+    /// The kind, as the files and `exact::parse_case` name it.
+    const KIND: &'static str;
+    /// The files' fields.
+    const HEADER: &'static str;
+    /// The shape's corners, in the files' order.
+    fn corners(&self) -> [V; 4];
+    /// The case.
+    fn case(self, ray: Ray<V>, t_max: S<V>) -> exact::Case<V>;
+    /// The shape of a case of this kind.
+    fn of(case: &exact::Case<V>) -> Option<(Ray<V>, Self, S<V>)>;
+    /// The exact answer: `t`, `u`, `v` rounded to nearest, and the side.
+    fn exact(&self, ray: &Ray<V>, t_max: S<V>) -> Option<([S<V>; 3], Side)>;
+    /// A hit's `t`, `u`, `v`, side, and their bounds (`hit_error`).
+    fn parts(&self, ray: &Ray<V>, hit: &Self::Hit) -> Parts<V>;
+    /// Whether the interval form over `(0, t_max]` answers as the `t_max`
+    /// form, bit for bit.
+    fn same_over_interval(&self) -> bool;
+    /// Whether an exact crossing of the ray's line with the shape
+    /// extended (the quad: either triangle's plane, `(u, v)` summed as
+    /// the quad sums them; the patch: its surface past its edges,
+    /// `oracle::patch_extended`) is within `bounds` of `values`.
+    fn near_exact(&self, ray: &Ray<V>, values: [S<V>; 3], bounds: [S<V>; 3]) -> bool;
+}
+
+impl<V: Vector> Placed<V> for rayhit::Quad<V> {
+    const KIND: &'static str = "quad";
+    const HEADER: &'static str = QUAD_HEADER;
+    fn corners(&self) -> [V; 4] {
+        [self.a, self.b, self.c, self.d]
+    }
+    fn case(self, ray: Ray<V>, t_max: S<V>) -> exact::Case<V> {
+        exact::Case::Quad(ray, self, t_max)
+    }
+    fn of(case: &exact::Case<V>) -> Option<(Ray<V>, Self, S<V>)> {
+        match case {
+            exact::Case::Quad(ray, q, t_max) => Some((*ray, *q, *t_max)),
+            _ => None,
+        }
+    }
+    fn exact(&self, ray: &Ray<V>, t_max: S<V>) -> Option<([S<V>; 3], Side)> {
+        exact::ray_quad(ray, self, t_max).map(|h| ([h.t.rounded, h.u.rounded, h.v.rounded], h.side))
+    }
+    fn parts(&self, ray: &Ray<V>, hit: &rayhit::QuadHit<S<V>>) -> ([S<V>; 3], Side, [S<V>; 3]) {
+        let e = self.hit_error(ray, hit);
+        ([hit.t, hit.u, hit.v], hit.side, [e.t, e.u, e.v])
+    }
+    fn same_over_interval(&self) -> bool {
+        // (The interval form decides the ends exactly, the t_max form
+        // `t > 0` conservatively.)
+        false
+    }
+    fn near_exact(&self, ray: &Ray<V>, values: [S<V>; 3], bounds: [S<V>; 3]) -> bool {
+        self.triangles().iter().enumerate().any(|(k, tri)| {
+            let e = oracle::triangle(ray, tri);
+            let (Some(t), Some((b, c))) = (e.t, e.uv) else {
+                return false;
+            };
+            let (u, v) = if k == 0 {
+                (&b + &c, c)
+            } else {
+                (b.clone(), b + c)
+            };
+            [t, u, v]
+                .iter()
+                .zip(values.iter().zip(bounds))
+                .all(|(x, (&got, bound))| (r(got) - x).abs() <= r(bound))
+        })
+    }
+}
+
+impl<V: Vector> Placed<V> for rayhit::Patch<V> {
+    const KIND: &'static str = "patch";
+    const HEADER: &'static str = PATCH_HEADER;
+    fn corners(&self) -> [V; 4] {
+        [self.p00, self.p10, self.p01, self.p11]
+    }
+    fn case(self, ray: Ray<V>, t_max: S<V>) -> exact::Case<V> {
+        exact::Case::Patch(ray, self, t_max)
+    }
+    fn of(case: &exact::Case<V>) -> Option<(Ray<V>, Self, S<V>)> {
+        match case {
+            exact::Case::Patch(ray, p, t_max) => Some((*ray, *p, *t_max)),
+            _ => None,
+        }
+    }
+    fn exact(&self, ray: &Ray<V>, t_max: S<V>) -> Option<([S<V>; 3], Side)> {
+        exact::ray_patch(ray, self, t_max).map(|h| ([h.t, h.u, h.v], h.side))
+    }
+    fn parts(&self, ray: &Ray<V>, hit: &rayhit::PatchHit<S<V>>) -> ([S<V>; 3], Side, [S<V>; 3]) {
+        let e = self.hit_error(ray, hit);
+        ([hit.t, hit.u, hit.v], hit.side, [e.t, e.u, e.v])
+    }
+    fn same_over_interval(&self) -> bool {
+        // (A collapsed edge is its triangle, whose interval form decides
+        // the ends exactly.)
+        oracle::collapsed_triangle(self).is_none()
+    }
+    fn near_exact(&self, ray: &Ray<V>, values: [S<V>; 3], bounds: [S<V>; 3]) -> bool {
+        oracle::patch_extended(ray, self).is_some_and(|e| {
+            e.crossings.iter().any(|c| {
+                [&c.t, &c.u, &c.v]
+                    .into_iter()
+                    .zip(values.iter().zip(bounds))
+                    .all(|(x, (&got, bound))| near(x, got, bound))
+            })
+        })
+    }
+}
+
+/// Whether an exact value known by comparisons is within `bound` of `x`.
+fn near<F: Scalar>(exact: &oracle::Surd, x: F, bound: F) -> bool {
+    let (x, b) = (r(x), r(bound));
+    exact.cmp_rational(&(&x - &b)) != Ordering::Less
+        && exact.cmp_rational(&(&x + &b)) != Ordering::Greater
+}
+
+/// A quad or patch hit's `t`, `u`, `v`, side, and their bounds.
+type Parts<V> = ([S<V>; 3], Side, [S<V>; 3]);
+
+/// A quad or patch case: the shape, the ray and `t_max`.
+type PlacedCase<V, T> = (T, Ray<V>, S<V>);
+
+/// A quad or patch case's line: the inputs, the exact answer
+/// (`exact::ray_quad`, `exact::ray_patch`) and the band (`exact::band`).
+fn placed_line<V: Vector, T: Placed<V>>((shape, ray, t_max): &PlacedCase<V, T>) -> Option<String> {
+    if !ray.is_valid() {
+        return None;
+    }
+    let answer = match shape.exact(ray, *t_max) {
+        Some(([t, u, v], side)) => {
+            format!("hit {} {} {} {}", hex(t), hex(u), hex(v), side_name(side))
+        }
+        None => "miss".into(),
+    };
+    let clear = exact::band(&shape.case(*ray, *t_max)) == exact::Band::Clear;
+    let [c0, c1, c2, c3] = shape.corners().map(hex_v);
+    Some(format!(
+        "{} {} {c0} {c1} {c2} {c3} {} | {answer} | {}",
+        hex_v(ray.origin),
+        hex_v(ray.dir),
+        hex(*t_max),
+        if clear { "clear" } else { "edge" }
+    ))
+}
+
+/// Writes a quad or patch file from its generators.
+fn write_placed<V: Vector, T: Placed<V>>(generators: &[Generator<PlacedCase<V, T>>]) {
+    let lines: Vec<String> = draw(generators).iter().filter_map(placed_line).collect();
+    write(T::KIND, precision::<V>(), T::HEADER, &lines);
+}
+
+/// What a file's kernel did on its `edge` cases, where hit or miss is
+/// measured and not held: printed with `--nocapture`.
+#[derive(Default)]
+struct EdgeTally {
+    cases: usize,
+    edge: usize,
+    false_hits: usize,
+    false_misses: usize,
+    /// Hits away from the exact answer's crossing (another triangle of a
+    /// quad, a fold's other crossing) or on its other side.
+    elsewhere: usize,
+}
+
+impl EdgeTally {
+    fn print(&self, file: &str) {
+        println!(
+            "{file}: {} cases, {} edge; on edge cases the t_max form's false hits {}, \
+             false misses {}, hits elsewhere than the exact crossing {}",
+            self.cases, self.edge, self.false_hits, self.false_misses, self.elsewhere
+        );
+    }
+}
+
+/// A quad or patch file against the oracle and the kernel. Each line,
+/// read with the library's reader (`exact::CorpusEntry`), is the line the
+/// oracle writes for its inputs today (answer and band unchanged). The
+/// kernel's `hit` with a `t_max` on a plain and a prepared ray (the same
+/// answer, bit for bit), and over `Interval::up_to(t_max)` (for a patch
+/// without a collapsed edge the same answer, bit for bit): on every
+/// `clear` case hit or miss as the exact answer, with the exact side, and
+/// `t`, `u`, `v` within their `hit_error` of the exact answer's (stored
+/// rounded to nearest, so half an ulp is added); on `edge` cases, wherever
+/// it hits, within their bounds of an exact crossing of the shape
+/// extended (where the kernel may report another: the quad's other
+/// triangle, a fold's other crossing, a crossing just past an edge).
+/// Infinite bounds hold nothing; over the interval `t` may be brought up
+/// to the float above 0.
+fn check_placed<V: Vector, T: Placed<V>>(lines: &[String]) -> (Failures, EdgeTally) {
+    use rayhit::{Interval, PreparedRay};
+    let mut fail = Failures::default();
+    let mut tally = EdgeTally::default();
+    for (i, line) in lines.iter().enumerate() {
+        fail.line(i, |fail| {
+            let entry = exact::CorpusEntry::<V>::parse(T::KIND, line)?;
+            let (ray, shape, t_max) = T::of(&entry.case).ok_or("another kind")?;
+            let again = placed_line(&(shape, ray, t_max));
+            fail.check(again.as_deref() == Some(line.as_str()), i, || {
+                format!("the oracle now writes {again:?} for {line}")
+            });
+            // The exact answer, as the line gives it.
+            let mut answer = CorpusLine::new(line).fields(1)?;
+            let exact = match answer.word()? {
+                "hit" => {
+                    let values: [S<V>; 3] = [answer.scalar()?, answer.scalar()?, answer.scalar()?];
+                    let side = if answer.word()? == "front" {
+                        Side::Front
+                    } else {
+                        Side::Back
+                    };
+                    Some((values, side))
+                }
+                _ => None,
+            };
+            let clear = entry.band == exact::Band::Clear;
+            tally.cases += 1;
+            tally.edge += usize::from(!clear);
+            // Each form's `t`, `u`, `v`, side and bounds, and its bits.
+            let parts = |h: Option<T::Hit>| h.map(|h| shape.parts(&ray, &h));
+            let bits = |h: &Option<Parts<V>>| {
+                h.map(|(x, side, _)| (x.map(|x| x.to_f64().to_bits()), side))
+            };
+            let got = parts(shape.hit(&ray, t_max));
+            let prepared = parts(shape.hit(&PreparedRay::new(&ray), t_max));
+            fail.check(bits(&got) == bits(&prepared), i, || {
+                format!("plain {got:?}, prepared {prepared:?}")
+            });
+            let window = Interval::up_to(t_max).ok_or("no interval up to t_max")?;
+            let over = parts(shape.hit(&ray, window));
+            fail.check(
+                !shape.same_over_interval() || bits(&got) == bits(&over),
+                i,
+                || format!("over t_max {got:?}, over (0, t_max] {over:?}"),
+            );
+            for (form, h) in [("t_max", got), ("(0, t_max]", over)] {
+                if clear {
+                    fail.check(h.is_some() == exact.is_some(), i, || {
+                        format!("{form}: {h:?} on a clear case, exact {exact:?}")
+                    });
+                } else if form == "t_max" {
+                    tally.false_hits += usize::from(h.is_some() && exact.is_none());
+                    tally.false_misses += usize::from(h.is_none() && exact.is_some());
+                }
+                let Some((values, side, bounds)) = h else {
+                    continue;
+                };
+                // Where the exact answer's crossing is within the bounds:
+                // the stored values are within half an ulp of it.
+                let at_answer = |bounds: [S<V>; 3]| {
+                    exact.is_some_and(|(want, exact_side)| {
+                        side == exact_side
+                            && (0..3).all(|k| {
+                                (r(values[k]) - r(want[k])).abs()
+                                    <= r(bounds[k]) + ulp(want[k]) / R::from_integer(2.into())
+                            })
+                    })
+                };
+                if !bounds.iter().all(|b| b.is_finite()) {
+                    fail.check(!clear || exact.is_some_and(|(_, s)| s == side), i, || {
+                        format!("{form}: the side of {h:?}, exact {exact:?}")
+                    });
+                    continue;
+                }
+                let tiny = S::<V>::ZERO.next_up();
+                let bounds = [if bounds[0] > tiny { bounds[0] } else { tiny }, bounds[1], bounds[2]];
+                if clear {
+                    fail.check(at_answer(bounds), i, || {
+                        format!("{form}: {h:?} beyond its bounds of the exact {exact:?}, or on another side")
+                    });
+                } else {
+                    if form == "t_max" && exact.is_some() && !at_answer(bounds) {
+                        tally.elsewhere += 1;
+                    }
+                    fail.check(shape.near_exact(&ray, values, bounds), i, || {
+                        format!("{form}: {h:?} beyond its bounds of every exact crossing")
+                    });
+                }
+            }
+            Ok(())
+        });
+    }
+    (fail, tally)
+}
+
 // -------------------------------------------------------------- intervals
 
 const TRI_IN_HEADER: &str = "origin dir a b c t_min t_max | exact answer over (t_min, t_max]: miss, or hit T U V front|back (rounded to nearest) | the exact plane crossing t* against the ends: below (t* <= t_min), inside, above (t* > t_max) or none (parallel) | band: clear or edge";
@@ -1203,6 +1506,12 @@ fn corpus<V: Vector>() {
     if regenerate("disc") {
         write_sided(&discs::generators::<V>());
     }
+    if regenerate("quad") {
+        write_placed(&quads::generators::<V>());
+    }
+    if regenerate("patch") {
+        write_placed(&patches::generators::<V>());
+    }
     if regenerate("hit_differentials") {
         let mut src = Source::seeded(0xd1ff_c0de);
         let diffs: Vec<String> = (0..4 * CASES)
@@ -1264,6 +1573,25 @@ fn corpus<V: Vector>() {
             lines.len()
         );
         check(&lines).assert_none(&format!("{kernel}_{p}.txt"));
+    }
+    let tallied = [
+        (
+            "quad",
+            check_placed::<V, rayhit::Quad<V>> as fn(&[String]) -> (Failures, EdgeTally),
+        ),
+        ("patch", check_placed::<V, rayhit::Patch<V>>),
+    ];
+    for (kernel, check) in tallied {
+        let lines = read(kernel, p);
+        assert!(
+            lines.len() >= CASES / 2,
+            "{kernel}_{p}: only {} cases",
+            lines.len()
+        );
+        let (fail, tally) = check(&lines);
+        let file = format!("{kernel}_{p}.txt");
+        tally.print(&file);
+        fail.assert_none(&file);
     }
 }
 
@@ -1331,7 +1659,7 @@ fn embedded_lines_in_data(names: &[&str]) -> usize {
     lines
 }
 
-/// The corpus embedded in `rayhit::exact` (`exact::corpus()`): about 1700
+/// The corpus embedded in `rayhit::exact` (`exact::corpus()`): about 2400
 /// cases, each a line of `corpus/data` as it is, judged right with
 /// every value within half an ulp of the exact one and the same band.
 #[test]
@@ -1347,6 +1675,10 @@ fn embedded_corpus_agrees_with_tests_data() {
         "sphere_f64",
         "disc_f32",
         "disc_f64",
+        "quad_f32",
+        "quad_f64",
+        "patch_f32",
+        "patch_f64",
     ]);
     let mut count = 0;
     fn check<V: Vector>(e: &exact::CorpusEntry<V>) {
@@ -1363,8 +1695,8 @@ fn embedded_corpus_agrees_with_tests_data() {
         count += 1;
     }
     assert_eq!(count, lines);
-    // Every 12th of the ten files' 2048 or so cases.
-    assert!((1600..=1800).contains(&count), "{count}");
+    // Every 12th of the fourteen files' 2048 or so cases.
+    assert!((2300..=2500).contains(&count), "{count}");
 }
 
 /// The instance corpus embedded in `rayhit::exact`

@@ -7,19 +7,21 @@ use std::vec::Vec;
 
 use super::{Band, Case, Claim};
 use crate::glam::{DVec3, Vec3};
-use crate::{Aabb, Disc, Plane, Ray, Scalar, Side, Sphere, Triangle, Vector};
+use crate::{Aabb, Disc, Patch, Plane, Quad, Ray, Scalar, Side, Sphere, Triangle, Vector};
 
 /// One corpus case of precision `V`: the case, its exact answer (values
 /// rounded to nearest) and its band.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct CorpusEntry<V: Vector> {
-    /// The family: `box`, `triangle`, `plane`, `sphere` or `disc`.
+    /// The family: `box`, `triangle`, `plane`, `sphere`, `disc`, `quad` or
+    /// `patch`.
     pub kind: &'static str,
     /// The question.
     pub case: Case<V>,
     /// The exact answer, as a claim: [`Claim::Miss`], or the hit with its
-    /// exact values rounded to nearest (box: entry and exit; triangle: `t`,
-    /// `u`, `v`; plane: `t`; sphere and disc: `t` and the side).
+    /// exact values rounded to nearest (box: entry and exit; triangle and
+    /// quad: `t`, `u`, `v`; plane: `t`; sphere and disc: `t` and the side;
+    /// patch: `t`, `u`, `v` and the side).
     /// [`judge`](super::judge) finds it right, each value within half an
     /// ulp.
     pub answer: Claim<V::Scalar>,
@@ -38,7 +40,7 @@ pub enum CorpusCase {
 }
 
 /// The embedded files of [`corpus`]: kind, whether single precision, text.
-const FILES: [(&str, bool, &str); 10] = [
+const FILES: [(&str, bool, &str); 14] = [
     ("box", true, include_str!("data/box_f32.txt")),
     ("box", false, include_str!("data/box_f64.txt")),
     ("triangle", true, include_str!("data/triangle_f32.txt")),
@@ -49,6 +51,10 @@ const FILES: [(&str, bool, &str); 10] = [
     ("sphere", false, include_str!("data/sphere_f64.txt")),
     ("disc", true, include_str!("data/disc_f32.txt")),
     ("disc", false, include_str!("data/disc_f64.txt")),
+    ("quad", true, include_str!("data/quad_f32.txt")),
+    ("quad", false, include_str!("data/quad_f64.txt")),
+    ("patch", true, include_str!("data/patch_f32.txt")),
+    ("patch", false, include_str!("data/patch_f64.txt")),
 ];
 
 /// Reads a float written as its IEEE 754 bit pattern in hex, as the corpus
@@ -104,9 +110,9 @@ pub fn corpus_lines(text: &str) -> impl Iterator<Item = (usize, &str)> {
 /// Every corpus file has the same form: sections separated by `|`, each a
 /// list of words separated by white space, the floats written as their
 /// IEEE 754 bit patterns in hex ([`parse_bits`]). Which sections a line has
-/// depends on the file: for the box, triangle and plane files (the embedded
-/// [`corpus`], read by [`CorpusEntry::parse`]) the inputs, the exact answer
-/// and the band; for the instance files ([`instance_corpus`], read by
+/// depends on the file: for the files of the embedded [`corpus`] (box,
+/// triangle, plane, sphere, disc, quad and patch, read by
+/// [`CorpusEntry::parse`]) the inputs, the exact answer and the band; for the instance files ([`instance_corpus`], read by
 /// [`InstanceCorpusEntry::parse`]) the inputs and the exact image. Each
 /// file's header comments name its fields.
 ///
@@ -299,14 +305,17 @@ impl<'a> CorpusFields<'a> {
 }
 
 /// Reads a case and an answer in the corpus's text form: `kind` is `box`,
-/// `triangle`, `plane`, `sphere` or `disc`; `inputs` the case's floats as
-/// IEEE bit patterns in hex (box: origin, dir, min, max, `t_max`;
-/// triangle: origin, dir, a, b, c, `t_max`; plane: origin, dir, point,
-/// normal, `t_max`; sphere: origin, dir, centre, radius, `t_max`; disc:
-/// origin, dir, centre, normal, radius, inner radius, `t_max`); `answer`
-/// `miss`, or `hit` and the values (box: entry, exit; triangle: `t`, `u`,
-/// `v`; plane: `t`; sphere and disc: `t` and the side, `front` or `back`)
-/// in hex, any further words ignored. An error says what is wrong.
+/// `triangle`, `plane`, `sphere`, `disc`, `quad` or `patch`; `inputs` the
+/// case's floats as IEEE bit patterns in hex (box: origin, dir, min, max,
+/// `t_max`; triangle: origin, dir, a, b, c, `t_max`; plane: origin, dir,
+/// point, normal, `t_max`; sphere: origin, dir, centre, radius, `t_max`;
+/// disc: origin, dir, centre, normal, radius, inner radius, `t_max`;
+/// quad: origin, dir, a, b, c, d, `t_max`; patch: origin, dir, p00, p10,
+/// p01, p11, `t_max`); `answer` `miss`, or `hit` and the values (box:
+/// entry, exit; triangle and quad: `t`, `u`, `v`; plane: `t`; sphere and
+/// disc: `t` and the side, `front` or `back`; patch: `t`, `u`, `v` and
+/// the side) in hex, any further words ignored. An error says what is
+/// wrong.
 ///
 /// ```
 /// use rayhit::{exact::{self, Case, Claim}, glam::Vec3};
@@ -329,6 +338,31 @@ impl<'a> CorpusFields<'a> {
 /// .unwrap();
 /// assert!(matches!(case, Case::Sphere(..)));
 /// assert_eq!(claim, Claim::Sphere { t: 2.0, side: rayhit::Side::Front });
+/// // The unit square in the plane z = 0 as a quad and as a patch, hit
+/// // straight down from z = 1 at (0.5, 0.25): t = 1, (u, v) = (0.5, 0.25).
+/// let ray = "3f000000 3e800000 3f800000 00000000 00000000 bf800000";
+/// let square = "00000000 00000000 00000000 3f800000 00000000 00000000 \
+///               3f800000 3f800000 00000000 00000000 3f800000 00000000";
+/// let (case, claim) = exact::parse_case::<Vec3>(
+///     "quad",
+///     &format!("{ray} {square} 7f800000"),
+///     "hit 3f800000 3f000000 3e800000 front",
+/// )
+/// .unwrap();
+/// assert!(matches!(case, Case::Quad(..)));
+/// assert_eq!(claim, Claim::Quad { t: 1.0, u: 0.5, v: 0.25 });
+/// // The patch's corners come in the order p00, p10, p01, p11.
+/// let corners = "00000000 00000000 00000000 3f800000 00000000 00000000 \
+///                00000000 3f800000 00000000 3f800000 3f800000 00000000";
+/// let (case, claim) = exact::parse_case::<Vec3>(
+///     "patch",
+///     &format!("{ray} {corners} 7f800000"),
+///     "hit 3f800000 3f000000 3e800000 front",
+/// )
+/// .unwrap();
+/// assert!(matches!(case, Case::Patch(..)));
+/// let side = rayhit::Side::Front;
+/// assert_eq!(claim, Claim::Patch { t: 1.0, u: 0.5, v: 0.25, side });
 /// ```
 pub fn parse_case<V: Vector>(
     kind: &str,
@@ -341,6 +375,7 @@ pub fn parse_case<V: Vector>(
         "box" | "plane" => 13,
         "disc" => 15,
         "triangle" => 16,
+        "quad" | "patch" => 19,
         _ => return Err(format!("unknown kind {kind}")),
     };
     if n.len() != want {
@@ -358,14 +393,16 @@ pub fn parse_case<V: Vector>(
     };
     let v = |i: usize| V::new(n[i], n[i + 1], n[i + 2]);
     let ray = Ray::new(v(0), v(3));
-    // `t` and the side (sphere, disc).
-    let sided = || -> Result<(V::Scalar, Side), String> {
-        match words.get(1) {
-            Some(&"front") => Ok((x(0)?, Side::Front)),
-            Some(&"back") => Ok((x(0)?, Side::Back)),
+    // The side after `at` numbers (sphere, disc, patch).
+    let side = |at: usize| -> Result<Side, String> {
+        match words.get(at) {
+            Some(&"front") => Ok(Side::Front),
+            Some(&"back") => Ok(Side::Back),
             _ => Err("the side is neither `front` nor `back`".into()),
         }
     };
+    // `t` and the side (sphere, disc).
+    let sided = || -> Result<(V::Scalar, Side), String> { Ok((x(0)?, side(1)?)) };
     Ok(match kind {
         "box" => (
             Case::Box(ray, Aabb::new(v(6), v(9)), n[12]),
@@ -408,6 +445,31 @@ pub fn parse_case<V: Vector>(
                 Claim::Miss
             },
         ),
+        "quad" => (
+            Case::Quad(ray, Quad::new(v(6), v(9), v(12), v(15)), n[18]),
+            if hit {
+                Claim::Quad {
+                    t: x(0)?,
+                    u: x(1)?,
+                    v: x(2)?,
+                }
+            } else {
+                Claim::Miss
+            },
+        ),
+        "patch" => (
+            Case::Patch(ray, Patch::new(v(6), v(9), v(12), v(15)), n[18]),
+            if hit {
+                Claim::Patch {
+                    t: x(0)?,
+                    u: x(1)?,
+                    v: x(2)?,
+                    side: side(3)?,
+                }
+            } else {
+                Claim::Miss
+            },
+        ),
         _ => (
             Case::Plane(ray, Plane::new(v(6), v(9)), n[12]),
             if hit {
@@ -420,13 +482,14 @@ pub fn parse_case<V: Vector>(
 }
 
 impl<V: Vector> CorpusEntry<V> {
-    /// Reads a line of a box, triangle, plane, sphere or disc corpus file
-    /// (`kind` is `box`, `triangle`, `plane`, `sphere` or `disc`): `INPUTS |
-    /// ANSWER | BAND`, the inputs and the answer as [`parse_case`] reads
-    /// them, the band `clear` or `edge`. This reads the embedded
-    /// [`corpus`], and the repository's full corpus
-    /// (`corpus/data/{box,triangle,plane,sphere,disc}_{f32,f64}.txt`) just
-    /// as well. An error says what is wrong.
+    /// Reads a line of a box, triangle, plane, sphere, disc, quad or patch
+    /// corpus file (`kind` is `box`, `triangle`, `plane`, `sphere`,
+    /// `disc`, `quad` or `patch`): `INPUTS | ANSWER | BAND`, the inputs
+    /// and the answer as [`parse_case`] reads them, the band `clear` or
+    /// `edge`. This reads the embedded [`corpus`], and the repository's
+    /// full corpus
+    /// (`corpus/data/{box,triangle,plane,sphere,disc,quad,patch}_{f32,f64}.txt`)
+    /// just as well. An error says what is wrong.
     ///
     /// ```
     /// use rayhit::exact::{Band, Claim, CorpusEntry};
@@ -448,6 +511,8 @@ impl<V: Vector> CorpusEntry<V> {
             "plane" => "plane",
             "sphere" => "sphere",
             "disc" => "disc",
+            "quad" => "quad",
+            "patch" => "patch",
             _ => return Err(format!("unknown kind {kind}")),
         };
         let line = CorpusLine::new(line);
@@ -465,13 +530,14 @@ impl<V: Vector> CorpusEntry<V> {
     }
 }
 
-/// The embedded regression corpus: about 1700 box, triangle, plane, sphere
-/// and disc cases in both precisions (a sample of the repository's
-/// corpus), each decided in exact arithmetic and placed in or out of the
-/// rounding band, built around faces, edges, corners, slivers, grazing
-/// rays (tangents of spheres among them), rays from inside spheres, the
-/// circles of discs and their holes, and extreme scales. Parsed on each
-/// call (cheap next to judging).
+/// The embedded regression corpus: about 2400 box, triangle, plane,
+/// sphere, disc, quad and bilinear patch cases in both precisions (a
+/// sample of the repository's corpus), each decided in exact arithmetic
+/// and placed in or out of the rounding band, built around faces, edges,
+/// corners, slivers, grazing rays (tangents of spheres among them), rays
+/// from inside spheres, the circles of discs and their holes, quads'
+/// diagonals, patches' folds and collapsed edges, and extreme scales.
+/// Parsed on each call (cheap next to judging).
 ///
 /// ```
 /// use rayhit::exact::{self, Band, CorpusCase, Verdict};

@@ -1,5 +1,6 @@
 //! Exact answers: the crate's exact-arithmetic oracle, for holding any
-//! ray/box, ray/triangle or ray/plane kernel to the truth.
+//! ray/box, ray/triangle, ray/plane, ray/sphere, ray/disc, ray/quad or
+//! ray/patch kernel to the truth.
 //!
 //! Every finite `f32` and `f64` is a dyadic rational, so each question a
 //! kernel answers (does the ray hit, at which `t`, where on the triangle)
@@ -824,18 +825,28 @@ pub fn ray_patch<V: Vector>(
     patch: &Patch<V>,
     t_max: V::Scalar,
 ) -> Option<PatchHit<V::Scalar>> {
+    patch_first(ray, patch, t_max).map(|(_, hit)| hit)
+}
+
+/// [`ray_patch`]'s answer with the exact crossing it came from.
+pub(crate) fn patch_first<V: Vector>(
+    ray: &Ray<V>,
+    patch: &Patch<V>,
+    t_max: V::Scalar,
+) -> Option<(oracle::PatchCrossing, PatchHit<V::Scalar>)> {
     if !(ray.is_valid() && valid_limit(t_max)) {
         return None;
     }
     let e = oracle::patch(ray, patch)?;
     let c = e.first_in(&Rational::zero(), oracle::limit(t_max).as_ref())?;
     let round = oracle::PatchCrossing::rounded::<V::Scalar>;
-    Some(PatchHit {
+    let hit = PatchHit {
         t: round(&c.t),
         u: round(&c.u),
         v: round(&c.v),
         side: c.side,
-    })
+    };
+    Some((c.clone(), hit))
 }
 
 /// Exact ray/plane over an interval: the crossing `t` with `t_min < t <=

@@ -8,11 +8,11 @@ use super::oracle::{self, R};
 use num_traits::{Signed, Zero};
 
 use super::{Rational, rational};
-use crate::{Aabb, Disc, Plane, Ray, Scalar, Side, Sphere, Triangle, Vector};
+use crate::{Aabb, Disc, Patch, Plane, Quad, Ray, Scalar, Side, Sphere, Triangle, Vector};
 
 /// One question a kernel answers: a ray against a box, a triangle, a
-/// plane, a sphere or a disc, with the limit `t_max`. New shapes add
-/// variants (hence `non_exhaustive`).
+/// plane, a sphere, a disc, a quad or a bilinear patch, with the limit
+/// `t_max`. New shapes add variants (hence `non_exhaustive`).
 #[derive(Clone, Copy, Debug, PartialEq)]
 #[non_exhaustive]
 pub enum Case<V: Vector> {
@@ -27,6 +27,12 @@ pub enum Case<V: Vector> {
     Sphere(Ray<V>, Sphere<V>, V::Scalar),
     /// Ray/disc (both circles closed, two-sided), `0 < t <= t_max`.
     Disc(Ray<V>, Disc<V>, V::Scalar),
+    /// Ray/quad (its two closed triangles `a, b, c` and `a, c, d`,
+    /// two-sided), the nearer crossing in `0 < t <= t_max`.
+    Quad(Ray<V>, Quad<V>, V::Scalar),
+    /// Ray/bilinear patch (closed, two-sided), the nearest crossing in `0
+    /// < t <= t_max`.
+    Patch(Ray<V>, Patch<V>, V::Scalar),
 }
 
 /// What a kernel answered for a [`Case`]; one variant per shape (new
@@ -72,6 +78,30 @@ pub enum Claim<F> {
         /// Claimed side: [`Side::Front`] arriving against the normal.
         side: Side,
     },
+    /// A quad hit: `t` and the place on the quad, as
+    /// [`QuadHit`](crate::QuadHit) gives it (`a` at `(0, 0)`, `b` at `(1,
+    /// 0)`, `c` at `(1, 1)`, `d` at `(0, 1)`, linear on each triangle).
+    Quad {
+        /// Claimed `t`.
+        t: F,
+        /// Claimed `u`.
+        u: F,
+        /// Claimed `v`.
+        v: F,
+    },
+    /// A bilinear patch hit: `t`, the place `(u, v)` and the side, as
+    /// [`PatchHit`](crate::PatchHit) gives them.
+    Patch {
+        /// Claimed `t`.
+        t: F,
+        /// Claimed `u` (along `p00 -> p10`).
+        u: F,
+        /// Claimed `v` (along `p00 -> p01`).
+        v: F,
+        /// Claimed side: [`Side::Front`] where `dir . (dP/du x dP/dv) <=
+        /// 0`.
+        side: Side,
+    },
 }
 
 impl<F> Claim<F> {
@@ -114,14 +144,14 @@ pub enum Field {
     Enter,
     /// Box exit.
     Exit,
-    /// Triangle, plane, sphere or disc `t`.
+    /// Triangle, plane, sphere, disc, quad or patch `t`.
     T,
-    /// Triangle `u`.
+    /// Triangle, quad or patch `u`.
     U,
-    /// Triangle `v`.
+    /// Triangle, quad or patch `v`.
     V,
-    /// Sphere or disc side (entering or leaving the ball, arriving
-    /// against or along the normal).
+    /// Sphere, disc or patch side (entering or leaving the ball, arriving
+    /// against or along the normal, against or along the patch's normal).
     Side,
 }
 
@@ -137,12 +167,12 @@ pub struct Judgement {
     pub distance_ulps: f64,
     /// For a right hit, each claimed value's error: `t`, entry and exit in
     /// ulps of the exact value (the spacing of floats at its magnitude),
-    /// `u` and `v` in ulps of 1 (they are fractions of the triangle), a
+    /// `u` and `v` in ulps of 1 (they are fractions of the shape), a
     /// side 0 when right and infinite when wrong.
     pub errors: Vec<(Field, f64)>,
     /// The fields whose error exceeds the bound given to [`judge`], and a
-    /// wrong side whatever the bound (none for a sphere case in the `Edge`
-    /// band: see [`judge`]).
+    /// wrong side whatever the bound (none for a sphere or patch case in
+    /// the `Edge` band: see [`judge`]).
     pub outside: Vec<Field>,
 }
 
@@ -202,6 +232,16 @@ fn valid<V: Vector>(case: &Case<V>) -> bool {
                 && d.inner_radius.is_finite()
                 && t_max.partial_cmp(t_max).is_some()
         }
+        Case::Quad(ray, q, t_max) => {
+            ray.is_valid()
+                && [q.a, q.b, q.c, q.d].iter().all(|p| p.is_finite())
+                && t_max.partial_cmp(t_max).is_some()
+        }
+        Case::Patch(ray, p, t_max) => {
+            ray.is_valid()
+                && [p.p00, p.p10, p.p01, p.p11].iter().all(|p| p.is_finite())
+                && t_max.partial_cmp(t_max).is_some()
+        }
     }
 }
 
@@ -238,7 +278,13 @@ fn along<F: Scalar>(gap: f64, t: f64, t_max: F, speed: f64) -> f64 {
 ///   coordinates;
 /// - disc: the distance of the crossing from the nearer circle, or, if
 ///   smaller, the distance along the ray from it to `t = 0` or `t_max`;
-///   the outer radius counts among the coordinates.
+///   the outer radius counts among the coordinates;
+/// - quad: as the triangle, from the lines of its four edges (the
+///   diagonal is inside it), along the ray from either triangle's plane
+///   crossing;
+/// - bilinear patch: as the quad, from the lines of its four edges, along
+///   the ray from each crossing (how near a fold's two crossings are to
+///   meeting is not measured).
 #[must_use]
 pub fn distance_ulps<V: Vector>(case: &Case<V>) -> f64 {
     if !valid(case) {
@@ -254,19 +300,8 @@ pub fn distance_ulps<V: Vector>(case: &Case<V>) -> f64 {
             // Valid (checked above), so every exact value exists.
             let gap = || -> Option<f64> {
                 let ex = oracle::triangle(ray, tri)?;
-                let (o, d) = (oracle::rv(ray.origin)?, oracle::rv(ray.dir)?);
-                let corners = [oracle::rv(tri.a)?, oracle::rv(tri.b)?, oracle::rv(tri.c)?];
-                let mut gap = f64::INFINITY;
-                for k in 0..3 {
-                    let (p, q) = (&corners[k], &corners[(k + 1) % 3]);
-                    let s =
-                        oracle::dot(&oracle::cross(&oracle::sub(p, &o), &oracle::sub(q, &o)), &d);
-                    let m = oracle::cross(&d, &oracle::sub(q, p));
-                    let sine = f(&oracle::dot(&m, &m)).sqrt();
-                    if sine > 0.0 {
-                        gap = gap.min(f(&s).abs() / sine);
-                    }
-                }
+                let d = oracle::rv(ray.dir)?;
+                let mut gap = oracle::edges_gap(ray, &[tri.a, tri.b, tri.c])?;
                 if let Some(t) = &ex.t {
                     gap = along(gap, f(t), *t_max, f(&oracle::dot(&d, &d)).sqrt());
                 }
@@ -329,6 +364,37 @@ pub fn distance_ulps<V: Vector>(case: &Case<V>) -> f64 {
             let g = gap().map_or(f64::INFINITY, |g| g / oracle::ulp::<V::Scalar>(scale));
             if g.is_nan() { f64::INFINITY } else { g }
         }
+        Case::Quad(ray, q, t_max) => {
+            let scale = max_abs(&[ray.origin, q.a, q.b, q.c, q.d]);
+            let gap = || -> Option<f64> {
+                let d = oracle::rv(ray.dir)?;
+                let mut gap = oracle::edges_gap(ray, &[q.a, q.b, q.c, q.d])?;
+                let speed = f(&oracle::dot(&d, &d)).sqrt();
+                for tri in q.triangles() {
+                    if let Some(t) = oracle::triangle(ray, &tri)?.t {
+                        gap = along(gap, f(&t), *t_max, speed);
+                    }
+                }
+                Some(gap)
+            };
+            let g = gap().map_or(f64::INFINITY, |g| g / oracle::ulp::<V::Scalar>(scale));
+            if g.is_nan() { f64::INFINITY } else { g }
+        }
+        Case::Patch(ray, p, t_max) => {
+            let scale = max_abs(&[ray.origin, p.p00, p.p10, p.p01, p.p11]);
+            let gap = || -> Option<f64> {
+                let d = oracle::rv(ray.dir)?;
+                // Around the boundary: p00, p10, p11, p01.
+                let mut gap = oracle::edges_gap(ray, &[p.p00, p.p10, p.p11, p.p01])?;
+                let speed = f(&oracle::dot(&d, &d)).sqrt();
+                for c in oracle::patch(ray, p)?.crossings {
+                    gap = along(gap, c.t.to_f64(), *t_max, speed);
+                }
+                Some(gap)
+            };
+            let g = gap().map_or(f64::INFINITY, |g| g / oracle::ulp::<V::Scalar>(scale));
+            if g.is_nan() { f64::INFINITY } else { g }
+        }
     }
 }
 
@@ -360,7 +426,22 @@ pub fn distance_ulps<V: Vector>(case: &Case<V>) -> f64 {
 ///   square root;
 /// - disc ([`oracle::disc_clear`]): as the plane, the crossing more than
 ///   three times its bound from 0 and no value near underflow; the rims
-///   need no band (the crate's kernel decides them exactly).
+///   need no band (the crate's kernel decides them exactly);
+/// - quad ([`oracle::quad_clear`]): each of its two triangles decided
+///   outside the watertight test's band (no Moller-Trumbore widening: the
+///   quad is that test's answer, bit for bit), and where both are
+///   crossed, their crossings farther apart than their `t` bounds; a ray
+///   within rounding of the diagonal is `Edge`;
+/// - bilinear patch ([`oracle::patch_clear`]): a collapsed edge, the
+///   triangle's band; otherwise the line clear of each boundary edge by
+///   more than the edge function's rounding, the quadratic's discriminant
+///   farther from zero than `2^10` times its rounding, each root of a
+///   fold (zero winding number) clear of the unit square's edges by a
+///   first-order estimate of its error (times 16), and each crossing's
+///   `t` more than 16 times its certified bound from 0, `t_max` and the
+///   other crossing; in this band a correct kernel may report a line that
+///   misses, drop a crossing near the origin or an edge, or report the
+///   other crossing of a fold.
 #[must_use]
 pub fn band<V: Vector>(case: &Case<V>) -> Band {
     let clear = !valid(case)
@@ -370,6 +451,8 @@ pub fn band<V: Vector>(case: &Case<V>) -> Band {
             Case::Plane(ray, p, t_max) => oracle::plane_clear(ray, p, *t_max),
             Case::Sphere(ray, s, t_max) => oracle::sphere_clear(ray, s, *t_max),
             Case::Disc(ray, d, t_max) => oracle::disc_clear(ray, d, *t_max),
+            Case::Quad(ray, q, t_max) => oracle::quad_clear(ray, q, *t_max),
+            Case::Patch(ray, p, t_max) => oracle::patch_clear(ray, p, *t_max),
         };
     if clear { Band::Clear } else { Band::Edge }
 }
@@ -394,6 +477,17 @@ fn rel_err<F: Scalar>(claimed: F, exact: &Rational) -> f64 {
 /// distance to the bracket, never more than the true error: so the
 /// nearest float is within half an ulp).
 fn root_err<F: Scalar>(claimed: F, near: F, place: impl Fn(&Rational) -> Ordering) -> f64 {
+    root_err_in(claimed, near, place, None)
+}
+
+/// [`root_err`] in units of `unit` (`None`: ulps of `x`), to within
+/// `2^-24` of an ulp of `x`.
+fn root_err_in<F: Scalar>(
+    claimed: F,
+    near: F,
+    place: impl Fn(&Rational) -> Ordering,
+    unit: Option<f64>,
+) -> f64 {
     let (Some(c), Some(n), Some(below), Some(above)) = (
         rational(claimed),
         rational(near),
@@ -422,7 +516,7 @@ fn root_err<F: Scalar>(claimed: F, near: F, place: impl Fn(&Rational) -> Orderin
     } else {
         Rational::zero()
     };
-    f(&gap) / oracle::ulp::<F>(f(&lo))
+    f(&gap) / unit.unwrap_or_else(|| oracle::ulp::<F>(f(&lo)))
 }
 
 /// The claimed side against the exact one: 0 or infinitely wrong.
@@ -457,6 +551,39 @@ fn side_err(claimed: Side, exact: Side) -> (Field, f64) {
 /// [`Sphere`'s `hit_error`](crate::Sphere#method.hit_error) (in ulps of
 /// `t`: a few, more where the origin is close to the sphere, as `|o -
 /// c|^2 - r^2` cancels).
+///
+/// Quads are judged as triangles (the exact answer is
+/// [`ray_quad`](super::ray_quad)'s, `u` and `v` in ulps of 1), their
+/// values always held. Bilinear patches: the exact answer is the nearest
+/// crossing in `(0, t_max]` ([`ray_patch`](super::ray_patch)); its `t`,
+/// `u` and `v` are irrational in general and measured by exact
+/// comparisons (to within `2^-24` ulps, `u` and `v` in ulps of 1), and
+/// the side must be the exact one. On a patch case in the `Edge` band
+/// ([`oracle::patch_clear`]) the values are measured but not held, as for
+/// spheres: there a kernel with the crate's guarantees may report a
+/// fold's other crossing, or one just past an edge.
+///
+/// ```
+/// use rayhit::{Patch, Quad, Ray, Side, exact, glam::Vec3};
+/// use rayhit::exact::{Band, Case, Claim, Field, Verdict};
+/// // The unit square, straight down onto (0.5, 0.25) from z = 1.
+/// let quad = Quad::parallelogram(Vec3::ZERO, Vec3::X, Vec3::Y);
+/// let down = Ray::new(Vec3::new(0.5, 0.25, 1.0), -Vec3::Z);
+/// let case = Case::Quad(down, quad, f32::INFINITY);
+/// let j = exact::judge(&case, &Claim::Quad { t: 1.0, u: 0.5, v: 0.25 }, 1.0);
+/// assert_eq!((j.verdict, j.band), (Verdict::Right, Band::Clear));
+/// assert!(j.outside.is_empty());
+/// // The saddle z = x y over the unit square, down onto (0.5, 0.5): its
+/// // height there is 0.25, so t = 2.75, from the front.
+/// let saddle = Patch::new(Vec3::ZERO, Vec3::X, Vec3::Y, Vec3::new(1.0, 1.0, 1.0));
+/// let case = Case::Patch(Ray::new(Vec3::new(0.5, 0.5, 3.0), -Vec3::Z), saddle, f32::INFINITY);
+/// let right = Claim::Patch { t: 2.75, u: 0.5, v: 0.5, side: Side::Front };
+/// let j = exact::judge(&case, &right, 1.0);
+/// assert_eq!((j.verdict, j.band), (Verdict::Right, Band::Clear));
+/// assert!(j.outside.is_empty());
+/// let wrong_side = Claim::Patch { t: 2.75, u: 0.5, v: 0.5, side: Side::Back };
+/// assert_eq!(exact::judge(&case, &wrong_side, 1.0).outside, vec![Field::Side]);
+/// ```
 ///
 /// ```
 /// use rayhit::{Ray, Side, Sphere, exact, glam::Vec3};
@@ -530,6 +657,32 @@ pub fn judge<V: Vector>(case: &Case<V>, claim: &Claim<V::Scalar>, bound_ulps: f6
             }
             ex.is_some()
         }
+        Case::Quad(ray, q, t_max) => {
+            let ex = super::ray_quad(ray, q, *t_max);
+            if let (Some(ex), Claim::Quad { t, u, v }) = (&ex, claim) {
+                errors.push((Field::T, rel_err(*t, &ex.t.value)));
+                errors.push((Field::U, err_in(*u, &ex.u.value, one)));
+                errors.push((Field::V, err_in(*v, &ex.v.value, one)));
+            }
+            ex.is_some()
+        }
+        Case::Patch(ray, p, t_max) => {
+            let ex = super::patch_first(ray, p, *t_max);
+            if let (Some((c, h)), Claim::Patch { t, u, v, side }) = (&ex, claim) {
+                let (ct, cu, cv) = (&c.t, &c.u, &c.v);
+                errors.push((Field::T, root_err(*t, h.t, |y| ct.cmp_rational(y))));
+                errors.push((
+                    Field::U,
+                    root_err_in(*u, h.u, |y| cu.cmp_rational(y), Some(one)),
+                ));
+                errors.push((
+                    Field::V,
+                    root_err_in(*v, h.v, |y| cv.cmp_rational(y), Some(one)),
+                ));
+                errors.push(side_err(*side, h.side));
+            }
+            ex.is_some()
+        }
     };
     if exact_hit && claim.is_hit() && errors.is_empty() {
         // A hit of the wrong kind.
@@ -541,8 +694,9 @@ pub fn judge<V: Vector>(case: &Case<V>, claim: &Claim<V::Scalar>, bound_ulps: f6
         _ => Verdict::Right,
     };
     let band = band(case);
-    // A sphere's Edge case holds no value to the bound (see above).
-    let held = !(matches!(case, Case::Sphere(..)) && band == Band::Edge);
+    // A sphere's or patch's Edge case holds no value to the bound (see
+    // above).
+    let held = !(matches!(case, Case::Sphere(..) | Case::Patch(..)) && band == Band::Edge);
     let outside = errors
         .iter()
         .filter(|e| held && (!(e.1 <= bound_ulps) || (e.0 == Field::Side && e.1 > 0.0)))

@@ -1,5 +1,5 @@
-//! Whether a triangle case is clear of the kernels' rounding, and the
-//! float filter in front of exact arithmetic that decides the watertight
+//! Whether a triangle or quad case is clear of the kernels' rounding, and
+//! the float filter in front of exact arithmetic that decides the watertight
 //! test's clear misses: the Plucker products in `f64` with error bounds,
 //! the margin the test's edge functions are known within, and the exact
 //! expansion of a product where the bounds do not decide.
@@ -8,6 +8,8 @@ use super::triangle::{ExactTriangle, main_axis, mt_bounds, no_extra, triangle, t
 use super::values::*;
 use crate::num::exact_sign::{Expansion, scale2, two_diff};
 use crate::{Ray, Scalar, Triangle, Vector};
+use num_traits::Signed;
+use std::vec::Vec;
 
 /// The triangle case is decided outside the watertight test's rounding band
 /// widened by Moller-Trumbore's: [`triangle_decided`] with [`mt_bounds`], or
@@ -62,8 +64,77 @@ pub fn triangle_clear_watertight<V: Vector>(
     exact: &ExactTriangle,
     t_max: V::Scalar,
 ) -> bool {
-    triangle_decided(ray, tri, exact, t_max, &no_extra()).is_some()
-        || surely_outside_watertight(ray, tri)
+    // (The float filter first: it settles most misses cheaply.)
+    surely_outside_watertight(ray, tri)
+        || triangle_decided(ray, tri, exact, t_max, &no_extra()).is_some()
+}
+
+/// The quad case is decided outside the quad test's rounding band: each
+/// of the quad's two triangles (`a, b, c` and `a, c, d`) is decided
+/// outside the watertight test's band ([`triangle_clear_watertight`]),
+/// and where both are crossed in `(0, t_max]` their exact crossings are
+/// farther apart than the sum of the watertight test's bounds on their
+/// `t` at those crossings, `T_i / (1 - 3 e_i)` each (`T_i` and `e_i` the
+/// triangle's `t` and largest barycentric bound from
+/// [`Triangle`'s `hit_error`](crate::Triangle#method.hit_error) at the
+/// exact crossing).
+///
+/// Why it is sound: the quad test is the watertight triangle test on its
+/// two triangles, bit for bit, reporting the hit with the smaller
+/// computed `t` (the first where they tie), and [`ray_quad`] is the same
+/// rule on the exact crossings. Each triangle clear, each triangle's hit
+/// or miss is the exact one; where both hit, the computed `t_i` is within
+/// `T_i(t_i) <= T_i / (1 - 3 e_i)` of the exact one (the bound evaluated
+/// at the computed `t` against the exact, as [`triangle_decided`]
+/// derives), so the separation keeps the order and the quad reports the
+/// triangle the exact answer names, with its `u` and `v`. No
+/// Moller-Trumbore widening: the quad never runs that test. A ray within
+/// rounding of the diagonal, which both triangles share, is not clear
+/// (neither triangle is): there either may be reported. False when a
+/// coordinate is not finite.
+///
+/// [`ray_quad`]: crate::exact::ray_quad
+#[must_use]
+pub fn quad_clear<V: Vector>(ray: &Ray<V>, quad: &crate::Quad<V>, t_max: V::Scalar) -> bool {
+    let limit = limit(t_max);
+    let mut spans = Vec::new();
+    for tri in quad.triangles() {
+        let Some(ex) = triangle(ray, &tri) else {
+            return false;
+        };
+        if !triangle_clear_watertight(ray, &tri, &ex, t_max) {
+            return false;
+        }
+        if ex.hits(&limit) {
+            let Some(span) = t_span(ray, &tri, &ex) else {
+                return false;
+            };
+            spans.push(span);
+        }
+    }
+    match spans.as_slice() {
+        [(ta, ba), (tb, bb)] => abs(&(ta - tb)) > ba + bb,
+        _ => true,
+    }
+}
+
+/// A triangle hit's exact `t` and the width `T / (1 - 3 e)` around it
+/// within which the watertight test's computed `t` lies (see
+/// [`quad_clear`]); `None` where a bound is not finite or `3 e >= 1`.
+fn t_span<V: Vector>(ray: &Ray<V>, tri: &Triangle<V>, ex: &ExactTriangle) -> Option<(R, R)> {
+    let (te, (ue, ve)) = (ex.t.as_ref()?, ex.uv.as_ref()?);
+    let as_s = |x: &R| V::Scalar::from_f64(to_f64(x));
+    let probe = crate::TriangleHit {
+        t: as_s(te),
+        u: as_s(ue),
+        v: as_s(ve),
+        side: crate::Side::Front,
+    };
+    let err = crate::Surface::hit_error(tri, ray, &probe);
+    let (eu, ev, et) = (r(err.u)?, r(err.v)?, r(err.t)?);
+    let e = if eu > ev { eu } else { ev };
+    let room = int(1) - int(3) * e;
+    room.is_positive().then(|| (te.clone(), et / room))
 }
 
 /// Every watertight test and Moller-Trumbore miss: the line crosses the
@@ -124,6 +195,28 @@ pub fn surely_outside<V: Vector>(
 pub fn surely_outside_watertight<V: Vector>(ray: &Ray<V>, tri: &Triangle<V>) -> bool {
     surely_outside_watertight_filter(ray, tri)
         .unwrap_or_else(|| surely_outside_watertight_exact(ray, tri))
+}
+
+/// An upper bound, in `f64`, on [`edge_function_bound`]'s margin `de
+/// |d_z|` (the Plucker products' units); `None` where the computed frame
+/// overflows, an input is not finite, or the bound is not finite.
+pub(super) fn edge_margin_up<V: Vector>(ray: &Ray<V>, tri: &Triangle<V>) -> Option<f64> {
+    let m = EdgeFrame::new(ray, tri)?.margin(true);
+    m.is_finite().then_some(m)
+}
+
+/// Upper bounds, in `f64`, on how far the watertight test's computed
+/// sheared coordinates `x`, `y` of the triangle's corners are from the
+/// exact ones: the `dx = gamma(1) (m_px + m_x) + gamma(4) |s_x| m_pz` and
+/// `dy` of [`edge_function_bound`]'s derivation; `None` where the
+/// computed frame overflows, an input is not finite, or a bound is not
+/// finite.
+pub(super) fn coordinate_bound_up<V: Vector>(
+    ray: &Ray<V>,
+    tri: &Triangle<V>,
+) -> Option<(f64, f64)> {
+    let (dx, dy) = EdgeFrame::new(ray, tri)?.coordinate_errors(true);
+    (dx.is_finite() && dy.is_finite()).then_some((dx, dy))
 }
 
 /// [`surely_outside_watertight`] in exact arithmetic throughout.
@@ -444,6 +537,26 @@ impl<F: Scalar> EdgeFrame<F> {
         })
     }
 
+    /// [`edge_function_bound`]'s coordinate bounds `dx = gamma(1) (m_px +
+    /// m_x) + gamma(4) |s_x| m_pz` and `dy`, evaluated in `f64` as
+    /// [`EdgeFrame::margin`] evaluates it: at least the exact values when
+    /// `up`, at most them otherwise.
+    fn coordinate_errors(&self, up: bool) -> (f64, f64) {
+        let r = Directed::new::<F>(up);
+        let w = |x: F| x.to_f64();
+        let mpz = w(self.mpz);
+        let along = |mp: F, m: F, s: F| {
+            r.add(
+                r.mul(r.gamma(1), r.add(w(mp), w(m))),
+                r.mul(r.mul(r.gamma(4), w(s)), mpz),
+            )
+        };
+        (
+            along(self.mpx, self.mx, self.sx),
+            along(self.mpy, self.my, self.sy),
+        )
+    }
+
     /// [`edge_function_bound`]'s `de |d_z|` evaluated in `f64`: at least
     /// its exact value when `up`, at most it otherwise. The same
     /// expression, every operation rounded in that direction (`fl(x)` is
@@ -455,36 +568,61 @@ impl<F: Scalar> EdgeFrame<F> {
     /// are exact in `f64` for both precisions' `u` and `n <= 4`). Not
     /// finite where it overflows.
     pub(super) fn margin(&self, up: bool) -> f64 {
-        let round = |x: f64| {
-            if up {
-                x.next_up()
-            } else {
-                x.next_down().max(0.0)
-            }
-        };
-        let add = |a: f64, b: f64| round(a + b);
-        let mul = |a: f64, b: f64| round(a * b);
+        let r = Directed::new::<F>(up);
         let w = |x: F| x.to_f64();
-        let (mx, my, mpx, mpy, mpz) = (
-            w(self.mx),
-            w(self.my),
-            w(self.mpx),
-            w(self.mpy),
-            w(self.mpz),
-        );
-        let g = |n: u32| {
-            let nu = f64::from(n) * F::UNIT_ROUNDOFF.to_f64();
-            round(nu / (1.0 - nu))
-        };
-        let dx = add(mul(g(1), add(mpx, mx)), mul(mul(g(4), w(self.sx)), mpz));
-        let dy = add(mul(g(1), add(mpy, my)), mul(mul(g(4), w(self.sy)), mpz));
+        let (mx, my, mpz) = (w(self.mx), w(self.my), w(self.mpz));
+        let (dx, dy) = self.coordinate_errors(up);
         let m = if mx > my { mx } else { my };
-        let sum = [mul(mx, dy), mul(my, dx), mul(dx, dy)]
+        let sum = [r.mul(mx, dy), r.mul(my, dx), r.mul(dx, dy)]
             .into_iter()
-            .fold(mul(mul(g(2), mx), my), add);
-        let rounding = mul(2.0, sum);
-        let underflow = mul(mul(4.0 * F::TINY.to_f64(), add(1.0, m)), add(1.0, mpz));
-        mul(add(rounding, underflow), w(self.dz))
+            .fold(r.mul(r.mul(r.gamma(2), mx), my), |a, b| r.add(a, b));
+        let rounding = r.mul(2.0, sum);
+        let underflow = r.mul(
+            r.mul(4.0 * F::TINY.to_f64(), r.add(1.0, m)),
+            r.add(1.0, mpz),
+        );
+        r.mul(r.add(rounding, underflow), w(self.dz))
+    }
+}
+
+/// Arithmetic on non-negative `f64`s rounded one way: each result stepped
+/// a float up (`up`: at least the exact value) or down and kept from
+/// going below zero (at most it), and `gamma(n) = n u / (1 - n u)` for
+/// the unit roundoff `u` rounded likewise (see [`EdgeFrame::margin`]).
+#[derive(Clone, Copy)]
+struct Directed {
+    up: bool,
+    unit: f64,
+}
+
+impl Directed {
+    /// Rounded up (`up`) or down, with the unit roundoff of `F`.
+    fn new<F: Scalar>(up: bool) -> Self {
+        Self {
+            up,
+            unit: F::UNIT_ROUNDOFF.to_f64(),
+        }
+    }
+
+    fn round(self, x: f64) -> f64 {
+        if self.up {
+            x.next_up()
+        } else {
+            x.next_down().max(0.0)
+        }
+    }
+
+    fn add(self, a: f64, b: f64) -> f64 {
+        self.round(a + b)
+    }
+
+    fn mul(self, a: f64, b: f64) -> f64 {
+        self.round(a * b)
+    }
+
+    fn gamma(self, n: u32) -> f64 {
+        let nu = f64::from(n) * self.unit;
+        self.round(nu / (1.0 - nu))
     }
 }
 

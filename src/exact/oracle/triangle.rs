@@ -152,13 +152,50 @@ pub fn triangle<V: Vector>(ray: &Ray<V>, tri: &Triangle<V>) -> Option<ExactTrian
     })
 }
 
+/// The distance of a ray's line from the nearest of the lines through
+/// consecutive `corners` (the last back to the first), in `f64`: each
+/// `|((p - o) x (q - o)) . d| / |d x (q - p)|` computed in integers (as
+/// [`triangle`]) and divided once; infinite where every line is parallel
+/// to the ray's; `None` where a coordinate is not finite (at most 4
+/// corners).
+pub(crate) fn edges_gap<V: Vector>(ray: &Ray<V>, corners: &[V]) -> Option<f64> {
+    let w = |p: V| [p.x().to_f64(), p.y().to_f64(), p.z().to_f64()];
+    let mut points = [[0.0; 3]; 5];
+    points[0] = w(ray.origin);
+    for (slot, &c) in points[1..].iter_mut().zip(corners) {
+        *slot = w(c);
+    }
+    let dir = w(ray.dir);
+    if !points.iter().chain([&dir]).flatten().all(|x| x.is_finite()) {
+        return None;
+    }
+    let (pts, e) = integers(points);
+    let ([d], _) = integers([dir]);
+    let n = corners.len().min(4);
+    let mut gap = f64::INFINITY;
+    for k in 0..n {
+        let (p, q) = (&pts[1 + k], &pts[1 + (k + 1) % n]);
+        let s = idot(&icross(&isub(p, &pts[0]), &isub(q, &pts[0])), &d);
+        let m = icross(&d, &isub(q, p));
+        let mm = idot(&m, &m);
+        if mm.is_zero() {
+            continue;
+        }
+        // |s| / |m| in units of 2^E.
+        let ratio = to_f64(&R::new_raw(&s * &s, mm)).sqrt();
+        let exponent = i32::try_from(e).unwrap_or(0);
+        gap = gap.min(crate::num::exact_sign::scale2(ratio, exponent));
+    }
+    Some(gap)
+}
+
 /// An integer 3-vector.
-type I3 = [BigInt; 3];
+pub(super) type I3 = [BigInt; 3];
 
 /// Finite floats as integers of one scale: `(x 2^-E, E)` with `E` the
 /// smallest exponent `e` of the nonzero values written `m 2^e` with an odd
 /// integer `m` (0 when all are zero).
-fn integers<const N: usize>(points: [[f64; 3]; N]) -> ([I3; N], i64) {
+pub(super) fn integers<const N: usize>(points: [[f64; 3]; N]) -> ([I3; N], i64) {
     let parts = points.map(|p| p.map(odd_parts));
     let e = parts
         .iter()
@@ -186,15 +223,15 @@ fn odd_parts(x: f64) -> (i64, i64) {
     (i64::from(sign) * m, i64::from(e) + i64::from(zeros))
 }
 
-fn isub(a: &I3, b: &I3) -> I3 {
+pub(super) fn isub(a: &I3, b: &I3) -> I3 {
     [&a[0] - &b[0], &a[1] - &b[1], &a[2] - &b[2]]
 }
 
-fn idot(a: &I3, b: &I3) -> BigInt {
+pub(super) fn idot(a: &I3, b: &I3) -> BigInt {
     &a[0] * &b[0] + &a[1] * &b[1] + &a[2] * &b[2]
 }
 
-fn icross(a: &I3, b: &I3) -> I3 {
+pub(super) fn icross(a: &I3, b: &I3) -> I3 {
     [
         &a[1] * &b[2] - &a[2] * &b[1],
         &a[2] * &b[0] - &a[0] * &b[2],

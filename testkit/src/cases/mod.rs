@@ -9,14 +9,17 @@
 //! slab planes and in face planes, grazing rays, tiny and signed-zero
 //! direction components, thin triangles and zero-area fillers, far-away
 //! and tiny or huge scenes, far spheres of every size, discs and annuli
-//! at their circles. Values are computed in `f64` and rounded once
-//! to the precision of `V`.
+//! at their circles, quads' diagonals and folds, bilinear patches' folds,
+//! silhouettes and collapsed edges. Values are computed in `f64` and
+//! rounded once to the precision of `V`.
 
 pub mod boxes;
 pub mod cameras;
 pub mod discs;
 pub mod instances;
+pub mod patches;
 pub mod planes;
+pub mod quads;
 pub mod spheres;
 pub mod triangles;
 

@@ -62,7 +62,6 @@
 //! Cost: the exact verdict (big rationals) only on a disagreement.
 
 use arbitrary::Arbitrary;
-use rayhit::glam::DVec3;
 use rayhit::{
     EdgeRule, Intersect, Interval, Patch, PatchHit, PreparedRay, Quad, QuadHit, Ray, Scalar,
     Search, Side, Surface, Triangle, TriangleHit, Vector,
@@ -71,6 +70,7 @@ use rayhit::{
 use super::exact::r;
 use super::triangle::{frame_in_range, precondition};
 use super::{Check, Input, S, ends_near, raw, raw_vec};
+use crate::cases::patches::{bilinear, corners, direction, place};
 use crate::cases::{self, add, c};
 use crate::oracle;
 use crate::source::Source;
@@ -119,9 +119,6 @@ impl Check for PatchCheck {
         check(&case);
     }
 }
-
-/// The corners in `f64`, in the order `p00, p10, p01, p11`.
-type Corners = [[f64; 3]; 4];
 
 /// A structured case: a patch, a ray aimed at a point of it, `t_max` and
 /// ends around its crossings.
@@ -189,144 +186,6 @@ fn structured_case<V: Vector>(src: &mut Source) -> Case<V> {
         lo,
         hi,
         structured: true,
-    }
-}
-
-/// Four corners around a centre in `[-64, 64]^3`, `2^-3` to `2^3` across:
-/// a parallelogram with its fourth corner lifted off the plane (twisted,
-/// from a hair to twice its size), a saddle, four corners on a dyadic grid
-/// of `1/64` (planar or not, bow ties among them), or four points in a box.
-fn corners(src: &mut Source) -> Corners {
-    let centre = [0; 3].map(|_| src.range(-64.0, 64.0));
-    let size = src.log2_range(-3.0, 3.0);
-    let at = |q: [f64; 3]| add(centre, q);
-    match src.index(4) {
-        0 => {
-            let e1 = cases::scaled(src.direction(), size * src.range(0.25, 1.0));
-            let e2 = cases::scaled(src.direction(), size * src.range(0.25, 1.0));
-            let lift = cases::scaled(src.direction(), size * src.log2_range(-24.0, 1.0));
-            [
-                at([0.0; 3]),
-                at(e1),
-                at(e2),
-                at([0, 1, 2].map(|k| e1[k] + e2[k] + lift[k])),
-            ]
-        }
-        1 => {
-            // `z = h x y` over `[-1, 1]^2`, in a random frame.
-            let (a, b) = frame(src);
-            let n = cross(a, b);
-            let h = src.range(-2.0, 2.0);
-            let corner = |x: f64, y: f64| {
-                at([0, 1, 2].map(|k| size * (x * a[k] + y * b[k] + h * x * y * n[k])))
-            };
-            [
-                corner(-1.0, -1.0),
-                corner(1.0, -1.0),
-                corner(-1.0, 1.0),
-                corner(1.0, 1.0),
-            ]
-        }
-        2 => {
-            let mut g = || f64::from(src.below(8192) as i32 - 4096) / 64.0;
-            [0; 4].map(|_| [g(), g(), g()])
-        }
-        _ => [0; 4].map(|_| at([0; 3].map(|_| size * src.range(-1.0, 1.0)))),
-    }
-}
-
-/// Two orthonormal vectors.
-fn frame(src: &mut Source) -> ([f64; 3], [f64; 3]) {
-    let a = src.direction();
-    let m = src.direction();
-    let b = cross(a, m);
-    let len = dot(b, b).sqrt();
-    if len > 1e-3 {
-        (a, b.map(|x| x / len))
-    } else {
-        ([1.0, 0.0, 0.0], [0.0, 1.0, 0.0])
-    }
-}
-
-fn cross(a: [f64; 3], b: [f64; 3]) -> [f64; 3] {
-    [
-        a[1] * b[2] - a[2] * b[1],
-        a[2] * b[0] - a[0] * b[2],
-        a[0] * b[1] - a[1] * b[0],
-    ]
-}
-
-fn dot(a: [f64; 3], b: [f64; 3]) -> f64 {
-    a[0] * b[0] + a[1] * b[1] + a[2] * b[2]
-}
-
-/// Where to aim, `(u, v)`: a corner, a point of an edge, the interior, a
-/// dyadic point of a diagonal, around the patch, or just off an edge.
-fn place(src: &mut Source) -> (f64, f64) {
-    let end = |src: &mut Source| f64::from(src.below(2));
-    let swap = |src: &mut Source, (a, b): (f64, f64)| if src.one_in(2) { (a, b) } else { (b, a) };
-    match src.index(6) {
-        0 => (end(src), end(src)),
-        1 => {
-            let e = end(src);
-            let along = if src.one_in(2) {
-                src.unit()
-            } else {
-                f64::from(src.below(9)) / 8.0
-            };
-            swap(src, (e, along))
-        }
-        2 => (src.unit(), src.unit()),
-        3 => {
-            let k = f64::from(src.below(9)) / 8.0;
-            if src.one_in(2) { (k, k) } else { (k, 1.0 - k) }
-        }
-        4 => (src.range(-0.25, 1.25), src.range(-0.25, 1.25)),
-        _ => {
-            let off = src.log2_range(-40.0, -10.0);
-            let e = if src.one_in(2) { 1.0 + off } else { -off };
-            let along = src.unit();
-            swap(src, (e, along))
-        }
-    }
-}
-
-/// `P(u, v)` in `f64`.
-fn bilinear(p: &Corners, u: f64, v: f64) -> [f64; 3] {
-    [0, 1, 2].map(|k| {
-        (1.0 - u) * (1.0 - v) * p[0][k]
-            + u * (1.0 - v) * p[1][k]
-            + (1.0 - u) * v * p[2][k]
-            + u * v * p[3][k]
-    })
-}
-
-/// A direction: uniform (length `2^-6` to `2^6`), the crate's strategy
-/// (axis-parallel and signed zeros among them), along an axis, or grazing
-/// the tangent plane at `(u, v)` (tilted `2^-24` to `2^-8` out of it).
-fn direction(src: &mut Source, p: &Corners, u: f64, w: f64) -> [f64; 3] {
-    match src.index(4) {
-        0 => cases::scaled(src.direction(), src.pow2(-6, 6)),
-        1 => c(cases::direction::<DVec3>(src)),
-        2 => {
-            let mut d = [0.0; 3];
-            d[src.index(3)] = src.sign();
-            d
-        }
-        _ => {
-            let (u, w) = (u.clamp(0.0, 1.0), w.clamp(0.0, 1.0));
-            let du = [0, 1, 2].map(|k| (1.0 - w) * (p[1][k] - p[0][k]) + w * (p[3][k] - p[2][k]));
-            let dv = [0, 1, 2].map(|k| (1.0 - u) * (p[2][k] - p[0][k]) + u * (p[3][k] - p[1][k]));
-            let n = cross(du, dv);
-            let d = src.direction();
-            let nl = dot(n, n).sqrt();
-            if !(nl > 0.0) {
-                return d;
-            }
-            let dn = dot(d, n) / nl;
-            let tilt = src.log2_range(-24.0, -8.0) * src.sign();
-            [0, 1, 2].map(|k| d[k] - (dn - tilt) * n[k] / nl)
-        }
     }
 }
 
@@ -442,7 +301,7 @@ fn forms<V: Vector>(case: &Case<V>, patch: &Patch<V>) {
         // `t_max` form decides `t > 0` conservatively and its interval
         // form exactly: they may differ at the ends.)
         match Interval::up_to(t_max) {
-            Some(_) if collapsed_triangle(patch).is_some() => {}
+            Some(_) if oracle::collapsed_triangle(patch).is_some() => {}
             Some(w) => {
                 let up_to = search(
                     case,
@@ -491,7 +350,7 @@ fn search<V: Vector>(
 ) -> Option<PatchHit<S<V>>> {
     let hit = patch.hit(&case.ray, search);
     let again = patch.hit(prepared, search);
-    if let Some(tri) = collapsed_triangle(patch) {
+    if let Some(tri) = oracle::collapsed_triangle(patch) {
         let as_tri = tri
             .hit(&case.ray, search)
             .map(|h| (h.t.to_f64().to_bits(), h.side));
@@ -537,22 +396,6 @@ fn search<V: Vector>(
         );
     }
     hit
-}
-
-/// The triangle a patch with a collapsed edge is (`Patch`'s docs: the
-/// first collapsed edge of `p10 = p00`, `p11 = p10`, `p11 = p01`, `p01 =
-/// p00`, as the patch checks them), in the patch's winding.
-pub fn collapsed_triangle<V: Vector>(p: &Patch<V>) -> Option<Triangle<V>> {
-    let Patch { p00, p10, p01, p11 } = *p;
-    if p10 == p00 {
-        Some(Triangle::new(p00, p11, p01))
-    } else if p11 == p10 || p11 == p01 {
-        Some(Triangle::new(p00, p10, p01))
-    } else if p01 == p00 {
-        Some(Triangle::new(p00, p10, p11))
-    } else {
-        None
-    }
 }
 
 /// The four patches with a collapsed edge made from `p`'s corners (one

@@ -4,7 +4,7 @@
 
 use rayhit::exact::{self, Case, Claim, Verdict};
 use rayhit::glam::{DVec3, Vec3};
-use rayhit::{Aabb, Disc, Plane, Ray, Scalar, Sphere, Triangle, Vector};
+use rayhit::{Aabb, Disc, Patch, Plane, Quad, Ray, Scalar, Sphere, Triangle, Vector};
 use rayhit_testkit::case_count;
 use rayhit_testkit::source::Source;
 
@@ -23,6 +23,17 @@ fn raw<F: Scalar>(rng: &mut Source) -> F {
 
 fn vec<V: Vector>(rng: &mut Source) -> V {
     V::new(raw(rng), raw(rng), raw(rng))
+}
+
+/// A patch of raw corners, a quarter of the time with a collapsed edge
+/// (one corner copied onto a neighbour: the triangle it is).
+fn patch<V: Vector>(rng: &mut Source) -> Patch<V> {
+    let mut c: [V; 4] = [0; 4].map(|_| vec(rng));
+    if rng.one_in(4) {
+        let (from, to) = [(0, 1), (1, 3), (2, 3), (0, 2)][rng.index(4)];
+        c[to] = c[from];
+    }
+    Patch::new(c[0], c[1], c[2], c[3])
 }
 
 fn run<V: Vector>(n: usize) {
@@ -44,6 +55,12 @@ fn run<V: Vector>(n: usize) {
                 Disc::annulus(vec(&mut rng), vec(&mut rng), raw(&mut rng), raw(&mut rng)),
                 t_max,
             ),
+            Case::Quad(
+                ray,
+                Quad::new(vec(&mut rng), vec(&mut rng), vec(&mut rng), vec(&mut rng)),
+                t_max,
+            ),
+            Case::Patch(ray, patch(&mut rng), t_max),
         ];
         for case in &cases {
             // The exact answer, as a claim: judged right, values within half an ulp.
@@ -68,6 +85,17 @@ fn run<V: Vector>(n: usize) {
                 }),
                 Case::Disc(r, d, t) => exact::ray_disc(r, d, *t).map(|h| Claim::Disc {
                     t: h.t,
+                    side: h.side,
+                }),
+                Case::Quad(r, q, t) => exact::ray_quad(r, q, *t).map(|h| Claim::Quad {
+                    t: h.t.rounded,
+                    u: h.u.rounded,
+                    v: h.v.rounded,
+                }),
+                Case::Patch(r, p, t) => exact::ray_patch(r, p, *t).map(|h| Claim::Patch {
+                    t: h.t,
+                    u: h.u,
+                    v: h.v,
                     side: h.side,
                 }),
                 _ => unreachable!("every case built above is matched"),

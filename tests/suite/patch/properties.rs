@@ -16,9 +16,9 @@
 use rayhit::glam::{DVec3, Vec3};
 use rayhit::{EdgeRule, Intersect, Interval, Patch, PreparedRay, Ray, Scalar, Surface, Vector};
 use rayhit_testkit::case_count;
-use rayhit_testkit::rng::Pcg32;
+use rayhit_testkit::cases::patches::twisted;
+use rayhit_testkit::source::Source;
 
-use super::oracle::case;
 use crate::common::draw::S;
 
 fn scaled<V: Vector>(p: &Patch<V>, s: S<V>) -> Patch<V> {
@@ -30,13 +30,13 @@ fn pow2<F: Scalar>(k: i32) -> F {
 }
 
 fn run<V: Vector>(seed: u64) -> (usize, usize) {
-    let mut rng = Pcg32::new(seed);
+    let mut src = Source::seeded(seed);
     let inf = S::<V>::INFINITY;
     let (mut hits, mut twice) = (0, 0);
     for _ in 0..case_count(2000) {
-        let (patch, ray, w) = case::<V>(&mut rng);
+        let (patch, ray, w) = twisted::<V>(&mut src);
         // Half the time from a point of the patch itself.
-        let ray = if rng.below(2) == 0 {
+        let ray = if src.below(2) == 0 {
             Ray::new(
                 patch.point_at(S::<V>::from_f64(w[0]), S::<V>::from_f64(w[1])),
                 ray.dir,
@@ -47,7 +47,7 @@ fn run<V: Vector>(seed: u64) -> (usize, usize) {
         if !ray.is_valid() {
             continue;
         }
-        let (k, j) = (rng.below(21) as i32 - 10, rng.below(21) as i32 - 10);
+        let (k, j) = (src.below(21) as i32 - 10, src.below(21) as i32 - 10);
         let (sk, sj) = (pow2::<S<V>>(k), pow2::<S<V>>(j));
         let big = scaled(&patch, sk);
         let moved = Ray::new(ray.origin * sk, ray.dir * sj);
@@ -71,12 +71,12 @@ fn run<V: Vector>(seed: u64) -> (usize, usize) {
         // A split point among the floats around the hit, anywhere, or
         // tiny (below a crossing rounding leaves too near the origin).
         let first = patch.hit(&ray, inf);
-        let tiny = S::<V>::from_f64(10f64.powf(-3.0 - 12.0 * f64::from(rng.unit())));
-        let a = match (first, rng.below(5)) {
+        let tiny = S::<V>::from_f64(10f64.powf(-3.0 - 12.0 * src.unit()));
+        let a = match (first, src.below(5)) {
             (Some(h), 0) => h.t,
             (Some(h), 1) => h.t.next_down(),
             (Some(h), 2) => h.t * S::<V>::HALF,
-            (Some(h), 3) => h.t * S::<V>::from_f64(1.0 + 3.0 * f64::from(rng.unit())),
+            (Some(h), 3) => h.t * S::<V>::from_f64(1.0 + 3.0 * src.unit()),
             _ => tiny,
         };
         let low = patch.hit(&ray, Interval::new(S::<V>::ZERO, a).expect("valid"));

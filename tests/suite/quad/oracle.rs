@@ -1,7 +1,8 @@
 //! One quad at a time against exact arithmetic: parallelograms and planar
 //! convex quads at scales `1e-3` to `1e3` and offsets to `1e5`, rays aimed
 //! at their interiors, edges, corners and diagonals from a few to a few
-//! hundred sizes away.
+//! hundred sizes away (the corpus's generator,
+//! `rayhit_testkit::cases::quads::aimed_quad`).
 //!
 //! Every hit's `t`, `u` and `v` are within their bounds
 //! ([`Surface::hit_error`]) of the exact crossing with one triangle's
@@ -15,91 +16,16 @@
 use rayhit::exact::oracle::{R, triangle as exact_triangle};
 use rayhit::exact::{Rational, rational};
 use rayhit::glam::{DVec3, Vec3};
-use rayhit::{
-    EdgeRule, Intersect, Interval, PreparedRay, Quad, Ray, Scalar, Surface, TriangleHit, Vector,
-};
+use rayhit::{EdgeRule, Intersect, Interval, PreparedRay, Scalar, Surface, TriangleHit, Vector};
 use rayhit_testkit::case_count;
-use rayhit_testkit::rng::Pcg32;
+use rayhit_testkit::cases::quads::aimed_quad;
+use rayhit_testkit::source::Source;
 
 use super::textbook;
-use crate::common::draw::{S, signed, v};
+use crate::common::draw::S;
 
 /// Cases per precision, times `RAYHIT_CASES`.
 const CASES: usize = 1_500;
-
-/// A quad and a ray aimed at a point of it.
-struct Case<V: Vector> {
-    quad: Quad<V>,
-    ray: Ray<V>,
-    parallelogram: bool,
-}
-
-fn case<V: Vector>(rng: &mut Pcg32, k: usize) -> Case<V> {
-    let pow =
-        |rng: &mut Pcg32, lo: f64, hi: f64| 10f64.powf(lo + (hi - lo) * (signed(rng) + 1.0) / 2.0);
-    let scale = pow(rng, -3.0, 3.0);
-    let reach = [0.0, 1e2, 1e5][k % 3];
-    let centre = [0, 1, 2].map(|_| reach * signed(rng));
-    let unit = |rng: &mut Pcg32| {
-        let p = [0, 1, 2].map(|_| signed(rng));
-        let n = (p[0] * p[0] + p[1] * p[1] + p[2] * p[2]).sqrt().max(1e-3);
-        p.map(|x| x / n)
-    };
-    // Two directions in the quad's plane, not parallel.
-    let e1 = unit(rng);
-    let mut e2 = unit(rng);
-    let dot = e1[0] * e2[0] + e1[1] * e2[1] + e1[2] * e2[2];
-    e2 = [0, 1, 2].map(|i| e2[i] - 0.8 * dot * e1[i]);
-    let at = |x: f64, y: f64| -> [f64; 3] {
-        [0, 1, 2].map(|i| centre[i] + scale * (x * e1[i] + y * e2[i]))
-    };
-    let parallelogram = k.is_multiple_of(2);
-    // Corners in the plane's coordinates: the unit square, or a convex
-    // quad near it.
-    let mut corners = [(0.0, 0.0), (1.0, 0.0), (1.0, 1.0), (0.0, 1.0)];
-    if !parallelogram {
-        for c in &mut corners {
-            c.0 += 0.2 * signed(rng);
-            c.1 += 0.2 * signed(rng);
-        }
-    }
-    let to_v = |p: [f64; 3]| v::<V>(p[0], p[1], p[2]);
-    let quad = if parallelogram {
-        let (o, bu, dv) = (at(0.0, 0.0), at(1.0, 0.0), at(0.0, 1.0));
-        Quad::parallelogram(
-            to_v(o),
-            to_v([0, 1, 2].map(|i| bu[i] - o[i])),
-            to_v([0, 1, 2].map(|i| dv[i] - o[i])),
-        )
-    } else {
-        let [a, b, c, d] = corners.map(|(x, y)| to_v(at(x, y)));
-        Quad::new(a, b, c, d)
-    };
-    // The target: inside, on an edge, at a corner, or on the diagonal.
-    let (s, t) = ((signed(rng) + 1.0) / 2.0, (signed(rng) + 1.0) / 2.0);
-    let (s, t) = match rng.below(5) {
-        0 | 1 => (s, t),
-        2 => [(s, 0.0), (1.0, s), (s, 1.0), (0.0, s)][rng.below(4) as usize],
-        3 => [(0.0, 0.0), (1.0, 0.0), (1.0, 1.0), (0.0, 1.0)][rng.below(4) as usize],
-        _ => (s, s),
-    };
-    // The quad's point at (s, t), bilinearly between the corners.
-    let lerp =
-        |p: (f64, f64), q: (f64, f64), w: f64| (p.0 + w * (q.0 - p.0), p.1 + w * (q.1 - p.1));
-    let bottom = lerp(corners[0], corners[1], s);
-    let top = lerp(corners[3], corners[2], s);
-    let (x, y) = lerp(bottom, top, t);
-    let target = at(x, y);
-    let dir = unit(rng);
-    let away = pow(rng, 0.5, 2.5) * scale;
-    let origin = [0, 1, 2].map(|i| target[i] + away * dir[i]);
-    let ray = Ray::new(to_v(origin), to_v([0, 1, 2].map(|i| target[i] - origin[i])));
-    Case {
-        quad,
-        ray,
-        parallelogram,
-    }
-}
 
 /// The `t` of the nearer of two triangle hits, as the quad reports it.
 fn nearer_t<F: PartialOrd + Copy>(pair: [Option<TriangleHit<F>>; 2]) -> Option<F> {
@@ -121,17 +47,14 @@ fn within(x: &Rational, y: &R, bound: &Rational) -> bool {
 }
 
 fn check<V: Vector>() -> [usize; 5] {
-    let mut rng = Pcg32::new(0x5155_4144 + S::<V>::UNIT_ROUNDOFF.to_f64().to_bits() % 97);
+    let mut src = Source::seeded(0x5155_4144 + S::<V>::UNIT_ROUNDOFF.to_f64().to_bits() % 97);
     let inf = S::<V>::INFINITY;
     let (mut hits, mut parallelograms, mut exact_parallelogram_hits) = (0, 0, 0);
     let (mut textbook_misses, mut textbook_far, mut unbounded) = (0, 0, 0);
     let r = |x: S<V>| rational(x).expect("finite");
     for k in 0..case_count(CASES) {
-        let Case {
-            quad,
-            ray,
-            parallelogram,
-        } = case::<V>(&mut rng, k);
+        let parallelogram = k.is_multiple_of(2);
+        let (quad, ray) = aimed_quad::<V>(&mut src, parallelogram);
         let [first, second] = quad.triangles();
         let hit = quad.hit(&ray, inf);
         // The two triangles' nearer, ties to the first.
