@@ -172,7 +172,8 @@ pub struct Judgement {
     pub errors: Vec<(Field, f64)>,
     /// The fields whose error exceeds the bound given to [`judge`], and a
     /// wrong side whatever the bound (none for a sphere or patch case in
-    /// the `Edge` band: see [`judge`]).
+    /// the `Edge` band, nor for a quad's there whose triangles are both
+    /// crossed: see [`judge`]).
     pub outside: Vec<Field>,
 }
 
@@ -554,7 +555,9 @@ fn side_err(claimed: Side, exact: Side) -> (Field, f64) {
 ///
 /// Quads are judged as triangles (the exact answer is
 /// [`ray_quad`](super::ray_quad)'s, `u` and `v` in ulps of 1), their
-/// values always held. Bilinear patches: the exact answer is the nearest
+/// values held but on an `Edge` case where both triangles are crossed in
+/// `(0, t_max]` (there the nearer may be either, within rounding, with
+/// its own `u` and `v`). Bilinear patches: the exact answer is the nearest
 /// crossing in `(0, t_max]` ([`ray_patch`](super::ray_patch)); its `t`,
 /// `u` and `v` are irrational in general and measured by exact
 /// comparisons (to within `2^-24` ulps, `u` and `v` in ulps of 1), and
@@ -694,9 +697,17 @@ pub fn judge<V: Vector>(case: &Case<V>, claim: &Claim<V::Scalar>, bound_ulps: f6
         _ => Verdict::Right,
     };
     let band = band(case);
-    // A sphere's or patch's Edge case holds no value to the bound (see
-    // above).
-    let held = !(matches!(case, Case::Sphere(..) | Case::Patch(..)) && band == Band::Edge);
+    // A sphere's or patch's Edge case holds no value to the bound, nor a
+    // quad's whose two triangles are both crossed (see above).
+    let held = band == Band::Clear
+        || match case {
+            Case::Sphere(..) | Case::Patch(..) => false,
+            Case::Quad(ray, q, t_max) => q
+                .triangles()
+                .iter()
+                .any(|tri| super::ray_triangle(ray, tri, *t_max).is_none()),
+            _ => true,
+        };
     let outside = errors
         .iter()
         .filter(|e| held && (!(e.1 <= bound_ulps) || (e.0 == Field::Side && e.1 > 0.0)))

@@ -3,3 +3,4 @@
 
 mod fuzz_regressions;
 mod raw_bits;
+mod verdicts;
