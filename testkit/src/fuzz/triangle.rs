@@ -116,20 +116,24 @@ fn in_range<F: Scalar>(
 
 /// The documented precondition, decided exactly: everything finite and
 /// every corner coordinate relative to the origin below `2^63` (`f32`) or
-/// `2^511` (`f64`) in magnitude.
+/// `2^511` (`f64`) in magnitude; in `f64`, also zero or at least
+/// `2^-484` (so that the exact-sign fallback's products of two
+/// coordinates are zero or above `2^-969`, as the crate docs require; in
+/// `f32` those products are taken in `f64` and never underflow).
 pub fn precondition<V: Vector>(ray: &Ray<V>, tri: &Triangle<V>) -> bool {
     if !(ray.is_valid() && tri.a.is_finite() && tri.b.is_finite() && tri.c.is_finite()) {
         return false;
     }
-    let limit = super::exact::pow2(if S::<V>::UNIT_ROUNDOFF.to_f64() > 1e-10 {
-        63
-    } else {
-        511
-    });
+    let single = S::<V>::UNIT_ROUNDOFF.to_f64() > 1e-10;
+    let limit = super::exact::pow2(if single { 63 } else { 511 });
+    let floor = super::exact::pow2(-484);
     let o = rv(ray.origin);
-    [tri.a, tri.b, tri.c]
-        .into_iter()
-        .all(|p| sub(&rv(p), &o).iter().all(|x| abs(x) < limit))
+    [tri.a, tri.b, tri.c].into_iter().all(|p| {
+        sub(&rv(p), &o).iter().all(|x| {
+            let m = abs(x);
+            m < limit && (single || m == int(0) || m >= floor)
+        })
+    })
 }
 
 /// All single-triangle checks on one input; `detailed` adds the ones that
