@@ -206,6 +206,8 @@ mod tests {
                     let (u, v) = (f64::from(i) / 16.0, f64::from(j) / 16.0);
                     let (b, c) = collapse.weights(u, v);
                     let on_triangle = tri.a + (tri.b - tri.a) * b + (tri.c - tri.a) * c;
+                    // Both points are a dozen roundings of coordinates
+                    // below 2 (each within 2^-52 relative): under 1e-14.
                     let d = (patch.point_at(u, v) - on_triangle).abs().max_element();
                     assert!(d < 1e-14, "{collapse:?} at ({u}, {v}): {d}");
                     let (pu, pv) = collapse.place(b, c);
@@ -215,6 +217,10 @@ mod tests {
                         Collapse::U1 => 1.0 - b,
                         Collapse::V1 => 1.0 - c,
                     };
+                    // The weights carry a few roundings (about 2^-52 each);
+                    // a sum or `1 - w` reads them back to 1e-15, a
+                    // quotient divides that by its denominator (1e-12
+                    // where it exceeds 1e-3).
                     let (du, dv) = ((pu - u).abs(), (pv - v).abs());
                     match collapse {
                         Collapse::V0 | Collapse::V1 => {
