@@ -8,8 +8,10 @@ use super::Scalar;
 /// of the same expression evaluated exactly.
 ///
 /// `value` must be a sum of products of non-negative numbers (the shape of
-/// every bound in the crate), evaluated with at most `roundings` roundings
-/// along any path from an input to the result. Each rounding of a
+/// every bound in the crate), possibly divided by positive floats (each
+/// taken as exact: a lower bound, where it is a divisor), evaluated with
+/// at most `roundings` roundings along any path from an input to the
+/// result. Each rounding of a
 /// non-negative quantity can only shrink it by a factor `1 - u`, so the
 /// computed value is at least `exact * (1 - u)^roundings`. Multiplying by
 /// `c >= 1 + gamma(roundings + 1) >= (1 - u)^-(roundings + 1)` (Bernoulli)

@@ -16,7 +16,7 @@
 
 use super::Patch;
 use super::frame::{Framed, Projected, RayFrame};
-use crate::num::round::outward::{add_down, add_up, div_up, mul_up, sub_down};
+use crate::num::round::outward::{add_down, sub_down};
 use crate::num::round::{bound_up, max2};
 use crate::num::{Axis, L, Lanes, S, Scalar, Vector};
 use crate::triangle::{axis_error, depth_error};
@@ -68,6 +68,13 @@ fn max4<F: Scalar>(v: &[F; 4]) -> F {
 /// `|M^-1| = max(|m22| + |m12|, |m21| + |m11|) / |det M|`; the computed
 /// entries are within `eM = gamma(9) m` of `M`'s, and `|det M| >= |fl(det)|
 /// - gamma(2) (|m11 m22| + |m12 m21|) - eM sum |m_ij| - 2 eM^2`.
+///
+/// Rounding of the bounds themselves: each is a sum of products (and
+/// quotients by a lower bound held exactly) of non-negative values, made
+/// an upper bound once by [`bound_up`] with the depth of its longest chain
+/// of roundings (written beside it; a doubling is exact); only the two
+/// differences (`det M`'s lower bound, `1 - 4 a c beta`) and the square
+/// root below them are rounded down step by step.
 #[inline(never)]
 pub(super) fn certify<F: Scalar>(p: &Projected<F>, eq: F, ez: F, u: F, v: F) -> Certified<F> {
     let none = Certified {
@@ -76,70 +83,64 @@ pub(super) fn certify<F: Scalar>(p: &Projected<F>, eq: F, ez: F, u: F, v: F) -> 
     };
     let g = F::gamma_n;
     let (x, y, z) = (&p.x, &p.y, &p.z);
-    let mxy = {
-        let (a, b) = (max4(x), max4(y));
-        if a > b { a } else { b }
-    };
+    let mxy = max2(max4(x), max4(y));
     let mz = max4(z);
-    // Q(w): its computed residual, and a bound on the exact one.
-    let r = add_up(p.miss_at(u, v), mul_up(g(7), mxy));
     // The Jacobian: columns Q_u = (m11, m21), Q_v = (m12, m22).
     let (qu, qv) = (p.d_du(x, v), p.d_dv(x, u));
     let (ru, rv) = (p.d_du(y, v), p.d_dv(y, u));
     let (m11, m12, m21, m22) = (qu.abs(), qv.abs(), ru.abs(), rv.abs());
-    let em = mul_up(g(9), mxy);
+    // eM (1 rounding).
+    let em = g(9) * mxy;
     let det = (qu * rv - qv * ru).abs();
-    let det_err = add_up(
-        add_up(
-            mul_up(g(2), add_up(mul_up(m11, m22), mul_up(m12, m21))),
-            mul_up(em, add_up(add_up(m11, m22), add_up(m12, m21))),
-        ),
-        mul_up(mul_up(em, em), F::TWO),
+    // (5 roundings: the products' sum, times gamma(2), then two sums.)
+    let det_err = bound_up(
+        g(2) * (m11 * m22 + m12 * m21) + em * ((m11 + m22) + (m12 + m21)) + em * em * F::TWO,
+        5,
     );
     let det_lo = sub_down(det, det_err);
     if !(det_lo > F::ZERO) {
         return none;
     }
-    let rows = {
-        let (a, b) = (add_up(m22, m12), add_up(m21, m11));
-        if a > b { a } else { b }
-    };
-    let a = div_up(add_up(rows, mul_up(em, F::TWO)), det_lo);
+    let (row_u, row_v) = (m22 + m12, m11 + m21);
+    // (3: a row's sum, plus 2 eM, over det_lo.)
+    let a = bound_up((max2(row_u, row_v) + em * F::TWO) / det_lo, 3);
     // The twist, and `c >= |M^-1 k| = |adj(M) k| / |det M|`: each
     // component of `adj(M) k` (`m22 kx - m12 ky`, `m11 ky - m21 kx`) is
     // within `gamma(2)` of its products' magnitudes of the computed one,
     // and replacing the computed `M`, `k` by the exact ones (each entry
-    // within `eM`, `ek`) moves it by at most `eM (|kx| + |ky|) + (its
-    // row of |adj M|) ek + 2 eM ek`.
+    // within `eM`, `ek = eM`) moves it by at most `eM (|kx| + |ky|) + (its
+    // row of |adj M|) eM + 2 eM^2`.
     let twist_of = |c: &[F; 4]| (c[3] - c[1]) - (c[2] - c[0]);
     let (kx, ky) = (twist_of(x), twist_of(y));
-    let ek = mul_up(g(9), mxy);
     let (akx, aky) = (kx.abs(), ky.abs());
     let component = |p: F, q: F, pk: F, qk: F, row: F| {
-        let n = (p * pk - q * qk).abs();
-        let products = add_up(mul_up(p.abs(), pk.abs()), mul_up(q.abs(), qk.abs()));
-        add_up(
-            add_up(
-                add_up(n, mul_up(g(2), products)),
-                mul_up(em, add_up(akx, aky)),
-            ),
-            add_up(mul_up(row, ek), mul_up(mul_up(em, ek), F::TWO)),
-        )
+        (p * pk - q * qk).abs()
+            + g(2) * (p.abs() * pk.abs() + q.abs() * qk.abs())
+            + em * (akx + aky)
+            + row * em
+            + em * em * F::TWO
     };
-    let cu = component(rv, qv, kx, ky, add_up(m22, m12));
-    let cv = component(qu, ru, ky, kx, add_up(m11, m21));
-    let c = div_up(if cu > cv { cu } else { cv }, det_lo);
+    let cu = component(rv, qv, kx, ky, row_u);
+    let cv = component(qu, ru, ky, kx, row_v);
+    // (8: the component's 7, over det_lo.)
+    let c = bound_up(max2(cu, cv) / det_lo, 8);
     // The radius for a weight bound `s` (`S`): the smaller root of `c r^2
     // - r + a beta = 0`, `2 a beta / (1 + sqrt(1 - 4 a c beta))`, at most
     // `2 a beta`, rounded up (the square root's argument and result
-    // rounded down); `None` where `4 a c beta > 1`.
+    // rounded down); `None` where `4 a c beta > 1`. `beta` is the exact
+    // residual at `(u, v)` of the computed corners, within `gamma(7)
+    // m` of the computed one, plus `s eq`.
+    let miss = p.miss_at(u, v);
     let radius_for = |s: F| {
-        let beta = add_up(r, mul_up(s, eq));
-        let contracts = mul_up(mul_up(mul_up(a, c), beta), F::from_u32(4));
+        // (3: two products, two sums.)
+        let beta = bound_up(miss + g(7) * mxy + s * eq, 3);
+        // (2: two products; the factor 4 is exact.)
+        let contracts = bound_up(a * c * beta * F::from_u32(4), 2);
         let root = sub_down(F::ONE, contracts);
         (root >= F::ZERO).then(|| {
             let denom = add_down(F::ONE, root.sqrt().next_down());
-            div_up(mul_up(mul_up(a, beta), F::TWO), denom)
+            // (2: a product, over denom.)
+            bound_up(a * beta * F::TWO / denom, 2)
         })
     };
     // First with `S = 9/4` (for a radius up to 1/4), then with the `S`
@@ -150,19 +151,22 @@ pub(super) fn certify<F: Scalar>(p: &Projected<F>, eq: F, ez: F, u: F, v: F) -> 
         Some(r0) if r0 <= quarter => r0,
         _ => return none,
     };
-    let reach = add_up(F::ONE, mul_up(first, F::TWO));
-    let weights = mul_up(reach, reach);
+    // (2: a sum, squared.)
+    let reach = F::ONE + first * F::TWO;
+    let weights = bound_up(reach * reach, 2);
     let Some(radius) = radius_for(weights) else {
         return none;
     };
-    // The depth.
+    // The depth: its derivatives' and twist's computed values, each
+    // within `gamma(9) m_z` (7: the slope's 2, times the radius, then
+    // the sums).
     let (zu, zv) = (p.d_du(z, v).abs(), p.d_dv(z, u).abs());
-    let ez_d = mul_up(g(9), mz);
-    let slope = add_up(add_up(zu, zv), mul_up(ez_d, F::TWO));
-    let kz = add_up(twist_of(z).abs(), mul_up(g(9), mz));
+    let ez_d = g(9) * mz;
+    let slope = (zu + zv) + ez_d * F::TWO;
+    let kz = twist_of(z).abs() + ez_d;
     let t = bound_up(
-        slope * radius + (kz * radius) * radius + weights * ez + g(7) * mz,
-        4,
+        slope * radius + kz * radius * radius + weights * ez + g(7) * mz,
+        7,
     );
     if !(t.is_finite() && radius.is_finite()) {
         return none;
