@@ -129,6 +129,9 @@ pub trait Lanes: Copy + Debug + Send + Sync + 'static {
     fn lt4(self, o: Self) -> u32;
     /// Bit `k` set when `self[k] <= o[k]` (false for NaN), for `k` in 0..4.
     fn le4(self, o: Self) -> u32;
+    /// Bit `k` set when `self[k] == o[k]` (false for NaN; `-0 == +0`),
+    /// for `k` in 0..4.
+    fn eq4(self, o: Self) -> u32;
 }
 
 /// Eight lanes of a scalar type: one lane per shape of a batch. The same

@@ -110,7 +110,7 @@ pub(super) fn certify<F: Scalar>(p: &Projected<F>, eq: F, ez: F, u: F, v: F) -> 
     // and replacing the computed `M`, `k` by the exact ones (each entry
     // within `eM`, `ek = eM`) moves it by at most `eM (|kx| + |ky|) + (its
     // row of |adj M|) eM + 2 eM^2`.
-    let twist_of = |c: &[F; 4]| (c[3] - c[1]) - (c[2] - c[0]);
+    let twist_of = |c: &[F; 4]| (c[2] - c[1]) - (c[3] - c[0]);
     let (kx, ky) = (twist_of(x), twist_of(y));
     let (akx, aky) = (kx.abs(), ky.abs());
     let component = |p: F, q: F, pk: F, qk: F, row: F| {
@@ -240,8 +240,7 @@ fn corner_errors<V: Vector>(
     patch: &Patch<V>,
     p: &Projected<S<V>>,
 ) -> (S<V>, S<V>) {
-    let Patch { p00, p10, p01, p11 } = patch;
-    let corners = |k: Axis| L::<V>::new4(p00.get(k), p10.get(k), p11.get(k), p01.get(k));
+    let corners = |k: Axis| patch.boundary_lanes(k);
     let [ox, oy, oz] = *r.origin_lanes;
     let [kx, ky, kz] = *r.axes;
     let largest = |c: [S<V>; 4]| c.iter().fold(S::<V>::ZERO, |m, &w| max2(m, w.abs()));

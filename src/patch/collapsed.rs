@@ -17,9 +17,10 @@
 //! At the apex (a quotient `0 / 0`) `u` or `v` is any value; it is `0`.
 
 use super::{Patch, PatchHit};
+use crate::num::Axis::{X, Y, Z};
 use crate::num::round::outward::{add_up, div_up, mul_up, sub_down};
 use crate::num::round::{max2, min2};
-use crate::num::{S, Scalar, Vector};
+use crate::num::{Axis, L, Lanes, S, Scalar, Vector};
 use crate::triangle::{Triangle, TriangleHit, TriangleHitError};
 
 /// Which edge collapsed.
@@ -45,20 +46,44 @@ fn ratio<F: Scalar>(a: F, s: F) -> F {
 impl<V: Vector> Patch<V> {
     /// The collapsed edge and the triangle the patch is, if an edge
     /// collapsed (the first in the order of [`Collapse`]).
-    #[inline(always)]
+    #[inline]
     pub(super) fn collapsed(&self) -> Option<(Collapse, Triangle<V>)> {
+        let corners = |k| self.boundary_lanes(k);
+        self.collapsed_at(equal_neighbours([corners(X), corners(Y), corners(Z)]))
+    }
+
+    /// [`Patch::collapsed`] from the boundary's [`equal_neighbours`].
+    #[inline(always)]
+    pub(super) fn collapsed_at(&self, equal: u32) -> Option<(Collapse, Triangle<V>)> {
         let Self { p00, p10, p01, p11 } = *self;
-        if p10 == p00 {
-            Some((Collapse::V0, Triangle::new(p00, p11, p01)))
-        } else if p11 == p10 {
-            Some((Collapse::U1, Triangle::new(p00, p10, p01)))
-        } else if p11 == p01 {
-            Some((Collapse::V1, Triangle::new(p00, p10, p01)))
-        } else if p01 == p00 {
-            Some((Collapse::U0, Triangle::new(p00, p10, p11)))
-        } else {
-            None
+        // Bit `i`: the edge from corner `i` of `00, 10, 11, 01` to the
+        // next, in the order of `Collapse`.
+        match equal.trailing_zeros() {
+            0 => Some((Collapse::V0, Triangle::new(p00, p11, p01))),
+            1 => Some((Collapse::U1, Triangle::new(p00, p10, p01))),
+            2 => Some((Collapse::V1, Triangle::new(p00, p10, p01))),
+            3 => Some((Collapse::U0, Triangle::new(p00, p10, p11))),
+            _ => None,
         }
+    }
+}
+
+/// Bit `i` set where corner `i` of the boundary (`00, 10, 11, 01`, a
+/// corner a lane, one lane set per axis in any order) equals the next in
+/// every coordinate (`-0 == +0`, as `V`'s equality).
+#[inline(always)]
+pub(super) fn equal_neighbours<L: Lanes>(axes: [L; 3]) -> u32 {
+    let [a, b, c] = axes.map(|l| l.eq4(l.roll4()));
+    a & b & c
+}
+
+impl<V: Vector> Patch<V> {
+    /// Coordinate `k` of the four corners in the boundary's order, `00,
+    /// 10, 11, 01`.
+    #[inline(always)]
+    pub(super) fn boundary_lanes(&self, k: Axis) -> L<V> {
+        let Self { p00, p10, p01, p11 } = self;
+        L::<V>::new4(p00.get(k), p10.get(k), p11.get(k), p01.get(k))
     }
 }
 

@@ -6,6 +6,7 @@
 //! coordinates with what the kernel reads off them (`v` at a root, the
 //! depth, the orientation).
 
+use super::collapsed::equal_neighbours;
 use super::{Patch, lerp};
 use crate::num::round::max2;
 use crate::num::{Axis, L, Lanes, S, Scalar, Vector};
@@ -14,7 +15,7 @@ use crate::ray::{PreparedRay, Ray, Shear};
 use crate::triangle::{Frame, edge_function};
 
 /// The patch in the ray's frame: the corners' sheared `x`, `y` and depth
-/// `z` (in units of `t`), in the order `00, 10, 01, 11`.
+/// `z` (in units of `t`), in the boundary's order `00, 10, 11, 01`.
 pub(super) struct Projected<F> {
     pub(super) x: [F; 4],
     pub(super) y: [F; 4],
@@ -30,7 +31,7 @@ impl<F: Scalar> Projected<F> {
     pub(super) fn v_at(&self, u: F) -> F {
         let (x, y) = (&self.x, &self.y);
         let (ax, ay) = (lerp(x[0], x[1], u), lerp(y[0], y[1], u));
-        let (bx, by) = (lerp(x[2], x[3], u), lerp(y[2], y[3], u));
+        let (bx, by) = (lerp(x[3], x[2], u), lerp(y[3], y[2], u));
         let (dx, dy) = (bx - ax, by - ay);
         -(ax * dx + ay * dy) / (dx * dx + dy * dy)
     }
@@ -40,8 +41,8 @@ impl<F: Scalar> Projected<F> {
     #[inline(always)]
     pub(super) fn miss_at(&self, u: F, v: F) -> F {
         let (x, y) = (&self.x, &self.y);
-        let px = lerp(lerp(x[0], x[1], u), lerp(x[2], x[3], u), v);
-        let py = lerp(lerp(y[0], y[1], u), lerp(y[2], y[3], u), v);
+        let px = lerp(lerp(x[0], x[1], u), lerp(x[3], x[2], u), v);
+        let py = lerp(lerp(y[0], y[1], u), lerp(y[3], y[2], u), v);
         max2(px.abs(), py.abs())
     }
 
@@ -49,7 +50,7 @@ impl<F: Scalar> Projected<F> {
     #[inline(always)]
     pub(super) fn t_at(&self, u: F, v: F) -> F {
         let z = &self.z;
-        lerp(lerp(z[0], z[1], u), lerp(z[2], z[3], u), v)
+        lerp(lerp(z[0], z[1], u), lerp(z[3], z[2], u), v)
     }
 
     /// The sign of the projected Jacobian `dq/du x dq/dv` at `(u, v)`: the
@@ -60,17 +61,17 @@ impl<F: Scalar> Projected<F> {
         self.d_du(x, v) * self.d_dv(y, u) - self.d_du(y, v) * self.d_dv(x, u)
     }
 
-    /// `dc/du` at `v` of the bilinear values `c` (corners `00, 10, 01,
-    /// 11`).
+    /// `dc/du` at `v` of the bilinear values `c` (corners `00, 10, 11,
+    /// 01`).
     #[inline(always)]
     pub(super) fn d_du(&self, c: &[F; 4], v: F) -> F {
-        lerp(c[1] - c[0], c[3] - c[2], v)
+        lerp(c[1] - c[0], c[2] - c[3], v)
     }
 
     /// `dc/dv` at `u`.
     #[inline(always)]
     pub(super) fn d_dv(&self, c: &[F; 4], u: F) -> F {
-        lerp(c[2] - c[0], c[3] - c[1], u)
+        lerp(c[3] - c[0], c[2] - c[1], u)
     }
 }
 
@@ -184,6 +185,9 @@ pub(super) struct CornerLanes<V: Vector> {
     pub(super) x: L<V>,
     pub(super) y: L<V>,
     pub(super) z: L<V>,
+    /// The collapsed edges ([`equal_neighbours`] of the corners as
+    /// given).
+    pub(super) collapsed: u32,
 }
 
 impl<V: Vector> CornerLanes<V> {
@@ -192,18 +196,17 @@ impl<V: Vector> CornerLanes<V> {
     /// computes them.
     #[inline(always)]
     pub(super) fn new(r: &RayFrame<V>, patch: &Patch<V>) -> Self {
-        let Patch { p00, p10, p01, p11 } = patch;
-        let corners = |k: Axis| L::<V>::new4(p00.get(k), p10.get(k), p11.get(k), p01.get(k));
         let [sx, sy, _] = *r.shear_lanes;
         let [ox, oy, oz] = *r.origin_lanes;
-        let [kx, ky, kz] = *r.axes;
-        let pz = corners(kz).sub(oz);
-        let x = corners(kx).sub(ox).add(sx.mul(pz));
-        let y = corners(ky).sub(oy).add(sy.mul(pz));
+        let [kx, ky, kz] = r.axes.map(|k| patch.boundary_lanes(k));
+        let pz = kz.sub(oz);
+        let x = kx.sub(ox).add(sx.mul(pz));
+        let y = ky.sub(oy).add(sy.mul(pz));
         Self {
             x,
             y,
             z: pz.mul(L::<V>::splat(r.sz)),
+            collapsed: equal_neighbours([kx, ky, kz]),
         }
     }
 
@@ -252,20 +255,16 @@ impl<F: Scalar> Framed<F> {
         // The triangle test's lane `i` is the edge opposite corner `i`:
         // on `00, 10, 11` the edges 10-11, 11-00 and 00-10; on `00, 11,
         // 01` the edges 11-01, 01-00 and 00-11.
-        let (dneg, dpos) = (diag < F::ZERO, diag > F::ZERO);
-        let straddles = [
-            ((neg & 0b0011 != 0) | dpos) & ((pos & 0b0011 != 0) | dneg),
-            ((neg & 0b1100 != 0) | dneg) & ((pos & 0b1100 != 0) | dpos),
-        ];
+        // Bits 4 and 5: the diagonal as the first triangle's edge (`11` to
+        // `00`) and as the second's (`00` to `11`).
+        let (dneg, dpos) = (u32::from(diag < F::ZERO), u32::from(diag > F::ZERO));
+        let (neg, pos) = (neg | dpos << 4 | dneg << 5, pos | dneg << 4 | dpos << 5);
+        let both = |edges: u32| neg & edges != 0 && pos & edges != 0;
+        let straddles = [both(0b01_0011), both(0b10_1100)];
         Self {
             e1: [e[1], -diag, e[0]],
             e2: [e[2], e[3], diag],
-            // Corners 00, 10, 01, 11.
-            p: Projected {
-                x: [x[0], x[1], x[3], x[2]],
-                y: [y[0], y[1], y[3], y[2]],
-                z: [z[0], z[1], z[3], z[2]],
-            },
+            p: Projected { x, y, z },
             straddles,
         }
     }

@@ -247,15 +247,15 @@ fn lerp_v<V: Vector>(a: V, b: V, w: S<V>) -> V {
 /// boundary. The ends are decided on the computed `t`, and `t > 0`
 /// conservatively besides: every corner in front of the origin, or `t`
 /// above its certified bound.
-#[inline]
+#[inline(always)]
 fn patch_hit<V: Vector>(
     r: &RayFrame<V>,
     patch: &Patch<V>,
+    c: &CornerLanes<V>,
     (lo, hi): (S<V>, S<V>),
     rule: EdgeRule,
 ) -> Option<PatchHit<S<V>>> {
     let (zero, one) = (S::<V>::ZERO, S::<V>::ONE);
-    let c = CornerLanes::new(r, patch);
     let lanes_zero = L::<V>::splat(zero);
     // No corner in front: every crossing is at t <= 0.
     let front = lanes_zero.lt4(c.z);
@@ -263,13 +263,13 @@ fn patch_hit<V: Vector>(
         return None;
     }
     // A corner that is not finite, or whose coordinates in the ray's
-    // frame overflow: nothing is hit.
-    let max = L::<V>::splat(S::<V>::MAX);
-    let finite = |l: L<V>| l.abs().le4(max) == 0b1111;
-    if !(finite(c.x) && finite(c.y) && finite(c.z)) {
+    // frame overflow: nothing is hit. (`w - w` is zero for a finite `w`,
+    // NaN for an infinity or NaN, and a sum with a NaN is NaN.)
+    let (x, y, z) = (c.x, c.y, c.z);
+    if x.sub(x).add(y.sub(y)).add(z.sub(z)).eq4(lanes_zero) != 0b1111 {
         return None;
     }
-    let fr = Framed::new(&c);
+    let fr = Framed::new(c);
     let p = &fr.p;
     // The closed rule's common miss: neither triangle covers the ray (its
     // edge functions straddle zero, whatever the exact sign of one that
@@ -321,7 +321,7 @@ fn patch_hit<V: Vector>(
     let (x, y) = (&p.x, &p.y);
     let b0 = -fr.e2[1];
     let b2 = fr.e1[0];
-    let b1 = (fr.e2[2] + (x[1] * y[2] - y[1] * x[2])) * S::<V>::HALF;
+    let b1 = (fr.e2[2] + (x[1] * y[3] - y[1] * x[3])) * S::<V>::HALF;
     // Scaled by the power of two that brings the largest into [1, 2)
     // (exactly), so that squaring them neither overflows nor underflows
     // (they are squares of coordinates: the discriminant is a fourth
@@ -539,10 +539,6 @@ impl<V: Vector> Intersect<V> for Patch<V> {
     #[inline]
     fn hit(&self, ray: &impl RayForm<V>, search: impl Into<Search<S<V>>>) -> Option<Self::Hit> {
         let search = search.into();
-        // A collapsed edge: the triangle it became.
-        if let Some((collapse, tri)) = self.collapsed() {
-            return tri.hit(ray, search).map(|h| collapse.hit(h));
-        }
         let ends = match search.range {
             Range::UpTo(t_max) => t_max_ok(t_max).then_some((S::<V>::ZERO, t_max))?,
             Range::Within(interval) => interval.ends(),
@@ -565,7 +561,12 @@ impl<V: Vector> Intersect<V> for Patch<V> {
                 RayFrame::prepared(p)
             }
         };
-        patch_hit(&r, self, ends, search.edges)
+        let c = CornerLanes::new(&r, self);
+        // A collapsed edge: the triangle it became.
+        if let Some((collapse, tri)) = self.collapsed_at(c.collapsed) {
+            return tri.hit(ray, search).map(|h| collapse.hit(h));
+        }
+        patch_hit(&r, self, &c, ends, search.edges)
     }
 
     /// Whether the patch is crossed within `search`.

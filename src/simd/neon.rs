@@ -224,6 +224,11 @@ impl Lanes for F32x4 {
         // SAFETY: see the module docs (NEON, no memory access).
         unsafe { vaddvq_u32(vandq_u32(vcleq_f32(self.0, o.0), from_bits(&BITS_LO))) }
     }
+    #[inline(always)]
+    fn eq4(self, o: Self) -> u32 {
+        // SAFETY: see the module docs (NEON, no memory access).
+        unsafe { vaddvq_u32(vandq_u32(vceqq_f32(self.0, o.0), from_bits(&BITS_LO))) }
+    }
 }
 
 /// Eight `f32` lanes in two NEON registers.

@@ -168,6 +168,10 @@ impl<F: Scalar> Lanes for Portable<F> {
     fn le4(self, o: Self) -> u32 {
         self.mask4(o, |a, b| a <= b)
     }
+    #[inline(always)]
+    fn eq4(self, o: Self) -> u32 {
+        self.mask4(o, |a, b| a == b)
+    }
 }
 
 /// Eight lanes as an array: the definition, and the implementation where

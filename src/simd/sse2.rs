@@ -179,6 +179,11 @@ impl Lanes for F32x4 {
         // SAFETY: see the module docs (SSE, no memory access).
         unsafe { _mm_movemask_ps(_mm_cmple_ps(self.0, o.0)) as u32 }
     }
+    #[inline(always)]
+    fn eq4(self, o: Self) -> u32 {
+        // SAFETY: see the module docs (SSE, no memory access).
+        unsafe { _mm_movemask_ps(_mm_cmpeq_ps(self.0, o.0)) as u32 }
+    }
 }
 
 /// Eight lanes in two registers: the eight-lane type of x86 targets without

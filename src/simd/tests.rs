@@ -145,6 +145,8 @@ fn four_lane_operations_match_the_definition() {
         assert_eq!(fa.le4(fb), bits(|x, y| x <= y), "{a:?} {b:?}");
         assert_eq!(pa.lt4(pb), fa.lt4(fb), "{a:?} {b:?}");
         assert_eq!(pa.le4(pb), fa.le4(fb), "{a:?} {b:?}");
+        assert_eq!(fa.eq4(fb), bits(|x, y| x == y), "{a:?} {b:?}");
+        assert_eq!(pa.eq4(pb), fa.eq4(fb), "{a:?} {b:?}");
         assert_eq!(four(pa.neg()), four(fa.neg()));
         assert_eq!(four(pa.abs()), four(fa.abs()));
         type Op<L> = fn(L, L) -> L;
