@@ -277,8 +277,9 @@ fn patch_hit<V: Vector>(
     // through it, so the projected patch, in their hull, does not reach
     // it: no fold can cross it either.
     if rule == EdgeRule::Closed && fr.straddles == [true, true] {
-        let side = |a: L<V>| lanes_zero.lt4(a) == 0b1111 || a.lt4(lanes_zero) == 0b1111;
-        if side(c.x) || side(c.y) {
+        // (`|`, not `||`: one branch, where the outcomes are a coin toss.)
+        let side = |a: L<V>| (lanes_zero.lt4(a) == 0b1111) | (a.lt4(lanes_zero) == 0b1111);
+        if side(c.x) | side(c.y) {
             return None;
         }
     }
@@ -394,7 +395,7 @@ fn patch_hit<V: Vector>(
 /// crossings between them.)
 #[inline(always)]
 fn ends<F: Scalar>(t: F, (lo, hi): (F, F)) -> bool {
-    lo < t && t <= hi && t <= F::MAX
+    (lo < t) & (t <= hi) & (t <= F::MAX)
 }
 
 /// A winding number of zero and a fold: none or two crossings, `roots`
@@ -432,11 +433,11 @@ fn two_crossings<V: Vector>(
 #[inline(always)]
 fn in_square<F: Scalar>(p: &Projected<F>, u: F) -> Option<(F, F)> {
     let (zero, one) = (F::ZERO, F::ONE);
-    if !(zero <= u && u <= one) {
+    if !((zero <= u) & (u <= one)) {
         return None;
     }
     let v = p.v_at(u);
-    (zero <= v && v <= one).then_some((u, v))
+    ((zero <= v) & (v <= one)).then_some((u, v))
 }
 
 /// The place of the single crossing where the near root's is not in the
@@ -554,12 +555,9 @@ impl<V: Vector> Intersect<V> for Patch<V> {
                 parts = RayParts::new(r);
                 RayFrame::plain(r, &parts)
             }
-            Form::Prepared(p) => {
-                if !p.is_valid() {
-                    return None;
-                }
-                RayFrame::prepared(p)
-            }
+            // (An invalid ray is prepared from `+inf`: every corner's depth
+            // comes out `-inf` or NaN, and the test below misses it.)
+            Form::Prepared(p) => RayFrame::prepared(p),
         };
         let c = CornerLanes::new(&r, self);
         // A collapsed edge: the triangle it became.

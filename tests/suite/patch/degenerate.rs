@@ -7,7 +7,9 @@
 //! crossing), and a collapsed patch's `t` the triangle's, bit for bit.
 
 use rayhit::glam::{DVec3, Vec3};
-use rayhit::{EdgeRule, Intersect, Patch, Quad, Ray, Scalar, Surface, Triangle, Vector};
+use rayhit::{
+    EdgeRule, Intersect, Patch, PreparedRay, Quad, Ray, Scalar, Surface, Triangle, Vector,
+};
 use rayhit_testkit::case_count;
 use rayhit_testkit::rng::Pcg32;
 
@@ -144,5 +146,66 @@ fn a_collapsed_edge_is_its_triangle() {
     for (hits, rays) in [collapsed::<Vec3>(73), collapsed::<DVec3>(74)] {
         println!("collapsed: {hits} hits of {rays} rays (both rules)");
         assert!(hits > rays / 4, "{hits} of {rays}");
+    }
+}
+
+/// Invalid rays, plain or prepared, hit no patch: not one the prepared
+/// stand-in (a ray from `+inf`) would reach if its origin were finite,
+/// not one with a corner at the top of the range or beyond it, not a
+/// collapsed one.
+#[test]
+fn invalid_rays_hit_no_patch() {
+    let (nan, inf, max) = (f32::NAN, f32::INFINITY, f32::MAX);
+    let bad = [
+        Ray::new(Vec3::splat(nan), Vec3::X),
+        Ray::new(Vec3::ZERO, Vec3::ZERO),
+        Ray::new(Vec3::ZERO, Vec3::new(inf, 0.0, 0.0)),
+        Ray::new(Vec3::splat(inf), Vec3::Z),
+    ];
+    let patch = |a: [f32; 3], b: [f32; 3], c: [f32; 3], d: [f32; 3]| {
+        Patch::new(a.into(), b.into(), c.into(), d.into())
+    };
+    let patches = [
+        patch(
+            [-1.0, -1.0, 1.0],
+            [1.0, -1.0, -1.0],
+            [-1.0, 1.0, -1.0],
+            [1.0, 1.0, 1.0],
+        ),
+        patch(
+            [-max, -max, max],
+            [max, -max, max],
+            [-max, max, max],
+            [max, max, max],
+        ),
+        patch(
+            [0.0, 0.0, inf],
+            [1.0, 0.0, 1.0],
+            [0.0, 1.0, 1.0],
+            [1.0, 1.0, 1.0],
+        ),
+        patch(
+            [max, max, -max],
+            [max, max, max],
+            [inf, inf, 0.0],
+            [max, max, 0.0],
+        ),
+        patch(
+            [-1.0, -1.0, 1.0],
+            [-1.0, -1.0, 1.0],
+            [-1.0, 1.0, 1.0],
+            [1.0, 1.0, 1.0],
+        ),
+    ];
+    for ray in bad {
+        let prepared = PreparedRay::new(&ray);
+        for p in &patches {
+            for rule in [EdgeRule::Closed, EdgeRule::OneHit] {
+                let search = (inf, rule);
+                assert_eq!(p.hit(&ray, search), None, "{ray:?} {p:?}");
+                assert_eq!(p.hit(&prepared, search), None, "{ray:?} {p:?}");
+                assert!(!p.occluded(&prepared, search), "{ray:?} {p:?}");
+            }
+        }
     }
 }
