@@ -280,30 +280,50 @@ pub(super) fn frames<V: Vector>(r: &RayFrame<V>, patch: &Patch<V>) -> [Frame<S<V
         .map(|tri| Frame::new(origin, &tri, &shear))
 }
 
-/// The closed rule's inside test on a triangle's edge functions (as the
-/// watertight test's: no two of opposite signs, a zero inside), and the
-/// triangle's orientation where it covers the ray; a triangle of zero
-/// area (the collapsed half of a degenerate patch) or with a NaN edge
-/// function covers nothing.
-#[inline(always)]
-pub(super) fn closed_cover<F: Scalar>(e: [F; 3], straddles: bool) -> Option<i8> {
-    if straddles {
-        return None;
-    }
-    Some(orientation_of(e)).filter(|&s| s != 0)
+/// Whether a triangle of the patch covers the ray, and how it is
+/// oriented there (its determinant's sign): `pos`, `neg`, or neither.
+/// (Flags, not an `Option` of a sign: which triangle covers the ray and
+/// from which side are coin tosses, and flags combine without branches.)
+#[derive(Clone, Copy)]
+pub(super) struct Cover {
+    pub(super) pos: bool,
+    pub(super) neg: bool,
 }
 
-/// The sign of a triangle's determinant from its inside test's edge
-/// functions (all of one sign or zero, or NaN from overflow): `1`, `-1`
-/// or `0`.
-#[inline(always)]
-pub(super) fn orientation_of<F: Scalar>(e: [F; 3]) -> i8 {
-    let det = e[0] + e[1] + e[2];
-    if det > F::ZERO {
-        1
-    } else if det < F::ZERO {
-        -1
-    } else {
-        0
+impl Cover {
+    /// Covers nothing.
+    pub(super) const NONE: Self = Self {
+        pos: false,
+        neg: false,
+    };
+
+    /// A triangle that covers the ray with the edge functions `e` (all of
+    /// one sign or zero, or NaN from overflow): its orientation is the
+    /// sign of their sum; a triangle of zero area (the collapsed half of
+    /// a degenerate patch) or with a NaN edge function covers nothing.
+    #[inline(always)]
+    pub(super) fn of<F: Scalar>(e: [F; 3]) -> Self {
+        let det = e[0] + e[1] + e[2];
+        Self {
+            pos: det > F::ZERO,
+            neg: det < F::ZERO,
+        }
+    }
+
+    /// The closed rule's inside test on a triangle's edge functions (as
+    /// the watertight test's: no two of opposite signs, a zero inside).
+    #[inline(always)]
+    pub(super) fn closed<F: Scalar>(e: [F; 3], straddles: bool) -> Self {
+        let c = Self::of(e);
+        Self {
+            pos: c.pos & !straddles,
+            neg: c.neg & !straddles,
+        }
+    }
+
+    /// Whether it covers the ray.
+    #[inline(always)]
+    pub(super) fn any(self) -> bool {
+        self.pos | self.neg
     }
 }

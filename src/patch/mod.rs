@@ -45,9 +45,7 @@ use crate::surface::SurfacePoint;
 use crate::triangle::{Frame, Side, Triangle, TriangleHitError, inside};
 
 use bounds::{normal_error, point_error};
-use frame::{
-    CornerLanes, Framed, Projected, RayFrame, RayParts, closed_cover, frames, orientation_of,
-};
+use frame::{CornerLanes, Cover, Framed, Projected, RayFrame, RayParts, frames};
 
 /// A bilinear patch: the surface `P(u, v) = (1 - u)(1 - v) p00 + u (1 -
 /// v) p10 + (1 - u) v p01 + u v p11` for `(u, v)` in the closed unit
@@ -283,19 +281,17 @@ fn patch_hit<V: Vector>(
             return None;
         }
     }
-    // Each triangle's orientation where it covers the ray.
+    // Whether each triangle covers the ray, and its orientation there.
     let (in1, in2) = match rule {
         EdgeRule::Closed => (
-            closed_cover(fr.e1, fr.straddles[0]),
-            closed_cover(fr.e2, fr.straddles[1]),
+            Cover::closed(fr.e1, fr.straddles[0]),
+            Cover::closed(fr.e2, fr.straddles[1]),
         ),
         EdgeRule::OneHit => {
             let tris = patch.triangles();
             let (ray, shear) = (r.ray(), r.shear());
             let covers = |f: &Frame<S<V>>, tri: &Triangle<V>| {
-                inside(f, rule, (ray.origin, ray.dir), &shear, tri)
-                    .map(orientation_of)
-                    .filter(|&s| s != 0)
+                inside(f, rule, (ray.origin, ray.dir), &shear, tri).map_or(Cover::NONE, Cover::of)
             };
             let [f1, f2] = frames(r, patch);
             (covers(&f1, &tris[0]), covers(&f2, &tris[1]))
@@ -304,11 +300,7 @@ fn patch_hit<V: Vector>(
     // Exactly one crossing where the boundary winds around the ray: one
     // triangle covers it, or both with one orientation (the ray on the
     // diagonal).
-    let single = match (in1, in2) {
-        (Some(a), Some(b)) => a == b,
-        (Some(_), None) | (None, Some(_)) => true,
-        (None, None) => false,
-    };
+    let single = (in1.any() | in2.any()) & !((in1.pos & in2.neg) | (in1.neg & in2.pos));
     // A winding number of zero: two crossings need a fold, where the
     // projected Jacobian (affine in u and v) takes both signs, so both
     // signs at the corners; with one sign the map is one to one and
@@ -371,17 +363,14 @@ fn patch_hit<V: Vector>(
     }
     let (u, v) = match in_square(p, near_root) {
         Some(place) => place,
-        None => off_square(p, near_root, q / a, in1.map(|_| fr.e1), fr.e2),
+        None => off_square(p, near_root, q / a, in1.any().then_some(fr.e1), fr.e2),
     };
     let t = p.t_at(u, v);
     if !(ends(t, (lo, hi)) && (ahead || t > fr.certify(r, patch, u, v).t)) {
         return None;
     }
     // The covering triangle's orientation: the crossing's, exactly.
-    let det = match in1.or(in2) {
-        Some(s) if s > 0 => one,
-        _ => -one,
-    };
+    let det = if in1.pos | in2.pos { one } else { -one };
     Some(PatchHit {
         t,
         u,
@@ -404,7 +393,7 @@ fn ends<F: Scalar>(t: F, (lo, hi): (F, F)) -> bool {
 /// of a patch of zero area, and no spurious root of a collapsed edge, can
 /// be); the nearer in range, as `(u, v, t)`. (The nearer candidate is
 /// certified first: where it holds, the farther needs no certificate.)
-#[inline(never)]
+#[inline(always)]
 fn two_crossings<V: Vector>(
     r: &RayFrame<V>,
     patch: &Patch<V>,
@@ -422,7 +411,12 @@ fn two_crossings<V: Vector>(
         [Some(a), Some(b)] if b.2 < a.2 => (Some(b), Some(a)),
         [a, b] => (a, b),
     };
+    // (With every corner ahead only the crossing's existence is in
+    // question, which a test without division settles most of the time.)
     let certified = |c: &(S<V>, S<V>, S<V>)| {
+        if ahead && fr.meets(r, patch, c.0, c.1) {
+            return true;
+        }
         let bound = fr.certify(r, patch, c.0, c.1).t;
         bound.is_finite() && (ahead || c.2 > bound)
     };
