@@ -318,7 +318,7 @@ fn corner_errors<V: Vector>(
 ) -> (S<V>, S<V>) {
     let corners = |k: Axis| patch.boundary_lanes(k);
     let [ox, oy, oz] = *r.origin_lanes;
-    let [kx, ky, kz] = *r.axes;
+    let [kx, ky, kz] = r.axes;
     let largest = |c: [S<V>; 4]| c.iter().fold(S::<V>::ZERO, |m, &w| max2(m, w.abs()));
     let translated = |k: Axis, o: L<V>| largest(corners(k).sub(o).to_array4());
     let (mpx, mpy, mpz) = (translated(kx, ox), translated(ky, oy), translated(kz, oz));

@@ -76,12 +76,11 @@ impl<F: Scalar> Projected<F> {
 }
 
 /// What a plain ray's frame computes and a prepared ray holds: its
-/// shear, the origin and the shear factors in lanes, the axis order.
+/// shear, and the origin and the shear factors in lanes.
 pub(super) struct RayParts<V: Vector> {
     shear: Shear<S<V>>,
     origin_lanes: [L<V>; 3],
     shear_lanes: [L<V>; 3],
-    axes: [Axis; 3],
 }
 
 impl<V: Vector> RayParts<V> {
@@ -92,7 +91,6 @@ impl<V: Vector> RayParts<V> {
         Self {
             origin_lanes: shear.origin_lanes(ray.origin),
             shear_lanes: shear.lanes(),
-            axes: [shear.kx, shear.ky, shear.kz],
             shear,
         }
     }
@@ -103,7 +101,7 @@ impl<V: Vector> RayParts<V> {
 pub(super) struct RayFrame<'a, V: Vector> {
     pub(super) origin_lanes: &'a [L<V>; 3],
     pub(super) shear_lanes: &'a [L<V>; 3],
-    pub(super) axes: &'a [Axis; 3],
+    pub(super) axes: [Axis; 3],
     /// The shear's `sz` (`1 / d_z`) and `d_z`.
     pub(super) sz: S<V>,
     pub(super) dz: S<V>,
@@ -120,10 +118,13 @@ impl<'a, V: Vector> RayFrame<'a, V> {
     /// The frame of a plain ray, from its parts.
     #[inline(always)]
     pub(super) fn plain(ray: &'a Ray<V>, parts: &'a RayParts<V>) -> Self {
+        // (The axes field by field: a copy of the three bytes as one
+        // piece was read back wider than it was written, which stalls.)
+        let Shear { kx, ky, kz, .. } = parts.shear;
         Self {
             origin_lanes: &parts.origin_lanes,
             shear_lanes: &parts.shear_lanes,
-            axes: &parts.axes,
+            axes: [kx, ky, kz],
             sz: parts.shear.sz,
             dz: parts.shear.dz,
             source: Source::Plain(ray, &parts.shear),
@@ -136,7 +137,7 @@ impl<'a, V: Vector> RayFrame<'a, V> {
         Self {
             origin_lanes: &ray.origin_lanes,
             shear_lanes: &ray.shear_lanes,
-            axes: &ray.axes,
+            axes: ray.axes,
             sz: ray.shear_lanes[2].x(),
             dz: ray.dir.get(ray.axes[2]),
             source: Source::Prepared(ray),
@@ -198,7 +199,11 @@ impl<V: Vector> CornerLanes<V> {
     pub(super) fn new(r: &RayFrame<V>, patch: &Patch<V>) -> Self {
         let [sx, sy, _] = *r.shear_lanes;
         let [ox, oy, oz] = *r.origin_lanes;
-        let [kx, ky, kz] = r.axes.map(|k| patch.boundary_lanes(k));
+        let (kx, ky, kz) = (
+            patch.boundary_lanes(r.axes[0]),
+            patch.boundary_lanes(r.axes[1]),
+            patch.boundary_lanes(r.axes[2]),
+        );
         let pz = kz.sub(oz);
         let x = kx.sub(ox).add(sx.mul(pz));
         let y = ky.sub(oy).add(sy.mul(pz));

@@ -274,7 +274,10 @@ fn patch_hit<V: Vector>(
     // rounds to zero) and every corner lies on one side of an axis
     // through it, so the projected patch, in their hull, does not reach
     // it: no fold can cross it either.
-    if rule == EdgeRule::Closed && fr.straddles == [true, true] {
+    // (`&` of the two, not `==` on the pair: compared as one 16-bit word,
+    // the two flags were stored a byte each and read back as a word, a
+    // store-forwarding stall on every test.)
+    if rule == EdgeRule::Closed && (fr.straddles[0] & fr.straddles[1]) {
         // (`|`, not `||`: one branch, where the outcomes are a coin toss.)
         let side = |a: L<V>| (lanes_zero.lt4(a) == 0b1111) | (a.lt4(lanes_zero) == 0b1111);
         if side(c.x) | side(c.y) {
