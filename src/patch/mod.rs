@@ -410,9 +410,11 @@ fn two_crossings<V: Vector>(
             .map(|(u, v)| (u, v, fr.p.t_at(u, v)))
             .filter(|&(_, _, t)| ends(t, range))
     };
-    let (first, second) = match roots.map(candidate) {
-        [Some(a), Some(b)] if b.2 < a.2 => (Some(b), Some(a)),
-        [a, b] => (a, b),
+    // (Each root by name: `roots.map` was a call that returned its
+    // answers through memory, read back wider than written.)
+    let (first, second) = match (candidate(roots[0]), candidate(roots[1])) {
+        (Some(a), Some(b)) if b.2 < a.2 => (Some(b), Some(a)),
+        (a, b) => (a, b),
     };
     // (With every corner ahead only the crossing's existence is in
     // question, which a test without division settles most of the time.)
