@@ -1,13 +1,13 @@
 //! Judging a claimed answer against the exact one.
 
-use core::cmp::Ordering;
+use super::measure::{err_in, rel_err, root_err, root_err_in};
 use core::fmt;
 use std::vec::Vec;
 
 use super::oracle::{self, R};
-use num_traits::{Signed, Zero};
+use num_traits::Zero;
 
-use super::{Rational, rational};
+use super::Rational;
 use crate::{Aabb, Disc, Patch, Plane, Quad, Ray, Scalar, Side, Sphere, Triangle, Vector};
 
 /// One question a kernel answers: a ray against a box, a triangle, a
@@ -458,66 +458,14 @@ pub fn band<V: Vector>(case: &Case<V>) -> Band {
     if clear { Band::Clear } else { Band::Edge }
 }
 
-/// `|claimed - exact|` in units of `unit` (a claimed non-finite value is
-/// infinitely wrong).
-fn err_in<F: Scalar>(claimed: F, exact: &Rational, unit: f64) -> f64 {
-    match rational(claimed) {
-        Some(c) => f(&(c - exact).abs()) / unit,
-        None => f64::INFINITY,
-    }
-}
-
-fn rel_err<F: Scalar>(claimed: F, exact: &Rational) -> f64 {
-    err_in(claimed, exact, oracle::ulp::<F>(f(exact)))
-}
-
-/// `|claimed - x|` in ulps of `x`, for a value `x` known by comparisons
-/// (`place`, as [`oracle::nearest_float`] takes it) whose nearest float is
-/// `near`: `x` is bracketed between the midpoints around `near`, and the
-/// bracket halved 24 times, so the error is exact to `2^-24` ulps (the
-/// distance to the bracket, never more than the true error: so the
-/// nearest float is within half an ulp).
-fn root_err<F: Scalar>(claimed: F, near: F, place: impl Fn(&Rational) -> Ordering) -> f64 {
-    root_err_in(claimed, near, place, None)
-}
-
-/// [`root_err`] in units of `unit` (`None`: ulps of `x`), to within
-/// `2^-24` of an ulp of `x`.
-fn root_err_in<F: Scalar>(
-    claimed: F,
-    near: F,
-    place: impl Fn(&Rational) -> Ordering,
-    unit: Option<f64>,
-) -> f64 {
-    let (Some(c), Some(n), Some(below), Some(above)) = (
-        rational(claimed),
-        rational(near),
-        rational(near.next_down()),
-        rational(near.next_up()),
-    ) else {
-        return f64::INFINITY;
-    };
-    let two = Rational::from_integer(2.into());
-    let (mut lo, mut hi) = ((below + &n) / &two, (n + above) / &two);
-    for _ in 0..24 {
-        let mid = (&lo + &hi) / &two;
-        match place(&mid) {
-            Ordering::Greater => lo = mid,
-            Ordering::Less => hi = mid,
-            Ordering::Equal => {
-                (lo, hi) = (mid.clone(), mid);
-                break;
-            }
-        }
-    }
-    let gap = if c < lo {
-        &lo - c
-    } else if c > hi {
-        c - &hi
-    } else {
-        Rational::zero()
-    };
-    f(&gap) / unit.unwrap_or_else(|| oracle::ulp::<F>(f(&lo)))
+/// A claimed `t`, `u`, `v` against exact ones: `t` in its own ulps, `u`
+/// and `v` in ulps of one (`one`).
+fn tuv_errors<F: Scalar>(claim: [F; 3], exact: [&Rational; 3], one: f64) -> [(Field, f64); 3] {
+    [
+        (Field::T, rel_err(claim[0], exact[0])),
+        (Field::U, err_in(claim[1], exact[1], one)),
+        (Field::V, err_in(claim[2], exact[2], one)),
+    ]
 }
 
 /// The claimed side against the exact one: 0 or infinitely wrong.
@@ -628,9 +576,8 @@ pub fn judge<V: Vector>(case: &Case<V>, claim: &Claim<V::Scalar>, bound_ulps: f6
         Case::Triangle(ray, tri, t_max) => {
             let ex = super::ray_triangle(ray, tri, *t_max);
             if let (Some(ex), Claim::Triangle { t, u, v }) = (&ex, claim) {
-                errors.push((Field::T, rel_err(*t, &ex.t.value)));
-                errors.push((Field::U, err_in(*u, &ex.u.value, one)));
-                errors.push((Field::V, err_in(*v, &ex.v.value, one)));
+                let exact = [&ex.t.value, &ex.u.value, &ex.v.value];
+                errors.extend(tuv_errors([*t, *u, *v], exact, one));
             }
             ex.is_some()
         }
@@ -663,9 +610,8 @@ pub fn judge<V: Vector>(case: &Case<V>, claim: &Claim<V::Scalar>, bound_ulps: f6
         Case::Quad(ray, q, t_max) => {
             let ex = super::ray_quad(ray, q, *t_max);
             if let (Some(ex), Claim::Quad { t, u, v }) = (&ex, claim) {
-                errors.push((Field::T, rel_err(*t, &ex.t.value)));
-                errors.push((Field::U, err_in(*u, &ex.u.value, one)));
-                errors.push((Field::V, err_in(*v, &ex.v.value, one)));
+                let exact = [&ex.t.value, &ex.u.value, &ex.v.value];
+                errors.extend(tuv_errors([*t, *u, *v], exact, one));
             }
             ex.is_some()
         }
