@@ -109,6 +109,11 @@ use frame::{CornerLanes, Cover, Framed, Projected, RayFrame, RayParts, frames};
 /// so that the edge functions do not overflow, and not so small that they
 /// underflow (above about `2^-39` in `f32`, `2^-500` in `f64`).
 ///
+/// A plain [`Ray`](crate::Ray) is sheared on each call (three
+/// divisions); for one ray against many patches, pass a
+/// [`PreparedRay`](crate::PreparedRay) (made once): the answers are the
+/// same, bit for bit.
+///
 /// ```
 /// use rayhit::{Intersect, Patch, Ray, glam::Vec3};
 /// // A saddle over the unit square: corners at heights 0, 0, 0 and 1.
