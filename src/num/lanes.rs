@@ -118,6 +118,10 @@ pub trait Lanes: Copy + Debug + Send + Sync + 'static {
     fn eq_mask(self, o: Self) -> Self::Mask;
     /// The lanes set in `a` or in `b`.
     fn or_mask(a: Self::Mask, b: Self::Mask) -> Self::Mask;
+    /// Every lane set where `b`, none where not: with [`Lanes::select`],
+    /// a choice between two registers on a flag with no branch (where
+    /// the flag is a coin toss).
+    fn mask_all(b: bool) -> Self::Mask;
     /// `a`'s lane where `m` is set, `b`'s where it is clear: the bits of
     /// one operand, unchanged (NaN payloads and zeros' signs included).
     fn select(m: Self::Mask, a: Self, b: Self) -> Self;

@@ -46,7 +46,7 @@ pub trait Bits {
     /// them in registers (a `u128` for `f32`; `f64`'s do not fit, and stay
     /// as they are).
     type Packed: Copy;
-    /// `values` and `code` (below 4) packed.
+    /// `values` and `code` (below 8) packed.
     fn pack(values: [Self::F; 3], code: u32) -> Self::Packed;
     /// The inverse of [`Bits::pack`], bit for bit.
     fn unpack(packed: Self::Packed) -> ([Self::F; 3], u32);
@@ -305,7 +305,7 @@ mod tests {
         let mut packed = std::vec::Vec::new();
         for (i, &a) in odd.iter().enumerate() {
             let values = [a, odd[(i + 1) % odd.len()], odd[(i + 2) % odd.len()]];
-            for code in 0..3 {
+            for code in 0..8 {
                 let p = F32Bits::pack(values, code);
                 let (v, c) = F32Bits::unpack(p);
                 assert_eq!((v.map(f32::to_bits), c), (values.map(f32::to_bits), code));

@@ -77,7 +77,7 @@ impl<F: Scalar> Projected<F> {
 
 /// What a plain ray's frame computes and a prepared ray holds: its
 /// shear, and the origin and the shear factors in lanes.
-pub(super) struct RayParts<V: Vector> {
+pub(crate) struct RayParts<V: Vector> {
     shear: Shear<S<V>>,
     origin_lanes: [L<V>; 3],
     shear_lanes: [L<V>; 3],
@@ -86,7 +86,7 @@ pub(super) struct RayParts<V: Vector> {
 impl<V: Vector> RayParts<V> {
     /// A plain ray's (three divisions).
     #[inline(always)]
-    pub(super) fn new(ray: &Ray<V>) -> Self {
+    pub(crate) fn new(ray: &Ray<V>) -> Self {
         let shear = Shear::new(&ray.dir);
         Self {
             origin_lanes: shear.origin_lanes(ray.origin),
@@ -98,12 +98,12 @@ impl<V: Vector> RayParts<V> {
 
 /// The ray's part of the patch's frame, borrowed from a plain ray's
 /// [`RayParts`] or from a prepared ray (nothing copied).
-pub(super) struct RayFrame<'a, V: Vector> {
+pub(crate) struct RayFrame<'a, V: Vector> {
     pub(super) origin_lanes: &'a [L<V>; 3],
     pub(super) shear_lanes: &'a [L<V>; 3],
     pub(super) axes: [Axis; 3],
     /// The shear's `sz` (`1 / d_z`) and `d_z`.
-    pub(super) sz: S<V>,
+    pub(crate) sz: S<V>,
     pub(super) dz: S<V>,
     source: Source<'a, V>,
 }
@@ -117,7 +117,7 @@ enum Source<'a, V: Vector> {
 impl<'a, V: Vector> RayFrame<'a, V> {
     /// The frame of a plain ray, from its parts.
     #[inline(always)]
-    pub(super) fn plain(ray: &'a Ray<V>, parts: &'a RayParts<V>) -> Self {
+    pub(crate) fn plain(ray: &'a Ray<V>, parts: &'a RayParts<V>) -> Self {
         // (The axes field by field: a copy of the three bytes as one
         // piece was read back wider than it was written, which stalls.)
         let Shear { kx, ky, kz, .. } = parts.shear;
@@ -133,7 +133,7 @@ impl<'a, V: Vector> RayFrame<'a, V> {
 
     /// The frame of a prepared ray, which holds it.
     #[inline(always)]
-    pub(super) fn prepared(ray: &'a PreparedRay<V>) -> Self {
+    pub(crate) fn prepared(ray: &'a PreparedRay<V>) -> Self {
         Self {
             origin_lanes: &ray.origin_lanes,
             shear_lanes: &ray.shear_lanes,
@@ -181,38 +181,61 @@ pub(super) struct Framed<F> {
 
 /// The four corners in the ray's frame, a corner a lane in the order of
 /// the boundary, `00, 10, 11, 01`: sheared `x`, `y` (as
-/// `frame_lanes_at` computes them) and the depth `z` in units of `t`.
-pub(super) struct CornerLanes<V: Vector> {
-    pub(super) x: L<V>,
-    pub(super) y: L<V>,
-    pub(super) z: L<V>,
+/// `frame_lanes_at` computes them), the translated depth `pz` (before the
+/// shear's scaling) and the depth `z` in units of `t`.
+pub(crate) struct CornerLanes<V: Vector> {
+    pub(crate) x: L<V>,
+    pub(crate) y: L<V>,
+    pub(crate) pz: L<V>,
+    pub(crate) z: L<V>,
     /// The collapsed edges ([`equal_neighbours`] of the corners as
     /// given).
     pub(super) collapsed: u32,
 }
 
 impl<V: Vector> CornerLanes<V> {
-    /// Translated, the axes in the ray's order, sheared: each corner's
+    /// The patch's corners.
+    #[inline(always)]
+    pub(super) fn new(r: &RayFrame<V>, patch: &Patch<V>) -> Self {
+        Self::of(r, |k| patch.boundary_lanes(k))
+    }
+
+    /// The four corners whose coordinate on axis `k` is `corners(k)`,
+    /// translated, the axes in the ray's order, sheared: each corner's
     /// `x` and `y` bit for bit as the triangle test's `frame_lanes_at`
     /// computes them.
     #[inline(always)]
-    pub(super) fn new(r: &RayFrame<V>, patch: &Patch<V>) -> Self {
+    pub(crate) fn of(r: &RayFrame<V>, corners: impl Fn(Axis) -> L<V>) -> Self {
         let [sx, sy, _] = *r.shear_lanes;
         let [ox, oy, oz] = *r.origin_lanes;
-        let (kx, ky, kz) = (
-            patch.boundary_lanes(r.axes[0]),
-            patch.boundary_lanes(r.axes[1]),
-            patch.boundary_lanes(r.axes[2]),
-        );
+        let (kx, ky, kz) = (corners(r.axes[0]), corners(r.axes[1]), corners(r.axes[2]));
         let pz = kz.sub(oz);
         let x = kx.sub(ox).add(sx.mul(pz));
         let y = ky.sub(oy).add(sy.mul(pz));
         Self {
             x,
             y,
+            pz,
             z: pz.mul(L::<V>::splat(r.sz)),
             collapsed: equal_neighbours([kx, ky, kz]),
         }
+    }
+
+    /// The boundary's four edge functions, lane `i` the edge from corner
+    /// `i` to corner `i + 1`: each bit for bit the triangle test's for
+    /// that edge and direction.
+    #[inline(always)]
+    pub(crate) fn edges(&self) -> L<V> {
+        self.x.mul(self.y.roll4()).sub(self.y.mul(self.x.roll4()))
+    }
+
+    /// The diagonals' edge functions, lane `i` from corner `i` to corner
+    /// `i + 2` (lane 0 from `00` to `11`, lane 2 back), as
+    /// [`CornerLanes::edges`].
+    #[inline(always)]
+    pub(crate) fn diagonals(&self) -> L<V> {
+        let (x2, y2) = (self.x.roll4().roll4(), self.y.roll4().roll4());
+        self.x.mul(y2).sub(self.y.mul(x2))
     }
 
     /// Whether the projected patch may fold over itself: its Jacobian
@@ -241,9 +264,10 @@ impl<F: Scalar> Framed<F> {
     /// neighbour runs the other way).
     #[inline(always)]
     pub(super) fn new<V: Vector<Scalar = F>>(c: &CornerLanes<V>) -> Self {
-        let edges = c.x.mul(c.y.roll4()).sub(c.y.mul(c.x.roll4()));
+        let edges = c.edges();
         let (x, y, z) = (c.x.to_array4(), c.y.to_array4(), c.z.to_array4());
         let mut e = edges.to_array4();
+        // (As lane 0 of `CornerLanes::diagonals`.)
         let mut diag = x[0] * y[2] - y[0] * x[2];
         let zero = L::<V>::splat(F::ZERO);
         let (mut neg, mut pos) = (edges.lt4(zero), zero.lt4(edges));
@@ -260,19 +284,30 @@ impl<F: Scalar> Framed<F> {
         // The triangle test's lane `i` is the edge opposite corner `i`:
         // on `00, 10, 11` the edges 10-11, 11-00 and 00-10; on `00, 11,
         // 01` the edges 11-01, 01-00 and 00-11.
-        // Bits 4 and 5: the diagonal as the first triangle's edge (`11` to
-        // `00`) and as the second's (`00` to `11`).
-        let (dneg, dpos) = (u32::from(diag < F::ZERO), u32::from(diag > F::ZERO));
-        let (neg, pos) = (neg | dpos << 4 | dneg << 5, pos | dneg << 4 | dpos << 5);
-        let both = |edges: u32| neg & edges != 0 && pos & edges != 0;
-        let straddles = [both(0b01_0011), both(0b10_1100)];
         Self {
             e1: [e[1], -diag, e[0]],
             e2: [e[2], e[3], diag],
             p: Projected { x, y, z },
-            straddles,
+            straddles: diagonal_straddles(neg, pos, diag),
         }
     }
+}
+
+/// Whether each of the triangles `00, 10, 11` and `00, 11, 01` has edge
+/// functions of both strict signs (the closed rule's miss), from the
+/// boundary's edge functions' signs (bit `i` of `neg` and `pos`: lane `i`
+/// of [`CornerLanes::edges`]) and the diagonal's edge function from `00`
+/// to `11`.
+#[inline(always)]
+fn diagonal_straddles<F: Scalar>(neg: u32, pos: u32, diag: F) -> [bool; 2] {
+    // Bits 4 and 5: the diagonal as the first triangle's edge (`11` to
+    // `00`) and as the second's (`00` to `11`).
+    let (dneg, dpos) = (u32::from(diag < F::ZERO), u32::from(diag > F::ZERO));
+    let (neg, pos) = (neg | dpos << 4 | dneg << 5, pos | dneg << 4 | dpos << 5);
+    // (`&`, not `&&`: each flag a coin toss on aimed rays, and a branch
+    // apiece where `&&` made two.)
+    let both = |edges: u32| (neg & edges != 0) & (pos & edges != 0);
+    [both(0b01_0011), both(0b10_1100)]
 }
 
 /// The patch's two triangles' frames, as `Frame::new` makes them (the

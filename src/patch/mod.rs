@@ -32,7 +32,7 @@
 
 mod bounds;
 mod collapsed;
-mod frame;
+pub(crate) mod frame;
 
 use glam::Vec3;
 

@@ -3,19 +3,23 @@
 //! triangle test so that quads and triangles sharing an edge leave no
 //! crack between them.
 
+use core::hint::select_unpredictable;
+
 use glam::Vec3;
 
 use crate::aabb::Aabb;
 use crate::num::round::min2;
 use crate::num::round::outward::{add_up, mul_up};
-use crate::num::{S, Scalar, Vector};
+use crate::num::{Axis, S, Scalar, Vector};
+use crate::num::{Bits, L, Lanes, Repr};
+use crate::patch::frame::{CornerLanes, RayFrame, RayParts};
 use crate::query::sealed::Form;
 use crate::query::{EdgeRule, Intersect, Range, RayForm, Search, Surface};
 use crate::ray::{PreparedRay, Ray, t_max_ok};
 use crate::surface::SurfacePoint;
 use crate::triangle::{
-    EveryAxis, Side, Triangle, TriangleHit, TriangleHitError, every_axis_at, finish_lanes,
-    frame_lanes_at, straddles,
+    Packed, Side, Triangle, TriangleHit, TriangleHitError, det_sign_known_at_four_corners,
+    det_sign_known_roughly_at_four_corners,
 };
 
 /// The quadrilateral with corners `a`, `b`, `c`, `d` in order around it:
@@ -115,6 +119,12 @@ impl<V: Vector> Quad<V> {
         Self::new(corner, b, b + edge_v, corner + edge_v)
     }
 
+    /// Coordinate `k` of the four corners, in the order `a, b, c, d`.
+    #[inline(always)]
+    fn corner_lanes(&self, k: Axis) -> L<V> {
+        L::<V>::new4(self.a.get(k), self.b.get(k), self.c.get(k), self.d.get(k))
+    }
+
     /// The two triangles the quad is made of: `a, b, c` and `a, c, d`.
     #[inline]
     #[must_use]
@@ -210,51 +220,209 @@ fn nearer<F: Scalar>(
     }
 }
 
-/// The closed test over a `t_max` on a prepared ray: each triangle's
-/// [`Triangle`] `hit`, bit for bit, with the corners read from the quad
-/// (no triangle built on the common path) and one test for the common
-/// miss, where both triangles' edge functions straddle zero.
+/// The closed test over a `t_max`, on a plain or a prepared ray: each
+/// triangle's [`Triangle`] `hit`, bit for bit, with the ray's shear taken
+/// once and the four corners framed once (a corner a lane, as the
+/// triangle test frames a triangle's). The common
+/// miss, where neither triangle covers the ray, leaves first; the rest
+/// finishes both triangles side by side in lanes (the first in lanes 0
+/// and 1, the second in 2 and 3) and takes the answer from the one that
+/// covers the ray with no branch (which one does is a coin toss on rays
+/// aimed at the quad, where a branch on it cost more than the lanes of
+/// the other: BENCHMARKS.md). What the triangle test leaves to its
+/// definition (an edge function of zero, a corner behind
+/// the origin, a determinant of unknown sign) and a ray both triangles
+/// cover (through the diagonal) go to [`quad_rare`]; where only the exact
+/// threshold can tell whether the determinant's sign is known (a quad
+/// small next to its distance), the test starts again out of line with
+/// `EXACT` set ([`quad_far`]), so that the common path calls nothing it
+/// returns from. The answer is packed (see [`pack`]), so that a miss and
+/// a hit differ only in its code.
 #[inline(always)]
-fn quad_lanes<V: Vector>(
-    ray: &PreparedRay<V>,
+fn quad_lanes<V: Vector, R: FramedRay<V>, const EXACT: bool>(
+    ray: &R,
     quad: &Quad<V>,
     t_max: S<V>,
-) -> Option<QuadHit<S<V>>> {
-    if !t_max_ok(t_max) {
-        return None;
+) -> Packed<S<V>> {
+    let (zero, one) = (S::<V>::ZERO, S::<V>::ONE);
+    if !(ray.valid() && t_max_ok(t_max)) {
+        return pack::<S<V>>(None);
     }
-    let frame = |c: [&V; 3]| frame_lanes_at(&ray.origin_lanes, &ray.shear_lanes, &ray.axes, c);
-    let (first, second) = (
-        frame([&quad.a, &quad.b, &quad.c]),
-        frame([&quad.a, &quad.c, &quad.d]),
+    let splat = L::<V>::splat;
+    let lanes_zero = splat(zero);
+    let parts = ray.parts();
+    let frame = R::frame(ray, &parts);
+    let c = CornerLanes::of(&frame, |k| quad.corner_lanes(k));
+    // The triangle test's edge functions, each opposite a corner: b-c, c-a
+    // and a-b on `a, b, c`; c-d, d-a and a-c on `a, c, d`; and the
+    // corners' depths.
+    let (edges, diagonals) = (c.edges(), c.diagonals());
+    let [e_ab, e_bc, e_cd, e_da] = edges.to_array4();
+    let [ac, _, ca, _] = diagonals.to_array4();
+    let [za, zb, zc, zd] = c.z.to_array4();
+    let pair = |first: S<V>, second: S<V>| L::<V>::new4(first, first, second, second);
+    let (e0, e1, e2) = (pair(e_bc, e_cd), pair(ca, e_da), pair(e_ab, ac));
+    let (z0, z1, z2) = (splat(za), pair(zb, zc), pair(zc, zd));
+    // Bit 0 for the first triangle, bit 2 for the second: whether its edge
+    // functions take both strict signs (it misses, whatever the exact sign
+    // of one that rounds to zero), or one strict sign (it covers the ray;
+    // else an edge function is zero, or NaN from overflow).
+    let (low, high) = (e0.min(e1).min(e2), e0.max(e1).max(e2));
+    let straddles = low.lt4(lanes_zero) & lanes_zero.lt4(high);
+    let strict = lanes_zero.lt4(low) | high.lt4(lanes_zero);
+    let covers = !straddles & 0b0101;
+    if covers == 0 {
+        return pack::<S<V>>(None);
+    }
+    // As the triangle test computes them (its lanes' `sum3` order).
+    let det = e0.add(e1).add(e2);
+    let t_scaled = e0.mul(z0).add(e1.mul(z1)).add(e2.mul(z2));
+    let limit = splat(t_max).mul(det);
+    let in_range = (lanes_zero.lt4(det) & lanes_zero.lt4(t_scaled) & t_scaled.le4(limit))
+        | (det.lt4(lanes_zero) & t_scaled.lt4(lanes_zero) & limit.le4(t_scaled));
+    // Every corner in front, and some corner. (A NaN depth makes `t_scaled`
+    // NaN, out of range, and its corner's coordinates NaN, so that the
+    // determinant's sign is not known: a NaN dropped by `min` or `max`
+    // changes no answer.)
+    let ahead = lanes_zero.lt4(z0.min(z1).min(z2));
+    let some_ahead = lanes_zero.lt4(z0.max(z1).max(z2));
+    let rough = det_sign_known_roughly_at_four_corners(c.x, c.y, c.pz, det);
+    let asked = covers & some_ahead;
+    let conditioned = if EXACT {
+        rough | det_sign_known_at_four_corners(c.x, c.y, c.pz, det)
+    } else if asked & !rough != 0 {
+        return quad_far(ray, quad, t_max);
+    } else {
+        rough
+    };
+    // The triangle test's rare paths: an edge function of zero, in range
+    // with a corner not in front, or a corner in front and the
+    // determinant's sign not known.
+    let unsure = !strict | (in_range & !ahead) | (some_ahead & !conditioned);
+    if (covers == 0b0101) | (covers & unsure != 0) {
+        return quad_rare(ray, quad, t_max);
+    }
+    let inv_det = splat(one).div(det);
+    let t = t_scaled.mul(inv_det);
+    // (`t > 0` makes `is_finite` the same as `t <= MAX`.)
+    let in_reach = lanes_zero.lt4(t) & t.le4(splat(min2(S::<V>::MAX, t_max)));
+    let hit = covers & in_range & in_reach;
+    // The triangle's weights, then the quad's `(u, v)`: on the first
+    // `(u1 + v1, v1)`, on the second `(u2, u2 + v2)`.
+    let (u, v) = (
+        e1.mul(inv_det).min(splat(one)),
+        e2.mul(inv_det).min(splat(one)),
     );
-    // (The triangles are built on the rare paths only.)
-    let finish = |frame, half: usize| finish_lanes(ray, frame, t_max, || quad.triangles()[half]);
-    match (straddles(first.3), straddles(second.3)) {
-        (true, true) => None,
-        (false, true) => finish(first, 0).map(|h| QuadHit::from_triangle(h, false)),
-        (true, false) => finish(second, 1).map(|h| QuadHit::from_triangle(h, true)),
-        // Both may be hit: a ray through the diagonal, or a folded quad
-        // seen edge-on.
-        (false, false) => nearer(finish(first, 0), finish(second, 1)),
+    let sum = u.add(v).min(splat(one));
+    let first_half = L::<V>::new4(zero, zero, one, one).lt_mask(splat(S::<V>::HALF));
+    let (u, v) = (
+        L::<V>::select(first_half, sum, u),
+        L::<V>::select(first_half, v, sum),
+    );
+    // The second triangle's lanes, where it is the one.
+    let second = covers & 1 == 0;
+    let take = L::<V>::mask_all(second);
+    let answer = |l: L<V>| L::<V>::select(take, l.roll4().roll4(), l).x();
+    let back = (answer(det) > zero) == (frame.sz > zero);
+    let code = 1 + u32::from(back) + 2 * u32::from(second);
+    <<S<V> as Repr>::Bits as Bits>::pack(
+        [answer(t), answer(u), answer(v)],
+        select_unpredictable(hit != 0, code, 0),
+    )
+}
+
+/// [`quad_lanes`] with the exact threshold, out of line.
+#[cold]
+#[inline(never)]
+fn quad_far<V: Vector, R: FramedRay<V>>(ray: &R, quad: &Quad<V>, t_max: S<V>) -> Packed<S<V>> {
+    quad_lanes::<V, R, true>(ray, quad, t_max)
+}
+
+/// A plain or a prepared ray, as [`quad_lanes`] reads it: whether it is
+/// valid, and its frame (a plain ray's shear computed, once per call; a
+/// prepared ray's borrowed).
+trait FramedRay<V: Vector>: RayForm<V> {
+    /// What the frame borrows from: a plain ray's shear, or nothing.
+    type Parts;
+    fn valid(&self) -> bool;
+    fn parts(&self) -> Self::Parts;
+    fn frame<'a>(&'a self, parts: &'a Self::Parts) -> RayFrame<'a, V>;
+}
+
+impl<V: Vector> FramedRay<V> for Ray<V> {
+    type Parts = RayParts<V>;
+    #[inline(always)]
+    fn valid(&self) -> bool {
+        self.is_valid()
+    }
+    #[inline(always)]
+    fn parts(&self) -> RayParts<V> {
+        RayParts::new(self)
+    }
+    #[inline(always)]
+    fn frame<'a>(&'a self, parts: &'a RayParts<V>) -> RayFrame<'a, V> {
+        RayFrame::plain(self, parts)
     }
 }
 
-/// The closed test over a `t_max` on a plain ray: each triangle's
-/// [`Triangle`] `hit` (the test on every main axis at once), bit for bit,
-/// with the ray's shear computed once for both and the corners read from
-/// the quad.
-#[inline(always)]
-fn quad_every_axis<V: Vector>(ray: &Ray<V>, quad: &Quad<V>, t_max: S<V>) -> Option<QuadHit<S<V>>> {
-    if !(ray.is_valid() && t_max_ok(t_max)) {
-        return None;
+/// (An invalid prepared ray's frame makes every edge function NaN, which
+/// the test sends to the triangles' own tests, which miss it.)
+impl<V: Vector> FramedRay<V> for PreparedRay<V> {
+    type Parts = ();
+    #[inline(always)]
+    fn valid(&self) -> bool {
+        true
     }
-    let shear = EveryAxis::new(ray);
-    let half = |c: [&V; 3], k: usize| every_axis_at(ray, &shear, c, t_max, || quad.triangles()[k]);
-    nearer(
-        half([&quad.a, &quad.b, &quad.c], 0),
-        half([&quad.a, &quad.c, &quad.d], 1),
-    )
+    #[inline(always)]
+    fn parts(&self) {}
+    #[inline(always)]
+    fn frame<'a>(&'a self, _: &'a ()) -> RayFrame<'a, V> {
+        RayFrame::prepared(self)
+    }
+}
+
+/// The closed test's rare cases: the nearer of the two triangles' hits,
+/// each the triangle's own `hit`. Out of line, its answer packed into
+/// registers (see [`pack`]).
+#[cold]
+#[inline(never)]
+fn quad_rare<V: Vector>(ray: &impl RayForm<V>, quad: &Quad<V>, t_max: S<V>) -> Packed<S<V>> {
+    let [first, second] = quad.triangles();
+    pack(nearer(first.hit(ray, t_max), second.hit(ray, t_max)))
+}
+
+/// A quad's answer packed as the triangle test's rare paths pack theirs:
+/// `t`, `u`, `v` and a code, 0 for a miss, else 1 plus the side (0 front,
+/// 1 back) plus 2 for the second triangle (the values of a miss are not
+/// read).
+#[inline(always)]
+fn pack<F: Scalar>(hit: Option<QuadHit<F>>) -> Packed<F> {
+    let (values, code) = match hit {
+        None => ([F::ZERO; 3], 0),
+        Some(h) => (
+            [h.t, h.u, h.v],
+            1 + u32::from(h.side == Side::Back) + 2 * u32::from(h.second),
+        ),
+    };
+    F::Bits::pack(values, code)
+}
+
+/// The inverse of [`pack`], bit for bit.
+#[inline(always)]
+fn unpack<F: Scalar>(packed: Packed<F>) -> Option<QuadHit<F>> {
+    let ([t, u, v], code) = F::Bits::unpack(packed);
+    let side = if code & 1 != 0 {
+        Side::Front
+    } else {
+        Side::Back
+    };
+    (code != 0).then_some(QuadHit {
+        t,
+        u,
+        v,
+        side,
+        second: code > 2,
+    })
 }
 
 /// The ray/quad test: the nearer hit of the quad's two triangles.
@@ -285,9 +453,11 @@ impl<V: Vector> Intersect<V> for Quad<V> {
     fn hit(&self, ray: &impl RayForm<V>, search: impl Into<Search<S<V>>>) -> Option<Self::Hit> {
         let search = search.into();
         match (search.edges, search.range, ray.form()) {
-            (EdgeRule::Closed, Range::UpTo(t_max), Form::Prepared(p)) => quad_lanes(p, self, t_max),
+            (EdgeRule::Closed, Range::UpTo(t_max), Form::Prepared(p)) => {
+                unpack(quad_lanes::<V, _, false>(p, self, t_max))
+            }
             (EdgeRule::Closed, Range::UpTo(t_max), Form::Plain(r)) => {
-                quad_every_axis(r, self, t_max)
+                unpack(quad_lanes::<V, _, false>(r, self, t_max))
             }
             _ => {
                 let [first, second] = self.triangles();

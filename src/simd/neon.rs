@@ -200,6 +200,11 @@ impl Lanes for F32x4 {
         unsafe { vorrq_u32(a, b) }
     }
     #[inline(always)]
+    fn mask_all(b: bool) -> uint32x4_t {
+        // SAFETY: see the module docs (NEON, no memory access).
+        unsafe { vdupq_n_u32(0u32.wrapping_sub(u32::from(b))) }
+    }
+    #[inline(always)]
     fn select(m: uint32x4_t, a: Self, b: Self) -> Self {
         Self(select(m, a.0, b.0))
     }

@@ -147,6 +147,10 @@ impl<F: Scalar> Lanes for Portable<F> {
         core::array::from_fn(|l| a[l] || b[l])
     }
     #[inline(always)]
+    fn mask_all(b: bool) -> [bool; 4] {
+        [b; 4]
+    }
+    #[inline(always)]
     fn select(m: [bool; 4], a: Self, b: Self) -> Self {
         Self(core::array::from_fn(|l| if m[l] { a.0[l] } else { b.0[l] }))
     }

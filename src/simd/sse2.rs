@@ -155,6 +155,11 @@ impl Lanes for F32x4 {
         unsafe { _mm_or_ps(a, b) }
     }
     #[inline(always)]
+    fn mask_all(b: bool) -> __m128 {
+        // SAFETY: see the module docs (SSE2, no memory access).
+        unsafe { _mm_castsi128_ps(_mm_set1_epi32(-i32::from(b))) }
+    }
+    #[inline(always)]
     fn select(m: __m128, a: Self, b: Self) -> Self {
         // SAFETY: see the module docs (SSE, no memory access).
         Self(unsafe { _mm_or_ps(_mm_and_ps(m, a.0), _mm_andnot_ps(m, b.0)) })

@@ -130,6 +130,11 @@ fn four_lane_operations_match_the_definition() {
                 F32Lanes::or_mask(fa.lt_mask(fb), fb.eq_mask(fa)),
             ),
         ];
+        let flag = a[0] < b[0];
+        let masks = masks.into_iter().chain([
+            (Portable::<f32>::mask_all(flag), F32Lanes::mask_all(flag)),
+            (Portable::<f32>::mask_all(!flag), F32Lanes::mask_all(!flag)),
+        ]);
         for (pm, fm) in masks {
             assert_eq!(
                 four(Portable::select(pm, pa, pb)),

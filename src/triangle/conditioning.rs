@@ -5,6 +5,7 @@
 //! cheaper sufficient test first (the prepared test). The interval tests
 //! ask the same threshold about each edge function ([`edge_signs_known`]).
 
+use crate::num::round::max2;
 use crate::num::{Lanes, Lanes8, Scalar};
 
 /// A sufficient condition for the determinant's sign to be known (for
@@ -48,6 +49,44 @@ where
     let k = x.abs().max(y.abs()).max(pz.abs());
     det_sign_known_roughly(W::splat(det), k) == 0b111
         || det_sign_known_at_corners_exactly(x, y, pz, det)
+}
+
+/// [`det_sign_known_roughly`] lane by lane on the determinants in `det`,
+/// each of a triangle whose corners are among the four in the lanes of
+/// `x`, `y` and `pz` (a quad's two triangles), with the largest `k_i` of
+/// all four corners: at least any three's, so a pass is a pass of
+/// [`det_sign_known_at_corners`] for the triangle. Bit `l` set where lane
+/// `l` passes.
+#[inline(always)]
+pub(crate) fn det_sign_known_roughly_at_four_corners<W: Lanes>(x: W, y: W, pz: W, det: W) -> u32
+where
+    W::F: Scalar,
+{
+    let k = x.abs().max(y.abs()).max(pz.abs());
+    // (The largest in every lane; squaring and rounding keep the order,
+    // so this is every corner's `k_i^2 200 u` tested at once.)
+    let k = k.max(k.roll4().roll4());
+    let k = k.max(k.roll4());
+    k.mul(k).mul(W::splat(rough_factor())).lt4(det.abs())
+}
+
+/// [`det_sign_known`] itself lane by lane on the determinants in `det`,
+/// with `m` and `w` the largest of the four corners in the lanes of `x`,
+/// `y` and `pz` (at least any three's, as above). (No coordinate is NaN
+/// where it is asked: a NaN coordinate makes every edge function NaN,
+/// which the quad's test leaves to the triangle test first.)
+#[inline(always)]
+pub(crate) fn det_sign_known_at_four_corners<W: Lanes>(x: W, y: W, pz: W, det: W) -> u32
+where
+    W::F: Scalar,
+{
+    let largest = |l: W| l.to_array4().into_iter().fold(W::F::ZERO, max2);
+    let (m, w) = (largest(x.abs().max(y.abs())), largest(pz.abs()));
+    det.to_array4()
+        .iter()
+        .enumerate()
+        .map(|(l, &d)| u32::from(det_sign_known(d, m, w)) << l)
+        .sum()
 }
 
 /// The cheaper sufficient test behind [`det_sign_known`], lane by lane:

@@ -34,7 +34,7 @@ pub(super) fn lanes_hit<F: Scalar, W: Lanes<F = F>>(
 /// it comes back in registers (see `crate::num::repr::Bits`). Returned
 /// through memory, the rare paths' answer made the inlined common path
 /// write its own answer through memory as well.
-pub(super) type Packed<F> = <<F as Repr>::Bits as Bits>::Packed;
+pub(crate) type Packed<F> = <<F as Repr>::Bits as Bits>::Packed;
 
 /// `hit` packed: `t`, `u`, `v` and a code, 0 for a miss, 1 for a hit from
 /// the front, 2 from the back.
@@ -117,10 +117,9 @@ pub(super) fn frame_lanes<V: Vector>(
     frame_lanes_at(origin_lanes, shear_lanes, axes, [&tri.a, &tri.b, &tri.c])
 }
 
-/// [`frame_lanes`] for the triangle with corners `a, b, c`, read where they
-/// are (a quad's corners, say, with no triangle built).
+/// [`frame_lanes`] for the triangle with corners `a, b, c`.
 #[inline(always)]
-pub(crate) fn frame_lanes_at<V: Vector>(
+fn frame_lanes_at<V: Vector>(
     origin_lanes: &[L<V>; 3],
     shear_lanes: &[L<V>; 3],
     axes: &[Axis; 3],

@@ -50,11 +50,13 @@ use crate::num::{S, Scalar, Vector};
 pub use batch::{TriangleBatch, TriangleBatchHits};
 pub use bounds::TriangleHitError;
 pub(crate) use bounds::{axis_error, depth_error};
+pub(crate) use conditioning::{
+    det_sign_known_at_four_corners, det_sign_known_roughly_at_four_corners,
+};
 pub(crate) use definition::inside;
 pub(crate) use frame::{Frame, edge_function};
-pub(crate) use lanes::frame_lanes_at;
+pub(crate) use lanes::Packed;
 pub use watertight::ray_triangle;
-pub(crate) use watertight::{EveryAxis, every_axis_at, finish_lanes, straddles};
 
 /// The triangle with corners `a`, `b`, `c`.
 ///

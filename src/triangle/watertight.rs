@@ -37,6 +37,40 @@ fn watertight<V: Vector>(
     }
 }
 
+/// The ray's part of [`watertight_every_axis`]: its origin and direction
+/// in lanes, its main axis, and the three candidate shears, lane `k`
+/// holding `-d[k+1] / d[k]`, `-d[k+2] / d[k]` and `1 / d[k]`.
+struct EveryAxis<W> {
+    o: W,
+    d: W,
+    kz: usize,
+    sx: W,
+    sy: W,
+    sz: W,
+}
+
+impl<W: Lanes> EveryAxis<W>
+where
+    W::F: Scalar,
+{
+    #[inline(always)]
+    fn new<V: Vector<Scalar = W::F>>(ray: &Ray<V>) -> Self {
+        let one = W::splat(W::F::ONE);
+        let (o, d) = (
+            W::new(ray.origin.x(), ray.origin.y(), ray.origin.z()),
+            W::new(ray.dir.x(), ray.dir.y(), ray.dir.z()),
+        );
+        Self {
+            o,
+            d,
+            kz: largest_axis(d.abs().to_array()),
+            sx: d.rot1().neg().div(d),
+            sy: d.rot2().neg().div(d),
+            sz: one.div(d),
+        }
+    }
+}
+
 /// The closed watertight test for a valid ray (not prepared) and a
 /// `t_max >= 0`, computed for all three choices of the ray's main axis at
 /// once, lane `k` being the test in the frame with `kz = k`, and decided
@@ -58,61 +92,8 @@ fn watertight_every_axis<V: Vector>(
     tri: &Triangle<V>,
     t_max: S<V>,
 ) -> Option<TriangleHit<S<V>>> {
-    every_axis_at(
-        ray,
-        &EveryAxis::new(ray),
-        [&tri.a, &tri.b, &tri.c],
-        t_max,
-        || *tri,
-    )
-}
-
-/// The ray's part of [`watertight_every_axis`]: its origin and direction
-/// in lanes, its main axis, and the three candidate shears, lane `k`
-/// holding `-d[k+1] / d[k]`, `-d[k+2] / d[k]` and `1 / d[k]`. Shared by
-/// the triangles one ray meets (a quad's two).
-pub(crate) struct EveryAxis<W> {
-    o: W,
-    d: W,
-    kz: usize,
-    sx: W,
-    sy: W,
-    sz: W,
-}
-
-impl<W: Lanes> EveryAxis<W>
-where
-    W::F: Scalar,
-{
-    #[inline(always)]
-    pub(crate) fn new<V: Vector<Scalar = W::F>>(ray: &Ray<V>) -> Self {
-        let one = W::splat(W::F::ONE);
-        let (o, d) = (
-            W::new(ray.origin.x(), ray.origin.y(), ray.origin.z()),
-            W::new(ray.dir.x(), ray.dir.y(), ray.dir.z()),
-        );
-        Self {
-            o,
-            d,
-            kz: largest_axis(d.abs().to_array()),
-            sx: d.rot1().neg().div(d),
-            sy: d.rot2().neg().div(d),
-            sz: one.div(d),
-        }
-    }
-}
-
-/// [`watertight_every_axis`] for the triangle with corners `a, b, c`, read
-/// where they are, and the ray's part computed once; `tri` builds the
-/// triangle for the rare paths only.
-#[inline(always)]
-pub(crate) fn every_axis_at<V: Vector>(
-    ray: &Ray<V>,
-    shear: &EveryAxis<L<V>>,
-    [a, b, c]: [&V; 3],
-    t_max: S<V>,
-    tri: impl Fn() -> Triangle<V>,
-) -> Option<TriangleHit<S<V>>> {
+    let shear = &EveryAxis::new(ray);
+    let [a, b, c] = [&tri.a, &tri.b, &tri.c];
     let splat = L::<V>::splat;
     let (zero, one) = (splat(S::<V>::ZERO), splat(S::<V>::ONE));
     let &EveryAxis {
@@ -141,7 +122,7 @@ pub(crate) fn every_axis_at<V: Vector>(
         return None;
     }
     if (e0.eq(zero) | e1.eq(zero) | e2.eq(zero)) & bit != 0 {
-        return definition_answer(ray, &tri(), t_max);
+        return definition_answer(ray, tri, t_max);
     }
     let det = e0.add(e1).add(e2);
     let t_scaled = e0.mul(z[0]).add(e1.mul(z[1])).add(e2.mul(z[2]));
@@ -177,13 +158,13 @@ pub(crate) fn every_axis_at<V: Vector>(
         return if (front[0] | front[1] | front[2]) & bit == 0 || conditioned() {
             None
         } else {
-            definition_answer(ray, &tri(), t_max)
+            definition_answer(ray, tri, t_max)
         };
     };
     // The first sufficient test for t > 0 (see `watertight_definition`), and
     // a well-conditioned determinant (see `watertight_lanes`).
     if !(ahead && conditioned()) {
-        return definition_answer(ray, &tri(), t_max);
+        return definition_answer(ray, tri, t_max);
     }
     // u and v, finite here (see `watertight_lanes`).
     let u = e1.mul(inv_det).min(one);
@@ -229,13 +210,13 @@ pub(crate) fn watertight_lanes<V: Vector>(
         // Outside, whatever the exact sign of an edge function of zero.
         return None;
     }
-    finish_lanes(ray, frame, t_max, || *tri)
+    finish_lanes(ray, frame, t_max, tri)
 }
 
 /// Whether the edge functions `e` have both signs: the ray misses,
 /// whatever the exact sign of one that rounds to zero.
 #[inline(always)]
-pub(crate) fn straddles<W: Lanes>(e: W) -> bool
+fn straddles<W: Lanes>(e: W) -> bool
 where
     W::F: Scalar,
 {
@@ -245,20 +226,18 @@ where
 
 /// [`watertight_lanes`] after its first test: the frame
 /// ([`frame_lanes`]'s values) of a triangle whose edge functions do not
-/// [`straddle`](straddles) zero. `tri` builds the triangle, for the rare
-/// paths only (so that a caller holding the corners elsewhere, as a quad
-/// does, builds none on the common path).
+/// [`straddle`](straddles) zero.
 #[inline(always)]
-pub(crate) fn finish_lanes<V: Vector>(
+fn finish_lanes<V: Vector>(
     ray: &PreparedRay<V>,
     (x, y, pz, e): (L<V>, L<V>, L<V>, L<V>),
     t_max: S<V>,
-    tri: impl Fn() -> Triangle<V>,
+    tri: &Triangle<V>,
 ) -> Option<TriangleHit<S<V>>> {
     let (zero, one) = (S::<V>::ZERO, S::<V>::ONE);
     let lanes_zero = L::<V>::splat(zero);
     if e.eq(lanes_zero) != 0 {
-        return definition_answer(ray, &tri(), t_max);
+        return definition_answer(ray, tri, t_max);
     }
     let det = e.sum3();
     let sz = ray.shear_lanes[2];
@@ -283,7 +262,7 @@ pub(crate) fn finish_lanes<V: Vector>(
         return if ahead == 0 {
             None
         } else {
-            unpack(plain_miss_lanes(ray, &tri(), t_max))
+            unpack(plain_miss_lanes(ray, tri, t_max))
         };
     }
     // The first sufficient test for t > 0 (every corner in front), and a
@@ -292,7 +271,7 @@ pub(crate) fn finish_lanes<V: Vector>(
     // are pure functions of the same values, so their order changes no
     // answer.)
     if !(ahead == 0b111 && det_sign_known_at_corners(x, y, pz, det)) {
-        return definition_answer(ray, &tri(), t_max);
+        return definition_answer(ray, tri, t_max);
     }
     let inv_det = one / det;
     let t = t_scaled * inv_det;

@@ -17,13 +17,22 @@
 //!   (the shear factors are ratios of `dir`'s components, unchanged; the
 //!   depth scale `1 / d_z` scales by `2^-k`).
 //!
+//! - a plain and a prepared ray get the two triangles' answer, bit for
+//!   bit (`t`, `u`, `v` and the side of the nearer hit, the first where
+//!   they tie), on parallelograms, quads folded along their diagonal,
+//!   quads with a collapsed edge, and seen from far off (where the
+//!   determinant's sign needs the exact threshold): the quad's common path
+//!   is its own code, finishing both triangles in lanes.
+//!
 //! (The bounds against exact arithmetic are `quad::oracle`'s.)
 
 use crate::common::props::{config, in_both_precisions};
 use proptest::prelude::*;
 use rayhit::glam::{DVec3, Vec3};
 use rayhit::strategies as strat;
-use rayhit::{Intersect, Interval, Quad, Ray, Scalar, Triangle, Vector};
+use rayhit::{
+    Intersect, Interval, PreparedRay, Quad, QuadHit, Ray, Scalar, Triangle, TriangleHit, Vector,
+};
 
 use crate::common::draw::S;
 
@@ -82,7 +91,57 @@ fn check_map<V: Vector>(
     Ok(())
 }
 
+/// The quad of kind `kind` on `tri`: the parallelogram (0), folded along
+/// the diagonal `a`-`c` by `fold` of the edge's length (1), with the edge
+/// `d`-`a` collapsed (2) or `c`-`d` (3).
+fn quad_of_kind<V: Vector>(tri: Triangle<V>, kind: u8, fold: f64) -> Quad<V> {
+    let q = quad_of(tri);
+    let f = |v: V| [0, 1, 2].map(|k| v[k].to_f64());
+    let [a, b, c, d] = [q.a, q.b, q.c, q.d].map(f);
+    let sub = |p: [f64; 3], q: [f64; 3]| [0, 1, 2].map(|k| p[k] - q[k]);
+    let (e1, e2) = (sub(b, a), sub(c, a));
+    let n = [
+        e1[1] * e2[2] - e1[2] * e2[1],
+        e1[2] * e2[0] - e1[0] * e2[2],
+        e1[0] * e2[1] - e1[1] * e2[0],
+    ];
+    let len = |v: [f64; 3]| (v[0] * v[0] + v[1] * v[1] + v[2] * v[2]).sqrt();
+    let scale = if len(n) > 0.0 {
+        fold * len(e1) / len(n)
+    } else {
+        0.0
+    };
+    let folded = [0, 1, 2].map(|k| S::<V>::from_f64(d[k] + scale * n[k]));
+    match kind {
+        0 => q,
+        1 => Quad::new(q.a, q.b, q.c, V::new(folded[0], folded[1], folded[2])),
+        2 => Quad::new(q.a, q.b, q.c, q.a),
+        _ => Quad::new(q.a, q.b, q.c, q.c),
+    }
+}
+
 in_both_precisions! {
+    fn both_ray_forms_answer_as_the_two_triangles((tri, ray) in strat::triangle_and_ray::<V>(), t_max in strat::t_max::<V>(), kind in 0u8..4, fold in -0.5..0.5f64, back in prop_oneof![Just(0.0), Just(1e3), Just(1e5)]) {
+        let quad = quad_of_kind(tri, kind, fold);
+        // (Moved back along the ray: the quad small next to its distance.)
+        let ray = Ray::new(ray.origin - ray.dir * S::<V>::from_f64(back), ray.dir);
+        // The nearer triangle hit (the first where they tie), its weights
+        // summed as the quad's docs say.
+        let [first, second] = quad.triangles();
+        let one = S::<V>::ONE;
+        let sum = |h: TriangleHit<S<V>>| if h.u + h.v < one { h.u + h.v } else { one };
+        let expected = match (first.hit(&ray, t_max), second.hit(&ray, t_max)) {
+            (Some(p), Some(q)) if q.t < p.t => Some((q.t, q.u, sum(q), q.side)),
+            (Some(p), _) => Some((p.t, sum(p), p.v, p.side)),
+            (None, Some(q)) => Some((q.t, q.u, sum(q), q.side)),
+            (None, None) => None,
+        };
+        let key = |h: QuadHit<S<V>>| (h.t, h.u, h.v, h.side);
+        prop_assert_eq!(quad.hit(&ray, t_max).map(key), expected, "{:?} {:?} {:?}", quad, ray, t_max);
+        let prepared = PreparedRay::new(&ray);
+        prop_assert_eq!(quad.hit(&prepared, t_max).map(key), expected, "{:?} {:?} {:?}", quad, ray, t_max);
+    }
+
     fn position_scaling((tri, ray) in strat::triangle_and_ray::<V>(), t_max in strat::t_max::<V>(), ends in (0.0..1.2f64, 0.0..1.0f64), k in -8i32..=8) {
         let s = S::<V>::from_f64(2f64.powi(k));
         let quad = quad_of(tri);
