@@ -181,12 +181,10 @@ pub(super) struct Framed<F> {
 
 /// The four corners in the ray's frame, a corner a lane in the order of
 /// the boundary, `00, 10, 11, 01`: sheared `x`, `y` (as
-/// `frame_lanes_at` computes them), the translated depth `pz` (before the
-/// shear's scaling) and the depth `z` in units of `t`.
+/// `frame_lanes_at` computes them) and the depth `z` in units of `t`.
 pub(crate) struct CornerLanes<V: Vector> {
     pub(crate) x: L<V>,
     pub(crate) y: L<V>,
-    pub(crate) pz: L<V>,
     pub(crate) z: L<V>,
     /// The collapsed edges ([`equal_neighbours`] of the corners as
     /// given).
@@ -197,28 +195,29 @@ impl<V: Vector> CornerLanes<V> {
     /// The patch's corners.
     #[inline(always)]
     pub(super) fn new(r: &RayFrame<V>, patch: &Patch<V>) -> Self {
-        Self::of(r, |k| patch.boundary_lanes(k))
+        Self::of(r, |k| patch.boundary_lanes(k)).0
     }
 
     /// The four corners whose coordinate on axis `k` is `corners(k)`,
     /// translated, the axes in the ray's order, sheared: each corner's
     /// `x` and `y` bit for bit as the triangle test's `frame_lanes_at`
-    /// computes them.
+    /// computes them; and their translated depths before the shear's
+    /// scaling (`z` unscaled).
     #[inline(always)]
-    pub(crate) fn of(r: &RayFrame<V>, corners: impl Fn(Axis) -> L<V>) -> Self {
+    pub(crate) fn of(r: &RayFrame<V>, corners: impl Fn(Axis) -> L<V>) -> (Self, L<V>) {
         let [sx, sy, _] = *r.shear_lanes;
         let [ox, oy, oz] = *r.origin_lanes;
         let (kx, ky, kz) = (corners(r.axes[0]), corners(r.axes[1]), corners(r.axes[2]));
         let pz = kz.sub(oz);
         let x = kx.sub(ox).add(sx.mul(pz));
         let y = ky.sub(oy).add(sy.mul(pz));
-        Self {
+        let lanes = Self {
             x,
             y,
-            pz,
             z: pz.mul(L::<V>::splat(r.sz)),
             collapsed: equal_neighbours([kx, ky, kz]),
-        }
+        };
+        (lanes, pz)
     }
 
     /// The boundary's four edge functions, lane `i` the edge from corner

@@ -252,7 +252,7 @@ fn quad_lanes<V: Vector, R: FramedRay<V>, const EXACT: bool>(
     let lanes_zero = splat(zero);
     let parts = ray.parts();
     let frame = R::frame(ray, &parts);
-    let c = CornerLanes::of(&frame, |k| quad.corner_lanes(k));
+    let (c, pz) = CornerLanes::of(&frame, |k| quad.corner_lanes(k));
     // The triangle test's edge functions, each opposite a corner: b-c, c-a
     // and a-b on `a, b, c`; c-d, d-a and a-c on `a, c, d`; and the
     // corners' depths.
@@ -286,10 +286,10 @@ fn quad_lanes<V: Vector, R: FramedRay<V>, const EXACT: bool>(
     // changes no answer.)
     let ahead = lanes_zero.lt4(z0.min(z1).min(z2));
     let some_ahead = lanes_zero.lt4(z0.max(z1).max(z2));
-    let rough = det_sign_known_roughly_at_four_corners(c.x, c.y, c.pz, det);
+    let rough = det_sign_known_roughly_at_four_corners(c.x, c.y, pz, det);
     let asked = covers & some_ahead;
     let conditioned = if EXACT {
-        rough | det_sign_known_at_four_corners(c.x, c.y, c.pz, det)
+        rough | det_sign_known_at_four_corners(c.x, c.y, pz, det)
     } else if asked & !rough != 0 {
         return quad_far(ray, quad, t_max);
     } else {

@@ -37,6 +37,36 @@ fn watertight<V: Vector>(
     }
 }
 
+/// The closed watertight test for a valid ray (not prepared) and a
+/// `t_max >= 0`, computed for all three choices of the ray's main axis at
+/// once, lane `k` being the test in the frame with `kz = k`, and decided
+/// on the lane of the ray's actual main axis.
+///
+/// Lane `k` runs exactly the operations of [`watertight_definition`] with
+/// `kz = k` (the shear factors `-d[k+1] / d[k]`, `-d[k+2] / d[k]` and
+/// `1 / d[k]`, each one division; the corners translated in their natural
+/// axis order, so that `p[k+1]`, `p[k+2]`, `p[k]` are the permuted `px`,
+/// `py`, `pz`), so on the chosen lane its values are the definition's,
+/// bit for bit. Nothing waits for the choice of the axis: on one ray
+/// against one triangle, that shortens the chain of dependent operations
+/// (the ray's shear is not known in advance) more than the two other
+/// lanes cost. The rare cases go to [`watertight_definition`], as in
+/// [`watertight_lanes`].
+#[inline(always)]
+fn watertight_every_axis<V: Vector>(
+    ray: &Ray<V>,
+    tri: &Triangle<V>,
+    t_max: S<V>,
+) -> Option<TriangleHit<S<V>>> {
+    every_axis_at(
+        ray,
+        &EveryAxis::new(ray),
+        [&tri.a, &tri.b, &tri.c],
+        t_max,
+        || *tri,
+    )
+}
+
 /// The ray's part of [`watertight_every_axis`]: its origin and direction
 /// in lanes, its main axis, and the three candidate shears, lane `k`
 /// holding `-d[k+1] / d[k]`, `-d[k+2] / d[k]` and `1 / d[k]`.
@@ -71,29 +101,20 @@ where
     }
 }
 
-/// The closed watertight test for a valid ray (not prepared) and a
-/// `t_max >= 0`, computed for all three choices of the ray's main axis at
-/// once, lane `k` being the test in the frame with `kz = k`, and decided
-/// on the lane of the ray's actual main axis.
-///
-/// Lane `k` runs exactly the operations of [`watertight_definition`] with
-/// `kz = k` (the shear factors `-d[k+1] / d[k]`, `-d[k+2] / d[k]` and
-/// `1 / d[k]`, each one division; the corners translated in their natural
-/// axis order, so that `p[k+1]`, `p[k+2]`, `p[k]` are the permuted `px`,
-/// `py`, `pz`), so on the chosen lane its values are the definition's,
-/// bit for bit. Nothing waits for the choice of the axis: on one ray
-/// against one triangle, that shortens the chain of dependent operations
-/// (the ray's shear is not known in advance) more than the two other
-/// lanes cost. The rare cases go to [`watertight_definition`], as in
-/// [`watertight_lanes`].
+/// [`watertight_every_axis`] for the triangle with corners `a, b, c`, the
+/// ray's part computed; `tri` builds the triangle for the rare paths only,
+/// so that a caller whose triangle is made on the spot (a patch's
+/// collapsed half) makes none on the common path. (Given the triangle by
+/// reference instead, the plain patch test built it on every call: 15%
+/// slower on camera rays.)
 #[inline(always)]
-fn watertight_every_axis<V: Vector>(
+fn every_axis_at<V: Vector>(
     ray: &Ray<V>,
-    tri: &Triangle<V>,
+    shear: &EveryAxis<L<V>>,
+    [a, b, c]: [&V; 3],
     t_max: S<V>,
+    tri: impl Fn() -> Triangle<V>,
 ) -> Option<TriangleHit<S<V>>> {
-    let shear = &EveryAxis::new(ray);
-    let [a, b, c] = [&tri.a, &tri.b, &tri.c];
     let splat = L::<V>::splat;
     let (zero, one) = (splat(S::<V>::ZERO), splat(S::<V>::ONE));
     let &EveryAxis {
@@ -122,7 +143,7 @@ fn watertight_every_axis<V: Vector>(
         return None;
     }
     if (e0.eq(zero) | e1.eq(zero) | e2.eq(zero)) & bit != 0 {
-        return definition_answer(ray, tri, t_max);
+        return definition_answer(ray, &tri(), t_max);
     }
     let det = e0.add(e1).add(e2);
     let t_scaled = e0.mul(z[0]).add(e1.mul(z[1])).add(e2.mul(z[2]));
@@ -158,13 +179,13 @@ fn watertight_every_axis<V: Vector>(
         return if (front[0] | front[1] | front[2]) & bit == 0 || conditioned() {
             None
         } else {
-            definition_answer(ray, tri, t_max)
+            definition_answer(ray, &tri(), t_max)
         };
     };
     // The first sufficient test for t > 0 (see `watertight_definition`), and
     // a well-conditioned determinant (see `watertight_lanes`).
     if !(ahead && conditioned()) {
-        return definition_answer(ray, tri, t_max);
+        return definition_answer(ray, &tri(), t_max);
     }
     // u and v, finite here (see `watertight_lanes`).
     let u = e1.mul(inv_det).min(one);
@@ -210,7 +231,7 @@ pub(crate) fn watertight_lanes<V: Vector>(
         // Outside, whatever the exact sign of an edge function of zero.
         return None;
     }
-    finish_lanes(ray, frame, t_max, tri)
+    finish_lanes(ray, frame, t_max, || *tri)
 }
 
 /// Whether the edge functions `e` have both signs: the ray misses,
@@ -226,18 +247,19 @@ where
 
 /// [`watertight_lanes`] after its first test: the frame
 /// ([`frame_lanes`]'s values) of a triangle whose edge functions do not
-/// [`straddle`](straddles) zero.
+/// [`straddle`](straddles) zero. `tri` builds the triangle, for the rare
+/// paths only.
 #[inline(always)]
 fn finish_lanes<V: Vector>(
     ray: &PreparedRay<V>,
     (x, y, pz, e): (L<V>, L<V>, L<V>, L<V>),
     t_max: S<V>,
-    tri: &Triangle<V>,
+    tri: impl Fn() -> Triangle<V>,
 ) -> Option<TriangleHit<S<V>>> {
     let (zero, one) = (S::<V>::ZERO, S::<V>::ONE);
     let lanes_zero = L::<V>::splat(zero);
     if e.eq(lanes_zero) != 0 {
-        return definition_answer(ray, tri, t_max);
+        return definition_answer(ray, &tri(), t_max);
     }
     let det = e.sum3();
     let sz = ray.shear_lanes[2];
@@ -262,7 +284,7 @@ fn finish_lanes<V: Vector>(
         return if ahead == 0 {
             None
         } else {
-            unpack(plain_miss_lanes(ray, tri, t_max))
+            unpack(plain_miss_lanes(ray, &tri(), t_max))
         };
     }
     // The first sufficient test for t > 0 (every corner in front), and a
@@ -271,7 +293,7 @@ fn finish_lanes<V: Vector>(
     // are pure functions of the same values, so their order changes no
     // answer.)
     if !(ahead == 0b111 && det_sign_known_at_corners(x, y, pz, det)) {
-        return definition_answer(ray, tri, t_max);
+        return definition_answer(ray, &tri(), t_max);
     }
     let inv_det = one / det;
     let t = t_scaled * inv_det;
