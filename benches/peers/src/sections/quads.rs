@@ -5,7 +5,9 @@
 //! offset, then the hit point's coordinates from a stored `w = n / (n .
 //! n)`, `t > 0.001`).
 
-use rayhit::glam::{Vec3, Vec4, Vec4Swizzles};
+use core::hint::select_unpredictable;
+
+use rayhit::glam::{BVec4A, Vec3, Vec4, Vec4Swizzles};
 use rayhit::{Intersect, PreparedRay, Quad, Ray, Triangle};
 use rayhit_testkit::workloads::QuadWorkload;
 
@@ -101,46 +103,51 @@ impl FloorRay {
 }
 
 /// The floor: the least arithmetic that gives `Quad::hit`'s guarantee,
-/// by hand: the four corners sheared once into the ray's frame (as the
-/// watertight triangle test shears them, so edges shared with neighbours
-/// are computed alike), the four outer edge functions and the diagonal's,
-/// out where both triangles' straddle zero, then the one triangle left:
-/// its determinant's sign known from the rough conditioning test, every
-/// corner ahead (`t > 0` for sure), `t` from the depths. No exact
-/// fallback (an undecided case answers `None`), no `u`, `v` or side.
+/// by hand, in `Quad::hit`'s form: the four corners sheared once into the
+/// ray's frame (as the watertight triangle test shears them, so edges
+/// shared with neighbours are computed alike), the four outer edge
+/// functions and the two diagonals', both triangles finished side by side
+/// in lanes (the first in lanes 0 and 1, the second in 2 and 3): which
+/// covers the ray (its edge functions of one sign), its determinant's sign
+/// known from the rough conditioning test, every corner ahead (`t > 0`
+/// for sure), `t` from the depths, taken from the covering triangle's
+/// lanes. With `OUT` the common miss (neither triangle covers the ray)
+/// returns before the rest, as `Quad::hit` does; without it nothing
+/// branches on the ray. No exact fallback (an undecided case answers
+/// `None` or a plain answer), no `u`, `v` or side.
 #[inline(always)]
-pub fn floor_quad(r: &FloorRay, q: &Quad) -> Option<f32> {
+pub fn floor_quad<const OUT: bool>(r: &FloorRay, q: &Quad) -> Option<f32> {
     let (x, y, pz) = r.frame([q.a, q.b, q.c, q.d]);
-    // a->b, b->c, c->d, d->a; and c->a.
+    // Lane i: the edge from corner i to i + 1, the diagonal from i to i + 2.
     let e = x * y.yzwx() - y * x.yzwx();
-    let ca = x.z * y.x - y.z * x.x;
-    let out = |p: f32, q: f32, s: f32| p.min(q).min(s) < 0.0 && p.max(q).max(s) > 0.0;
-    let (out0, out1) = (out(e.y, ca, e.x), out(e.z, e.w, -ca));
-    if out0 && out1 {
-        return None;
-    }
+    let g = x * y.zwxy() - y * x.zwxy();
     let z = pz * r.s[2];
-    let k = x.abs().max(y.abs()).max(pz.abs());
-    let (det, t_scaled, k, ahead) = if !out0 {
-        (
-            e.y + ca + e.x,
-            e.y * z.x + ca * z.y + e.x * z.z,
-            k.xyz().max_element(),
-            z.xyz().min_element() > 0.0,
-        )
-    } else {
-        (
-            e.z + e.w - ca,
-            e.z * z.x + e.w * z.z - ca * z.w,
-            k.x.max(k.z).max(k.w),
-            z.x.min(z.z).min(z.w) > 0.0,
-        )
-    };
-    if !(ahead && det.abs() > 200.0 * (f32::EPSILON * 0.5) * k * k) {
+    // Opposite each corner: b-c, c-a, a-b; c-d, d-a, a-c.
+    let e0 = Vec4::new(e.y, e.y, e.z, e.z);
+    let e1 = Vec4::new(g.z, g.z, e.w, e.w);
+    let e2 = Vec4::new(e.x, e.x, g.x, g.x);
+    let (z0, z1, z2) = (
+        Vec4::splat(z.x),
+        Vec4::new(z.y, z.y, z.z, z.z),
+        Vec4::new(z.z, z.z, z.w, z.w),
+    );
+    let (lo, hi) = (e0.min(e1).min(e2), e0.max(e1).max(e2));
+    let covers = (lo.cmpge(Vec4::ZERO) | hi.cmple(Vec4::ZERO)).bitmask() & 0b0101;
+    if OUT && covers == 0 {
         return None;
     }
+    let det = e0 + e1 + e2;
+    let t_scaled = e0 * z0 + e1 * z1 + e2 * z2;
+    let k = x.abs().max(y.abs()).max(pz.abs()).max_element();
+    let conditioned = det
+        .abs()
+        .cmpgt(Vec4::splat(200.0 * (f32::EPSILON * 0.5) * k * k));
+    let ahead = z0.min(z1).min(z2).cmpgt(Vec4::ZERO);
     let t = t_scaled / det;
-    (t > 0.0 && t <= f32::MAX).then_some(t)
+    let sure = ahead & conditioned & t.cmpgt(Vec4::ZERO) & t.cmple(Vec4::splat(f32::MAX));
+    let hit = sure.bitmask() & covers != 0;
+    let t = Vec4::select(BVec4A::splat(covers & 1 == 0), t.zwxy(), t).x;
+    select_unpredictable(hit, Some(t), None)
 }
 
 /// A quad workload in every form its rows take.
@@ -191,7 +198,7 @@ pub fn quad_kernels<'a>(d: &'a QuadData, out: &mut Vec<Kernel<'a>>) {
     );
     let floor_agree = agree(
         ours.iter().copied(),
-        (0..n).map(|i| floor_quad(&d.floor[i], &d.quads[i]).is_some()),
+        (0..n).map(|i| floor_quad::<true>(&d.floor[i], &d.quads[i]).is_some()),
     );
     let (w, sec) = (d.name, "quad");
     out.extend([
@@ -241,7 +248,19 @@ pub fn quad_kernels<'a>(d: &'a QuadData, out: &mut Vec<Kernel<'a>>) {
             w,
             n,
             Some(floor_agree),
-            pairwise(&d.order, &d.floor, &d.quads, |r, q| t_sum(floor_quad(r, q))),
+            pairwise(&d.order, &d.floor, &d.quads, |r, q| {
+                t_sum(floor_quad::<true>(r, q))
+            }),
+        ),
+        kernel(
+            sec,
+            "floor, no branch on the ray",
+            w,
+            n,
+            Some(floor_agree),
+            pairwise(&d.order, &d.floor, &d.quads, |r, q| {
+                t_sum(floor_quad::<false>(r, q))
+            }),
         ),
         kernel(
             sec,
