@@ -53,8 +53,10 @@ use crate::triangle::{
 ///
 /// A quad with a collapsed edge (two neighbouring corners equal) is the
 /// triangle it became, with the triangle's rules for zero-area triangles
-/// on the collapsed half. A NaN or infinite coordinate makes a quad nothing
-/// hits.
+/// on the collapsed half. A NaN or infinite coordinate makes each triangle
+/// with that corner one nothing hits, as for a [`Triangle`]; the quad is
+/// then hit only where a triangle without it is (a NaN in `d` leaves the
+/// triangle `a, b, c`, which stays safe to shade and spawn from).
 ///
 /// ```
 /// use rayhit::{Intersect, Quad, Ray, Side, glam::Vec3};

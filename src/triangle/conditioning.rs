@@ -72,9 +72,11 @@ where
 
 /// [`det_sign_known`] itself lane by lane on the determinants in `det`,
 /// with `m` and `w` the largest of the four corners in the lanes of `x`,
-/// `y` and `pz` (at least any three's, as above). (No coordinate is NaN
-/// where it is asked: a NaN coordinate makes every edge function NaN,
-/// which the quad's test leaves to the triangle test first.)
+/// `y` and `pz` (at least any three's, as above). (The maxima here and in
+/// [`det_sign_known_roughly_at_four_corners`] may drop a NaN coordinate;
+/// that changes no answer: the determinant of a triangle with that corner
+/// is NaN, which fails the test whatever `m` and `w` are, and for a
+/// triangle without it they are still at least its own corners'.)
 #[inline(always)]
 pub(crate) fn det_sign_known_at_four_corners<W: Lanes>(x: W, y: W, pz: W, det: W) -> u32
 where

@@ -167,3 +167,35 @@ in_both_precisions! {
         )?;
     }
 }
+
+/// A NaN or infinite corner makes the triangles with that corner nothing
+/// hits, as the quad's docs say: a ray through the other triangle still
+/// hits it (and only it), a ray through a triangle with the corner
+/// misses, and a non-finite `a` or `c` (on both triangles) leaves nothing.
+#[test]
+fn non_finite_corners_leave_the_triangles_without_them() {
+    let corners = [Vec3::ZERO, Vec3::X, Vec3::new(1.0, 1.0, 0.0), Vec3::Y];
+    // Straight down through the first triangle (`u > v`), then the second.
+    let rays = [(0.8, 0.2), (0.2, 0.8)].map(|(x, y)| Ray::new(Vec3::new(x, y, 1.0), -Vec3::Z));
+    for bad in [f32::NAN, f32::INFINITY, f32::NEG_INFINITY] {
+        for corner in 0..4 {
+            let mut c = corners;
+            c[corner].x = bad;
+            let quad = Quad::new(c[0], c[1], c[2], c[3]);
+            // Which triangles keep their corners: `a, b, c` unless the bad
+            // corner is a, b or c; `a, c, d` unless it is a, c or d.
+            let kept = [corner == 3, corner == 1];
+            for (ray, keeps) in rays.iter().zip(kept) {
+                for hit in [
+                    quad.hit(ray, f32::INFINITY),
+                    quad.hit(&PreparedRay::new(ray), f32::INFINITY),
+                ] {
+                    assert_eq!(hit.is_some(), keeps, "{quad:?} {ray:?}");
+                    if let Some(h) = hit {
+                        assert_eq!(h.t, 1.0, "{quad:?} {ray:?}");
+                    }
+                }
+            }
+        }
+    }
+}
