@@ -331,7 +331,8 @@ fn run<V: Vector>(mesh: &Mesh<V>, scale: f64, counts: &mut Counts) {
 /// Whether the meshes, placed, stay surfaces without overlaps in `V`'s
 /// precision: the scale at least 64 ulps of the largest coordinate, so
 /// that rounding moves a vertex by at most `1/128` of the scale (the
-/// meshes' closest vertices are about `0.2` of the scale apart, and the
+/// meshes' closest vertices are at least about `0.3` of the scale apart:
+/// the cubes' grid `0.5`, the torus's rings and sides `0.31`; and the
 /// origins from inside at least `0.1` of it from the surface). A mesh of
 /// size `1e-3` at `1e5` in `f32` is not one: its vertices round onto a
 /// grid of spacing `2^-7`, and "inside" it means nothing.

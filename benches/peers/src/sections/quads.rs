@@ -196,10 +196,18 @@ pub fn quad_kernels<'a>(d: &'a QuadData, out: &mut Vec<Kernel<'a>>) {
         ours.iter().copied(),
         (0..n).map(|i| d.textbook[i].hit(&d.rays[i]).is_some()),
     );
-    let floor_agree = agree(
-        ours.iter().copied(),
-        (0..n).map(|i| floor_quad::<true>(&d.floor[i], &d.quads[i]).is_some()),
-    );
+    let floor_agree = |out: bool| {
+        agree(
+            ours.iter().copied(),
+            (0..n).map(|i| {
+                if out {
+                    floor_quad::<true>(&d.floor[i], &d.quads[i]).is_some()
+                } else {
+                    floor_quad::<false>(&d.floor[i], &d.quads[i]).is_some()
+                }
+            }),
+        )
+    };
     let (w, sec) = (d.name, "quad");
     out.extend([
         kernel(
@@ -247,7 +255,7 @@ pub fn quad_kernels<'a>(d: &'a QuadData, out: &mut Vec<Kernel<'a>>) {
             "floor: the guarantee's arithmetic, by hand",
             w,
             n,
-            Some(floor_agree),
+            Some(floor_agree(true)),
             pairwise(&d.order, &d.floor, &d.quads, |r, q| {
                 t_sum(floor_quad::<true>(r, q))
             }),
@@ -257,7 +265,7 @@ pub fn quad_kernels<'a>(d: &'a QuadData, out: &mut Vec<Kernel<'a>>) {
             "floor, no branch on the ray",
             w,
             n,
-            Some(floor_agree),
+            Some(floor_agree(false)),
             pairwise(&d.order, &d.floor, &d.quads, |r, q| {
                 t_sum(floor_quad::<false>(r, q))
             }),
