@@ -29,7 +29,7 @@
 //! | does anything block the ray over a range | `occluded(ray, search)` | [`Intersect`] |
 //! | the hit's error bound | `hit_error(ray, &hit)` | [`Surface`] |
 //! | the point a new ray leaves from | `surface_point(ray, &hit)`, then [`SurfacePoint::spawn`] or [`SurfacePoint::spawn_to`] | [`Surface`] |
-//! | a BVH node's test (conservative) | `clip(ray, search)` | [`Bounds`] |
+//! | a BVH node's test (conservative) | `clip(ray, search)`, or `meets(ray, search)` for the hit or miss alone | [`Bounds`] |
 //! | the closest hit of each of several shapes, and the any-hit answer | `hit(ray, search)`, `occluded(ray, search)` | [`IntersectLanes`] |
 //!
 //! What varies is passed as a value, not spelled in the name:
@@ -83,8 +83,8 @@
 //! | texture filtering | [`Camera::ray_differential`], then [`Triangle::hit_differentials`] (or [`Camera::ray_cone`] and [`Triangle::cone_width`]) | each derivative with its error bound ([`Triangle::hit_differentials_error`]) |
 //! | closest hit on a mesh | [`ray_triangle`], or [`Intersect::hit`] on a [`PreparedRay`] when one ray meets many triangles | watertight: no ray passes between triangles that share an edge |
 //! | BVH node, binary | [`Bounds::clip`] of a [`ValidAabb`] on a [`PreparedRay`] | conservative: never misses a box the ray meets, so the leaf is always visited; a `ValidAabb` is checked once, when made |
-//! | BVH node, 4 to 16 children | [`Bounds::clip`] of a [`batch::AabbBatch`], on a [`batch::SimdRay`] inside [`batch::with_simd`] | one ray against a node's children at once, the same answers bit for bit |
-//! | compressed wide BVH node (8-bit child boxes) | [`Bounds::clip`] of [`batch::QuantizedChildren`] | reads the node as stored, still conservative |
+//! | BVH node, 4 to 16 children | [`Bounds::clip`] of a [`batch::AabbBatch`] on a [`PreparedRay`] ([`Bounds::meets`] where you visit children in a fixed order or ask for any hit) | one ray against a node's children at once, the same answers bit for bit, on the widest SIMD the CPU has |
+//! | compressed wide BVH node (8-bit child boxes) | [`Bounds::meets`] (or [`Bounds::clip`]) of [`batch::QuantizedChildren`] on a [`PreparedRay`] | reads the node as stored, still conservative |
 //! | leaf with several triangles | [`IntersectLanes::hit`] of a [`batch::TriangleBatch`] | 8 or 16 triangles at once, each lane the scalar test's answer |
 //! | leaf of particles (spheres) | [`IntersectLanes::hit`] of a [`batch::SphereBatch`] on a [`PreparedRay`] | 8 or 16 spheres at once, each lane [`Sphere`]'s answer bit for bit, several times the speed of one call per sphere |
 //! | shadow ray between two surfaces, or to a point light | [`SurfacePoint::spawn_to`], [`SurfacePoint::spawn_to_point`], then [`Intersect::occluded`] over the [`Interval`] they return | no epsilon: the segment cannot hit the surface at either end, and an occluder farther from both ends' planes than their error bounds is found |
@@ -180,8 +180,8 @@
 //! | BVH shape | node test | leaves |
 //! | --- | --- | --- |
 //! | binary, boxes as [`ValidAabb`] (checked once, when built) | [`Bounds::clip`] of the box | [`Intersect::hit`] of each [`Triangle`] |
-//! | wide (4 to 16 children), boxes stored as a [`batch::AabbBatch`] | [`Bounds::clip`] of the batch | the same, or of a [`batch::TriangleBatch`] |
-//! | compressed wide (children quantized to bytes, Ylitie et al. 2017) | [`Bounds::clip`] of [`batch::QuantizedChildren`], the node as stored | the same |
+//! | wide (4 to 16 children), boxes stored as a [`batch::AabbBatch`] | [`Bounds::clip`] of the batch (its `meets` where the entries go unused) | the same, or of a [`batch::TriangleBatch`] |
+//! | compressed wide (children quantized to bytes, Ylitie et al. 2017) | [`Bounds::meets`] (or `clip`) of [`batch::QuantizedChildren`], the node as stored | the same |
 //!
 //! Closest hit: pass the nearest hit so far as `t_max` to both tests, so
 //! that farther nodes and triangles are culled. For a compressed wide BVH,
@@ -465,10 +465,14 @@ mod testing;
 /// A batch answers the same queries as its shapes ([`Bounds`] for boxes and
 /// nodes, [`IntersectLanes`] for triangles and spheres), every lane bit for bit the
 /// scalar answer, eight lanes at a time in SIMD registers. On x86-64 with `std`
-/// each call picks an AVX2 copy where the CPU has it; [`with_simd`](crate::batch::with_simd) makes
-/// that choice once for a whole traversal, and a ray put on the chosen
-/// instruction set ([`Simd::ray`](crate::batch::Simd::ray)) runs every batch query on it with no
-/// check per call.
+/// each call runs the AVX-512 or AVX2 copy where the CPU has one (the
+/// detection is cached: a load and a comparison per call, then a call into
+/// the copy), so the plain call on a [`PreparedRay`] is the one to write
+/// first; [`Bounds::meets`] answers in a register where a traversal needs
+/// no entry distances. [`with_simd`](crate::batch::with_simd) compiles a whole traversal for
+/// the chosen instruction set instead, and a ray put on it
+/// ([`Simd::ray`](crate::batch::Simd::ray)) runs every batch query inline, with no call per
+/// node.
 ///
 /// ```
 /// use rayhit::{Aabb, Bounds, PreparedRay, Ray, glam::Vec3};

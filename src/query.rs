@@ -402,9 +402,10 @@ pub trait Surface<V: Vector = Vec3>: Intersect<V> {
 /// `ray` is any [`RayForm`] and `search` a `t_max` or an [`Interval`] (see
 /// [`Search`]; the edge rule is ignored). Implemented by
 /// [`Aabb`](crate::Aabb) and [`ValidAabb`](crate::ValidAabb)
-/// (`Option<(enter, exit)>`), and by [`AabbBatch`](crate::batch::AabbBatch)
-/// and [`QuantizedChildren`](crate::batch::QuantizedChildren) (a mask of
-/// the children hit, and their entries).
+/// (`Option<(enter, exit)>`, or a `bool` from [`meets`](Bounds::meets)),
+/// and by [`AabbBatch`](crate::batch::AabbBatch) and
+/// [`QuantizedChildren`](crate::batch::QuantizedChildren) (a mask of the
+/// children hit and their entries, or the mask alone).
 ///
 /// ```
 /// use rayhit::{Aabb, Bounds, PreparedRay, Ray, glam::Vec3};
@@ -413,13 +414,25 @@ pub trait Surface<V: Vector = Vec3>: Intersect<V> {
 /// let (enter, exit) = node.clip(&ray, f32::INFINITY).unwrap();
 /// assert!(enter == 1.0 && exit >= 2.0);
 /// assert!(node.clip(&ray, 0.5).is_none());
+/// assert!(node.meets(&ray, 1.0) && !node.meets(&ray, 0.5));
 /// ```
 pub trait Bounds<V: Vector = Vec3> {
     /// The answer: `Option<(enter, exit)>` for one box, the hit lanes for
     /// several.
     type Clip;
+    /// Whether the ray meets it: `bool` for one box, a mask of the lanes
+    /// (lane `i` is bit `i`) for several.
+    type Meets: Copy;
 
     /// The conservative test over `search`.
     #[must_use]
     fn clip(&self, ray: &impl RayForm<V>, search: impl Into<Search<S<V>>>) -> Self::Clip;
+
+    /// [`clip`](Bounds::clip)'s hit or miss alone, bit for bit, for a
+    /// traversal that needs no entry distance (an any-hit query, or a
+    /// wide BVH visiting children in a fixed order). It computes only
+    /// that: for the batches, an answer in a register where the entries
+    /// would go through memory.
+    #[must_use]
+    fn meets(&self, ray: &impl RayForm<V>, search: impl Into<Search<S<V>>>) -> Self::Meets;
 }

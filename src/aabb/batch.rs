@@ -298,6 +298,24 @@ impl<V: Vector, const N: usize> Kernel for AabbBatchKernel<V, N> {
     }
 }
 
+/// A box-batch kernel's mask alone, for [`Bounds::meets`](crate::Bounds::meets):
+/// `K` inlined whole, so that the entries it would compute, select and
+/// store are dropped, and the answer comes back in a register.
+pub(crate) struct MaskOf<K>(PhantomData<K>);
+
+impl<F, const N: usize, K: Kernel<Output = AabbBatchHits<F, N>>> Kernel for MaskOf<K> {
+    type Ray = K::Ray;
+    type Shapes = K::Shapes;
+    type Limit = K::Limit;
+    type Output = u32;
+    const AVX512: bool = K::AVX512;
+
+    #[inline(always)]
+    fn run<I: Isa>(isa: I, ray: &K::Ray, shapes: &K::Shapes, ends: K::Limit) -> u32 {
+        K::run(isa, ray, shapes, ends).mask
+    }
+}
+
 /// The body of [`AabbBatch`'s `clip`](crate::batch::AabbBatch#method.clip) with the eight-lane type `W`, eight lanes
 /// at a time.
 #[inline(always)]

@@ -3,7 +3,7 @@
 //! ([`Bounds`]): each combination of ray form and range, sent to its
 //! kernel.
 
-use super::batch::{AabbBatch, AabbBatchHits, AabbBatchKernel};
+use super::batch::{AabbBatch, AabbBatchHits, AabbBatchKernel, MaskOf};
 use super::face::{
     BoxHit, ray_aabb_face, ray_aabb_face_in, ray_aabb_prepared_face, ray_aabb_prepared_face_in,
 };
@@ -51,6 +51,8 @@ impl<V: Vector> Bounds<V> for Aabb<V> {
     /// `Some((enter, exit))`: the part of the range the ray spends inside
     /// the closed box, up to rounding (never less than the exact part).
     type Clip = Option<(S<V>, S<V>)>;
+    /// Whether the ray meets the box within the range.
+    type Meets = bool;
 
     /// The slab test over `search`: with a `t_max`, [`ray_aabb`]'s
     /// answer and guarantees, bit for bit, on every ray form (no false
@@ -96,17 +98,31 @@ impl<V: Vector> Bounds<V> for Aabb<V> {
     fn clip(&self, ray: &impl RayForm<V>, search: impl Into<Search<S<V>>>) -> Self::Clip {
         clip(self, ray, search.into())
     }
+
+    /// [`clip`](Bounds::clip)`.is_some()`.
+    #[inline(always)]
+    fn meets(&self, ray: &impl RayForm<V>, search: impl Into<Search<S<V>>>) -> bool {
+        clip(self, ray, search.into()).is_some()
+    }
 }
 
 /// As for [`Aabb`], bit for bit, without checking the box on every call.
 impl<V: Vector> Bounds<V> for ValidAabb<V> {
     /// As for [`Aabb`].
     type Clip = Option<(S<V>, S<V>)>;
+    /// As for [`Aabb`].
+    type Meets = bool;
 
     /// [`Aabb`]'s [`clip`](Bounds::clip), bit for bit.
     #[inline(always)]
     fn clip(&self, ray: &impl RayForm<V>, search: impl Into<Search<S<V>>>) -> Self::Clip {
         clip(self, ray, search.into())
+    }
+
+    /// [`clip`](Bounds::clip)`.is_some()`.
+    #[inline(always)]
+    fn meets(&self, ray: &impl RayForm<V>, search: impl Into<Search<S<V>>>) -> bool {
+        clip(self, ray, search.into()).is_some()
     }
 }
 
@@ -249,10 +265,12 @@ impl<V: Vector> Aabb<V> {
 impl<V: Vector, const N: usize> Bounds<V> for AabbBatch<V, N> {
     /// The lanes hit, and each one's entry.
     type Clip = AabbBatchHits<S<V>, N>;
+    /// The lanes hit.
+    type Meets = u32;
 
     /// The slab test on every lane, eight at a time in SIMD registers
-    /// (SSE2 by default; AVX2 where the build or the CPU has it, chosen per
-    /// call on x86-64 with `std`; NEON on aarch64; a prepared ray on an
+    /// (SSE2 by default; AVX2 or AVX-512 where the build or the CPU has
+    /// it, chosen per call on x86-64 with `std`; NEON on aarch64; a prepared ray on an
     /// instruction set, [`SimdRay`](crate::batch::SimdRay), skips the
     /// per-call choice). A plain ray is prepared first. Empty lanes are
     /// never hit. With an [`Interval`](crate::Interval), children that the
@@ -280,10 +298,33 @@ impl<V: Vector, const N: usize> Bounds<V> for AabbBatch<V, N> {
     /// ```
     #[inline(always)]
     fn clip(&self, ray: &impl RayForm<V>, search: impl Into<Search<S<V>>>) -> Self::Clip {
-        let ends = match search.into().range {
-            Range::UpTo(t_max) => (S::<V>::ZERO, t_max),
-            Range::Within(i) => slab_ends(i),
-        };
-        ray.batch::<AabbBatchKernel<V, N>>(self, ends)
+        ray.batch::<AabbBatchKernel<V, N>>(self, batch_ends(search.into()))
+    }
+
+    /// [`clip`](Bounds::clip)`.mask`, returned in a register: the test a
+    /// plain call should use where the entries go unused.
+    ///
+    /// ```
+    /// use rayhit::{Aabb, Bounds, PreparedRay, Ray, glam::Vec3};
+    /// use rayhit::batch::AabbBatch;
+    /// let boxes = [Aabb::new(Vec3::ZERO, Vec3::ONE), Aabb::new(Vec3::splat(2.0), Vec3::splat(3.0))];
+    /// let batch = AabbBatch::<Vec3, 8>::from_slice(&boxes).unwrap();
+    /// let ray = PreparedRay::new(&Ray::new(Vec3::splat(-1.0), Vec3::ONE));
+    /// assert_eq!(batch.meets(&ray, f32::INFINITY), 0b11);
+    /// assert_eq!(batch.meets(&ray, 2.0), 0b01); // box 1 starts at t = 3
+    /// ```
+    #[inline(always)]
+    fn meets(&self, ray: &impl RayForm<V>, search: impl Into<Search<S<V>>>) -> u32 {
+        ray.batch::<MaskOf<AabbBatchKernel<V, N>>>(self, batch_ends(search.into()))
+    }
+}
+
+/// A search as the batch kernels take it: `(t_min, t_max)`, with `t_min`
+/// zero for a plain `t_max` (see [`slab_ends`] for an interval).
+#[inline(always)]
+pub(crate) fn batch_ends<F: Scalar>(search: Search<F>) -> (F, F) {
+    match search.range {
+        Range::UpTo(t_max) => (F::ZERO, t_max),
+        Range::Within(i) => slab_ends(i),
     }
 }

@@ -6,9 +6,9 @@ use core::marker::PhantomData;
 
 use glam::Vec3;
 
-use crate::aabb::{Aabb, AabbBatch, AabbBatchHits, Slab8, slab_ends};
+use crate::aabb::{Aabb, AabbBatch, AabbBatchHits, MaskOf, Slab8, batch_ends};
 use crate::num::{Lanes8, Vector};
-use crate::query::{Bounds, Range, RayForm, Search};
+use crate::query::{Bounds, RayForm, Search};
 use crate::ray::{PreparedRay, t_max_ok};
 use crate::simd::{Isa, Kernel};
 
@@ -225,6 +225,8 @@ impl QuantizedChildren<'_, Vec3> {
 impl<V: Vector<Scalar = f32>> Bounds<V> for QuantizedChildren<'_, V> {
     /// The children hit, and each one's entry.
     type Clip = AabbBatchHits<f32, 8>;
+    /// The children hit.
+    type Meets = u32;
 
     /// The slab test of one ray against the eight children of a compressed
     /// wide BVH node, read from the node itself: which children the ray meets
@@ -250,9 +252,9 @@ impl<V: Vector<Scalar = f32>> Bounds<V> for QuantizedChildren<'_, V> {
     ///
     /// An invalid node, an invalid ray and a NaN or negative `t_max` give no
     /// hits; empty children are never hit. Never panics. On x86-64 with `std`
-    /// it picks an AVX2 copy at run time like the batches (a prepared ray on
-    /// an instruction set, [`SimdRay`](crate::batch::SimdRay), chooses once
-    /// per traversal).
+    /// it runs the AVX-512 or AVX2 copy where the CPU has one, like the
+    /// batches (a prepared ray on an instruction set,
+    /// [`SimdRay`](crate::batch::SimdRay), chooses once per traversal).
     ///
     /// ```
     /// use rayhit::{Bounds, Interval, PreparedRay, Ray, glam::Vec3};
@@ -276,11 +278,30 @@ impl<V: Vector<Scalar = f32>> Bounds<V> for QuantizedChildren<'_, V> {
     /// ```
     #[inline(always)]
     fn clip(&self, ray: &impl RayForm<V>, search: impl Into<Search<f32>>) -> Self::Clip {
-        let ends = match search.into().range {
-            Range::UpTo(t_max) => (0.0, t_max),
-            Range::Within(i) => slab_ends(i),
-        };
-        ray.batch::<QuantizedKernel<'_, V>>(self, ends)
+        ray.batch::<QuantizedKernel<'_, V>>(self, batch_ends(search.into()))
+    }
+
+    /// [`clip`](Bounds::clip)`.mask`, returned in a register: the node
+    /// test of a traversal that visits the children in an order of its
+    /// own (by the ray's octant, as Ylitie et al. do) or asks for any hit.
+    ///
+    /// ```
+    /// use rayhit::{Bounds, PreparedRay, Ray, glam::Vec3};
+    /// use rayhit::batch::QuantizedChildren;
+    /// let (lo, hi) = ([0, 4, 0, 0, 0, 0, 0, 0], [4, 8, 0, 0, 0, 0, 0, 0]);
+    /// let node = QuantizedChildren {
+    ///     origin: Vec3::ZERO,
+    ///     exponents: [127; 3], // step 1: child 0 is [0, 4]^3, child 1 [4, 8]^3
+    ///     min: [&lo, &lo, &lo],
+    ///     max: [&hi, &hi, &hi],
+    /// };
+    /// let ray = PreparedRay::new(&Ray::new(Vec3::splat(-1.0), Vec3::ONE));
+    /// assert_eq!(node.meets(&ray, f32::INFINITY) & 0b11, 0b11);
+    /// assert_eq!(node.meets(&ray, 2.0) & 0b11, 0b01);
+    /// ```
+    #[inline(always)]
+    fn meets(&self, ray: &impl RayForm<V>, search: impl Into<Search<f32>>) -> u32 {
+        ray.batch::<MaskOf<QuantizedKernel<'_, V>>>(self, batch_ends(search.into()))
     }
 }
 

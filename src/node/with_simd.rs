@@ -162,10 +162,10 @@ impl<W: SimdWork, T: Simd> Work for WorkBody<W, T> {
 #[inline]
 pub fn with_simd<W: SimdWork>(work: W) -> W::Output {
     #[cfg(rayhit_runtime_avx)]
-    if let Some(isa) = crate::simd::Avx512::detect() {
-        return isa.work(WorkBody(work, isa));
-    } else if let Some(isa) = crate::simd::Avx2::detect() {
-        return isa.work(WorkBody(work, isa));
+    match crate::simd::Widest::get() {
+        crate::simd::Widest::Avx512(isa) => return isa.work(WorkBody(work, isa)),
+        crate::simd::Widest::Avx2(isa) => return isa.work(WorkBody(work, isa)),
+        crate::simd::Widest::Target => {}
     }
     work.run(TargetSimd)
 }
@@ -221,6 +221,13 @@ mod tests {
             if let Some(isa) = crate::simd::Avx512::detect() {
                 box_answers.push(bb.clip(&isa.ray(&p), t_max));
                 tri_answers.push(tb.hit(&isa.ray(&p), t_max));
+            }
+            // The per-call copy (whichever `Widest` picks), and `meets`'
+            // copies: the same mask.
+            box_answers.push(bb.clip(&p, t_max));
+            for a in &box_answers {
+                assert_eq!(bb.meets(&p, t_max), a.mask);
+                assert_eq!(bb.meets(&target, t_max), a.mask);
             }
             for l in 0..8 {
                 let scalar = boxes[l].clip(&p, t_max).map(|(e, _)| e);

@@ -125,6 +125,17 @@ impl Avx2 {
     pub(crate) fn detect() -> Option<Self> {
         std::is_x86_feature_detected!("avx2").then_some(Avx2(()))
     }
+
+    /// The token, for a caller that has seen [`Avx2::detect`] give one on
+    /// this CPU (a cached detection).
+    ///
+    /// # Safety
+    ///
+    /// `Avx2::detect` must have returned `Some` in this process.
+    #[inline(always)]
+    pub(crate) unsafe fn detected() -> Self {
+        Avx2(())
+    }
 }
 
 #[cfg(rayhit_runtime_avx)]

@@ -5,6 +5,8 @@
 //! across a node's boxes, and comparisons into mask registers.
 #![allow(unsafe_code)]
 
+use core::sync::atomic::{AtomicU8, Ordering};
+
 use super::avx2::Avx2;
 use super::{Isa, Kernel, Work};
 use crate::num::{Repr, Scalar};
@@ -29,6 +31,69 @@ impl Avx512 {
         let avx2 = Avx2::detect()?;
         (std::is_x86_feature_detected!("avx512f") && std::is_x86_feature_detected!("avx512vl"))
             .then_some(Avx512(avx2))
+    }
+
+    /// The AVX2 token this one holds (a CPU with AVX-512 has AVX2).
+    #[inline(always)]
+    pub(crate) fn avx2(self) -> Avx2 {
+        self.0
+    }
+}
+
+/// The widest instruction set the per-call kernels can use on this CPU:
+/// detected on the first call, then read from one byte.
+#[derive(Clone, Copy, Debug)]
+pub(crate) enum Widest {
+    /// Neither AVX2 nor AVX-512: the target's own.
+    Target,
+    Avx2(Avx2),
+    Avx512(Avx512),
+}
+
+/// [`Widest`] as found by detection: `UNKNOWN` until the first call.
+static WIDEST: AtomicU8 = AtomicU8::new(UNKNOWN);
+const UNKNOWN: u8 = 0;
+const TARGET: u8 = 1;
+const AVX2: u8 = 2;
+const AVX512: u8 = 3;
+
+impl Widest {
+    /// The widest instruction set, from the cache: one load and a
+    /// comparison, where the detection macros load and test a word per
+    /// feature (three for AVX-512).
+    #[inline(always)]
+    pub(crate) fn get() -> Self {
+        // (Tested in the order of the common answer on CPUs since 2017,
+        // so that it costs one comparison.)
+        let code = WIDEST.load(Ordering::Relaxed);
+        // SAFETY (both blocks): `WIDEST` holds `AVX512` or `AVX2` only
+        // where `Widest::detect` stored it, after `Avx2::detect` (and, for
+        // `AVX512`, `Avx512::detect`) returned `Some` in this process.
+        if code == AVX512 {
+            Widest::Avx512(Avx512(unsafe { Avx2::detected() }))
+        } else if code == AVX2 {
+            Widest::Avx2(unsafe { Avx2::detected() })
+        } else if code == TARGET {
+            Widest::Target
+        } else {
+            Self::detect()
+        }
+    }
+
+    /// Detection, once per process (or a few times, if threads race: each
+    /// stores the same answer).
+    #[cold]
+    #[inline(never)]
+    fn detect() -> Self {
+        let (widest, code) = if let Some(isa) = Avx512::detect() {
+            (Widest::Avx512(isa), AVX512)
+        } else if let Some(isa) = Avx2::detect() {
+            (Widest::Avx2(isa), AVX2)
+        } else {
+            (Widest::Target, TARGET)
+        };
+        WIDEST.store(code, Ordering::Relaxed);
+        widest
     }
 }
 
@@ -80,4 +145,31 @@ fn avx2_out_of_line<K: Kernel>(
     t_max: K::Limit,
 ) -> K::Output {
     isa.kernel::<K>(ray, shapes, t_max)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// The cached choice is what detection finds, on the call that
+    /// detects and on the calls that read the cache.
+    #[test]
+    fn the_cached_choice_is_the_detection() {
+        let detected = if Avx512::detect().is_some() {
+            AVX512
+        } else if Avx2::detect().is_some() {
+            AVX2
+        } else {
+            TARGET
+        };
+        for _ in 0..3 {
+            let got = match Widest::get() {
+                Widest::Avx512(_) => AVX512,
+                Widest::Avx2(_) => AVX2,
+                Widest::Target => TARGET,
+            };
+            assert_eq!(got, detected);
+            assert_eq!(WIDEST.load(Ordering::Relaxed), detected);
+        }
+    }
 }

@@ -84,16 +84,21 @@ impl Isa for TargetSimd {
     }
 }
 
-/// Kernel `K` run once, on the widest instruction set the CPU has among
-/// those a per-call choice can use: where the build picks at run time (see
-/// `rayhit_runtime_avx` in `build.rs`), the AVX2 copy on a CPU with AVX2
-/// (a detection, cached by `std`, and a call per batch), else the
-/// target's own.
+/// Kernel `K` run once, on the widest instruction set the CPU has: where
+/// the build picks at run time (see `rayhit_runtime_avx` in `build.rs`),
+/// the copy `with_simd` would run (AVX-512's or AVX2's) on a CPU with
+/// them, at the cost of one load and comparison (`Widest`, a detection
+/// cached in one byte) and a call per batch; else the target's own.
 #[inline(always)]
 pub(crate) fn per_call<K: Kernel>(ray: &K::Ray, shapes: &K::Shapes, t_max: K::Limit) -> K::Output {
     #[cfg(rayhit_runtime_avx)]
-    if let Some(isa) = super::Avx2::detect() {
-        return isa.kernel::<K>(ray, shapes, t_max);
+    match super::Widest::get() {
+        // (A kernel that runs its AVX2 copy on `Avx512` is called here
+        // directly, not through `Avx512`'s out-of-line step.)
+        super::Widest::Avx512(isa) if K::AVX512 => return isa.kernel::<K>(ray, shapes, t_max),
+        super::Widest::Avx512(isa) => return isa.avx2().kernel::<K>(ray, shapes, t_max),
+        super::Widest::Avx2(isa) => return isa.kernel::<K>(ray, shapes, t_max),
+        super::Widest::Target => {}
     }
     TargetSimd.kernel::<K>(ray, shapes, t_max)
 }

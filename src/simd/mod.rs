@@ -56,6 +56,8 @@ mod tests;
 pub use avx2::Avx2;
 #[cfg(rayhit_runtime_avx)]
 pub use avx512::Avx512;
+#[cfg(rayhit_runtime_avx)]
+pub(crate) use avx512::Widest;
 pub use dispatch::TargetSimd;
 #[cfg(rayhit_runtime_avx)]
 pub(crate) use dispatch::Work;

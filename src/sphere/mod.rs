@@ -422,8 +422,8 @@ impl<V: Vector, const N: usize> IntersectLanes<V> for SphereBatch<V, N> {
     /// is hit; the edge rule is ignored).
     ///
     /// With a `t_max`, eight lanes at a time in SIMD registers (SSE2 by
-    /// default; AVX2 where the build or the CPU has it, chosen per call on
-    /// x86-64 with `std`; NEON on aarch64): every lane runs
+    /// default; AVX2 or AVX-512 where the build or the CPU has it, chosen per
+    /// call on x86-64 with `std`; NEON on aarch64): every lane runs
     /// [`Sphere`]'s arithmetic, in the same order, on its own sphere, and
     /// the rare lanes it cannot decide from signs run the scalar code
     /// itself, so each lane is [`Sphere`]'s `hit` bit for bit. A prepared

@@ -269,8 +269,8 @@ impl<V: Vector, const N: usize> IntersectLanes<V> for TriangleBatch<V, N> {
     /// lane is hit).
     ///
     /// With the closed edge rule, eight lanes at a time in SIMD registers
-    /// (SSE2 by default; AVX2 where the build or the CPU has it, chosen per
-    /// call on x86-64 with `std`; NEON on aarch64): every lane runs the
+    /// (SSE2 by default; AVX2 or AVX-512 where the build or the CPU has
+    /// it, chosen per call on x86-64 with `std`; NEON on aarch64): every lane runs the
     /// scalar test's arithmetic, in the same order, on its own triangle,
     /// and the rare lanes (an edge function that rounds to exactly zero, a
     /// crossing near an end of the range or an edge) run the scalar code

@@ -10,6 +10,8 @@ use rayhit_testkit::workloads::{GROUP, box_groups, rate, triangle_groups};
 
 #[cfg(target_arch = "x86_64")]
 use crate::floors::batch as floor_batch;
+#[cfg(target_arch = "x86_64")]
+use crate::floors::boxes8 as floor_boxes8;
 use crate::floors::{FloorRay, PlainRay};
 use crate::harness::INF;
 use crate::harness::loops::Orders;
@@ -118,6 +120,12 @@ pub struct Groups {
     pub tb8: Vec<TriangleBatch<Vec3, 8>>,
     #[cfg(target_arch = "x86_64")]
     pub fb8: Vec<floor_batch::FloorBatch>,
+    /// The boxes and rays as the floor of a plain call into an eight-box
+    /// batch stores them.
+    #[cfg(target_arch = "x86_64")]
+    pub fbox8: Vec<floor_boxes8::FloorBoxes8>,
+    #[cfg(target_arch = "x86_64")]
+    pub fbox_rays: Vec<floor_boxes8::FloorSlabRay>,
 }
 
 impl Groups {
@@ -152,6 +160,18 @@ impl Groups {
             .chunks(8)
             .map(floor_batch::FloorBatch::new)
             .collect();
+        #[cfg(target_arch = "x86_64")]
+        let fbox8 = gb
+            .boxes
+            .chunks(8)
+            .map(floor_boxes8::FloorBoxes8::new)
+            .collect();
+        #[cfg(target_arch = "x86_64")]
+        let fbox_rays = gb
+            .rays
+            .iter()
+            .map(floor_boxes8::FloorSlabRay::new)
+            .collect();
         Self {
             gb,
             bb4,
@@ -161,6 +181,10 @@ impl Groups {
             tb8,
             #[cfg(target_arch = "x86_64")]
             fb8,
+            #[cfg(target_arch = "x86_64")]
+            fbox8,
+            #[cfg(target_arch = "x86_64")]
+            fbox_rays,
         }
     }
 }

@@ -46,7 +46,7 @@ mod targets;
 use data::{BoxData, Groups, TriData};
 use harness::{ROUNDS, time_all};
 #[cfg(target_arch = "x86_64")]
-use sections::groups::batch_floor_kernels;
+use sections::groups::{batch_floor_kernels, box_floor_kernels};
 use sections::{
     boxes::box_kernels,
     camera::{CameraData, Cameras, camera_kernels, differential_floor_kernels},
@@ -155,6 +155,8 @@ fn main() {
         &groups.tb8,
         &mut kernels,
     );
+    #[cfg(target_arch = "x86_64")]
+    box_floor_kernels(&groups, &mut kernels);
     #[cfg(target_arch = "x86_64")]
     batch_floor_kernels(gt, &groups.tb8, &groups.fb8, &mut kernels);
     sweep_kernels(&sweep, &mut kernels);

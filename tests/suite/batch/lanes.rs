@@ -79,6 +79,19 @@ fn check_boxes<V: Vector, const N: usize>(
     if hits.mask & !batch.mask() != 0 {
         return Err(format!("mask {:b} outside the used lanes", hits.mask));
     }
+    // `meets` is `clip`'s mask, from its own copy of the kernel (the
+    // entries dropped), and for each box `clip(..).is_some()`.
+    let meets = batch.meets(&prepared, t_max);
+    if meets != hits.mask {
+        return Err(format!("meets {meets:b}, clip's mask {:b}", hits.mask));
+    }
+    for (lane, b) in boxes.iter().enumerate().take(N) {
+        if let Some(b) = b
+            && b.meets(&prepared, t_max) != b.clip(&prepared, t_max).is_some()
+        {
+            return Err(format!("lane {lane}: Aabb::meets is not clip's answer"));
+        }
+    }
     // Over intervals: lower ends at zero (both signs), at and just past the
     // first box's entry and exit, and halfway to `t_max`.
     let mut lower = vec![S::<V>::ZERO, -S::<V>::ZERO, t_max * S::<V>::HALF];
@@ -92,6 +105,9 @@ fn check_boxes<V: Vector, const N: usize>(
             continue;
         };
         let hits = batch.clip(&prepared, interval);
+        if batch.meets(&prepared, interval) != hits.mask {
+            return Err(format!("meets over {interval:?} is not clip's mask"));
+        }
         for lane in 0..N {
             let expected = match boxes.get(lane) {
                 Some(Some(b)) => b.clip(&prepared, interval).map(|(enter, _)| enter),

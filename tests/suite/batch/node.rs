@@ -190,6 +190,13 @@ fn node_test_is_the_box_batch_on_the_decoded_boxes() {
                     t_max,
                 }),
             ];
+            // `meets`: the mask alone, from its own copy of the kernel.
+            for got in [
+                view.meets(&ray, t_max),
+                view.meets(&TargetSimd.ray(&ray), t_max),
+            ] {
+                assert_eq!(got, expected.mask, "meets {ray:?} {:?}", node.origin);
+            }
             for got in ours {
                 assert_eq!(got.mask, expected.mask, "{ray:?} {:?}", node.origin);
                 for l in 0..8 {
@@ -205,6 +212,7 @@ fn node_test_is_the_box_batch_on_the_decoded_boxes() {
                     continue;
                 };
                 let expected = boxes.clip(&ray, interval);
+                assert_eq!(view.meets(&ray, interval), expected.mask);
                 for got in [
                     view.clip(&ray, interval),
                     view.clip(&TargetSimd.ray(&ray), interval),

@@ -3,7 +3,8 @@
 //! written ("textbook") and the floors, each a textbook test plus only the
 //! operations rayhit's guarantees need beyond it ("floor"). This file
 //! holds the scalar box and triangle tests; `batch` the eight-lane
-//! triangle floors in AVX2, `camera` the cameras' references and
+//! triangle floors in AVX2, `boxes8` the floor of a plain call into an
+//! eight-box batch, `camera` the cameras' references and
 //! `instance` the floor of the hit's mapping to the world.
 
 use rayhit::glam::{Vec3, Vec3Swizzles, Vec4, Vec4Swizzles};
@@ -13,6 +14,8 @@ use crate::harness::INF;
 
 #[cfg(target_arch = "x86_64")]
 pub mod batch;
+#[cfg(target_arch = "x86_64")]
+pub mod boxes8;
 pub mod camera;
 pub mod instance;
 

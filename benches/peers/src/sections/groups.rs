@@ -9,7 +9,7 @@ use rayhit::glam::Vec3;
 use rayhit::{Bounds, Intersect, IntersectLanes, Interval, Side, ray_aabb, ray_triangle};
 use rayhit_testkit::workloads::GROUP;
 
-use crate::data::{BoxData, TriData};
+use crate::data::{BoxData, Groups, TriData};
 #[cfg(target_arch = "x86_64")]
 use crate::floors::batch as floor_batch;
 use crate::harness::loops::{BatchRows, agree, batch_t_sum, chunked, lanes_t_sum, simd, t_sum};
@@ -77,6 +77,35 @@ pub fn batch_floor_kernels<'a>(
     ]);
 }
 
+/// The floor of a plain call into an eight-box batch (`floors::boxes8`),
+/// in the "box x8" section beside `AabbBatch::meets`, with how often its
+/// lanes agree with rayhit's.
+#[cfg(target_arch = "x86_64")]
+pub fn box_floor_kernels<'a>(g: &'a Groups, out: &mut Vec<Kernel<'a>>) {
+    use crate::floors::boxes8::Avx512;
+    let Some(isa) = Avx512::detect() else {
+        return;
+    };
+    let b = &g.gb;
+    let per_ray = GROUP / 8;
+    let lanes = |m: u32| (0..8).map(move |l| m >> l & 1 != 0);
+    let agreement = agree(
+        (0..g.bb8.len()).flat_map(|i| lanes(g.bb8[i].meets(&b.prepared[i / per_ray], INF))),
+        (0..g.fbox8.len())
+            .flat_map(|i| lanes(isa.meets(&g.fbox_rays[i / per_ray], &g.fbox8[i], INF))),
+    );
+    out.push(kernel(
+        "box x8",
+        "floor: a call per batch into an AVX-512 slab test, mask only",
+        "groups of 8",
+        b.boxes.len(),
+        Some(agreement),
+        chunked(&g.fbox_rays, &g.fbox8, per_ray, move |r, x| {
+            u64::from(isa.meets(r, x, INF))
+        }),
+    ));
+}
+
 /// Groups: ray `i` against shapes `8i..8i+8`, scalar and batched.
 pub fn group_kernels<'a>(
     b: &'a BoxData,
@@ -134,6 +163,16 @@ pub fn group_kernels<'a>(
             None,
             chunked(&b.prepared, bb8, GROUP / 8, |r, x| {
                 u64::from(x.clip(r, INF).mask)
+            }),
+        ),
+        kernel(
+            sec,
+            "rayhit AabbBatch::meets, 8 lanes",
+            w,
+            nb,
+            None,
+            chunked(&b.prepared, bb8, GROUP / 8, |r, x| {
+                u64::from(x.meets(r, INF))
             }),
         ),
         kernel(
