@@ -305,9 +305,13 @@ impl LeakRays {
 /// sorted into a grid of cells over `y` and `z` (each into every cell its
 /// closed box covers), so that a point tests only its cell's.
 pub struct Crossings {
+    /// The mesh's triangles.
     tris: Vec<Triangle>,
+    /// Per cell (`y` major), the triangles whose closed box covers it.
     cells: Vec<Vec<u32>>,
+    /// The grid's low corner in `y` and `z`.
     lo: [f32; 2],
+    /// Cells per unit length in `y` and `z`.
     scale: [f32; 2],
 }
 
@@ -315,6 +319,7 @@ pub struct Crossings {
 const CELLS: usize = 64;
 
 impl Crossings {
+    /// Sorts the mesh's triangles into the grid.
     pub fn new(mesh: &Mesh) -> Self {
         let (lo, hi) = mesh.bounds();
         let lo = [lo.y, lo.z];

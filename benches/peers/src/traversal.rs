@@ -48,7 +48,9 @@ pub struct Bvh2Scene {
     pub bvh: Bvh2,
     /// The triangles in the tree's order (leaf `first..first + count`).
     pub ob_tris: Vec<ObTriangle>,
+    /// The same triangles as rayhit's.
     pub tris: Vec<Triangle>,
+    /// obvhs's nodes with rayhit's boxes, in obvhs's order.
     nodes: Vec<Node>,
 }
 
@@ -66,7 +68,9 @@ trait Query {
 
 /// The closest hit: `t_max` shrinks to each hit found.
 struct Closest {
+    /// The nearest hit's `t` so far (infinite before one).
     t_max: f32,
+    /// The nearest hit so far and its triangle.
     best: Option<(u32, TriangleHit)>,
 }
 
@@ -93,7 +97,9 @@ impl Query for Closest {
 
 /// Any hit within a fixed interval: the first occluder ends the walk.
 struct Occluded {
+    /// The segment's range along the ray.
     segment: Interval<f32>,
+    /// Whether an occluder was found.
     blocked: bool,
 }
 
@@ -114,6 +120,8 @@ impl Query for Occluded {
 }
 
 impl Bvh2Scene {
+    /// Builds the tree over the mesh's triangles with obvhs and copies it;
+    /// panics unless every box contains what is under it.
     pub fn new(mesh: &Mesh) -> Self {
         let original = mesh.triangles();
         let ob_original: Vec<ObTriangle> = original
@@ -290,7 +298,8 @@ impl Bvh2Scene {
 
 /// A pinhole camera's rays at a mesh from outside, row by row: `side` by
 /// `side` pixels, from a point 2.5 times the bounding sphere's radius from
-/// its centre, the view just wider than the sphere's silhouette.
+/// its centre, the view half as wide as the sphere's silhouette (so that
+/// most rays hit the mesh).
 pub fn camera_rays(mesh: &Mesh, side: u32) -> Vec<Ray> {
     let (lo, hi) = mesh.bounds();
     let (centre, radius) = ((lo + hi) * 0.5, (hi - lo).length() * 0.5);
@@ -299,9 +308,9 @@ pub fn camera_rays(mesh: &Mesh, side: u32) -> Vec<Ray> {
     let forward = -back;
     let right = forward.cross(Vec3::Y).normalize();
     let up = right.cross(forward);
-    // The tangent of the half angle the sphere fills, a little narrowed:
-    // the silhouette of a mesh fills less than its bounding sphere.
-    let half = 0.8 * radius / (2.5 * radius);
+    // The tangent of half the view angle: half the sphere's (the mesh
+    // fills less than its bounding sphere).
+    let half = 0.5 * radius / (2.5 * radius);
     let mut rays = Vec::with_capacity((side * side) as usize);
     for y in 0..side {
         for x in 0..side {
@@ -359,6 +368,9 @@ pub struct ShadowRays {
 pub const EPS: f32 = 1e-4;
 
 impl ShadowRays {
+    /// The segments from the hits of `rays` (the first hit of each, by
+    /// rayhit's traversal of `scene`) to a light at three times the
+    /// bounding sphere's radius from its centre, up and to the side.
     pub fn new(scene: &Bvh2Scene, mesh: &Mesh, rays: &[Ray]) -> Self {
         let (lo, hi) = mesh.bounds();
         let (centre, radius) = ((lo + hi) * 0.5, (hi - lo).length() * 0.5);

@@ -56,10 +56,13 @@ pub const ROWS: [&str; 5] = [
 /// One ray set: rayhit's rays (prepared, with the direction obvhs's order
 /// reads), their intervals on `shadow`, and obvhs's rays.
 struct Workload {
+    /// `camera`, `incoherent`, `inside` or `shadow`.
     name: &'static str,
+    /// rayhit's rays, prepared, with their directions.
     rays: Vec<(PreparedRay, Vec3A)>,
     /// Empty for the closest-hit sets; on `shadow`, each ray's segment.
     segments: Vec<Interval<f32>>,
+    /// obvhs's rays (on `shadow`, the offset segments over `(0, 1 - EPS]`).
     ob: Vec<obvhs::ray::Ray>,
     /// Shadow hit points without a segment (counted as blocked).
     grazing: usize,
@@ -68,14 +71,18 @@ struct Workload {
 /// One mesh's trees and ray sets, and each row's answer per ray (hit or
 /// occluded), for the agreement column and the counts.
 pub struct TraversalData {
+    /// The mesh's name.
     name: &'static str,
+    /// The mesh's triangle count.
     triangles: usize,
     /// obvhs's CWBVH as built, for obvhs's traversal.
     obvhs: cwbvh::Scene,
     /// The same with the child boxes rayhit's decoding does not contain
     /// re-quantized (`Scene::check_quantization`), for rayhit's.
     fixed: cwbvh::Scene,
+    /// obvhs's binary BVH, for both binary rows.
     bvh2: Bvh2Scene,
+    /// `camera`, `incoherent`, `inside`, `shadow`.
     workloads: Vec<Workload>,
     /// Per workload, per row of [`ROWS`], per ray: hit (or occluded).
     answers: Vec<[Vec<bool>; 5]>,
@@ -92,7 +99,7 @@ fn cw_one(s: &cwbvh::Scene, w: &Workload, i: usize, node_ray: &impl RayForm) -> 
     }
 }
 
-/// Closest hits (`t` bits) or occluded counts of a whole workload.
+/// The wrapping sum of `f` over `0..n`: a row's checksum over its rays.
 fn sum(n: usize, f: impl Fn(usize) -> u64) -> u64 {
     (0..n).map(f).fold(0, u64::wrapping_add)
 }
@@ -126,6 +133,8 @@ impl SimdWork for CwSimdEach<'_> {
 }
 
 impl TraversalData {
+    /// Builds the trees and the ray sets, and runs every row once for its
+    /// answers.
     pub fn new(mesh: &Mesh) -> Self {
         let obvhs = cwbvh::Scene::new(mesh);
         let mut fixed = cwbvh::Scene::new(mesh);
