@@ -24,7 +24,7 @@ use obvhs::triangle::Triangle as ObTriangle;
 use obvhs::{BvhBuildParams, traverse};
 use rayhit::batch::{QuantizedChildren, Simd, SimdWork, with_simd};
 use rayhit::glam::{UVec2, Vec3, Vec3A};
-use rayhit::{Bounds, Intersect, PreparedRay, Ray, Triangle};
+use rayhit::{Bounds, Intersect, Interval, PreparedRay, Ray, RayForm, Triangle};
 
 /// A closed mesh: vertices and index triples, consistently wound, every
 /// edge shared by exactly two triangles.
@@ -32,7 +32,28 @@ pub struct Mesh {
     pub name: &'static str,
     pub vertices: Vec<Vec3>,
     pub faces: Vec<[u32; 3]>,
+    /// Where [`LeakRays`] finds points inside the solid.
+    pub interior: Interior,
 }
+
+/// How to find a point inside a mesh's solid near a point of its surface.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub enum Interior {
+    /// A solid around the core circle of this radius about `z` (a torus):
+    /// points near that circle.
+    CoreCircle(f64),
+    /// A solid that contains the segment from the origin to every point of
+    /// its surface (a sphere): points on that segment.
+    StarFromOrigin,
+    /// Any closed mesh: a point a short step from the surface along the
+    /// vertex normal, to either side, kept where an exact count of the
+    /// mesh's crossings by a ray from it is odd ([`Crossings`]).
+    Tested,
+}
+
+/// The Stanford bunny as the npm package `bunny` 1.0.1 has it (public
+/// domain; see the file's header).
+const BUNNY: &str = include_str!("../data/bunny.txt");
 
 /// `x` on the grid of `2^-14`.
 fn snap(x: f64) -> f32 {
@@ -69,6 +90,7 @@ impl Mesh {
             name: "torus",
             vertices,
             faces,
+            interior: Interior::CoreCircle(2.0),
         }
     }
 
@@ -98,7 +120,64 @@ impl Mesh {
             name: "icosphere",
             vertices,
             faces,
+            interior: Interior::StarFromOrigin,
         }
+    }
+
+    /// The Stanford bunny (3674 triangles, coordinates within about 10 of
+    /// the origin) on the grid, each triangle split `levels` times into
+    /// four by its edges' midpoints (flat: the surface does not change,
+    /// and the midpoints are exact on a grid twice as fine per level).
+    pub fn bunny(levels: u32) -> Self {
+        let mut v: Vec<[f64; 3]> = Vec::new();
+        let mut faces = Vec::new();
+        for line in BUNNY.lines() {
+            let mut words = line.split_whitespace();
+            let kind = words.next();
+            let mut num = || words.next().expect("three numbers").parse::<f64>();
+            match kind {
+                Some("v") => {
+                    let [x, y, z] = [num(), num(), num()].map(|n| n.expect("a coordinate"));
+                    v.push([f64::from(snap(x)), f64::from(snap(y)), f64::from(snap(z))]);
+                }
+                Some("f") => {
+                    faces.push([num(), num(), num()].map(|n| n.expect("an index") as u32));
+                }
+                _ => {}
+            }
+        }
+        let faces = mesh::subdivide(&mut v, faces, levels, |p, q| {
+            [
+                (p[0] + q[0]) / 2.0,
+                (p[1] + q[1]) / 2.0,
+                (p[2] + q[2]) / 2.0,
+            ]
+        });
+        Mesh {
+            name: match levels {
+                0 => "bunny",
+                1 => "bunny x4",
+                2 => "bunny x16",
+                _ => "bunny, subdivided",
+            },
+            // Exact: every coordinate is on a grid of 2^-16 or finer and
+            // below 16 in size.
+            vertices: v
+                .iter()
+                .map(|p| Vec3::new(p[0] as f32, p[1] as f32, p[2] as f32))
+                .collect(),
+            faces,
+            interior: Interior::Tested,
+        }
+    }
+
+    /// The smallest box around the vertices.
+    pub fn bounds(&self) -> (Vec3, Vec3) {
+        self.vertices
+            .iter()
+            .fold((Vec3::INFINITY, Vec3::NEG_INFINITY), |(lo, hi), &v| {
+                (lo.min(v), hi.max(v))
+            })
     }
 
     pub fn triangles(&self) -> Vec<Triangle> {
@@ -140,17 +219,40 @@ impl LeakRays {
                 star[v as usize].push(i as u32);
             }
         }
-        let interior = |target: Vec3, rng: &mut Pcg32| -> Vec3 {
-            // A point inside the solid near the target: on the torus's core
-            // circle, or inside the sphere, on the grid.
+        let crossings = (mesh.interior == Interior::Tested).then(|| Crossings::new(mesh));
+        let (lo, hi) = mesh.bounds();
+        let size = f64::from((hi - lo).length());
+        let vertex_normal = |v: u32| {
+            let n = star[v as usize]
+                .iter()
+                .map(|&i| mesh.normal(mesh.faces[i as usize]))
+                .fold([0.0; 3], |s, n| [s[0] + n[0], s[1] + n[1], s[2] + n[2]]);
+            let len = (n[0] * n[0] + n[1] * n[1] + n[2] * n[2]).sqrt();
+            [n[0] / len, n[1] / len, n[2] / len]
+        };
+        // A point inside the solid near the target (a vertex `v` or the
+        // midpoint of the edge from `v`), on the grid; `None` where the
+        // tested kind found none.
+        let interior = |target: Vec3, v: u32, rng: &mut Pcg32| -> Option<Vec3> {
             let t = target.as_dvec3();
-            if mesh.name == "torus" {
-                let a = t.y.atan2(t.x);
-                let j = f64::from(rng.unit()) * 0.2 - 0.1;
-                snap3(2.0 * a.cos() + j, 2.0 * a.sin() - j, j)
-            } else {
-                let s = 0.2 + 0.5 * f64::from(rng.unit());
-                snap3(t.x * s, t.y * s, t.z * s)
+            match mesh.interior {
+                Interior::CoreCircle(radius) => {
+                    let a = t.y.atan2(t.x);
+                    let j = f64::from(rng.unit()) * 0.2 - 0.1;
+                    Some(snap3(radius * a.cos() + j, radius * a.sin() - j, j))
+                }
+                Interior::StarFromOrigin => {
+                    let s = 0.2 + 0.5 * f64::from(rng.unit());
+                    Some(snap3(t.x * s, t.y * s, t.z * s))
+                }
+                Interior::Tested => {
+                    let n = vertex_normal(v);
+                    let step = size * (0.002 + 0.02 * f64::from(rng.unit()));
+                    [step, -step].into_iter().find_map(|s| {
+                        let p = snap3(t.x + s * n[0], t.y + s * n[1], t.z + s * n[2]);
+                        crossings.as_ref().is_some_and(|c| c.inside(p)).then_some(p)
+                    })
+                }
             }
         };
         let mut inside = Vec::with_capacity(count);
@@ -161,8 +263,9 @@ impl LeakRays {
             let b = mesh.vertices[f[1] as usize];
             // A vertex, or the midpoint of an edge (exact on the grid).
             let target = if rng.below(2) == 0 { a } else { (a + b) * 0.5 };
-            if inside.len() < count {
-                let o = interior(target, &mut rng);
+            if inside.len() < count
+                && let Some(o) = interior(target, f[0], &mut rng)
+            {
                 inside.push(Ray::new(o, target - o));
             }
             if outside.len() < count && target == a {
@@ -192,6 +295,80 @@ impl LeakRays {
             }
         }
         LeakRays { inside, outside }
+    }
+}
+
+/// An exact point-in-solid test for a closed mesh: the parity of the
+/// crossings of the ray from the point along `+x`, each counted once by
+/// rayhit's one-hit rule (`Triangle::hit` with `EdgeRule::OneHit` over
+/// `(0, inf]`, exact even through edges and vertices). The triangles are
+/// sorted into a grid of cells over `y` and `z` (each into every cell its
+/// closed box covers), so that a point tests only its cell's.
+pub struct Crossings {
+    /// The mesh's triangles.
+    tris: Vec<Triangle>,
+    /// Per cell (`y` major), the triangles whose closed box covers it.
+    cells: Vec<Vec<u32>>,
+    /// The grid's low corner in `y` and `z`.
+    lo: [f32; 2],
+    /// Cells per unit length in `y` and `z`.
+    scale: [f32; 2],
+}
+
+/// Cells per side of [`Crossings`]'s grid.
+const CELLS: usize = 64;
+
+impl Crossings {
+    /// Sorts the mesh's triangles into the grid.
+    pub fn new(mesh: &Mesh) -> Self {
+        let (lo, hi) = mesh.bounds();
+        let lo = [lo.y, lo.z];
+        let scale = [
+            CELLS as f32 / (hi.y - lo[0]).max(f32::MIN_POSITIVE),
+            CELLS as f32 / (hi.z - lo[1]).max(f32::MIN_POSITIVE),
+        ];
+        let mut c = Crossings {
+            tris: mesh.triangles(),
+            cells: vec![Vec::new(); CELLS * CELLS],
+            lo,
+            scale,
+        };
+        for (i, t) in c.tris.iter().enumerate() {
+            let (a, b) = (t.a.min(t.b).min(t.c), t.a.max(t.b).max(t.c));
+            let (y0, z0) = c.cell(a.y, a.z);
+            let (y1, z1) = c.cell(b.y, b.z);
+            for y in y0..=y1 {
+                for z in z0..=z1 {
+                    c.cells[y * CELLS + z].push(i as u32);
+                }
+            }
+        }
+        c
+    }
+
+    /// The cell of `(y, z)`: monotone in each coordinate (rounding and
+    /// clamping keep order), so a point inside a closed box is in one of
+    /// the cells the box was put in.
+    fn cell(&self, y: f32, z: f32) -> (usize, usize) {
+        let at = |x: f32, k: usize| {
+            (((x - self.lo[k]) * self.scale[k]).floor().max(0.0) as usize).min(CELLS - 1)
+        };
+        (at(y, 0), at(z, 1))
+    }
+
+    /// Whether `p` is inside the solid (for `p` on no triangle).
+    pub fn inside(&self, p: Vec3) -> bool {
+        let ray = PreparedRay::new(&Ray::new(p, Vec3::X));
+        let (y, z) = self.cell(p.y, p.z);
+        let search = (
+            rayhit::Interval::up_to(f32::INFINITY).expect("a range"),
+            rayhit::EdgeRule::OneHit,
+        );
+        let n = self.cells[y * CELLS + z]
+            .iter()
+            .filter(|&&i| self.tris[i as usize].hit(&ray, search).is_some())
+            .count();
+        n % 2 == 1
     }
 }
 
@@ -316,6 +493,16 @@ impl Scene {
         hit.t
     }
 
+    /// As [`Scene::obvhs_closest`], on obvhs's ray as given (its `tmin`
+    /// and `tmax` kept).
+    pub fn obvhs_closest_ob(&self, ray: &ObRay) -> f32 {
+        let mut hit = obvhs::ray::RayHit::none();
+        self.bvh.ray_traverse(*ray, &mut hit, |r, id| {
+            self.ob_tris[self.bvh.primitive_indices[id] as usize].intersect(r)
+        });
+        hit.t
+    }
+
     /// Closest hit with obvhs's node test and rayhit's triangle test.
     pub fn obvhs_nodes_rayhit_triangles(&self, ray: &Ray) -> f32 {
         let p = PreparedRay::new(ray);
@@ -329,11 +516,28 @@ impl Scene {
     }
 
     /// Closest hit with rayhit's node and triangle tests, in obvhs's
-    /// traversal order (its `traverse!` with rayhit's kernels plugged in).
+    /// traversal order (its `traverse!` with rayhit's kernels plugged in),
+    /// the node test on the instruction set `simd` (chosen once, by
+    /// `with_simd`).
     #[inline(always)]
     pub fn rayhit_closest<I: Simd>(&self, simd: I, ray: &PreparedRay, dir: Vec3A) -> f32 {
+        self.rayhit_closest_on(&simd.ray(ray), ray, dir)
+    }
+
+    /// Closest hit with rayhit's node and triangle tests in obvhs's
+    /// traversal order, the node test on `node_ray`: the prepared ray
+    /// itself (plain calls, which pick the node test's instruction set per
+    /// call) or its form on an instruction set from `with_simd`. The
+    /// triangles take the prepared ray. `dir` is the ray's direction
+    /// (obvhs orders the children by its octant).
+    #[inline(always)]
+    pub fn rayhit_closest_on<R: RayForm>(
+        &self,
+        node_ray: &R,
+        ray: &PreparedRay,
+        dir: Vec3A,
+    ) -> f32 {
         let bvh = &self.bvh;
-        let on_simd = simd.ray(ray);
         let mut t_max = f32::INFINITY;
         let mut state = bvh.new_traversal(dir);
         let mut node;
@@ -341,21 +545,11 @@ impl Scene {
             bvh,
             node,
             state,
-            {
-                let hits = children(node).clip(&on_simd, t_max).mask;
-                // obvhs's hit mask: each hit child's bits (one for an inner
-                // node, the unary primitive count for a leaf) at its index.
-                let (child_bits8, bit_index8) = node.get_child_and_index_bits(state.oct_inv4);
-                // (Over all eight children, as obvhs does, rather than over
-                // the hit ones: no branch on how many there are.)
-                let mut mask = 0u32;
-                for c in 0..8 {
-                    if hits & (1 << c) != 0 {
-                        mask |= extract_byte64(child_bits8, c) << extract_byte64(bit_index8, c);
-                    }
-                }
-                mask
-            },
+            hit_mask(
+                node,
+                children(node).clip(node_ray, t_max).mask,
+                state.oct_inv4
+            ),
             {
                 let t = &self.tris[bvh.primitive_indices[state.primitive_id as usize] as usize];
                 if let Some(hit) = t.hit(ray, t_max) {
@@ -365,6 +559,71 @@ impl Scene {
         );
         t_max
     }
+
+    /// Whether anything blocks the segment `segment` of the ray, with
+    /// rayhit's node test over the same interval and `Triangle::occluded`
+    /// in the leaves, in obvhs's traversal order, stopping at the first
+    /// occluder (as obvhs's `ray_traverse_miss` stops). `node_ray` as for
+    /// [`Scene::rayhit_closest_on`].
+    #[inline(always)]
+    pub fn rayhit_occluded_on<R: RayForm>(
+        &self,
+        node_ray: &R,
+        ray: &PreparedRay,
+        dir: Vec3A,
+        segment: Interval<f32>,
+    ) -> bool {
+        let bvh = &self.bvh;
+        let mut state = bvh.new_traversal(dir);
+        let mut node;
+        let mut blocked = false;
+        'walk: {
+            traverse!(
+                bvh,
+                node,
+                state,
+                hit_mask(
+                    node,
+                    children(node).clip(node_ray, segment).mask,
+                    state.oct_inv4
+                ),
+                {
+                    let t = &self.tris[bvh.primitive_indices[state.primitive_id as usize] as usize];
+                    if t.occluded(ray, segment) {
+                        blocked = true;
+                        break 'walk;
+                    }
+                }
+            );
+        }
+        blocked
+    }
+
+    /// Whether anything blocks the ray within `(0, t_max]`, by obvhs's
+    /// own any-hit traversal (`CwBvh::ray_traverse_miss`) and triangle
+    /// test.
+    pub fn obvhs_occluded(&self, ray: &ObRay) -> bool {
+        !self.bvh.ray_traverse_miss(*ray, |r, id| {
+            self.ob_tris[self.bvh.primitive_indices[id] as usize].intersect(r)
+        })
+    }
+}
+
+/// obvhs's hit mask from rayhit's mask of the children hit: each hit
+/// child's bits (one for an inner node, the unary primitive count for a
+/// leaf) at its index, as obvhs's own node test builds it.
+#[inline(always)]
+fn hit_mask(node: &CwBvhNode, hits: u32, oct_inv4: u32) -> u32 {
+    let (child_bits8, bit_index8) = node.get_child_and_index_bits(oct_inv4);
+    // (Over all eight children, as obvhs does, rather than over the hit
+    // ones: no branch on how many there are.)
+    let mut mask = 0u32;
+    for c in 0..8 {
+        if hits & (1 << c) != 0 {
+            mask |= extract_byte64(child_bits8, c) << extract_byte64(bit_index8, c);
+        }
+    }
+    mask
 }
 
 /// Every ray of a list through the rayhit pipeline, as `SimdWork`: each

@@ -58,6 +58,7 @@ use sections::{
     quads::{QuadData, quad_kernels},
     spheres::{SphereData, sphere_group_kernels, sphere_kernels},
     sweep::{Sweep, sweep_kernels},
+    traversal::{TraversalData, print_counts, print_traversal_leaks, traversal_kernels},
     triangles::triangle_kernels,
 };
 
@@ -65,6 +66,14 @@ fn main() {
     let meshes = [cwbvh::Mesh::torus(250, 200), cwbvh::Mesh::icosphere(6)];
     if std::env::args().nth(1).as_deref() == Some("--leaks") {
         print_leaks(&meshes, 200_000);
+        return;
+    }
+    // The section `traversal` runs on the same torus and icosphere, the
+    // bunny, and the bunny split twice (16 triangles for each).
+    let bunnies = [cwbvh::Mesh::bunny(0), cwbvh::Mesh::bunny(2)];
+    let traversal_meshes: Vec<&cwbvh::Mesh> = meshes.iter().chain(&bunnies).collect();
+    if std::env::args().nth(1).as_deref() == Some("--traversal-leaks") {
+        print_traversal_leaks(&traversal_meshes, 50_000);
         return;
     }
     // `--same-order` and `--shuffle-all` (anywhere among the arguments):
@@ -122,6 +131,10 @@ fn main() {
     let cameras = CameraData::new();
     let camera_set = Cameras::of(&cameras);
     let instance_data = InstanceData::new();
+    let traversal_data: Vec<TraversalData> = traversal_meshes
+        .iter()
+        .map(|m| TraversalData::new(m))
+        .collect();
 
     let mut kernels = Vec::new();
     for d in &box_data {
@@ -180,6 +193,9 @@ fn main() {
         &mut kernels,
     );
     instance_kernels(&instance_data, &mut kernels);
+    for d in &traversal_data {
+        traversal_kernels(d, &mut kernels);
+    }
 
     // `--count NAME WORKLOAD REPS`: run one row's loop REPS times, untimed,
     // and stop; under `valgrind --tool=callgrind`, the difference between
@@ -215,6 +231,12 @@ fn main() {
 
     data::print_hit_rates(&box_data, &tri_data, &groups);
     harness::print_table(&kernels);
+    if kernels
+        .iter()
+        .any(|k| k.section == sections::traversal::SECTION)
+    {
+        print_counts(&traversal_data);
+    }
     targets::print_targets(&kernels);
     println!();
     println!(

@@ -17,7 +17,11 @@
 //! - `camera`: `camera` and `camera differentials`, with the camera
 //!   owned or reached by reference;
 //! - `camera_refs`: the textbook and floor rows of the section `camera`;
-//! - `instance`: `instance`, the mappings in and out of an instance.
+//! - `instance`: `instance`, the mappings in and out of an instance;
+//! - `traversal`: `traversal`, whole closest-hit and any-hit traversals
+//!   of a CWBVH and a binary BVH per ray, rayhit's plain calls against
+//!   obvhs's own, with the counts after the table and the
+//!   `--traversal-leaks` table.
 
 pub mod boxes;
 pub mod camera;
@@ -29,4 +33,5 @@ pub mod patches;
 pub mod quads;
 pub mod spheres;
 pub mod sweep;
+pub mod traversal;
 pub mod triangles;

@@ -1,0 +1,377 @@
+//! The section `traversal`: whole traversals per ray, rayhit's kernels
+//! called the way a renderer author first writes them (plain calls on a
+//! `PreparedRay`) against obvhs's own traversals with its own tests, on
+//! the same trees: obvhs's compressed wide BVH (`rayhit_peers::cwbvh`) and
+//! its binary BVH (`rayhit_peers::traversal`).
+//!
+//! Rows, per mesh and workload (time per ray; 1000 / ns is Mrays/s):
+//!
+//! - `rayhit CWBVH, plain calls`: obvhs's CWBVH in obvhs's order
+//!   (`traverse!`), the node test `QuantizedChildren::clip` on the prepared
+//!   ray, `Triangle::hit` in the leaves (`occluded` on `shadow`), no
+//!   `with_simd` anywhere;
+//! - `rayhit CWBVH, with_simd`: the same traversal with the node test on
+//!   the instruction set `with_simd` chose once for the whole pass;
+//! - `obvhs CwBvh, its own tests`: `CwBvh::ray_traverse` (closest) or
+//!   `ray_traverse_miss` (any hit) with obvhs's triangle test;
+//! - `rayhit BVH2, plain calls`: obvhs's binary BVH walked by the stack
+//!   traversal of `rayhit_peers::traversal` with `Aabb::clip` and
+//!   `Triangle::hit` / `occluded`;
+//! - `obvhs Bvh2, its own tests`: `Bvh2::ray_traverse` or
+//!   `ray_traverse_miss` with obvhs's triangle test.
+//!
+//! Workloads: `camera` (128 x 128 pinhole rays in scanline order),
+//! `incoherent` (as many rays between random points around the mesh and
+//! in its box), `inside` (rays from inside aimed exactly at vertices and
+//! edge midpoints, `LeakRays::inside`), `shadow` (any-hit segments from
+//! the camera rays' hits to a point light: rayhit's epsilon-free
+//! `spawn_to_point` segment over its interval for rayhit's rows, the
+//! `point + 1e-4 n`, `t_max = 1 - 1e-4` segment for obvhs's). The
+//! agreement column is hit or miss (occluded or not on `shadow`) against
+//! `rayhit CWBVH, plain calls`; the counts are printed after the table
+//! ([`print_counts`]), and `--traversal-leaks` prints the leak table.
+
+use rayhit::batch::{Simd, SimdWork, with_simd};
+use rayhit::glam::Vec3A;
+use rayhit::{Interval, PreparedRay, Ray, RayForm};
+use rayhit_peers::cwbvh::{self, LeakRays, Mesh, count_leaks};
+use rayhit_peers::traversal::{Bvh2Scene, EPS, ShadowRays, camera_rays, ob_ray, random_rays};
+
+use crate::harness::loops::agree;
+use crate::harness::{Kernel, kernel};
+
+/// The section's name in the table.
+pub const SECTION: &str = "traversal";
+
+/// The rows' names, in the table's order: rayhit's CWBVH rows, obvhs's
+/// CWBVH, rayhit's binary BVH, obvhs's binary BVH.
+pub const ROWS: [&str; 5] = [
+    "rayhit CWBVH, plain calls",
+    "rayhit CWBVH, with_simd",
+    "obvhs CwBvh, its own tests",
+    "rayhit BVH2, plain calls",
+    "obvhs Bvh2, its own tests",
+];
+
+/// One ray set: rayhit's rays (prepared, with the direction obvhs's order
+/// reads), their intervals on `shadow`, and obvhs's rays.
+struct Workload {
+    /// `camera`, `incoherent`, `inside` or `shadow`.
+    name: &'static str,
+    /// rayhit's rays, prepared, with their directions.
+    rays: Vec<(PreparedRay, Vec3A)>,
+    /// Empty for the closest-hit sets; on `shadow`, each ray's segment.
+    segments: Vec<Interval<f32>>,
+    /// obvhs's rays (on `shadow`, the offset segments over `(0, 1 - EPS]`).
+    ob: Vec<obvhs::ray::Ray>,
+    /// Shadow hit points without a segment (counted as blocked).
+    grazing: usize,
+}
+
+/// One mesh's trees and ray sets, and each row's answer per ray (hit or
+/// occluded), for the agreement column and the counts.
+pub struct TraversalData {
+    /// The mesh's name.
+    name: &'static str,
+    /// The mesh's triangle count.
+    triangles: usize,
+    /// obvhs's CWBVH as built, for obvhs's traversal.
+    obvhs: cwbvh::Scene,
+    /// The same with the child boxes rayhit's decoding does not contain
+    /// re-quantized (`Scene::check_quantization`), for rayhit's.
+    fixed: cwbvh::Scene,
+    /// obvhs's binary BVH, for both binary rows.
+    bvh2: Bvh2Scene,
+    /// `camera`, `incoherent`, `inside`, `shadow`.
+    workloads: Vec<Workload>,
+    /// Per workload, per row of [`ROWS`], per ray: hit (or occluded).
+    answers: Vec<[Vec<bool>; 5]>,
+}
+
+/// One ray of a workload through rayhit's CWBVH traversal, the node test
+/// on `node_ray`: the closest hit's `t` bits, or 1 where occluded.
+#[inline(always)]
+fn cw_one(s: &cwbvh::Scene, w: &Workload, i: usize, node_ray: &impl RayForm) -> u64 {
+    let (p, d) = &w.rays[i];
+    match w.segments.get(i) {
+        None => u64::from(s.rayhit_closest_on(node_ray, p, *d).to_bits()),
+        Some(&seg) => u64::from(s.rayhit_occluded_on(node_ray, p, *d, seg)),
+    }
+}
+
+/// The wrapping sum of `f` over `0..n`: a row's checksum over its rays.
+fn sum(n: usize, f: impl Fn(usize) -> u64) -> u64 {
+    (0..n).map(f).fold(0, u64::wrapping_add)
+}
+
+/// A workload through rayhit's CWBVH with the node test on the
+/// instruction set `with_simd` picks once for the pass.
+#[derive(Clone, Copy)]
+struct CwSimd<'a>(&'a cwbvh::Scene, &'a Workload);
+
+impl SimdWork for CwSimd<'_> {
+    type Output = u64;
+    #[inline(always)]
+    fn run<I: Simd>(self, simd: I) -> u64 {
+        let CwSimd(s, w) = self;
+        sum(w.rays.len(), |i| cw_one(s, w, i, &simd.ray(&w.rays[i].0)))
+    }
+}
+
+/// As [`CwSimd`], each ray's answer.
+#[derive(Clone, Copy)]
+struct CwSimdEach<'a>(&'a cwbvh::Scene, &'a Workload);
+
+impl SimdWork for CwSimdEach<'_> {
+    type Output = Vec<u64>;
+    fn run<I: Simd>(self, simd: I) -> Vec<u64> {
+        let CwSimdEach(s, w) = self;
+        (0..w.rays.len())
+            .map(|i| cw_one(s, w, i, &simd.ray(&w.rays[i].0)))
+            .collect()
+    }
+}
+
+impl TraversalData {
+    /// Builds the trees and the ray sets, and runs every row once for its
+    /// answers.
+    pub fn new(mesh: &Mesh) -> Self {
+        let obvhs = cwbvh::Scene::new(mesh);
+        let mut fixed = cwbvh::Scene::new(mesh);
+        fixed.check_quantization(true);
+        let bvh2 = Bvh2Scene::new(mesh);
+        let camera = camera_rays(mesh, 128);
+        let closest = |name, rays: &[Ray]| Workload {
+            name,
+            rays: rays
+                .iter()
+                .map(|r| (PreparedRay::new(r), r.dir.into()))
+                .collect(),
+            segments: Vec::new(),
+            ob: rays.iter().map(|r| ob_ray(r, f32::INFINITY)).collect(),
+            grazing: 0,
+        };
+        let shadow = ShadowRays::new(&bvh2, mesh, &camera);
+        let mut workloads = vec![
+            closest("camera", &camera),
+            closest("incoherent", &random_rays(mesh, camera.len(), 11)),
+            closest("inside", &LeakRays::new(mesh, 4096, 7).inside),
+        ];
+        workloads.push(Workload {
+            name: "shadow",
+            rays: shadow
+                .rayhit
+                .iter()
+                .map(|(r, _)| (PreparedRay::new(r), r.dir.into()))
+                .collect(),
+            segments: shadow.rayhit.iter().map(|&(_, s)| s).collect(),
+            ob: shadow.eps.iter().map(|r| ob_ray(r, 1.0 - EPS)).collect(),
+            grazing: shadow.grazing,
+        });
+        let mut d = TraversalData {
+            name: mesh.name,
+            triangles: mesh.faces.len(),
+            obvhs,
+            fixed,
+            bvh2,
+            workloads,
+            answers: Vec::new(),
+        };
+        d.answers = (0..d.workloads.len())
+            .map(|k| std::array::from_fn(|row| d.answers_of(k, row)))
+            .collect();
+        d
+    }
+
+    /// Row `row`'s answer per ray of workload `k`: hit (closest) or
+    /// occluded (shadow).
+    fn answers_of(&self, k: usize, row: usize) -> Vec<bool> {
+        let w = &self.workloads[k];
+        let shadow = !w.segments.is_empty();
+        let hit = |x: u64| {
+            if shadow {
+                x == 1
+            } else {
+                x != f32::INFINITY.to_bits().into()
+            }
+        };
+        let simd = if row == 1 {
+            with_simd(CwSimdEach(&self.fixed, w))
+        } else {
+            Vec::new()
+        };
+        (0..w.rays.len())
+            .map(|i| {
+                let (p, _) = &w.rays[i];
+                match row {
+                    0 => hit(cw_one(&self.fixed, w, i, p)),
+                    1 => hit(simd[i]),
+                    2 if shadow => self.obvhs.obvhs_occluded(&w.ob[i]),
+                    2 => self.obvhs.obvhs_closest_ob(&w.ob[i]) < f32::INFINITY,
+                    3 if shadow => self.bvh2.rayhit_occluded(p, w.segments[i]),
+                    3 => self.bvh2.rayhit_closest(p).is_some(),
+                    _ if shadow => self.bvh2.obvhs_occluded(&w.ob[i]),
+                    _ => self.bvh2.obvhs_closest(&w.ob[i]) < f32::INFINITY,
+                }
+            })
+            .collect()
+    }
+}
+
+/// The section's rows for one mesh: every workload, every row of
+/// [`ROWS`].
+pub fn traversal_kernels<'a>(d: &'a TraversalData, out: &mut Vec<Kernel<'a>>) {
+    for (k, w) in d.workloads.iter().enumerate() {
+        let name = format!("{}, {}", d.name, w.name);
+        let n = w.rays.len();
+        let ours = &d.answers[k][0];
+        let agreement = |row: usize| {
+            Some(agree(
+                ours.iter().copied(),
+                d.answers[k][row].iter().copied(),
+            ))
+        };
+        let shadow = !w.segments.is_empty();
+        let (fixed, bvh2, obvhs) = (&d.fixed, &d.bvh2, &d.obvhs);
+        out.push(kernel(SECTION, ROWS[0], &name, n, None, move || {
+            sum(n, |i| cw_one(fixed, w, i, &w.rays[i].0))
+        }));
+        out.push(kernel(SECTION, ROWS[1], &name, n, None, move || {
+            with_simd(CwSimd(fixed, w))
+        }));
+        out.push(kernel(
+            SECTION,
+            ROWS[2],
+            &name,
+            n,
+            agreement(2),
+            move || {
+                if shadow {
+                    sum(n, |i| u64::from(obvhs.obvhs_occluded(&w.ob[i])))
+                } else {
+                    sum(n, |i| u64::from(obvhs.obvhs_closest_ob(&w.ob[i]).to_bits()))
+                }
+            },
+        ));
+        out.push(kernel(
+            SECTION,
+            ROWS[3],
+            &name,
+            n,
+            agreement(3),
+            move || {
+                if shadow {
+                    sum(n, |i| {
+                        u64::from(bvh2.rayhit_occluded(&w.rays[i].0, w.segments[i]))
+                    })
+                } else {
+                    sum(n, |i| {
+                        bvh2.rayhit_closest(&w.rays[i].0)
+                            .map_or(u64::MAX, |(_, h)| u64::from(h.t.to_bits()))
+                    })
+                }
+            },
+        ));
+        out.push(kernel(
+            SECTION,
+            ROWS[4],
+            &name,
+            n,
+            agreement(4),
+            move || {
+                if shadow {
+                    sum(n, |i| u64::from(bvh2.obvhs_occluded(&w.ob[i])))
+                } else {
+                    sum(n, |i| u64::from(bvh2.obvhs_closest(&w.ob[i]).to_bits()))
+                }
+            },
+        ));
+    }
+}
+
+/// After the table: per mesh and workload, how many rays each row saw hit
+/// (on `inside`, also how many hit nothing: each one a leak; on `shadow`,
+/// how many segments were occluded).
+pub fn print_counts(data: &[TraversalData]) {
+    println!();
+    println!(
+        "Traversal counts (hits, or occluded segments on `shadow`; on `inside` every miss is a ray that leaked out of a closed mesh):"
+    );
+    println!();
+    print!("| mesh | triangles | workload | rays |");
+    for r in ROWS {
+        print!(" {r} |");
+    }
+    println!();
+    println!(
+        "| --- | ---: | --- | ---: |{}",
+        " ---: |".repeat(ROWS.len())
+    );
+    for d in data {
+        for (w, answers) in d.workloads.iter().zip(&d.answers) {
+            print!(
+                "| {} | {} | {} | {} |",
+                d.name,
+                d.triangles,
+                w.name,
+                w.rays.len()
+            );
+            for a in answers {
+                let hits = a.iter().filter(|&&h| h).count();
+                if w.name == "inside" {
+                    print!(" {hits} ({} missed) |", a.len() - hits);
+                } else {
+                    print!(" {hits} |");
+                }
+            }
+            println!();
+            if w.grazing > 0 {
+                println!(
+                    "| | | ({} hit points had no rayhit segment: light within rounding of the plane) | | | | | | |",
+                    w.grazing
+                );
+            }
+        }
+    }
+}
+
+/// `--traversal-leaks`: per mesh, `count` rays from inside and from
+/// outside aimed exactly at vertices and edge midpoints, through every
+/// row's pipeline: how many inside rays hit nothing, and how many outside
+/// rays passed their target.
+pub fn print_traversal_leaks(meshes: &[&Mesh], count: usize) {
+    println!(
+        "| mesh | triangles | rays from inside | rays from outside | pipeline | inside rays that hit nothing | outside rays past their target |"
+    );
+    println!("| --- | ---: | ---: | ---: | --- | ---: | ---: |");
+    for mesh in meshes {
+        let rays = LeakRays::new(mesh, count, 7);
+        let obvhs = cwbvh::Scene::new(mesh);
+        let mut fixed = cwbvh::Scene::new(mesh);
+        fixed.check_quantization(true);
+        let bvh2 = Bvh2Scene::new(mesh);
+        let row = |name: &str, closest: &dyn Fn(&Ray) -> f32| {
+            let l = count_leaks(&rays, closest);
+            println!(
+                "| {} | {} | {} | {} | {name} | {} | {} |",
+                mesh.name,
+                mesh.faces.len(),
+                rays.inside.len(),
+                rays.outside.len(),
+                l.inside_missed,
+                l.passed_through
+            );
+        };
+        row(ROWS[0], &|r| {
+            let p = PreparedRay::new(r);
+            fixed.rayhit_closest_on(&p, &p, r.dir.into())
+        });
+        row(ROWS[1], &|r| cwbvh::rayhit_one(&fixed, r));
+        row(ROWS[2], &|r| obvhs.obvhs_closest(r));
+        row(ROWS[3], &|r| {
+            bvh2.rayhit_closest(&PreparedRay::new(r))
+                .map_or(f32::INFINITY, |(_, h)| h.t)
+        });
+        row(ROWS[4], &|r| bvh2.obvhs_closest(&ob_ray(r, f32::INFINITY)));
+    }
+}
