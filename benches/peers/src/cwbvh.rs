@@ -547,7 +547,7 @@ impl Scene {
             state,
             hit_mask(
                 node,
-                children(node).clip(node_ray, t_max).mask,
+                children(node).meets(node_ray, t_max),
                 state.oct_inv4
             ),
             {
@@ -584,7 +584,7 @@ impl Scene {
                 state,
                 hit_mask(
                     node,
-                    children(node).clip(node_ray, segment).mask,
+                    children(node).meets(node_ray, segment),
                     state.oct_inv4
                 ),
                 {
