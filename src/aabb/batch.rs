@@ -11,7 +11,7 @@ use glam::Vec3;
 use super::Aabb;
 use super::definition::{exit_slack, exit_widening};
 use crate::num::{Lanes, Lanes8, S, Scalar, Vector};
-use crate::ray::{PreparedRay, t_max_ok};
+use crate::ray::PreparedRay;
 use crate::simd::{Isa, Kernel, check_lanes, lanes_at, put};
 
 /// One axis of the slab test's NaN-safe fold (see
@@ -283,7 +283,9 @@ pub(crate) struct AabbBatchKernel<V, const N: usize>(PhantomData<V>);
 impl<V: Vector, const N: usize> Kernel for AabbBatchKernel<V, N> {
     type Ray = PreparedRay<V>;
     type Shapes = AabbBatch<V, N>;
-    /// `(t_min, t_max)`: see [`Slab8::new`].
+    /// `(t_min, t_max)`: see [`Slab8::new`]; a NaN or negative `t_max`
+    /// is answered by the caller (`Bounds for AabbBatch`), so that the
+    /// call's path has one branch fewer.
     type Limit = (S<V>, S<V>);
     type Output = AabbBatchHits<S<V>, N>;
 
@@ -316,6 +318,23 @@ impl<F, const N: usize, K: Kernel<Output = AabbBatchHits<F, N>>> Kernel for Mask
     }
 }
 
+/// A batch kernel over `(t_min, t_max)` run with `t_min` the constant
+/// zero, for a plain `t_max` (one broadcast fewer per call).
+pub(crate) struct FromZero<K>(PhantomData<K>);
+
+impl<F: Scalar, K: Kernel<Limit = (F, F)>> Kernel for FromZero<K> {
+    type Ray = K::Ray;
+    type Shapes = K::Shapes;
+    type Limit = (F, F);
+    type Output = K::Output;
+    const AVX512: bool = K::AVX512;
+
+    #[inline(always)]
+    fn run<I: Isa>(isa: I, ray: &K::Ray, shapes: &K::Shapes, (_, t_max): (F, F)) -> K::Output {
+        K::run(isa, ray, shapes, (F::ZERO, t_max))
+    }
+}
+
 /// The body of [`AabbBatch`'s `clip`](crate::batch::AabbBatch#method.clip) with the eight-lane type `W`, eight lanes
 /// at a time.
 #[inline(always)]
@@ -327,9 +346,6 @@ fn aabb_batch_body<W: Lanes8<F = S<V>>, V: Vector, const N: usize>(
     const { check_lanes::<N>() };
     let inf = S::<V>::INFINITY;
     let mut enter = [inf; N];
-    if !t_max_ok(ends.1) {
-        return AabbBatchHits { mask: 0, enter };
-    }
     let slab = Slab8::<W>::new(ray, ends);
     let [min, max] = &batch.planes;
     let mut mask = 0;

@@ -29,7 +29,7 @@ use crate::num::{S, Scalar, Vector};
 pub use batch::{AabbBatch, AabbBatchHits};
 pub(crate) use batch::{MaskOf, Slab8};
 pub use face::{BoxFace, BoxHit};
-pub(crate) use query::batch_ends;
+pub(crate) use query::batch_query;
 pub(crate) use slab::ends as slab_ends;
 pub use slab::ray_aabb;
 pub(crate) use slab::{ray_aabb_in, ray_aabb_prepared, ray_aabb_prepared_in};

@@ -3,7 +3,7 @@
 //! ([`Bounds`]): each combination of ray form and range, sent to its
 //! kernel.
 
-use super::batch::{AabbBatch, AabbBatchHits, AabbBatchKernel, MaskOf};
+use super::batch::{AabbBatch, AabbBatchHits, AabbBatchKernel, FromZero, MaskOf};
 use super::face::{
     BoxHit, ray_aabb_face, ray_aabb_face_in, ray_aabb_prepared_face, ray_aabb_prepared_face_in,
 };
@@ -13,6 +13,8 @@ use super::slab::{ray_aabb_in, ray_aabb_prepared, ray_aabb_prepared_in, ray_slab
 use super::{Aabb, SlabBox, ValidAabb, slab_ends};
 use crate::num::{S, Scalar, Vector};
 use crate::query::{Bounds, Form, Intersect, Range, RayForm, Search};
+use crate::ray::{PreparedRay, t_max_ok};
+use crate::simd::Kernel;
 use crate::surface::SurfacePoint;
 
 /// The slab test of any box the slab tests take, with every form of ray
@@ -298,7 +300,16 @@ impl<V: Vector, const N: usize> Bounds<V> for AabbBatch<V, N> {
     /// ```
     #[inline(always)]
     fn clip(&self, ray: &impl RayForm<V>, search: impl Into<Search<S<V>>>) -> Self::Clip {
-        ray.batch::<AabbBatchKernel<V, N>>(self, batch_ends(search.into()))
+        let search = search.into();
+        if let Range::UpTo(t_max) = search.range
+            && !t_max_ok(t_max)
+        {
+            return AabbBatchHits {
+                mask: 0,
+                enter: [S::<V>::INFINITY; N],
+            };
+        }
+        batch_query::<V, AabbBatchKernel<V, N>>(ray, self, search)
     }
 
     /// [`clip`](Bounds::clip)`.mask`, returned in a register: the test a
@@ -315,16 +326,28 @@ impl<V: Vector, const N: usize> Bounds<V> for AabbBatch<V, N> {
     /// ```
     #[inline(always)]
     fn meets(&self, ray: &impl RayForm<V>, search: impl Into<Search<S<V>>>) -> u32 {
-        ray.batch::<MaskOf<AabbBatchKernel<V, N>>>(self, batch_ends(search.into()))
+        let search = search.into();
+        if let Range::UpTo(t_max) = search.range
+            && !t_max_ok(t_max)
+        {
+            return 0;
+        }
+        batch_query::<V, MaskOf<AabbBatchKernel<V, N>>>(ray, self, search)
     }
 }
 
-/// A search as the batch kernels take it: `(t_min, t_max)`, with `t_min`
-/// zero for a plain `t_max` (see [`slab_ends`] for an interval).
+/// Batch kernel `K` (over `(t_min, t_max)`) on `ray` over `search`: for a
+/// plain `t_max`, its copy with `t_min` the constant zero; for an
+/// interval, over the interval's ends as the slab test takes them (see
+/// [`slab_ends`]).
 #[inline(always)]
-pub(crate) fn batch_ends<F: Scalar>(search: Search<F>) -> (F, F) {
+pub(crate) fn batch_query<V: Vector, K: Kernel<Ray = PreparedRay<V>, Limit = (S<V>, S<V>)>>(
+    ray: &impl RayForm<V>,
+    shapes: &K::Shapes,
+    search: Search<S<V>>,
+) -> K::Output {
     match search.range {
-        Range::UpTo(t_max) => (F::ZERO, t_max),
-        Range::Within(i) => slab_ends(i),
+        Range::UpTo(t_max) => ray.batch::<FromZero<K>>(shapes, (S::<V>::ZERO, t_max)),
+        Range::Within(i) => ray.batch::<K>(shapes, slab_ends(i)),
     }
 }

@@ -6,7 +6,7 @@ use core::marker::PhantomData;
 
 use glam::Vec3;
 
-use crate::aabb::{Aabb, AabbBatch, AabbBatchHits, MaskOf, Slab8, batch_ends};
+use crate::aabb::{Aabb, AabbBatch, AabbBatchHits, MaskOf, Slab8, batch_query};
 use crate::num::{Lanes8, Vector};
 use crate::query::{Bounds, RayForm, Search};
 use crate::ray::{PreparedRay, t_max_ok};
@@ -112,11 +112,7 @@ impl<V: Vector<Scalar = f32>> QuantizedChildren<'_, V> {
     #[inline]
     #[must_use]
     pub fn is_valid(&self) -> bool {
-        (0..3).all(|k| {
-            let (p, s) = (self.origin[k], step_of(self.exponents[k]));
-            let w = widening(p, s);
-            ((p - w).abs() <= f32::MAX) & ((p + s * 255.0) + w <= f32::MAX)
-        })
+        (0..3).fold(true, |ok, k| ok & axis_of(self, k).finite)
     }
 
     /// The box the ray test uses for `child` (0 to 7): the quantized box
@@ -130,8 +126,7 @@ impl<V: Vector<Scalar = f32>> QuantizedChildren<'_, V> {
         let mut lo = [0.0; 3];
         let mut hi = [0.0; 3];
         for k in 0..3 {
-            let (p, s) = (self.origin[k], step_of(self.exponents[k]));
-            let w = widening(p, s);
+            let Axis { p, s, w, .. } = axis_of(self, k);
             let (a, b) = (self.min[k][child], self.max[k][child]);
             if a > b {
                 return None;
@@ -278,7 +273,7 @@ impl<V: Vector<Scalar = f32>> Bounds<V> for QuantizedChildren<'_, V> {
     /// ```
     #[inline(always)]
     fn clip(&self, ray: &impl RayForm<V>, search: impl Into<Search<f32>>) -> Self::Clip {
-        ray.batch::<QuantizedKernel<'_, V>>(self, batch_ends(search.into()))
+        batch_query::<V, QuantizedKernel<'_, V>>(ray, self, search.into())
     }
 
     /// [`clip`](Bounds::clip)`.mask`, returned in a register: the node
@@ -301,7 +296,7 @@ impl<V: Vector<Scalar = f32>> Bounds<V> for QuantizedChildren<'_, V> {
     /// ```
     #[inline(always)]
     fn meets(&self, ray: &impl RayForm<V>, search: impl Into<Search<f32>>) -> u32 {
-        ray.batch::<MaskOf<QuantizedKernel<'_, V>>>(self, batch_ends(search.into()))
+        batch_query::<V, MaskOf<QuantizedKernel<'_, V>>>(ray, self, search.into())
     }
 }
 
@@ -327,6 +322,27 @@ impl<'n, V: Vector<Scalar = f32>> Kernel for QuantizedKernel<'n, V> {
     }
 }
 
+/// One axis of a node: its origin `p`, step `s` and widening `w`, and
+/// whether every coordinate it decodes is finite.
+#[derive(Clone, Copy)]
+struct Axis {
+    p: f32,
+    s: f32,
+    w: f32,
+    finite: bool,
+}
+
+/// Axis `k` of `node`, computed once for the validity test and the
+/// decoding.
+#[inline(always)]
+fn axis_of<V: Vector<Scalar = f32>>(node: &QuantizedChildren<'_, V>, k: usize) -> Axis {
+    let (p, s) = (node.origin[k], step_of(node.exponents[k]));
+    let w = widening(p, s);
+    // (`&`, not `&&`: no branch per test.)
+    let finite = ((p - w).abs() <= f32::MAX) & ((p + s * 255.0) + w <= f32::MAX);
+    Axis { p, s, w, finite }
+}
+
 /// Axis `k` of the eight children, decoded as `child_box` does: the lower
 /// and upper planes, and which children are not empty on that axis.
 /// (A function, not a closure: the AVX2 copy must be inlined whole.)
@@ -334,11 +350,10 @@ impl<'n, V: Vector<Scalar = f32>> Kernel for QuantizedKernel<'n, V> {
 fn decode<W: Lanes8<F = f32>, V: Vector<Scalar = f32>>(
     node: &QuantizedChildren<'_, V>,
     k: usize,
+    axis: Axis,
 ) -> (W, W, W::Mask) {
-    let (p, s) = (node.origin[k], step_of(node.exponents[k]));
-    let w = widening(p, s);
     let (a, b) = (W::from_bytes(node.min[k]), W::from_bytes(node.max[k]));
-    let (s, p, w) = (W::splat(s), W::splat(p), W::splat(w));
+    let (s, p, w) = (W::splat(axis.s), W::splat(axis.p), W::splat(axis.w));
     (a.mul(s).add(p).sub(w), b.mul(s).add(p).add(w), a.le(b))
 }
 
@@ -350,12 +365,14 @@ fn quantized_body<W: Lanes8<F = f32>, V: Vector<Scalar = f32>>(
     ends: (f32, f32),
 ) -> AabbBatchHits<f32, 8> {
     let mut enter = [f32::INFINITY; 8];
-    if !(t_max_ok(ends.1) && node.is_valid()) {
+    let axes = [axis_of(node, 0), axis_of(node, 1), axis_of(node, 2)];
+    // (One branch for the node's validity and the search's.)
+    if !(t_max_ok(ends.1) & axes[0].finite & axes[1].finite & axes[2].finite) {
         return AabbBatchHits { mask: 0, enter };
     }
-    let (x0, x1, ox) = decode::<W, V>(node, 0);
-    let (y0, y1, oy) = decode::<W, V>(node, 1);
-    let (z0, z1, oz) = decode::<W, V>(node, 2);
+    let (x0, x1, ox) = decode::<W, V>(node, 0, axes[0]);
+    let (y0, y1, oy) = decode::<W, V>(node, 1, axes[1]);
+    let (z0, z1, oz) = decode::<W, V>(node, 2, axes[2]);
     let slab = Slab8::<W>::new(ray, ends);
     let (hit, e) = slab.test([x0, y0, z0], [x1, y1, z1]);
     let hit = W::and(hit, W::and(ox, W::and(oy, oz)));

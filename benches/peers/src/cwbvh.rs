@@ -545,11 +545,7 @@ impl Scene {
             bvh,
             node,
             state,
-            hit_mask(
-                node,
-                children(node).meets(node_ray, t_max),
-                state.oct_inv4
-            ),
+            hit_mask(node, children(node).meets(node_ray, t_max), state.oct_inv4),
             {
                 let t = &self.tris[bvh.primitive_indices[state.primitive_id as usize] as usize];
                 if let Some(hit) = t.hit(ray, t_max) {

@@ -85,6 +85,18 @@ pub fn print_targets(kernels: &[Kernel<'_>]) {
         ),
         5.0,
     );
+    // The same batch by a plain call (the obvious code), where the
+    // entries go unused: `meets`.
+    target(
+        "AabbBatch::meets, 8 lanes, plain call, per box vs bvh intersects_aabb (groups of 8)",
+        ratio(
+            "box x8",
+            "bvh intersects_aabb",
+            "rayhit AabbBatch::meets, 8 lanes",
+            w,
+        ),
+        5.0,
+    );
     target(
         "AabbBatch::clip, 16 lanes, with_simd, per box vs bvh intersects_aabb (N = 1024 sweep)",
         ratio(
