@@ -98,8 +98,19 @@ pub(crate) fn per_call<K: Kernel>(ray: &K::Ray, shapes: &K::Shapes, t_max: K::Li
         super::Widest::Avx512(isa) if K::AVX512 => return isa.kernel::<K>(ray, shapes, t_max),
         super::Widest::Avx512(isa) => return isa.avx2().kernel::<K>(ray, shapes, t_max),
         super::Widest::Avx2(isa) => return isa.kernel::<K>(ray, shapes, t_max),
-        super::Widest::Target => {}
+        // (Out of line, so that the caller's loop holds a call on every
+        // path rather than the kernel's SSE copy on one: the copy inlined
+        // there took registers from the whole loop.)
+        super::Widest::Target => return target_out_of_line::<K>(ray, shapes, t_max),
     }
+    #[allow(unreachable_code)]
+    TargetSimd.kernel::<K>(ray, shapes, t_max)
+}
+
+/// Kernel `K` on the target's own lanes, out of line (see `per_call`).
+#[cfg(rayhit_runtime_avx)]
+#[inline(never)]
+fn target_out_of_line<K: Kernel>(ray: &K::Ray, shapes: &K::Shapes, t_max: K::Limit) -> K::Output {
     TargetSimd.kernel::<K>(ray, shapes, t_max)
 }
 

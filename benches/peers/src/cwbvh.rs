@@ -24,7 +24,7 @@ use obvhs::triangle::Triangle as ObTriangle;
 use obvhs::{BvhBuildParams, traverse};
 use rayhit::batch::{QuantizedChildren, Simd, SimdWork, with_simd};
 use rayhit::glam::{UVec2, Vec3, Vec3A};
-use rayhit::{Bounds, Intersect, Interval, PreparedRay, Ray, RayForm, Triangle};
+use rayhit::{Bounds, Intersect, Interval, PreparedRay, Ray, RayForm, Search, Triangle};
 
 /// A closed mesh: vertices and index triples, consistently wound, every
 /// edge shared by exactly two triangles.
@@ -537,6 +537,20 @@ impl Scene {
         ray: &PreparedRay,
         dir: Vec3A,
     ) -> f32 {
+        self.rayhit_closest_with(ray, dir, |node, t_max| {
+            children(node).meets(node_ray, t_max)
+        })
+    }
+
+    /// [`Scene::rayhit_closest_on`] with the node test `meets` (the
+    /// children hit within `(0, t_max]`, one bit each).
+    #[inline(always)]
+    pub fn rayhit_closest_with(
+        &self,
+        ray: &PreparedRay,
+        dir: Vec3A,
+        meets: impl Fn(&CwBvhNode, f32) -> u32,
+    ) -> f32 {
         let bvh = &self.bvh;
         let mut t_max = f32::INFINITY;
         let mut state = bvh.new_traversal(dir);
@@ -545,7 +559,7 @@ impl Scene {
             bvh,
             node,
             state,
-            hit_mask(node, children(node).meets(node_ray, t_max), state.oct_inv4),
+            hit_mask(node, meets(node, t_max), state.oct_inv4),
             {
                 let t = &self.tris[bvh.primitive_indices[state.primitive_id as usize] as usize];
                 if let Some(hit) = t.hit(ray, t_max) {
@@ -569,6 +583,21 @@ impl Scene {
         dir: Vec3A,
         segment: Interval<f32>,
     ) -> bool {
+        self.rayhit_occluded_with(ray, dir, segment, |node| {
+            children(node).meets(node_ray, segment)
+        })
+    }
+
+    /// [`Scene::rayhit_occluded_on`] with the node test `meets` (the
+    /// children hit within the segment, one bit each).
+    #[inline(always)]
+    pub fn rayhit_occluded_with(
+        &self,
+        ray: &PreparedRay,
+        dir: Vec3A,
+        segment: Interval<f32>,
+        meets: impl Fn(&CwBvhNode) -> u32,
+    ) -> bool {
         let bvh = &self.bvh;
         let mut state = bvh.new_traversal(dir);
         let mut node;
@@ -578,11 +607,7 @@ impl Scene {
                 bvh,
                 node,
                 state,
-                hit_mask(
-                    node,
-                    children(node).meets(node_ray, segment),
-                    state.oct_inv4
-                ),
+                hit_mask(node, meets(node), state.oct_inv4),
                 {
                     let t = &self.tris[bvh.primitive_indices[state.primitive_id as usize] as usize];
                     if t.occluded(ray, segment) {
@@ -603,6 +628,54 @@ impl Scene {
             self.ob_tris[self.bvh.primitive_indices[id] as usize].intersect(r)
         })
     }
+}
+
+/// The floor of a plain call per node: a function compiled with AVX-512
+/// (256-bit forms) that takes obvhs's node by reference and runs
+/// `QuantizedChildren::meets` inlined on the AVX-512 copy, called once per
+/// node from the traversal compiled for the default target. What it
+/// leaves out of the plain `meets` call: the node's rows gathered into a
+/// `QuantizedChildren` (six references and the origin, built on the stack
+/// for the call, read back through them), nothing else; the call and the
+/// kernel stay. A token: made only by [`NodeFloor::detect`].
+#[cfg(target_arch = "x86_64")]
+#[derive(Clone, Copy)]
+pub struct NodeFloor(());
+
+#[cfg(target_arch = "x86_64")]
+impl NodeFloor {
+    /// `Some` where the CPU has AVX2, AVX-512F and AVX-512VL.
+    pub fn detect() -> Option<Self> {
+        (std::arch::is_x86_feature_detected!("avx2")
+            && std::arch::is_x86_feature_detected!("avx512f")
+            && std::arch::is_x86_feature_detected!("avx512vl"))
+        .then_some(NodeFloor(()))
+    }
+
+    /// The children of `node` the ray meets within `search`.
+    #[inline(always)]
+    pub fn meets(self, node: &CwBvhNode, ray: &PreparedRay, search: impl Into<Search>) -> u32 {
+        // SAFETY: the CPU has the features the function is compiled with;
+        // a token is made only where `detect` found them.
+        unsafe { node_meets_avx512(node, ray, search.into()) }
+    }
+}
+
+/// [`NodeFloor::meets`]'s function: `with_simd` inside a function with
+/// AVX-512 enabled, so that its AVX-512 arm is inlined here.
+#[cfg(target_arch = "x86_64")]
+#[target_feature(enable = "avx2,avx512f,avx512vl")]
+#[inline(never)]
+fn node_meets_avx512(node: &CwBvhNode, ray: &PreparedRay, search: Search) -> u32 {
+    struct One<'a>(&'a CwBvhNode, &'a PreparedRay, Search);
+    impl SimdWork for One<'_> {
+        type Output = u32;
+        #[inline(always)]
+        fn run<I: Simd>(self, simd: I) -> u32 {
+            children(self.0).meets(&simd.ray(self.1), self.2)
+        }
+    }
+    with_simd(One(node, ray, search))
 }
 
 /// obvhs's hit mask from rayhit's mask of the children hit: each hit

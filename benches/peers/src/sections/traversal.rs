@@ -53,6 +53,11 @@ pub const ROWS: [&str; 5] = [
     "obvhs Bvh2, its own tests",
 ];
 
+/// The floor row of a plain call per node (`cwbvh::NodeFloor`): the
+/// CWBVH traversal of the first row with the node passed to an AVX-512
+/// function by one reference, rayhit's node test inlined there.
+pub const FLOOR: &str = "floor: CWBVH, a call per node into the AVX-512 node test, the node by reference";
+
 /// One ray set: rayhit's rays (prepared, with the direction obvhs's order
 /// reads), their intervals on `shadow`, and obvhs's rays.
 struct Workload {
@@ -239,6 +244,41 @@ pub fn traversal_kernels<'a>(d: &'a TraversalData, out: &mut Vec<Kernel<'a>>) {
         out.push(kernel(SECTION, ROWS[1], &name, n, None, move || {
             with_simd(CwSimd(fixed, w))
         }));
+        #[cfg(target_arch = "x86_64")]
+        if let Some(floor) = cwbvh::NodeFloor::detect() {
+            let one = move |i: usize| {
+                let (p, d) = &w.rays[i];
+                match w.segments.get(i) {
+                    None => u64::from(
+                        fixed
+                            .rayhit_closest_with(p, *d, |node, t| floor.meets(node, p, t))
+                            .to_bits(),
+                    ),
+                    Some(&seg) => u64::from(
+                        fixed.rayhit_occluded_with(p, *d, seg, |node| floor.meets(node, p, seg)),
+                    ),
+                }
+            };
+            let floor_agrees = agree(
+                ours.iter().copied(),
+                (0..n).map(|i| {
+                    let x = one(i);
+                    if shadow {
+                        x == 1
+                    } else {
+                        x != u64::from(f32::INFINITY.to_bits())
+                    }
+                }),
+            );
+            out.push(kernel(
+                SECTION,
+                FLOOR,
+                &name,
+                n,
+                Some(floor_agrees),
+                move || sum(n, one),
+            ));
+        }
         out.push(kernel(
             SECTION,
             ROWS[2],
