@@ -84,7 +84,7 @@
 //! | closest hit on a mesh | [`ray_triangle`], or [`Intersect::hit`] on a [`PreparedRay`] when one ray meets many triangles | watertight: no ray passes between triangles that share an edge |
 //! | BVH node, binary | [`Bounds::clip`] of a [`ValidAabb`] on a [`PreparedRay`] | conservative: never misses a box the ray meets, so the leaf is always visited; a `ValidAabb` is checked once, when made |
 //! | BVH node, 4 to 16 children | [`Bounds::clip`] of a [`batch::AabbBatch`] on a [`PreparedRay`] ([`Bounds::meets`] where you visit children in a fixed order or ask for any hit) | one ray against a node's children at once, the same answers bit for bit, on the widest SIMD the CPU has |
-//! | compressed wide BVH node (8-bit child boxes) | [`Bounds::meets`] (or [`Bounds::clip`]) of [`batch::QuantizedChildren`] on a [`PreparedRay`] | reads the node as stored, still conservative |
+//! | compressed wide BVH node (8-bit child boxes) | [`Bounds::meets`] (or [`Bounds::clip`]) of the node read in place, [`batch::InPlace`] of a closure making its [`batch::QuantizedChildren`], on a [`PreparedRay`] | reads the node as stored, still conservative; in place, a plain call costs about what the test inlined does |
 //! | leaf with several triangles | [`IntersectLanes::hit`] of a [`batch::TriangleBatch`] | 8 or 16 triangles at once, each lane the scalar test's answer |
 //! | leaf of particles (spheres) | [`IntersectLanes::hit`] of a [`batch::SphereBatch`] on a [`PreparedRay`] | 8 or 16 spheres at once, each lane [`Sphere`]'s answer bit for bit, several times the speed of one call per sphere |
 //! | shadow ray between two surfaces, or to a point light | [`SurfacePoint::spawn_to`], [`SurfacePoint::spawn_to_point`], then [`Intersect::occluded`] over the [`Interval`] they return | no epsilon: the segment cannot hit the surface at either end, and an occluder farther from both ends' planes than their error bounds is found |
@@ -181,7 +181,7 @@
 //! | --- | --- | --- |
 //! | binary, boxes as [`ValidAabb`] (checked once, when built) | [`Bounds::clip`] of the box | [`Intersect::hit`] of each [`Triangle`] |
 //! | wide (4 to 16 children), boxes stored as a [`batch::AabbBatch`] | [`Bounds::clip`] of the batch (its `meets` where the entries go unused) | the same, or of a [`batch::TriangleBatch`] |
-//! | compressed wide (children quantized to bytes, Ylitie et al. 2017) | [`Bounds::meets`] (or `clip`) of [`batch::QuantizedChildren`], the node as stored | the same |
+//! | compressed wide (children quantized to bytes, Ylitie et al. 2017) | [`Bounds::meets`] (or `clip`) of [`batch::QuantizedChildren`], the node as stored, read in place by [`batch::InPlace`] | the same |
 //!
 //! Closest hit: pass the nearest hit so far as `t_max` to both tests, so
 //! that farther nodes and triangles are culled. For a compressed wide BVH,
@@ -486,7 +486,7 @@ mod testing;
 /// ```
 pub mod batch {
     pub use crate::aabb::{AabbBatch, AabbBatchHits};
-    pub use crate::node::QuantizedChildren;
+    pub use crate::node::{InPlace, QuantizedChildren};
     pub use crate::node::{Simd, SimdRay, SimdWork, with_simd};
     pub use crate::simd::TargetSimd;
     #[cfg(rayhit_runtime_avx)]

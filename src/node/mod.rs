@@ -10,5 +10,5 @@
 mod quantized;
 mod with_simd;
 
-pub use quantized::QuantizedChildren;
+pub use quantized::{InPlace, QuantizedChildren};
 pub use with_simd::{Simd, SimdRay, SimdWork, with_simd};

@@ -273,7 +273,7 @@ impl<V: Vector<Scalar = f32>> Bounds<V> for QuantizedChildren<'_, V> {
     /// ```
     #[inline(always)]
     fn clip(&self, ray: &impl RayForm<V>, search: impl Into<Search<f32>>) -> Self::Clip {
-        batch_query::<V, QuantizedKernel<'_, V>>(ray, self, search.into())
+        batch_query::<V, QuantizedKernel<'_, V, Self>>(ray, self, search.into())
     }
 
     /// [`clip`](Bounds::clip)`.mask`, returned in a register: the node
@@ -296,29 +296,113 @@ impl<V: Vector<Scalar = f32>> Bounds<V> for QuantizedChildren<'_, V> {
     /// ```
     #[inline(always)]
     fn meets(&self, ray: &impl RayForm<V>, search: impl Into<Search<f32>>) -> u32 {
-        batch_query::<V, MaskOf<QuantizedKernel<'_, V>>>(ray, self, search.into())
+        batch_query::<V, MaskOf<QuantizedKernel<'_, V, Self>>>(ray, self, search.into())
     }
 }
 
-/// [`QuantizedChildren`]'s `clip` as a kernel, for any instruction set (see
-/// `crate::simd`).
-pub(crate) struct QuantizedKernel<'n, V>(PhantomData<&'n V>);
+/// A compressed wide BVH node read where it is stored: `F` makes its
+/// [`QuantizedChildren`] view, and the node test calls it inside its SIMD
+/// copy, so that the node's bytes are loaded there, straight from the
+/// node.
+///
+/// The same answers as the view's, bit for bit: [`Bounds`] here is
+/// [`QuantizedChildren`]'s. What differs is the cost of a plain call on a
+/// [`PreparedRay`]: with the view built in the traversal and passed to the
+/// call, the test reads the node through the view the caller has just
+/// written to the stack (the origin, the exponents and six row
+/// references), a round trip through memory on every node; with
+/// `InPlace`, the call carries one reference to the closure. In a
+/// traversal by plain calls that is the faster form (see BENCHMARKS.md);
+/// inside [`with_simd`](crate::batch::with_simd), where the test is
+/// inlined, both compile alike.
+///
+/// ```
+/// use rayhit::{Bounds, PreparedRay, Ray, glam::Vec3};
+/// use rayhit::batch::{InPlace, QuantizedChildren};
+/// /// A node as a BVH stores it.
+/// struct Node {
+///     origin: Vec3,
+///     exponents: [u8; 3],
+///     rows: [[u8; 8]; 6], // min x, max x, min y, max y, min z, max z
+/// }
+/// let mut rows = [[0; 8]; 6];
+/// for k in 0..3 {
+///     rows[2 * k] = [0, 4, 0, 0, 0, 0, 0, 0];
+///     rows[2 * k + 1] = [4, 8, 0, 0, 0, 0, 0, 0];
+/// }
+/// let node = Node { origin: Vec3::ZERO, exponents: [127; 3], rows };
+/// fn view(n: &Node) -> QuantizedChildren<'_> {
+///     QuantizedChildren {
+///         origin: n.origin,
+///         exponents: n.exponents,
+///         min: [&n.rows[0], &n.rows[2], &n.rows[4]],
+///         max: [&n.rows[1], &n.rows[3], &n.rows[5]],
+///     }
+/// }
+/// let ray = PreparedRay::new(&Ray::new(Vec3::splat(-1.0), Vec3::ONE));
+/// let hits = InPlace(|| view(&node)).meets(&ray, f32::INFINITY);
+/// assert_eq!(hits & 0b11, 0b11);
+/// assert_eq!(hits, view(&node).meets(&ray, f32::INFINITY));
+/// ```
+#[derive(Clone, Copy, Debug)]
+pub struct InPlace<F>(pub F);
 
-impl<'n, V: Vector<Scalar = f32>> Kernel for QuantizedKernel<'n, V> {
+/// [`QuantizedChildren`]'s node test on the view `F` makes, bit for bit.
+impl<'n, V: Vector<Scalar = f32>, F: Fn() -> QuantizedChildren<'n, V>> Bounds<V> for InPlace<F> {
+    /// As [`QuantizedChildren`]'s.
+    type Clip = AabbBatchHits<f32, 8>;
+    /// As [`QuantizedChildren`]'s.
+    type Meets = u32;
+
+    /// [`QuantizedChildren`]'s [`clip`](Bounds::clip) of the view, with
+    /// the view made inside the test.
+    #[inline(always)]
+    fn clip(&self, ray: &impl RayForm<V>, search: impl Into<Search<f32>>) -> Self::Clip {
+        batch_query::<V, QuantizedKernel<'n, V, Self>>(ray, self, search.into())
+    }
+
+    /// [`QuantizedChildren`]'s [`meets`](Bounds::meets) of the view, with
+    /// the view made inside the test.
+    #[inline(always)]
+    fn meets(&self, ray: &impl RayForm<V>, search: impl Into<Search<f32>>) -> u32 {
+        batch_query::<V, MaskOf<QuantizedKernel<'n, V, Self>>>(ray, self, search.into())
+    }
+}
+
+/// What the node test reads a node from: its view, or a closure that makes
+/// the view ([`InPlace`]), called inside the kernel.
+pub(crate) trait Source<'n, V> {
+    fn view(&self) -> QuantizedChildren<'n, V>;
+}
+
+impl<'n, V: Copy> Source<'n, V> for QuantizedChildren<'n, V> {
+    #[inline(always)]
+    fn view(&self) -> QuantizedChildren<'n, V> {
+        *self
+    }
+}
+
+impl<'n, V, F: Fn() -> QuantizedChildren<'n, V>> Source<'n, V> for InPlace<F> {
+    #[inline(always)]
+    fn view(&self) -> QuantizedChildren<'n, V> {
+        (self.0)()
+    }
+}
+
+/// [`QuantizedChildren`]'s `clip` as a kernel on a node read from `S`, for
+/// any instruction set (see `crate::simd`).
+pub(crate) struct QuantizedKernel<'n, V, S>(PhantomData<(&'n V, S)>);
+
+impl<'n, V: Vector<Scalar = f32>, S: Source<'n, V>> Kernel for QuantizedKernel<'n, V, S> {
     type Ray = PreparedRay<V>;
-    type Shapes = QuantizedChildren<'n, V>;
+    type Shapes = S;
     /// `(t_min, t_max)`, as the box batch's.
     type Limit = (f32, f32);
     type Output = AabbBatchHits<f32, 8>;
 
     #[inline(always)]
-    fn run<I: Isa>(
-        _: I,
-        ray: &PreparedRay<V>,
-        node: &QuantizedChildren<'n, V>,
-        ends: (f32, f32),
-    ) -> Self::Output {
-        quantized_body::<I::W<f32>, V>(ray, node, ends)
+    fn run<I: Isa>(_: I, ray: &PreparedRay<V>, node: &S, ends: (f32, f32)) -> Self::Output {
+        quantized_body::<I::W<f32>, V>(ray, &node.view(), ends)
     }
 }
 

@@ -22,7 +22,7 @@ use obvhs::cwbvh::node::{CwBvhNode, extract_byte64};
 use obvhs::ray::Ray as ObRay;
 use obvhs::triangle::Triangle as ObTriangle;
 use obvhs::{BvhBuildParams, traverse};
-use rayhit::batch::{QuantizedChildren, Simd, SimdWork, with_simd};
+use rayhit::batch::{InPlace, QuantizedChildren, Simd, SimdWork, with_simd};
 use rayhit::glam::{UVec2, Vec3, Vec3A};
 use rayhit::{Bounds, Intersect, Interval, PreparedRay, Ray, RayForm, Search, Triangle};
 
@@ -537,8 +537,9 @@ impl Scene {
         ray: &PreparedRay,
         dir: Vec3A,
     ) -> f32 {
+        // (The node read in place: see `InPlace`.)
         self.rayhit_closest_with(ray, dir, |node, t_max| {
-            children(node).meets(node_ray, t_max)
+            InPlace(|| children(node)).meets(node_ray, t_max)
         })
     }
 
@@ -584,7 +585,7 @@ impl Scene {
         segment: Interval<f32>,
     ) -> bool {
         self.rayhit_occluded_with(ray, dir, segment, |node| {
-            children(node).meets(node_ray, segment)
+            InPlace(|| children(node)).meets(node_ray, segment)
         })
     }
 

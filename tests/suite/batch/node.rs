@@ -13,7 +13,7 @@ use num_traits::{One, Signed, Zero};
 use rayhit::glam::Vec3;
 use rayhit::{
     Bounds, Interval, PreparedRay, Ray,
-    batch::{AabbBatchHits, QuantizedChildren, Simd, SimdWork, TargetSimd, with_simd},
+    batch::{AabbBatchHits, InPlace, QuantizedChildren, Simd, SimdWork, TargetSimd, with_simd},
 };
 use rayhit_testkit::case_count;
 use rayhit_testkit::oracle;
@@ -181,9 +181,14 @@ fn node_test_is_the_box_batch_on_the_decoded_boxes() {
         let ray = PreparedRay::new(&Ray::new(origin, dir));
         for t_max in [f32::INFINITY, 1.0, -1.0, f32::NAN] {
             let expected = boxes.clip(&ray, t_max);
+            // The node read in place (`InPlace`): the view made inside the
+            // test, the same answers.
+            let in_place = InPlace(|| node.view());
             let ours = [
                 view.clip(&ray, t_max),
                 view.clip(&TargetSimd.ray(&ray), t_max),
+                in_place.clip(&ray, t_max),
+                in_place.clip(&TargetSimd.ray(&ray), t_max),
                 with_simd(ViaWithSimd {
                     ray: &ray,
                     node: view,
@@ -194,6 +199,7 @@ fn node_test_is_the_box_batch_on_the_decoded_boxes() {
             for got in [
                 view.meets(&ray, t_max),
                 view.meets(&TargetSimd.ray(&ray), t_max),
+                in_place.meets(&ray, t_max),
             ] {
                 assert_eq!(got, expected.mask, "meets {ray:?} {:?}", node.origin);
             }
@@ -213,6 +219,8 @@ fn node_test_is_the_box_batch_on_the_decoded_boxes() {
                 };
                 let expected = boxes.clip(&ray, interval);
                 assert_eq!(view.meets(&ray, interval), expected.mask);
+                assert_eq!(in_place.meets(&ray, interval), expected.mask);
+                assert_eq!(in_place.clip(&ray, interval), expected);
                 for got in [
                     view.clip(&ray, interval),
                     view.clip(&TargetSimd.ray(&ray), interval),

@@ -56,7 +56,8 @@ pub const ROWS: [&str; 5] = [
 /// The floor row of a plain call per node (`cwbvh::NodeFloor`): the
 /// CWBVH traversal of the first row with the node passed to an AVX-512
 /// function by one reference, rayhit's node test inlined there.
-pub const FLOOR: &str = "floor: CWBVH, a call per node into the AVX-512 node test, the node by reference";
+pub const FLOOR: &str =
+    "floor: CWBVH, a call per node into the AVX-512 node test, the node by reference";
 
 /// One ray set: rayhit's rays (prepared, with the direction obvhs's order
 /// reads), their intervals on `shadow`, and obvhs's rays.
