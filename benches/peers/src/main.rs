@@ -10,7 +10,9 @@
 //! unless said otherwise) enough times to take at least 2 ms; the kernels
 //! take turns, round after round, so that a change in machine load hits
 //! them alike, and each one's time is its fastest round (the least
-//! disturbed). Time is the thread's CPU time (`CLOCK_THREAD_CPUTIME_ID`),
+//! disturbed); a row whose pass is long enough that a round holds fewer
+//! than four runs one untimed pass before each round, so that it is timed
+//! with its own data in the caches, not the previous row's. Time is the thread's CPU time (`CLOCK_THREAD_CPUTIME_ID`),
 //! so that while other processes hold the core the clock stops; what they
 //! do to shared caches still shows. `ns/test` is that time over the number
 //! of ray/shape tests. The triangle pairs of the `random`, `aimed` and

@@ -348,6 +348,18 @@ pub fn random_rays(mesh: &Mesh, count: usize, seed: u64) -> Vec<Ray> {
         .collect()
 }
 
+/// Rays from inside the solid in random directions (secondary rays, as a
+/// path tracer's inside a closed mesh are): the origins of `inside` (the
+/// leak rays' interior points), each with a direction uniform on the
+/// sphere. Every one must hit the mesh.
+pub fn inside_random_rays(inside: &[Ray], seed: u64) -> Vec<Ray> {
+    let mut rng = Pcg32::new(seed);
+    inside
+        .iter()
+        .map(|r| Ray::new(r.origin, rng.sphere()))
+        .collect()
+}
+
 /// Shadow segments from the points where `rays` first hit the mesh
 /// (rayhit's closest hit through `scene`) to a point light outside it.
 pub struct ShadowRays {

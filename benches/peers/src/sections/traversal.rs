@@ -22,8 +22,11 @@
 //!
 //! Workloads: `camera` (128 x 128 pinhole rays in scanline order),
 //! `incoherent` (as many rays between random points around the mesh and
-//! in its box), `inside` (rays from inside aimed exactly at vertices and
-//! edge midpoints, `LeakRays::inside`), `shadow` (any-hit segments from
+//! in its box), `inside` (secondary rays from inside the solid in random
+//! directions, from the interior points of `LeakRays::inside`), `inside,
+//! aimed at vertices and edges` (`LeakRays::inside` itself: every ray
+//! through a vertex or an edge midpoint exactly, the leak test's rays,
+//! where every hit is on an edge), `shadow` (any-hit segments from
 //! the camera rays' hits to a point light: rayhit's epsilon-free
 //! `spawn_to_point` segment over its interval for rayhit's rows, the
 //! `point + 1e-4 n`, `t_max = 1 - 1e-4` segment for obvhs's). The
@@ -35,7 +38,9 @@ use rayhit::batch::{Simd, SimdWork, with_simd};
 use rayhit::glam::Vec3A;
 use rayhit::{Interval, PreparedRay, Ray, RayForm};
 use rayhit_peers::cwbvh::{self, LeakRays, Mesh, count_leaks};
-use rayhit_peers::traversal::{Bvh2Scene, EPS, ShadowRays, camera_rays, ob_ray, random_rays};
+use rayhit_peers::traversal::{
+    Bvh2Scene, EPS, ShadowRays, camera_rays, inside_random_rays, ob_ray, random_rays,
+};
 
 use crate::harness::loops::agree;
 use crate::harness::{Kernel, kernel};
@@ -98,10 +103,30 @@ pub struct TraversalData {
 /// on `node_ray`: the closest hit's `t` bits, or 1 where occluded.
 #[inline(always)]
 fn cw_one(s: &cwbvh::Scene, w: &Workload, i: usize, node_ray: &impl RayForm) -> u64 {
+    if w.segments.is_empty() {
+        cw_one_of::<false>(s, w, i, node_ray)
+    } else {
+        cw_one_of::<true>(s, w, i, node_ray)
+    }
+}
+
+/// [`cw_one`] for a workload known to be `SHADOW` or not, so that a timed
+/// loop holds one traversal, closest or any hit, as a renderer's does
+/// (with both in one loop, the compiler's choices for the pair made the
+/// closest-hit rows by plain calls up to twice as slow as the same
+/// traversal on its own).
+#[inline(always)]
+fn cw_one_of<const SHADOW: bool>(
+    s: &cwbvh::Scene,
+    w: &Workload,
+    i: usize,
+    node_ray: &impl RayForm,
+) -> u64 {
     let (p, d) = &w.rays[i];
-    match w.segments.get(i) {
-        None => u64::from(s.rayhit_closest_on(node_ray, p, *d).to_bits()),
-        Some(&seg) => u64::from(s.rayhit_occluded_on(node_ray, p, *d, seg)),
+    if SHADOW {
+        u64::from(s.rayhit_occluded_on(node_ray, p, *d, w.segments[i]))
+    } else {
+        u64::from(s.rayhit_closest_on(node_ray, p, *d).to_bits())
     }
 }
 
@@ -120,7 +145,12 @@ impl SimdWork for CwSimd<'_> {
     #[inline(always)]
     fn run<I: Simd>(self, simd: I) -> u64 {
         let CwSimd(s, w) = self;
-        sum(w.rays.len(), |i| cw_one(s, w, i, &simd.ray(&w.rays[i].0)))
+        let n = w.rays.len();
+        if w.segments.is_empty() {
+            sum(n, |i| cw_one_of::<false>(s, w, i, &simd.ray(&w.rays[i].0)))
+        } else {
+            sum(n, |i| cw_one_of::<true>(s, w, i, &simd.ray(&w.rays[i].0)))
+        }
     }
 }
 
@@ -158,10 +188,12 @@ impl TraversalData {
             grazing: 0,
         };
         let shadow = ShadowRays::new(&bvh2, mesh, &camera);
+        let aimed = LeakRays::new(mesh, 4096, 7).inside;
         let mut workloads = vec![
             closest("camera", &camera),
             closest("incoherent", &random_rays(mesh, camera.len(), 11)),
-            closest("inside", &LeakRays::new(mesh, 4096, 7).inside),
+            closest("inside", &inside_random_rays(&aimed, 13)),
+            closest("inside, aimed at vertices and edges", &aimed),
         ];
         workloads.push(Workload {
             name: "shadow",
@@ -240,26 +272,27 @@ pub fn traversal_kernels<'a>(d: &'a TraversalData, out: &mut Vec<Kernel<'a>>) {
         let shadow = !w.segments.is_empty();
         let (fixed, bvh2, obvhs) = (&d.fixed, &d.bvh2, &d.obvhs);
         out.push(kernel(SECTION, ROWS[0], &name, n, None, move || {
-            sum(n, |i| cw_one(fixed, w, i, &w.rays[i].0))
+            if shadow {
+                sum(n, |i| cw_one_of::<true>(fixed, w, i, &w.rays[i].0))
+            } else {
+                sum(n, |i| cw_one_of::<false>(fixed, w, i, &w.rays[i].0))
+            }
         }));
         out.push(kernel(SECTION, ROWS[1], &name, n, None, move || {
             with_simd(CwSimd(fixed, w))
         }));
         #[cfg(target_arch = "x86_64")]
         if let Some(floor) = cwbvh::NodeFloor::detect() {
-            let one = move |i: usize| {
+            let closest = move |i: usize| {
                 let (p, d) = &w.rays[i];
-                match w.segments.get(i) {
-                    None => u64::from(
-                        fixed
-                            .rayhit_closest_with(p, *d, |node, t| floor.meets(node, p, t))
-                            .to_bits(),
-                    ),
-                    Some(&seg) => u64::from(
-                        fixed.rayhit_occluded_with(p, *d, seg, |node| floor.meets(node, p, seg)),
-                    ),
-                }
+                let t = fixed.rayhit_closest_with(p, *d, |node, t| floor.meets(node, p, t));
+                u64::from(t.to_bits())
             };
+            let occluded = move |i: usize| {
+                let ((p, d), seg) = (&w.rays[i], w.segments[i]);
+                u64::from(fixed.rayhit_occluded_with(p, *d, seg, |node| floor.meets(node, p, seg)))
+            };
+            let one = move |i: usize| if shadow { occluded(i) } else { closest(i) };
             let floor_agrees = agree(
                 ours.iter().copied(),
                 (0..n).map(|i| {
@@ -277,7 +310,13 @@ pub fn traversal_kernels<'a>(d: &'a TraversalData, out: &mut Vec<Kernel<'a>>) {
                 &name,
                 n,
                 Some(floor_agrees),
-                move || sum(n, one),
+                move || {
+                    if shadow {
+                        sum(n, occluded)
+                    } else {
+                        sum(n, closest)
+                    }
+                },
             ));
         }
         out.push(kernel(
@@ -359,7 +398,7 @@ pub fn print_counts(data: &[TraversalData]) {
             );
             for a in answers {
                 let hits = a.iter().filter(|&&h| h).count();
-                if w.name == "inside" {
+                if w.name.starts_with("inside") {
                     print!(" {hits} ({} missed) |", a.len() - hits);
                 } else {
                     print!(" {hits} |");
