@@ -120,7 +120,8 @@ pub struct Avx2(());
 
 #[cfg(rayhit_runtime_avx)]
 impl Avx2 {
-    /// `Some` when the CPU has AVX2: the one place an `Avx2` is made.
+    /// `Some` when the CPU has AVX2: the one place an `Avx2` is made but
+    /// for [`Avx2::detected`], which a cached answer of this one calls.
     #[inline]
     pub(crate) fn detect() -> Option<Self> {
         std::is_x86_feature_detected!("avx2").then_some(Avx2(()))

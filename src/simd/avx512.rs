@@ -24,8 +24,9 @@ use crate::num::{Repr, Scalar};
 pub struct Avx512(Avx2);
 
 impl Avx512 {
-    /// `Some` when the CPU has AVX2, AVX-512F and AVX-512VL: the one place
-    /// an `Avx512` is made, from the `Avx2` that detection gave.
+    /// `Some` when the CPU has AVX2, AVX-512F and AVX-512VL: where an
+    /// `Avx512` is made, from the `Avx2` that detection gave (and, from
+    /// its cached answer, in [`Widest::get`]).
     #[inline]
     pub(crate) fn detect() -> Option<Self> {
         let avx2 = Avx2::detect()?;

@@ -426,17 +426,21 @@ pub fn children(node: &CwBvhNode) -> QuantizedChildren<'_> {
     }
 }
 
+/// `tris` as obvhs's triangles.
+pub fn ob_triangles(tris: &[Triangle]) -> Vec<ObTriangle> {
+    tris.iter()
+        .map(|t| ObTriangle {
+            v0: t.a.into(),
+            v1: t.b.into(),
+            v2: t.c.into(),
+        })
+        .collect()
+}
+
 impl Scene {
     pub fn new(mesh: &Mesh) -> Self {
         let tris = mesh.triangles();
-        let ob_tris: Vec<ObTriangle> = tris
-            .iter()
-            .map(|t| ObTriangle {
-                v0: t.a.into(),
-                v1: t.b.into(),
-                v2: t.c.into(),
-            })
-            .collect();
+        let ob_tris = ob_triangles(&tris);
         let bvh = build_cwbvh_from_tris(
             &ob_tris,
             BvhBuildParams::medium_build(),

@@ -24,7 +24,7 @@ use rayhit::glam::Vec3;
 use rayhit::{Aabb, Bounds, Intersect, Interval, PreparedRay, Ray, Search, Triangle, TriangleHit};
 use rayhit_testkit::rng::Pcg32;
 
-use crate::cwbvh::Mesh;
+use crate::cwbvh::{Mesh, ob_triangles};
 
 /// Entries on the traversal stack at most (the tree's depth is checked
 /// against it when the tree is built).
@@ -124,14 +124,7 @@ impl Bvh2Scene {
     /// panics unless every box contains what is under it.
     pub fn new(mesh: &Mesh) -> Self {
         let original = mesh.triangles();
-        let ob_original: Vec<ObTriangle> = original
-            .iter()
-            .map(|t| ObTriangle {
-                v0: t.a.into(),
-                v1: t.b.into(),
-                v2: t.c.into(),
-            })
-            .collect();
+        let ob_original = ob_triangles(&original);
         let bvh = build_bvh2_from_tris(
             &ob_original,
             BvhBuildParams::medium_build(),

@@ -83,6 +83,20 @@ pub fn cwbvh_kernels<'a>(d: &'a CwbvhData, out: &mut Vec<Kernel<'a>>) {
     ]);
 }
 
+/// One row of a leak table: the mesh, its ray counts, the pipeline `name`
+/// and its leaks `l`.
+pub fn print_leak_row(mesh: &cwbvh::Mesh, rays: &cwbvh::LeakRays, name: &str, l: cwbvh::Leaks) {
+    println!(
+        "| {} | {} | {} | {} | {name} | {} | {} |",
+        mesh.name,
+        mesh.faces.len(),
+        rays.inside.len(),
+        rays.outside.len(),
+        l.inside_missed,
+        l.passed_through
+    );
+}
+
 /// `--leaks`: the leak and pass-through counts of every pipeline on every
 /// mesh, and how many of obvhs's quantized child boxes rayhit's decoding
 /// had to widen.
@@ -96,17 +110,7 @@ pub fn print_leaks(meshes: &[cwbvh::Mesh], count: usize) {
         let obvhs = cwbvh::Scene::new(mesh);
         let mut fixed = cwbvh::Scene::new(mesh);
         let (children, bad) = fixed.check_quantization(true);
-        let row = |name: &str, l: cwbvh::Leaks| {
-            println!(
-                "| {} | {} | {} | {} | {name} | {} | {} |",
-                mesh.name,
-                mesh.faces.len(),
-                rays.inside.len(),
-                rays.outside.len(),
-                l.inside_missed,
-                l.passed_through
-            );
-        };
+        let row = |name: &str, l: cwbvh::Leaks| print_leak_row(mesh, &rays, name, l);
         row(
             "obvhs nodes, obvhs triangles",
             cwbvh::count_leaks(&rays, |r| obvhs.obvhs_closest(r)),

@@ -44,6 +44,7 @@ use rayhit_peers::traversal::{
 
 use crate::harness::loops::agree;
 use crate::harness::{Kernel, kernel};
+use crate::sections::cwbvh::print_leak_row;
 
 /// The section's name in the table.
 pub const SECTION: &str = "traversal";
@@ -431,16 +432,7 @@ pub fn print_traversal_leaks(meshes: &[&Mesh], count: usize) {
         fixed.check_quantization(true);
         let bvh2 = Bvh2Scene::new(mesh);
         let row = |name: &str, closest: &dyn Fn(&Ray) -> f32| {
-            let l = count_leaks(&rays, closest);
-            println!(
-                "| {} | {} | {} | {} | {name} | {} | {} |",
-                mesh.name,
-                mesh.faces.len(),
-                rays.inside.len(),
-                rays.outside.len(),
-                l.inside_missed,
-                l.passed_through
-            );
+            print_leak_row(mesh, &rays, name, count_leaks(&rays, closest));
         };
         row(ROWS[0], &|r| {
             let p = PreparedRay::new(r);
