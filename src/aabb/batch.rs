@@ -267,6 +267,15 @@ pub struct AabbBatchHits<F = f32, const N: usize = 8> {
 }
 
 impl<F: Scalar, const N: usize> AabbBatchHits<F, N> {
+    /// No lane hit.
+    #[inline(always)]
+    pub(crate) fn none() -> Self {
+        Self {
+            mask: 0,
+            enter: [F::INFINITY; N],
+        }
+    }
+
     /// The entry `t` of a lane that is hit, as the scalar test returns it;
     /// `None` otherwise, and for `lane >= N`.
     #[inline]
@@ -284,8 +293,7 @@ impl<V: Vector, const N: usize> Kernel for AabbBatchKernel<V, N> {
     type Ray = PreparedRay<V>;
     type Shapes = AabbBatch<V, N>;
     /// `(t_min, t_max)`: see [`Slab8::new`]; a NaN or negative `t_max`
-    /// is answered by the caller (`Bounds for AabbBatch`), so that the
-    /// call's path has one branch fewer.
+    /// is answered at the call (`batch_query`).
     type Limit = (S<V>, S<V>);
     type Output = AabbBatchHits<S<V>, N>;
 

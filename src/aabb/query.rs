@@ -300,16 +300,7 @@ impl<V: Vector, const N: usize> Bounds<V> for AabbBatch<V, N> {
     /// ```
     #[inline(always)]
     fn clip(&self, ray: &impl RayForm<V>, search: impl Into<Search<S<V>>>) -> Self::Clip {
-        let search = search.into();
-        if let Range::UpTo(t_max) = search.range
-            && !t_max_ok(t_max)
-        {
-            return AabbBatchHits {
-                mask: 0,
-                enter: [S::<V>::INFINITY; N],
-            };
-        }
-        batch_query::<V, AabbBatchKernel<V, N>>(ray, self, search)
+        batch_query::<V, AabbBatchKernel<V, N>>(ray, self, search.into(), AabbBatchHits::none())
     }
 
     /// [`clip`](Bounds::clip)`.mask`, returned in a register: the test a
@@ -326,27 +317,25 @@ impl<V: Vector, const N: usize> Bounds<V> for AabbBatch<V, N> {
     /// ```
     #[inline(always)]
     fn meets(&self, ray: &impl RayForm<V>, search: impl Into<Search<S<V>>>) -> u32 {
-        let search = search.into();
-        if let Range::UpTo(t_max) = search.range
-            && !t_max_ok(t_max)
-        {
-            return 0;
-        }
-        batch_query::<V, MaskOf<AabbBatchKernel<V, N>>>(ray, self, search)
+        batch_query::<V, MaskOf<AabbBatchKernel<V, N>>>(ray, self, search.into(), 0)
     }
 }
 
 /// Batch kernel `K` (over `(t_min, t_max)`) on `ray` over `search`: for a
-/// plain `t_max`, its copy with `t_min` the constant zero; for an
-/// interval, over the interval's ends as the slab test takes them (see
+/// plain `t_max`, its copy with `t_min` the constant zero, or `none` for a
+/// NaN or negative `t_max` (answered here, inline at the call, so that the
+/// kernels need not check); for an interval (whose ends were checked when
+/// it was made), over its ends as the slab test takes them (see
 /// [`slab_ends`]).
 #[inline(always)]
 pub(crate) fn batch_query<V: Vector, K: Kernel<Ray = PreparedRay<V>, Limit = (S<V>, S<V>)>>(
     ray: &impl RayForm<V>,
     shapes: &K::Shapes,
     search: Search<S<V>>,
+    none: K::Output,
 ) -> K::Output {
     match search.range {
+        Range::UpTo(t_max) if !t_max_ok(t_max) => none,
         Range::UpTo(t_max) => ray.batch::<FromZero<K>>(shapes, (S::<V>::ZERO, t_max)),
         Range::Within(i) => ray.batch::<K>(shapes, slab_ends(i)),
     }

@@ -9,7 +9,7 @@ use glam::Vec3;
 use crate::aabb::{Aabb, AabbBatch, AabbBatchHits, MaskOf, Slab8, batch_query};
 use crate::num::{Lanes8, Vector};
 use crate::query::{Bounds, RayForm, Search};
-use crate::ray::{PreparedRay, t_max_ok};
+use crate::ray::PreparedRay;
 use crate::simd::{Isa, Kernel};
 
 /// The eight child boxes of a compressed wide BVH node, read in place:
@@ -273,7 +273,12 @@ impl<V: Vector<Scalar = f32>> Bounds<V> for QuantizedChildren<'_, V> {
     /// ```
     #[inline(always)]
     fn clip(&self, ray: &impl RayForm<V>, search: impl Into<Search<f32>>) -> Self::Clip {
-        batch_query::<V, QuantizedKernel<'_, V, Self>>(ray, self, search.into())
+        batch_query::<V, QuantizedKernel<'_, V, Self>>(
+            ray,
+            self,
+            search.into(),
+            AabbBatchHits::none(),
+        )
     }
 
     /// [`clip`](Bounds::clip)`.mask`, returned in a register: the node
@@ -296,7 +301,7 @@ impl<V: Vector<Scalar = f32>> Bounds<V> for QuantizedChildren<'_, V> {
     /// ```
     #[inline(always)]
     fn meets(&self, ray: &impl RayForm<V>, search: impl Into<Search<f32>>) -> u32 {
-        batch_query::<V, MaskOf<QuantizedKernel<'_, V, Self>>>(ray, self, search.into())
+        batch_query::<V, MaskOf<QuantizedKernel<'_, V, Self>>>(ray, self, search.into(), 0)
     }
 }
 
@@ -358,14 +363,19 @@ impl<'n, V: Vector<Scalar = f32>, F: Fn() -> QuantizedChildren<'n, V>> Bounds<V>
     /// the view made inside the test.
     #[inline(always)]
     fn clip(&self, ray: &impl RayForm<V>, search: impl Into<Search<f32>>) -> Self::Clip {
-        batch_query::<V, QuantizedKernel<'n, V, Self>>(ray, self, search.into())
+        batch_query::<V, QuantizedKernel<'n, V, Self>>(
+            ray,
+            self,
+            search.into(),
+            AabbBatchHits::none(),
+        )
     }
 
     /// [`QuantizedChildren`]'s [`meets`](Bounds::meets) of the view, with
     /// the view made inside the test.
     #[inline(always)]
     fn meets(&self, ray: &impl RayForm<V>, search: impl Into<Search<f32>>) -> u32 {
-        batch_query::<V, MaskOf<QuantizedKernel<'n, V, Self>>>(ray, self, search.into())
+        batch_query::<V, MaskOf<QuantizedKernel<'n, V, Self>>>(ray, self, search.into(), 0)
     }
 }
 
@@ -450,9 +460,10 @@ fn quantized_body<W: Lanes8<F = f32>, V: Vector<Scalar = f32>>(
 ) -> AabbBatchHits<f32, 8> {
     let mut enter = [f32::INFINITY; 8];
     let axes = [axis_of(node, 0), axis_of(node, 1), axis_of(node, 2)];
-    // (One branch for the node's validity and the search's.)
-    if !(t_max_ok(ends.1) & axes[0].finite & axes[1].finite & axes[2].finite) {
-        return AabbBatchHits { mask: 0, enter };
+    // (One branch for the node's validity; the search's `t_max` was
+    // checked at the call, `batch_query`.)
+    if !(axes[0].finite & axes[1].finite & axes[2].finite) {
+        return AabbBatchHits::none();
     }
     let (x0, x1, ox) = decode::<W, V>(node, 0, axes[0]);
     let (y0, y1, oy) = decode::<W, V>(node, 1, axes[1]);

@@ -92,18 +92,18 @@ impl Isa for TargetSimd {
 #[inline(always)]
 pub(crate) fn per_call<K: Kernel>(ray: &K::Ray, shapes: &K::Shapes, t_max: K::Limit) -> K::Output {
     #[cfg(rayhit_runtime_avx)]
-    match super::Widest::get() {
+    return match super::Widest::get() {
         // (A kernel that runs its AVX2 copy on `Avx512` is called here
         // directly, not through `Avx512`'s out-of-line step.)
-        super::Widest::Avx512(isa) if K::AVX512 => return isa.kernel::<K>(ray, shapes, t_max),
-        super::Widest::Avx512(isa) => return isa.avx2().kernel::<K>(ray, shapes, t_max),
-        super::Widest::Avx2(isa) => return isa.kernel::<K>(ray, shapes, t_max),
+        super::Widest::Avx512(isa) if K::AVX512 => isa.kernel::<K>(ray, shapes, t_max),
+        super::Widest::Avx512(isa) => isa.avx2().kernel::<K>(ray, shapes, t_max),
+        super::Widest::Avx2(isa) => isa.kernel::<K>(ray, shapes, t_max),
         // (Out of line, so that the caller's loop holds a call on every
         // path rather than the kernel's SSE copy on one: the copy inlined
         // there took registers from the whole loop.)
-        super::Widest::Target => return target_out_of_line::<K>(ray, shapes, t_max),
-    }
-    #[allow(unreachable_code)]
+        super::Widest::Target => target_out_of_line::<K>(ray, shapes, t_max),
+    };
+    #[cfg(not(rayhit_runtime_avx))]
     TargetSimd.kernel::<K>(ray, shapes, t_max)
 }
 

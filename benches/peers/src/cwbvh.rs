@@ -636,32 +636,28 @@ impl Scene {
 }
 
 /// The floor of a plain call per node: a function compiled with AVX-512
-/// (256-bit forms) that takes obvhs's node by reference and runs
-/// `QuantizedChildren::meets` inlined on the AVX-512 copy, called once per
-/// node from the traversal compiled for the default target. What it
-/// leaves out of the plain `meets` call: the node's rows gathered into a
-/// `QuantizedChildren` (six references and the origin, built on the stack
-/// for the call, read back through them), nothing else; the call and the
-/// kernel stay. A token: made only by [`NodeFloor::detect`].
+/// (256-bit forms) that takes obvhs's node by one reference and runs
+/// rayhit's node test inlined there (`with_simd` inside, which picks its
+/// AVX-512 arm), called once per node from the traversal compiled for the
+/// default target. Against the plain `InPlace(..).meets` call it leaves
+/// out only the instruction-set choice at the call (made inside instead);
+/// the call and the kernel stay.
 #[cfg(target_arch = "x86_64")]
 #[derive(Clone, Copy)]
-pub struct NodeFloor(());
+pub struct NodeFloor(crate::avx512::Avx512);
 
 #[cfg(target_arch = "x86_64")]
 impl NodeFloor {
     /// `Some` where the CPU has AVX2, AVX-512F and AVX-512VL.
     pub fn detect() -> Option<Self> {
-        (std::arch::is_x86_feature_detected!("avx2")
-            && std::arch::is_x86_feature_detected!("avx512f")
-            && std::arch::is_x86_feature_detected!("avx512vl"))
-        .then_some(NodeFloor(()))
+        crate::avx512::Avx512::detect().map(NodeFloor)
     }
 
     /// The children of `node` the ray meets within `search`.
     #[inline(always)]
     pub fn meets(self, node: &CwBvhNode, ray: &PreparedRay, search: impl Into<Search>) -> u32 {
         // SAFETY: the CPU has the features the function is compiled with;
-        // a token is made only where `detect` found them.
+        // a `NodeFloor` holds an `Avx512`, which only detecting them makes.
         unsafe { node_meets_avx512(node, ray, search.into()) }
     }
 }

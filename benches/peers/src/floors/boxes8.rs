@@ -19,6 +19,7 @@ use std::arch::x86_64::{
 };
 
 use rayhit::{Aabb, Ray};
+use rayhit_peers::avx512::Avx512;
 
 /// A ray as the floor reads it: origin and `1 / dir`.
 #[derive(Clone, Copy)]
@@ -60,26 +61,12 @@ impl FloorBoxes8 {
     }
 }
 
-/// Proof that the CPU has AVX2, AVX-512F and AVX-512VL, made once by
-/// [`Avx512::detect`] (outside a row's loop).
-#[derive(Clone, Copy)]
-pub struct Avx512(());
-
-impl Avx512 {
-    pub fn detect() -> Option<Self> {
-        (std::arch::is_x86_feature_detected!("avx2")
-            && std::arch::is_x86_feature_detected!("avx512f")
-            && std::arch::is_x86_feature_detected!("avx512vl"))
-        .then_some(Avx512(()))
-    }
-
-    /// The lanes whose box the ray meets within `[0, t_max]`, one bit each.
-    #[inline(always)]
-    pub fn meets(self, ray: &FloorSlabRay, boxes: &FloorBoxes8, t_max: f32) -> u32 {
-        // SAFETY: the CPU has the features the function is compiled with:
-        // a token is made only by `detect` finding them.
-        unsafe { meets_avx512(ray, boxes, t_max) }
-    }
+/// The lanes whose box the ray meets within `[0, t_max]`, one bit each.
+#[inline(always)]
+pub fn meets(_: Avx512, ray: &FloorSlabRay, boxes: &FloorBoxes8, t_max: f32) -> u32 {
+    // SAFETY: the CPU has the features the function is compiled with: an
+    // `Avx512` is made only by detecting them.
+    unsafe { meets_avx512(ray, boxes, t_max) }
 }
 
 /// `rayhit`'s widening of the exit, `(1 + 2 gamma(4))` rounded up, and

@@ -82,7 +82,8 @@ pub fn batch_floor_kernels<'a>(
 /// lanes agree with rayhit's.
 #[cfg(target_arch = "x86_64")]
 pub fn box_floor_kernels<'a>(g: &'a Groups, out: &mut Vec<Kernel<'a>>) {
-    use crate::floors::boxes8::Avx512;
+    use crate::floors::boxes8::meets;
+    use rayhit_peers::avx512::Avx512;
     let Some(isa) = Avx512::detect() else {
         return;
     };
@@ -92,7 +93,7 @@ pub fn box_floor_kernels<'a>(g: &'a Groups, out: &mut Vec<Kernel<'a>>) {
     let agreement = agree(
         (0..g.bb8.len()).flat_map(|i| lanes(g.bb8[i].meets(&b.prepared[i / per_ray], INF))),
         (0..g.fbox8.len())
-            .flat_map(|i| lanes(isa.meets(&g.fbox_rays[i / per_ray], &g.fbox8[i], INF))),
+            .flat_map(|i| lanes(meets(isa, &g.fbox_rays[i / per_ray], &g.fbox8[i], INF))),
     );
     out.push(kernel(
         "box x8",
@@ -101,7 +102,7 @@ pub fn box_floor_kernels<'a>(g: &'a Groups, out: &mut Vec<Kernel<'a>>) {
         b.boxes.len(),
         Some(agreement),
         chunked(&g.fbox_rays, &g.fbox8, per_ray, move |r, x| {
-            u64::from(isa.meets(r, x, INF))
+            u64::from(meets(isa, r, x, INF))
         }),
     ));
 }
