@@ -106,7 +106,12 @@ fn slab_test<V: Vector, B: SlabBox<V>>(
     // the definition. Nothing here is NaN, unless `t_max` is, which fails
     // below.)
     let enter = enter.max_all();
-    let miss = widened.lt(enter) | splat(big).lt(enter);
+    // (`min(widened, MAX) < enter` is `widened < enter || MAX < enter`
+    // for an `enter` that is not NaN: with `enter <= MAX` the minimum is
+    // below `enter` exactly when `widened` is, and an `enter` above `MAX`
+    // is above both. A NaN `widened` comes only from a NaN `t_max`, which
+    // fails below whatever the minimum gives.)
+    let miss = widened.min(splat(big)).lt(enter);
     // The box must be valid: `-MAX <= min <= max <= MAX` on every axis, a
     // NaN failing. (A `ValidAabb` was checked when it was made.)
     let invalid = if <B as sealed_check::Sealed>::CHECK {

@@ -6,7 +6,8 @@
 //! [`crate::cwbvh`].
 //!
 //! The traversal here is the one a renderer author writes first: test
-//! both children of an inner node with `Aabb::clip`, go to the nearer,
+//! both children of an inner node with `ValidAabb::clip` (the node boxes
+//! checked once, when the tree is copied), go to the nearer,
 //! keep the farther on a stack with its entry distance, and test the
 //! triangles of a leaf with `Triangle::hit` (closest hit, shrinking
 //! `t_max`) or `Triangle::occluded` (any hit over a fixed interval, stopping
@@ -21,7 +22,9 @@ use obvhs::bvh2::builder::build_bvh2_from_tris;
 use obvhs::ray::{Ray as ObRay, RayHit};
 use obvhs::triangle::Triangle as ObTriangle;
 use rayhit::glam::Vec3;
-use rayhit::{Aabb, Bounds, Intersect, Interval, PreparedRay, Ray, Search, Triangle, TriangleHit};
+use rayhit::{
+    Aabb, Bounds, Intersect, Interval, PreparedRay, Ray, Search, Triangle, TriangleHit, ValidAabb,
+};
 use rayhit_testkit::rng::Pcg32;
 
 use crate::cwbvh::{Mesh, ob_triangles};
@@ -31,11 +34,13 @@ use crate::cwbvh::{Mesh, ob_triangles};
 const STACK: usize = 64;
 
 /// A node of the binary tree as the traversal here reads it: the box as
-/// rayhit's `Aabb`, and either two children (`count == 0`, at `first` and
-/// `first + 1`) or `count` triangles from `first`.
+/// rayhit's `ValidAabb` (checked once, so the box test does not check it
+/// per call), and either two children (`count == 0`, at `first` and
+/// `first + 1`) or `count` triangles from `first`. 32 bytes, as obvhs's
+/// node is.
 #[derive(Clone, Copy, Debug)]
 struct Node {
-    bounds: Aabb,
+    bounds: ValidAabb,
     count: u32,
     first: u32,
 }
@@ -54,11 +59,23 @@ pub struct Bvh2Scene {
     nodes: Vec<Node>,
 }
 
+/// The range a traversal tests the boxes over now: rayhit's search, and
+/// its ends for box tests written without rayhit (the floor row).
+#[derive(Clone, Copy, Debug)]
+pub struct Reach {
+    /// A `t_max` or an interval.
+    pub search: Search<f32>,
+    /// The lower end (zero for a `t_max`).
+    pub lo: f32,
+    /// The upper end.
+    pub hi: f32,
+}
+
 /// What a traversal asks of the tree: the range the boxes are tested
 /// over, and the leaves' test.
 trait Query {
-    /// The search the boxes are clipped to now (a `t_max` or an interval).
-    fn search(&self) -> Search<f32>;
+    /// The range the boxes are clipped to now (a `t_max` or an interval).
+    fn reach(&self) -> Reach;
     /// Entries beyond this distance need not be visited.
     fn far(&self) -> f32;
     /// Tests the triangles `tris`, numbered from `first`; `true` ends the
@@ -76,8 +93,12 @@ struct Closest {
 
 impl Query for Closest {
     #[inline(always)]
-    fn search(&self) -> Search<f32> {
-        self.t_max.into()
+    fn reach(&self) -> Reach {
+        Reach {
+            search: self.t_max.into(),
+            lo: 0.0,
+            hi: self.t_max,
+        }
     }
     #[inline(always)]
     fn far(&self) -> f32 {
@@ -105,8 +126,12 @@ struct Occluded {
 
 impl Query for Occluded {
     #[inline(always)]
-    fn search(&self) -> Search<f32> {
-        self.segment.into()
+    fn reach(&self) -> Reach {
+        Reach {
+            search: self.segment.into(),
+            lo: self.segment.min(),
+            hi: self.segment.max(),
+        }
     }
     #[inline(always)]
     fn far(&self) -> f32 {
@@ -145,7 +170,8 @@ impl Bvh2Scene {
             .nodes
             .iter()
             .map(|n| Node {
-                bounds: Aabb::new(n.aabb().min.into(), n.aabb().max.into()),
+                bounds: ValidAabb::new(Aabb::new(n.aabb().min.into(), n.aabb().max.into()))
+                    .expect("obvhs's boxes are finite, min <= max"),
                 count: n.prim_count,
                 first: n.first_index,
             })
@@ -165,7 +191,8 @@ impl Bvh2Scene {
     /// min and max, exact, so they do).
     fn depth_and_containment(&self, i: usize, depth: usize) -> usize {
         let n = self.nodes[i];
-        let inside = |p: Vec3| n.bounds.min.cmple(p).all() && n.bounds.max.cmpge(p).all();
+        let b = n.bounds.aabb();
+        let inside = |p: Vec3| b.min.cmple(p).all() && b.max.cmpge(p).all();
         if n.count > 0 {
             let tris = &self.tris[n.first as usize..(n.first + n.count) as usize];
             assert!(
@@ -176,7 +203,7 @@ impl Bvh2Scene {
         }
         (0..2)
             .map(|k| {
-                let c = self.nodes[n.first as usize + k].bounds;
+                let c = self.nodes[n.first as usize + k].bounds.aabb();
                 assert!(inside(c.min) && inside(c.max));
                 self.depth_and_containment(n.first as usize + k, depth + 1)
             })
@@ -184,14 +211,19 @@ impl Bvh2Scene {
             .unwrap_or(depth)
     }
 
-    /// The traversal: both children of an inner node clipped with
-    /// `Aabb::clip` (the prepared ray, the query's current search), the
-    /// nearer visited first, the farther kept on the stack with its entry
-    /// and skipped when popped beyond the query's `far`.
+    /// The traversal: both children of an inner node tested with `enter`
+    /// (the box, the query's current range: the entry distance, or `None`
+    /// for a miss), the nearer visited first, the farther kept on the stack
+    /// with its entry and skipped when popped beyond the query's `far`.
     #[inline(always)]
-    fn walk(&self, ray: &PreparedRay, q: &mut impl Query) {
+    fn walk(
+        &self,
+        ray: &PreparedRay,
+        q: &mut impl Query,
+        enter: impl Fn(&ValidAabb, Reach) -> Option<f32>,
+    ) {
         let nodes = &self.nodes[..];
-        if nodes.is_empty() || nodes[0].bounds.clip(ray, q.search()).is_none() {
+        if nodes.is_empty() || enter(&nodes[0].bounds, q.reach()).is_none() {
             return;
         }
         let mut stack = [(0u32, 0f32); STACK];
@@ -206,12 +238,12 @@ impl Bvh2Scene {
                 }
             } else {
                 let (a, b) = (n.first as usize, n.first as usize + 1);
-                let search = q.search();
+                let reach = q.reach();
                 match (
-                    nodes[a].bounds.clip(ray, search),
-                    nodes[b].bounds.clip(ray, search),
+                    enter(&nodes[a].bounds, reach),
+                    enter(&nodes[b].bounds, reach),
                 ) {
-                    (Some((ea, _)), Some((eb, _))) => {
+                    (Some(ea), Some(eb)) => {
                         let (near, far, enter) = if ea <= eb { (a, b, eb) } else { (b, a, ea) };
                         stack[top] = (far as u32, enter);
                         top += 1;
@@ -244,29 +276,52 @@ impl Bvh2Scene {
         }
     }
 
-    /// Closest hit by the traversal here with rayhit's `Aabb::clip` and
-    /// `Triangle::hit`, plain calls on the prepared ray: the triangle (in
-    /// the tree's order) and the hit.
+    /// Closest hit by the traversal here with rayhit's `ValidAabb::clip`
+    /// and `Triangle::hit`, plain calls on the prepared ray: the triangle
+    /// (in the tree's order) and the hit.
     #[inline(always)]
     pub fn rayhit_closest(&self, ray: &PreparedRay) -> Option<(u32, TriangleHit)> {
+        self.closest_with(ray, |b, r| b.clip(ray, r.search).map(|(enter, _)| enter))
+    }
+
+    /// [`Bvh2Scene::rayhit_closest`] with the box test `enter`.
+    #[inline(always)]
+    pub fn closest_with(
+        &self,
+        ray: &PreparedRay,
+        enter: impl Fn(&ValidAabb, Reach) -> Option<f32>,
+    ) -> Option<(u32, TriangleHit)> {
         let mut q = Closest {
             t_max: f32::INFINITY,
             best: None,
         };
-        self.walk(ray, &mut q);
+        self.walk(ray, &mut q, enter);
         q.best
     }
 
     /// Whether anything blocks `segment` of the ray, by the traversal here
-    /// with `Aabb::clip` over the interval and `Triangle::occluded`,
+    /// with `ValidAabb::clip` over the interval and `Triangle::occluded`,
     /// stopping at the first occluder.
     #[inline(always)]
     pub fn rayhit_occluded(&self, ray: &PreparedRay, segment: Interval<f32>) -> bool {
+        self.occluded_with(ray, segment, |b, r| {
+            b.clip(ray, r.search).map(|(enter, _)| enter)
+        })
+    }
+
+    /// [`Bvh2Scene::rayhit_occluded`] with the box test `enter`.
+    #[inline(always)]
+    pub fn occluded_with(
+        &self,
+        ray: &PreparedRay,
+        segment: Interval<f32>,
+        enter: impl Fn(&ValidAabb, Reach) -> Option<f32>,
+    ) -> bool {
         let mut q = Occluded {
             segment,
             blocked: false,
         };
-        self.walk(ray, &mut q);
+        self.walk(ray, &mut q, enter);
         q.blocked
     }
 

@@ -21,6 +21,8 @@ use std::arch::x86_64::{
 use rayhit::{Aabb, Ray};
 use rayhit_peers::avx512::Avx512;
 
+use super::widening;
+
 /// A ray as the floor reads it: origin and `1 / dir`.
 #[derive(Clone, Copy)]
 pub struct FloorSlabRay {
@@ -67,14 +69,6 @@ pub fn meets(_: Avx512, ray: &FloorSlabRay, boxes: &FloorBoxes8, t_max: f32) -> 
     // SAFETY: the CPU has the features the function is compiled with: an
     // `Avx512` is made only by detecting them.
     unsafe { meets_avx512(ray, boxes, t_max) }
-}
-
-/// `rayhit`'s widening of the exit, `(1 + 2 gamma(4))` rounded up, and
-/// its slack of two subnormals (see `aabb/definition.rs`).
-fn widening() -> (f32, f32) {
-    let eps = f32::EPSILON / 2.0;
-    let gamma4 = 4.0 * eps / (1.0 - 4.0 * eps);
-    ((1.0 + 2.0 * gamma4).next_up(), 2.0 * f32::from_bits(1))
 }
 
 #[target_feature(enable = "avx2,avx512f,avx512vl")]

@@ -7,7 +7,7 @@
 //! eight-box batch, `camera` the cameras' references and
 //! `instance` the floor of the hit's mapping to the world.
 
-use rayhit::glam::{Vec3, Vec3Swizzles, Vec4, Vec4Swizzles};
+use rayhit::glam::{Vec3, Vec3A, Vec3Swizzles, Vec4, Vec4Swizzles};
 use rayhit::{Aabb, Ray, Triangle};
 
 use crate::harness::INF;
@@ -78,6 +78,50 @@ pub fn plain_slab(r: &PlainRay, b: &Aabb) -> bool {
         hi = min(far, hi);
     }
     lo <= hi
+}
+
+/// `rayhit`'s widening of the exit, `(1 + 2 gamma(4))` rounded up, and
+/// its slack of two subnormals (see `aabb/definition.rs`).
+pub fn widening() -> (f32, f32) {
+    let eps = f32::EPSILON / 2.0;
+    let gamma4 = 4.0 * eps / (1.0 - 4.0 * eps);
+    ((1.0 + 2.0 * gamma4).next_up(), 2.0 * f32::from_bits(1))
+}
+
+/// A ray as the floor of a binary BVH's box test reads it: origin and
+/// `1 / dir`, four lanes each.
+#[derive(Clone, Copy)]
+pub struct FloorBoxRay {
+    origin: Vec3A,
+    inv: Vec3A,
+}
+
+impl FloorBoxRay {
+    pub fn new(r: &Ray) -> Self {
+        Self {
+            origin: r.origin.into(),
+            inv: Vec3A::from(r.dir).recip(),
+        }
+    }
+}
+
+/// The floor of a binary BVH's box test by plain call, inlined: the
+/// textbook slab test on lanes (`min`/`max` of the two planes' distances
+/// per axis, the largest near and smallest far over the axes, folded into
+/// `[lo, hi]`) plus the one operation the guarantee adds for rays with no
+/// zero direction component, the exit's widening (`rayhit`'s constants).
+/// The entry, or `None`. Left out against `ValidAabb::clip`: the NaN-safe
+/// fold for an origin on a slab plane of an axis the ray does not move
+/// along, the check of `t_max`, the entry's bound `MAX`, and the reported
+/// ends kept within the range.
+#[inline(always)]
+pub fn floor_box_enter(r: &FloorBoxRay, b: &Aabb, lo: f32, hi: f32) -> Option<f32> {
+    let (w, slack) = widening();
+    let t0 = (Vec3A::from(b.min) - r.origin) * r.inv;
+    let t1 = (Vec3A::from(b.max) - r.origin) * r.inv;
+    let near = t0.min(t1).max_element().max(lo);
+    let far = t0.max(t1).min_element().min(hi);
+    (near <= far * w + slack).then_some(near)
 }
 
 /// The axis of `d`'s largest magnitude component, the watertight test's

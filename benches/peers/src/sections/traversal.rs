@@ -15,10 +15,15 @@
 //! - `obvhs CwBvh, its own tests`: `CwBvh::ray_traverse` (closest) or
 //!   `ray_traverse_miss` (any hit) with obvhs's triangle test;
 //! - `rayhit BVH2, plain calls`: obvhs's binary BVH walked by the stack
-//!   traversal of `rayhit_peers::traversal` with `Aabb::clip` and
+//!   traversal of `rayhit_peers::traversal` with `ValidAabb::clip` and
 //!   `Triangle::hit` / `occluded`;
+//! - [`BVH2_FLOOR`]: the same walk with the box test's floor
+//!   (`floors::floor_box_enter`, inlined);
 //! - `obvhs Bvh2, its own tests`: `Bvh2::ray_traverse` or
-//!   `ray_traverse_miss` with obvhs's triangle test.
+//!   `ray_traverse_miss` with obvhs's triangle test;
+//! - on `shadow` only, [`OFFSET`]: rayhit's two plain-call traversals over
+//!   obvhs's offset segments, which separates the cost of the
+//!   epsilon-free start from the kernels'.
 //!
 //! Workloads: `camera` (128 x 128 pinhole rays in scanline order),
 //! `incoherent` (as many rays between random points around the mesh and
@@ -36,12 +41,13 @@
 
 use rayhit::batch::{Simd, SimdWork, with_simd};
 use rayhit::glam::Vec3A;
-use rayhit::{Interval, PreparedRay, Ray, RayForm};
+use rayhit::{Interval, PreparedRay, Ray, RayForm, ValidAabb};
 use rayhit_peers::cwbvh::{self, LeakRays, Mesh, count_leaks};
 use rayhit_peers::traversal::{
-    Bvh2Scene, EPS, ShadowRays, camera_rays, inside_random_rays, ob_ray, random_rays,
+    Bvh2Scene, EPS, Reach, ShadowRays, camera_rays, inside_random_rays, ob_ray, random_rays,
 };
 
+use crate::floors::{FloorBoxRay, floor_box_enter};
 use crate::harness::loops::agree;
 use crate::harness::{Kernel, kernel};
 use crate::sections::cwbvh::print_leak_row;
@@ -65,6 +71,20 @@ pub const ROWS: [&str; 5] = [
 pub const FLOOR: &str =
     "floor: CWBVH, a call per node into the AVX-512 node test, the node by reference";
 
+/// The floor row of the binary BVH's box test: the traversal of `rayhit
+/// BVH2, plain calls` with `floors::floor_box_enter` (the textbook slab
+/// test and the exit's widening, inlined) in place of `ValidAabb::clip`.
+pub const BVH2_FLOOR: &str = "floor: BVH2, the same walk, a slab test with only the widening";
+
+/// The rows of `shadow` that trace obvhs's segments (origin `point + EPS
+/// n`, over `(0, 1 - EPS]`) with rayhit's plain-call traversals: the
+/// kernels' cost on the same segments as obvhs's rows, without the
+/// epsilon-free start.
+pub const OFFSET: [&str; 2] = [
+    "rayhit CWBVH, plain calls, obvhs's offset segments",
+    "rayhit BVH2, plain calls, obvhs's offset segments",
+];
+
 /// One ray set: rayhit's rays (prepared, with the direction obvhs's order
 /// reads), their intervals on `shadow`, and obvhs's rays.
 struct Workload {
@@ -78,6 +98,11 @@ struct Workload {
     ob: Vec<obvhs::ray::Ray>,
     /// Shadow hit points without a segment (counted as blocked).
     grazing: usize,
+    /// The rays as the binary BVH's floor row reads them.
+    floor: Vec<FloorBoxRay>,
+    /// Empty but on `shadow`: obvhs's offset segments as rayhit's rays,
+    /// each over `(0, 1 - EPS]`.
+    offset: Vec<(PreparedRay, Vec3A)>,
 }
 
 /// One mesh's trees and ray sets, and each row's answer per ray (hit or
@@ -187,6 +212,8 @@ impl TraversalData {
             segments: Vec::new(),
             ob: rays.iter().map(|r| ob_ray(r, f32::INFINITY)).collect(),
             grazing: 0,
+            floor: rays.iter().map(FloorBoxRay::new).collect(),
+            offset: Vec::new(),
         };
         let shadow = ShadowRays::new(&bvh2, mesh, &camera);
         let aimed = LeakRays::new(mesh, 4096, 7).inside;
@@ -206,6 +233,16 @@ impl TraversalData {
             segments: shadow.rayhit.iter().map(|&(_, s)| s).collect(),
             ob: shadow.eps.iter().map(|r| ob_ray(r, 1.0 - EPS)).collect(),
             grazing: shadow.grazing,
+            floor: shadow
+                .rayhit
+                .iter()
+                .map(|(r, _)| FloorBoxRay::new(r))
+                .collect(),
+            offset: shadow
+                .eps
+                .iter()
+                .map(|r| (PreparedRay::new(r), r.dir.into()))
+                .collect(),
         });
         let mut d = TraversalData {
             name: mesh.name,
@@ -353,6 +390,46 @@ pub fn traversal_kernels<'a>(d: &'a TraversalData, out: &mut Vec<Kernel<'a>>) {
                 }
             },
         ));
+        let floor = move |i: usize| {
+            let (p, f) = (&w.rays[i].0, &w.floor[i]);
+            let enter = |b: &ValidAabb, r: Reach| floor_box_enter(f, b.aabb(), r.lo, r.hi);
+            if shadow {
+                u64::from(bvh2.occluded_with(p, w.segments[i], enter))
+            } else {
+                bvh2.closest_with(p, enter)
+                    .map_or(u64::MAX, |(_, h)| u64::from(h.t.to_bits()))
+            }
+        };
+        let floor_agrees = agree(
+            d.answers[k][3].iter().copied(),
+            (0..n).map(|i| {
+                let x = floor(i);
+                if shadow { x == 1 } else { x != u64::MAX }
+            }),
+        );
+        out.push(kernel(
+            SECTION,
+            BVH2_FLOOR,
+            &name,
+            n,
+            Some(floor_agrees),
+            move || sum(n, floor),
+        ));
+        if shadow {
+            // rayhit's kernels on obvhs's segments: what the epsilon-free
+            // start costs, apart from the kernels.
+            let offset = Interval::new(0.0, 1.0 - EPS).expect("0 < 1 - EPS");
+            let on = |i: usize| &w.offset[i];
+            out.push(kernel(SECTION, OFFSET[0], &name, n, None, move || {
+                sum(n, |i| {
+                    let (p, d) = on(i);
+                    u64::from(fixed.rayhit_occluded_on(p, p, *d, offset))
+                })
+            }));
+            out.push(kernel(SECTION, OFFSET[1], &name, n, None, move || {
+                sum(n, |i| u64::from(bvh2.rayhit_occluded(&on(i).0, offset)))
+            }));
+        }
         out.push(kernel(
             SECTION,
             ROWS[4],
