@@ -167,6 +167,17 @@ pub(crate) fn decide<F: Scalar, E: ExactPlace>(
     hi: F,
     exact: impl FnOnce() -> E,
 ) -> Option<bool> {
+    match filter(t, err, lo, hi) {
+        Ok(inside) => Some(inside),
+        Err((low, high)) => exact_decide(low, high, lo, hi, exact()),
+    }
+}
+
+/// The filter of [`decide`] alone: `Ok` with the answer where the band
+/// `[t - err, t + err]` settles it, else `Err` with where the band lies
+/// against each end (for the exact signs to finish).
+#[inline(always)]
+pub(crate) fn filter<F: Scalar>(t: F, err: F, lo: F, hi: F) -> Result<bool, (Place, Place)> {
     use crate::num::round::outward::{add_up, sub_down};
     let low = if sub_down(t, err) > lo {
         Place::Above
@@ -176,7 +187,7 @@ pub(crate) fn decide<F: Scalar, E: ExactPlace>(
         Place::Unknown
     };
     if low == Place::Below {
-        return Some(false);
+        return Ok(false);
     }
     let high = if add_up(t, err) <= hi {
         Place::Below
@@ -186,12 +197,12 @@ pub(crate) fn decide<F: Scalar, E: ExactPlace>(
         Place::Unknown
     };
     if high == Place::Above {
-        return Some(false);
+        return Ok(false);
     }
     if low == Place::Above && high == Place::Below {
-        return Some(true);
+        return Ok(true);
     }
-    exact_decide(low, high, lo, hi, exact())
+    Err((low, high))
 }
 
 /// The exact half of [`decide`], out of line.

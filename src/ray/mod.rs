@@ -33,7 +33,7 @@ use crate::num::{L, Lanes, S, Scalar, Vector, lanes};
 pub(crate) use crossing::{crossing_in, t_error};
 pub(crate) use exact_crossing::PlaneCrossing;
 pub use interval::Interval;
-pub(crate) use interval::{ExactPlace, bring_into, decide};
+pub(crate) use interval::{ExactPlace, bring_into, decide, filter};
 pub use prepared::PreparedRay;
 pub(crate) use shear::{Shear, largest_axis};
 pub(crate) use slab::SlabRay;

@@ -43,7 +43,7 @@ use super::lanes::{DefinitionRay, Packed, frame_lanes, lanes_hit, pack, unpack};
 use super::one_hit::{crossing, unresolved_hit};
 use super::{Triangle, TriangleHit};
 use crate::num::{Axis, L, Lanes, S, Scalar, Vector};
-use crate::ray::{Interval, PreparedRay, Ray, Shear, bring_into, decide};
+use crate::ray::{Interval, PreparedRay, Ray, Shear, bring_into, decide, filter};
 use core::cmp::Ordering;
 
 /// An interval's ends as the corners' depths are compared with them
@@ -167,7 +167,14 @@ fn watertight_in_lanes<V: Vector, R: DefinitionRay<V>>(
         && det.abs() <= S::<V>::MAX
         && edge_signs_known_at_corners(x, y, pz, e.abs().min_all().x());
     let z = pz.mul(sz);
-    match known.then(|| corner_verdict(&window, z)).flatten() {
+    let verdict = known
+        .then(|| {
+            corner_verdict(&window, z).or_else(|| {
+                band_verdict(ray, (origin_lanes, axes), tri, (x, y, pz, e), det, interval)
+            })
+        })
+        .flatten();
+    match verdict {
         Some(true) => {
             // As `watertight_in` computes them (`det` finite and far from
             // zero, so `u` and `v` are finite).
@@ -179,6 +186,52 @@ fn watertight_in_lanes<V: Vector, R: DefinitionRay<V>>(
         Some(false) => None,
         None => unpack(in_out_of_line(ray, tri, interval, rule)),
     }
+}
+
+/// The filter step of [`watertight_in`] for a triangle whose corners'
+/// depths straddle an end of the interval (so [`corner_verdict`] cannot
+/// settle it), from the lanes the shortcut already has: the computed
+/// crossing `t` and its error bound (`HitCondition::t_error`), decided
+/// where the band `[t - err, t + err]` lies on one side of each end;
+/// `None` where it does not, or where the determinant's sign is not
+/// known, for [`watertight_in`] to finish out of line.
+///
+/// The same decision as [`watertight_in`]'s, on the same values: the
+/// shortcut runs only where `watertight_in` would pass `inside` with these
+/// edge functions (all of one sign, none zero) and a finite nonzero
+/// determinant, and the frame here is the lanes' (the same operations as
+/// `Frame::new`; `px`, `py` recomputed as the lanes compute them), so
+/// `t`, the bounds and the filter are `watertight_in`'s. The common case
+/// it catches is a segment that starts on or next to the triangle's
+/// neighbourhood, as a shadow ray from a surface does: the corners lie on
+/// both sides of its start while the crossing is far from it. Kept out of
+/// the traversal's inner loop, but not cold.
+#[inline(never)]
+fn band_verdict<V: Vector, R: DefinitionRay<V>>(
+    ray: &R,
+    (origin_lanes, axes): (&[L<V>; 3], &[Axis; 3]),
+    tri: &Triangle<V>,
+    (x, y, pz, e): (L<V>, L<V>, L<V>, L<V>),
+    det: S<V>,
+    interval: Interval<S<V>>,
+) -> Option<bool> {
+    let (_, shear) = ray.origin_and_shear();
+    let corners = |k: Axis| L::<V>::new(tri.a.get(k), tri.b.get(k), tri.c.get(k));
+    let f = Frame {
+        x: x.to_array(),
+        y: y.to_array(),
+        px: corners(axes[0]).sub(origin_lanes[0]).to_array(),
+        py: corners(axes[1]).sub(origin_lanes[1]).to_array(),
+        pz: pz.to_array(),
+        e: e.to_array(),
+    };
+    let z = f.scaled_z(&shear);
+    let t_scaled = f.e[0] * z[0] + f.e[1] * z[1] + f.e[2] * z[2];
+    let plain = t_scaled * (S::<V>::ONE / det);
+    let bounds = ErrorBounds::new(&f, &z, &shear);
+    let err = HitCondition::new(&bounds, det)?.t_error(&bounds, &z, plain);
+    let (lo, hi) = interval.ends();
+    filter(plain, err, lo, hi).ok()
 }
 
 /// [`watertight_in`], out of the hot path: the rare cases of

@@ -5,14 +5,16 @@
 //! rays, shadow segments). The compressed wide BVH's traversals are in
 //! [`crate::cwbvh`].
 //!
-//! The traversal here is the one a renderer author writes first: test
-//! both children of an inner node with `ValidAabb::clip` (the node boxes
-//! checked once, when the tree is copied), go to the nearer,
-//! keep the farther on a stack with its entry distance, and test the
-//! triangles of a leaf with `Triangle::hit` (closest hit, shrinking
-//! `t_max`) or `Triangle::occluded` (any hit over a fixed interval, stopping
-//! at the first). The order follows obvhs's `Bvh2::ray_traverse_dynamic`
-//! (children tested in pairs, nearer first); the code is written here.
+//! The traversals here are the ones a renderer author writes first. The
+//! closest hit: test both children of an inner node with `ValidAabb::clip`
+//! (the node boxes checked once, when the tree is copied), go to the
+//! nearer, keep the farther on a stack with its entry distance, and test
+//! the triangles of a leaf with `Triangle::hit`, shrinking `t_max`; the
+//! order follows obvhs's `Bvh2::ray_traverse_dynamic` (children tested in
+//! pairs, nearer first). Any hit over a fixed interval: `ValidAabb::meets`
+//! on both children in their stored order, a leaf's triangles tested with
+//! `Triangle::occluded` at once, the first occluder ending the walk. The
+//! code is written here.
 
 use std::time::Duration;
 
@@ -276,6 +278,61 @@ impl Bvh2Scene {
         }
     }
 
+    /// The any-hit traversal: both children of an inner node tested with
+    /// `meets` over the query's range, in the order they are stored (any
+    /// occluder ends the walk, so no order is worth its cost), a leaf
+    /// child's triangles tested at once, an inner child visited next or
+    /// kept on a stack of node indices.
+    #[inline(always)]
+    fn walk_any(
+        &self,
+        ray: &PreparedRay,
+        q: &mut impl Query,
+        meets: impl Fn(&ValidAabb, Reach) -> bool,
+    ) {
+        let nodes = &self.nodes[..];
+        let Some(root) = nodes.first() else { return };
+        if !meets(&root.bounds, q.reach()) {
+            return;
+        }
+        if root.count > 0 {
+            let tris = &self.tris[root.first as usize..(root.first + root.count) as usize];
+            q.leaf(ray, tris, root.first);
+            return;
+        }
+        let mut stack = [0u32; STACK];
+        let mut top = 0;
+        let mut at = root.first as usize;
+        loop {
+            let reach = q.reach();
+            let mut next = usize::MAX;
+            for c in &nodes[at..at + 2] {
+                if !meets(&c.bounds, reach) {
+                    continue;
+                }
+                if c.count > 0 {
+                    let tris = &self.tris[c.first as usize..(c.first + c.count) as usize];
+                    if q.leaf(ray, tris, c.first) {
+                        return;
+                    }
+                } else if next == usize::MAX {
+                    next = c.first as usize;
+                } else {
+                    stack[top] = c.first;
+                    top += 1;
+                }
+            }
+            if next != usize::MAX {
+                at = next;
+            } else if top > 0 {
+                top -= 1;
+                at = stack[top] as usize;
+            } else {
+                return;
+            }
+        }
+    }
+
     /// Closest hit by the traversal here with rayhit's `ValidAabb::clip`
     /// and `Triangle::hit`, plain calls on the prepared ray: the triangle
     /// (in the tree's order) and the hit.
@@ -299,29 +356,27 @@ impl Bvh2Scene {
         q.best
     }
 
-    /// Whether anything blocks `segment` of the ray, by the traversal here
-    /// with `ValidAabb::clip` over the interval and `Triangle::occluded`,
-    /// stopping at the first occluder.
+    /// Whether anything blocks `segment` of the ray, by the any-hit
+    /// traversal here with `ValidAabb::meets` over the interval and
+    /// `Triangle::occluded`, stopping at the first occluder.
     #[inline(always)]
     pub fn rayhit_occluded(&self, ray: &PreparedRay, segment: Interval<f32>) -> bool {
-        self.occluded_with(ray, segment, |b, r| {
-            b.clip(ray, r.search).map(|(enter, _)| enter)
-        })
+        self.occluded_with(ray, segment, |b, r| b.meets(ray, r.search))
     }
 
-    /// [`Bvh2Scene::rayhit_occluded`] with the box test `enter`.
+    /// [`Bvh2Scene::rayhit_occluded`] with the box test `meets`.
     #[inline(always)]
     pub fn occluded_with(
         &self,
         ray: &PreparedRay,
         segment: Interval<f32>,
-        enter: impl Fn(&ValidAabb, Reach) -> Option<f32>,
+        meets: impl Fn(&ValidAabb, Reach) -> bool,
     ) -> bool {
         let mut q = Occluded {
             segment,
             blocked: false,
         };
-        self.walk(ray, &mut q, enter);
+        self.walk_any(ray, &mut q, meets);
         q.blocked
     }
 

@@ -15,8 +15,9 @@
 //! - `obvhs CwBvh, its own tests`: `CwBvh::ray_traverse` (closest) or
 //!   `ray_traverse_miss` (any hit) with obvhs's triangle test;
 //! - `rayhit BVH2, plain calls`: obvhs's binary BVH walked by the stack
-//!   traversal of `rayhit_peers::traversal` with `ValidAabb::clip` and
-//!   `Triangle::hit` / `occluded`;
+//!   traversals of `rayhit_peers::traversal`: nearer first with
+//!   `ValidAabb::clip` and `Triangle::hit`, or, on `shadow`, any hit with
+//!   `ValidAabb::meets` and `Triangle::occluded`;
 //! - [`BVH2_FLOOR`]: the same walk with the box test's floor
 //!   (`floors::floor_box_enter`, inlined);
 //! - `obvhs Bvh2, its own tests`: `Bvh2::ray_traverse` or
@@ -394,7 +395,8 @@ pub fn traversal_kernels<'a>(d: &'a TraversalData, out: &mut Vec<Kernel<'a>>) {
             let (p, f) = (&w.rays[i].0, &w.floor[i]);
             let enter = |b: &ValidAabb, r: Reach| floor_box_enter(f, b.aabb(), r.lo, r.hi);
             if shadow {
-                u64::from(bvh2.occluded_with(p, w.segments[i], enter))
+                let meets = |b: &ValidAabb, r: Reach| enter(b, r).is_some();
+                u64::from(bvh2.occluded_with(p, w.segments[i], meets))
             } else {
                 bvh2.closest_with(p, enter)
                     .map_or(u64::MAX, |(_, h)| u64::from(h.t.to_bits()))
