@@ -123,7 +123,15 @@ fn slab_test<V: Vector, B: SlabBox<V>>(
         return None;
     }
     let exit = at_most(widened.min_all().x(), t_max);
-    Some((at_most(enter.x(), exit), exit))
+    // `at_most(enter, t_max)` is `at_most(enter, exit)`, bit for bit: on a
+    // hit `enter` is at most every widened exit, so where the smallest is
+    // below `t_max` (and is `exit`) `enter` is below `t_max` too and is
+    // kept either way (an `enter` equal to it in value has its bits: the
+    // entries are never `-0`, nor is a widened exit, which has `2 TINY`
+    // added); elsewhere `exit` is `t_max`. Written so, the entry does not
+    // wait on the exits' minimum, which a caller reading only the entry
+    // then never computes.
+    Some((at_most(enter.x(), t_max), exit))
 }
 
 /// The slab test: the part of `[0, t_max]` that `ray` spends inside the
