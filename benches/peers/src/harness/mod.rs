@@ -79,8 +79,17 @@ pub fn time_all(kernels: &mut [Kernel<'_>]) {
             k.reps *= 2;
         }
     }
-    for _ in 0..ROUNDS {
-        for k in kernels.iter_mut() {
+    for round in 0..ROUNDS {
+        // Every other round runs the rows in reverse order, so that no row
+        // always follows the same neighbour. (The first row timed on a
+        // workload after another's ran up to 25% slower, round after
+        // round, whichever row it was and with a warm-up pass before it;
+        // two rows swapped in the list swapped which one was slow.)
+        for k in if round % 2 == 0 {
+            kernels.iter_mut().collect::<Vec<_>>()
+        } else {
+            kernels.iter_mut().rev().collect()
+        } {
             // A row of few long passes (a traversal over a mesh larger
             // than the level-2 cache) would start each round with the
             // caches holding the previous row's data and time that

@@ -163,21 +163,19 @@ fn sum(n: usize, f: impl Fn(usize) -> u64) -> u64 {
 }
 
 /// A workload through rayhit's CWBVH with the node test on the
-/// instruction set `with_simd` picks once for the pass.
+/// instruction set `with_simd` picks once for the pass; any hit where
+/// `SHADOW`, else closest hit.
 #[derive(Clone, Copy)]
-struct CwSimd<'a>(&'a cwbvh::Scene, &'a Workload);
+struct CwSimd<'a, const SHADOW: bool>(&'a cwbvh::Scene, &'a Workload);
 
-impl SimdWork for CwSimd<'_> {
+impl<const SHADOW: bool> SimdWork for CwSimd<'_, SHADOW> {
     type Output = u64;
     #[inline(always)]
     fn run<I: Simd>(self, simd: I) -> u64 {
         let CwSimd(s, w) = self;
-        let n = w.rays.len();
-        if w.segments.is_empty() {
-            sum(n, |i| cw_one_of::<false>(s, w, i, &simd.ray(&w.rays[i].0)))
-        } else {
-            sum(n, |i| cw_one_of::<true>(s, w, i, &simd.ray(&w.rays[i].0)))
-        }
+        sum(w.rays.len(), |i| {
+            cw_one_of::<SHADOW>(s, w, i, &simd.ray(&w.rays[i].0))
+        })
     }
 }
 
@@ -310,16 +308,22 @@ pub fn traversal_kernels<'a>(d: &'a TraversalData, out: &mut Vec<Kernel<'a>>) {
         };
         let shadow = !w.segments.is_empty();
         let (fixed, bvh2, obvhs) = (&d.fixed, &d.bvh2, &d.obvhs);
-        out.push(kernel(SECTION, ROWS[0], &name, n, None, move || {
-            if shadow {
-                sum(n, |i| cw_one_of::<true>(fixed, w, i, &w.rays[i].0))
-            } else {
-                sum(n, |i| cw_one_of::<false>(fixed, w, i, &w.rays[i].0))
-            }
-        }));
-        out.push(kernel(SECTION, ROWS[1], &name, n, None, move || {
-            with_simd(CwSimd(fixed, w))
-        }));
+        out.push(one_of(
+            (&name, n, shadow),
+            ROWS[0],
+            None,
+            move |i| cw_one_of::<false>(fixed, w, i, &w.rays[i].0),
+            move |i| cw_one_of::<true>(fixed, w, i, &w.rays[i].0),
+        ));
+        out.push(if shadow {
+            kernel(SECTION, ROWS[1], &name, n, None, move || {
+                with_simd(CwSimd::<true>(fixed, w))
+            })
+        } else {
+            kernel(SECTION, ROWS[1], &name, n, None, move || {
+                with_simd(CwSimd::<false>(fixed, w))
+            })
+        });
         #[cfg(target_arch = "x86_64")]
         if let Some(floor) = cwbvh::NodeFloor::detect() {
             let closest = move |i: usize| {
@@ -331,91 +335,68 @@ pub fn traversal_kernels<'a>(d: &'a TraversalData, out: &mut Vec<Kernel<'a>>) {
                 let ((p, d), seg) = (&w.rays[i], w.segments[i]);
                 u64::from(fixed.rayhit_occluded_with(p, *d, seg, |node| floor.meets(node, p, seg)))
             };
-            let one = move |i: usize| if shadow { occluded(i) } else { closest(i) };
             let floor_agrees = agree(
                 ours.iter().copied(),
                 (0..n).map(|i| {
-                    let x = one(i);
                     if shadow {
-                        x == 1
+                        occluded(i) == 1
                     } else {
-                        x != u64::from(f32::INFINITY.to_bits())
+                        closest(i) != u64::from(f32::INFINITY.to_bits())
                     }
                 }),
             );
-            out.push(kernel(
-                SECTION,
+            out.push(one_of(
+                (&name, n, shadow),
                 FLOOR,
-                &name,
-                n,
                 Some(floor_agrees),
-                move || {
-                    if shadow {
-                        sum(n, occluded)
-                    } else {
-                        sum(n, closest)
-                    }
-                },
+                closest,
+                occluded,
             ));
         }
-        out.push(kernel(
-            SECTION,
+        out.push(one_of(
+            (&name, n, shadow),
             ROWS[2],
-            &name,
-            n,
             agreement(2),
-            move || {
-                if shadow {
-                    sum(n, |i| u64::from(obvhs.obvhs_occluded(&w.ob[i])))
-                } else {
-                    sum(n, |i| u64::from(obvhs.obvhs_closest_ob(&w.ob[i]).to_bits()))
-                }
-            },
+            move |i| u64::from(obvhs.obvhs_closest_ob(&w.ob[i]).to_bits()),
+            move |i| u64::from(obvhs.obvhs_occluded(&w.ob[i])),
         ));
-        out.push(kernel(
-            SECTION,
+        out.push(one_of(
+            (&name, n, shadow),
             ROWS[3],
-            &name,
-            n,
             agreement(3),
-            move || {
-                if shadow {
-                    sum(n, |i| {
-                        u64::from(bvh2.rayhit_occluded(&w.rays[i].0, w.segments[i]))
-                    })
-                } else {
-                    sum(n, |i| {
-                        bvh2.rayhit_closest(&w.rays[i].0)
-                            .map_or(u64::MAX, |(_, h)| u64::from(h.t.to_bits()))
-                    })
-                }
-            },
-        ));
-        let floor = move |i: usize| {
-            let (p, f) = (&w.rays[i].0, &w.floor[i]);
-            let enter = |b: &ValidAabb, r: Reach| floor_box_enter(f, b.aabb(), r.lo, r.hi);
-            if shadow {
-                let meets = |b: &ValidAabb, r: Reach| enter(b, r).is_some();
-                u64::from(bvh2.occluded_with(p, w.segments[i], meets))
-            } else {
-                bvh2.closest_with(p, enter)
+            move |i| {
+                bvh2.rayhit_closest(&w.rays[i].0)
                     .map_or(u64::MAX, |(_, h)| u64::from(h.t.to_bits()))
-            }
+            },
+            move |i| u64::from(bvh2.rayhit_occluded(&w.rays[i].0, w.segments[i])),
+        ));
+        let enter = move |i: usize, b: &ValidAabb, r: Reach| {
+            floor_box_enter(&w.floor[i], b.aabb(), r.lo, r.hi)
+        };
+        let floor_closest = move |i: usize| {
+            bvh2.closest_with(&w.rays[i].0, |b, r| enter(i, b, r))
+                .map_or(u64::MAX, |(_, h)| u64::from(h.t.to_bits()))
+        };
+        let floor_occluded = move |i: usize| {
+            let meets = |b: &ValidAabb, r: Reach| enter(i, b, r).is_some();
+            u64::from(bvh2.occluded_with(&w.rays[i].0, w.segments[i], meets))
         };
         let floor_agrees = agree(
             d.answers[k][3].iter().copied(),
             (0..n).map(|i| {
-                let x = floor(i);
-                if shadow { x == 1 } else { x != u64::MAX }
+                if shadow {
+                    floor_occluded(i) == 1
+                } else {
+                    floor_closest(i) != u64::MAX
+                }
             }),
         );
-        out.push(kernel(
-            SECTION,
+        out.push(one_of(
+            (&name, n, shadow),
             BVH2_FLOOR,
-            &name,
-            n,
             Some(floor_agrees),
-            move || sum(n, floor),
+            floor_closest,
+            floor_occluded,
         ));
         if shadow {
             // rayhit's kernels on obvhs's segments: what the epsilon-free
@@ -432,20 +413,33 @@ pub fn traversal_kernels<'a>(d: &'a TraversalData, out: &mut Vec<Kernel<'a>>) {
                 sum(n, |i| u64::from(bvh2.rayhit_occluded(&on(i).0, offset)))
             }));
         }
-        out.push(kernel(
-            SECTION,
+        out.push(one_of(
+            (&name, n, shadow),
             ROWS[4],
-            &name,
-            n,
             agreement(4),
-            move || {
-                if shadow {
-                    sum(n, |i| u64::from(bvh2.obvhs_occluded(&w.ob[i])))
-                } else {
-                    sum(n, |i| u64::from(bvh2.obvhs_closest(&w.ob[i]).to_bits()))
-                }
-            },
+            move |i| u64::from(bvh2.obvhs_closest(&w.ob[i]).to_bits()),
+            move |i| u64::from(bvh2.obvhs_occluded(&w.ob[i])),
         ));
+    }
+}
+
+/// A row of the section on workload `name` of `n` rays: `occluded` over
+/// every ray on `shadow`, else `closest`. Only the one chosen goes into
+/// the timed closure, so that each row's timed code is one traversal
+/// loop, as a renderer's is (see [`cw_one_of`]).
+fn one_of<'a>(
+    (name, n, shadow): (&str, usize, bool),
+    label: &str,
+    agreement: Option<f64>,
+    closest: impl Fn(usize) -> u64 + 'a,
+    occluded: impl Fn(usize) -> u64 + 'a,
+) -> Kernel<'a> {
+    if shadow {
+        kernel(SECTION, label, name, n, agreement, move || {
+            sum(n, &occluded)
+        })
+    } else {
+        kernel(SECTION, label, name, n, agreement, move || sum(n, &closest))
     }
 }
 
