@@ -554,6 +554,38 @@ mod tests {
         }
     }
 
+    /// The any-hit walk over shadow segments answers as testing every
+    /// triangle of the mesh does, and so does the closest-hit walk as
+    /// the nearest of all triangles' hits, on a small torus and the bunny.
+    #[test]
+    fn walks_answer_as_every_triangle() {
+        for mesh in [Mesh::torus(60, 40), Mesh::bunny(0)] {
+            let scene = Bvh2Scene::new(&mesh);
+            let camera = camera_rays(&mesh, 24);
+            let shadow = ShadowRays::new(&scene, &mesh, &camera);
+            assert!(shadow.rayhit.len() > 100, "{}", mesh.name);
+            let mut blocked = 0;
+            for (r, segment) in &shadow.rayhit {
+                let p = PreparedRay::new(r);
+                let all = scene.tris.iter().any(|t| t.occluded(&p, *segment));
+                assert_eq!(scene.rayhit_occluded(&p, *segment), all, "{r:?}");
+                blocked += usize::from(all);
+            }
+            assert!(blocked > 0, "{}", mesh.name);
+            for r in &camera {
+                let p = PreparedRay::new(r);
+                let nearest = scene
+                    .tris
+                    .iter()
+                    .filter_map(|t| t.hit(&p, f32::INFINITY))
+                    .map(|h| h.t)
+                    .min_by(f32::total_cmp);
+                let walked = scene.rayhit_closest(&p).map(|(_, h)| h.t);
+                assert_eq!(walked, nearest, "{r:?}");
+            }
+        }
+    }
+
     /// Every bunny inside point the exact crossing count accepts is
     /// inside by a second count along another axis.
     #[test]
