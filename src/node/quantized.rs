@@ -273,12 +273,7 @@ impl<V: Vector<Scalar = f32>> Bounds<V> for QuantizedChildren<'_, V> {
     /// ```
     #[inline(always)]
     fn clip(&self, ray: &impl RayForm<V>, search: impl Into<Search<f32>>) -> Self::Clip {
-        batch_query::<V, QuantizedKernel<'_, V, Self>>(
-            ray,
-            self,
-            search.into(),
-            AabbBatchHits::none(),
-        )
+        node_clip(ray, self, search.into())
     }
 
     /// [`clip`](Bounds::clip)`.mask`, returned in a register: the node
@@ -301,7 +296,7 @@ impl<V: Vector<Scalar = f32>> Bounds<V> for QuantizedChildren<'_, V> {
     /// ```
     #[inline(always)]
     fn meets(&self, ray: &impl RayForm<V>, search: impl Into<Search<f32>>) -> u32 {
-        batch_query::<V, MaskOf<QuantizedKernel<'_, V, Self>>>(ray, self, search.into(), 0)
+        node_meets(ray, self, search.into())
     }
 }
 
@@ -363,19 +358,14 @@ impl<'n, V: Vector<Scalar = f32>, F: Fn() -> QuantizedChildren<'n, V>> Bounds<V>
     /// the view made inside the test.
     #[inline(always)]
     fn clip(&self, ray: &impl RayForm<V>, search: impl Into<Search<f32>>) -> Self::Clip {
-        batch_query::<V, QuantizedKernel<'n, V, Self>>(
-            ray,
-            self,
-            search.into(),
-            AabbBatchHits::none(),
-        )
+        node_clip(ray, self, search.into())
     }
 
     /// [`QuantizedChildren`]'s [`meets`](Bounds::meets) of the view, with
     /// the view made inside the test.
     #[inline(always)]
     fn meets(&self, ray: &impl RayForm<V>, search: impl Into<Search<f32>>) -> u32 {
-        batch_query::<V, MaskOf<QuantizedKernel<'n, V, Self>>>(ray, self, search.into(), 0)
+        node_meets(ray, self, search.into())
     }
 }
 
@@ -397,6 +387,27 @@ impl<'n, V, F: Fn() -> QuantizedChildren<'n, V>> Source<'n, V> for InPlace<F> {
     fn view(&self) -> QuantizedChildren<'n, V> {
         (self.0)()
     }
+}
+
+/// The node test's [`clip`](Bounds::clip) on the node `source` reads,
+/// for every form of it.
+#[inline(always)]
+fn node_clip<'n, V: Vector<Scalar = f32>, S: Source<'n, V>>(
+    ray: &impl RayForm<V>,
+    source: &S,
+    search: Search<f32>,
+) -> AabbBatchHits<f32, 8> {
+    batch_query::<V, QuantizedKernel<'n, V, S>>(ray, source, search, AabbBatchHits::none())
+}
+
+/// The node test's [`meets`](Bounds::meets) on the node `source` reads.
+#[inline(always)]
+fn node_meets<'n, V: Vector<Scalar = f32>, S: Source<'n, V>>(
+    ray: &impl RayForm<V>,
+    source: &S,
+    search: Search<f32>,
+) -> u32 {
+    batch_query::<V, MaskOf<QuantizedKernel<'n, V, S>>>(ray, source, search, 0)
 }
 
 /// [`QuantizedChildren`]'s `clip` as a kernel on a node read from `S`, for

@@ -170,7 +170,14 @@ fn watertight_in_lanes<V: Vector, R: DefinitionRay<V>>(
     let verdict = known
         .then(|| {
             corner_verdict(&window, z).or_else(|| {
-                band_verdict(ray, (origin_lanes, axes), tri, (x, y, pz, e), det, interval)
+                band_verdict(
+                    ray,
+                    (origin_lanes, axes),
+                    tri,
+                    [x, y, pz, z, e],
+                    det,
+                    interval,
+                )
             })
         })
         .flatten();
@@ -200,7 +207,8 @@ fn watertight_in_lanes<V: Vector, R: DefinitionRay<V>>(
 /// shortcut runs only where `watertight_in` would pass `inside` with these
 /// edge functions (all of one sign, none zero) and a finite nonzero
 /// determinant, and the frame here is the lanes' (the same operations as
-/// `Frame::new`; `px`, `py` recomputed as the lanes compute them), so
+/// `Frame::new`, the depths `z` included; `px`, `py` recomputed as the
+/// lanes compute them), so
 /// `t`, the bounds and the filter are `watertight_in`'s. The common case
 /// it catches is a segment that starts on or next to the triangle's
 /// neighbourhood, as a shadow ray from a surface does: the corners lie on
@@ -211,7 +219,7 @@ fn band_verdict<V: Vector, R: DefinitionRay<V>>(
     ray: &R,
     (origin_lanes, axes): (&[L<V>; 3], &[Axis; 3]),
     tri: &Triangle<V>,
-    (x, y, pz, e): (L<V>, L<V>, L<V>, L<V>),
+    [x, y, pz, z, e]: [L<V>; 5],
     det: S<V>,
     interval: Interval<S<V>>,
 ) -> Option<bool> {
@@ -225,7 +233,9 @@ fn band_verdict<V: Vector, R: DefinitionRay<V>>(
         pz: pz.to_array(),
         e: e.to_array(),
     };
-    let z = f.scaled_z(&shear);
+    // (`z` is `Frame::scaled_z`: `p_z` times the shear's `s_z`, lane by
+    // lane.)
+    let z = z.to_array();
     let t_scaled = f.e[0] * z[0] + f.e[1] * z[1] + f.e[2] * z[2];
     let plain = t_scaled * (S::<V>::ONE / det);
     let bounds = ErrorBounds::new(&f, &z, &shear);

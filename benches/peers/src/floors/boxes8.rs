@@ -21,7 +21,7 @@ use std::arch::x86_64::{
 use rayhit::{Aabb, Ray};
 use rayhit_peers::avx512::Avx512;
 
-use super::widening;
+use super::WIDENING;
 
 /// A ray as the floor reads it: origin and `1 / dir`.
 #[derive(Clone, Copy)]
@@ -74,7 +74,7 @@ pub fn meets(_: Avx512, ray: &FloorSlabRay, boxes: &FloorBoxes8, t_max: f32) -> 
 #[target_feature(enable = "avx2,avx512f,avx512vl")]
 #[inline(never)]
 fn meets_avx512(ray: &FloorSlabRay, boxes: &FloorBoxes8, t_max: f32) -> u32 {
-    let (w, slack) = widening();
+    let (w, slack) = WIDENING;
     let axis = |k: usize| -> (__m256, __m256) {
         let o = _mm256_set1_ps(ray.origin[k]);
         let inv = _mm256_set1_ps(ray.inv[k]);

@@ -82,11 +82,12 @@ pub fn plain_slab(r: &PlainRay, b: &Aabb) -> bool {
 
 /// `rayhit`'s widening of the exit, `(1 + 2 gamma(4))` rounded up, and
 /// its slack of two subnormals (see `aabb/definition.rs`).
-pub fn widening() -> (f32, f32) {
+/// A constant, so that no floor computes it per call.
+pub const WIDENING: (f32, f32) = {
     let eps = f32::EPSILON / 2.0;
     let gamma4 = 4.0 * eps / (1.0 - 4.0 * eps);
     ((1.0 + 2.0 * gamma4).next_up(), 2.0 * f32::from_bits(1))
-}
+};
 
 /// A ray as the floor of a binary BVH's box test reads it: origin and
 /// `1 / dir`, four lanes each.
@@ -116,7 +117,7 @@ impl FloorBoxRay {
 /// ends kept within the range.
 #[inline(always)]
 pub fn floor_box_enter(r: &FloorBoxRay, b: &Aabb, lo: f32, hi: f32) -> Option<f32> {
-    let (w, slack) = widening();
+    let (w, slack) = WIDENING;
     let t0 = (Vec3A::from(b.min) - r.origin) * r.inv;
     let t1 = (Vec3A::from(b.max) - r.origin) * r.inv;
     let near = t0.min(t1).max_element().max(lo);
