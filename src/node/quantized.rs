@@ -4,7 +4,7 @@
 
 use core::marker::PhantomData;
 
-use glam::Vec3;
+use glam::{Vec3, Vec3A};
 
 use crate::aabb::{Aabb, AabbBatch, AabbBatchHits, MaskOf, Slab8, batch_query};
 use crate::num::{Lanes8, Vector};
@@ -448,6 +448,29 @@ fn axis_of<V: Vector<Scalar = f32>>(node: &QuantizedChildren<'_, V>, k: usize) -
     Axis { p, s, w, finite }
 }
 
+/// The three axes of `node` as [`axis_of`] computes them, side by side in
+/// the lanes of a `Vec3A` (the same operations, lane by lane, so the same
+/// values), and whether all three are finite.
+#[inline(always)]
+fn axes_of<V: Vector<Scalar = f32>>(node: &QuantizedChildren<'_, V>) -> ([Axis; 3], bool) {
+    let o = node.origin;
+    let p = Vec3A::new(o.x(), o.y(), o.z());
+    let [sx, sy, sz] = node.exponents.map(step_of);
+    let s = Vec3A::new(sx, sy, sz);
+    let far = p + s * 255.0;
+    // `Vec3A::max` keeps the first where it is greater, as `widening`.
+    let w = p.abs().max(far.abs()) * f32::from_bits(0x3480_0000) + 2.0 * f32::from_bits(1);
+    let max = Vec3A::splat(f32::MAX);
+    let finite = ((p - w).abs().cmple(max) & (far + w).cmple(max)).all();
+    let axis = |k: usize| Axis {
+        p: p[k],
+        s: s[k],
+        w: w[k],
+        finite,
+    };
+    ([axis(0), axis(1), axis(2)], finite)
+}
+
 /// Axis `k` of the eight children, decoded as `child_box` does: the lower
 /// and upper planes, and which children are not empty on that axis.
 /// (A function, not a closure: the AVX2 copy must be inlined whole.)
@@ -470,10 +493,10 @@ fn quantized_body<W: Lanes8<F = f32>, V: Vector<Scalar = f32>>(
     ends: (f32, f32),
 ) -> AabbBatchHits<f32, 8> {
     let mut enter = [f32::INFINITY; 8];
-    let axes = [axis_of(node, 0), axis_of(node, 1), axis_of(node, 2)];
+    let (axes, finite) = axes_of(node);
     // (One branch for the node's validity; the search's `t_max` was
     // checked at the call, `batch_query`.)
-    if !(axes[0].finite & axes[1].finite & axes[2].finite) {
+    if !finite {
         return AabbBatchHits::none();
     }
     let (x0, x1, ox) = decode::<W, V>(node, 0, axes[0]);
