@@ -1,5 +1,6 @@
 //! rayhit inside a real compressed wide BVH: obvhs's CWBVH (Ylitie et al.
-//! 2017) over closed meshes, traversed with obvhs's own traversal order and
+//! 2017) over closed meshes, traversed with obvhs's own traversal order
+//! (closest hit) or an any-hit walk written here (shadow segments), and
 //! either obvhs's node and triangle tests or rayhit's
 //! (`QuantizedChildren::clip` on the node as obvhs stores it, and the
 //! triangles' `hit` in the leaves).
@@ -372,6 +373,10 @@ impl Crossings {
     }
 }
 
+/// Entries on [`Scene::rayhit_occluded_with`]'s stack at most: seven a
+/// level ([`Scene::new`] checks the tree's depth against it).
+const ANY_STACK: usize = 128;
+
 /// A mesh's CWBVH, built by obvhs, and its triangles in both crates' types.
 pub struct Scene {
     pub bvh: CwBvh,
@@ -445,6 +450,18 @@ impl Scene {
             &ob_tris,
             BvhBuildParams::medium_build(),
             &mut Duration::default(),
+        );
+        fn depth(bvh: &CwBvh, i: usize) -> usize {
+            let node = &bvh.nodes[i];
+            (0..8)
+                .filter(|&c| !node.is_child_empty(c) && !node.is_leaf(c))
+                .map(|c| 1 + depth(bvh, node.child_node_index(c) as usize))
+                .max()
+                .unwrap_or(0)
+        }
+        assert!(
+            bvh.nodes.is_empty() || 7 * (depth(&bvh, 0) + 1) <= ANY_STACK,
+            "tree too deep"
         );
         Scene { bvh, ob_tris, tris }
     }
@@ -577,52 +594,79 @@ impl Scene {
 
     /// Whether anything blocks the segment `segment` of the ray, with
     /// rayhit's node test over the same interval and `Triangle::occluded`
-    /// in the leaves, in obvhs's traversal order, stopping at the first
-    /// occluder (as obvhs's `ray_traverse_miss` stops). `node_ray` as for
+    /// in the leaves, stopping at the first occluder (as obvhs's
+    /// `ray_traverse_miss` stops), by the walk of
+    /// [`Scene::rayhit_occluded_with`]. `node_ray` as for
     /// [`Scene::rayhit_closest_on`].
     #[inline(always)]
     pub fn rayhit_occluded_on<R: RayForm>(
         &self,
         node_ray: &R,
         ray: &PreparedRay,
-        dir: Vec3A,
         segment: Interval<f32>,
     ) -> bool {
-        self.rayhit_occluded_with(ray, dir, segment, |node| {
+        self.rayhit_occluded_with(ray, segment, |node| {
             InPlace(|| children(node)).meets(node_ray, segment)
         })
     }
 
     /// [`Scene::rayhit_occluded_on`] with the node test `meets` (the
-    /// children hit within the segment, one bit each).
+    /// children hit within the segment, one bit each): an any-hit walk
+    /// written here rather than obvhs's ordered one. A node's children the
+    /// segment meets are taken in their stored order: a leaf child's
+    /// triangles tested at once, the first inner child visited next and
+    /// the others kept on a stack of node indices. Any occluder ends the
+    /// walk, so no order is worth its cost, and the walk reads obvhs's
+    /// nodes directly, without the hit mask its ordered traversal needs.
     #[inline(always)]
     pub fn rayhit_occluded_with(
         &self,
         ray: &PreparedRay,
-        dir: Vec3A,
         segment: Interval<f32>,
         meets: impl Fn(&CwBvhNode) -> u32,
     ) -> bool {
         let bvh = &self.bvh;
-        let mut state = bvh.new_traversal(dir);
-        let mut node;
-        let mut blocked = false;
-        'walk: {
-            traverse!(
-                bvh,
-                node,
-                state,
-                hit_mask(node, meets(node), state.oct_inv4),
-                {
-                    let t = &self.tris[bvh.primitive_indices[state.primitive_id as usize] as usize];
-                    if t.occluded(ray, segment) {
-                        blocked = true;
-                        break 'walk;
-                    }
-                }
-            );
+        if bvh.nodes.is_empty() {
+            return false;
         }
-        blocked
+        // At most seven entries a level (checked when the scene is built).
+        let mut stack = [0u32; ANY_STACK];
+        let mut top = 0;
+        let mut at = 0usize;
+        loop {
+            let node = &bvh.nodes[at];
+            let mut hits = meets(node);
+            let mut next = usize::MAX;
+            while hits != 0 {
+                let c = hits.trailing_zeros() as usize;
+                hits &= hits - 1;
+                if node.is_child_empty(c) {
+                    continue;
+                }
+                if node.is_leaf(c) {
+                    let (start, count) = node.child_primitives(c);
+                    for p in start..start + count {
+                        let t = &self.tris[bvh.primitive_indices[p as usize] as usize];
+                        if t.occluded(ray, segment) {
+                            return true;
+                        }
+                    }
+                } else if next == usize::MAX {
+                    next = node.child_node_index(c) as usize;
+                } else {
+                    stack[top] = node.child_node_index(c);
+                    top += 1;
+                }
+            }
+            if next != usize::MAX {
+                at = next;
+            } else if top > 0 {
+                top -= 1;
+                at = stack[top] as usize;
+            } else {
+                return false;
+            }
+        }
     }
 
     /// Whether anything blocks the ray within `(0, t_max]`, by obvhs's

@@ -554,13 +554,16 @@ mod tests {
         }
     }
 
-    /// The any-hit walk over shadow segments answers as testing every
-    /// triangle of the mesh does, and so does the closest-hit walk as
-    /// the nearest of all triangles' hits, on a small torus and the bunny.
+    /// The any-hit walks over shadow segments (of the binary tree and of
+    /// the compressed wide one) answer as testing every triangle of the
+    /// mesh does, and so does the binary closest-hit walk as the nearest
+    /// of all triangles' hits, on a small torus and the bunny.
     #[test]
     fn walks_answer_as_every_triangle() {
         for mesh in [Mesh::torus(60, 40), Mesh::bunny(0)] {
             let scene = Bvh2Scene::new(&mesh);
+            let mut wide = Scene::new(&mesh);
+            wide.check_quantization(true);
             let camera = camera_rays(&mesh, 24);
             let shadow = ShadowRays::new(&scene, &mesh, &camera);
             assert!(shadow.rayhit.len() > 100, "{}", mesh.name);
@@ -569,6 +572,8 @@ mod tests {
                 let p = PreparedRay::new(r);
                 let all = scene.tris.iter().any(|t| t.occluded(&p, *segment));
                 assert_eq!(scene.rayhit_occluded(&p, *segment), all, "{r:?}");
+                let walked = wide.rayhit_occluded_on(&p, &p, *segment);
+                assert_eq!(walked, all, "{r:?}");
                 blocked += usize::from(all);
             }
             assert!(blocked > 0, "{}", mesh.name);

@@ -8,8 +8,10 @@
 //!
 //! - `rayhit CWBVH, plain calls`: obvhs's CWBVH in obvhs's order
 //!   (`traverse!`), the node test `QuantizedChildren::clip` on the prepared
-//!   ray, `Triangle::hit` in the leaves (`occluded` on `shadow`), no
-//!   `with_simd` anywhere;
+//!   ray, `Triangle::hit` in the leaves; on `shadow`, an any-hit walk of
+//!   the same nodes written here (`Scene::rayhit_occluded_with`: children
+//!   in stored order, `QuantizedChildren::meets`, `Triangle::occluded`);
+//!   no `with_simd` anywhere;
 //! - `rayhit CWBVH, with_simd`: the same traversal with the node test on
 //!   the instruction set `with_simd` chose once for the whole pass;
 //! - `obvhs CwBvh, its own tests`: `CwBvh::ray_traverse` (closest) or
@@ -151,7 +153,7 @@ fn cw_one_of<const SHADOW: bool>(
 ) -> u64 {
     let (p, d) = &w.rays[i];
     if SHADOW {
-        u64::from(s.rayhit_occluded_on(node_ray, p, *d, w.segments[i]))
+        u64::from(s.rayhit_occluded_on(node_ray, p, w.segments[i]))
     } else {
         u64::from(s.rayhit_closest_on(node_ray, p, *d).to_bits())
     }
@@ -332,8 +334,8 @@ pub fn traversal_kernels<'a>(d: &'a TraversalData, out: &mut Vec<Kernel<'a>>) {
                 u64::from(t.to_bits())
             };
             let occluded = move |i: usize| {
-                let ((p, d), seg) = (&w.rays[i], w.segments[i]);
-                u64::from(fixed.rayhit_occluded_with(p, *d, seg, |node| floor.meets(node, p, seg)))
+                let ((p, _), seg) = (&w.rays[i], w.segments[i]);
+                u64::from(fixed.rayhit_occluded_with(p, seg, |node| floor.meets(node, p, seg)))
             };
             let floor_agrees = agree(
                 ours.iter().copied(),
@@ -405,8 +407,8 @@ pub fn traversal_kernels<'a>(d: &'a TraversalData, out: &mut Vec<Kernel<'a>>) {
             let on = |i: usize| &w.offset[i];
             out.push(kernel(SECTION, OFFSET[0], &name, n, None, move || {
                 sum(n, |i| {
-                    let (p, d) = on(i);
-                    u64::from(fixed.rayhit_occluded_on(p, p, *d, offset))
+                    let (p, _) = on(i);
+                    u64::from(fixed.rayhit_occluded_on(p, p, offset))
                 })
             }));
             out.push(kernel(SECTION, OFFSET[1], &name, n, None, move || {
