@@ -7,6 +7,7 @@ use super::conditioning::{
     det_sign_known_at_corners, det_sign_known_lanes, det_sign_known_roughly,
 };
 use super::definition::{EdgeRule, watertight_definition};
+use super::frame::edge_function;
 use super::lanes::{DefinitionRay, Packed, frame_lanes, lanes_hit, pack, unpack};
 use super::{Side, Triangle, TriangleHit};
 use crate::num::round::min2;
@@ -207,12 +208,13 @@ fn every_axis_at<V: Vector>(
 
 /// The closed watertight test for a prepared ray and a `t_max >= 0`, with
 /// the three corners in the lanes of one register: the same operations as
-/// [`watertight_definition`], lane by lane, so the same bits. The rare cases
-/// go to [`watertight_definition`] itself: an edge function that rounds to
-/// zero (its sign must be recomputed exactly), a crossing for which the
-/// cheapest sufficient test for `t > 0` (every corner in front of the
-/// origin) fails or whose determinant's sign is not surely known, and a
-/// plain miss that only the definition can settle.
+/// [`watertight_definition`], lane by lane, so the same bits. An edge
+/// function that rounds to zero has its sign recomputed exactly, as the
+/// definition's frame does, out of line ([`exact_zero_edges`]), and the
+/// test goes on. The rare cases go to [`watertight_definition`] itself: a
+/// crossing for which the cheapest sufficient test for `t > 0` (every
+/// corner in front of the origin) fails or whose determinant's sign is not
+/// surely known, and a plain miss that only the definition can settle.
 ///
 /// An invalid ray needs no test of its own: its origin lanes are NaN
 /// (`PreparedRay::new`), so every sheared coordinate, edge function and
@@ -258,9 +260,20 @@ fn finish_lanes<V: Vector>(
 ) -> Option<TriangleHit<S<V>>> {
     let (zero, one) = (S::<V>::ZERO, S::<V>::ONE);
     let lanes_zero = L::<V>::splat(zero);
-    if e.eq(lanes_zero) != 0 {
-        return definition_answer(ray, &tri(), t_max);
-    }
+    // An edge function that rounds to zero (a ray through an edge or a
+    // corner of the rounded triangle): its sign recomputed exactly, as
+    // `Frame::new` recomputes it, after which the values are the
+    // definition's, and the closed rule is a miss where the signs now
+    // straddle zero and goes on below otherwise.
+    let e = if e.eq(lanes_zero) != 0 {
+        let e = exact_zero_edges::<V>(x, y, e);
+        if straddles(e) {
+            return None;
+        }
+        e
+    } else {
+        e
+    };
     let det = e.sum3();
     let sz = ray.shear_lanes[2];
     let z = pz.mul(sz);
@@ -306,6 +319,24 @@ fn finish_lanes<V: Vector>(
     // (`u` and `v` finite here: `1 / det` is finite, else `t` would be
     // infinite.)
     Some(lanes_hit(t, e, det, inv_det, sz.x()))
+}
+
+/// The edge functions `e` (lane `i` that of the edge from corner `i + 1`
+/// to corner `i + 2`, of sheared coordinates `x`, `y`) with each one that
+/// rounded to zero recomputed with its sign exact, by `edge_function`, as
+/// [`Frame::new`](super::frame::Frame) computes the definition's. Out of
+/// line: rays through an edge or a corner are rare, except where they are
+/// aimed there.
+#[inline(never)]
+fn exact_zero_edges<V: Vector>(x: L<V>, y: L<V>, e: L<V>) -> L<V> {
+    let (x, y, mut e) = (x.to_array(), y.to_array(), e.to_array());
+    for i in 0..3 {
+        if e[i] == S::<V>::ZERO {
+            let (j, k) = ((i + 1) % 3, (i + 2) % 3);
+            e[i] = edge_function((x[j], y[j]), (x[k], y[k]));
+        }
+    }
+    L::<V>::new(e[0], e[1], e[2])
 }
 
 /// [`definition_out_of_line`]'s answer, unpacked. (Called with what the
