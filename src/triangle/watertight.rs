@@ -330,10 +330,10 @@ fn finish_lanes<V: Vector>(
 #[inline(never)]
 fn exact_zero_edges<V: Vector>(x: L<V>, y: L<V>, e: L<V>) -> L<V> {
     let (x, y, mut e) = (x.to_array(), y.to_array(), e.to_array());
-    for i in 0..3 {
-        if e[i] == S::<V>::ZERO {
+    for (i, e) in e.iter_mut().enumerate() {
+        if *e == S::<V>::ZERO {
             let (j, k) = ((i + 1) % 3, (i + 2) % 3);
-            e[i] = edge_function((x[j], y[j]), (x[k], y[k]));
+            *e = edge_function((x[j], y[j]), (x[k], y[k]));
         }
     }
     L::<V>::new(e[0], e[1], e[2])
