@@ -184,10 +184,18 @@
 //! | compressed wide (children quantized to bytes, Ylitie et al. 2017) | [`Bounds::meets`] (or `clip`) of [`batch::QuantizedChildren`], the node as stored, read in place by [`batch::InPlace`] | the same |
 //!
 //! Closest hit: pass the nearest hit so far as `t_max` to both tests, so
-//! that farther nodes and triangles are culled. For a compressed wide BVH,
-//! the node test is conservative for the boxes the bytes describe; those
-//! must contain the geometry, which [`batch::QuantizedChildren::quantize`]
-//! guarantees for a builder that uses it.
+//! that farther nodes and triangles are culled. Shadow segments (from
+//! [`SurfacePoint::spawn_to`] or `spawn_to_point`): pass the segment's
+//! [`Interval`] to [`Bounds::meets`] and [`Intersect::occluded`] and stop
+//! at the first occluder, taking a node's children in the order they are
+//! stored rather than nearest first. Such a segment starts on the surface
+//! it leaves, inside the boxes around that point, which rarely hold an
+//! occluder; nearest first would visit them before anything else.
+//!
+//! For a compressed wide BVH, the node test is conservative for the boxes
+//! the bytes describe; those must contain the geometry, which
+//! [`batch::QuantizedChildren::quantize`] guarantees for a builder that
+//! uses it.
 //!
 //! ```
 //! use rayhit::glam::Vec3;
