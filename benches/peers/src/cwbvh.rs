@@ -377,6 +377,49 @@ impl Crossings {
 /// level ([`Scene::new`] checks the tree's depth against it).
 const ANY_STACK: usize = 128;
 
+/// The nodes an any-hit walk has still to visit, depth first: of the
+/// children a node passes on, the first is visited next and the others
+/// wait on a stack of `N` node indices (the caller bounds the depth).
+pub struct Pending<const N: usize> {
+    next: Option<u32>,
+    stack: [u32; N],
+    top: usize,
+}
+
+impl<const N: usize> Default for Pending<N> {
+    /// Nothing to visit.
+    #[inline(always)]
+    fn default() -> Self {
+        Pending {
+            next: None,
+            stack: [0; N],
+            top: 0,
+        }
+    }
+}
+
+impl<const N: usize> Pending<N> {
+    /// A node to visit: the next one if none is, else kept on the stack.
+    #[inline(always)]
+    pub fn push(&mut self, node: u32) {
+        if self.next.is_none() {
+            self.next = Some(node);
+        } else {
+            self.stack[self.top] = node;
+            self.top += 1;
+        }
+    }
+
+    /// The node to visit now, `None` when the walk is over.
+    #[inline(always)]
+    pub fn pop(&mut self) -> Option<u32> {
+        self.next.take().or_else(|| {
+            self.top = self.top.checked_sub(1)?;
+            Some(self.stack[self.top])
+        })
+    }
+}
+
 /// A mesh's CWBVH, built by obvhs, and its triangles in both crates' types.
 pub struct Scene {
     pub bvh: CwBvh,
@@ -630,13 +673,11 @@ impl Scene {
             return false;
         }
         // At most seven entries a level (checked when the scene is built).
-        let mut stack = [0u32; ANY_STACK];
-        let mut top = 0;
+        let mut pending = Pending::<ANY_STACK>::default();
         let mut at = 0usize;
         loop {
             let node = &bvh.nodes[at];
             let mut hits = meets(node);
-            let mut next = usize::MAX;
             while hits != 0 {
                 let c = hits.trailing_zeros() as usize;
                 hits &= hits - 1;
@@ -651,20 +692,13 @@ impl Scene {
                             return true;
                         }
                     }
-                } else if next == usize::MAX {
-                    next = node.child_node_index(c) as usize;
                 } else {
-                    stack[top] = node.child_node_index(c);
-                    top += 1;
+                    pending.push(node.child_node_index(c));
                 }
             }
-            if next != usize::MAX {
-                at = next;
-            } else if top > 0 {
-                top -= 1;
-                at = stack[top] as usize;
-            } else {
-                return false;
+            match pending.pop() {
+                Some(next) => at = next as usize,
+                None => return false,
             }
         }
     }

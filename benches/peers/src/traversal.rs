@@ -29,7 +29,7 @@ use rayhit::{
 };
 use rayhit_testkit::rng::Pcg32;
 
-use crate::cwbvh::{Mesh, ob_triangles};
+use crate::cwbvh::{Mesh, Pending, ob_triangles};
 
 /// Entries on the traversal stack at most (the tree's depth is checked
 /// against it when the tree is built).
@@ -300,12 +300,10 @@ impl Bvh2Scene {
             q.leaf(ray, tris, root.first);
             return;
         }
-        let mut stack = [0u32; STACK];
-        let mut top = 0;
+        let mut pending = Pending::<STACK>::default();
         let mut at = root.first as usize;
         loop {
             let reach = q.reach();
-            let mut next = usize::MAX;
             for c in &nodes[at..at + 2] {
                 if !meets(&c.bounds, reach) {
                     continue;
@@ -315,20 +313,13 @@ impl Bvh2Scene {
                     if q.leaf(ray, tris, c.first) {
                         return;
                     }
-                } else if next == usize::MAX {
-                    next = c.first as usize;
                 } else {
-                    stack[top] = c.first;
-                    top += 1;
+                    pending.push(c.first);
                 }
             }
-            if next != usize::MAX {
-                at = next;
-            } else if top > 0 {
-                top -= 1;
-                at = stack[top] as usize;
-            } else {
-                return;
+            match pending.pop() {
+                Some(next) => at = next as usize,
+                None => return,
             }
         }
     }
