@@ -33,6 +33,15 @@ impl Draws {
         }
     }
 
+    /// A point whose three coordinates are drawn by
+    /// [`coordinate`](Self::coordinate), in `x`, `y`, `z` order.
+    pub(crate) fn point<V: crate::num::Vector>(&mut self, spread: u64) -> V {
+        use crate::num::Scalar;
+        let mut c = || crate::num::S::<V>::from_f64(self.coordinate(spread));
+        let (x, y, z) = (c(), c(), c());
+        V::new(x, y, z)
+    }
+
     /// A value on the grid of eighths in `[-4, 4]`.
     pub(crate) fn eighth(&mut self) -> f32 {
         ((self.next() % 65) as f32 - 32.0) / 8.0

@@ -528,14 +528,12 @@ mod tests {
         /// origin. Returns (bounds given, shadow starts the bound
         /// decided, shadow cases, the error over its bound).
         fn check<V: Vector>(draws: &mut Draws, shape: u8) -> (usize, usize, usize, f64) {
-            let mut v = || {
-                V::new(
-                    S::<V>::from_f64(draws.coordinate(40)),
-                    S::<V>::from_f64(draws.coordinate(40)),
-                    S::<V>::from_f64(draws.coordinate(40)),
-                )
-            };
-            let (a, b, c, o) = (v(), v(), v(), v());
+            let (a, b, c, o): (V, V, V, V) = (
+                draws.point(40),
+                draws.point(40),
+                draws.point(40),
+                draws.point(40),
+            );
             let w = [draws.next() % 1000 + 1, draws.next() % 1000 + 1]
                 .map(|k| S::<V>::from_u32(k as u32) / S::<V>::from_u32(1001));
             // Shadows: a triangle of a mesh, small and away from the
