@@ -112,12 +112,6 @@ pub trait Lanes: Copy + Debug + Send + Sync + 'static {
     fn to_array4(self) -> [Self::F; 4];
     /// Lane `k` set when `self[k] < o[k]` (false for NaN), all four lanes.
     fn lt_mask(self, o: Self) -> Self::Mask;
-    /// Lane `k` set when `self[k] <= o[k]` (false for NaN), all four lanes.
-    fn le_mask(self, o: Self) -> Self::Mask;
-    /// Lane `k` set when `self[k] == o[k]` (false for NaN), all four lanes.
-    fn eq_mask(self, o: Self) -> Self::Mask;
-    /// The lanes set in `a` or in `b`.
-    fn or_mask(a: Self::Mask, b: Self::Mask) -> Self::Mask;
     /// Every lane set where `b`, none where not: with [`Lanes::select`],
     /// a choice between two registers on a flag with no branch (where
     /// the flag is a coin toss).
@@ -125,8 +119,6 @@ pub trait Lanes: Copy + Debug + Send + Sync + 'static {
     /// `a`'s lane where `m` is set, `b`'s where it is clear: the bits of
     /// one operand, unchanged (NaN payloads and zeros' signs included).
     fn select(m: Self::Mask, a: Self, b: Self) -> Self;
-    /// Lanes `(1, 0, 3, 2)`: each pair of neighbours swapped.
-    fn swap_pairs(self) -> Self;
     /// Lanes `(1, 2, 3, 0)`: lane `k` holds lane `k + 1` (mod 4).
     fn roll4(self) -> Self;
     /// Bit `k` set when `self[k] < o[k]` (false for NaN), for `k` in 0..4.

@@ -192,13 +192,6 @@ impl Lanes for F32x4 {
         [x, y, z, unsafe { vgetq_lane_f32::<3>(self.0) }]
     }
     mask!(lt_mask, vcltq_f32);
-    mask!(le_mask, vcleq_f32);
-    mask!(eq_mask, vceqq_f32);
-    #[inline(always)]
-    fn or_mask(a: uint32x4_t, b: uint32x4_t) -> uint32x4_t {
-        // SAFETY: see the module docs (NEON, no memory access).
-        unsafe { vorrq_u32(a, b) }
-    }
     #[inline(always)]
     fn mask_all(b: bool) -> uint32x4_t {
         // SAFETY: see the module docs (NEON, no memory access).
@@ -207,12 +200,6 @@ impl Lanes for F32x4 {
     #[inline(always)]
     fn select(m: uint32x4_t, a: Self, b: Self) -> Self {
         Self(select(m, a.0, b.0))
-    }
-    #[inline(always)]
-    fn swap_pairs(self) -> Self {
-        // REV64 reverses the 32-bit lanes within each 64-bit half.
-        // SAFETY: see the module docs (NEON, no memory access).
-        Self(unsafe { vrev64q_f32(self.0) })
     }
     #[inline(always)]
     fn roll4(self) -> Self {

@@ -135,29 +135,12 @@ impl<F: Scalar> Lanes for Portable<F> {
         core::array::from_fn(|l| self.0[l] < o.0[l])
     }
     #[inline(always)]
-    fn le_mask(self, o: Self) -> [bool; 4] {
-        core::array::from_fn(|l| self.0[l] <= o.0[l])
-    }
-    #[inline(always)]
-    fn eq_mask(self, o: Self) -> [bool; 4] {
-        core::array::from_fn(|l| self.0[l] == o.0[l])
-    }
-    #[inline(always)]
-    fn or_mask(a: [bool; 4], b: [bool; 4]) -> [bool; 4] {
-        core::array::from_fn(|l| a[l] || b[l])
-    }
-    #[inline(always)]
     fn mask_all(b: bool) -> [bool; 4] {
         [b; 4]
     }
     #[inline(always)]
     fn select(m: [bool; 4], a: Self, b: Self) -> Self {
         Self(core::array::from_fn(|l| if m[l] { a.0[l] } else { b.0[l] }))
-    }
-    #[inline(always)]
-    fn swap_pairs(self) -> Self {
-        let a = self.0;
-        Self([a[1], a[0], a[3], a[2]])
     }
     #[inline(always)]
     fn roll4(self) -> Self {

@@ -147,13 +147,6 @@ impl Lanes for F32x4 {
         [x, y, z, w]
     }
     mask!(lt_mask, _mm_cmplt_ps);
-    mask!(le_mask, _mm_cmple_ps);
-    mask!(eq_mask, _mm_cmpeq_ps);
-    #[inline(always)]
-    fn or_mask(a: __m128, b: __m128) -> __m128 {
-        // SAFETY: see the module docs (SSE, no memory access).
-        unsafe { _mm_or_ps(a, b) }
-    }
     #[inline(always)]
     fn mask_all(b: bool) -> __m128 {
         // SAFETY: see the module docs (SSE2, no memory access).
@@ -163,11 +156,6 @@ impl Lanes for F32x4 {
     fn select(m: __m128, a: Self, b: Self) -> Self {
         // SAFETY: see the module docs (SSE, no memory access).
         Self(unsafe { _mm_or_ps(_mm_and_ps(m, a.0), _mm_andnot_ps(m, b.0)) })
-    }
-    #[inline(always)]
-    fn swap_pairs(self) -> Self {
-        // SAFETY: see the module docs (SSE, no memory access).
-        Self(unsafe { _mm_shuffle_ps::<0b10_11_00_01>(self.0, self.0) })
     }
     #[inline(always)]
     fn roll4(self) -> Self {
