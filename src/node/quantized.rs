@@ -68,8 +68,8 @@ fn step_of(e: u8) -> f32 {
     f32::from_bits(u32::from(e) << 23)
 }
 
-/// The outward rounding of the decoded coordinates of one axis: a float
-/// `w` such that for every byte `q`, `fl(r - w) <= p + s q <= fl(r + w)`
+/// The outward rounding of the decoded coordinates of an axis (of each
+/// lane's): a float `w` such that for every byte `q`, `fl(r - w) <= p + s q <= fl(r + w)`
 /// exactly, where `r = fl(fl(s q) + p)` is the coordinate computed.
 ///
 /// Derivation. `s q` is exact (a byte times a power of two, for steps from
@@ -85,15 +85,14 @@ fn step_of(e: u8) -> f32 {
 /// margin (a subnormal result of a subtraction is exact). The same holds
 /// for `r + w` upward. So the decoded box contains the exact one, wider by
 /// about four ulps of the node's largest coordinate on each side.
+///
+/// Computed for the three axes at once, lane by lane (`Vec3A::max` keeps
+/// the first operand where it is greater; only a NaN origin, which makes
+/// the node invalid, could tell the backends' maxima apart).
 #[inline(always)]
-fn widening(p: f32, s: f32) -> f32 {
+fn widening(p: Vec3A, s: Vec3A) -> Vec3A {
     let far = p + s * 255.0;
-    let m = if p.abs() > far.abs() {
-        p.abs()
-    } else {
-        far.abs()
-    };
-    m * f32::from_bits(0x3480_0000) + 2.0 * f32::from_bits(1)
+    p.abs().max(far.abs()) * f32::from_bits(0x3480_0000) + 2.0 * f32::from_bits(1)
 }
 
 impl<V: Vector<Scalar = f32>> QuantizedChildren<'_, V> {
@@ -112,7 +111,7 @@ impl<V: Vector<Scalar = f32>> QuantizedChildren<'_, V> {
     #[inline]
     #[must_use]
     pub fn is_valid(&self) -> bool {
-        (0..3).fold(true, |ok, k| ok & axis_of(self, k).finite)
+        axes_of(self).1
     }
 
     /// The box the ray test uses for `child` (0 to 7): the quantized box
@@ -120,13 +119,13 @@ impl<V: Vector<Scalar = f32>> QuantizedChildren<'_, V> {
     /// invalid node, an empty child (`min > max` on an axis) or `child >= 8`.
     #[must_use]
     pub fn child_box(&self, child: usize) -> Option<Aabb<V>> {
-        if child >= 8 || !self.is_valid() {
+        let (axes, finite) = axes_of(self);
+        if child >= 8 || !finite {
             return None;
         }
         let mut lo = [0.0; 3];
         let mut hi = [0.0; 3];
-        for k in 0..3 {
-            let Axis { p, s, w, .. } = axis_of(self, k);
+        for (k, &Axis { p, s, w }) in axes.iter().enumerate() {
             let (a, b) = (self.min[k][child], self.max[k][child]);
             if a > b {
                 return None;
@@ -184,7 +183,7 @@ impl QuantizedChildren<'_, Vec3> {
             return None;
         }
         let s = step_of(exponent);
-        let w = widening(origin, s);
+        let w = widening(Vec3A::splat(origin), Vec3A::splat(s)).x;
         let lo_of = |q: u8| (s * f32::from(q) + origin) - w;
         let hi_of = |q: u8| (s * f32::from(q) + origin) + w;
         // A first guess from the quotient, then the exact decode decides (the
@@ -427,46 +426,30 @@ impl<'n, V: Vector<Scalar = f32>, S: Source<'n, V>> Kernel for QuantizedKernel<'
     }
 }
 
-/// One axis of a node: its origin `p`, step `s` and widening `w`, and
-/// whether every coordinate it decodes is finite.
+/// One axis of a node: its origin `p`, step `s` and widening `w`.
 #[derive(Clone, Copy)]
 struct Axis {
     p: f32,
     s: f32,
     w: f32,
-    finite: bool,
 }
 
-/// Axis `k` of `node`, computed once for the validity test and the
-/// decoding.
-#[inline(always)]
-fn axis_of<V: Vector<Scalar = f32>>(node: &QuantizedChildren<'_, V>, k: usize) -> Axis {
-    let (p, s) = (node.origin[k], step_of(node.exponents[k]));
-    let w = widening(p, s);
-    // (`&`, not `&&`: no branch per test.)
-    let finite = ((p - w).abs() <= f32::MAX) & ((p + s * 255.0) + w <= f32::MAX);
-    Axis { p, s, w, finite }
-}
-
-/// The three axes of `node` as [`axis_of`] computes them, side by side in
-/// the lanes of a `Vec3A` (the same operations, lane by lane, so the same
-/// values), and whether all three are finite.
+/// The three axes of `node`, computed side by side in the lanes of a
+/// `Vec3A` once for the validity test and the decoding, and whether every
+/// coordinate they decode is finite (the node is valid).
 #[inline(always)]
 fn axes_of<V: Vector<Scalar = f32>>(node: &QuantizedChildren<'_, V>) -> ([Axis; 3], bool) {
     let o = node.origin;
     let p = Vec3A::new(o.x(), o.y(), o.z());
     let [sx, sy, sz] = node.exponents.map(step_of);
     let s = Vec3A::new(sx, sy, sz);
-    let far = p + s * 255.0;
-    // `Vec3A::max` keeps the first where it is greater, as `widening`.
-    let w = p.abs().max(far.abs()) * f32::from_bits(0x3480_0000) + 2.0 * f32::from_bits(1);
+    let w = widening(p, s);
     let max = Vec3A::splat(f32::MAX);
-    let finite = ((p - w).abs().cmple(max) & (far + w).cmple(max)).all();
+    let finite = ((p - w).abs().cmple(max) & ((p + s * 255.0) + w).cmple(max)).all();
     let axis = |k: usize| Axis {
         p: p[k],
         s: s[k],
         w: w[k],
-        finite,
     };
     ([axis(0), axis(1), axis(2)], finite)
 }

@@ -46,16 +46,7 @@ impl<F: Scalar> ErrorBounds<F> {
         let dx = axis_error(mpx, mx, shear.sx, mpz);
         let dy = axis_error(mpy, my, shear.sy, mpz);
         let (mz, dz) = z_error(z);
-        // Edge function e_0 = fl(fl(x1 y2) - fl(y1 x2)) (or the exact-sign
-        // recomputation, which is closer): rounding adds gamma(2)(|x1 y2| +
-        // |y1 x2|) <= 2 gamma(2) mx my, and x1 y2 - X1 Y2 =
-        // x1 (y2 - Y2) + (x1 - X1) Y2 adds mx dy + dx (my + dy), twice.
-        // (At most 5 roundings on a path from dx, dy.)
-        let two = F::TWO;
-        let de = bound_up(
-            two * (F::gamma_n(2) * mx * my + mx * dy + my * dx + dx * dy),
-            5,
-        );
+        let de = edge_error(mx, my, dx, dy);
         // t_scaled = fl(sum e_i z_i): rounding adds gamma(3) sum |e_i z_i|;
         // replacing e, z by E, Z adds sum |e_i| dz + de (|z_i| + dz).
         // (At most 5 roundings on a path from de, dz.)
@@ -72,6 +63,23 @@ impl<F: Scalar> ErrorBounds<F> {
             xy: max2(dx, dy),
         }
     }
+}
+
+/// A bound on `|e_i - E_i|` for the edge functions of corners whose
+/// computed sheared coordinates are at most `mx` and `my` in magnitude and
+/// within `dx`, `dy` of the exact ones (upper bounds all).
+///
+/// Edge function e_0 = fl(fl(x1 y2) - fl(y1 x2)) (or the exact-sign
+/// recomputation, which is closer): rounding adds gamma(2)(|x1 y2| +
+/// |y1 x2|) <= 2 gamma(2) mx my, and x1 y2 - X1 Y2 = x1 (y2 - Y2) + (x1 -
+/// X1) Y2 adds mx dy + dx (my + dy), twice. (At most 5 roundings on a path
+/// from dx, dy.)
+#[inline(always)]
+pub(crate) fn edge_error<F: Scalar>(mx: F, my: F, dx: F, dy: F) -> F {
+    bound_up(
+        F::TWO * (F::gamma_n(2) * mx * my + mx * dy + my * dx + dx * dy),
+        5,
+    )
 }
 
 /// A bound on `|x_i - X_i|` (or `y`) of a corner in the ray's frame, from

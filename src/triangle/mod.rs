@@ -28,6 +28,7 @@
 //!   [`Surface`](crate::Surface) implementations: each combination of ray
 //!   form, range and edge rule sent to its kernel.
 
+mod band;
 mod batch;
 mod batch_interval;
 mod bounds;

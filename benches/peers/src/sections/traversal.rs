@@ -105,7 +105,7 @@ struct Workload {
     floor: Vec<FloorBoxRay>,
     /// Empty but on `shadow`: obvhs's offset segments as rayhit's rays,
     /// each over `(0, 1 - EPS]`.
-    offset: Vec<(PreparedRay, Vec3A)>,
+    offset: Vec<PreparedRay>,
 }
 
 /// One mesh's trees and ray sets, and each row's answer per ray (hit or
@@ -239,11 +239,7 @@ impl TraversalData {
                 .iter()
                 .map(|(r, _)| FloorBoxRay::new(r))
                 .collect(),
-            offset: shadow
-                .eps
-                .iter()
-                .map(|r| (PreparedRay::new(r), r.dir.into()))
-                .collect(),
+            offset: shadow.eps.iter().map(PreparedRay::new).collect(),
         });
         let mut d = TraversalData {
             name: mesh.name,
@@ -407,12 +403,11 @@ pub fn traversal_kernels<'a>(d: &'a TraversalData, out: &mut Vec<Kernel<'a>>) {
             let on = |i: usize| &w.offset[i];
             out.push(kernel(SECTION, OFFSET[0], &name, n, None, move || {
                 sum(n, |i| {
-                    let (p, _) = on(i);
-                    u64::from(fixed.rayhit_occluded_on(p, p, offset))
+                    u64::from(fixed.rayhit_occluded_on(on(i), on(i), offset))
                 })
             }));
             out.push(kernel(SECTION, OFFSET[1], &name, n, None, move || {
-                sum(n, |i| u64::from(bvh2.rayhit_occluded(&on(i).0, offset)))
+                sum(n, |i| u64::from(bvh2.rayhit_occluded(on(i), offset)))
             }));
         }
         out.push(one_of(
