@@ -27,7 +27,11 @@ pub(crate) fn f32(a: f32, b: f32, c: f32, d: f32) -> f32 {
 /// `a*b = p + e` exactly, with `p = fl(a*b)` and `e = fma(a, b, -p)`, as
 /// long as `e` does not underflow. The rounded difference `fl(p - q)` is
 /// zero only when `p == q`; then `a*b - c*d = e_ab - e_cd` exactly, and
-/// `fl(e_ab - e_cd)` has its sign.
+/// `fl(e_ab - e_cd)` has its sign. An exact zero keeps the rounded
+/// difference's zero, its sign included, as the `f32` form does: so the
+/// value is the plain `a*b - c*d`'s, bit for bit, wherever that is exact,
+/// and a fast path that knows the difference is exactly zero (both
+/// products zero) may keep it.
 #[inline]
 pub(crate) fn f64(a: f64, b: f64, c: f64, d: f64) -> f64 {
     let p = a * b;
@@ -36,7 +40,8 @@ pub(crate) fn f64(a: f64, b: f64, c: f64, d: f64) -> f64 {
     if diff != 0.0 {
         return diff;
     }
-    fma(a, b, -p) - fma(c, d, -q)
+    let exact = fma(a, b, -p) - fma(c, d, -q);
+    if exact == 0.0 { diff } else { exact }
 }
 
 /// The products of the pairs, as `f64` terms whose exact sum is the exact
@@ -315,5 +320,16 @@ mod tests {
         assert!(f64::diff_of_products_exact_sign(a, a, c, 1.0) > 0.0);
         assert!(f64::diff_of_products_exact_sign(c, 1.0, a, a) < 0.0);
         assert_eq!(f64::diff_of_products_exact_sign(2.0, 3.0, 6.0, 1.0), 0.0);
+        // An exact zero is the plain difference's zero, its sign included,
+        // in both precisions: `-0 - +0` is `-0`. (The error terms' `fma`s
+        // are `+0` here, whose difference would be `+0`.)
+        assert_eq!(
+            f64::diff_of_products_exact_sign(0.0, -1.0, 0.0, 1.0).to_bits(),
+            (-0.0f64).to_bits()
+        );
+        assert_eq!(
+            f32::diff_of_products_exact_sign(0.0, -1.0, 0.0, 1.0).to_bits(),
+            (-0.0f32).to_bits()
+        );
     }
 }

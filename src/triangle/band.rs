@@ -6,6 +6,7 @@
 
 use super::Triangle;
 use super::bounds::{axis_error, edge_error};
+use super::lanes::translated;
 use crate::num::{Axis, L, Lanes, S, Scalar, Vector};
 use crate::ray::{Interval, filter};
 
@@ -36,12 +37,8 @@ pub(super) fn band_verdict<V: Vector>(
     det: S<V>,
     interval: Interval<S<V>>,
 ) -> Option<bool> {
-    let corners = |k: Axis| L::<V>::new(tri.a.get(k), tri.b.get(k), tri.c.get(k));
-    let p = [
-        corners(axes[0]).sub(origin_lanes[0]),
-        corners(axes[1]).sub(origin_lanes[1]),
-        pz,
-    ];
+    let [px, py, _] = translated(origin_lanes, axes, [&tri.a, &tri.b, &tri.c]);
+    let p = [px, py, pz];
     let shear = [shear_lanes[0].x(), shear_lanes[1].x()];
     let (t, err) = band_error::<V>(p, [x, y, z, e], det, shear)?;
     let (lo, hi) = interval.ends();

@@ -125,20 +125,27 @@ fn frame_lanes_at<V: Vector>(
     axes: &[Axis; 3],
     [a, b, c]: [&V; 3],
 ) -> (L<V>, L<V>, L<V>, L<V>) {
-    let corners = |k: Axis| L::<V>::new(a.get(k), b.get(k), c.get(k));
     let [sx, sy, _] = *shear_lanes;
-    let [ox, oy, oz] = *origin_lanes;
-    let [kx, ky, kz] = *axes;
-    // Translate, permute (the corners' coordinates are read in the ray's
-    // axis order), shear.
-    let px = corners(kx).sub(ox);
-    let py = corners(ky).sub(oy);
-    let pz = corners(kz).sub(oz);
+    // Translate, permute, shear.
+    let [px, py, pz] = translated(origin_lanes, axes, [a, b, c]);
     let x = px.add(sx.mul(pz));
     let y = py.add(sy.mul(pz));
     // Edge functions: lane i is x[i+1] y[i+2] - y[i+1] x[i+2].
     let e = x.rot1().mul(y.rot2()).sub(y.rot1().mul(x.rot2()));
     (x, y, pz, e)
+}
+
+/// The corners `a, b, c` translated to the ray's origin and permuted, a
+/// corner per lane: `[p_x, p_y, p_z]`, the coordinates read in the ray's
+/// axis order `axes`, as [`frame_lanes`] computes them.
+#[inline(always)]
+pub(super) fn translated<V: Vector>(
+    origin_lanes: &[L<V>; 3],
+    axes: &[Axis; 3],
+    [a, b, c]: [&V; 3],
+) -> [L<V>; 3] {
+    let corners = |k: Axis| L::<V>::new(a.get(k), b.get(k), c.get(k));
+    [0, 1, 2].map(|i| corners(axes[i]).sub(origin_lanes[i]))
 }
 
 /// One corner of eight triangles in the ray's frame, as `Frame::new`

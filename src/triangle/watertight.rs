@@ -3,12 +3,13 @@
 //! and [`Triangle`'s `hit` with the one-hit rule](crate::Triangle#method.hit); every rare case goes to the definition, out
 //! of line, and a test holds each to it bit for bit.
 
+use super::bounds::ErrorBounds;
 use super::conditioning::{
     det_sign_known_at_corners, det_sign_known_lanes, det_sign_known_roughly,
 };
 use super::definition::{EdgeRule, watertight_definition};
-use super::frame::edge_function;
-use super::lanes::{DefinitionRay, Packed, frame_lanes, lanes_hit, pack, unpack};
+use super::frame::{Frame, edge_function};
+use super::lanes::{DefinitionRay, Packed, frame_lanes, lanes_hit, pack, translated, unpack};
 use super::{Side, Triangle, TriangleHit};
 use crate::num::round::min2;
 use crate::num::{L, Lanes, S, Scalar, Vector, lanes};
@@ -212,8 +213,9 @@ fn every_axis_at<V: Vector>(
 /// function that rounds to zero has its sign recomputed exactly, as the
 /// definition's frame does, out of line ([`exact_zero_edges`]), and the
 /// test goes on. The rare cases go to [`watertight_definition`] itself: a
-/// crossing for which the cheapest sufficient test for `t > 0` (every
-/// corner in front of the origin) fails or whose determinant's sign is not
+/// crossing for which the two cheapest sufficient tests for `t > 0` (every
+/// corner in front of the origin, or the scaled distance beyond its error
+/// bound: [`beyond_its_bound`]) fail or whose determinant's sign is not
 /// surely known, and a plain miss that only the definition can settle.
 ///
 /// An invalid ray needs no test of its own: its origin lanes are NaN
@@ -264,8 +266,14 @@ fn finish_lanes<V: Vector>(
     // corner of the rounded triangle): its sign recomputed exactly, as
     // `Frame::new` recomputes it, after which the values are the
     // definition's, and the closed rule is a miss where the signs now
-    // straddle zero and goes on below otherwise.
-    let e = if e.eq(lanes_zero) != 0 {
+    // straddle zero and goes on below otherwise. Where both of its
+    // products have a zero factor (the ray through a corner that lands
+    // exactly on the origin of the sheared plane, as a ray aimed at a
+    // vertex mostly does), it is exactly zero, and the recomputation
+    // would give the same value (`Scalar::diff_of_products_exact_sign`):
+    // no call.
+    let zeros = e.eq(lanes_zero);
+    let e = if zeros & !exact_zeros(x, y) != 0 {
         let e = exact_zero_edges::<V>(x, y, e);
         if straddles(e) {
             return None;
@@ -300,12 +308,16 @@ fn finish_lanes<V: Vector>(
             unpack(plain_miss_lanes(ray, &tri(), t_max))
         };
     }
-    // The first sufficient test for t > 0 (every corner in front), and a
-    // well-conditioned determinant; else the definition decides. (Before
-    // the division, so that no branch waits for it; the definition's tests
-    // are pure functions of the same values, so their order changes no
-    // answer.)
-    if !(ahead == 0b111 && det_sign_known_at_corners(x, y, pz, det)) {
+    // The first sufficient test for t > 0 (every corner in front), or,
+    // with some corner in front and some behind, the second (the scaled
+    // distance beyond its error bound); and a well-conditioned
+    // determinant. Else the definition decides. (Before the division, so
+    // that no branch waits for it; the definition's tests are pure
+    // functions of the same values, so their order changes no answer.)
+    if !(det_sign_known_at_corners(x, y, pz, det)
+        && (ahead == 0b111
+            || (ahead != 0 && beyond_its_bound(ray, &tri(), [x, y, pz, z, e], t_scaled))))
+    {
         return definition_answer(ray, &tri(), t_max);
     }
     let inv_det = one / det;
@@ -319,6 +331,56 @@ fn finish_lanes<V: Vector>(
     // (`u` and `v` finite here: `1 / det` is finite, else `t` would be
     // infinite.)
     Some(lanes_hit(t, e, det, inv_det, sz.x()))
+}
+
+/// The definition's second test for `t > 0` (pbrt-v4's): whether the
+/// scaled distance `t_scaled` exceeds its rounding error bound
+/// (`ErrorBounds`' `t_scaled`), for a crossing with some corner in front
+/// of the origin and some behind. The lanes hold the definition's frame
+/// bit for bit (`x`, `y`, `p_z`, the scaled depths `z` and the edge
+/// functions `e`, zeros recomputed; `p_x` and `p_y` are recomputed here
+/// as `frame_lanes` computes them), and `ErrorBounds::new` runs on it, so
+/// the bound is the definition's, and where this holds (and the
+/// determinant's sign is known, so that `HitCondition::new` is `Some`)
+/// the definition's answer is the plain one. Out of line: the rays that
+/// need it start within about a triangle's size of the surface they hit
+/// (a ray from next to a mesh, aimed at its vertices).
+#[inline(never)]
+fn beyond_its_bound<V: Vector>(
+    ray: &PreparedRay<V>,
+    tri: &Triangle<V>,
+    [x, y, pz, z, e]: [L<V>; 5],
+    t_scaled: S<V>,
+) -> bool {
+    let [px, py, _] = translated(&ray.origin_lanes, &ray.axes, [&tri.a, &tri.b, &tri.c]);
+    let frame = Frame {
+        x: x.to_array(),
+        y: y.to_array(),
+        px: px.to_array(),
+        py: py.to_array(),
+        pz: pz.to_array(),
+        e: e.to_array(),
+    };
+    t_scaled.abs() > ErrorBounds::new(&frame, &z.to_array(), &ray.shear()).t_scaled
+}
+
+/// Bit `i` set where both products of edge function `i` (`x[i+1]
+/// y[i+2]` and `y[i+1] x[i+2]`, of sheared coordinates `x`, `y`) have a
+/// zero factor, so that the edge function is exactly zero (checked on
+/// the factors: a product of nonzero factors can underflow to zero).
+#[inline(always)]
+fn exact_zeros<W: Lanes>(x: W, y: W) -> u32
+where
+    W::F: Scalar,
+{
+    let zero = W::splat(W::F::ZERO);
+    let (x1, y1, x2, y2) = (
+        x.rot1().eq(zero),
+        y.rot1().eq(zero),
+        x.rot2().eq(zero),
+        y.rot2().eq(zero),
+    );
+    (x1 | y2) & (y1 | x2)
 }
 
 /// The edge functions `e` (lane `i` that of the edge from corner `i + 1`
@@ -528,8 +590,8 @@ mod tests {
             } else {
                 (Triangle::new(a, b, c), None)
             };
-            // Half of the rays aimed at an edge's midpoint or the centroid
-            // (rounded), for hits and edge cases.
+            // Half of the rays aimed at an edge's midpoint, the centroid
+            // (rounded) or a corner, for hits and edge cases.
             let half = S::<V>::HALF;
             let pick = draws.coordinate(40);
             let mut v = || {
@@ -539,10 +601,11 @@ mod tests {
                     S::<V>::from_f64(draws.coordinate(40)),
                 )
             };
-            let dir = match (on_segment, (pick * 4.0) as i64 % 4) {
+            let dir = match (on_segment, (pick * 6.0) as i64 % 6) {
                 (Some(p), _) => p - origin,
                 (None, 0) => (tri.a + tri.b) * half - origin,
                 (None, 1) => (tri.a + tri.b + tri.c) * (S::<V>::ONE / S::<V>::from_u32(3)) - origin,
+                (None, 2) => tri.c - origin,
                 _ => v(),
             };
             let ray = Ray::new(origin, dir);
