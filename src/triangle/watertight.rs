@@ -302,10 +302,10 @@ fn finish_lanes<V: Vector>(
     // before the division, which most misses need not pay for.)
     let ahead = lanes_zero.lt(z);
     if !in_range {
-        return if ahead == 0 {
+        return if ahead == 0 || det_sign_known_at_corners(x, y, pz, det) {
             None
         } else {
-            unpack(plain_miss_lanes(ray, &tri(), t_max))
+            definition_answer(ray, &tri(), t_max)
         };
     }
     // The first sufficient test for t > 0 (every corner in front), or,
@@ -431,26 +431,6 @@ fn definition_out_of_line<V: Vector, R: DefinitionRay<V>>(
         t_max,
         EdgeRule::Closed,
     ))
-}
-
-/// The answer to a plain miss of [`watertight_lanes`] with some corner in
-/// front of the origin: a miss too where the determinant is well
-/// conditioned, else the definition's (`slow`). Out of line, and given
-/// only what the caller was given (it recomputes the frame, bit for bit),
-/// so that the common paths keep no more values alive for it.
-#[cold]
-#[inline(never)]
-fn plain_miss_lanes<V: Vector>(
-    ray: &PreparedRay<V>,
-    tri: &Triangle<V>,
-    t_max: S<V>,
-) -> Packed<S<V>> {
-    let (x, y, pz, e) = frame_lanes(&ray.origin_lanes, &ray.shear_lanes, &ray.axes, tri);
-    if det_sign_known_at_corners(x, y, pz, e.sum3()) {
-        pack::<S<V>>(None)
-    } else {
-        definition_out_of_line(ray, tri, t_max)
-    }
 }
 
 /// The watertight ray/triangle test (closed: edges and corners hit).
