@@ -616,6 +616,24 @@ impl Scene {
         dir: Vec3A,
         meets: impl Fn(&CwBvhNode, f32) -> u32,
     ) -> f32 {
+        self.closest_by(
+            dir,
+            meets,
+            #[inline(always)]
+            |i, t_max| self.tris[i].hit(ray, t_max).map(|hit| hit.t),
+        )
+    }
+
+    /// [`Scene::rayhit_closest_with`] with the triangle test `hit` (the
+    /// triangle's index in `tris` and `ob_tris`, and `t_max`: the hit's
+    /// `t` within `(0, t_max]`, if any): the floor rows' leaves.
+    #[inline(always)]
+    pub fn closest_by(
+        &self,
+        dir: Vec3A,
+        meets: impl Fn(&CwBvhNode, f32) -> u32,
+        mut hit: impl FnMut(usize, f32) -> Option<f32>,
+    ) -> f32 {
         let bvh = &self.bvh;
         let mut t_max = f32::INFINITY;
         let mut state = bvh.new_traversal(dir);
@@ -626,9 +644,9 @@ impl Scene {
             state,
             hit_mask(node, meets(node, t_max), state.oct_inv4),
             {
-                let t = &self.tris[bvh.primitive_indices[state.primitive_id as usize] as usize];
-                if let Some(hit) = t.hit(ray, t_max) {
-                    t_max = hit.t;
+                let i = bvh.primitive_indices[state.primitive_id as usize] as usize;
+                if let Some(t) = hit(i, t_max) {
+                    t_max = t;
                 }
             }
         );

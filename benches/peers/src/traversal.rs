@@ -118,6 +118,40 @@ impl Query for Closest {
     }
 }
 
+/// The closest hit's `t` by a triangle test of the caller's (`hit`: the
+/// triangle, `t_max`, the hit's `t` within `(0, t_max]`): the floor rows'
+/// leaves.
+struct ClosestBy<H> {
+    /// The nearest hit's `t` so far (infinite before one).
+    t_max: f32,
+    /// The triangle test.
+    hit: H,
+}
+
+impl<H: FnMut(&Triangle, u32, f32) -> Option<f32>> Query for ClosestBy<H> {
+    #[inline(always)]
+    fn reach(&self) -> Reach {
+        Reach {
+            search: self.t_max.into(),
+            lo: 0.0,
+            hi: self.t_max,
+        }
+    }
+    #[inline(always)]
+    fn far(&self) -> f32 {
+        self.t_max
+    }
+    #[inline(always)]
+    fn leaf(&mut self, _: &PreparedRay, tris: &[Triangle], first: u32) -> bool {
+        for (i, t) in tris.iter().enumerate() {
+            if let Some(t) = (self.hit)(t, first + i as u32, self.t_max) {
+                self.t_max = t;
+            }
+        }
+        false
+    }
+}
+
 /// Any hit within a fixed interval: the first occluder ends the walk.
 struct Occluded {
     /// The segment's range along the ray.
@@ -347,6 +381,32 @@ impl Bvh2Scene {
         q.best
     }
 
+    /// The closest hit's `t` (infinite for none) by the traversal of
+    /// [`Bvh2Scene::rayhit_closest`] with the triangle test `hit` (the
+    /// triangle, its index in `ob_tris`, `t_max`: the hit's `t` within
+    /// `(0, t_max]`): the floor rows.
+    #[inline(always)]
+    pub fn closest_by(
+        &self,
+        ray: &PreparedRay,
+        hit: impl FnMut(&Triangle, u32, f32) -> Option<f32>,
+    ) -> f32 {
+        let mut q = ClosestBy {
+            t_max: f32::INFINITY,
+            hit,
+        };
+        self.walk(ray, &mut q, |b, r| {
+            b.clip(ray, r.search).map(|(enter, _)| enter)
+        });
+        q.t_max
+    }
+
+    /// obvhs's triangle `i` (in the tree's order) by [`ob_hit`].
+    #[inline(always)]
+    pub fn obvhs_triangle(&self, i: u32, ray: &ObRay, t_max: f32) -> Option<f32> {
+        ob_hit(&self.ob_tris[i as usize], ray, t_max)
+    }
+
     /// Whether anything blocks `segment` of the ray, by the any-hit
     /// traversal here with `ValidAabb::meets` over the interval and
     /// `Triangle::occluded`, stopping at the first occluder.
@@ -504,6 +564,17 @@ impl ShadowRays {
         }
         out
     }
+}
+
+/// obvhs's triangle test on `ray` with its `tmax` set to `t_max` (obvhs
+/// tests `tmin <= t <= tmax`): the hit's `t`, if any.
+#[inline(always)]
+pub fn ob_hit(tri: &ObTriangle, ray: &ObRay, t_max: f32) -> Option<f32> {
+    let t = tri.intersect(&ObRay {
+        tmax: t_max,
+        ..*ray
+    });
+    (t != f32::INFINITY).then_some(t)
 }
 
 /// obvhs's ray for `r` over `(0, t_max]` (obvhs tests `tmin <= t <=

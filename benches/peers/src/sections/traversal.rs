@@ -42,15 +42,15 @@
 //! `rayhit CWBVH, plain calls`; the counts are printed after the table
 //! ([`print_counts`]), and `--traversal-leaks` prints the leak table.
 
-use rayhit::batch::{Simd, SimdWork, with_simd};
+use rayhit::batch::{InPlace, Simd, SimdWork, with_simd};
 use rayhit::glam::Vec3A;
-use rayhit::{Interval, PreparedRay, Ray, RayForm, ValidAabb};
+use rayhit::{Bounds, Interval, PreparedRay, Ray, RayForm, ValidAabb};
 use rayhit_peers::cwbvh::{self, LeakRays, Mesh, count_leaks};
 use rayhit_peers::traversal::{
-    Bvh2Scene, EPS, Reach, ShadowRays, camera_rays, inside_random_rays, ob_ray, random_rays,
+    Bvh2Scene, EPS, Reach, ShadowRays, camera_rays, inside_random_rays, ob_hit, ob_ray, random_rays,
 };
 
-use crate::floors::{FloorBoxRay, floor_box_enter};
+use crate::floors::{FloorBoxRay, FloorRay, floor_box_enter, floor_watertight_prepared};
 use crate::harness::loops::agree;
 use crate::harness::{Kernel, kernel};
 use crate::sections::cwbvh::print_leak_row;
@@ -79,6 +79,20 @@ pub const FLOOR: &str =
 /// test and the exit's widening, inlined) in place of `ValidAabb::clip`.
 pub const BVH2_FLOOR: &str = "floor: BVH2, the same walk, a slab test with only the widening";
 
+/// The floor rows of the leaves' test, on the closest-hit workloads: the
+/// traversals of `rayhit CWBVH, plain calls` and `rayhit BVH2, plain
+/// calls` with, in the leaves, the textbook watertight test on a ray
+/// prepared once (`floors::floor_watertight_prepared` without its checks:
+/// no exact sign, no conservative `t > 0`) and obvhs's own triangle test
+/// (not watertight). Against the plain rows, they separate the triangle
+/// test's cost from the walk's and the node test's.
+pub const LEAF_FLOORS: [&str; 4] = [
+    "floor: CWBVH, the same traversal, the textbook watertight test in the leaves",
+    "floor: CWBVH, the same traversal, obvhs's triangle test in the leaves",
+    "floor: BVH2, the same walk, the textbook watertight test in the leaves",
+    "floor: BVH2, the same walk, obvhs's triangle test in the leaves",
+];
+
 /// The rows of `shadow` that trace obvhs's segments (origin `point + EPS
 /// n`, over `(0, 1 - EPS]`) with rayhit's plain-call traversals: the
 /// kernels' cost on the same segments as obvhs's rows, without the
@@ -103,6 +117,8 @@ struct Workload {
     grazing: usize,
     /// The rays as the binary BVH's floor row reads them.
     floor: Vec<FloorBoxRay>,
+    /// The rays as the textbook watertight floor reads them.
+    watertight: Vec<FloorRay>,
     /// Empty but on `shadow`: obvhs's offset segments as rayhit's rays,
     /// each over `(0, 1 - EPS]`.
     offset: Vec<PreparedRay>,
@@ -214,6 +230,7 @@ impl TraversalData {
             ob: rays.iter().map(|r| ob_ray(r, f32::INFINITY)).collect(),
             grazing: 0,
             floor: rays.iter().map(FloorBoxRay::new).collect(),
+            watertight: rays.iter().map(FloorRay::new).collect(),
             offset: Vec::new(),
         };
         let shadow = ShadowRays::new(&bvh2, mesh, &camera);
@@ -239,6 +256,7 @@ impl TraversalData {
                 .iter()
                 .map(|(r, _)| FloorBoxRay::new(r))
                 .collect(),
+            watertight: Vec::new(),
             offset: shadow.eps.iter().map(PreparedRay::new).collect(),
         });
         let mut d = TraversalData {
@@ -396,6 +414,9 @@ pub fn traversal_kernels<'a>(d: &'a TraversalData, out: &mut Vec<Kernel<'a>>) {
             floor_closest,
             floor_occluded,
         ));
+        if !shadow {
+            leaf_floors(d, k, &name, out);
+        }
         if shadow {
             // rayhit's kernels on obvhs's segments: what the epsilon-free
             // start costs, apart from the kernels.
@@ -418,6 +439,79 @@ pub fn traversal_kernels<'a>(d: &'a TraversalData, out: &mut Vec<Kernel<'a>>) {
             move |i| u64::from(bvh2.obvhs_occluded(&w.ob[i])),
         ));
     }
+}
+
+/// The rows of [`LEAF_FLOORS`] on the closest-hit workload `k`, each
+/// with its agreement (hit or miss) against `rayhit CWBVH, plain calls`.
+fn leaf_floors<'a>(d: &'a TraversalData, k: usize, name: &str, out: &mut Vec<Kernel<'a>>) {
+    let w = &d.workloads[k];
+    let n = w.rays.len();
+    let (fixed, bvh2) = (&d.fixed, &d.bvh2);
+    let watertight = move |i: usize, t: &rayhit::Triangle, t_max: f32| {
+        floor_watertight_prepared::<false>(&w.watertight[i], t, t_max).map(|(t, _)| t)
+    };
+    let meets = move |i: usize| {
+        #[inline(always)]
+        move |node: &_, t: f32| InPlace(|| cwbvh::children(node)).meets(&w.rays[i].0, t)
+    };
+    let agreement = |closest: &dyn Fn(usize) -> f32| {
+        agree(
+            d.answers[k][0].iter().copied(),
+            (0..n).map(|i| closest(i) != f32::INFINITY),
+        )
+    };
+    let cw_watertight = move |i: usize| {
+        fixed.closest_by(
+            w.rays[i].1,
+            meets(i),
+            #[inline(always)]
+            |j, t_max| watertight(i, &fixed.tris[j], t_max),
+        )
+    };
+    let cw_obvhs = move |i: usize| {
+        fixed.closest_by(
+            w.rays[i].1,
+            meets(i),
+            #[inline(always)]
+            |j, t_max| ob_hit(&fixed.ob_tris[j], &w.ob[i], t_max),
+        )
+    };
+    let bvh2_watertight = move |i: usize| {
+        bvh2.closest_by(
+            &w.rays[i].0,
+            #[inline(always)]
+            |t, _, t_max| watertight(i, t, t_max),
+        )
+    };
+    let bvh2_obvhs = move |i: usize| {
+        bvh2.closest_by(
+            &w.rays[i].0,
+            #[inline(always)]
+            |_, j, t_max| bvh2.obvhs_triangle(j, &w.ob[i], t_max),
+        )
+    };
+    let rows = [
+        agreement(&cw_watertight),
+        agreement(&cw_obvhs),
+        agreement(&bvh2_watertight),
+        agreement(&bvh2_obvhs),
+    ];
+    let row = |r: usize| (name, n, LEAF_FLOORS[r], rows[r]);
+    out.push(floor_row(row(0), cw_watertight));
+    out.push(floor_row(row(1), cw_obvhs));
+    out.push(floor_row(row(2), bvh2_watertight));
+    out.push(floor_row(row(3), bvh2_obvhs));
+}
+
+/// A timed row of closest hits `closest` (each ray's `t`, infinite for
+/// none) over `n` rays, with its agreement.
+fn floor_row<'a>(
+    (name, n, label, agreement): (&str, usize, &str, f64),
+    closest: impl Fn(usize) -> f32 + 'a,
+) -> Kernel<'a> {
+    kernel(SECTION, label, name, n, Some(agreement), move || {
+        sum(n, |i| u64::from(closest(i).to_bits()))
+    })
 }
 
 /// A row of the section on workload `name` of `n` rays: `occluded` over
