@@ -528,6 +528,11 @@ pub struct ShadowRays {
     /// Hit points where `spawn_to_point` gave no segment (the light within
     /// rounding of the surface's plane): counted as blocked, not traced.
     pub grazing: usize,
+    /// Per segment, whether the light is on the eye's side of the surface
+    /// (`n . (light - point) > 0`, `n` turned towards the eye): the
+    /// segments a renderer traces for an opaque surface, whose reflection
+    /// is zero where the light is behind it.
+    pub lit: Vec<bool>,
 }
 
 /// The offset and the end of the segments [`ShadowRays::eps`] holds.
@@ -545,6 +550,7 @@ impl ShadowRays {
             rayhit: Vec::new(),
             eps: Vec::new(),
             grazing: 0,
+            lit: Vec::new(),
         };
         for r in rays {
             let Some((i, hit)) = scene.rayhit_closest(&PreparedRay::new(r)) else {
@@ -561,6 +567,7 @@ impl ShadowRays {
             let n = if n.dot(r.dir) > 0.0 { -n } else { n };
             let origin = surface.point + EPS * n;
             out.eps.push(Ray::new(origin, light - origin));
+            out.lit.push(n.dot(light - surface.point) > 0.0);
         }
         out
     }
@@ -650,6 +657,22 @@ mod tests {
                 let walked = scene.rayhit_closest(&p).map(|(_, h)| h.t);
                 assert_eq!(walked, nearest, "{r:?}");
             }
+        }
+    }
+
+    /// On a convex closed mesh (the icosphere), a shadow segment is
+    /// occluded exactly where the light is behind the surface: `lit`
+    /// marks the segments the binary walk finds unoccluded, and both
+    /// kinds occur.
+    #[test]
+    fn lit_segments_are_the_unoccluded_ones_on_a_convex_mesh() {
+        let mesh = Mesh::icosphere(3);
+        let scene = Bvh2Scene::new(&mesh);
+        let shadow = ShadowRays::new(&scene, &mesh, &camera_rays(&mesh, 32));
+        let lit = shadow.lit.iter().filter(|&&l| l).count();
+        assert!(lit > 100 && shadow.lit.len() - lit > 100, "{lit}");
+        for ((r, segment), &lit) in shadow.rayhit.iter().zip(&shadow.lit) {
+            assert_eq!(scene.rayhit_occluded(&PreparedRay::new(r), *segment), !lit);
         }
     }
 

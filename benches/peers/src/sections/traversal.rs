@@ -24,9 +24,13 @@
 //!   (`floors::floor_box_enter`, inlined);
 //! - `obvhs Bvh2, its own tests`: `Bvh2::ray_traverse` or
 //!   `ray_traverse_miss` with obvhs's triangle test;
-//! - on `shadow` only, [`OFFSET`]: rayhit's two plain-call traversals over
-//!   obvhs's offset segments, which separates the cost of the
-//!   epsilon-free start from the kernels'.
+//! - on the closest-hit workloads, [`LEAF_FLOORS`]: rayhit's two
+//!   traversals with the textbook watertight test (no guarantee's checks)
+//!   or obvhs's triangle test in the leaves, which separate the triangle
+//!   test's cost from the walk's;
+//! - on the shadow workloads only, [`OFFSET`]: rayhit's two plain-call
+//!   traversals over obvhs's offset segments, which separates the cost of
+//!   the epsilon-free start from the kernels'.
 //!
 //! Workloads: `camera` (128 x 128 pinhole rays in scanline order),
 //! `incoherent` (as many rays between random points around the mesh and
@@ -37,7 +41,9 @@
 //! where every hit is on an edge), `shadow` (any-hit segments from
 //! the camera rays' hits to a point light: rayhit's epsilon-free
 //! `spawn_to_point` segment over its interval for rayhit's rows, the
-//! `point + 1e-4 n`, `t_max = 1 - 1e-4` segment for obvhs's). The
+//! `point + 1e-4 n`, `t_max = 1 - 1e-4` segment for obvhs's), and
+//! `shadow, lit side` (those of them with the light on the eye's side of
+//! the surface: the ones a renderer traces for an opaque surface). The
 //! agreement column is hit or miss (occluded or not on `shadow`) against
 //! `rayhit CWBVH, plain calls`; the counts are printed after the table
 //! ([`print_counts`]), and `--traversal-leaks` prints the leak table.
@@ -93,6 +99,11 @@ pub const LEAF_FLOORS: [&str; 4] = [
     "floor: BVH2, the same walk, obvhs's triangle test in the leaves",
 ];
 
+/// The distance, as a fraction of the mesh's size (its box's diagonal),
+/// within which [`print_counts`] counts an offset segment's first hit as
+/// the surface it leaves.
+const NEAR: f32 = 1e-3;
+
 /// The rows of `shadow` that trace obvhs's segments (origin `point + EPS
 /// n`, over `(0, 1 - EPS]`) with rayhit's plain-call traversals: the
 /// kernels' cost on the same segments as obvhs's rows, without the
@@ -105,7 +116,8 @@ pub const OFFSET: [&str; 2] = [
 /// One ray set: rayhit's rays (prepared, with the direction obvhs's order
 /// reads), their intervals on `shadow`, and obvhs's rays.
 struct Workload {
-    /// `camera`, `incoherent`, `inside` or `shadow`.
+    /// `camera`, `incoherent`, `inside`, `inside, aimed ...`, `shadow` or
+    /// `shadow, lit side`.
     name: &'static str,
     /// rayhit's rays, prepared, with their directions.
     rays: Vec<(PreparedRay, Vec3A)>,
@@ -115,6 +127,12 @@ struct Workload {
     ob: Vec<obvhs::ray::Ray>,
     /// Shadow hit points without a segment (counted as blocked).
     grazing: usize,
+    /// On the shadow sets: of the segments with the light behind the
+    /// surface, how many there are, and how many obvhs's offset segments
+    /// have their first hit within `NEAR` of the mesh's size from their
+    /// start (the surface they leave, crossed again: the origin `point +
+    /// EPS n` is on the eye's side, the light on the other).
+    unlit: (usize, usize),
     /// The rays as the binary BVH's floor row reads them.
     floor: Vec<FloorBoxRay>,
     /// The rays as the textbook watertight floor reads them.
@@ -138,7 +156,7 @@ pub struct TraversalData {
     fixed: cwbvh::Scene,
     /// obvhs's binary BVH, for both binary rows.
     bvh2: Bvh2Scene,
-    /// `camera`, `incoherent`, `inside`, `shadow`.
+    /// The closest-hit workloads, then the two shadow sets.
     workloads: Vec<Workload>,
     /// Per workload, per row of [`ROWS`], per ray: hit (or occluded).
     answers: Vec<[Vec<bool>; 5]>,
@@ -229,6 +247,7 @@ impl TraversalData {
             segments: Vec::new(),
             ob: rays.iter().map(|r| ob_ray(r, f32::INFINITY)).collect(),
             grazing: 0,
+            unlit: (0, 0),
             floor: rays.iter().map(FloorBoxRay::new).collect(),
             watertight: rays.iter().map(FloorRay::new).collect(),
             offset: Vec::new(),
@@ -241,24 +260,39 @@ impl TraversalData {
             closest("inside", &inside_random_rays(&aimed, 13)),
             closest("inside, aimed at vertices and edges", &aimed),
         ];
-        workloads.push(Workload {
-            name: "shadow",
-            rays: shadow
-                .rayhit
+        // Every segment, and those a renderer traces for an opaque
+        // surface (the light on the eye's side).
+        let (lo, hi) = mesh.bounds();
+        let near = NEAR * (hi - lo).length();
+        let segments = |name, keep: &dyn Fn(usize) -> bool, grazing| {
+            let kept: Vec<usize> = (0..shadow.rayhit.len()).filter(|&i| keep(i)).collect();
+            let rayhit = || kept.iter().map(|&i| &shadow.rayhit[i]);
+            let eps = || kept.iter().map(|&i| &shadow.eps[i]);
+            let unlit: Vec<&Ray> = kept
                 .iter()
-                .map(|(r, _)| (PreparedRay::new(r), r.dir.into()))
-                .collect(),
-            segments: shadow.rayhit.iter().map(|&(_, s)| s).collect(),
-            ob: shadow.eps.iter().map(|r| ob_ray(r, 1.0 - EPS)).collect(),
-            grazing: shadow.grazing,
-            floor: shadow
-                .rayhit
-                .iter()
-                .map(|(r, _)| FloorBoxRay::new(r))
-                .collect(),
-            watertight: Vec::new(),
-            offset: shadow.eps.iter().map(PreparedRay::new).collect(),
-        });
+                .filter(|&&i| !shadow.lit[i])
+                .map(|&i| &shadow.eps[i])
+                .collect();
+            let first_hit = |r: &Ray| bvh2.obvhs_closest(&ob_ray(r, 1.0 - EPS)) * r.dir.length();
+            Workload {
+                unlit: (
+                    unlit.len(),
+                    unlit.iter().filter(|r| first_hit(r) < near).count(),
+                ),
+                name,
+                rays: rayhit()
+                    .map(|(r, _)| (PreparedRay::new(r), r.dir.into()))
+                    .collect(),
+                segments: rayhit().map(|&(_, s)| s).collect(),
+                ob: eps().map(|r| ob_ray(r, 1.0 - EPS)).collect(),
+                grazing,
+                floor: rayhit().map(|(r, _)| FloorBoxRay::new(r)).collect(),
+                watertight: Vec::new(),
+                offset: eps().map(PreparedRay::new).collect(),
+            }
+        };
+        workloads.push(segments("shadow", &|_| true, shadow.grazing));
+        workloads.push(segments("shadow, lit side", &|i| shadow.lit[i], 0));
         let mut d = TraversalData {
             name: mesh.name,
             triangles: mesh.faces.len(),
@@ -576,6 +610,23 @@ pub fn print_counts(data: &[TraversalData]) {
                     w.grazing
                 );
             }
+        }
+    }
+    println!();
+    println!(
+        "Shadow segments with the light behind the surface (all occluded on a closed mesh), and how many of obvhs's offset segments among them have their first hit within {NEAR} of the mesh's size from their start: the surface they leave, crossed again."
+    );
+    println!();
+    println!(
+        "| mesh | workload | light behind the surface | obvhs's segment blocked next to its start |"
+    );
+    println!("| --- | --- | ---: | ---: |");
+    for d in data {
+        for w in d.workloads.iter().filter(|w| w.unlit.0 > 0) {
+            println!(
+                "| {} | {} | {} | {} |",
+                d.name, w.name, w.unlit.0, w.unlit.1
+            );
         }
     }
 }
