@@ -273,7 +273,7 @@ fn finish_lanes<V: Vector>(
     // would give the same value (`Scalar::diff_of_products_exact_sign`):
     // no call.
     let zeros = e.eq(lanes_zero);
-    let e = if zeros & !exact_zeros(x, y) != 0 {
+    let e = if zeros != 0 && zeros & !exact_zeros(x, y) != 0 {
         let e = exact_zero_edges::<V>(x, y, e);
         if straddles(e) {
             return None;
