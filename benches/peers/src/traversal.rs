@@ -85,50 +85,17 @@ trait Query {
     fn leaf(&mut self, ray: &PreparedRay, tris: &[Triangle], first: u32) -> bool;
 }
 
-/// The closest hit: `t_max` shrinks to each hit found.
-struct Closest {
-    /// The nearest hit's `t` so far (infinite before one).
-    t_max: f32,
-    /// The nearest hit so far and its triangle.
-    best: Option<(u32, TriangleHit)>,
-}
-
-impl Query for Closest {
-    #[inline(always)]
-    fn reach(&self) -> Reach {
-        Reach {
-            search: self.t_max.into(),
-            lo: 0.0,
-            hi: self.t_max,
-        }
-    }
-    #[inline(always)]
-    fn far(&self) -> f32 {
-        self.t_max
-    }
-    #[inline(always)]
-    fn leaf(&mut self, ray: &PreparedRay, tris: &[Triangle], first: u32) -> bool {
-        for (i, t) in tris.iter().enumerate() {
-            if let Some(hit) = t.hit(ray, self.t_max) {
-                self.t_max = hit.t;
-                self.best = Some((first + i as u32, hit));
-            }
-        }
-        false
-    }
-}
-
-/// The closest hit's `t` by a triangle test of the caller's (`hit`: the
-/// triangle, `t_max`, the hit's `t` within `(0, t_max]`): the floor rows'
-/// leaves.
-struct ClosestBy<H> {
+/// The closest hit: `t_max` shrinks to each hit the triangle test `hit`
+/// finds (given the triangle, its index and `t_max`, the hit's `t` within
+/// `(0, t_max]`).
+struct Closest<H> {
     /// The nearest hit's `t` so far (infinite before one).
     t_max: f32,
     /// The triangle test.
     hit: H,
 }
 
-impl<H: FnMut(&Triangle, u32, f32) -> Option<f32>> Query for ClosestBy<H> {
+impl<H: FnMut(&Triangle, u32, f32) -> Option<f32>> Query for Closest<H> {
     #[inline(always)]
     fn reach(&self) -> Reach {
         Reach {
@@ -373,12 +340,18 @@ impl Bvh2Scene {
         ray: &PreparedRay,
         enter: impl Fn(&ValidAabb, Reach) -> Option<f32>,
     ) -> Option<(u32, TriangleHit)> {
-        let mut q = Closest {
-            t_max: f32::INFINITY,
-            best: None,
-        };
-        self.walk(ray, &mut q, enter);
-        q.best
+        let mut best = None;
+        self.closest_walk(
+            ray,
+            enter,
+            #[inline(always)]
+            |t, i, t_max| {
+                let hit = t.hit(ray, t_max)?;
+                best = Some((i, hit));
+                Some(hit.t)
+            },
+        );
+        best
     }
 
     /// The closest hit's `t` (infinite for none) by the traversal of
@@ -391,13 +364,27 @@ impl Bvh2Scene {
         ray: &PreparedRay,
         hit: impl FnMut(&Triangle, u32, f32) -> Option<f32>,
     ) -> f32 {
-        let mut q = ClosestBy {
+        self.closest_walk(
+            ray,
+            |b, r| b.clip(ray, r.search).map(|(enter, _)| enter),
+            hit,
+        )
+    }
+
+    /// The closest-hit walk with the box test `enter` and the triangle
+    /// test `hit`: the nearest hit's `t`.
+    #[inline(always)]
+    fn closest_walk(
+        &self,
+        ray: &PreparedRay,
+        enter: impl Fn(&ValidAabb, Reach) -> Option<f32>,
+        hit: impl FnMut(&Triangle, u32, f32) -> Option<f32>,
+    ) -> f32 {
+        let mut q = Closest {
             t_max: f32::INFINITY,
             hit,
         };
-        self.walk(ray, &mut q, |b, r| {
-            b.clip(ray, r.search).map(|(enter, _)| enter)
-        });
+        self.walk(ray, &mut q, enter);
         q.t_max
     }
 
