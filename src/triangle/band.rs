@@ -239,12 +239,8 @@ mod tests {
             if e.le(zero) != 0 && zero.le(e) != 0 {
                 return (0, 0, 0, 0.0);
             }
-            let corners = |k: Axis| L::<V>::new(tri.a.get(k), tri.b.get(k), tri.c.get(k));
-            let p = [
-                corners(axes[0]).sub(lanes[0]),
-                corners(axes[1]).sub(lanes[1]),
-                pz,
-            ];
+            let [px, py, _] = translated(lanes, axes, [&tri.a, &tri.b, &tri.c]);
+            let p = [px, py, pz];
             let z = pz.mul(prepared.shear_lanes[2]);
             let shear = [prepared.shear_lanes[0].x(), prepared.shear_lanes[1].x()];
             let Some((t, err)) = band_error::<V>(p, [x, y, z, e], e.sum3(), shear) else {

@@ -330,7 +330,7 @@ impl Bvh2Scene {
     /// (in the tree's order) and the hit.
     #[inline(always)]
     pub fn rayhit_closest(&self, ray: &PreparedRay) -> Option<(u32, TriangleHit)> {
-        self.closest_with(ray, |b, r| b.clip(ray, r.search).map(|(enter, _)| enter))
+        self.closest_with(ray, clip_entry(ray))
     }
 
     /// [`Bvh2Scene::rayhit_closest`] with the box test `enter`.
@@ -364,11 +364,7 @@ impl Bvh2Scene {
         ray: &PreparedRay,
         hit: impl FnMut(&Triangle, u32, f32) -> Option<f32>,
     ) -> f32 {
-        self.closest_walk(
-            ray,
-            |b, r| b.clip(ray, r.search).map(|(enter, _)| enter),
-            hit,
-        )
+        self.closest_walk(ray, clip_entry(ray), hit)
     }
 
     /// The closest-hit walk with the box test `enter` and the triangle
@@ -558,6 +554,13 @@ impl ShadowRays {
         }
         out
     }
+}
+
+/// The closest-hit walk's box test: `ValidAabb::clip` on `ray` over the
+/// query's range, its entry distance.
+#[inline(always)]
+fn clip_entry(ray: &PreparedRay) -> impl Fn(&ValidAabb, Reach) -> Option<f32> + '_ {
+    |b, r| b.clip(ray, r.search).map(|(enter, _)| enter)
 }
 
 /// obvhs's triangle test on `ray` with its `tmax` set to `t_max` (obvhs
